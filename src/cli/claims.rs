@@ -1,0 +1,48 @@
+//! `v2ref claims`: every claim of the ledger with the computed value and status.
+
+use super::print_json;
+use std::process::ExitCode;
+use v2ref::claims::{evaluate, Effort};
+use v2ref::Result;
+
+/// Flags of `claims`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Smaller Monte Carlo runs (same code paths).
+    #[arg(long)]
+    quick: bool,
+    /// One JSON document instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `claims`.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let effort = if args.quick {
+        Effort::Quick
+    } else {
+        Effort::Full
+    };
+    let results = evaluate(effort);
+    if args.json {
+        print_json(&results);
+        return Ok(ExitCode::SUCCESS);
+    }
+    let fmt = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |x| format!("{x:.6}"));
+    let id_width = results.iter().map(|r| r.id.len()).max().unwrap_or(0);
+    println!(
+        "{:<id_width$}  {:>12}  {:>12}  {:<11}  note",
+        "claim", "paper", "computed", "status"
+    );
+    for r in &results {
+        println!(
+            "{:<id_width$}  {:>12}  {:>12}  {:<11}  {}",
+            r.id,
+            fmt(r.paper),
+            fmt(r.computed),
+            r.status.as_str(),
+            r.note
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,141 @@
+//! Flags shared by `bias`, `snr`, `simulate` and `piston`.
+
+use super::finite_f64;
+use clap::ValueEnum;
+use std::path::PathBuf;
+use v2ref::dispersion::SpectralPhase;
+use v2ref::estimator::BinWindow;
+use v2ref::interferogram::Sampling;
+use v2ref::observation::{Frequency, Observation};
+use v2ref::source::Source;
+use v2ref::spectrum::{Band, Spectrum};
+use v2ref::Result;
+
+/// Source model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SourceKind {
+    /// Unresolved (V = 1).
+    Point,
+    /// Uniform disk of diameter --diameter-mas.
+    Ud,
+}
+
+/// Fourier bins an estimator sums.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum BinsKind {
+    /// All N bins (the paper's Appendix).
+    All,
+    /// Positive frequencies 1 … N/2 − 1.
+    Positive,
+    /// Positive-frequency bins inside the band.
+    Band,
+}
+
+/// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ObservationArgs {
+    /// Centre wavelength λ0, µm.
+    #[arg(long, default_value = "2.2", value_parser = finite_f64)]
+    pub wavelength_um: f64,
+    /// Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
+    #[arg(long, default_value = "400", value_parser = finite_f64)]
+    pub bandwidth_nm: f64,
+    /// A tabulated S(σ)F(σ) instead of the flat band: CSV with header
+    /// `wavelength_um,weight` or `wavenumber_per_um,weight`.
+    #[arg(long, value_name = "FILE")]
+    pub spectrum_csv: Option<PathBuf>,
+    /// Source model.
+    #[arg(long, value_enum, default_value = "ud")]
+    pub source: SourceKind,
+    /// Uniform-disk diameter θ, mas.
+    #[arg(long, default_value = "43", value_parser = finite_f64)]
+    pub diameter_mas: f64,
+    /// Spatial frequency S = B σ_eff, cycles/arcsec [default: 40, the
+    /// paper's 18 m baseline in K].
+    #[arg(long, value_parser = finite_f64, conflicts_with = "baseline_m")]
+    pub spatial_freq_cpas: Option<f64>,
+    /// Projected baseline B, m (instead of --spatial-freq-cpas).
+    #[arg(long, value_parser = finite_f64)]
+    pub baseline_m: Option<f64>,
+    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
+    #[arg(long, default_value = "0", value_parser = finite_f64)]
+    pub dispersion_pp_rad: f64,
+}
+
+impl ObservationArgs {
+    /// The spectrum these flags describe.
+    pub fn spectrum(&self) -> Result<Spectrum> {
+        match &self.spectrum_csv {
+            Some(path) => Spectrum::from_csv_path(path),
+            None => Ok(Spectrum::flat(Band::new(
+                self.wavelength_um,
+                self.bandwidth_nm * 1e-3,
+            )?)),
+        }
+    }
+
+    /// The source these flags describe.
+    pub fn source(&self) -> Result<Source> {
+        match self.source {
+            SourceKind::Point => Ok(Source::Point),
+            SourceKind::Ud => Source::uniform_disk(self.diameter_mas),
+        }
+    }
+
+    /// The observation these flags describe.
+    pub fn observation(&self) -> Result<Observation> {
+        let spectrum = self.spectrum()?;
+        let frequency = match (self.spatial_freq_cpas, self.baseline_m) {
+            (_, Some(b)) => Frequency::BaselineM(b),
+            (Some(s), None) => Frequency::SpatialFreqCpas(s),
+            (None, None) => Frequency::SpatialFreqCpas(40.0),
+        };
+        let phase = SpectralPhase::dispersion_peak_to_peak(&spectrum, self.dispersion_pp_rad)?;
+        Observation::new(spectrum, self.source()?, frequency, phase)
+    }
+}
+
+/// How the interferogram is sampled.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SamplingArgs {
+    /// OPD stroke Δx, µm (sets N = Δx/δx; default: --samples × --dx-um).
+    #[arg(long, value_parser = finite_f64)]
+    pub stroke_um: Option<f64>,
+    /// Sample spacing δx, µm.
+    #[arg(long, default_value = "0.5", value_parser = finite_f64)]
+    pub dx_um: f64,
+    /// Number of samples N (ignored when --stroke-um is given).
+    #[arg(long, default_value = "128")]
+    pub samples: usize,
+    /// Integrating detector (each sample averages the fringe over δx).
+    #[arg(long)]
+    pub integrating: bool,
+    /// Fourier bins the estimators sum.
+    #[arg(long, value_enum, default_value = "positive")]
+    pub bins: BinsKind,
+}
+
+impl SamplingArgs {
+    /// The sampling these flags describe.
+    pub fn sampling(&self) -> Result<Sampling> {
+        match self.stroke_um {
+            Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
+            None => Sampling::new(self.samples, self.dx_um, self.integrating),
+        }
+    }
+
+    /// The bin window these flags describe, for the band of `spectrum`.
+    pub fn window(&self, spectrum: &Spectrum) -> BinWindow {
+        match self.bins {
+            BinsKind::All => BinWindow::All,
+            BinsKind::Positive => BinWindow::PositiveHalf,
+            BinsKind::Band => {
+                let (lo, hi) = spectrum.support();
+                BinWindow::Band {
+                    lo_per_um: lo,
+                    hi_per_um: hi,
+                }
+            }
+        }
+    }
+}

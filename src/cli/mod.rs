@@ -1,0 +1,96 @@
+//! Subcommands of the `v2ref` binary, one file each, and what they share.
+
+pub mod bias;
+pub mod claims;
+pub mod common;
+pub mod golden;
+pub mod piston;
+pub mod reproduce;
+pub mod simulate;
+pub mod snr;
+
+use std::io::IsTerminal;
+use std::process::ExitCode;
+use v2ref::Error;
+
+/// Exit status for bad input.
+pub const EXIT_BAD_INPUT: u8 = 2;
+
+/// Prints a library error as one line naming the flag, and returns status 2.
+pub fn fail(e: &Error) -> ExitCode {
+    let msg = e.to_string();
+    // Library messages start with the parameter's flag name: prefix the dashes.
+    let line = match msg.split_once(':') {
+        Some((flag, rest)) if !flag.contains(' ') && !flag.contains('/') && !flag.contains('.') => {
+            format!("--{flag}:{rest}")
+        }
+        _ => msg,
+    };
+    eprintln!("error: {}", line.replace('\n', " "));
+    ExitCode::from(EXIT_BAD_INPUT)
+}
+
+/// Handles a clap parse error: help and version print normally (status 0);
+/// anything else prints its first line and returns status 2.
+pub fn clap_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            ExitCode::SUCCESS
+        }
+        _ => {
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("error: bad arguments");
+            eprintln!("{first}");
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
+    }
+}
+
+/// Parses a finite f64 (clap value parser).
+pub fn finite_f64(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err("expected a finite number".into()),
+    }
+}
+
+/// Prints `value` as one pretty JSON document on stdout.
+pub fn print_json<T: serde::Serialize>(value: &T) {
+    match serde_json::to_string_pretty(value) {
+        Ok(s) => println!("{s}"),
+        Err(e) => eprintln!("error: cannot serialize the answer: {e}"),
+    }
+}
+
+/// Prints aligned `name  value` rows.
+pub fn print_rows(rows: &[(&str, String)]) {
+    let width = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
+    for (name, value) in rows {
+        println!("{name:<width$}  {value}");
+    }
+}
+
+#[allow(dead_code)] // until the Monte Carlo subcommands land
+/// Whether progress bars should be drawn: stderr is a terminal and the user
+/// did not ask for quiet.
+pub fn show_progress(quiet: bool) -> bool {
+    !quiet && std::io::stderr().is_terminal()
+}
+
+#[allow(dead_code)] // until the Monte Carlo subcommands land
+/// A progress bar over `len` steps, hidden when not [`show_progress`].
+pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar {
+    if !show_progress(quiet) {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} ({eta} left)")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(what.to_owned());
+    bar
+}

@@ -1,0 +1,55 @@
+//! `v2ref`: the command-line face of the library (contract in
+//! `CONVENTIONS.md`). Every subcommand prints a table, or one JSON document
+//! with `--json`; bad input exits with status 2 and one line naming the flag.
+
+mod cli;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Squared-visibility estimators V1² and V2² of Perrin & Ridgway: biases,
+/// variances, SNR and Monte Carlo.
+#[derive(Parser)]
+#[command(name = "v2ref", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Noise-free wide-band V1 and V2 for one configuration.
+    Bias(cli::bias::Args),
+    /// Every claim of the paper: printed value, computed value, status.
+    Claims(cli::claims::Args),
+    /// Closed-form variances and SNRs of both estimators.
+    Snr(cli::snr::Args),
+    /// Monte Carlo of the estimators under detector and photon noise.
+    Simulate(cli::simulate::Args),
+    /// Piston Monte Carlo at one or more fringe frequencies.
+    Piston(cli::piston::Args),
+    /// Compare (--check) or rewrite (--update) golden/ from the code.
+    Golden(cli::golden::Args),
+    /// Regenerate every figure and table of the paper.
+    Reproduce(cli::reproduce::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => return cli::clap_error(e),
+    };
+    let result = match cli.command {
+        Command::Bias(a) => cli::bias::run(a),
+        Command::Claims(a) => cli::claims::run(a),
+        Command::Snr(a) => cli::snr::run(a),
+        Command::Simulate(a) => cli::simulate::run(a),
+        Command::Piston(a) => cli::piston::run(a),
+        Command::Golden(a) => cli::golden::run(a),
+        Command::Reproduce(a) => cli::reproduce::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => cli::fail(&e),
+    }
+}
