@@ -35,10 +35,10 @@ pub enum BinsKind {
 #[derive(Debug, Clone, clap::Args)]
 pub struct ObservationArgs {
     /// Centre wavelength λ0, µm.
-    #[arg(long, default_value = "2.2", value_parser = finite_f64)]
+    #[arg(long, default_value = "2.2", value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
     /// Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
-    #[arg(long, default_value = "400", value_parser = finite_f64)]
+    #[arg(long, default_value = "400", value_parser = finite_f64, allow_negative_numbers = true)]
     pub bandwidth_nm: f64,
     /// A tabulated S(σ)F(σ) instead of the flat band: CSV with header
     /// `wavelength_um,weight` or `wavenumber_per_um,weight`.
@@ -48,17 +48,17 @@ pub struct ObservationArgs {
     #[arg(long, value_enum, default_value = "ud")]
     pub source: SourceKind,
     /// Uniform-disk diameter θ, mas.
-    #[arg(long, default_value = "43", value_parser = finite_f64)]
+    #[arg(long, default_value = "43", value_parser = finite_f64, allow_negative_numbers = true)]
     pub diameter_mas: f64,
     /// Spatial frequency S = B σ_eff, cycles/arcsec [default: 40, the
     /// paper's 18 m baseline in K].
-    #[arg(long, value_parser = finite_f64, conflicts_with = "baseline_m")]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
     pub spatial_freq_cpas: Option<f64>,
     /// Projected baseline B, m (instead of --spatial-freq-cpas).
-    #[arg(long, value_parser = finite_f64)]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub baseline_m: Option<f64>,
     /// Quadratic dispersion phase, peak-to-peak over the band, rad.
-    #[arg(long, default_value = "0", value_parser = finite_f64)]
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     pub dispersion_pp_rad: f64,
 }
 
@@ -99,10 +99,10 @@ impl ObservationArgs {
 #[derive(Debug, Clone, clap::Args)]
 pub struct SamplingArgs {
     /// OPD stroke Δx, µm (sets N = Δx/δx; default: --samples × --dx-um).
-    #[arg(long, value_parser = finite_f64)]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub stroke_um: Option<f64>,
     /// Sample spacing δx, µm.
-    #[arg(long, default_value = "0.5", value_parser = finite_f64)]
+    #[arg(long, default_value = "0.5", value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
     /// Number of samples N (ignored when --stroke-um is given).
     #[arg(long, default_value = "128")]

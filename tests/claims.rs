@@ -1,0 +1,92 @@
+//! The claims ledger: the project's copy matches the shared ledger, every
+//! claim is answered honestly, and the foundation's claims hold.
+
+use v2ref::claims::{evaluate, ledger, Effort, Status};
+
+#[test]
+fn project_ledger_matches_the_shared_ledger() {
+    let shared = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/claims.toml");
+    let Ok(text) = std::fs::read_to_string(&shared) else {
+        eprintln!("../shared/claims.toml not beside the checkout: comparison skipped");
+        return;
+    };
+    #[derive(serde::Deserialize)]
+    struct L {
+        claim: Vec<v2ref::claims::ClaimSpec>,
+    }
+    let theirs: L = toml::from_str(&text).expect("shared ledger parses");
+    let ours = ledger();
+    assert_eq!(ours.len(), theirs.claim.len());
+    for (a, b) in ours.iter().zip(&theirs.claim) {
+        assert_eq!(a.id, b.id);
+        assert_eq!(a.paper, b.paper, "{}", a.id);
+        assert_eq!(a.tol, b.tol, "{}", a.id);
+        assert_eq!(a.unit, b.unit, "{}", a.id);
+    }
+}
+
+#[test]
+fn every_claim_is_answered_honestly() {
+    let results = evaluate(Effort::Quick);
+    assert_eq!(results.len(), ledger().len());
+    for r in &results {
+        assert!(!r.note.is_empty(), "{}: no note", r.id);
+        match r.status {
+            Status::Reproduced => {
+                // Reproduced means computed and within the paper's rounding.
+                let spec = ledger().into_iter().find(|s| s.id == r.id).unwrap();
+                let (p, t, c) = (spec.paper.unwrap(), spec.tol.unwrap(), r.computed.unwrap());
+                assert!((c - p).abs() <= t, "{}: {c} vs {p} ± {t}", r.id);
+            }
+            Status::Differs => assert!(r.computed.is_some(), "{}: differs without a value", r.id),
+            Status::Erratum => assert!(
+                r.published.is_some() || r.exact.is_some() || r.computed.is_some(),
+                "{}",
+                r.id
+            ),
+            _ => {}
+        }
+    }
+}
+
+#[test]
+fn foundation_claims_are_computed() {
+    let results = evaluate(Effort::Quick);
+    let get = |id: &str| results.iter().find(|r| r.id == id).unwrap();
+    for id in [
+        "formalism.fringe_count",
+        "integration.sinc_min_nyquist",
+        "integration.norm_factor_4spf",
+        "resolution.fts_100um_2um",
+        "line.width_in_elements",
+        "bandwidth.v1_max_diff_400nm",
+        "bandwidth.v2_max_diff_400nm",
+        "dispersion.v1_invariant",
+        "dispersion.v2_point_1rad",
+        "dispersion.v2_point_1p5rad",
+        "dispersion.v2_point_2rad",
+        "piston.baseline_18m_cpas",
+        "dynamic_range.formula",
+    ] {
+        assert_ne!(get(id).status, Status::Pending, "{id}");
+        assert!(get(id).computed.is_some(), "{id}");
+    }
+    // V2 of a point source falls as the dispersion grows.
+    let v = |id| get(id).computed.unwrap();
+    assert!(1.0 > v("dispersion.v2_point_1rad"));
+    assert!(v("dispersion.v2_point_1rad") > v("dispersion.v2_point_1p5rad"));
+    assert!(v("dispersion.v2_point_1p5rad") > v("dispersion.v2_point_2rad"));
+}
+
+#[test]
+fn dynamic_range_formula_holds_its_scaling_laws() {
+    use v2ref::dynamic_range::dynamic_range;
+    let a = dynamic_range(100.0, 1e-3, 0.0).unwrap();
+    assert!((dynamic_range(400.0, 1e-3, 0.0).unwrap() / a - 2.0).abs() < 1e-14);
+    assert!((dynamic_range(100.0, 2e-3, 0.0).unwrap() / a - 0.5).abs() < 1e-14);
+    // Modulus and phase errors add in quadrature.
+    let b = dynamic_range(100.0, 3e-3, 4e-3).unwrap();
+    assert!((b - (100.0f64 / 25e-6).sqrt()).abs() < 1e-9 * b);
+    assert!(dynamic_range(0.5, 1e-3, 0.0).is_err());
+    assert!(dynamic_range(10.0, 0.0, 0.0).is_err());
+}

@@ -1,0 +1,188 @@
+//! The command-line contract: bad input exits 2 with one line naming the
+//! flag, never a panic; `--json` answers parse and carry the contract's fields.
+
+use std::process::Command;
+
+fn v2ref(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn assert_bad_input(args: &[&str], flag: &str) {
+    let (code, stdout, stderr) = v2ref(args);
+    assert_eq!(code, 2, "{args:?}: exit {code}, stderr {stderr}");
+    assert!(stdout.is_empty(), "{args:?}: wrote to stdout: {stdout}");
+    assert!(!stderr.contains("panicked"), "{args:?}: panicked: {stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "{args:?}: not one line: {stderr}"
+    );
+    assert!(
+        stderr.contains(flag),
+        "{args:?}: message does not name {flag}: {stderr}"
+    );
+}
+
+#[test]
+fn bad_input_exits_2_naming_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad_csv = dir.path().join("bad.csv");
+    std::fs::write(&bad_csv, "wavelength_um,weight\n2.0,1\n2.1,x\n").unwrap();
+    let bad_csv = bad_csv.to_str().unwrap().to_owned();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["bias", "--wavelength-um", "nan"], "--wavelength-um"),
+        (vec!["bias", "--wavelength-um", "abc"], "--wavelength-um"),
+        (vec!["bias", "--wavelength-um", "-2"], "--wavelength-um"),
+        (vec!["bias", "--bandwidth-nm", "0"], "--bandwidth-nm"),
+        (vec!["bias", "--bandwidth-nm", "5000"], "--bandwidth-nm"),
+        (vec!["bias", "--diameter-mas", "-4"], "--diameter-mas"),
+        (vec!["bias", "--diameter-mas", "inf"], "--diameter-mas"),
+        (
+            vec!["bias", "--spatial-freq-cpas", "-1"],
+            "--spatial-freq-cpas",
+        ),
+        (vec!["bias", "--baseline-m", "-1"], "--baseline-m"),
+        (
+            vec!["bias", "--spatial-freq-cpas", "3", "--baseline-m", "1"],
+            "--baseline-m",
+        ),
+        (
+            vec!["bias", "--dispersion-pp-rad", "nan"],
+            "--dispersion-pp-rad",
+        ),
+        (vec!["bias", "--finite-scan", "--samples", "1"], "--samples"),
+        (vec!["bias", "--finite-scan", "--dx-um", "0"], "--dx-um"),
+        (vec!["bias", "--finite-scan", "--dx-um", "1.5"], "--dx-um"),
+        (vec!["bias", "--stroke-um", "-64"], "--stroke-um"),
+        (vec!["bias", "--source", "ring"], "--source"),
+        (
+            vec!["bias", "--spectrum-csv", "/nonexistent/spectrum.csv"],
+            "spectrum.csv",
+        ),
+        (vec!["bias", "--spectrum-csv", &bad_csv], "--spectrum-csv"),
+        (vec!["bias", "--no-such-flag"], "--no-such-flag"),
+    ];
+    for (args, flag) in &cases {
+        assert_bad_input(args, flag);
+    }
+}
+
+#[test]
+fn bias_json_carries_the_contract_fields() {
+    for args in [
+        vec!["bias", "--json"],
+        vec![
+            "bias",
+            "--json",
+            "--source",
+            "point",
+            "--baseline-m",
+            "30",
+            "--wavelength-um",
+            "1.65",
+            "--bandwidth-nm",
+            "300",
+        ],
+        vec![
+            "bias",
+            "--json",
+            "--stroke-um",
+            "64",
+            "--dispersion-pp-rad",
+            "1",
+            "--integrating",
+        ],
+    ] {
+        let (code, stdout, stderr) = v2ref(&args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
+        for field in [
+            "v_mono",
+            "v1",
+            "v2",
+            "v1_sq",
+            "v2_sq",
+            "spatial_freq_cpas",
+            "sigma_eff_per_um",
+        ] {
+            let x = v[field]
+                .as_f64()
+                .unwrap_or_else(|| panic!("{args:?}: no number {field}"));
+            assert!(x.is_finite());
+        }
+        let (v1, v1_sq) = (v["v1"].as_f64().unwrap(), v["v1_sq"].as_f64().unwrap());
+        assert!((v1 * v1 - v1_sq).abs() < 1e-14);
+    }
+    // The paper's defaults: S = 40 cycles/arcsec by default.
+    let (_, stdout, _) = v2ref(&["bias", "--json"]);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert!((v["spatial_freq_cpas"].as_f64().unwrap() - 40.0).abs() < 1e-9);
+    // A finite scan adds its block.
+    let (_, stdout, _) = v2ref(&["bias", "--json", "--stroke-um", "64"]);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["finite_scan"]["samples"].as_u64(), Some(128));
+}
+
+#[test]
+fn bias_reads_a_tabulated_spectrum() {
+    // A flat table over the K band gives the flat band's answer.
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("flat.csv");
+    std::fs::write(
+        &csv,
+        "# flat K\nwavelength_um,weight\n2.0,1\n2.2,1\n2.4,1\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = v2ref(&[
+        "bias",
+        "--json",
+        "--spectrum-csv",
+        csv.to_str().unwrap(),
+        "--spatial-freq-cpas",
+        "20",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let table: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let (_, stdout, _) = v2ref(&["bias", "--json", "--spatial-freq-cpas", "20"]);
+    let flat: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    // Linear interpolation in σ of a table flat in λ nodes is flat in σ.
+    for f in ["v1", "v2", "v_mono"] {
+        let (a, b) = (table[f].as_f64().unwrap(), flat[f].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-12, "{f}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn table_output_and_help_work() {
+    let (code, stdout, _) = v2ref(&["bias"]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("V1 (infinite scan)"));
+    let (code, stdout, _) = v2ref(&["--help"]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("bias") && stdout.contains("claims"));
+}
+
+#[test]
+fn claims_json_parses_with_the_contract_fields() {
+    let (code, stdout, stderr) = v2ref(&["claims", "--json", "--quick"]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
+    let rows = v.as_array().expect("an array");
+    assert!(rows.len() > 50);
+    for r in rows {
+        for f in ["id", "unit", "status", "note"] {
+            assert!(r[f].is_string(), "{r}: {f}");
+        }
+        for f in ["paper", "computed"] {
+            assert!(r[f].is_null() || r[f].is_number(), "{r}: {f}");
+        }
+    }
+}
