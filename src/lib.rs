@@ -56,6 +56,8 @@ pub mod interferogram;
 pub mod montecarlo;
 pub mod observation;
 pub mod oracle;
+#[cfg(feature = "cli")]
+pub mod plot;
 pub mod quadrature;
 pub mod source;
 pub mod special;

@@ -211,3 +211,43 @@ pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
 
 /// Looks a spec up by id; providers receive one of these.
 pub type Find<'a> = dyn Fn(&str) -> Option<&'a ClaimSpec> + 'a;
+
+/// The claims table as Markdown: one row per claim with the paper's value,
+/// the computed value, the unit, the status and the evidence.
+pub fn to_markdown(results: &[ClaimResult]) -> String {
+    let fmt = |v: Option<f64>| v.map_or_else(|| "–".to_owned(), |x| format!("{x:.6}"));
+    let mut out = String::from(
+        "| claim | paper | computed | unit | status | evidence |\n|---|---:|---:|---|---|---|\n",
+    );
+    for r in results {
+        let mut note = r.note.replace('|', "\\|").replace('\n', " ");
+        if let (Some(p), Some(e)) = (r.published, r.exact) {
+            note = format!("published formula: {p:.6}; exact: {e:.6}. {note}");
+        }
+        out.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n",
+            r.id,
+            fmt(r.paper),
+            fmt(r.computed),
+            r.unit,
+            r.status.as_str(),
+            note
+        ));
+    }
+    out
+}
+
+/// How many claims have each status, in the order of [`Status`].
+pub fn status_counts(results: &[ClaimResult]) -> Vec<(Status, usize)> {
+    [
+        Status::Reproduced,
+        Status::Differs,
+        Status::Erratum,
+        Status::Qualitative,
+        Status::Unavailable,
+        Status::Pending,
+    ]
+    .into_iter()
+    .map(|s| (s, results.iter().filter(|r| r.status == s).count()))
+    .collect()
+}
