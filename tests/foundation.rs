@@ -397,3 +397,53 @@ fn long_finely_sampled_scans_converge_to_the_spectral_estimators() {
         }
     }
 }
+
+#[test]
+fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
+    let band = Band::k();
+    let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
+    // Raised-cosine edges centred on the band edges keep the equivalent width
+    // and, being symmetric, the centroid.
+    let smooth = Spectrum::smooth_top_hat(band, 0.02).unwrap();
+    assert_relative_eq!(
+        smooth.sigma_eff_per_um(),
+        0.5 * (lo + hi),
+        max_relative = 1e-13
+    );
+    let raw_area = smooth.mean_w(|_| 1.0);
+    assert_relative_eq!(raw_area, 1.0, max_relative = 1e-13);
+    assert_relative_eq!(
+        smooth.weight(lo),
+        0.5 * smooth.weight(0.5 * (lo + hi)),
+        max_relative = 1e-14
+    );
+    assert_eq!(smooth.weight(lo - 0.011), 0.0);
+    assert!(Spectrum::smooth_top_hat(band, 0.5).is_err());
+    // Power law σ^p: σ_eff = (p+1)/(p+2) (hi^{p+2} − lo^{p+2}) / (hi^{p+1} − lo^{p+1}).
+    for p in [-4.0f64, -1.5, 2.0, 3.0] {
+        let sp = Spectrum::power_law(band, p).unwrap();
+        let want = (p + 1.0) / (p + 2.0) * (hi.powf(p + 2.0) - lo.powf(p + 2.0))
+            / (hi.powf(p + 1.0) - lo.powf(p + 1.0));
+        assert_relative_eq!(sp.sigma_eff_per_um(), want, max_relative = 1e-13);
+    }
+    // A steep slope moves the effective wavenumber, hence S at fixed B.
+    let blue = Spectrum::power_law(band, 4.0).unwrap();
+    assert!(blue.sigma_eff_per_um() > Spectrum::flat(band).sigma_eff_per_um());
+}
+
+#[test]
+fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
+    let sp = Spectrum::tabulated(vec![0.40, 0.45, 0.50], vec![0.0, 2.0, 0.0]).unwrap();
+    // A triangle: σ_eff at its apex, ∫W² = 2/3 / (base/2) per unit area².
+    assert_relative_eq!(sp.sigma_eff_per_um(), 0.45, max_relative = 1e-14);
+    assert_relative_eq!(
+        sp.weight(0.425) / sp.weight(0.45),
+        0.5,
+        max_relative = 1e-14
+    );
+    assert_relative_eq!(sp.w2_integral_um(), 2.0 / 3.0 / 0.05, max_relative = 1e-12);
+    assert!(Spectrum::tabulated(vec![0.4], vec![1.0]).is_err());
+    assert!(Spectrum::tabulated(vec![0.4, 0.4], vec![1.0, 1.0]).is_err());
+    assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, -1.0]).is_err());
+    assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![0.0, 0.0]).is_err());
+}
