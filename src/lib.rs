@@ -10,6 +10,30 @@
 //! detector and photon noise, each checked against a closed form, a Monte
 //! Carlo and a golden file.
 //!
+//! ## Quick start
+//!
+//! ```
+//! use v2ref::dispersion::SpectralPhase;
+//! use v2ref::estimator::wide_band;
+//! use v2ref::observation::{Frequency, Observation};
+//! use v2ref::source::Source;
+//! use v2ref::spectrum::{Band, Spectrum};
+//!
+//! // A 43 mas uniform disk in the full K band (2.0–2.4 µm), at its first null.
+//! let k = Spectrum::flat(Band::new(2.2, 0.4)?);
+//! let obs = Observation::new(
+//!     k,
+//!     Source::uniform_disk(43.0)?,
+//!     Frequency::SpatialFreqCpas(28.36),
+//!     SpectralPhase::zero(),
+//! )?;
+//! let wb = wide_band(&obs);
+//! assert!(wb.v_mono < 1e-3);            // the monochromatic visibility vanishes…
+//! assert!(wb.v1 - wb.v_mono > 0.04);    // …but the wide band fills the null for V1
+//! assert!(wb.v2 < wb.v1);               // and much less for V2
+//! # Ok::<(), v2ref::Error>(())
+//! ```
+//!
 //! ## Units
 //!
 //! Wavelength λ and OPD x in µm, wavenumber σ in µm⁻¹, angular diameter θ in
