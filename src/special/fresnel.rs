@@ -101,7 +101,12 @@ fn continued_fraction(x: f64) -> (f64, f64) {
         }
     }
     h *= Complex64::new(x, -x);
-    let phase = Complex64::from_polar(1.0, 0.5 * pix2);
+    // e^{iπx²/2} has period 4 in x²: reduce x² (split exactly into
+    // hi + lo by a fused multiply-add) before the trigonometry, so large x
+    // do not lose the phase to rounding.
+    let hi = x * x;
+    let lo = x.mul_add(x, -hi);
+    let phase = Complex64::from_polar(1.0, FRAC_PI_2 * ((hi % 4.0) + lo));
     let cs = Complex64::new(0.5, 0.5) * (one - phase * h);
     (cs.re, cs.im)
 }
