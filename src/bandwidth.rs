@@ -9,6 +9,21 @@ use crate::observation::{Frequency, Observation};
 use crate::source::Source;
 use crate::spectrum::Spectrum;
 
+/// The paper's uniform disk (Figs. 1–3), mas.
+pub const DIAMETER_MAS: f64 = 43.0;
+/// Centre wavelength of every band of Figs. 0–3, µm.
+pub const WAVELENGTH_UM: f64 = 2.2;
+/// The bandwidths of Fig. 1, nm.
+pub const BANDWIDTHS_NM: [f64; 6] = [12.5, 25.0, 50.0, 100.0, 200.0, 400.0];
+/// Largest spatial frequency of Figs. 1–3, cycles/arcsec.
+pub const S_MAX_CPAS: f64 = 80.0;
+
+/// The grid 0, step, 2 step, …, [`S_MAX_CPAS`] (cycles/arcsec).
+pub fn s_grid(step_cpas: f64) -> Vec<f64> {
+    let n = (S_MAX_CPAS / step_cpas).round() as usize;
+    (0..=n).map(|i| i as f64 * step_cpas).collect()
+}
+
 /// The noise-free estimates at each spatial frequency of `s_grid_cpas`.
 pub fn curve(
     spectrum: &Spectrum,

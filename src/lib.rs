@@ -52,7 +52,14 @@
 //! | §3 eq. `eq:estimateurs` (spectral form) | [`estimator::v1_sq`], [`estimator::v2_sq`], [`estimator::wide_band`] | `tests/estimator.rs` |
 //! | §3 uniform disk $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`source::Source::UniformDisk`], [`special::jinc`] | `tests/special.rs` |
 //! | §3 continuum plus line example | [`source::Source::Composite`], [`source::FluxProfile`] | `tests/estimator.rs` |
-//! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/claims.rs` |
+//! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/bias_bandwidth.rs` |
+//! | §3 Fig. 0, V2 normalization factor against stroke | [`normalization::deviation_curve`], [`normalization::threshold_stroke`] | `tests/bias_normalization.rs` |
+//! | §2.2.2 and §3, integrating detector: contrast loss, π²/8, wide band | [`integration::wide_band_loss`], [`integration::calibrated_bias`] | `tests/bias_normalization.rs` |
+//! | §3 continuum plus line example (0.50042) | [`line::channel_visibility`], [`line::top_hat_closed_form`] | `tests/bias_line.rs` |
+//! | §4 Fig. 2, V2 of a point source under dispersion (Fresnel closed form) | [`special::fresnel::point_source_v2_sq`], [`special::fresnel::fresnel_cs`] | `tests/bias_dispersion.rs` |
+//! | §4 fluoride-fibre example (ZBLAN, Gan 1995) | [`fiber::zblan_peak_to_peak_rad`] | `tests/bias_dispersion.rs` |
+//! | §5 Fig. 3, finite scan: DFT path and eq. `eq:sampled_V` convolution path | [`finite_scan::bias`], [`finite_scan::convolution_bins`], [`finite_scan::Kernel`] | `tests/bias_finite_scan.rs` |
+//! | Figs. 0–3 as data, golden files | [`figures::all`], [`golden::check`], [`golden::update`] | `tests/golden.rs`, `tests/bias_snapshots.rs` |
 //! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/estimator.rs` |
 //! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] | `tests/interferogram.rs` |
 //! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
@@ -74,10 +81,16 @@ pub mod dispersion;
 pub mod dynamic_range;
 pub mod error;
 pub mod estimator;
+pub mod fiber;
 pub mod figure;
 pub mod figures;
+pub mod finite_scan;
+pub mod golden;
+pub mod integration;
 pub mod interferogram;
+pub mod line;
 pub mod montecarlo;
+pub mod normalization;
 pub mod observation;
 pub mod oracle;
 #[cfg(feature = "cli")]

@@ -197,10 +197,20 @@ impl Spectrum {
         if weight.iter().all(|&w| w == 0.0) {
             return bad("every weight is zero".into());
         }
-        Ok(Self::build(Shape::Table {
+        let sp = Self::build(Shape::Table {
             sigma: sigma_per_um,
             weight,
-        }))
+        });
+        // Extreme magnitudes (weights whose squares overflow, an axis over
+        // hundreds of decades) leave no usable weighting function.
+        let usable = |x: f64| x.is_finite() && x > 0.0;
+        if !(usable(sp.norm) && usable(sp.w2_integral) && usable(sp.sigma_eff)) {
+            return bad(
+                "the table's magnitudes overflow (weights or axis values too large or too spread); rescale the weights"
+                    .into(),
+            );
+        }
+        Ok(sp)
     }
 
     /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).

@@ -1,14 +1,105 @@
-//! `v2ref golden` (placeholder until its issue lands).
+//! `v2ref golden --check | --update [--dir DIR] [--json]`: compares the
+//! golden data in DIR (default `golden`) with the code, or rewrites it.
+//!
+//! `--check` exits 0 when everything matches and 1 otherwise, naming each
+//! mismatch on stderr (one line each); `--update` writes atomically. Exactly
+//! one of the two is required (status 2 otherwise).
 
+use super::print_json;
+use serde::Serialize;
+use std::path::PathBuf;
 use std::process::ExitCode;
-use v2ref::Result;
+use v2ref::{golden, Error, Result};
 
 /// Flags of `golden`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Recompute every figure and compare with DIR.
+    #[arg(long, conflicts_with = "update")]
+    check: bool,
+    /// Recompute every figure and rewrite DIR (atomically).
+    #[arg(long)]
+    update: bool,
+    /// The golden directory.
+    #[arg(long, default_value = "golden")]
+    dir: PathBuf,
+    /// One JSON document instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct MismatchJson {
+    table: String,
+    detail: String,
+}
+
+#[derive(Serialize)]
+struct CheckJson {
+    checked: usize,
+    mismatched: usize,
+    mismatches: Vec<MismatchJson>,
+}
+
+#[derive(Serialize)]
+struct UpdateJson {
+    dir: String,
+    files: Vec<String>,
+}
+
+/// Exit status when the golden data and the code disagree.
+const EXIT_MISMATCH: u8 = 1;
 
 /// Runs `golden`.
-pub fn run(_args: Args) -> Result<ExitCode> {
-    eprintln!("error: v2ref golden is not implemented yet");
-    Ok(ExitCode::from(super::EXIT_BAD_INPUT))
+pub fn run(args: Args) -> Result<ExitCode> {
+    if args.check == args.update {
+        return Err(Error::Invalid {
+            param: "check",
+            reason: "give exactly one of --check or --update".into(),
+        });
+    }
+    if args.update {
+        let files = golden::update(&args.dir)?;
+        if args.json {
+            print_json(&UpdateJson {
+                dir: args.dir.display().to_string(),
+                files: files.iter().map(|f| f.display().to_string()).collect(),
+            });
+        } else {
+            for f in &files {
+                println!("wrote {}", f.display());
+            }
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    let report = golden::check(&args.dir)?;
+    if args.json {
+        print_json(&CheckJson {
+            checked: report.checked,
+            mismatched: report.mismatches.len(),
+            mismatches: report
+                .mismatches
+                .iter()
+                .map(|m| MismatchJson {
+                    table: m.table.clone(),
+                    detail: m.detail.clone(),
+                })
+                .collect(),
+        });
+    } else {
+        println!(
+            "checked {} tables in {}: {} mismatch(es)",
+            report.checked,
+            args.dir.display(),
+            report.mismatches.len()
+        );
+    }
+    for m in &report.mismatches {
+        eprintln!("mismatch: {}: {}", m.table, m.detail);
+    }
+    Ok(if report.mismatches.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_MISMATCH)
+    })
 }

@@ -5,5 +5,7 @@
 //! `tests/data/` with its provenance), never against this crate's own output.
 
 pub mod bessel;
+pub mod fresnel;
 
 pub use bessel::{bessel_j0, bessel_j0_j1, bessel_j1, bessel_j1_zero, jinc};
+pub use fresnel::{fresnel_c, fresnel_cs, fresnel_s};

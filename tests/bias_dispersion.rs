@@ -1,0 +1,167 @@
+//! Dispersion (paper, Section "Effect of chromatic dispersion", Fig. 2):
+//! the Fresnel integrals against mpmath, the closed-form V2 of a point
+//! source against the numerical path, V1's blindness to the phase, and the
+//! fluoride-glass dispersion helper.
+
+use proptest::prelude::*;
+use v2ref::dispersion::SpectralPhase;
+use v2ref::estimator::{v1_sq, v2_sq};
+use v2ref::fiber;
+use v2ref::observation::{Frequency, Observation};
+use v2ref::source::Source;
+use v2ref::special::fresnel::{fresnel_cs, point_source_v2_sq};
+use v2ref::spectrum::{Band, Spectrum};
+
+/// Fresnel integrals are O(1) and computed to a few ulps; mpmath's
+/// 17-digit values are exact to 1e-17.
+const FRESNEL_ABS: f64 = 2e-15;
+/// The requirement for the closed form against the numerical path.
+const CLOSED_FORM_VS_NUMERICAL: f64 = 1e-10;
+
+fn reference() -> Vec<Vec<String>> {
+    include_str!("data/fresnel_reference.csv")
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').map(str::to_owned).collect())
+        .collect()
+}
+
+#[test]
+fn fresnel_matches_mpmath() {
+    let mut n = 0;
+    for row in reference().iter().filter(|r| r[0] == "value") {
+        let x: f64 = row[1].parse().unwrap();
+        let (c_ref, s_ref): (f64, f64) = (row[2].parse().unwrap(), row[3].parse().unwrap());
+        let (c, s) = fresnel_cs(x);
+        assert!(
+            (c - c_ref).abs() <= FRESNEL_ABS,
+            "C({x}) = {c}, mpmath {c_ref}"
+        );
+        assert!(
+            (s - s_ref).abs() <= FRESNEL_ABS,
+            "S({x}) = {s}, mpmath {s_ref}"
+        );
+        n += 1;
+    }
+    assert!(n > 150, "only {n} reference rows");
+}
+
+#[test]
+fn fresnel_limits_and_symmetry() {
+    assert_eq!(fresnel_cs(0.0), (0.0, 0.0));
+    assert_eq!(fresnel_cs(f64::INFINITY), (0.5, 0.5));
+    for x in [0.3, 1.49, 1.51, 7.0] {
+        let (c, s) = fresnel_cs(x);
+        assert_eq!(fresnel_cs(-x), (-c, -s));
+    }
+    // Small x: C ≈ x, S ≈ π x³/6.
+    let (c, s) = fresnel_cs(1e-3);
+    assert!((c - 1e-3).abs() < 1e-15 && (s - std::f64::consts::PI * 1e-9 / 6.0).abs() < 1e-20);
+}
+
+#[test]
+fn point_source_closed_form_matches_mpmath_quadrature() {
+    for row in reference().iter().filter(|r| r[0] == "v2point") {
+        let p: f64 = row[1].parse().unwrap();
+        let want: f64 = row[2].parse().unwrap();
+        let got = point_source_v2_sq(p);
+        assert!(
+            (got - want).abs() < 1e-14,
+            "P = {p}: {got} vs mpmath {want}"
+        );
+    }
+    assert_eq!(point_source_v2_sq(0.0), 1.0);
+}
+
+fn k_band() -> Spectrum {
+    Spectrum::flat(Band::k())
+}
+
+fn numerical_point_v2_sq(pp: f64) -> f64 {
+    let band = k_band();
+    let obs = Observation::new(
+        band.clone(),
+        Source::Point,
+        Frequency::BaselineM(0.0),
+        SpectralPhase::dispersion_peak_to_peak(&band, pp).unwrap(),
+    )
+    .unwrap();
+    v2_sq(&obs)
+}
+
+#[test]
+fn closed_form_matches_the_numerical_path_to_1e_10() {
+    for k in 0..=40 {
+        let pp = 0.1 * k as f64;
+        let (a, b) = (numerical_point_v2_sq(pp), point_source_v2_sq(pp));
+        assert!(
+            (a - b).abs() < CLOSED_FORM_VS_NUMERICAL,
+            "P = {pp}: {a} vs {b}"
+        );
+    }
+    // And the check has power: a 1% error in P is seen.
+    let (a, b) = (numerical_point_v2_sq(1.0), point_source_v2_sq(1.01));
+    assert!((a - b).abs() > 100.0 * CLOSED_FORM_VS_NUMERICAL);
+}
+
+#[test]
+fn dispersion_lowers_v2_monotonically_in_the_figure_range() {
+    let v: Vec<f64> = [0.0, 1.0, 1.5, 2.0]
+        .iter()
+        .map(|&p| point_source_v2_sq(p))
+        .collect();
+    assert!(v.windows(2).all(|w| w[1] < w[0]), "{v:?}");
+    // V2 of an unresolved source always loses to dispersion (|mean of a
+    // unit phasor| < 1), by the numerical path as well.
+    for p in [0.5, -0.5, 3.0] {
+        assert!(numerical_point_v2_sq(p) < 1.0 - 1e-3);
+    }
+    // Small-P expansion: V2² ≈ 1 − 4P²/45.
+    let p = 0.01;
+    assert!((point_source_v2_sq(p) - (1.0 - 4.0 * p * p / 45.0)).abs() < 1e-9);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// V1² does not see the spectral phase (infinite scan), whatever the
+    /// disk, the spatial frequency and the dispersion.
+    #[test]
+    fn v1_is_blind_to_dispersion(
+        diameter in 1.0f64..100.0,
+        s in 0.0f64..80.0,
+        pp in -5.0f64..5.0,
+        bandwidth in 0.05f64..0.6,
+    ) {
+        let band = Spectrum::flat(Band::new(2.2, bandwidth).unwrap());
+        let obs = |p: f64| Observation::new(
+            band.clone(),
+            Source::UniformDisk { diameter_mas: diameter },
+            Frequency::SpatialFreqCpas(s),
+            SpectralPhase::dispersion_peak_to_peak(&band, p).unwrap(),
+        ).unwrap();
+        let (a, b) = (v1_sq(&obs(pp)), v1_sq(&obs(0.0)));
+        prop_assert!((a - b).abs() <= 1e-15, "{a} vs {b}");
+    }
+}
+
+#[test]
+fn glass_dispersion_identities() {
+    // A constant index gives a phase linear in σ: no dispersion.
+    let d0 = fiber::dispersion_coefficient(|_| 1.5, 0.45, 1e4).unwrap();
+    assert!(d0.abs() < 1e-4, "{d0}");
+    // n = a + bσ: φ = 2πL(aσ + bσ²), D = 4πLb.
+    let (b, l) = (0.01, 1e4);
+    let d = fiber::dispersion_coefficient(|s| 1.4 + b * s, 0.45, l).unwrap();
+    let want = 4.0 * std::f64::consts::PI * l * b;
+    assert!((d - want).abs() < 1e-8 * want, "{d} vs {want}");
+    // Peak-to-peak scales linearly with the glass length.
+    let (lo, hi) = (1.0 / 2.4, 1.0 / 2.0);
+    let p1 = fiber::zblan_peak_to_peak_rad(lo, hi, 1e4).unwrap();
+    let p2 = fiber::zblan_peak_to_peak_rad(lo, hi, 2e4).unwrap();
+    assert!((p2 - 2.0 * p1).abs() < 1e-9 * p2);
+    // ZBLAN's index near 2.2 µm is about 1.49 (Gan 1995).
+    let n = fiber::zblan_index(1.0 / 2.2);
+    assert!((1.48..1.50).contains(&n), "{n}");
+    assert!(fiber::dispersion_coefficient(|_| 1.5, -1.0, 1.0).is_err());
+}

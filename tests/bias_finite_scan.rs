@@ -1,0 +1,201 @@
+//! Finite scan (paper, Section "Effect of finite scan length", eq.
+//! `eq:sampled_V`, Fig. 3): the DFT path and the convolution path agree,
+//! the kernel is the sum it stands for, and the bias vanishes as the stroke
+//! grows.
+
+use num_complex::Complex64;
+use v2ref::dispersion::SpectralPhase;
+use v2ref::estimator::{dft, BinWindow};
+use v2ref::finite_scan::{self, Kernel, Method, DX_UM};
+use v2ref::interferogram::{sinc, Interferogram, Sampling};
+use v2ref::observation::{Frequency, Observation};
+use v2ref::source::Source;
+use v2ref::spectrum::{Band, Spectrum};
+
+/// The two paths compute the same sum by different algebra; both
+/// quadratures are converged to ~1e-15 of the band integral, so the biases
+/// (differences of O(1) numbers) agree to rounding.
+const PATHS_AGREE: f64 = 1e-12;
+
+fn disk_obs(s: f64) -> Observation {
+    Observation::new(
+        Spectrum::flat(Band::k()),
+        Source::UniformDisk { diameter_mas: 43.0 },
+        Frequency::SpatialFreqCpas(s),
+        SpectralPhase::zero(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn dirichlet_kernel_is_the_sum_over_the_scan() {
+    for n in [2usize, 3, 4, 7, 8, 15, 116] {
+        let sampling = Sampling::new(n, 0.5, false).unwrap();
+        for &u in &[0.0, 1e-9, 0.013, 0.25, 0.5, 0.77, 1.0, -1.3, 2.0, 3.4999] {
+            let direct: Complex64 = (0..n)
+                .map(|i| {
+                    let j = sampling.opd_um(i) / 0.5;
+                    Complex64::from_polar(1.0, 2.0 * std::f64::consts::PI * j * u)
+                })
+                .sum();
+            let k = Kernel::Dirichlet.at(u, n);
+            assert!(
+                (k - direct).norm() < 1e-12 * n as f64,
+                "N={n} u={u}: {k} vs {direct}"
+            );
+        }
+    }
+}
+
+#[test]
+fn dft_and_convolution_paths_agree() {
+    for stroke in [256.0, 64.0, 16.0, 2.0] {
+        let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
+        for s in [0.0, 13.0, 28.3, 40.0, 61.0, 79.0] {
+            let obs = disk_obs(s);
+            let a = finite_scan::bias(&obs, &sampling, Method::Dft, None).unwrap();
+            let b = finite_scan::bias(
+                &obs,
+                &sampling,
+                Method::Convolution(Kernel::Dirichlet),
+                None,
+            )
+            .unwrap();
+            assert!(
+                (a.v1 - b.v1).abs() < PATHS_AGREE,
+                "{stroke} um, S={s}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.v2 - b.v2).abs() < PATHS_AGREE,
+                "{stroke} um, S={s}: {a:?} vs {b:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn convolution_bins_equal_the_fft_bins_one_by_one() {
+    // Including DC, Nyquist and negative frequencies, and an integrating
+    // detector, which the figure does not use.
+    for integrating in [false, true] {
+        let sampling = Sampling::new(32, DX_UM, integrating).unwrap();
+        let obs = disk_obs(35.0);
+        let ifg = Interferogram::synthesize(&obs, &sampling, 1.0, None).unwrap();
+        let b = dft(&ifg.modulated);
+        let bins: Vec<usize> = (0..32).collect();
+        let c = finite_scan::convolution_bins(&obs, &sampling, &bins, Kernel::Dirichlet).unwrap();
+        for k in 0..32 {
+            assert!((b[k] - c[k]).norm() < 1e-12, "k={k}: {} vs {}", b[k], c[k]);
+        }
+    }
+}
+
+#[test]
+fn convolution_bins_match_an_adaptive_quadrature_oracle() {
+    // Independent quadrature: the adaptive G7K15 integral of the same
+    // integrand, one bin at a time.
+    let sampling = Sampling::new(58, DX_UM, false).unwrap();
+    let obs = disk_obs(28.0);
+    let n = sampling.samples();
+    let bins = [1usize, 7, 12, 13, 20];
+    let fast = finite_scan::convolution_bins(&obs, &sampling, &bins, Kernel::Dirichlet).unwrap();
+    for (&k, f) in bins.iter().zip(&fast) {
+        let kn = k as f64 / n as f64;
+        let oracle: Complex64 = obs.spectrum.mean_w(|s| {
+            let a = obs.fringe_amplitude(s);
+            (a * Kernel::Dirichlet.at(s * DX_UM - kn, n)
+                + a.conj() * Kernel::Dirichlet.at(-s * DX_UM - kn, n))
+                * 0.5
+        });
+        assert!((oracle - f).norm() < 1e-11, "k={k}: {oracle} vs {f}");
+    }
+}
+
+#[test]
+fn the_printed_single_sinc_misses_the_replication() {
+    // eq:sampled_V without the sampling comb differs at short strokes and
+    // converges to the exact kernel as the stroke grows.
+    let diff = |stroke: f64| {
+        let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
+        let obs = disk_obs(28.3);
+        let a = finite_scan::bias(
+            &obs,
+            &sampling,
+            Method::Convolution(Kernel::Dirichlet),
+            None,
+        )
+        .unwrap();
+        let b =
+            finite_scan::bias(&obs, &sampling, Method::Convolution(Kernel::Sinc), None).unwrap();
+        (a.v1 - b.v1).abs().max((a.v2 - b.v2).abs())
+    };
+    let (short, long) = (diff(8.0), diff(256.0));
+    assert!(short > 1e-4, "{short}");
+    assert!(long < short / 10.0, "{long} vs {short}");
+}
+
+#[test]
+fn a_point_source_has_no_finite_scan_bias() {
+    let band = Spectrum::flat(Band::k());
+    for stroke in [2.0, 16.0, 64.0] {
+        let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
+        let obs = Observation::new(
+            band.clone(),
+            Source::Point,
+            Frequency::SpatialFreqCpas(10.0),
+            SpectralPhase::zero(),
+        )
+        .unwrap();
+        let b = finite_scan::bias(&obs, &sampling, Method::Dft, None).unwrap();
+        assert!(b.v1.abs() < 1e-14 && b.v2.abs() < 1e-14, "{b:?}");
+    }
+}
+
+/// Largest |V1 bias| near the first null (where it peaks), fine grid.
+fn max_bias_near_null(stroke: f64) -> (f64, f64) {
+    let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
+    let (mut m1, mut m2) = (0.0_f64, 0.0_f64);
+    for i in 0..=40 {
+        let s = 26.0 + 0.1 * i as f64;
+        let b = finite_scan::bias(&disk_obs(s), &sampling, Method::Dft, None).unwrap();
+        m1 = m1.max(b.v1.abs());
+        m2 = m2.max(b.v2.abs());
+    }
+    (m1, m2)
+}
+
+#[test]
+fn the_bias_vanishes_as_the_stroke_grows() {
+    let strokes = [32.0, 64.0, 128.0, 256.0, 512.0];
+    let m: Vec<(f64, f64)> = strokes.iter().map(|&s| max_bias_near_null(s)).collect();
+    for w in m.windows(2) {
+        assert!(w[1].0 < w[0].0, "V1 bias does not fall: {m:?}");
+    }
+    // Roughly 1/stroke: each doubling at least halves it within 30%.
+    for w in m.windows(2).skip(1) {
+        let ratio = w[0].0 / w[1].0;
+        assert!((1.4..2.6).contains(&ratio), "ratio {ratio}: {m:?}");
+    }
+    assert!(m[4].0 < 3e-4 && m[4].1 < 1e-5, "{m:?}");
+}
+
+#[test]
+fn long_scans_reproduce_the_spectral_estimators() {
+    let sampling = Sampling::from_stroke(2048.0, DX_UM, false).unwrap();
+    for s in [5.0, 20.0, 45.0] {
+        let b = finite_scan::bias(&disk_obs(s), &sampling, Method::Dft, None).unwrap();
+        assert!(b.v1.abs() < 1e-4 && b.v2.abs() < 1e-5, "S={s}: {b:?}");
+    }
+}
+
+#[test]
+fn the_window_is_the_positive_half() {
+    assert_eq!(finite_scan::WINDOW, BinWindow::PositiveHalf);
+    assert_eq!(finite_scan::WINDOW.bins(4, 0.5), vec![1]);
+    assert_eq!(finite_scan::WINDOW.bins(7, 0.5), vec![1, 2, 3]);
+    // sinc is the kernel's long-scan shape: Dirichlet/N → sinc(Nu) for small u.
+    let n = 1000;
+    let u = 0.0007;
+    let d = Kernel::Dirichlet.at(u, n).norm() / n as f64;
+    assert!((d - sinc(n as f64 * u).abs()).abs() < 1e-5);
+}

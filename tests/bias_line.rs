@@ -1,0 +1,146 @@
+//! The continuum-plus-line example (paper, Section "Effect of spectral
+//! bandwidth"): closed forms, limits, and the crate's composite-source path.
+
+use num_complex::Complex64;
+use v2ref::dispersion::SpectralPhase;
+use v2ref::estimator::v2_sq;
+use v2ref::line::{
+    channel_visibility, top_hat_closed_form, width_in_elements, Channel, LineCase, LineProfile,
+};
+use v2ref::observation::{Frequency, Observation};
+use v2ref::source::{Component, FluxProfile, Source};
+use v2ref::spectrum::Spectrum;
+
+#[test]
+fn paper_case_numbers() {
+    let case = LineCase::paper();
+    assert!((1.0 / case.width_elements - 599.585).abs() < 1e-3);
+    let v = channel_visibility(&case).unwrap();
+    let c = top_hat_closed_form(&case);
+    assert!(
+        (v.unweighted - c.unweighted).abs() < 1e-14
+            && (v.flux_weighted - c.flux_weighted).abs() < 1e-14
+    );
+    // The printed 0.50042 is the unweighted average; the flux-weighted
+    // channel is about twice as far from 0.5.
+    assert!((v.unweighted - 0.50042).abs() < 5e-6, "{v:?}");
+    assert!((v.flux_weighted - 0.50083).abs() < 5e-6, "{v:?}");
+}
+
+#[test]
+fn limits() {
+    let base = LineCase::paper();
+    for (case, want) in [
+        (
+            LineCase {
+                flux_ratio: 0.0,
+                ..base
+            },
+            0.5,
+        ),
+        (
+            LineCase {
+                line_visibility: 0.5,
+                ..base
+            },
+            0.5,
+        ),
+    ] {
+        let v = channel_visibility(&case).unwrap();
+        assert!(
+            (v.unweighted - want).abs() < 1e-14 && (v.flux_weighted - want).abs() < 1e-14,
+            "{v:?}"
+        );
+    }
+    // A line filling the channel: every sample sees V_in.
+    let full = LineCase {
+        width_elements: 1.0,
+        ..base
+    };
+    let v = channel_visibility(&full).unwrap();
+    assert!((v.unweighted - 0.75).abs() < 1e-14 && (v.flux_weighted - 0.75).abs() < 1e-14);
+    // The bias grows linearly with the line width for narrow lines.
+    let b = |w: f64| {
+        channel_visibility(&LineCase {
+            width_elements: w,
+            ..base
+        })
+        .unwrap()
+        .flux_weighted
+            - 0.5
+    };
+    assert!((b(2e-3) / b(1e-3) - 2.0).abs() < 2e-3);
+    assert!(channel_visibility(&LineCase {
+        width_elements: -1.0,
+        ..base
+    })
+    .is_err());
+    assert!((width_in_elements(2.0, 10.0, 100.0) - base.width_elements).abs() < 1e-18);
+}
+
+#[test]
+fn the_sinc_channel_agrees_for_a_centred_line() {
+    let case = LineCase {
+        channel: Channel::Sinc,
+        ..LineCase::paper()
+    };
+    let v = channel_visibility(&case).unwrap();
+    let t = top_hat_closed_form(&LineCase::paper());
+    // The sinc's tails beyond ±200 elements carry ~1/(π² 200) of its area.
+    assert!(
+        (v.unweighted - t.unweighted).abs() < 2e-6
+            && (v.flux_weighted - t.flux_weighted).abs() < 2e-6,
+        "{v:?} vs {t:?}"
+    );
+}
+
+#[test]
+fn the_crate_estimator_with_a_filter_only_spectrum_gives_the_unweighted_average() {
+    // W from the channel alone (the line's flux not in W), V(σ) the
+    // flux-weighted mix per wavenumber: the estimator path reproduces the
+    // unweighted average — the paper's number — which is why W must
+    // include the source's own spectrum to give what an instrument reads.
+    let fwhm_elements = 0.05;
+    let element = 0.01; // µm⁻¹ (100 µm scan)
+    let channel = Spectrum::tabulated(
+        vec![0.5 - element / 2.0, 0.5 + element / 2.0],
+        vec![1.0, 1.0],
+    )
+    .unwrap();
+    let source = Source::composite(vec![
+        Component {
+            source: Source::Constant {
+                visibility: Complex64::new(0.5, 0.0),
+            },
+            flux: FluxProfile::Flat { flux: 1.0 },
+        },
+        Component {
+            source: Source::Point,
+            flux: FluxProfile::GaussianLine {
+                centre_per_um: 0.5,
+                fwhm_per_um: fwhm_elements * element,
+                peak: 1.0,
+            },
+        },
+    ])
+    .unwrap();
+    let obs = Observation::new(
+        channel,
+        source,
+        Frequency::BaselineM(0.0),
+        SpectralPhase::zero(),
+    )
+    .unwrap();
+    let via_estimator = v2_sq(&obs).sqrt();
+    let case = LineCase {
+        width_elements: fwhm_elements,
+        profile: LineProfile::Gaussian,
+        ..LineCase::paper()
+    };
+    let v = channel_visibility(&case).unwrap();
+    assert!(
+        (via_estimator - v.unweighted).abs() < 1e-12,
+        "{via_estimator} vs {v:?}"
+    );
+    assert!((via_estimator - v.flux_weighted).abs() > 1e-3);
+}

@@ -1,0 +1,118 @@
+//! Compact summaries of the bias studies as insta snapshots, so that a
+//! reviewer sees any drift of a maximum, a threshold or a claim in the diff.
+
+use serde::Serialize;
+use std::path::Path;
+use v2ref::claims::{evaluate, Effort};
+use v2ref::figure::Table;
+
+/// Six significant digits: enough to see drift, stable across platforms.
+fn sig(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let p = 5 - x.abs().log10().floor() as i32;
+    let m = 10f64.powi(p);
+    (x * m).round() / m
+}
+
+fn golden(name: &str) -> Table {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("golden")
+        .join(format!("{name}.csv"));
+    Table::from_csv(name, &std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[derive(Serialize)]
+struct Extremum {
+    column: String,
+    max_abs: f64,
+    at: f64,
+}
+
+fn extrema(t: &Table, skip: usize) -> Vec<Extremum> {
+    let x = t.column(&t.columns[0].name).unwrap();
+    t.columns[skip..]
+        .iter()
+        .map(|c| {
+            let y = t.column(&c.name).unwrap();
+            let (i, m) = y.iter().enumerate().fold((0, 0.0_f64), |(bi, bm), (i, v)| {
+                if v.abs() > bm {
+                    (i, v.abs())
+                } else {
+                    (bi, bm)
+                }
+            });
+            Extremum {
+                column: c.name.clone(),
+                max_abs: sig(m),
+                at: sig(x[i]),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn figure_extrema() {
+    let fig0 = golden("fig0_normalization");
+    let strokes = fig0.column("stroke").unwrap();
+    let thresholds: Vec<(String, Option<f64>)> = fig0.columns[2..]
+        .iter()
+        .map(|c| {
+            let d = fig0.column(&c.name).unwrap();
+            (
+                c.name.clone(),
+                v2ref::normalization::threshold_stroke(&strokes, &d, 0.002).map(sig),
+            )
+        })
+        .collect();
+    insta::assert_json_snapshot!("fig0_thresholds_0p2pct_um", thresholds);
+    insta::assert_json_snapshot!("fig1_v1_extrema", extrema(&golden("fig1_v1"), 2));
+    insta::assert_json_snapshot!("fig1_v2_extrema", extrema(&golden("fig1_v2"), 2));
+    insta::assert_json_snapshot!("fig2_disk_extrema", extrema(&golden("fig2_disk"), 2));
+    insta::assert_json_snapshot!("fig3_v1_extrema", extrema(&golden("fig3_v1"), 2));
+    insta::assert_json_snapshot!("fig3_v2_extrema", extrema(&golden("fig3_v2"), 2));
+    insta::assert_json_snapshot!("fig3_abcd_extrema", extrema(&golden("fig3_abcd"), 1));
+}
+
+#[derive(Serialize)]
+struct Row {
+    id: String,
+    paper: Option<f64>,
+    computed: Option<f64>,
+    status: String,
+    published: Option<f64>,
+    exact: Option<f64>,
+    note: String,
+}
+
+#[test]
+fn bias_claims_table() {
+    let areas = [
+        "bandwidth.",
+        "dispersion.",
+        "scanlength.",
+        "normalization.",
+        "integration.",
+        "line.",
+        "resolution.",
+    ];
+    let rows: Vec<Row> = evaluate(Effort::Quick)
+        .into_iter()
+        .filter(|r| areas.iter().any(|a| r.id.starts_with(a)))
+        .map(|r| Row {
+            id: r.id,
+            paper: r.paper,
+            computed: r.computed.map(sig),
+            status: r.status.as_str().to_owned(),
+            published: r.published.map(sig),
+            exact: r.exact.map(sig),
+            note: r.note,
+        })
+        .collect();
+    assert!(
+        rows.iter().all(|r| r.status != "pending"),
+        "pending claims left"
+    );
+    insta::assert_json_snapshot!("bias_claims", rows);
+}

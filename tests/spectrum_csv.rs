@@ -1,0 +1,119 @@
+//! The CSV spectrum reader refuses malformed files with a clear, typed
+//! error naming the line, and never panics on arbitrary input.
+
+use proptest::prelude::*;
+use v2ref::spectrum::Spectrum;
+use v2ref::Error;
+
+fn reason(text: &str) -> String {
+    match Spectrum::from_csv_str(text) {
+        Err(Error::SpectrumTable { reason }) => reason,
+        Err(e) => panic!("expected a spectrum-table error, got {e:?}"),
+        Ok(_) => panic!("accepted a malformed table:\n{text}"),
+    }
+}
+
+#[test]
+fn a_well_formed_table_is_read_in_either_axis() {
+    let by_wavelength =
+        Spectrum::from_csv_str("# K band\nwavelength_um,weight\n2.0,1\n2.2,1.5\n2.4,1\n").unwrap();
+    let by_wavenumber = Spectrum::from_csv_str(
+        "wavenumber_per_um,weight\n0.4166666666666667,1\n0.45454545454545453,1.5\n0.5,1\n",
+    )
+    .unwrap();
+    assert_eq!(by_wavelength.support(), by_wavenumber.support());
+    let (a, b) = (
+        by_wavelength.sigma_eff_per_um(),
+        by_wavenumber.sigma_eff_per_um(),
+    );
+    assert!((a - b).abs() < 1e-14, "{a} vs {b}");
+}
+
+#[test]
+fn non_numeric_cell_names_line_and_cell() {
+    let r = reason("wavelength_um,weight\n2.0,1\n2.2,abc\n2.4,1\n");
+    assert!(r.contains("line 3") && r.contains("abc"), "{r}");
+    let r = reason("wavelength_um,weight\n2.0,1\nx2.2,1\n");
+    assert!(r.contains("line 3") && r.contains("x2.2"), "{r}");
+    let r = reason("wavelength_um,weight\n2.0,1\n2.2,NaN\n");
+    assert!(r.contains("line 3") && r.contains("finite"), "{r}");
+    let r = reason("wavelength_um,weight\n2.0,1\n2.2,inf\n");
+    assert!(r.contains("line 3"), "{r}");
+}
+
+#[test]
+fn unsorted_and_duplicate_wavelengths_are_refused() {
+    let r = reason("wavelength_um,weight\n2.0,1\n2.4,1\n2.2,1\n");
+    assert!(r.contains("line 4") && r.contains("increasing"), "{r}");
+    let r = reason("wavelength_um,weight\n2.0,1\n2.2,1\n2.2,1\n");
+    assert!(r.contains("line 4") && r.contains("duplicates"), "{r}");
+    let r = reason("wavenumber_per_um,weight\n0.5,1\n0.45,1\n");
+    assert!(r.contains("line 3"), "{r}");
+}
+
+#[test]
+fn negative_weight_is_refused() {
+    let r = reason("wavelength_um,weight\n2.0,1\n2.2,-0.5\n2.4,1\n");
+    assert!(r.contains("line 3") && r.contains(">= 0"), "{r}");
+}
+
+#[test]
+fn fewer_than_two_rows_is_refused() {
+    let r = reason("wavelength_um,weight\n2.2,1\n");
+    assert!(r.contains("at least 2"), "{r}");
+    let r = reason("wavelength_um,weight\n");
+    assert!(r.contains("at least 2"), "{r}");
+    let r = reason("");
+    assert!(r.contains("no header"), "{r}");
+}
+
+#[test]
+fn other_defects_are_refused() {
+    assert!(reason("lambda,weight\n2.0,1\n2.4,1\n").contains("header"));
+    assert!(reason("wavelength_um,flux\n2.0,1\n2.4,1\n").contains("weight"));
+    assert!(reason("wavelength_um,weight\n2.0,1,3\n2.4,1\n").contains("columns"));
+    assert!(reason("wavelength_um,weight\n-2.0,1\n2.4,1\n").contains("> 0"));
+    assert!(reason("wavelength_um,weight\n2.0,0\n2.4,0\n").contains("zero"));
+    // Weights whose squares overflow, or an axis spanning 600 decades: no
+    // usable weighting function.
+    assert!(!reason("wavelength_um,weight\n2.0,1e300\n2.4,1e300\n").is_empty());
+    assert!(!reason("wavenumber_per_um,weight\n1e-300,1\n1e300,1\n").is_empty());
+}
+
+#[test]
+fn the_error_reaches_the_user_as_one_line_naming_the_flag() {
+    let e = Spectrum::from_csv_str("wavelength_um,weight\n2.0,1\n2.2,abc\n").unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.starts_with("spectrum-csv: line 3"), "{msg}");
+    assert!(!msg.contains('\n'));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Arbitrary text: an answer, never a panic.
+    #[test]
+    fn garbage_never_panics(text in "\\PC{0,200}") {
+        let _ = Spectrum::from_csv_str(&text);
+    }
+
+    /// Header plus arbitrary rows of number-like cells.
+    #[test]
+    fn numeric_garbage_never_panics(
+        rows in proptest::collection::vec(
+            (prop_oneof![any::<f64>().prop_map(|x| x.to_string()), "[-+0-9.eE]{0,8}", Just(String::new())],
+             prop_oneof![any::<f64>().prop_map(|x| x.to_string()), "[-+0-9.eE]{0,8}"]),
+            0..12),
+        wavelength in any::<bool>(),
+    ) {
+        let mut text = String::from(if wavelength { "wavelength_um,weight\n" } else { "wavenumber_per_um,weight\n" });
+        for (a, b) in rows {
+            text.push_str(&format!("{a},{b}\n"));
+        }
+        if let Ok(sp) = Spectrum::from_csv_str(&text) {
+            // Whatever is accepted is a usable weighting function.
+            prop_assert!(sp.sigma_eff_per_um().is_finite() && sp.sigma_eff_per_um() > 0.0);
+            prop_assert!(sp.w2_integral_um().is_finite() && sp.w2_integral_um() > 0.0);
+        }
+    }
+}
