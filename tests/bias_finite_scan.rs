@@ -201,3 +201,45 @@ fn the_window_is_the_positive_half() {
     let d = Kernel::Dirichlet.at(u, n).norm() / n as f64;
     assert!((d - sinc(n as f64 * u).abs()).abs() < 1e-5);
 }
+
+#[test]
+fn the_stored_figure_shows_both_paths_agreeing() {
+    use v2ref::figure::Table;
+    let load = |name: &str| {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("golden")
+            .join(format!("{name}.csv"));
+        Table::from_csv(name, &std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    let (v1, v2, conv) = (load("fig3_v1"), load("fig3_v2"), load("fig3_convolution"));
+    let s_fine = v1.column("s").unwrap();
+    let s_coarse = conv.column("s").unwrap();
+    let mut compared = 0;
+    for stroke in finite_scan::STROKES_UM {
+        let name = |e: &str| format!("bias_{e}_{stroke}um");
+        for (fine, est) in [(&v1, "v1"), (&v2, "v2")] {
+            let a = fine.column(&name(est)).unwrap();
+            let b = conv.column(&name(est)).unwrap();
+            for (j, s) in s_coarse.iter().enumerate() {
+                let i = s_fine.iter().position(|x| x == s).unwrap();
+                assert!(
+                    (a[i] - b[j]).abs() < PATHS_AGREE,
+                    "{} at S={s}: {} vs {}",
+                    name(est),
+                    a[i],
+                    b[j]
+                );
+                compared += 1;
+            }
+        }
+    }
+    assert_eq!(compared, 8 * 2 * 81);
+    let abcd = load("fig3_abcd");
+    for (x, y) in [
+        ("bias_v1_dft", "bias_v1_convolution"),
+        ("bias_v2_dft", "bias_v2_convolution"),
+    ] {
+        let (a, b) = (abcd.column(x).unwrap(), abcd.column(y).unwrap());
+        assert!(a.iter().zip(&b).all(|(p, q)| (p - q).abs() < PATHS_AGREE));
+    }
+}
