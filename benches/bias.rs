@@ -29,13 +29,18 @@ fn benches(c: &mut Criterion) {
         let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
         let cal = finite_scan::calibrator_raw(&obs, &sampling, Method::Dft).unwrap();
         c.bench_function(&format!("finite-scan bias, DFT path, {stroke} um"), |b| {
-            b.iter(|| finite_scan::bias(black_box(&obs), &sampling, Method::Dft, Some(cal)).unwrap())
+            b.iter(|| {
+                finite_scan::bias(black_box(&obs), &sampling, Method::Dft, Some(cal)).unwrap()
+            })
         });
         let method = Method::Convolution(Kernel::Dirichlet);
         let cal = finite_scan::calibrator_raw(&obs, &sampling, method).unwrap();
-        c.bench_function(&format!("finite-scan bias, convolution path, {stroke} um"), |b| {
-            b.iter(|| finite_scan::bias(black_box(&obs), &sampling, method, Some(cal)).unwrap())
-        });
+        c.bench_function(
+            &format!("finite-scan bias, convolution path, {stroke} um"),
+            |b| {
+                b.iter(|| finite_scan::bias(black_box(&obs), &sampling, method, Some(cal)).unwrap())
+            },
+        );
     }
     let flat = Spectrum::flat(Band::k());
     let samples: Vec<usize> = (2..=930).collect();
