@@ -200,9 +200,34 @@ pub fn check(dir: &Path) -> Result<Report> {
     Ok(check_figures(dir, &figures))
 }
 
-/// Writes `figures` into `dir` atomically (temporary sibling directory,
-/// then rename). Returns the files written (paths inside `dir`).
-pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
+/// Writes each figure's tables (`<table>.csv`) and metadata (`<fig>.json`,
+/// with `generator` as the command that wrote it) into the existing
+/// directory `dir`. Returns the file names written.
+pub fn write_figure_files(dir: &Path, figures: &[Figure], generator: &str) -> Result<Vec<String>> {
+    let mut files = Vec::new();
+    for fig in figures {
+        for table in &fig.tables {
+            let name = format!("{}.csv", table.name);
+            let p = dir.join(&name);
+            std::fs::write(&p, table.to_csv()).map_err(|e| io(&p, e))?;
+            files.push(name);
+        }
+        let name = format!("{}.json", fig.id);
+        let p = dir.join(&name);
+        let mut meta = FigureMeta::of(fig);
+        meta.generator = generator.to_owned();
+        let json = serde_json::to_string_pretty(&meta).map_err(|e| io(&p, e))?;
+        std::fs::write(&p, json + "\n").map_err(|e| io(&p, e))?;
+        files.push(name);
+    }
+    Ok(files)
+}
+
+/// Replaces the directory `dir` as a whole: `fill` writes into a fresh
+/// temporary sibling, which then takes `dir`'s place by rename. If `fill`
+/// fails, or the rename does, the old `dir` is left as it was and nothing
+/// half-written remains.
+pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
@@ -210,31 +235,17 @@ pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
     let stem = dir
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "golden".to_owned());
+        .ok_or_else(|| io(dir, "not a directory name"))?;
+    std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
     let pid = std::process::id();
     let tmp = parent.join(format!(".{stem}.tmp-{pid}"));
     let old = parent.join(format!(".{stem}.old-{pid}"));
     let _ = std::fs::remove_dir_all(&tmp);
-    let result = (|| -> Result<Vec<PathBuf>> {
-        std::fs::create_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
-        let mut files = Vec::new();
-        for fig in figures {
-            for table in &fig.tables {
-                let name = format!("{}.csv", table.name);
-                let p = tmp.join(&name);
-                std::fs::write(&p, table.to_csv()).map_err(|e| io(&p, e))?;
-                files.push(dir.join(name));
-            }
-            let name = format!("{}.json", fig.id);
-            let p = tmp.join(&name);
-            let json = serde_json::to_string_pretty(&FigureMeta::of(fig)).map_err(|e| io(&p, e))?;
-            std::fs::write(&p, json + "\n").map_err(|e| io(&p, e))?;
-            files.push(dir.join(name));
-        }
-        Ok(files)
-    })();
-    let files = match result {
-        Ok(f) => f,
+    let filled = std::fs::create_dir_all(&tmp)
+        .map_err(|e| io(&tmp, e))
+        .and_then(|()| fill(&tmp));
+    let value = match filled {
+        Ok(v) => v,
         Err(e) => {
             let _ = std::fs::remove_dir_all(&tmp);
             return Err(e);
@@ -250,7 +261,14 @@ pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
         return Err(io(dir, e));
     }
     let _ = std::fs::remove_dir_all(&old);
-    Ok(files)
+    Ok(value)
+}
+
+/// Writes `figures` into `dir` atomically ([`replace_dir_atomically`]).
+/// Returns the files written (paths inside `dir`).
+pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
+    let names = replace_dir_atomically(dir, |tmp| write_figure_files(tmp, figures, GENERATOR))?;
+    Ok(names.into_iter().map(|n| dir.join(n)).collect())
 }
 
 /// Recomputes every figure at full effort and rewrites `dir`.

@@ -2,9 +2,12 @@
 //!
 //! A table is drawn by convention: the first column is the abscissa; every
 //! other column is a curve, except columns named `<curve>_stderr`, which
-//! become error bars on `<curve>`. Axis labels carry the columns' units. The
-//! ordinate is logarithmic when every plotted value is positive and they
-//! span more than three decades.
+//! become error bars on `<curve>`, and the context columns of [`hint`]
+//! (the monochromatic visibility beside its deviations, sample counts).
+//! Axis labels carry the columns' units. The ordinate is logarithmic when
+//! every plotted value is positive and they span more than three decades.
+//! Per-panel presentation (ordinate label, reference lines such as the
+//! paper's 0.2% accuracy) lives in [`hint`], apart from the data.
 
 use crate::error::{Error, Result};
 use crate::figure::{Figure, Table};
@@ -32,13 +35,60 @@ fn plot_error(e: impl std::fmt::Display) -> Error {
     }
 }
 
+/// How one panel is presented.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PlotHint {
+    /// Columns not drawn (context kept in the CSV).
+    pub hidden: Vec<&'static str>,
+    /// Ordinate label (default: "value [unit]").
+    pub y_label: Option<&'static str>,
+    /// Horizontal reference lines: (ordinate, label).
+    pub lines: Vec<(f64, &'static str)>,
+}
+
+/// Columns that give context to a panel rather than being its subject.
+const CONTEXT_COLUMNS: [&str; 6] = [
+    "v_mono",
+    "samples",
+    "v1_infinite",
+    "v2_infinite",
+    "difference",
+    "scans",
+];
+
+/// The paper's "current best accuracy" of single-mode interferometers (0.2%).
+const ACCURACY_0P2: f64 = 2e-3;
+
+/// The presentation of the panel called `table`.
+pub fn hint(table: &str) -> PlotHint {
+    let mut h = PlotHint {
+        hidden: CONTEXT_COLUMNS.to_vec(),
+        ..PlotHint::default()
+    };
+    match table {
+        "fig0_normalization" => {
+            h.y_label = Some("|V2 normalized - V2 unnormalized|, V = 1");
+            h.lines = vec![(ACCURACY_0P2, "0.2%")];
+        }
+        "fig1_v1" => h.y_label = Some("V1 - V mono"),
+        "fig1_v2" | "fig2_disk" => h.y_label = Some("V2 - V mono"),
+        "fig2_point" => h.y_label = Some("V2 of a point source"),
+        "fig3_v1" | "fig3_v2" | "fig3_abcd" | "fig3_convolution" => {
+            h.y_label = Some("bias against the infinite scan");
+            h.lines = vec![(ACCURACY_0P2, "+0.2%"), (-ACCURACY_0P2, "-0.2%")];
+        }
+        _ => {}
+    }
+    h
+}
+
 struct Series {
     label: String,
     points: Vec<(f64, f64)>,
     errors: Option<Vec<f64>>,
 }
 
-fn series_of(table: &Table) -> Vec<Series> {
+fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
     let x = match table.columns.first() {
         Some(c) => table.column(&c.name).unwrap_or_default(),
         None => return Vec::new(),
@@ -47,7 +97,7 @@ fn series_of(table: &Table) -> Vec<Series> {
         .columns
         .iter()
         .skip(1)
-        .filter(|c| !c.name.ends_with("_stderr"))
+        .filter(|c| !c.name.ends_with("_stderr") && !hint.hidden.contains(&c.name.as_str()))
         .map(|c| {
             let y = table.column(&c.name).unwrap_or_default();
             let errors = table.column(&format!("{}_stderr", c.name));
@@ -67,7 +117,8 @@ fn series_of(table: &Table) -> Vec<Series> {
 
 /// The SVG text of one panel of `figure`.
 pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
-    let series = series_of(table);
+    let hint = hint(&table.name);
+    let series = series_of(table, &hint);
     let all: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
@@ -116,11 +167,22 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
         .get(1)
         .map(|c| c.unit.clone())
         .unwrap_or_default();
-    let y_desc = if y_unit.is_empty() {
-        "value".to_owned()
-    } else {
-        format!("value [{y_unit}]")
+    let y_desc = match (hint.y_label, y_unit.is_empty()) {
+        (Some(l), _) => l.to_owned(),
+        (None, true) => "value".to_owned(),
+        (None, false) => format!("value [{y_unit}]"),
     };
+    // Reference lines are drawn when they are within a span of the data.
+    let lines: Vec<(f64, &str)> = hint
+        .lines
+        .iter()
+        .copied()
+        .filter(|(y, _)| *y > y0 - (y1 - y0) && *y < y1 + (y1 - y0))
+        .collect();
+    for (y, _) in &lines {
+        y0 = y0.min(*y);
+        y1 = y1.max(*y);
+    }
     let title = format!("{} — {}", figure.id, table.name);
 
     let mut svg = String::new();
@@ -140,8 +202,17 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
                     .configure_mesh()
                     .x_desc(x_desc.as_str())
                     .y_desc(y_desc.as_str())
+                    .y_label_formatter(&|y: &f64| tick(*y))
                     .draw()
                     .map_err(plot_error)?;
+                for (y, label) in &lines {
+                    let grey = RGBColor(120, 120, 120);
+                    chart
+                        .draw_series(LineSeries::new([(x0, *y), (x1, *y)], grey.stroke_width(1)))
+                        .map_err(plot_error)?
+                        .label(*label)
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+                }
                 for (i, s) in series.iter().enumerate() {
                     let colour = PALETTE[i % PALETTE.len()];
                     chart
@@ -183,4 +254,17 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
         root.present().map_err(plot_error)?;
     }
     Ok(svg)
+}
+
+/// A compact tick label: plain for ordinary magnitudes, `1e-5` style beyond.
+fn tick(y: f64) -> String {
+    let a = y.abs();
+    if y == 0.0 {
+        "0".to_owned()
+    } else if (1e-3..1e4).contains(&a) {
+        let s = format!("{y:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        format!("{y:.0e}")
+    }
 }

@@ -30,12 +30,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
     }
     let fmt = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |x| format!("{x:.6}"));
     let id_width = results.iter().map(|r| r.id.len()).max().unwrap_or(0);
-    println!(
+    outln!(
         "{:<id_width$}  {:>12}  {:>12}  {:<11}  note",
-        "claim", "paper", "computed", "status"
+        "claim",
+        "paper",
+        "computed",
+        "status"
     );
     for r in &results {
-        println!(
+        outln!(
             "{:<id_width$}  {:>12}  {:>12}  {:<11}  {}",
             r.id,
             fmt(r.paper),

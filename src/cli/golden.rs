@@ -67,7 +67,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             });
         } else {
             for f in &files {
-                println!("wrote {}", f.display());
+                outln!("wrote {}", f.display());
             }
         }
         return Ok(ExitCode::SUCCESS);
@@ -87,7 +87,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 .collect(),
         });
     } else {
-        println!(
+        outln!(
             "checked {} tables in {}: {} mismatch(es)",
             report.checked,
             args.dir.display(),

@@ -1,5 +1,16 @@
 //! Subcommands of the `v2ref` binary, one file each, and what they share.
 
+/// `println!` that ends the process quietly (status 0) when stdout is
+/// closed early (`v2ref claims | head`), instead of panicking.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if writeln!(std::io::stdout().lock(), $($arg)*).is_err() {
+            std::process::exit(0);
+        }
+    }};
+}
+
 pub mod bias;
 pub mod claims;
 pub mod common;
@@ -59,7 +70,7 @@ pub fn finite_f64(s: &str) -> Result<f64, String> {
 /// Prints `value` as one pretty JSON document on stdout.
 pub fn print_json<T: serde::Serialize>(value: &T) {
     match serde_json::to_string_pretty(value) {
-        Ok(s) => println!("{s}"),
+        Ok(s) => outln!("{s}"),
         Err(e) => eprintln!("error: cannot serialize the answer: {e}"),
     }
 }
@@ -68,7 +79,7 @@ pub fn print_json<T: serde::Serialize>(value: &T) {
 pub fn print_rows(rows: &[(&str, String)]) {
     let width = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
     for (name, value) in rows {
-        println!("{name:<width$}  {value}");
+        outln!("{name:<width$}  {value}");
     }
 }
 

@@ -73,36 +73,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
-    let parent = match args.out.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = args
-        .out
-        .file_name()
-        .ok_or_else(|| Error::Invalid {
-            param: "out",
-            reason: format!("{} is not a directory name", args.out.display()),
-        })?
-        .to_string_lossy()
-        .into_owned();
-    std::fs::create_dir_all(&parent).map_err(|e| io_error(&parent, e))?;
-    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&staging);
-    std::fs::create_dir_all(&staging).map_err(|e| io_error(&staging, e))?;
-    let outcome = build(&staging, effort, args.quiet);
-    let (claims, files) = match outcome {
-        Ok(v) => v,
-        Err(e) => {
-            let _ = std::fs::remove_dir_all(&staging);
-            return Err(e);
-        }
-    };
-    if args.out.exists() {
-        std::fs::remove_dir_all(&args.out).map_err(|e| io_error(&args.out, e))?;
-    }
-    std::fs::rename(&staging, &args.out).map_err(|e| io_error(&args.out, e))?;
-
+    let (claims, files) =
+        v2ref::golden::replace_dir_atomically(&args.out, |dir| build(dir, effort, args.quiet))?;
     if args.json {
         print_json(&Answer {
             out: args.out.display().to_string(),
@@ -112,8 +84,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         });
     } else {
         print_summary(&claims);
-        println!(
-            "\nwrote {} files into {}/ (figures as CSV + SVG, claims.md, claims.json)",
+        outln!(
+            "\nwrote {} files into {}/ (figures as CSV + JSON + SVG, claims.md, claims.json)",
             files.len(),
             args.out.display()
         );
@@ -125,28 +97,20 @@ pub fn run(args: Args) -> Result<ExitCode> {
 /// files written (relative names).
 fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, Vec<String>)> {
     let bar = progress_bar(3, quiet, "figures");
-    let mut files = Vec::new();
     let figures = v2ref::figures::all(effort)?;
     bar.inc(1);
     bar.set_message("plots");
+    let generator = format!(
+        "v2ref reproduce{}",
+        if effort == Effort::Quick {
+            " --quick"
+        } else {
+            ""
+        }
+    );
+    let mut files = v2ref::golden::write_figure_files(dir, &figures, &generator)?;
     for fig in &figures {
-        let meta = serde_json::json!({
-            "id": fig.id,
-            "caption": fig.caption,
-            "monte_carlo": fig.monte_carlo,
-            "parameters": fig.parameters,
-            "tables": fig.tables.iter().map(|t| &t.name).collect::<Vec<_>>(),
-            "generator": format!("v2ref {} reproduce{}", env!("CARGO_PKG_VERSION"), if effort == Effort::Quick { " --quick" } else { "" }),
-        });
-        let meta = serde_json::to_string_pretty(&meta).map_err(|e| io_error(dir, e))?;
-        write(dir, &format!("{}.json", fig.id), &meta, &mut files)?;
         for table in &fig.tables {
-            write(
-                dir,
-                &format!("{}.csv", table.name),
-                &table.to_csv(),
-                &mut files,
-            )?;
             let svg = v2ref::plot::table_svg(fig, table)?;
             write(dir, &format!("{}.svg", table.name), &svg, &mut files)?;
         }
@@ -165,12 +129,14 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
 fn print_summary(claims: &[ClaimResult]) {
     let fmt = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |x| format!("{x:.5}"));
     let w = claims.iter().map(|r| r.id.len()).max().unwrap_or(0);
-    println!(
+    outln!(
         "{:<w$}  {:>12}  {:>12}  status",
-        "claim", "paper", "computed"
+        "claim",
+        "paper",
+        "computed"
     );
     for r in claims {
-        println!(
+        outln!(
             "{:<w$}  {:>12}  {:>12}  {}",
             r.id,
             fmt(r.paper),
@@ -183,5 +149,5 @@ fn print_summary(claims: &[ClaimResult]) {
         .filter(|(_, n)| *n > 0)
         .map(|(s, n)| format!("{n} {}", s.as_str()))
         .collect();
-    println!("\n{} claims: {}", claims.len(), counts.join(", "));
+    outln!("\n{} claims: {}", claims.len(), counts.join(", "));
 }
