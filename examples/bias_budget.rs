@@ -23,7 +23,7 @@ const DISPERSION_PP_RAD: f64 = 0.5;
 const STROKE_UM: f64 = 40.0;
 const DX_UM: f64 = 0.35;
 
-fn main() -> v2ref::Result<()> {
+pub fn main() -> v2ref::Result<()> {
     let spectrum = Spectrum::flat(Band::new(WAVELENGTH_UM, BANDWIDTH_UM)?);
     let source = Source::uniform_disk(DIAMETER_MAS)?;
     let dispersion = SpectralPhase::dispersion_peak_to_peak(&spectrum, DISPERSION_PP_RAD)?;
