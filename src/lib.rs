@@ -54,6 +54,7 @@ pub mod figure;
 pub mod figures;
 pub mod interferogram;
 pub mod montecarlo;
+pub mod noise;
 pub mod observation;
 pub mod oracle;
 pub mod quadrature;
@@ -61,5 +62,6 @@ pub mod source;
 pub mod special;
 pub mod spectrum;
 pub mod tolerance;
+pub mod window_variance;
 
 pub use error::{Error, Result};
