@@ -332,14 +332,14 @@ pub fn appendix_stats(
     if n == 0 || continuum.len() != n {
         return Err(Error::Invalid {
             param: "samples",
-            reason: format!(
-                "{} modulated and {} continuum values",
-                n,
-                continuum.len()
-            ),
+            reason: format!("{} modulated and {} continuum values", n, continuum.len()),
         });
     }
-    let counts: Vec<f64> = modulated.iter().zip(continuum).map(|(m, c)| m + c).collect();
+    let counts: Vec<f64> = modulated
+        .iter()
+        .zip(continuum)
+        .map(|(m, c)| m + c)
+        .collect();
     if noise.photon {
         if let Some(bad) = counts.iter().find(|&&v| v < 0.0 || v.is_nan()) {
             return Err(Error::OutOfRange {
@@ -471,12 +471,8 @@ pub fn example_interferogram(setup: &ExampleSetup) -> Result<Interferogram> {
             .map(|i| i as f64 * setup.dx_um - sampling.opd_um(i))
             .collect()
     });
-    let mut ifg = Interferogram::synthesize(
-        &obs,
-        &sampling,
-        setup.photons,
-        perturbation.as_deref(),
-    )?;
+    let mut ifg =
+        Interferogram::synthesize(&obs, &sampling, setup.photons, perturbation.as_deref())?;
     for m in &mut ifg.modulated {
         *m *= setup.visibility;
     }
@@ -493,7 +489,12 @@ pub fn worked_example(setup: &ExampleSetup, formula: Formula) -> Result<WorkedEx
         &NoiseModel::detector(0.2 * setup.photons)?,
         formula,
     )?;
-    let phot = appendix_stats(&ifg.modulated, &ifg.continuum, &NoiseModel::photon(), formula)?;
+    let phot = appendix_stats(
+        &ifg.modulated,
+        &ifg.continuum,
+        &NoiseModel::photon(),
+        formula,
+    )?;
     Ok(WorkedExample {
         setup: *setup,
         sum_m2_over_n2: det.sum_m2 / (setup.photons * setup.photons),
@@ -560,11 +561,47 @@ pub fn crossover_samples(
 /// sampling detector (fringe phase constant within a sample),
 /// `2⟨N⟩²V²σ² + 16σ⁴` — the form the paper says Colavita's result needs.
 pub fn abcd_detector_variance(photons: f64, visibility: f64, sigma: f64) -> f64 {
-    2.0 * photons * photons * visibility * visibility * sigma * sigma + colavita_detector_variance(sigma)
+    2.0 * photons * photons * visibility * visibility * sigma * sigma
+        + colavita_detector_variance(sigma)
 }
 
 /// The detector-noise variance of the ABCD estimator as Colavita (1999)
 /// gives it, `16σ⁴` (no signal-noise cross term).
 pub fn colavita_detector_variance(sigma: f64) -> f64 {
     16.0 * sigma.powi(4)
+}
+
+/// The noise bias of both raw estimators over the window `bins`, in
+/// `formula`: [`crate::estimator::noise_bias`] of the per-sample noise
+/// power of [`sample_bias`] (`N Σ b_i`, `N² b_0` for all bins).
+pub fn window_bias(
+    formula: Formula,
+    noise: &NoiseModel,
+    modulated: &[f64],
+    continuum: &[f64],
+    bins: &[usize],
+) -> crate::estimator::Pair {
+    let per_sample: Vec<f64> = modulated
+        .iter()
+        .zip(continuum)
+        .map(|(&m, &c)| sample_bias(formula, noise, m, m + c))
+        .collect();
+    crate::estimator::noise_bias(&per_sample, bins)
+}
+
+/// The noise-free interferogram of `obs` with `photons` continuum photons
+/// per sample and its modulated part scaled by `visibility` (so that an
+/// unresolved source has `m_0 = n V`, the Appendix's convention).
+pub fn scaled_interferogram(
+    obs: &Observation,
+    sampling: &Sampling,
+    photons: f64,
+    visibility: f64,
+) -> Result<Interferogram> {
+    error::in_range("visibility", visibility, 0.0, 1.0)?;
+    let mut ifg = Interferogram::synthesize(obs, sampling, photons, None)?;
+    for m in &mut ifg.modulated {
+        *m *= visibility;
+    }
+    Ok(ifg)
 }

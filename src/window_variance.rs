@@ -69,9 +69,8 @@ pub fn quadratic_form_moments(a: &DMatrix<f64>, m: &[f64], cum: &[Cumulants]) ->
     for i in 0..n {
         let aii = a[(i, i)];
         bias += aii * cum[i].k2;
-        var += 4.0 * am[i] * am[i] * cum[i].k2
-            + 4.0 * am[i] * aii * cum[i].k3
-            + aii * aii * cum[i].k4;
+        var +=
+            4.0 * am[i] * am[i] * cum[i].k2 + 4.0 * am[i] * aii * cum[i].k3 + aii * aii * cum[i].k4;
         for j in 0..n {
             var += 2.0 * a[(i, j)] * a[(i, j)] * cum[i].k2 * cum[j].k2;
         }
