@@ -40,13 +40,13 @@ impl From<FormulaArg> for Formula {
 #[derive(Debug, Clone, clap::Args)]
 pub struct NoiseArgs {
     /// Visibility V scaling the fringe (m_0 = n V for a point source), 0 to 1.
-    #[arg(long, default_value = "1", value_parser = finite_f64)]
+    #[arg(long, default_value = "1", value_parser = finite_f64, allow_hyphen_values = true)]
     pub visibility: f64,
     /// Continuum photons per sample n (c = n), >= 0.
-    #[arg(long, default_value = "10", value_parser = finite_f64)]
+    #[arg(long, default_value = "10", value_parser = finite_f64, allow_hyphen_values = true)]
     pub photons: f64,
     /// Detector noise standard deviation σ_det, photons per sample, >= 0.
-    #[arg(long, default_value = "0", value_parser = finite_f64)]
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_hyphen_values = true)]
     pub read_noise: f64,
     /// No Poisson photon noise (detector noise only).
     #[arg(long)]
