@@ -31,6 +31,9 @@
 //! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/claims.rs` |
 //! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/estimator.rs` |
 //! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] | `tests/interferogram.rs` |
+//! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Monte Carlo of noisy interferograms | [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
 //! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
 //! | figure data, golden files | [`figure`] | |
 //!

@@ -58,6 +58,21 @@
 //! ([`paper_window_factor`]); [`crate::window_variance`] gives the exact
 //! windowed variance instead.
 //!
+//! In the Appendix case (all bins, project interferogram) the exact photon
+//! SNRs are 4.09 and 1.02 instead of the printed 1.35 (1.33) and 0.54: the
+//! printed variance counts the continuum's photons as signal.
+//!
+//! # The window factor, exactly
+//!
+//! For detector noise σ_det = 0.2 n, the two-sided band window (the 6
+//! positive band bins and their 6 mirror images, keeping the whole fringe)
+//! divides var V1² by 1.20 and var V2² by 10.5, where the paper's factor
+//! Δσ/Δσ_0 is 24: SNR gains 1.09 and 3.35 instead of √24 = 4.90
+//! ([`crate::window_variance`] explains why). The crossover of SNR_1 and
+//! SNR_2 (the fringe packet read with more and more empty samples) comes at
+//! N ≈ 6245 for detector noise, 5876 for exact photon noise, 968 with the
+//! printed photon variances ([`crossover_samples`]).
+//!
 //! # The worked examples: which 128-sample interferogram
 //!
 //! The Appendix gives SNR_1 = 7.63 and SNR_2 = 2.48 (detector noise

@@ -2,6 +2,7 @@
 
 use serde_json::Value;
 use std::process::Command;
+use v2ref::tolerance::IDENTITY_REL;
 
 fn v2ref(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -39,14 +40,14 @@ fn snr_json_has_the_contract_fields_and_the_appendix_numbers() {
     }
     // SNR2 = 1/√(0.08·2.04) for σ_det = 0.2 n, m0 = n.
     let snr2 = v["snr2"].as_f64().unwrap();
-    assert!((snr2 - 1.0 / (0.08f64 * 2.04).sqrt()).abs() < 1e-12);
+    assert!((snr2 - 1.0 / (0.08f64 * 2.04).sqrt()).abs() < IDENTITY_REL);
     // SNR1 from the reported Σm²: s/√(0.08(2s + 0.04 N)), s = Σm²/n².
     let s = v["sum_m2"].as_f64().unwrap() / 100.0;
     let snr1 = v["snr1"].as_f64().unwrap();
-    assert!((snr1 - s / (0.08 * (2.0 * s + 0.04 * 128.0)).sqrt()).abs() < 1e-12);
+    assert!((snr1 - s / (0.08 * (2.0 * s + 0.04 * 128.0)).sqrt()).abs() < IDENTITY_REL);
     // The exact window statistics for all bins equal the closed form.
     let w = v["window_exact"]["snr1"].as_f64().unwrap();
-    assert!((w / snr1 - 1.0).abs() < 1e-10);
+    assert!((w / snr1 - 1.0).abs() < IDENTITY_REL);
 }
 
 #[test]
@@ -60,8 +61,8 @@ fn snr_published_and_exact_photon() {
         "--json",
     ]);
     let e = json(&["snr", "--source", "point", "--json"]);
-    assert!((p["snr2"].as_f64().unwrap() - 100.0 / 34420f64.sqrt()).abs() < 1e-12);
-    assert!((e["snr2"].as_f64().unwrap() - 100.0 / 9620f64.sqrt()).abs() < 1e-12);
+    assert!((p["snr2"].as_f64().unwrap() - 100.0 / 34420f64.sqrt()).abs() < IDENTITY_REL);
+    assert!((e["snr2"].as_f64().unwrap() - 100.0 / 9620f64.sqrt()).abs() < IDENTITY_REL);
     assert_eq!(e["formula"], "exact");
 }
 

@@ -6,7 +6,7 @@ use v2ref::estimator::{dft, raw_estimates, BinWindow};
 use v2ref::montecarlo::{unit_rng, Moments4, PoissonSampler, WindowedEstimators};
 use v2ref::noise::{raw_moments_from_cumulants, NoiseModel};
 use v2ref::oracle::naive_dft;
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
 
 #[test]
 fn moments4_matches_two_pass_and_merges() {
@@ -18,28 +18,32 @@ fn moments4_matches_two_pass_and_merges() {
     let c = |p: i32| xs.iter().map(|x| (x - mean).powi(p)).sum::<f64>();
     let mut acc = Moments4::default();
     xs.iter().for_each(|&x| acc.push(x));
-    assert_relative_eq!(acc.mean, mean, max_relative = 1e-14);
-    assert_relative_eq!(acc.m2, c(2), max_relative = 1e-10);
+    assert_relative_eq!(acc.mean, mean, max_relative = IDENTITY_REL);
+    assert_relative_eq!(acc.m2, c(2), max_relative = IDENTITY_REL);
     assert_relative_eq!(
         acc.m3,
         c(3),
         max_relative = 1e-7,
         epsilon = 1e-3 * c(2).powf(1.5)
     );
-    assert_relative_eq!(acc.m4, c(4), max_relative = 1e-10);
+    assert_relative_eq!(acc.m4, c(4), max_relative = IDENTITY_REL);
     // merging two halves equals one pass
     let (mut a, mut b) = (Moments4::default(), Moments4::default());
     xs[..337].iter().for_each(|&x| a.push(x));
     xs[337..].iter().for_each(|&x| b.push(x));
     a.merge(&b);
     assert_eq!(a.count, acc.count);
-    assert_relative_eq!(a.mean, acc.mean, max_relative = 1e-14);
-    assert_relative_eq!(a.m2, acc.m2, max_relative = 1e-10);
-    assert_relative_eq!(a.m4, acc.m4, max_relative = 1e-10);
+    assert_relative_eq!(a.mean, acc.mean, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.m2, acc.m2, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.m4, acc.m4, max_relative = IDENTITY_REL);
     // affine transform
     let t = acc.affine(2.0, -3.0);
-    assert_relative_eq!(t.variance(), 4.0 * acc.variance(), max_relative = 1e-14);
-    assert_relative_eq!(t.mean, 2.0 * acc.mean - 3.0, max_relative = 1e-14);
+    assert_relative_eq!(
+        t.variance(),
+        4.0 * acc.variance(),
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(t.mean, 2.0 * acc.mean - 3.0, max_relative = IDENTITY_REL);
 }
 
 #[test]
@@ -70,14 +74,14 @@ fn fast_windowed_estimators_match_the_fft() {
             let naive = raw_estimates(&naive_dft(&x), &bins);
             let scale = x.iter().map(|v| v * v).sum::<f64>() * (n * n) as f64;
             assert!(
-                (got.v1_sq - want.v1_sq).abs() < 1e-12 * scale,
+                (got.v1_sq - want.v1_sq).abs() < IDENTITY_REL * scale,
                 "n {n} bins {bins:?}"
             );
             assert!(
-                (got.v2_sq - want.v2_sq).abs() < 1e-12 * scale,
+                (got.v2_sq - want.v2_sq).abs() < IDENTITY_REL * scale,
                 "n {n} bins {bins:?}"
             );
-            assert!((want.v1_sq - naive.v1_sq).abs() < 1e-12 * scale);
+            assert!((want.v1_sq - naive.v1_sq).abs() < IDENTITY_REL * scale);
         }
     }
 }

@@ -8,6 +8,7 @@ use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
+use v2ref::tolerance::IDENTITY_REL;
 use v2ref::window_variance::{
     quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
 };
@@ -21,15 +22,19 @@ fn cumulant_recursion_gives_textbook_moments() {
     // Gaussian N(m, s²): E X⁴ = m⁴ + 6m²s² + 3s⁴; Poisson(λ): Touchard
     // polynomials λ⁴ + 6λ³ + 7λ² + λ (independent textbook forms).
     let g = raw_moments_from_cumulants(&[1.5, 4.0, 0.0, 0.0]);
-    assert_relative_eq!(g[4], published::gaussian_m4(1.5, 2.0), max_relative = 1e-14);
+    assert_relative_eq!(
+        g[4],
+        published::gaussian_m4(1.5, 2.0),
+        max_relative = IDENTITY_REL
+    );
     let l = 3.7;
     let p = raw_moments_from_cumulants(&[l, l, l, l]);
-    assert_relative_eq!(p[2], published::photon_m2(l), max_relative = 1e-14);
-    assert_relative_eq!(p[4], published::photon_m4(l), max_relative = 1e-14);
+    assert_relative_eq!(p[2], published::photon_m2(l), max_relative = IDENTITY_REL);
+    assert_relative_eq!(p[4], published::photon_m4(l), max_relative = IDENTITY_REL);
     // Sixth Touchard polynomial: λ⁶ + 15λ⁵ + 65λ⁴ + 90λ³ + 31λ² + λ.
     let p6 = raw_moments_from_cumulants(&[l; 6])[6];
     let t6 = l.powi(6) + 15.0 * l.powi(5) + 65.0 * l.powi(4) + 90.0 * l.powi(3) + 31.0 * l * l + l;
-    assert_relative_eq!(p6, t6, max_relative = 1e-13);
+    assert_relative_eq!(p6, t6, max_relative = IDENTITY_REL);
 }
 
 #[test]
@@ -45,15 +50,20 @@ fn closed_moments_match_the_generic_recursion() {
                 assert_relative_eq!(
                     mo.raw[r],
                     raw_moment(&noise, m, m + c, r),
-                    max_relative = 1e-13,
+                    max_relative = IDENTITY_REL,
                     epsilon = 1e-12
                 );
             }
             let v = mo.raw[4] - mo.raw[2] * mo.raw[2];
-            assert_relative_eq!(var_m2(&noise, m, m + c), v, max_relative = 1e-12);
+            assert_relative_eq!(var_m2(&noise, m, m + c), v, max_relative = IDENTITY_REL);
             // central moments: E(M − m)^r from the raw ones.
             let c3 = mo.raw[3] - 3.0 * m * mo.raw[2] + 2.0 * m.powi(3);
-            assert_relative_eq!(mo.central[3], c3, max_relative = 1e-10, epsilon = 1e-9);
+            assert_relative_eq!(
+                mo.central[3],
+                c3,
+                max_relative = IDENTITY_REL,
+                epsilon = 1e-9
+            );
         }
     }
 }
@@ -66,12 +76,12 @@ fn published_photon_moments_are_those_of_the_count_not_of_m() {
     assert_relative_eq!(
         moments(&p, n, n).raw[4],
         published::photon_m4(n),
-        max_relative = 1e-14
+        max_relative = IDENTITY_REL
     );
     assert_relative_eq!(
         var_m2(&p, n, n),
         published::photon_var_term(n),
-        max_relative = 1e-14
+        max_relative = IDENTITY_REL
     );
     // ... with c = n − m they are not: var(M²) = 4m²n + 4mn + 2n² + n.
     let m = 10.0;
@@ -88,19 +98,19 @@ fn detector_formulas_agree_published_and_exact() {
     let d = gauss(2.0);
     let a = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Exact).unwrap();
     let b = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Published).unwrap();
-    assert_relative_eq!(a.var_v1_sq, b.var_v1_sq, max_relative = 1e-14);
-    assert_relative_eq!(a.var_v2_sq, b.var_v2_sq, max_relative = 1e-14);
+    assert_relative_eq!(a.var_v1_sq, b.var_v1_sq, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.var_v2_sq, b.var_v2_sq, max_relative = IDENTITY_REL);
     // The printed closed forms 2N²σ²[2Σm² + Nσ²] and 2N⁴σ²[2m0² + σ²].
     let (nn, s2) = (128.0_f64, 4.0);
     assert_relative_eq!(
         a.var_v1_sq,
         2.0 * nn * nn * s2 * (2.0 * a.sum_m2 + nn * s2),
-        max_relative = 1e-13
+        max_relative = IDENTITY_REL
     );
     assert_relative_eq!(
         a.var_v2_sq,
         2.0 * nn.powi(4) * s2 * (2.0 * a.m0 * a.m0 + s2),
-        max_relative = 1e-13
+        max_relative = IDENTITY_REL
     );
 }
 
@@ -111,23 +121,27 @@ fn worked_examples_follow_from_sum_m2() {
     assert_relative_eq!(
         w.detector.1,
         1.0 / (0.08_f64 * 2.04).sqrt(),
-        max_relative = 1e-12
+        max_relative = IDENTITY_REL
     );
     // SNR1 = s / √(0.08 (2 s + 0.04 N)) with s = Σm²/n².
     let s = w.sum_m2_over_n2;
     assert_relative_eq!(
         w.detector.0,
         s / (0.08 * (2.0 * s + 0.04 * 128.0)).sqrt(),
-        max_relative = 1e-12
+        max_relative = IDENTITY_REL
     );
     // Photon SNR2 with n0 = 20, m0 = 10: printed 100/√(20·1721), exact 100/√9620.
     assert_relative_eq!(
         w.photon.1,
         100.0 / (20.0_f64 * 1721.0).sqrt(),
-        max_relative = 1e-12
+        max_relative = IDENTITY_REL
     );
     let e = worked_example(&ExampleSetup::appendix(), Formula::Exact).unwrap();
-    assert_relative_eq!(e.photon.1, 100.0 / 9620.0_f64.sqrt(), max_relative = 1e-12);
+    assert_relative_eq!(
+        e.photon.1,
+        100.0 / 9620.0_f64.sqrt(),
+        max_relative = IDENTITY_REL
+    );
     // Σ m²/n² of a flat band: ≈ 1/(2 δx Δσ) = 12 less the truncated tails.
     assert!(s > 11.0 && s < 12.0, "{s}");
     // The one-sided scan holds about half the fringe power.
@@ -157,11 +171,11 @@ fn window_all_bins_equals_appendix() {
     ] {
         let w = window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &all).unwrap();
         let a = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, Formula::Exact).unwrap();
-        assert_relative_eq!(w.var_v1_sq, a.var_v1_sq, max_relative = 1e-11);
-        assert_relative_eq!(w.var_v2_sq, a.var_v2_sq, max_relative = 1e-11);
-        assert_relative_eq!(w.bias_v1_sq, a.bias_v1_sq, max_relative = 1e-11);
-        assert_relative_eq!(w.bias_v2_sq, a.bias_v2_sq, max_relative = 1e-11);
-        assert_relative_eq!(w.signal_v1_sq, a.signal_v1_sq, max_relative = 1e-11);
+        assert_relative_eq!(w.var_v1_sq, a.var_v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.var_v2_sq, a.var_v2_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v1_sq, a.bias_v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v2_sq, a.bias_v2_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.signal_v1_sq, a.signal_v1_sq, max_relative = IDENTITY_REL);
     }
 }
 
@@ -182,25 +196,25 @@ fn window_variance_matches_the_four_index_oracle() {
         assert_relative_eq!(
             w.var_v1_sq,
             variance_by_moments(&a1, &m, &counts, &noise),
-            max_relative = 1e-10
+            max_relative = IDENTITY_REL
         );
         assert_relative_eq!(
             w.var_v2_sq,
             variance_by_moments(&a2, &m, &counts, &noise),
-            max_relative = 1e-10
+            max_relative = IDENTITY_REL
         );
         // the bias is estimator::noise_bias of the per-sample variance
         let v: Vec<f64> = counts.iter().map(|&c| noise.cumulants(c).k2).collect();
         let nb = noise_bias(&v, &bins);
-        assert_relative_eq!(w.bias_v1_sq, nb.v1_sq, max_relative = 1e-12);
-        assert_relative_eq!(w.bias_v2_sq, nb.v2_sq, max_relative = 1e-12);
+        assert_relative_eq!(w.bias_v1_sq, nb.v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v2_sq, nb.v2_sq, max_relative = IDENTITY_REL);
         // the signal is the noise-free raw estimator
         let r = raw_estimates(&dft(&m), &bins);
-        assert_relative_eq!(w.signal_v1_sq, r.v1_sq, max_relative = 1e-12);
+        assert_relative_eq!(w.signal_v1_sq, r.v1_sq, max_relative = IDENTITY_REL);
         assert_relative_eq!(
             w.signal_v2_sq,
             r.v2_sq,
-            max_relative = 1e-12,
+            max_relative = IDENTITY_REL,
             epsilon = 1e-9
         );
     }
@@ -224,14 +238,14 @@ fn white_noise_window_factor_holds_only_without_signal() {
     assert_relative_eq!(
         wa.var_v1_sq / wk.var_v1_sq,
         2.0 * n as f64 / k.len() as f64,
-        max_relative = 1e-10
+        max_relative = IDENTITY_REL
     );
     let k2: Vec<usize> = k.iter().flat_map(|&b| [b, n - b]).collect();
     let wk2 = window_stats(&zeros, &counts, &noise, &k2).unwrap();
     assert_relative_eq!(
         wa.var_v1_sq / wk2.var_v1_sq,
         n as f64 / k2.len() as f64,
-        max_relative = 1e-10
+        max_relative = IDENTITY_REL
     );
     // With the fringe, the signal × noise term is not reduced.
     let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
@@ -308,8 +322,8 @@ proptest! {
         let a = appendix_stats(&m, &cont, &gauss(s), Formula::Exact).unwrap();
         let mk: Vec<f64> = m.iter().map(|x| x * k).collect();
         let b = appendix_stats(&mk, &cont, &gauss(s * k), Formula::Exact).unwrap();
-        prop_assert!((b.var_v1_sq / a.var_v1_sq / k.powi(4) - 1.0).abs() < 1e-10);
-        prop_assert!((b.var_v2_sq / a.var_v2_sq / k.powi(4) - 1.0).abs() < 1e-10);
+        prop_assert!((b.var_v1_sq / a.var_v1_sq / k.powi(4) - 1.0).abs() < IDENTITY_REL);
+        prop_assert!((b.var_v2_sq / a.var_v2_sq / k.powi(4) - 1.0).abs() < IDENTITY_REL);
         // At fixed signal the variance grows with σ_det.
         let c = appendix_stats(&m, &cont, &gauss(s * 1.5), Formula::Exact).unwrap();
         prop_assert!(c.var_v1_sq > a.var_v1_sq && c.var_v2_sq > a.var_v2_sq);
@@ -326,7 +340,7 @@ proptest! {
         for f in [Formula::Exact, Formula::Published] {
             let (a1, a2) = noise::snr_with_extra_samples(&ifg.modulated, &ifg.continuum, &noise, f, 0).unwrap();
             let (b1, b2) = noise::snr_with_extra_samples(&ifg.modulated, &ifg.continuum, &noise, f, extra).unwrap();
-            prop_assert!((a2 / b2 - 1.0).abs() < 1e-12);
+            prop_assert!((a2 / b2 - 1.0).abs() < IDENTITY_REL);
             prop_assert!(b1 < a1);
         }
     }

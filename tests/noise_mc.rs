@@ -8,7 +8,7 @@ use v2ref::montecarlo::{sample_moments, simulate_noisy, Moments4, NoisySpec};
 use v2ref::noise::{
     appendix_stats, example_interferogram, published, raw_moment, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
 use v2ref::window_variance::{
     gaussian_cumulant4, quadratic_forms, two_sided_band_bins, window_stats,
 };
@@ -139,8 +139,8 @@ fn all_bins_expectations_biases_and_variances() {
         let (k2_1, k4_1) = (nf.powi(2) * k2, nf.powi(4) * k4);
         let k0 = cumulants_of_square(&noise, m[0], m[0] + c[0]);
         let (k2_2, k4_2) = (nf.powi(4) * k0[1], nf.powi(8) * k0[3]);
-        assert!((k2_1 / e.var_v1_sq - 1.0).abs() < 1e-12);
-        assert!((k2_2 / e.var_v2_sq - 1.0).abs() < 1e-12);
+        assert!((k2_1 / e.var_v1_sq - 1.0).abs() < IDENTITY_REL);
+        assert!((k2_2 / e.var_v2_sq - 1.0).abs() < IDENTITY_REL);
         let tf = t as f64;
         // Expectation once the exact bias is removed: N Σ m², N² m0².
         check(
@@ -198,7 +198,7 @@ fn gaussian_cumulant4_agrees_with_noncentral_chi_square() {
         .map(|x| 48.0 * s2.powi(4) + 192.0 * x * x * s2.powi(3))
         .sum::<f64>()
         * 4f64.powi(4);
-    assert!((k4 / direct - 1.0).abs() < 1e-12, "{k4} vs {direct}");
+    assert!((k4 / direct - 1.0).abs() < IDENTITY_REL, "{k4} vs {direct}");
 }
 
 #[test]
