@@ -417,7 +417,7 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             cd.map(|v| v as f64),
             Status::Qualitative,
             format!(
-                "the Appendix fringe packet read with more samples (no fringe, continuum c = n) until SNR1 <= SNR2: detector noise s = 0.2 n at N = {}; photon noise n = 10 at N = {} (printed variances) or {} (exact). 'A few thousand' holds for detector noise and the printed photon variances",
+                "the Appendix fringe packet read with more samples (no fringe, continuum c = n) until SNR1 <= SNR2: detector noise s = 0.2 n at N = {}; photon noise n = 10 at N = {} (printed variances) or {} (exact). 'a few thousand' holds for detector noise and for the exact photon variances; the printed photon variances would put it below a thousand",
                 fmt(cd),
                 fmt(cpp),
                 fmt(cpe)

@@ -101,8 +101,7 @@ pub struct Args {
 
 #[derive(Serialize)]
 struct Window {
-    bins: String,
-    count: usize,
+    window: String,
     #[serde(flatten)]
     stats: WindowStats,
 }
@@ -140,8 +139,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let factor = paper_window_factor(sampling.dx_um(), band_width);
     let window_exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
         Some(Window {
-            bins: format!("{:?}", args.sampling.bins).to_lowercase(),
-            count: bins.len(),
+            window: format!("{:?}", args.sampling.bins).to_lowercase(),
             stats: window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &bins)?,
         })
     } else {
@@ -187,7 +185,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
             ),
         ];
         if let Some(w) = &answer.window_exact {
-            rows.push(("window (exact)", format!("{} ({} bins)", w.bins, w.count)));
+            rows.push((
+                "window (exact)",
+                format!("{} ({} bins)", w.window, w.stats.bins),
+            ));
             rows.push(("SNR1 (window, exact)", format!("{:.4}", w.stats.snr1)));
             rows.push(("SNR2 (window, exact)", format!("{:.4}", w.stats.snr2)));
         }
