@@ -39,7 +39,10 @@ fn their_disk(diameter_mas: f64, s: f64) -> f64 {
 /// Their wide-band (V1, V2) for a flat band [λ0 − Δλ/2, λ0 + Δλ/2] at
 /// spatial frequency `s` at the band's mean wavenumber.
 fn their_estimators(diameter_mas: f64, lambda_um: f64, width_um: f64, s: f64) -> (f64, f64) {
-    let (lo, hi) = (1.0 / (lambda_um + width_um / 2.0), 1.0 / (lambda_um - width_um / 2.0));
+    let (lo, hi) = (
+        1.0 / (lambda_um + width_um / 2.0),
+        1.0 / (lambda_um - width_um / 2.0),
+    );
     let sigma_eff = 0.5 * (lo + hi);
     let n = 1500;
     let (mut sum_v, mut sum_v2) = (0.0, 0.0);
@@ -57,9 +60,16 @@ fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut lines = text.lines();
     let header = lines.next().ok_or("empty file")?;
-    let names = header.split(',').map(|h| h.split(" [").next().unwrap_or(h).to_owned()).collect();
+    let names = header
+        .split(',')
+        .map(|h| h.split(" [").next().unwrap_or(h).to_owned())
+        .collect();
     let rows = lines
-        .map(|l| l.split(',').map(|c| c.parse::<f64>().map_err(|e| e.to_string())).collect())
+        .map(|l| {
+            l.split(',')
+                .map(|c| c.parse::<f64>().map_err(|e| e.to_string()))
+                .collect()
+        })
         .collect::<Result<_, _>>()?;
     Ok((names, rows))
 }
@@ -72,8 +82,14 @@ fn compare(golden_dir: &Path, estimator: usize) -> Result<f64, String> {
     let prefix = format!("v{estimator}_minus_vmono_");
     let mut worst: f64 = 0.0;
     for (j, name) in names.iter().enumerate() {
-        let Some(tag) = name.strip_prefix(&prefix) else { continue };
-        let width_nm: f64 = tag.trim_end_matches("nm").replace('p', ".").parse().map_err(|e| format!("{name}: {e}"))?;
+        let Some(tag) = name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let width_nm: f64 = tag
+            .trim_end_matches("nm")
+            .replace('p', ".")
+            .parse()
+            .map_err(|e| format!("{name}: {e}"))?;
         for row in rows.iter().step_by(13) {
             let s = row[0];
             let (v1, v2) = their_estimators(43.0, 2.2, width_nm * 1e-3, s);
@@ -95,7 +111,9 @@ pub fn check(golden_dir: &Path, tolerance: f64) -> Result<f64, String> {
     if worst <= tolerance {
         Ok(worst)
     } else {
-        Err(format!("their implementation differs from the golden data by {worst:.2e} > {tolerance:.0e}"))
+        Err(format!(
+            "their implementation differs from the golden data by {worst:.2e} > {tolerance:.0e}"
+        ))
     }
 }
 

@@ -62,6 +62,9 @@
 //! | Figs. 0–3 as data, golden files | [`figures::all`], [`golden::check`], [`golden::update`] | `tests/golden.rs`, `tests/bias_snapshots.rs` |
 //! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/estimator.rs` |
 //! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] | `tests/interferogram.rs` |
+//! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Monte Carlo of noisy interferograms | [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
 //! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
 //! | figure data, golden files | [`figure`] | |
 //!
@@ -90,6 +93,7 @@ pub mod integration;
 pub mod interferogram;
 pub mod line;
 pub mod montecarlo;
+pub mod noise;
 pub mod normalization;
 pub mod observation;
 pub mod oracle;
@@ -100,5 +104,6 @@ pub mod source;
 pub mod special;
 pub mod spectrum;
 pub mod tolerance;
+pub mod window_variance;
 
 pub use error::{Error, Result};

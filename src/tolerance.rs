@@ -43,3 +43,11 @@ pub const MC_SIGMAS: f64 = 5.0;
 /// long, finely sampled interferogram: limited by the finite-scan
 /// convolution, which falls as 1/(stroke · Δσ); see `tests/interferogram.rs`.
 pub const SAMPLED_VS_SPECTRAL_ABS: f64 = 2e-3;
+
+/// Agreement between two routes to the same closed form (cumulant recursion
+/// vs the printed polynomial, quadratic form vs the Appendix sum, the O(N⁴)
+/// moment oracle vs the quadratic form): sums of up to ~10⁴ terms of mixed
+/// sign and magnitude up to (n N)⁴ ~ 10¹⁶, so a few hundred ulps of the
+/// largest term; 1e-10 relative leaves a margin of ~10³ and still catches
+/// any wrong coefficient (which moves the result by ≥ 1e-3 relative).
+pub const IDENTITY_REL: f64 = 1e-10;

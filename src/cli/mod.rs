@@ -83,7 +83,6 @@ pub fn print_rows(rows: &[(&str, String)]) {
     }
 }
 
-#[allow(dead_code)] // until the Monte Carlo subcommands land
 /// Whether progress bars should be drawn: stderr is a terminal and the user
 /// did not ask for quiet.
 pub fn show_progress(quiet: bool) -> bool {

@@ -1,0 +1,160 @@
+//! The noisy Monte Carlo engine: moment accumulator, fast windowed
+//! estimators against the FFT, Poisson samplers against the Poisson law.
+
+use approx::assert_relative_eq;
+use v2ref::estimator::{dft, raw_estimates, BinWindow};
+use v2ref::montecarlo::{unit_rng, Moments4, PoissonSampler, WindowedEstimators};
+use v2ref::noise::{raw_moments_from_cumulants, NoiseModel};
+use v2ref::oracle::naive_dft;
+use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
+
+#[test]
+fn moments4_matches_two_pass_and_merges() {
+    let xs: Vec<f64> = (0..1000)
+        .map(|i| ((i * 7919) % 1013) as f64 * 0.37 + 1e6)
+        .collect();
+    let n = xs.len() as f64;
+    let mean = xs.iter().sum::<f64>() / n;
+    let c = |p: i32| xs.iter().map(|x| (x - mean).powi(p)).sum::<f64>();
+    let mut acc = Moments4::default();
+    xs.iter().for_each(|&x| acc.push(x));
+    assert_relative_eq!(acc.mean, mean, max_relative = IDENTITY_REL);
+    assert_relative_eq!(acc.m2, c(2), max_relative = IDENTITY_REL);
+    assert_relative_eq!(
+        acc.m3,
+        c(3),
+        max_relative = 1e-7,
+        epsilon = 1e-3 * c(2).powf(1.5)
+    );
+    assert_relative_eq!(acc.m4, c(4), max_relative = IDENTITY_REL);
+    // merging two halves equals one pass
+    let (mut a, mut b) = (Moments4::default(), Moments4::default());
+    xs[..337].iter().for_each(|&x| a.push(x));
+    xs[337..].iter().for_each(|&x| b.push(x));
+    a.merge(&b);
+    assert_eq!(a.count, acc.count);
+    assert_relative_eq!(a.mean, acc.mean, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.m2, acc.m2, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.m4, acc.m4, max_relative = IDENTITY_REL);
+    // affine transform
+    let t = acc.affine(2.0, -3.0);
+    assert_relative_eq!(
+        t.variance(),
+        4.0 * acc.variance(),
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(t.mean, 2.0 * acc.mean - 3.0, max_relative = IDENTITY_REL);
+}
+
+#[test]
+fn fast_windowed_estimators_match_the_fft() {
+    for &n in &[16usize, 17, 64, 128, 200] {
+        let x: Vec<f64> = (0..n)
+            .map(|i| ((i * 31 + 7) % 13) as f64 - 6.0 + 0.1 * i as f64)
+            .collect();
+        let spec = dft(&x);
+        let windows = vec![
+            BinWindow::All.bins(n, 0.5),
+            BinWindow::PositiveHalf.bins(n, 0.5),
+            BinWindow::Band {
+                lo_per_um: 0.4167,
+                hi_per_um: 0.5,
+            }
+            .bins(n, 0.5),
+            vec![0, 1, n - 1],
+            vec![3],
+            (2..n - 2).collect(),
+            (0..n).step_by(3).collect(),
+        ];
+        for bins in windows {
+            let fast = WindowedEstimators::new(n, &bins);
+            let mut scratch = Vec::new();
+            let got = fast.raw(&x, &mut scratch);
+            let want = raw_estimates(&spec, &bins);
+            let naive = raw_estimates(&naive_dft(&x), &bins);
+            let scale = x.iter().map(|v| v * v).sum::<f64>() * (n * n) as f64;
+            assert!(
+                (got.v1_sq - want.v1_sq).abs() < IDENTITY_REL * scale,
+                "n {n} bins {bins:?}"
+            );
+            assert!(
+                (got.v2_sq - want.v2_sq).abs() < IDENTITY_REL * scale,
+                "n {n} bins {bins:?}"
+            );
+            assert!((want.v1_sq - naive.v1_sq).abs() < IDENTITY_REL * scale);
+        }
+    }
+}
+
+/// Raw moments 1..4 of counts from `sampler` against the Poisson law
+/// (moments from cumulants all equal to λ), closed-form standard errors,
+/// with power against 1.02×.
+fn check_poisson(sampler: &PoissonSampler, lambda: f64, seed: u64) {
+    let t = 2_000_000u64;
+    let mut rng = unit_rng(seed, 0);
+    let mut acc = [0.0f64; 4];
+    for _ in 0..t {
+        let k = sampler.sample(&mut rng);
+        let mut p = 1.0;
+        for a in acc.iter_mut() {
+            p *= k;
+            *a += p;
+        }
+    }
+    let mu = raw_moments_from_cumulants(&[lambda; 8]);
+    for r in 1..=4 {
+        let mc = acc[r - 1] / t as f64;
+        let se = ((mu[2 * r] - mu[r] * mu[r]) / t as f64).sqrt();
+        assert!(
+            ((mc - mu[r]) / se).abs() < MC_SIGMAS,
+            "lambda {lambda} r {r}: {mc} vs {}",
+            mu[r]
+        );
+        assert!(
+            ((mc - 1.02 * mu[r]) / se).abs() > MC_SIGMAS,
+            "no power at r {r}"
+        );
+    }
+}
+
+#[test]
+fn poisson_samplers_follow_the_poisson_law() {
+    for (i, &lambda) in [3.5, 12.0, 20.0].iter().enumerate() {
+        check_poisson(
+            &PoissonSampler::new(lambda, true).unwrap(),
+            lambda,
+            40 + i as u64,
+        );
+        check_poisson(
+            &PoissonSampler::new(lambda, false).unwrap(),
+            lambda,
+            50 + i as u64,
+        );
+    }
+    let mut rng = unit_rng(1, 1);
+    assert_eq!(
+        PoissonSampler::new(0.0, true).unwrap().sample(&mut rng),
+        0.0
+    );
+    assert!(PoissonSampler::new(-1.0, true).is_err());
+    assert!(PoissonSampler::new(f64::NAN, false).is_err());
+}
+
+#[test]
+fn noisy_spec_rejects_bad_input() {
+    use v2ref::montecarlo::{simulate_noisy, NoisySpec};
+    let spec = NoisySpec {
+        modulated: vec![-20.0, 1.0],
+        continuum: vec![10.0, 10.0],
+        noise: NoiseModel::photon(),
+        bins: vec![0, 1],
+    };
+    assert!(simulate_noisy(&spec, 10, 1, 1, &|_| {}).is_err());
+    let spec = NoisySpec {
+        modulated: vec![1.0, 1.0],
+        continuum: vec![10.0, 10.0],
+        noise: NoiseModel::photon(),
+        bins: vec![2],
+    };
+    assert!(simulate_noisy(&spec, 10, 1, 1, &|_| {}).is_err());
+}

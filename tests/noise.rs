@@ -1,0 +1,347 @@
+//! Closed forms of `noise` and `window_variance`: identities, the slow
+//! oracle, property tests. (Monte Carlo checks: `tests/noise_mc.rs`.)
+
+use approx::assert_relative_eq;
+use proptest::prelude::*;
+use v2ref::estimator::{dft, noise_bias, raw_estimates, BinWindow};
+use v2ref::noise::{
+    self, appendix_stats, example_interferogram, moments, published, raw_moment,
+    raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
+};
+use v2ref::tolerance::IDENTITY_REL;
+use v2ref::window_variance::{
+    quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
+};
+
+fn gauss(s: f64) -> NoiseModel {
+    NoiseModel::detector(s).unwrap()
+}
+
+#[test]
+fn cumulant_recursion_gives_textbook_moments() {
+    // Gaussian N(m, s²): E X⁴ = m⁴ + 6m²s² + 3s⁴; Poisson(λ): Touchard
+    // polynomials λ⁴ + 6λ³ + 7λ² + λ (independent textbook forms).
+    let g = raw_moments_from_cumulants(&[1.5, 4.0, 0.0, 0.0]);
+    assert_relative_eq!(
+        g[4],
+        published::gaussian_m4(1.5, 2.0),
+        max_relative = IDENTITY_REL
+    );
+    let l = 3.7;
+    let p = raw_moments_from_cumulants(&[l, l, l, l]);
+    assert_relative_eq!(p[2], published::photon_m2(l), max_relative = IDENTITY_REL);
+    assert_relative_eq!(p[4], published::photon_m4(l), max_relative = IDENTITY_REL);
+    // Sixth Touchard polynomial: λ⁶ + 15λ⁵ + 65λ⁴ + 90λ³ + 31λ² + λ.
+    let p6 = raw_moments_from_cumulants(&[l; 6])[6];
+    let t6 = l.powi(6) + 15.0 * l.powi(5) + 65.0 * l.powi(4) + 90.0 * l.powi(3) + 31.0 * l * l + l;
+    assert_relative_eq!(p6, t6, max_relative = IDENTITY_REL);
+}
+
+#[test]
+fn closed_moments_match_the_generic_recursion() {
+    for noise in [
+        gauss(0.7),
+        NoiseModel::photon(),
+        NoiseModel::new(1.3, true).unwrap(),
+    ] {
+        for &(m, c) in &[(0.0, 5.0), (3.0, 4.0), (-2.0, 6.0), (10.0, 10.0)] {
+            let mo = moments(&noise, m, m + c);
+            for r in 0..=4 {
+                assert_relative_eq!(
+                    mo.raw[r],
+                    raw_moment(&noise, m, m + c, r),
+                    max_relative = IDENTITY_REL,
+                    epsilon = 1e-12
+                );
+            }
+            let v = mo.raw[4] - mo.raw[2] * mo.raw[2];
+            assert_relative_eq!(var_m2(&noise, m, m + c), v, max_relative = IDENTITY_REL);
+            // central moments: E(M − m)^r from the raw ones.
+            let c3 = mo.raw[3] - 3.0 * m * mo.raw[2] + 2.0 * m.powi(3);
+            assert_relative_eq!(
+                mo.central[3],
+                c3,
+                max_relative = IDENTITY_REL,
+                epsilon = 1e-9
+            );
+        }
+    }
+}
+
+#[test]
+fn published_photon_moments_are_those_of_the_count_not_of_m() {
+    // With no continuum (c = 0) M = I and the printed forms are exact ...
+    let p = NoiseModel::photon();
+    let n = 20.0;
+    assert_relative_eq!(
+        moments(&p, n, n).raw[4],
+        published::photon_m4(n),
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        var_m2(&p, n, n),
+        published::photon_var_term(n),
+        max_relative = IDENTITY_REL
+    );
+    // ... with c = n − m they are not: var(M²) = 4m²n + 4mn + 2n² + n.
+    let m = 10.0;
+    assert_relative_eq!(
+        var_m2(&p, m, n),
+        4.0 * m * m * n + 4.0 * m * n + 2.0 * n * n + n
+    );
+    assert!((published::photon_var_term(n) / var_m2(&p, m, n) - 1.0).abs() > 1.0);
+}
+
+#[test]
+fn detector_formulas_agree_published_and_exact() {
+    let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
+    let d = gauss(2.0);
+    let a = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Exact).unwrap();
+    let b = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Published).unwrap();
+    assert_relative_eq!(a.var_v1_sq, b.var_v1_sq, max_relative = IDENTITY_REL);
+    assert_relative_eq!(a.var_v2_sq, b.var_v2_sq, max_relative = IDENTITY_REL);
+    // The printed closed forms 2N²σ²[2Σm² + Nσ²] and 2N⁴σ²[2m0² + σ²].
+    let (nn, s2) = (128.0_f64, 4.0);
+    assert_relative_eq!(
+        a.var_v1_sq,
+        2.0 * nn * nn * s2 * (2.0 * a.sum_m2 + nn * s2),
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        a.var_v2_sq,
+        2.0 * nn.powi(4) * s2 * (2.0 * a.m0 * a.m0 + s2),
+        max_relative = IDENTITY_REL
+    );
+}
+
+#[test]
+fn worked_examples_follow_from_sum_m2() {
+    // SNR2 depends on m0 and σ only: 1/√(0.08·2.04) for σ = 0.2 n, m0 = n.
+    let w = worked_example(&ExampleSetup::appendix(), Formula::Published).unwrap();
+    assert_relative_eq!(
+        w.detector.1,
+        1.0 / (0.08_f64 * 2.04).sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    // SNR1 = s / √(0.08 (2 s + 0.04 N)) with s = Σm²/n².
+    let s = w.sum_m2_over_n2;
+    assert_relative_eq!(
+        w.detector.0,
+        s / (0.08 * (2.0 * s + 0.04 * 128.0)).sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    // Photon SNR2 with n0 = 20, m0 = 10: printed 100/√(20·1721), exact 100/√9620.
+    assert_relative_eq!(
+        w.photon.1,
+        100.0 / (20.0_f64 * 1721.0).sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    let e = worked_example(&ExampleSetup::appendix(), Formula::Exact).unwrap();
+    assert_relative_eq!(
+        e.photon.1,
+        100.0 / 9620.0_f64.sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    // Σ m²/n² of a flat band: ≈ 1/(2 δx Δσ) = 12 less the truncated tails.
+    assert!(s > 11.0 && s < 12.0, "{s}");
+    // The one-sided scan holds about half the fringe power.
+    let z = worked_example(
+        &ExampleSetup {
+            zero_start: true,
+            ..ExampleSetup::appendix()
+        },
+        Formula::Published,
+    )
+    .unwrap();
+    assert!((z.sum_m2_over_n2 / s - 0.55).abs() < 0.05);
+}
+
+#[test]
+fn window_all_bins_equals_appendix() {
+    let ifg = example_interferogram(&ExampleSetup {
+        samples: 32,
+        ..ExampleSetup::appendix()
+    })
+    .unwrap();
+    let all: Vec<usize> = (0..32).collect();
+    for noise in [
+        gauss(2.0),
+        NoiseModel::photon(),
+        NoiseModel::new(2.0, true).unwrap(),
+    ] {
+        let w = window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &all).unwrap();
+        let a = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, Formula::Exact).unwrap();
+        assert_relative_eq!(w.var_v1_sq, a.var_v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.var_v2_sq, a.var_v2_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v1_sq, a.bias_v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v2_sq, a.bias_v2_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.signal_v1_sq, a.signal_v1_sq, max_relative = IDENTITY_REL);
+    }
+}
+
+#[test]
+fn window_variance_matches_the_four_index_oracle() {
+    // N = 8, arbitrary means, Poisson + detector noise, several windows.
+    let m = [3.0, -1.0, 2.5, 0.5, -2.0, 1.0, 0.0, 4.0];
+    let counts: Vec<f64> = m.iter().map(|x| x + 5.0).collect();
+    let noise = NoiseModel::new(0.8, true).unwrap();
+    for bins in [
+        vec![1, 2],
+        vec![1, 7],
+        vec![0, 3, 4, 5],
+        (0..8).collect::<Vec<_>>(),
+    ] {
+        let (a1, a2) = quadratic_forms(8, &bins);
+        let w = window_stats(&m, &counts, &noise, &bins).unwrap();
+        assert_relative_eq!(
+            w.var_v1_sq,
+            variance_by_moments(&a1, &m, &counts, &noise),
+            max_relative = IDENTITY_REL
+        );
+        assert_relative_eq!(
+            w.var_v2_sq,
+            variance_by_moments(&a2, &m, &counts, &noise),
+            max_relative = IDENTITY_REL
+        );
+        // the bias is estimator::noise_bias of the per-sample variance
+        let v: Vec<f64> = counts.iter().map(|&c| noise.cumulants(c).k2).collect();
+        let nb = noise_bias(&v, &bins);
+        assert_relative_eq!(w.bias_v1_sq, nb.v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(w.bias_v2_sq, nb.v2_sq, max_relative = IDENTITY_REL);
+        // the signal is the noise-free raw estimator
+        let r = raw_estimates(&dft(&m), &bins);
+        assert_relative_eq!(w.signal_v1_sq, r.v1_sq, max_relative = IDENTITY_REL);
+        assert_relative_eq!(
+            w.signal_v2_sq,
+            r.v2_sq,
+            max_relative = IDENTITY_REL,
+            epsilon = 1e-9
+        );
+    }
+}
+
+#[test]
+fn white_noise_window_factor_holds_only_without_signal() {
+    // Pure detector noise, no fringe. B_k and B_{N−k} are conjugate, so the
+    // all-bins sum counts each independent |B_k|² twice: var = 2N³σ⁴. A
+    // one-sided window of |K| bins (independent exponential powers of mean
+    // Nσ²) has var |K|N²σ⁴, ratio 2N/|K|; its two-sided version (2|K| bins,
+    // the same powers doubled) has 4|K|N²σ⁴, ratio N/(2|K|).
+    let n = 64;
+    let zeros = vec![0.0; n];
+    let counts = vec![10.0; n];
+    let noise = gauss(1.0);
+    let all: Vec<usize> = (0..n).collect();
+    let k: Vec<usize> = (5..=10).collect();
+    let wa = window_stats(&zeros, &counts, &noise, &all).unwrap();
+    let wk = window_stats(&zeros, &counts, &noise, &k).unwrap();
+    assert_relative_eq!(
+        wa.var_v1_sq / wk.var_v1_sq,
+        2.0 * n as f64 / k.len() as f64,
+        max_relative = IDENTITY_REL
+    );
+    let k2: Vec<usize> = k.iter().flat_map(|&b| [b, n - b]).collect();
+    let wk2 = window_stats(&zeros, &counts, &noise, &k2).unwrap();
+    assert_relative_eq!(
+        wa.var_v1_sq / wk2.var_v1_sq,
+        n as f64 / k2.len() as f64,
+        max_relative = IDENTITY_REL
+    );
+    // With the fringe, the signal × noise term is not reduced.
+    let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
+    let obs = noise::example_observation();
+    let (lo, hi) = obs.spectrum.support();
+    let w2 = two_sided_band_bins(128, 0.5, lo, hi);
+    let a = window_stats(
+        &ifg.modulated,
+        &ifg.mean_counts(),
+        &gauss(2.0),
+        &(0..128).collect::<Vec<_>>(),
+    )
+    .unwrap();
+    let b = window_stats(&ifg.modulated, &ifg.mean_counts(), &gauss(2.0), &w2).unwrap();
+    let factor = 128.0 / w2.len() as f64;
+    assert!(a.var_v1_sq / b.var_v1_sq < 0.2 * factor);
+    // the window keeps nearly all of the fringe
+    assert!((b.signal_v1_sq / a.signal_v1_sq - 1.0).abs() < 0.01);
+}
+
+#[test]
+fn positive_window_bins_match_the_estimator_module() {
+    let k = BinWindow::PositiveHalf.bins(16, 0.5);
+    assert_eq!(k, (1..8).collect::<Vec<_>>());
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    assert!(NoiseModel::new(-1.0, false).is_err());
+    assert!(NoiseModel::new(f64::NAN, false).is_err());
+    assert!(appendix_stats(&[1.0, 2.0], &[1.0], &gauss(1.0), Formula::Exact).is_err());
+    assert!(appendix_stats(
+        &[-5.0, 2.0],
+        &[1.0, 1.0],
+        &NoiseModel::photon(),
+        Formula::Exact
+    )
+    .is_err());
+    assert!(window_stats(&[1.0, 2.0], &[1.0, 1.0], &gauss(1.0), &[2]).is_err());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn variances_are_non_negative(
+        m in prop::collection::vec(-5.0f64..5.0, 2..24),
+        c in 5.0f64..50.0,
+        s in 0.0f64..5.0,
+        photon in any::<bool>(),
+        f in 0u8..2,
+    ) {
+        let noise = NoiseModel::new(s, photon).unwrap();
+        let cont = vec![c; m.len()];
+        let formula = if f == 0 { Formula::Exact } else { Formula::Published };
+        let a = appendix_stats(&m, &cont, &noise, formula).unwrap();
+        prop_assert!(a.var_v1_sq >= 0.0 && a.var_v2_sq >= 0.0);
+        let counts: Vec<f64> = m.iter().map(|x| x + c).collect();
+        let k: Vec<usize> = (1..m.len() / 2 + 1).collect();
+        let w = window_stats(&m, &counts, &noise, &k).unwrap();
+        prop_assert!(w.var_v1_sq >= -1e-9 * w.var_v1_sq.abs().max(1.0));
+        prop_assert!(w.var_v2_sq >= -1e-9 * w.var_v2_sq.abs().max(1.0));
+    }
+
+    #[test]
+    fn detector_variance_scales_as_fourth_power(
+        m in prop::collection::vec(-5.0f64..5.0, 2..24),
+        s in 0.1f64..5.0,
+        k in 0.1f64..10.0,
+    ) {
+        // Scaling signal and σ_det together by k scales var V1², V2² by k⁴
+        // and leaves the SNRs unchanged.
+        let cont = vec![0.0; m.len()];
+        let a = appendix_stats(&m, &cont, &gauss(s), Formula::Exact).unwrap();
+        let mk: Vec<f64> = m.iter().map(|x| x * k).collect();
+        let b = appendix_stats(&mk, &cont, &gauss(s * k), Formula::Exact).unwrap();
+        prop_assert!((b.var_v1_sq / a.var_v1_sq / k.powi(4) - 1.0).abs() < IDENTITY_REL);
+        prop_assert!((b.var_v2_sq / a.var_v2_sq / k.powi(4) - 1.0).abs() < IDENTITY_REL);
+        // At fixed signal the variance grows with σ_det.
+        let c = appendix_stats(&m, &cont, &gauss(s * 1.5), Formula::Exact).unwrap();
+        prop_assert!(c.var_v1_sq > a.var_v1_sq && c.var_v2_sq > a.var_v2_sq);
+    }
+
+    #[test]
+    fn snr2_ignores_n_and_snr1_falls_with_n(
+        s in 0.1f64..5.0,
+        extra in 1usize..500,
+        photon in any::<bool>(),
+    ) {
+        let ifg = example_interferogram(&ExampleSetup { samples: 32, ..ExampleSetup::appendix() }).unwrap();
+        let noise = NoiseModel::new(s, photon).unwrap();
+        for f in [Formula::Exact, Formula::Published] {
+            let (a1, a2) = noise::snr_with_extra_samples(&ifg.modulated, &ifg.continuum, &noise, f, 0).unwrap();
+            let (b1, b2) = noise::snr_with_extra_samples(&ifg.modulated, &ifg.continuum, &noise, f, extra).unwrap();
+            prop_assert!((a2 / b2 - 1.0).abs() < IDENTITY_REL);
+            prop_assert!(b1 < a1);
+        }
+    }
+}
