@@ -56,10 +56,12 @@ pub mod interferogram;
 pub mod montecarlo;
 pub mod observation;
 pub mod oracle;
+pub mod piston;
 pub mod quadrature;
 pub mod source;
 pub mod special;
 pub mod spectrum;
 pub mod tolerance;
+pub mod turbulence;
 
 pub use error::{Error, Result};

@@ -72,14 +72,12 @@ pub fn print_rows(rows: &[(&str, String)]) {
     }
 }
 
-#[allow(dead_code)] // until the Monte Carlo subcommands land
 /// Whether progress bars should be drawn: stderr is a terminal and the user
 /// did not ask for quiet.
 pub fn show_progress(quiet: bool) -> bool {
     !quiet && std::io::stderr().is_terminal()
 }
 
-#[allow(dead_code)] // until the Monte Carlo subcommands land
 /// A progress bar over `len` steps, hidden when not [`show_progress`].
 pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar {
     if !show_progress(quiet) {
