@@ -284,39 +284,44 @@ const TABLE_LOG10_MAX: f64 = 2.0;
 pub struct TransverseTable {
     turb: Turbulence,
     aperture_m: f64,
-    ln_g: Vec<f64>,
+    ln_g: std::sync::OnceLock<Vec<f64>>,
     s0: f64,
     h: f64,
 }
 
 impl TransverseTable {
-    /// Tabulates G for `turb` and apertures of diameter `aperture_m` (> 0).
-    /// The points are independent quadratures, computed in parallel (each
-    /// the same whatever the thread count).
+    /// The table of G for `turb` and apertures of diameter `aperture_m`
+    /// (> 0), computed on first use: the points are independent
+    /// quadratures, computed in parallel (each the same whatever the thread
+    /// count).
     pub fn new(turb: Turbulence, aperture_m: f64) -> Result<TransverseTable> {
         error::positive("aperture-m", aperture_m)?;
-        let n =
-            ((TABLE_LOG10_MAX - TABLE_LOG10_MIN) * TABLE_PER_DECADE as f64).round() as usize + 1;
-        let h = std::f64::consts::LN_10 / TABLE_PER_DECADE as f64;
-        let s0 = TABLE_LOG10_MIN * std::f64::consts::LN_10;
-        let ln_g = if turb.opd_psd_scale() == 0.0 {
-            Vec::new()
-        } else {
+        Ok(TransverseTable {
+            turb,
+            aperture_m,
+            ln_g: std::sync::OnceLock::new(),
+            s0: TABLE_LOG10_MIN * std::f64::consts::LN_10,
+            h: std::f64::consts::LN_10 / TABLE_PER_DECADE as f64,
+        })
+    }
+
+    /// ln G on the grid, computed on first use.
+    fn values(&self) -> &[f64] {
+        self.ln_g.get_or_init(|| {
+            if self.turb.opd_psd_scale() == 0.0 {
+                return Vec::new();
+            }
+            let n = ((TABLE_LOG10_MAX - TABLE_LOG10_MIN) * TABLE_PER_DECADE as f64).round()
+                as usize
+                + 1;
             use rayon::prelude::*;
             (0..n)
                 .into_par_iter()
                 .map(|i| {
-                    let fx = (s0 + i as f64 * h).exp() / aperture_m;
-                    transverse_integral(&turb, aperture_m, fx).ln()
+                    let fx = (self.s0 + i as f64 * self.h).exp() / self.aperture_m;
+                    transverse_integral(&self.turb, self.aperture_m, fx).ln()
                 })
                 .collect()
-        };
-        Ok(TransverseTable {
-            turb,
-            aperture_m,
-            ln_g,
-            s0,
-            h,
         })
     }
 
@@ -331,13 +336,13 @@ impl TransverseTable {
 
     /// G(f_x), µm² m, interpolated.
     pub fn g(&self, fx_per_m: f64) -> f64 {
-        let n = self.ln_g.len();
+        let y = self.values();
+        let n = y.len();
         if n == 0 || fx_per_m <= 0.0 {
             return if n == 0 { 0.0 } else { f64::INFINITY };
         }
         let s = (fx_per_m * self.aperture_m).ln();
         let t = (s - self.s0) / self.h;
-        let y = &self.ln_g;
         if t <= 0.0 {
             return (y[0] + (y[1] - y[0]) * t).exp();
         }
