@@ -374,6 +374,7 @@ impl TransverseTable {
 pub struct PistonSpectrum {
     table: std::sync::Arc<TransverseTable>,
     baseline_m: f64,
+    wind_mps: f64,
 }
 
 impl PistonSpectrum {
@@ -391,14 +392,36 @@ impl PistonSpectrum {
         baseline_m: f64,
     ) -> Result<PistonSpectrum> {
         error::non_negative("baseline-m", baseline_m)?;
-        Ok(PistonSpectrum { table, baseline_m })
+        let wind_mps = table.turb.wind_mps;
+        Ok(PistonSpectrum {
+            table,
+            baseline_m,
+            wind_mps,
+        })
+    }
+
+    /// The same spectrum at another wind speed (> 0), sharing the table (G
+    /// does not depend on the wind).
+    pub fn with_wind(&self, wind_mps: f64) -> Result<PistonSpectrum> {
+        error::positive("wind-mps", wind_mps)?;
+        Ok(PistonSpectrum {
+            table: self.table.clone(),
+            baseline_m: self.baseline_m,
+            wind_mps,
+        })
+    }
+
+    /// Wind speed, m/s.
+    pub fn wind_mps(&self) -> f64 {
+        self.wind_mps
     }
 
     /// The shared table.
     pub fn table(&self) -> &std::sync::Arc<TransverseTable> {
         &self.table
     }
-    /// The turbulence.
+    /// The turbulence of the table (its wind speed may differ from
+    /// [`PistonSpectrum::wind_mps`], which is the one used).
     pub fn turbulence(&self) -> &Turbulence {
         &self.table.turb
     }
@@ -413,14 +436,14 @@ impl PistonSpectrum {
 
     /// `2[1 − cos(2πBν/v)]`, computed without cancellation.
     fn baseline_factor(&self, nu_hz: f64) -> f64 {
-        let s = (PI * self.baseline_m * nu_hz / self.table.turb.wind_mps).sin();
+        let s = (PI * self.baseline_m * nu_hz / self.wind_mps).sin();
         4.0 * s * s
     }
 
     /// Two-sided temporal PSD P(ν), µm²/Hz, from the table.
     pub fn psd_um2_per_hz(&self, nu_hz: f64) -> f64 {
         let nu = nu_hz.abs();
-        let v = self.table.turb.wind_mps;
+        let v = self.wind_mps;
         let bf = self.baseline_factor(nu);
         if bf == 0.0 {
             return 0.0;
@@ -432,7 +455,7 @@ impl PistonSpectrum {
     /// the reference for the table).
     pub fn psd_direct_um2_per_hz(&self, nu_hz: f64) -> f64 {
         let nu = nu_hz.abs();
-        let v = self.table.turb.wind_mps;
+        let v = self.wind_mps;
         let bf = self.baseline_factor(nu);
         if bf == 0.0 {
             return 0.0;
@@ -496,7 +519,7 @@ impl PistonSpectrum {
     /// Low-frequency Kolmogorov asymptote `(2πB)² K I(11/6) v^{−1/3} ν^{−2/3}`.
     pub fn asymptote_low(&self, nu_hz: f64) -> f64 {
         let t = &self.table.turb;
-        let v = t.wind_mps;
+        let v = self.wind_mps;
         (2.0 * PI * self.baseline_m).powi(2)
             * t.opd_psd_scale()
             * profile_integral(11.0 / 6.0)
@@ -510,7 +533,7 @@ impl PistonSpectrum {
         let t = &self.table.turb;
         2.0 * t.opd_psd_scale()
             * profile_integral(11.0 / 6.0)
-            * t.wind_mps.powf(5.0 / 3.0)
+            * self.wind_mps.powf(5.0 / 3.0)
             * nu_hz.abs().powf(-8.0 / 3.0)
     }
 
@@ -520,13 +543,13 @@ impl PistonSpectrum {
         let t = &self.table.turb;
         let d = self.table.aperture_m;
         2.0 * t.opd_psd_scale() * profile_integral(10.0 / 3.0) * 4.0 / (PI.powi(4) * d.powi(3))
-            * t.wind_mps.powf(14.0 / 3.0)
+            * self.wind_mps.powf(14.0 / 3.0)
             * nu_hz.abs().powf(-17.0 / 3.0)
     }
 
     /// Where the low and middle asymptotes cross: `v/(√2 π B)`, Hz.
     pub fn corner_low_hz(&self) -> f64 {
-        self.table.turb.wind_mps / (2f64.sqrt() * PI * self.baseline_m)
+        self.wind_mps / (2f64.sqrt() * PI * self.baseline_m)
     }
 
     /// Where the middle and high asymptotes cross:
@@ -534,7 +557,7 @@ impl PistonSpectrum {
     pub fn corner_high_hz(&self) -> f64 {
         let c = (4.0 * profile_integral(10.0 / 3.0) / (PI.powi(4) * profile_integral(11.0 / 6.0)))
             .cbrt();
-        c * self.table.turb.wind_mps / self.table.aperture_m
+        c * self.wind_mps / self.table.aperture_m
     }
 }
 

@@ -245,14 +245,19 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
             .fold(0.0, f64::max)
     };
     let zero = |_: f64| 0.0;
-    let e: Vec<f64> = [1, 2, 4, 8].iter().map(|&k| err(k, &zero, 0.0)).collect();
+    // Gauss–Legendre sub-samples converge geometrically: measured maximum
+    // errors 8e-2, 1e-3, 1e-8, 2e-13, 1e-13 for K = 1, 2, 4, 6, 8.
+    let e: Vec<f64> = [1, 2, 4, 6, 8]
+        .iter()
+        .map(|&k| err(k, &zero, 0.0))
+        .collect();
     assert!(
         e[0] > 1e-2,
         "one sub-sample is the sampled detector: {}",
         e[0]
     );
-    assert!(e[1] < e[0] && e[2] < e[1] && e[3] <= e[2].max(1e-12));
-    assert!(e[3] < 1e-11, "8 sub-samples: {:e}", e[3]);
+    assert!(e[1] < e[0] / 10.0 && e[2] < e[1] / 1e4, "{e:?}");
+    assert!(e[3] < 1e-12 && e[4] < 1e-12, "{e:?}");
     // Same with the exact filter from the nodes at the centre OPD.
     let eight = scan_samples(
         &table,
@@ -268,9 +273,9 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
     // to it too (the piston is interpolated by a cubic, exact for a line).
     let eps = 0.07;
     let drift = move |tau: f64| eps * 0.5 * (tau - 64.0);
-    let e: Vec<f64> = [2, 4, 8].iter().map(|&k| err(k, &drift, eps)).collect();
-    assert!(e[0] > e[1] && e[1] > e[2]);
-    assert!(e[2] < 1e-11, "drift, 8 sub-samples: {:e}", e[2]);
+    let e: Vec<f64> = [2, 4, 6].iter().map(|&k| err(k, &drift, eps)).collect();
+    assert!(e[0] > e[1] && e[1] > e[2], "{e:?}");
+    assert!(e[2] < 1e-11, "drift, 6 sub-samples: {:e}", e[2]);
 }
 
 #[test]
@@ -461,4 +466,23 @@ fn bad_input_is_refused_with_typed_errors() {
     ));
     // sinc is the detector's transfer function used above.
     assert!((sinc(0.25) - (PI / 4.0).sin() / (PI / 4.0)).abs() < 1e-15);
+}
+
+#[test]
+fn sequence_length_is_even_smooth_and_short() {
+    use v2ref::piston::sequence_length;
+    for len in [1usize, 5, 127, 1000, 1_280_004, 128_004, 999_999] {
+        let m = sequence_length(len);
+        assert!(m >= len && m >= 4 && m % 2 == 0, "{len} -> {m}");
+        let mut r = m;
+        for p in [2, 3, 5] {
+            while r % p == 0 {
+                r /= p;
+            }
+        }
+        assert_eq!(r, 1, "{len} -> {m} has a prime factor above 5");
+        if len >= 1000 {
+            assert!((m as f64) < 1.1 * len as f64, "{len} -> {m}");
+        }
+    }
 }
