@@ -5,7 +5,9 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use v2ref::dispersion::SpectralPhase;
 use v2ref::observation::{Frequency, Observation};
-use v2ref::piston::{simulate, synthesize_series, Detector, RunSize, ScanSetup};
+use v2ref::piston::{
+    simulate, synthesize_series, Detector, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
+};
 use v2ref::source::Source;
 use v2ref::spectrum::{Band, Spectrum};
 use v2ref::turbulence::{PistonSpectrum, Turbulence};
@@ -28,7 +30,12 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     for (name, det) in [
         ("sampled", Detector::Sampled),
-        ("integrating_8", Detector::Integrating { sub_samples: 8 }),
+        (
+            "integrating_default",
+            Detector::Integrating {
+                sub_samples: DEFAULT_SUB_SAMPLES,
+            },
+        ),
     ] {
         g.bench_function(name, |b| {
             b.iter(|| {

@@ -31,6 +31,9 @@
 //! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/claims.rs` |
 //! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/estimator.rs` |
 //! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] | `tests/interferogram.rs` |
+//! | §6 Kolmogorov/von Kármán turbulence, r0 from seeing, differential-piston PSD | [`turbulence::Turbulence`], [`turbulence::PistonSpectrum`], [`turbulence::differential_piston_variance_from_structure_um2`] | `tests/turbulence.rs` |
+//! | §6 piston sequences, scans with piston, bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`], [`piston::FringeTable`] | `tests/piston.rs`, `tests/cli_piston.rs` |
+//! | §6 Figs. 4 and 5 | `figures::piston` (ids `fig4`, `fig5`) | `tests/piston_claims.rs` |
 //! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
 //! | figure data, golden files | [`figure`] | |
 //!
