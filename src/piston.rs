@@ -74,6 +74,10 @@ pub const MAX_SUB_SAMPLES: usize = 64;
 /// `tests/piston.rs`).
 pub const DEFAULT_SUB_SAMPLES: usize = 6;
 
+/// Largest OPD (µm) a scan may reach with its piston: beyond, the fringe
+/// table would cost more memory and time than any realistic case needs.
+pub const MAX_OPD_UM: f64 = 5000.0;
+
 /// Coefficients generated per work unit in [`synthesize_series`].
 const COEFF_BLOCK: usize = 1 << 15;
 /// Scans per work unit in [`simulate`].
@@ -701,6 +705,14 @@ pub fn simulate(
     }
     let residual_rms_um = (resid2 / (scans * n) as f64).sqrt();
     let max_opd = (n / 2 + 1) as f64 * setup.dx_um + 1.5 * excursion + 1.0;
+    if max_opd > MAX_OPD_UM {
+        return Err(Error::Invalid {
+            param: "seeing-arcsec",
+            reason: format!(
+                "the piston moves the fringe packet by up to {excursion:.0} um within the scans (at most {MAX_OPD_UM} um of OPD is simulated): lower the seeing, raise the fringe frequency or re-centre the scans (--reference mean)"
+            ),
+        });
+    }
     let table = FringeTable::new(obs, max_opd)?;
     let cal_obs = obs.calibrator();
     let cal_table = if obs.source == Source::Point && obs.phase.is_zero() {
