@@ -65,6 +65,9 @@
 //! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
 //! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
 //! | Monte Carlo of noisy interferograms | [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | §6 Kolmogorov/von Kármán turbulence, r0 from seeing, differential-piston PSD | [`turbulence::Turbulence`], [`turbulence::PistonSpectrum`], [`turbulence::differential_piston_variance_from_structure_um2`] | `tests/turbulence.rs` |
+//! | §6 piston sequences, scans with piston, bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`], [`piston::FringeTable`] | `tests/piston.rs`, `tests/cli_piston.rs` |
+//! | §6 Figs. 4 and 5 | `figures::piston` (ids `fig4`, `fig5`) | `tests/piston_claims.rs` |
 //! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
 //! | figure data, golden files | [`figure`] | |
 //!
@@ -97,6 +100,7 @@ pub mod noise;
 pub mod normalization;
 pub mod observation;
 pub mod oracle;
+pub mod piston;
 #[cfg(feature = "cli")]
 pub mod plot;
 pub mod quadrature;
@@ -104,6 +108,7 @@ pub mod source;
 pub mod special;
 pub mod spectrum;
 pub mod tolerance;
+pub mod turbulence;
 pub mod window_variance;
 
 pub use error::{Error, Result};

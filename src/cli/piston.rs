@@ -1,14 +1,257 @@
-//! `v2ref piston` (placeholder until its issue lands).
+//! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
+//! frequencies (paper, Section "Effect of differential piston").
 
+use super::common::{BinsKind, ObservationArgs, SamplingArgs};
+use super::{finite_f64, print_json, progress_bar};
+use clap::ValueEnum;
+use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::Result;
+use v2ref::error::{Error, Result};
+use v2ref::piston::{
+    simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, Window, DEFAULT_SUB_SAMPLES,
+};
+use v2ref::turbulence::{PistonSpectrum, Turbulence};
+
+/// Where the fringe packet sits in each scan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ReferenceKind {
+    /// Centred on the scan-mean piston.
+    Mean,
+    /// Centred on the piston at the middle (zero-OPD) sample.
+    Centre,
+    /// Not re-centred: the packet wanders with the absolute piston.
+    Absolute,
+}
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    #[command(flatten)]
+    obs: ObservationArgs,
+    #[command(flatten)]
+    sampling: SamplingArgs,
+    /// Fringe frequency f = v/λ0, Hz (repeatable) [default: 300 and 1000].
+    #[arg(long = "fringe-hz", value_parser = finite_f64)]
+    fringe_hz: Vec<f64>,
+    /// Wind speed, m/s (frozen flow along the baseline).
+    #[arg(long, default_value = "10", value_parser = finite_f64)]
+    wind_mps: f64,
+    /// Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+    #[arg(long, default_value = "1", value_parser = finite_f64)]
+    seeing_arcsec: f64,
+    /// Telescope aperture diameter, m.
+    #[arg(long, default_value = "0.45", value_parser = finite_f64)]
+    aperture_m: f64,
+    /// von Kármán outer scale, m [default: infinite].
+    #[arg(long, value_parser = finite_f64)]
+    outer_scale_m: Option<f64>,
+    /// Number of consecutive scans per fringe frequency.
+    #[arg(long, default_value = "1000")]
+    scans: usize,
+    /// Sub-samples per sample of the integrating detector.
+    #[arg(long, default_value_t = DEFAULT_SUB_SAMPLES)]
+    sub_samples: usize,
+    /// Where the fringe packet sits in each scan.
+    #[arg(long, value_enum, default_value = "mean")]
+    reference: ReferenceKind,
+    /// Random seed.
+    #[arg(long, default_value = "1")]
+    seed: u64,
+    /// Worker threads (0 = all cores); results do not depend on it.
+    #[arg(long, default_value = "0")]
+    threads: usize,
+    /// One JSON document instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Serialize)]
+struct Row {
+    fringe_hz: f64,
+    bias_v1: f64,
+    bias_v2: f64,
+    scatter_v1: f64,
+    scatter_v2: f64,
+    bias_v1_stderr: f64,
+    bias_v2_stderr: f64,
+    scatter_v1_stderr: f64,
+    scatter_v2_stderr: f64,
+    v1_no_piston: f64,
+    v2_no_piston: f64,
+    scan_time_s: f64,
+    residual_rms_um: f64,
+    scans: usize,
+    seed: u64,
+}
+
+#[derive(Serialize)]
+struct Answer {
+    detector: &'static str,
+    bins: &'static str,
+    reference: &'static str,
+    baseline_m: f64,
+    spatial_freq_cpas: f64,
+    r0_m: f64,
+    coherence_time_s: f64,
+    piston_rms_um: f64,
+    samples: usize,
+    dx_um: f64,
+    stroke_um: f64,
+    results: Vec<Row>,
+}
+
+fn row(run: &PistonRun, window: Window) -> Row {
+    let w = run.window(window);
+    Row {
+        fringe_hz: run.fringe_hz,
+        bias_v1: w.v1.mean,
+        bias_v2: w.v2.mean,
+        scatter_v1: w.v1.std,
+        scatter_v2: w.v2.std,
+        bias_v1_stderr: w.v1.mean_stderr,
+        bias_v2_stderr: w.v2.mean_stderr,
+        scatter_v1_stderr: w.v1.std_stderr,
+        scatter_v2_stderr: w.v2.std_stderr,
+        v1_no_piston: w.v1_no_piston,
+        v2_no_piston: w.v2_no_piston,
+        scan_time_s: run.scan_time_s,
+        residual_rms_um: run.residual_rms_um,
+        scans: run.scans,
+        seed: run.seed,
+    }
+}
 
 /// Runs `piston`.
-pub fn run(_args: Args) -> Result<ExitCode> {
-    eprintln!("error: v2ref piston is not implemented yet");
-    Ok(ExitCode::from(super::EXIT_BAD_INPUT))
+pub fn run(args: Args) -> Result<ExitCode> {
+    let obs = args.obs.observation()?;
+    let sampling = args.sampling.sampling()?;
+    sampling.check_aliasing(&obs)?;
+    let freqs = if args.fringe_hz.is_empty() {
+        vec![300.0, 1000.0]
+    } else {
+        args.fringe_hz.clone()
+    };
+    for &f in &freqs {
+        v2ref::error::in_range("fringe-hz", f, 1e-3, 1e7)?;
+    }
+    if args.scans < 2 {
+        return Err(Error::OutOfRange {
+            param: "scans",
+            value: args.scans as f64,
+            accepted: ">= 2".into(),
+        });
+    }
+    v2ref::error::positive("aperture-m", args.aperture_m)?;
+    let turb = Turbulence::from_seeing(
+        args.seeing_arcsec,
+        args.obs.wavelength_um,
+        args.wind_mps,
+        args.outer_scale_m,
+    )?;
+    let spectrum = PistonSpectrum::new(turb, args.aperture_m, obs.baseline_m)?;
+    let detector = if sampling.integrating() {
+        Detector::Integrating {
+            sub_samples: args.sub_samples,
+        }
+    } else {
+        Detector::Sampled
+    };
+    let window = match args.sampling.bins {
+        BinsKind::All => Window::All,
+        BinsKind::Positive => Window::Positive,
+        BinsKind::Band => Window::Band,
+    };
+    let reference = match args.reference {
+        ReferenceKind::Mean => PistonReference::Mean,
+        ReferenceKind::Centre => PistonReference::Centre,
+        ReferenceKind::Absolute => PistonReference::Absolute,
+    };
+    let bar = progress_bar(
+        (freqs.len() * args.scans) as u64,
+        args.quiet || args.json,
+        "piston scans",
+    );
+    let tick = |k: u64| bar.inc(k);
+    let mut results = Vec::new();
+    for (i, &f) in freqs.iter().enumerate() {
+        let setup = ScanSetup {
+            samples: sampling.samples(),
+            dx_um: sampling.dx_um(),
+            wavelength_um: args.obs.wavelength_um,
+            fringe_hz: f,
+            reference,
+        };
+        let runs = simulate(
+            &obs,
+            &spectrum,
+            &setup,
+            &[detector],
+            &RunSize {
+                scans: args.scans,
+                // One seed per frequency, derived from the user's.
+                seed: args.seed ^ ((i as u64) << 40),
+                threads: args.threads,
+            },
+            Some(&tick),
+        )?;
+        results.push(row(&runs[0], window));
+    }
+    bar.finish_and_clear();
+    let answer = Answer {
+        detector: detector.name(),
+        bins: window.name(),
+        reference: reference.name(),
+        baseline_m: obs.baseline_m,
+        spatial_freq_cpas: obs.spatial_freq_cpas(),
+        r0_m: turb.r0_m(),
+        coherence_time_s: turb.coherence_time_s(),
+        piston_rms_um: spectrum.rms_um(),
+        samples: sampling.samples(),
+        dx_um: sampling.dx_um(),
+        stroke_um: sampling.stroke_um(),
+        results,
+    };
+    if args.json {
+        print_json(&answer);
+    } else {
+        outln!(
+            "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms, piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
+            answer.baseline_m,
+            answer.spatial_freq_cpas,
+            100.0 * answer.r0_m,
+            1e3 * answer.coherence_time_s,
+            answer.piston_rms_um,
+            answer.detector,
+            answer.bins,
+            answer.reference,
+            answer.samples,
+            answer.dx_um
+        );
+        outln!(
+            "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
+            "f [Hz]",
+            "bias V1",
+            "bias V2",
+            "scatter V1",
+            "scatter V2"
+        );
+        for r in &answer.results {
+            outln!(
+                "{:>10.2}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
+                r.fringe_hz,
+                r.bias_v1,
+                r.bias_v1_stderr,
+                r.bias_v2,
+                r.bias_v2_stderr,
+                r.scatter_v1,
+                r.scatter_v1_stderr,
+                r.scatter_v2,
+                r.scatter_v2_stderr
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }

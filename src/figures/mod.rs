@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::figure::Figure;
 
 mod bias;
-mod piston;
+pub(crate) mod piston;
 
 /// Every figure (0 to 5), in order, at the given effort.
 pub fn all(effort: Effort) -> Result<Vec<Figure>> {

@@ -1,0 +1,287 @@
+//! The turbulence model: Kolmogorov constants and integrals against mpmath
+//! (tests/data/turbulence_reference.csv, generator beside it), the piston
+//! variance two independent ways, and the spectrum's asymptotes and corners.
+
+use std::f64::consts::PI;
+use v2ref::turbulence::{
+    differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
+    r0_from_seeing_m, structure_coefficient, transverse_integral, PistonSpectrum, Turbulence,
+};
+use v2ref::Error;
+
+const D: f64 = 0.45;
+
+fn paper() -> Turbulence {
+    Turbulence::from_seeing(1.0, 2.2, 10.0, None).unwrap()
+}
+
+fn reference(name: &str) -> Vec<(f64, f64)> {
+    include_str!("data/turbulence_reference.csv")
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|c| c[0] == name)
+        .map(|c| (c[1].parse().unwrap(), c[2].parse().unwrap()))
+        .collect()
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+#[test]
+fn kolmogorov_constants_match_mpmath() {
+    let cd = reference("C_D")[0].1;
+    let cphi = reference("C_Phi")[0].1;
+    assert!(
+        rel(structure_coefficient(), cd) < 1e-13,
+        "{}",
+        structure_coefficient()
+    );
+    assert!(
+        rel(psd_coefficient(), cphi) < 1e-13,
+        "{}",
+        psd_coefficient()
+    );
+    // The profile integrals by Gamma functions against mpmath's quadrature.
+    for (a, want) in reference("I") {
+        assert!(rel(profile_integral(a), want) < 1e-13, "I({a})");
+    }
+}
+
+#[test]
+fn r0_and_coherence_time_follow_the_conventions() {
+    let r0 = r0_from_seeing_m(1.0, 2.2).unwrap();
+    // λ/seeing, with 1 arcsec = π/648000 rad.
+    assert!(rel(r0, 2.2e-6 * 648_000.0 / PI) < 1e-15);
+    let t = paper();
+    assert!(rel(t.coherence_time_s(), r0 / 10.0) < 1e-15);
+    // The OPD spectrum does not depend on the wavelength when r0 ∝ λ^{6/5}.
+    let t2 = Turbulence::new(r0 * (1.65f64 / 2.2).powf(1.2), 1.65, 10.0, None).unwrap();
+    assert!(rel(t2.opd_psd(0.37), t.opd_psd(0.37)) < 1e-13);
+    // Seeing 0 is no turbulence.
+    let none = Turbulence::from_seeing(0.0, 2.2, 10.0, None).unwrap();
+    assert_eq!(none.opd_psd(1.0), 0.0);
+    let s = PistonSpectrum::new(none, D, 18.0).unwrap();
+    assert_eq!(s.variance_um2(), 0.0);
+    assert_eq!(s.psd_um2_per_hz(1.0), 0.0);
+}
+
+#[test]
+fn bad_parameters_are_typed_errors() {
+    assert!(matches!(
+        Turbulence::from_seeing(1.0, 2.2, 0.0, None),
+        Err(Error::OutOfRange {
+            param: "wind-mps",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Turbulence::from_seeing(-1.0, 2.2, 10.0, None),
+        Err(Error::OutOfRange {
+            param: "seeing-arcsec",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Turbulence::from_seeing(1.0, 2.2, 10.0, Some(-3.0)),
+        Err(Error::OutOfRange {
+            param: "outer-scale-m",
+            ..
+        })
+    ));
+    assert!(matches!(
+        PistonSpectrum::new(paper(), 0.0, 18.0),
+        Err(Error::OutOfRange {
+            param: "aperture-m",
+            ..
+        })
+    ));
+    assert!(matches!(
+        PistonSpectrum::new(paper(), D, f64::NAN),
+        Err(Error::NotFinite {
+            param: "baseline-m",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn transverse_integral_matches_mpmath_and_the_table() {
+    let t = paper();
+    let s = PistonSpectrum::new(t, D, 18.0).unwrap();
+    for (fx, want) in reference("G") {
+        let direct = transverse_integral(&t, D, fx);
+        // 1e-8: the tail beyond 100/D is added with the Bessel oscillation
+        // averaged, which leaves ~3e-9 of G at f D = 3.
+        assert!(
+            rel(direct, want) < 1e-8,
+            "G({fx}) = {direct}, mpmath {want}"
+        );
+        // The tabulated spectrum at ν = v f_x (away from the cosine's zeros).
+        let nu = 10.0 * fx;
+        let factor = 4.0 * (PI * 18.0 * nu / 10.0).sin().powi(2);
+        let tab = s.psd_um2_per_hz(nu) * 10.0 / factor;
+        // Beyond f D ~ 1 the table under-resolves the surviving Bessel
+        // wiggle (period 1/D), where P is below 1e-6 of its peak.
+        let tol = if fx * D <= 1.0 { 1e-5 } else { 1e-2 };
+        assert!(rel(tab, want) < tol, "table G({fx}) = {tab}, mpmath {want}");
+    }
+}
+
+#[test]
+fn table_matches_direct_quadrature_over_the_range_that_carries_power() {
+    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let mut worst: f64 = 0.0;
+    // ν up to 3 v/D (beyond, P is below 1e-8 of its low-frequency value).
+    for i in 0..60 {
+        let nu = 1e-4 * 10f64.powf(i as f64 * 0.0895) * 1.0137;
+        let (a, b) = (s.psd_um2_per_hz(nu), s.psd_direct_um2_per_hz(nu));
+        if b > 0.0 {
+            worst = worst.max(rel(a, b));
+        }
+    }
+    // Catmull–Rom on 80 points per decade of ln G: ~3e-5 near the corner.
+    assert!(worst < 1e-4, "worst relative error {worst:e}");
+}
+
+#[test]
+fn variance_from_the_spectrum_equals_the_structure_function_and_mpmath() {
+    let t = paper();
+    let want = reference("var_sf")[0].1;
+    let spectral = PistonSpectrum::new(t, D, 18.0).unwrap().variance_um2();
+    let pupil = differential_piston_variance_from_structure_um2(&t, D, 18.0);
+    assert!(
+        rel(pupil, want) < 1e-10,
+        "pupil-plane {pupil}, mpmath {want}"
+    );
+    assert!(
+        rel(spectral, want) < 1e-9,
+        "spectral {spectral}, mpmath {want}"
+    );
+    // Other geometries, including overlapping apertures (B < D).
+    for (d, b) in [(0.45, 0.3), (1.8, 5.0), (8.0, 47.0), (0.1, 200.0)] {
+        let a = PistonSpectrum::new(t, d, b).unwrap().variance_um2();
+        let c = differential_piston_variance_from_structure_um2(&t, d, b);
+        assert!(rel(a, c) < 1e-8, "D {d} B {b}: {a} vs {c}");
+    }
+    // For B ≫ D the variance tends to the point structure function.
+    let far = PistonSpectrum::new(t, 0.01, 1000.0).unwrap().variance_um2();
+    assert!(rel(far, t.opd_structure_function_um2(1000.0)) < 1e-3);
+}
+
+#[test]
+fn variance_is_the_integral_of_the_temporal_spectrum() {
+    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    // ∫_{−∞}^{∞} P dν = 2 ∫_0^∞ P dν, in ln ν with tails from the asymptotes.
+    let (lo, hi) = (1e-6_f64, 200.0_f64);
+    let integrand = |u: f64| {
+        let nu = u.exp();
+        nu * s.psd_um2_per_hz(nu)
+    };
+    let mut breaks = vec![lo.ln()];
+    while *breaks.last().unwrap() < hi.ln() {
+        breaks.push(breaks.last().unwrap() + 0.01);
+    }
+    let body = v2ref::quadrature::integrate_pieces(
+        &integrand,
+        &breaks,
+        v2ref::quadrature::Tolerance {
+            abs: 0.0,
+            rel: 1e-10,
+        },
+    );
+    let low_tail = s.asymptote_low(lo) * lo * 3.0; // ∫_0^lo c ν^{−2/3} = 3 c lo^{1/3}
+    let total = 2.0 * (body + low_tail);
+    let want = s.variance_um2();
+    assert!(rel(total, want) < 1e-5, "∫P = {total}, variance {want}");
+}
+
+#[test]
+fn asymptotes_slopes_and_corners() {
+    let t = paper();
+    let s = PistonSpectrum::new(t, D, 18.0).unwrap();
+    let v = 10.0;
+    let slope = |f: &dyn Fn(f64) -> f64, x: f64| {
+        let h = 1e-3;
+        (f(x * (1.0 + h)).ln() - f(x * (1.0 - h)).ln()) / (2.0 * h)
+    };
+    // Low frequencies: P → (2πB)² K I(11/6) v^{-1/3} ν^{-2/3}, slope −2/3.
+    for r in [1e-4, 1e-3, 1e-2] {
+        let nu = r * s.corner_low_hz();
+        let p = s.psd_direct_um2_per_hz(nu);
+        assert!(rel(p, s.asymptote_low(nu)) < 2.0 * r, "low ratio at {r}");
+        let sl = slope(&|x| s.psd_direct_um2_per_hz(x), nu);
+        assert!((sl + 2.0 / 3.0).abs() < 10.0 * r, "low slope {sl} at {r}");
+    }
+    // Middle: G = v P / 2(1 − cos) → K I(11/6) f^{−8/3}; the relative error
+    // falls as (f D)².
+    let g = |fx: f64| transverse_integral(&t, D, fx);
+    let mid_g = |fx: f64| s.asymptote_mid(v * fx) * v / 2.0;
+    for fd in [1e-3, 1e-2] {
+        let fx = fd / D;
+        assert!(rel(g(fx), mid_g(fx)) < 10.0 * fd * fd, "mid at fD {fd}");
+        assert!((slope(&g, fx) + 8.0 / 3.0).abs() < 20.0 * fd * fd);
+    }
+    // The middle asymptote is the cosine's average: average P over one
+    // period of 2(1 − cos(2πBν/v)) on a long baseline.
+    // (20 km: 0.5 mHz periods, 40 of them at 0.02 Hz, where f D = 9e-4.)
+    let long = PistonSpectrum::new(t, D, 20_000.0).unwrap();
+    let period = v / 20_000.0;
+    let nu0 = 0.02;
+    let n = 40 * 64;
+    let at = |i: usize| nu0 + (i as f64 + 0.5) / 64.0 * period;
+    let avg: f64 = (0..n).map(|i| long.psd_um2_per_hz(at(i))).sum::<f64>() / n as f64;
+    let mid_avg: f64 = (0..n).map(|i| long.asymptote_mid(at(i))).sum::<f64>() / n as f64;
+    assert!(
+        rel(avg, mid_avg) < 1e-3,
+        "period average {avg} vs {mid_avg}"
+    );
+    // High: G → K 4/(π⁴D³) I(10/3) f^{−17/3}; the Bessel oscillation
+    // survives the f_y integral with a relative amplitude ~ (f D)^{−1/2}.
+    let high_g = |fx: f64| s.asymptote_high(v * fx) * v / 2.0;
+    let mut last = f64::INFINITY;
+    for fd in [10.0, 30.0, 100.0, 300.0] {
+        let fx = fd / D;
+        let e = rel(g(fx), high_g(fx));
+        assert!(e < 1.0 / fd.sqrt(), "high at fD {fd}: {e}");
+        assert!(e < last, "high-frequency error does not fall at fD {fd}");
+        last = e;
+    }
+    // Decade-averaged slope −17/3 between f D = 30 and 300.
+    let decade = (g(300.0 / D) / g(30.0 / D)).ln() / 10f64.ln();
+    assert!((decade + 17.0 / 3.0).abs() < 0.05, "decade slope {decade}");
+    // Corners: the crossings of the asymptotes, 0.225 v/B and 0.299 v/D.
+    let c1 = s.corner_low_hz();
+    let c2 = s.corner_high_hz();
+    assert!(rel(s.asymptote_low(c1), s.asymptote_mid(c1)) < 1e-12);
+    assert!(rel(s.asymptote_mid(c2), s.asymptote_high(c2)) < 1e-12);
+    assert!(rel(c1 * 18.0 / v, 1.0 / (2f64.sqrt() * PI)) < 1e-14);
+    assert!((c2 * D / v - 0.2994).abs() < 1e-3, "{}", c2 * D / v);
+    // The computed spectrum turns there: its local slope passes half-way
+    // between −8/3 and −17/3 within a factor 2 of the high corner.
+    let mut x = 0.05 / D;
+    while slope(&g, x) > -25.0 / 6.0 {
+        x *= 1.01;
+    }
+    let ratio = x / (c2 / v);
+    assert!(
+        (0.5..2.0).contains(&ratio),
+        "half-slope at {ratio} x corner"
+    );
+}
+
+#[test]
+fn von_karman_outer_scale_reduces_and_saturates_the_piston() {
+    let k = paper();
+    let vk = Turbulence::from_seeing(1.0, 2.2, 10.0, Some(20.0)).unwrap();
+    // The outer-scale correction falls only as (B/L0)^{1/3}.
+    let huge = Turbulence::from_seeing(1.0, 2.2, 10.0, Some(1e12)).unwrap();
+    let rms = |t: Turbulence, b: f64| PistonSpectrum::new(t, D, b).unwrap().rms_um();
+    assert!(rel(rms(huge, 18.0), rms(k, 18.0)) < 1e-3);
+    assert!(rms(vk, 18.0) < rms(k, 18.0));
+    // Saturation: from 50 to 100 m the von Kármán piston grows by < 1 %,
+    // the Kolmogorov one by 2^{5/6} roughly.
+    assert!(rms(vk, 100.0) / rms(vk, 50.0) < 1.01);
+    assert!(rms(k, 100.0) / rms(k, 50.0) > 1.7);
+}
