@@ -44,6 +44,16 @@ pub struct PlotHint {
     pub y_label: Option<&'static str>,
     /// Horizontal reference lines: (ordinate, label).
     pub lines: Vec<(f64, &'static str)>,
+    /// Column-name suffixes whose columns are not drawn (variants kept in
+    /// the CSV, such as other bin windows).
+    pub hidden_suffixes: Vec<&'static str>,
+    /// (curve, column) pairs: draw `column` as the error bars of `curve`
+    /// instead of `<curve>_stderr` (the paper's Fig. 4 shows the scatter).
+    pub error_columns: Vec<(&'static str, &'static str)>,
+    /// Draw |y| on a logarithmic ordinate (bias magnitudes spanning decades).
+    pub abs_log_y: bool,
+    /// Logarithmic abscissa.
+    pub log_x: bool,
 }
 
 /// Columns that give context to a panel rather than being its subject.
@@ -77,6 +87,27 @@ pub fn hint(table: &str) -> PlotHint {
             h.y_label = Some("bias against the infinite scan");
             h.lines = vec![(ACCURACY_0P2, "+0.2%"), (-ACCURACY_0P2, "-0.2%")];
         }
+        t if t.starts_with("fig4_") => {
+            h.y_label = Some("V(piston) - V(no piston); bars: scatter over scans");
+            h.hidden.extend([
+                "baseline_m",
+                "piston_rms_um",
+                "v1_no_piston",
+                "v2_no_piston",
+                "scatter_v1",
+                "scatter_v2",
+            ]);
+            h.error_columns = vec![("bias_v1", "scatter_v1"), ("bias_v2", "scatter_v2")];
+            h.lines = vec![(1e-3, "+0.1%"), (-1e-3, "-0.1%")];
+        }
+        t if t.starts_with("fig5_") => {
+            h.y_label = Some("|bias| and scatter of V");
+            h.hidden.extend(["scan_time_s", "residual_rms_um"]);
+            h.hidden_suffixes = vec!["_band", "_all"];
+            h.abs_log_y = true;
+            h.log_x = true;
+            h.lines = vec![(1e-2, "1%"), (1e-5, "1e-5")];
+        }
         _ => {}
     }
     h
@@ -97,19 +128,38 @@ fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
         .columns
         .iter()
         .skip(1)
-        .filter(|c| !c.name.ends_with("_stderr") && !hint.hidden.contains(&c.name.as_str()))
+        .filter(|c| {
+            !c.name.ends_with("_stderr")
+                && !hint.hidden.contains(&c.name.as_str())
+                && !hint.hidden_suffixes.iter().any(|sfx| c.name.ends_with(sfx))
+        })
         .map(|c| {
             let y = table.column(&c.name).unwrap_or_default();
-            let errors = table.column(&format!("{}_stderr", c.name));
+            let errors = match hint
+                .error_columns
+                .iter()
+                .find(|(curve, _)| *curve == c.name)
+            {
+                Some((_, col)) => table.column(col),
+                None => table.column(&format!("{}_stderr", c.name)),
+            };
+            let y: Vec<f64> = if hint.abs_log_y {
+                y.iter().map(|v| v.abs()).collect()
+            } else {
+                y
+            };
+            let errors = if hint.abs_log_y { None } else { errors };
+            // Keep points and their error bars together through the filter.
+            let keep: Vec<usize> = (0..x.len().min(y.len()))
+                .filter(|&i| {
+                    x[i].is_finite() && y[i].is_finite() && (!hint.abs_log_y || y[i] > 0.0)
+                })
+                .filter(|&i| !hint.log_x || x[i] > 0.0)
+                .collect();
             Series {
                 label: c.name.clone(),
-                points: x
-                    .iter()
-                    .copied()
-                    .zip(y)
-                    .filter(|p| p.0.is_finite() && p.1.is_finite())
-                    .collect(),
-                errors,
+                points: keep.iter().map(|&i| (x[i], y[i])).collect(),
+                errors: errors.map(|e| keep.iter().map(|&i| e[i]).collect()),
             }
         })
         .collect()
@@ -151,7 +201,7 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
         x0 -= 0.5;
         x1 += 0.5;
     }
-    let log_y = y0 > 0.0 && y1 / y0 > 1e3;
+    let log_y = hint.abs_log_y || (y0 > 0.0 && y1 / y0 > 1e3);
     if y1 <= y0 {
         let pad = if y0 == 0.0 { 1.0 } else { 0.05 * y0.abs() };
         y0 -= pad;
@@ -203,6 +253,8 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
                     .x_desc(x_desc.as_str())
                     .y_desc(y_desc.as_str())
                     .y_label_formatter(&|y: &f64| tick(*y))
+                    .x_label_formatter(&|x: &f64| tick(*x))
+                    .x_labels(10)
                     .draw()
                     .map_err(plot_error)?;
                 for (y, label) in &lines {
@@ -242,14 +294,19 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
                     .map_err(plot_error)?;
             }};
         }
-        if log_y {
-            draw!(builder
+        match (hint.log_x, log_y) {
+            (false, true) => draw!(builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-                .map_err(plot_error)?);
-        } else {
-            draw!(builder
+                .map_err(plot_error)?),
+            (false, false) => draw!(builder
                 .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(plot_error)?);
+                .map_err(plot_error)?),
+            (true, true) => draw!(builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(plot_error)?),
+            (true, false) => draw!(builder
+                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+                .map_err(plot_error)?),
         }
         root.present().map_err(plot_error)?;
     }
@@ -259,7 +316,8 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
 /// A compact tick label: plain for ordinary magnitudes, `1e-5` style beyond.
 fn tick(y: f64) -> String {
     let a = y.abs();
-    if y == 0.0 {
+    if a < 1e-12 {
+        // Zero, or rounding noise of a tick placed at zero.
         "0".to_owned()
     } else if (1e-3..1e4).contains(&a) {
         let s = format!("{y:.4}");
