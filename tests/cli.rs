@@ -186,3 +186,21 @@ fn claims_json_parses_with_the_contract_fields() {
         }
     }
 }
+
+#[test]
+fn negative_numbers_are_refused_naming_their_flag() {
+    for (args, flag) in [
+        (
+            vec!["bias", "--finite-scan", "--samples", "-4"],
+            "--samples",
+        ),
+        (vec!["simulate", "--trials", "-5"], "--trials"),
+        (vec!["simulate", "--seed", "-1"], "--seed"),
+        (vec!["piston", "--scans", "-10"], "--scans"),
+        (vec!["piston", "--fringe-hz", "-300"], "--fringe-hz"),
+        (vec!["piston", "--wind-mps", "-3"], "--wind-mps"),
+        (vec!["snr", "--photons", "-10"], "--photons"),
+    ] {
+        assert_bad_input(&args, flag);
+    }
+}

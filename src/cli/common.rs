@@ -105,7 +105,7 @@ pub struct SamplingArgs {
     #[arg(long, default_value = "0.5", value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
     /// Number of samples N (ignored when --stroke-um is given).
-    #[arg(long, default_value = "128")]
+    #[arg(long, default_value = "128", allow_negative_numbers = true)]
     pub samples: usize,
     /// Integrating detector (each sample averages the fringe over δx).
     #[arg(long)]

@@ -31,34 +31,34 @@ pub struct Args {
     #[command(flatten)]
     sampling: SamplingArgs,
     /// Fringe frequency f = v/λ0, Hz (repeatable) [default: 300 and 1000].
-    #[arg(long = "fringe-hz", value_parser = finite_f64)]
+    #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
     fringe_hz: Vec<f64>,
     /// Wind speed, m/s (frozen flow along the baseline).
-    #[arg(long, default_value = "10", value_parser = finite_f64)]
+    #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
     wind_mps: f64,
     /// Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
-    #[arg(long, default_value = "1", value_parser = finite_f64)]
+    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
     seeing_arcsec: f64,
     /// Telescope aperture diameter, m.
-    #[arg(long, default_value = "0.45", value_parser = finite_f64)]
+    #[arg(long, default_value = "0.45", value_parser = finite_f64, allow_negative_numbers = true)]
     aperture_m: f64,
     /// von Kármán outer scale, m [default: infinite].
-    #[arg(long, value_parser = finite_f64)]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     outer_scale_m: Option<f64>,
     /// Number of consecutive scans per fringe frequency.
-    #[arg(long, default_value = "1000")]
+    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
     /// Sub-samples per sample of the integrating detector.
-    #[arg(long, default_value_t = DEFAULT_SUB_SAMPLES)]
+    #[arg(long, default_value_t = DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
     sub_samples: usize,
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
     reference: ReferenceKind,
     /// Random seed.
-    #[arg(long, default_value = "1")]
+    #[arg(long, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
     /// Worker threads (0 = all cores); results do not depend on it.
-    #[arg(long, default_value = "0")]
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
     /// One JSON document instead of the table.
     #[arg(long)]

@@ -28,13 +28,13 @@ pub struct Args {
     #[command(flatten)]
     noise: NoiseArgs,
     /// Number of noisy interferograms.
-    #[arg(long, default_value = "100000")]
+    #[arg(long, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
     /// Seed of the generators.
-    #[arg(long, default_value = "1")]
+    #[arg(long, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
     /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0")]
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
     /// No progress bar.
     #[arg(long)]

@@ -1,0 +1,96 @@
+//! `v2ref reproduce --quick` writes every figure and the claims table.
+
+use std::process::Command;
+
+#[test]
+fn quick_reproduction_writes_every_expected_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("repro");
+    let run = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["reproduce", "--quick", "--quiet", "--json", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let answer: serde_json::Value = serde_json::from_slice(&run.stdout).expect("JSON answer");
+
+    // Every figure, each table as CSV (with the header its metadata declares) and SVG.
+    for id in ["fig0", "fig1", "fig2", "fig3", "fig4", "fig5"] {
+        let meta: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(format!("{id}.json"))).unwrap())
+                .unwrap();
+        let tables = meta["tables"].as_array().expect("tables");
+        assert!(!tables.is_empty(), "{id}: no tables");
+        for t in tables {
+            let name = t["name"].as_str().unwrap();
+            let csv = std::fs::read_to_string(out.join(format!("{name}.csv"))).unwrap();
+            let mut lines = csv.lines();
+            let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+            let declared: Vec<&str> = t["columns"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|c| c.as_str().unwrap())
+                .collect();
+            assert_eq!(header, declared, "{name}: header");
+            let mut rows = 0;
+            for line in lines {
+                let cells: Vec<f64> = line
+                    .split(',')
+                    .map(|c| c.parse().expect("a number"))
+                    .collect();
+                assert_eq!(cells.len(), header.len(), "{name}: row width");
+                rows += 1;
+            }
+            assert!(rows >= 3, "{name}: {rows} rows");
+            let svg = std::fs::read_to_string(out.join(format!("{name}.svg"))).unwrap();
+            assert!(
+                svg.starts_with("<svg") && svg.contains("</svg>"),
+                "{name}.svg"
+            );
+            assert!(
+                svg.contains("<polyline") || svg.contains("<path"),
+                "{name}.svg draws no curve"
+            );
+        }
+    }
+    // The claims table: Markdown and JSON, nothing pending, same as the answer.
+    let md = std::fs::read_to_string(out.join("claims.md")).unwrap();
+    let claims: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("claims.json")).unwrap()).unwrap();
+    assert_eq!(claims.len(), v2ref::claims::ledger().len());
+    for c in &claims {
+        let id = c["id"].as_str().unwrap();
+        assert_ne!(c["status"], "pending", "{id} is pending");
+        assert!(
+            md.contains(&format!("`{id}`")),
+            "{id} missing from claims.md"
+        );
+    }
+    assert_eq!(answer["claims"].as_array().unwrap().len(), claims.len());
+    assert!(answer["files"].as_array().unwrap().len() >= 30);
+    // No staging directory is left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(leftovers.len(), 1, "{leftovers:?}");
+}
+
+#[test]
+fn reproduce_refuses_to_write_into_golden() {
+    let run = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["reproduce", "--quick", "--quiet", "--out", "golden"])
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("--out") && stderr.contains("golden"),
+        "{stderr}"
+    );
+}
