@@ -90,3 +90,22 @@ fn dynamic_range_formula_holds_its_scaling_laws() {
     assert!(dynamic_range(0.5, 1e-3, 0.0).is_err());
     assert!(dynamic_range(10.0, 0.0, 0.0).is_err());
 }
+
+#[test]
+fn reproduction_notes_cover_every_claim() {
+    let notes = include_str!("../paper/reproduction.md");
+    let generated = include_str!("../paper/reproduction/claims.md");
+    for spec in ledger() {
+        let tag = format!("`{}`", spec.id);
+        assert!(
+            notes.contains(&tag),
+            "paper/reproduction.md does not mention {}",
+            spec.id
+        );
+        assert!(
+            generated.contains(&tag),
+            "paper/reproduction/claims.md lacks {}",
+            spec.id
+        );
+    }
+}
