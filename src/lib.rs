@@ -46,30 +46,30 @@
 //! | paper | module / function | tests |
 //! |---|---|---|
 //! | Introduction, eq. `eq:dynamique` | [`dynamic_range::dynamic_range`] | `tests/claims.rs` |
-//! | §2.1 eq. `eq:interferogramme`, weighting function W | [`spectrum::Spectrum`] ([`spectrum::Spectrum::mean_w`], [`spectrum::Spectrum::mean_w2`]) | `tests/spectrum.rs` |
-//! | §2.2.2 sampled signals, integrating detector (sinc) | [`interferogram::Sampling`], [`interferogram::Interferogram::synthesize`], [`interferogram::sinc`] | `tests/interferogram.rs` |
-//! | §2.2.2 eq. `eq:sampled_V`, FTS resolution R = σΔx | [`interferogram::Sampling::delta_sigma_per_um`] | `tests/interferogram.rs` |
-//! | §3 eq. `eq:estimateurs` (spectral form) | [`estimator::v1_sq`], [`estimator::v2_sq`], [`estimator::wide_band`] | `tests/estimator.rs` |
-//! | §3 uniform disk $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`source::Source::UniformDisk`], [`special::jinc`] | `tests/special.rs` |
-//! | §3 continuum plus line example | [`source::Source::Composite`], [`source::FluxProfile`] | `tests/estimator.rs` |
-//! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/bias_bandwidth.rs` |
+//! | §2.1 eq. `eq:interferogramme`, weighting function W, σ_eff | [`spectrum::Spectrum`] ([`spectrum::Spectrum::mean_w`], [`spectrum::Spectrum::mean_w2`], [`spectrum::Spectrum::sigma_eff_per_um`]), [`quadrature`] | `tests/foundation.rs`, `tests/spectrum_csv.rs` |
+//! | §2.2.1 continuous signals; extended visibility | [`observation::Observation::fringe_amplitude`] | `tests/foundation.rs` |
+//! | §2.2.2 sampled signals, sample 0 on the white-light fringe | [`interferogram::Sampling`], [`interferogram::Interferogram::synthesize`], [`interferogram::SpectralNodes`] (slow oracle: [`oracle`]) | `tests/foundation.rs` |
+//! | §2.2.2 integrating detector, sinc(σδx), 2/π at Nyquist | [`interferogram::sinc`], [`integration::wide_band_loss`], [`integration::calibrated_bias`] | `tests/foundation.rs`, `tests/bias_normalization.rs` |
+//! | §2.2.2 eq. `eq:sampled_V`, FTS resolution R = σΔx | [`interferogram::Sampling::delta_sigma_per_um`], [`finite_scan::convolution_bins`] | `tests/bias_finite_scan.rs` |
+//! | §3 eq. `eq:estimateurs` (spectral form) | [`estimator::v1_sq`], [`estimator::v2_sq`], [`estimator::wide_band`] | `tests/foundation.rs`, `tests/properties.rs` |
+//! | §3 uniform disk $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`source::Source::UniformDisk`], [`special::jinc`], [`special::bessel_j1_zero`] | `tests/special.rs` |
+//! | §3 continuum plus line example (0.50042) | [`source::Source::Composite`], [`source::FluxProfile`], [`line::channel_visibility`], [`line::top_hat_closed_form`] | `tests/bias_line.rs`, `tests/foundation.rs` |
 //! | §3 Fig. 0, V2 normalization factor against stroke | [`normalization::deviation_curve`], [`normalization::threshold_stroke`] | `tests/bias_normalization.rs` |
-//! | §2.2.2 and §3, integrating detector: contrast loss, π²/8, wide band | [`integration::wide_band_loss`], [`integration::calibrated_bias`] | `tests/bias_normalization.rs` |
-//! | §3 continuum plus line example (0.50042) | [`line::channel_visibility`], [`line::top_hat_closed_form`] | `tests/bias_line.rs` |
+//! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/bias_bandwidth.rs` |
+//! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/properties.rs` |
 //! | §4 Fig. 2, V2 of a point source under dispersion (Fresnel closed form) | [`special::fresnel::point_source_v2_sq`], [`special::fresnel::fresnel_cs`] | `tests/bias_dispersion.rs` |
 //! | §4 fluoride-fibre example (ZBLAN, Gan 1995) | [`fiber::zblan_peak_to_peak_rad`] | `tests/bias_dispersion.rs` |
-//! | §5 Fig. 3, finite scan: DFT path and eq. `eq:sampled_V` convolution path | [`finite_scan::bias`], [`finite_scan::convolution_bins`], [`finite_scan::Kernel`] | `tests/bias_finite_scan.rs` |
-//! | Figs. 0–3 as data, golden files | [`figures::all`], [`golden::check`], [`golden::update`] | `tests/golden.rs`, `tests/bias_snapshots.rs` |
-//! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/estimator.rs` |
-//! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] | `tests/interferogram.rs` |
-//! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
-//! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
-//! | Monte Carlo of noisy interferograms | [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | §5 Fig. 3, finite scan: DFT path and eq. `eq:sampled_V` convolution path | [`finite_scan::bias`], [`finite_scan::Kernel`] | `tests/bias_finite_scan.rs` |
 //! | §6 Kolmogorov/von Kármán turbulence, r0 from seeing, differential-piston PSD | [`turbulence::Turbulence`], [`turbulence::PistonSpectrum`], [`turbulence::differential_piston_variance_from_structure_um2`] | `tests/turbulence.rs` |
 //! | §6 piston sequences, scans with piston, bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`], [`piston::FringeTable`] | `tests/piston.rs`, `tests/cli_piston.rs` |
-//! | §6 Figs. 4 and 5 | `figures::piston` (ids `fig4`, `fig5`) | `tests/piston_claims.rs` |
-//! | the claims ledger | [`claims::evaluate`] | `tests/claims.rs` |
-//! | figure data, golden files | [`figure`] | |
+//! | §6 Figs. 4 and 5 | [`figures::all`] (ids `fig4`, `fig5`) | `tests/piston_claims.rs`, `tests/golden.rs` |
+//! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] (slow oracle: [`oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
+//! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Monte Carlo: deterministic parallel driver, noisy interferograms | [`montecarlo::run_units`], [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | Figs. 0–5 as data, golden files | [`figure`], [`figures::all`], [`golden::check`], [`golden::update`] | `tests/golden.rs`, `tests/bias_snapshots.rs` |
+//! | the claims ledger | [`claims::evaluate`], [`claims::to_markdown`] | `tests/claims.rs` |
+//! | tolerances (one home) | [`tolerance`] | every test |
 //!
 //! ## Conventions
 //!
