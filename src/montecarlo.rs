@@ -63,59 +63,6 @@ where
     }
 }
 
-/// Running mean and variance (Welford 1962; Chan et al. 1979 for merging),
-/// numerically stable for long runs.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Welford {
-    /// Number of values.
-    pub count: u64,
-    /// Their mean.
-    pub mean: f64,
-    /// Sum of squared deviations from the mean.
-    pub m2: f64,
-}
-
-impl Welford {
-    /// Adds one value.
-    pub fn push(&mut self, x: f64) {
-        self.count += 1;
-        let d = x - self.mean;
-        self.mean += d / self.count as f64;
-        self.m2 += d * (x - self.mean);
-    }
-
-    /// Merges another accumulator (order-dependent in the last bits: merge
-    /// in unit order for reproducibility).
-    pub fn merge(&mut self, other: &Welford) {
-        if other.count == 0 {
-            return;
-        }
-        if self.count == 0 {
-            *self = *other;
-            return;
-        }
-        let n = (self.count + other.count) as f64;
-        let d = other.mean - self.mean;
-        self.mean += d * other.count as f64 / n;
-        self.m2 += other.m2 + d * d * self.count as f64 * other.count as f64 / n;
-        self.count += other.count;
-    }
-
-    /// Unbiased sample variance (n − 1 denominator); NaN below two values.
-    pub fn variance(&self) -> f64 {
-        if self.count < 2 {
-            f64::NAN
-        } else {
-            self.m2 / (self.count - 1) as f64
-        }
-    }
-
-    /// Standard error of the mean, √(var/n).
-    pub fn stderr_mean(&self) -> f64 {
-        (self.variance() / self.count as f64).sqrt()
-    }
-}
-
 /// Running mean and central moments up to order 4 (Pébay 2008, "Formulas
 /// for robust, one-pass parallel computation of covariances and
 /// arbitrary-order statistical moments", eqs. 1.5 and 3.1), numerically
