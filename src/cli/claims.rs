@@ -14,6 +14,9 @@ pub struct Args {
     /// One JSON document instead of the table.
     #[arg(long)]
     json: bool,
+    /// No progress spinner.
+    #[arg(long)]
+    quiet: bool,
 }
 
 /// Runs `claims`.
@@ -23,7 +26,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
+    let spinner = super::spinner(args.quiet, "computing every claim (Monte Carlo included)");
     let results = evaluate(effort);
+    spinner.finish_and_clear();
     if args.json {
         print_json(&results);
         return Ok(ExitCode::SUCCESS);

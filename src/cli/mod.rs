@@ -101,5 +101,18 @@ pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar
         bar.set_style(style.progress_chars("=> "));
     }
     bar.set_message(what.to_owned());
+    bar.enable_steady_tick(std::time::Duration::from_millis(150));
+    bar
+}
+
+/// A spinner for work without countable steps, hidden when not
+/// [`show_progress`]. Call `finish_and_clear` when done.
+pub fn spinner(quiet: bool, what: &str) -> indicatif::ProgressBar {
+    if !show_progress(quiet) {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_message(what.to_owned());
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
 }
