@@ -47,6 +47,21 @@ fn every_claim_is_answered_honestly() {
             _ => {}
         }
     }
+    // The whole table, compactly, for review: any drift shows in the diff.
+    let sig = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |x| format!("{x:.4e}"));
+    let table: String = results
+        .iter()
+        .map(|r| {
+            format!(
+                "{:<36} {:<11} paper {:<11} computed {}\n",
+                r.id,
+                r.status.as_str(),
+                sig(r.paper),
+                sig(r.computed)
+            )
+        })
+        .collect();
+    insta::assert_snapshot!("claims_table_quick", table);
 }
 
 #[test]
