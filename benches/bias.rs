@@ -1,14 +1,15 @@
 //! Speed of the bias studies' inner loops (release, criterion).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::wide_band;
-use v2ref::finite_scan::{self, Kernel, Method, DX_UM};
-use v2ref::interferogram::Sampling;
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::special::fresnel::fresnel_cs;
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::bias::finite_scan::{self, Kernel, Method};
+use v2ref::formalism::estimator::wide_band;
+use v2ref::formalism::interferogram::Sampling;
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::math::special::fresnel::fresnel_cs;
+use v2ref::reproduction::cases::DX_UM;
 
 fn disk_at(s: f64) -> Observation {
     Observation::new(
@@ -45,7 +46,9 @@ fn benches(c: &mut Criterion) {
     let flat = Spectrum::flat(Band::k());
     let samples: Vec<usize> = (2..=930).collect();
     c.bench_function("Fig. 0 curve, 929 strokes", |b| {
-        b.iter(|| v2ref::normalization::deviation_curve(black_box(&flat), DX_UM, &samples).unwrap())
+        b.iter(|| {
+            v2ref::bias::normalization::deviation_curve(black_box(&flat), DX_UM, &samples).unwrap()
+        })
     });
     c.bench_function("Fresnel C, S at x = 0.9 and 3.7", |b| {
         b.iter(|| (fresnel_cs(black_box(0.9)), fresnel_cs(black_box(3.7))))

@@ -9,8 +9,9 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
-use v2ref::estimator::BinWindow;
-use v2ref::montecarlo::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
 use v2ref::noise::{example_interferogram, ExampleSetup, NoiseModel};
 
 const TRIALS: u64 = 1 << 16;
@@ -18,7 +19,7 @@ const TRIALS: u64 = 1 << 16;
 fn spec(noise: NoiseModel, window: BinWindow) -> NoisySpec {
     let ifg = example_interferogram(&ExampleSetup::appendix()).expect("the Appendix case");
     NoisySpec {
-        bins: window.bins(128, 0.5),
+        bins: window.bins(128, 0.5, &Spectrum::flat(Band::k())),
         modulated: ifg.modulated,
         continuum: ifg.continuum,
         noise,
@@ -35,10 +36,7 @@ fn throughput(c: &mut Criterion) {
         ("poisson", NoiseModel::photon()),
     ];
     for (name, noise) in cases {
-        for (wname, window) in [
-            ("all", BinWindow::All),
-            ("positive", BinWindow::PositiveHalf),
-        ] {
+        for (wname, window) in [("all", BinWindow::All), ("positive", BinWindow::Positive)] {
             let s = spec(noise, window);
             for threads in [1usize, 2] {
                 let id = format!("{name}/{wname}/threads{threads}");
@@ -65,16 +63,10 @@ fn throughput(c: &mut Criterion) {
     let ifg = example_interferogram(&ExampleSetup::appendix()).expect("the Appendix case");
     for (wname, window) in [
         ("all", BinWindow::All),
-        ("positive", BinWindow::PositiveHalf),
-        (
-            "band",
-            BinWindow::Band {
-                lo_per_um: 1.0 / 2.4,
-                hi_per_um: 0.5,
-            },
-        ),
+        ("positive", BinWindow::Positive),
+        ("band", BinWindow::Band),
     ] {
-        let est = WindowedEstimators::new(128, &window.bins(128, 0.5));
+        let est = WindowedEstimators::new(128, &window.bins(128, 0.5, &Spectrum::flat(Band::k())));
         let mut scratch = Vec::new();
         e.bench_function(wname, |b| {
             b.iter(|| black_box(est.raw(black_box(&ifg.modulated), &mut scratch)))

@@ -3,14 +3,14 @@
 //! the sampled and the integrating detector, and the sequence synthesis.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use v2ref::dispersion::SpectralPhase;
-use v2ref::observation::{Frequency, Observation};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
     simulate, synthesize_series, Detector, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
-use v2ref::turbulence::{PistonSpectrum, Turbulence};
 
 fn bench(c: &mut Criterion) {
     let turb = Turbulence::from_seeing(1.0, 2.2, 10.0, None).unwrap();

@@ -9,12 +9,12 @@
 //! dispersion, 40 µm scans sampled every 0.35 µm. Change the constants to
 //! yours.
 
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::{sampled_wide_band, wide_band, BinWindow};
-use v2ref::interferogram::Sampling;
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::formalism::estimator::{sampled_wide_band, wide_band, BinWindow};
+use v2ref::formalism::interferogram::Sampling;
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
 
 const WAVELENGTH_UM: f64 = 1.65;
 const BANDWIDTH_UM: f64 = 0.30;
@@ -38,7 +38,7 @@ pub fn main() -> v2ref::Result<()> {
         let dispersed = Observation::new(spectrum.clone(), source.clone(), at, dispersion.clone())?;
         let band = wide_band(&plain);
         let disp = wide_band(&dispersed);
-        let scan = sampled_wide_band(&dispersed, &sampling, BinWindow::PositiveHalf)?;
+        let scan = sampled_wide_band(&dispersed, &sampling, BinWindow::Positive)?;
         println!(
             "{:>8} {:>10.3} {:>9.5} | {:>+10.2e} {:>+10.2e} | {:>+10.2e} | {:>+10.2e} {:>+10.2e}",
             baseline_m,

@@ -13,11 +13,11 @@
 //! ## Quick start
 //!
 //! ```
-//! use v2ref::dispersion::SpectralPhase;
-//! use v2ref::estimator::wide_band;
-//! use v2ref::observation::{Frequency, Observation};
-//! use v2ref::source::Source;
-//! use v2ref::spectrum::{Band, Spectrum};
+//! use v2ref::formalism::phase::SpectralPhase;
+//! use v2ref::formalism::estimator::wide_band;
+//! use v2ref::formalism::observation::{Frequency, Observation};
+//! use v2ref::formalism::source::Source;
+//! use v2ref::formalism::spectrum::{Band, Spectrum};
 //!
 //! // A 43 mas uniform disk in the full K band (2.0–2.4 µm), at its first null.
 //! let k = Spectrum::flat(Band::new(2.2, 0.4)?);
@@ -58,7 +58,7 @@
 //! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/bias_bandwidth.rs` |
 //! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/properties.rs` |
 //! | §4 Fig. 2, V2 of a point source under dispersion (Fresnel closed form) | [`special::fresnel::point_source_v2_sq`], [`special::fresnel::fresnel_cs`] | `tests/bias_dispersion.rs` |
-//! | §4 fluoride-fibre example (ZBLAN, Gan 1995) | [`fiber::zblan_peak_to_peak_rad`] | `tests/bias_dispersion.rs` |
+//! | §4 fluoride-fibre example (ZBLAN, Gan 1995) | [`dispersion::zblan_peak_to_peak_rad`] | `tests/bias_dispersion.rs` |
 //! | §5 Fig. 3, finite scan: DFT path and eq. `eq:sampled_V` convolution path | [`finite_scan::bias`], [`finite_scan::Kernel`] | `tests/bias_finite_scan.rs` |
 //! | §6 Kolmogorov/von Kármán turbulence, r0 from seeing, differential-piston PSD | [`turbulence::Turbulence`], [`turbulence::PistonSpectrum`], [`turbulence::differential_piston_variance_from_structure_um2`] | `tests/turbulence.rs` |
 //! | §6 piston sequences, scans with piston, bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`], [`piston::FringeTable`] | `tests/piston.rs`, `tests/cli_piston.rs` |
@@ -81,34 +81,14 @@
 
 #![warn(missing_docs)]
 
-pub mod bandwidth;
-pub mod claims;
-pub mod dispersion;
-pub mod dynamic_range;
+pub mod bias;
 pub mod error;
-pub mod estimator;
-pub mod fiber;
-pub mod figure;
-pub mod figures;
-pub mod finite_scan;
-pub mod golden;
-pub mod integration;
-pub mod interferogram;
-pub mod line;
+pub mod formalism;
+pub mod math;
 pub mod montecarlo;
 pub mod noise;
-pub mod normalization;
-pub mod observation;
-pub mod oracle;
 pub mod piston;
-#[cfg(feature = "cli")]
-pub mod plot;
-pub mod quadrature;
-pub mod source;
-pub mod special;
-pub mod spectrum;
+pub mod reproduction;
 pub mod tolerance;
-pub mod turbulence;
-pub mod window_variance;
 
 pub use error::{Error, Result};

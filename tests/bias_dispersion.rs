@@ -4,13 +4,13 @@
 //! fluoride-glass dispersion helper.
 
 use proptest::prelude::*;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::{v1_sq, v2_sq};
-use v2ref::fiber;
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::special::fresnel::{fresnel_cs, point_source_v2_sq};
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::bias::dispersion;
+use v2ref::formalism::estimator::{v1_sq, v2_sq};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::math::special::fresnel::{fresnel_cs, point_source_v2_sq};
 
 /// Fresnel integrals are O(1) and computed to a few ulps; mpmath's
 /// 17-digit values are exact to 1e-17.
@@ -148,20 +148,20 @@ proptest! {
 #[test]
 fn glass_dispersion_identities() {
     // A constant index gives a phase linear in σ: no dispersion.
-    let d0 = fiber::dispersion_coefficient(|_| 1.5, 0.45, 1e4).unwrap();
+    let d0 = dispersion::dispersion_coefficient(|_| 1.5, 0.45, 1e4).unwrap();
     assert!(d0.abs() < 1e-4, "{d0}");
     // n = a + bσ: φ = 2πL(aσ + bσ²), D = 4πLb.
     let (b, l) = (0.01, 1e4);
-    let d = fiber::dispersion_coefficient(|s| 1.4 + b * s, 0.45, l).unwrap();
+    let d = dispersion::dispersion_coefficient(|s| 1.4 + b * s, 0.45, l).unwrap();
     let want = 4.0 * std::f64::consts::PI * l * b;
     assert!((d - want).abs() < 1e-8 * want, "{d} vs {want}");
     // Peak-to-peak scales linearly with the glass length.
     let (lo, hi) = (1.0 / 2.4, 1.0 / 2.0);
-    let p1 = fiber::zblan_peak_to_peak_rad(lo, hi, 1e4).unwrap();
-    let p2 = fiber::zblan_peak_to_peak_rad(lo, hi, 2e4).unwrap();
+    let p1 = dispersion::zblan_peak_to_peak_rad(lo, hi, 1e4).unwrap();
+    let p2 = dispersion::zblan_peak_to_peak_rad(lo, hi, 2e4).unwrap();
     assert!((p2 - 2.0 * p1).abs() < 1e-9 * p2);
     // ZBLAN's index near 2.2 µm is about 1.49 (Gan 1995).
-    let n = fiber::zblan_index(1.0 / 2.2);
+    let n = dispersion::zblan_index(1.0 / 2.2);
     assert!((1.48..1.50).contains(&n), "{n}");
-    assert!(fiber::dispersion_coefficient(|_| 1.5, -1.0, 1.0).is_err());
+    assert!(dispersion::dispersion_coefficient(|_| 1.5, -1.0, 1.0).is_err());
 }

@@ -4,13 +4,14 @@
 //! grows.
 
 use num_complex::Complex64;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::{dft, BinWindow};
-use v2ref::finite_scan::{self, Kernel, Method, DX_UM};
-use v2ref::interferogram::{sinc, Interferogram, Sampling};
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::bias::finite_scan::{self, Kernel, Method};
+use v2ref::formalism::estimator::{dft, BinWindow};
+use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::reproduction::cases::DX_UM;
 
 /// The two paths compute the same sum by different algebra; both
 /// quadratures are converged to ~1e-15 of the band integral, so the biases
@@ -192,9 +193,15 @@ fn long_scans_reproduce_the_spectral_estimators() {
 
 #[test]
 fn the_window_is_the_positive_half() {
-    assert_eq!(finite_scan::WINDOW, BinWindow::PositiveHalf);
-    assert_eq!(finite_scan::WINDOW.bins(4, 0.5), vec![1]);
-    assert_eq!(finite_scan::WINDOW.bins(7, 0.5), vec![1, 2, 3]);
+    assert_eq!(finite_scan::WINDOW, BinWindow::Positive);
+    assert_eq!(
+        finite_scan::WINDOW.bins(4, 0.5, &Spectrum::flat(Band::k())),
+        vec![1]
+    );
+    assert_eq!(
+        finite_scan::WINDOW.bins(7, 0.5, &Spectrum::flat(Band::k())),
+        vec![1, 2, 3]
+    );
     // sinc is the kernel's long-scan shape: Dirichlet/N → sinc(Nu) for small u.
     let n = 1000;
     let u = 0.0007;
@@ -204,7 +211,7 @@ fn the_window_is_the_positive_half() {
 
 #[test]
 fn the_stored_figure_shows_both_paths_agreeing() {
-    use v2ref::figure::Table;
+    use v2ref::reproduction::table::Table;
     let load = |name: &str| {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("golden")
@@ -215,7 +222,7 @@ fn the_stored_figure_shows_both_paths_agreeing() {
     let s_fine = v1.column("s").unwrap();
     let s_coarse = conv.column("s").unwrap();
     let mut compared = 0;
-    for stroke in finite_scan::STROKES_UM {
+    for stroke in v2ref::reproduction::cases::STROKES_UM {
         let name = |e: &str| format!("bias_{e}_{stroke}um");
         for (fine, est) in [(&v1, "v1"), (&v2, "v2")] {
             let a = fine.column(&name(est)).unwrap();

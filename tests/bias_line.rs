@@ -2,14 +2,14 @@
 //! bandwidth"): closed forms, limits, and the crate's composite-source path.
 
 use num_complex::Complex64;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::v2_sq;
-use v2ref::line::{
+use v2ref::bias::line::{
     channel_visibility, top_hat_closed_form, width_in_elements, Channel, LineCase, LineProfile,
 };
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::{Component, FluxProfile, Source};
-use v2ref::spectrum::Spectrum;
+use v2ref::formalism::estimator::v2_sq;
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::{Component, FluxProfile, Source};
+use v2ref::formalism::spectrum::Spectrum;
 
 #[test]
 fn paper_case_numbers() {

@@ -1,14 +1,14 @@
 //! The V2 normalization factor (paper, Fig. 0) and the integrating
 //! detector: identities, limits and an independent synthesis.
 
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::dft;
-use v2ref::integration;
-use v2ref::interferogram::{Interferogram, Sampling};
-use v2ref::normalization::{deviation_curve, riemann_deviation, threshold_stroke};
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::bias::integration;
+use v2ref::bias::normalization::{deviation_curve, riemann_deviation, threshold_stroke};
+use v2ref::formalism::estimator::dft;
+use v2ref::formalism::interferogram::{Interferogram, Sampling};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
 
 fn point(sp: &Spectrum) -> Observation {
     Observation::new(

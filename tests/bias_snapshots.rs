@@ -3,8 +3,9 @@
 
 use serde::Serialize;
 use std::path::Path;
-use v2ref::claims::{evaluate, Effort};
-use v2ref::figure::Table;
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::evaluate;
+use v2ref::reproduction::table::Table;
 
 /// Six significant digits: enough to see drift, stable across platforms.
 fn sig(x: f64) -> f64 {
@@ -62,7 +63,7 @@ fn figure_extrema() {
             let d = fig0.column(&c.name).unwrap();
             (
                 c.name.clone(),
-                v2ref::normalization::threshold_stroke(&strokes, &d, 0.002).map(sig),
+                v2ref::bias::normalization::threshold_stroke(&strokes, &d, 0.002).map(sig),
             )
         })
         .collect();
@@ -133,11 +134,11 @@ struct IntegrationRow {
 /// point source seen by the same detector.
 #[test]
 fn integration_vs_samples_per_fringe() {
-    use v2ref::dispersion::SpectralPhase;
-    use v2ref::integration;
-    use v2ref::observation::{Frequency, Observation};
-    use v2ref::source::Source;
-    use v2ref::spectrum::{Band, Spectrum};
+    use v2ref::bias::integration;
+    use v2ref::formalism::observation::{Frequency, Observation};
+    use v2ref::formalism::phase::SpectralPhase;
+    use v2ref::formalism::source::Source;
+    use v2ref::formalism::spectrum::{Band, Spectrum};
     let band = Spectrum::flat(Band::k());
     let obs = |source: Source, s: f64| {
         Observation::new(

@@ -1,7 +1,8 @@
 //! The claims ledger: the project's copy matches the shared ledger, every
 //! claim is answered honestly, and the foundation's claims hold.
 
-use v2ref::claims::{evaluate, ledger, Effort, Status};
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::{evaluate, ledger, Status};
 
 #[test]
 fn project_ledger_matches_the_shared_ledger() {
@@ -12,7 +13,7 @@ fn project_ledger_matches_the_shared_ledger() {
     };
     #[derive(serde::Deserialize)]
     struct L {
-        claim: Vec<v2ref::claims::ClaimSpec>,
+        claim: Vec<v2ref::reproduction::claims::ClaimSpec>,
     }
     let theirs: L = toml::from_str(&text).expect("shared ledger parses");
     let ours = ledger();
@@ -95,7 +96,7 @@ fn foundation_claims_are_computed() {
 
 #[test]
 fn dynamic_range_formula_holds_its_scaling_laws() {
-    use v2ref::dynamic_range::dynamic_range;
+    use v2ref::formalism::dynamic_range::dynamic_range;
     let a = dynamic_range(100.0, 1e-3, 0.0).unwrap();
     assert!((dynamic_range(400.0, 1e-3, 0.0).unwrap() / a - 2.0).abs() < 1e-14);
     assert!((dynamic_range(100.0, 2e-3, 0.0).unwrap() / a - 0.5).abs() < 1e-14);

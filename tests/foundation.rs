@@ -4,16 +4,17 @@
 
 use approx::assert_relative_eq;
 use num_complex::Complex64;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::{
-    dft, noise_bias, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band, BinWindow,
+use v2ref::formalism::estimator::{
+    all_bins, dft, noise_bias, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band,
+    BinWindow,
 };
-use v2ref::interferogram::{sinc, Interferogram, Sampling};
-use v2ref::observation::{Frequency, Observation};
-use v2ref::oracle::{interferogram_adaptive, naive_dft};
-use v2ref::quadrature::{gauss_kronrod_15, gauss_legendre, integrate, Tolerance};
-use v2ref::source::{Component, FluxProfile, Source};
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::oracle::{interferogram_adaptive, naive_dft};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::{Component, FluxProfile, Source};
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::math::quadrature::{gauss_kronrod_15, gauss_legendre, integrate, Tolerance};
 use v2ref::tolerance::SAMPLED_VS_SPECTRAL_ABS;
 use v2ref::Error;
 
@@ -138,7 +139,7 @@ fn monochromatic_band_gives_v1_equal_v2_equal_v_mono() {
         let exact = if z == 0.0 {
             1.0
         } else {
-            (2.0 * v2ref::special::bessel_j1(z) / z).abs()
+            (2.0 * v2ref::math::special::bessel_j1(z) / z).abs()
         };
         assert_relative_eq!(wb.v_mono, exact, max_relative = 1e-13);
         assert_relative_eq!(wb.v1, exact, max_relative = 1e-13);
@@ -319,7 +320,7 @@ fn fft_matches_the_naive_dft_and_the_appendix_identities() {
         assert!((a - b).norm() < 1e-11);
     }
     let n = samples.len() as f64;
-    let all = BinWindow::All.bins(samples.len(), 0.5);
+    let all = all_bins(samples.len());
     let raw = raw_estimates(&fast, &all);
     assert_relative_eq!(
         raw.v1_sq,
@@ -381,7 +382,7 @@ fn long_finely_sampled_scans_converge_to_the_spectral_estimators() {
                 let sampled = sampled_wide_band(
                     &obs,
                     &Sampling::new(n, 0.25, false).unwrap(),
-                    BinWindow::PositiveHalf,
+                    BinWindow::Positive,
                 )
                 .unwrap();
                 let err = (sampled.v1_sq - spectral.0)

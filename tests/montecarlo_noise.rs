@@ -2,10 +2,11 @@
 //! estimators against the FFT, Poisson samplers against the Poisson law.
 
 use approx::assert_relative_eq;
-use v2ref::estimator::{dft, raw_estimates, BinWindow};
-use v2ref::montecarlo::{unit_rng, Moments4, PoissonSampler, WindowedEstimators};
+use v2ref::formalism::estimator::{all_bins, band_bins, dft, positive_bins, raw_estimates};
+use v2ref::formalism::oracle::naive_dft;
+use v2ref::montecarlo::{unit_rng, RunningStats};
+use v2ref::noise::simulation::{PoissonSampler, WindowedEstimators};
 use v2ref::noise::{raw_moments_from_cumulants, NoiseModel};
-use v2ref::oracle::naive_dft;
 use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
 
 #[test]
@@ -16,7 +17,7 @@ fn moments4_matches_two_pass_and_merges() {
     let n = xs.len() as f64;
     let mean = xs.iter().sum::<f64>() / n;
     let c = |p: i32| xs.iter().map(|x| (x - mean).powi(p)).sum::<f64>();
-    let mut acc = Moments4::default();
+    let mut acc = RunningStats::default();
     xs.iter().for_each(|&x| acc.push(x));
     assert_relative_eq!(acc.mean, mean, max_relative = IDENTITY_REL);
     assert_relative_eq!(acc.m2, c(2), max_relative = IDENTITY_REL);
@@ -28,7 +29,7 @@ fn moments4_matches_two_pass_and_merges() {
     );
     assert_relative_eq!(acc.m4, c(4), max_relative = IDENTITY_REL);
     // merging two halves equals one pass
-    let (mut a, mut b) = (Moments4::default(), Moments4::default());
+    let (mut a, mut b) = (RunningStats::default(), RunningStats::default());
     xs[..337].iter().for_each(|&x| a.push(x));
     xs[337..].iter().for_each(|&x| b.push(x));
     a.merge(&b);
@@ -54,13 +55,9 @@ fn fast_windowed_estimators_match_the_fft() {
             .collect();
         let spec = dft(&x);
         let windows = vec![
-            BinWindow::All.bins(n, 0.5),
-            BinWindow::PositiveHalf.bins(n, 0.5),
-            BinWindow::Band {
-                lo_per_um: 0.4167,
-                hi_per_um: 0.5,
-            }
-            .bins(n, 0.5),
+            all_bins(n),
+            positive_bins(n),
+            band_bins(n, 0.5, 0.4167, 0.5),
             vec![0, 1, n - 1],
             vec![3],
             (2..n - 2).collect(),
@@ -142,7 +139,7 @@ fn poisson_samplers_follow_the_poisson_law() {
 
 #[test]
 fn noisy_spec_rejects_bad_input() {
-    use v2ref::montecarlo::{simulate_noisy, NoisySpec};
+    use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
     let spec = NoisySpec {
         modulated: vec![-20.0, 1.0],
         continuum: vec![10.0, 10.0],

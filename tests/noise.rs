@@ -3,15 +3,15 @@
 
 use approx::assert_relative_eq;
 use proptest::prelude::*;
-use v2ref::estimator::{dft, noise_bias, raw_estimates, BinWindow};
+use v2ref::formalism::estimator::{dft, noise_bias, positive_bins, raw_estimates};
+use v2ref::noise::window_variance::{
+    quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
+};
 use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
 use v2ref::tolerance::IDENTITY_REL;
-use v2ref::window_variance::{
-    quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
-};
 
 fn gauss(s: f64) -> NoiseModel {
     NoiseModel::detector(s).unwrap()
@@ -268,7 +268,7 @@ fn white_noise_window_factor_holds_only_without_signal() {
 
 #[test]
 fn positive_window_bins_match_the_estimator_module() {
-    let k = BinWindow::PositiveHalf.bins(16, 0.5);
+    let k = positive_bins(16);
     assert_eq!(k, (1..8).collect::<Vec<_>>());
 }
 

@@ -4,14 +4,15 @@
 //! run rejects the formula multiplied by 1.02 (and the printed formula where
 //! it is wrong).
 
-use v2ref::montecarlo::{sample_moments, simulate_noisy, Moments4, NoisySpec};
+use v2ref::montecarlo::RunningStats;
+use v2ref::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
+use v2ref::noise::window_variance::{
+    gaussian_cumulant4, quadratic_forms, two_sided_band_bins, window_stats,
+};
 use v2ref::noise::{
     appendix_stats, example_interferogram, published, raw_moment, ExampleSetup, Formula, NoiseModel,
 };
 use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
-use v2ref::window_variance::{
-    gaussian_cumulant4, quadratic_forms, two_sided_band_bins, window_stats,
-};
 
 /// Asserts `mc` within MC_SIGMAS·se of `f` and outside MC_SIGMAS·se of 1.02 f.
 fn check(what: &str, mc: f64, se: f64, f: f64) {
@@ -97,7 +98,7 @@ fn all_bins(
     samples: usize,
     t: u64,
     seed: u64,
-) -> (Vec<f64>, Vec<f64>, Moments4, Moments4) {
+) -> (Vec<f64>, Vec<f64>, RunningStats, RunningStats) {
     let ifg = example_interferogram(&ExampleSetup {
         samples,
         ..ExampleSetup::appendix()
@@ -308,7 +309,7 @@ fn windowed_variance_photon_third_and_fourth_cumulants() {
         })
         .collect();
     let (_, _, gauss_var) =
-        v2ref::window_variance::quadratic_form_moments(&a1, &ifg.modulated, &cum);
+        v2ref::noise::window_variance::quadratic_form_moments(&a1, &ifg.modulated, &cum);
     assert!(((r.v1_sq.variance() - gauss_var) / r.v1_sq.stderr_variance()).abs() > MC_SIGMAS);
 }
 

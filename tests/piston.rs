@@ -4,17 +4,18 @@
 //! centred all-bins V2), wind rescaling by simulation, determinism.
 
 use std::f64::consts::PI;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::interferogram::{sinc, Sampling, SpectralNodes};
-use v2ref::observation::{Frequency, Observation};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::formalism::interferogram::{sinc, Sampling, SpectralNodes};
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
     scan_samples, series_variance, simulate, synthesize_series, Detector, Estimate, FringeTable,
-    PistonReference, PistonRun, RunSize, ScanSetup, Window,
+    PistonReference, PistonRun, RunSize, ScanSetup,
 };
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
 use v2ref::tolerance::MC_SIGMAS;
-use v2ref::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::Error;
 
 fn obs(source: Source) -> Observation {
@@ -98,7 +99,7 @@ fn periodogram_matches_the_spectrum_within_its_standard_error() {
     let psd = |nu: f64| s.psd_um2_per_hz(nu);
     let (dt, m) = (1e-3, 1 << 21);
     let x = synthesize_series(&psd, dt, m, 7, 0).unwrap();
-    let spec = v2ref::estimator::dft(&x);
+    let spec = v2ref::formalism::estimator::dft(&x);
     let dnu = 1.0 / (m as f64 * dt);
     // P̂_k = |X_k|²/(M² Δν) has mean P(ν_k) and is exponential: average the
     // ratio over the bins from 0.02 to 100 Hz that avoid the cosine's zeros.
@@ -168,10 +169,10 @@ fn lag_structure_function_matches_the_continuous_spectrum() {
         };
         // Up to the sequence's Nyquist frequency, 50 Hz.
         let breaks: Vec<f64> = (0..=1591).map(|i| -12.0 + i as f64 * 0.01).collect();
-        let model = v2ref::quadrature::integrate_pieces(
+        let model = v2ref::math::quadrature::integrate_pieces(
             &integrand,
             &breaks,
-            v2ref::quadrature::Tolerance {
+            v2ref::math::quadrature::Tolerance {
                 abs: 0.0,
                 rel: 1e-9,
             },
@@ -210,7 +211,7 @@ fn fringe_table_matches_the_nodes_and_the_adaptive_oracle() {
         }
         assert!(worst < 1e-11, "table vs nodes {worst:e}");
         for x in [-41.3, -3.7, 0.0, 0.3, 12.9, 55.0] {
-            let slow = v2ref::oracle::fringe_adaptive(&o, x, None);
+            let slow = v2ref::formalism::oracle::fringe_adaptive(&o, x, None);
             assert!((table.fringe(x) - slow).abs() < 1e-10, "x = {x}");
         }
     }
@@ -333,7 +334,7 @@ fn centred_all_bins_v2_reads_one_sample_and_ignores_piston() {
     let mut setup = ScanSetup::paper(100.0);
     setup.reference = PistonReference::Centre;
     let r = run(&obs(Source::Point), &s, setup, Detector::Sampled, 300, 2, 0);
-    let all = r.window(Window::All);
+    let all = r.window(BinWindow::All);
     assert!(
         all.v2.mean.abs() < 1e-14 && all.v2.std < 1e-14,
         "{:?}",
@@ -350,7 +351,7 @@ fn centred_all_bins_v2_reads_one_sample_and_ignores_piston() {
         2,
         0,
     );
-    assert!(r.window(Window::All).v2.std > 1e-3);
+    assert!(r.window(BinWindow::All).v2.std > 1e-3);
 }
 
 #[test]
@@ -389,9 +390,9 @@ fn wind_speed_rescales_the_fringe_frequency_axis() {
     let z_mean = |x: Estimate, y: Estimate| (x.mean - y.mean) / x.mean_stderr.hypot(y.mean_stderr);
     let z_std = |x: Estimate, y: Estimate| (x.std - y.std) / x.std_stderr.hypot(y.std_stderr);
     let (wa, wb, wc) = (
-        a.window(Window::Positive),
-        b.window(Window::Positive),
-        c.window(Window::Positive),
+        a.window(BinWindow::Positive),
+        b.window(BinWindow::Positive),
+        c.window(BinWindow::Positive),
     );
     for (x, y) in [(wa.v1, wb.v1), (wa.v2, wb.v2)] {
         assert!(z_mean(x, y).abs() < MC_SIGMAS, "bias z {}", z_mean(x, y));

@@ -1,7 +1,8 @@
 //! Every `piston.*` claim is computed (no `pending`), by the code path the
 //! user runs, at the quick effort; errata carry both values.
 
-use v2ref::claims::{evaluate, Effort, Status};
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::{evaluate, Status};
 
 #[test]
 fn every_piston_claim_is_answered() {

@@ -2,7 +2,7 @@
 //! error naming the line, and never panics on arbitrary input.
 
 use proptest::prelude::*;
-use v2ref::spectrum::Spectrum;
+use v2ref::formalism::spectrum::Spectrum;
 use v2ref::Error;
 
 fn reason(text: &str) -> String {

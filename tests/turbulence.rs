@@ -3,7 +3,7 @@
 //! variance two independent ways, and the spectrum's asymptotes and corners.
 
 use std::f64::consts::PI;
-use v2ref::turbulence::{
+use v2ref::piston::turbulence::{
     differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
     r0_from_seeing_m, structure_coefficient, transverse_integral, PistonSpectrum, Turbulence,
 };
@@ -183,10 +183,10 @@ fn variance_is_the_integral_of_the_temporal_spectrum() {
     while *breaks.last().unwrap() < hi.ln() {
         breaks.push(breaks.last().unwrap() + 0.01);
     }
-    let body = v2ref::quadrature::integrate_pieces(
+    let body = v2ref::math::quadrature::integrate_pieces(
         &integrand,
         &breaks,
-        v2ref::quadrature::Tolerance {
+        v2ref::math::quadrature::Tolerance {
             abs: 0.0,
             rel: 1e-10,
         },

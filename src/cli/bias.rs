@@ -4,7 +4,7 @@ use super::common::{ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::estimator::{sampled_wide_band, wide_band, Pair, WideBand};
+use v2ref::formalism::estimator::{sampled_wide_band, wide_band, Pair, WideBand};
 use v2ref::Result;
 
 /// Flags of `bias`.
@@ -51,14 +51,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let wb = wide_band(&obs);
     let finite_scan = if args.finite_scan || args.sampling.stroke_um.is_some() {
         let sampling = args.sampling.sampling()?;
-        let window = args.sampling.window(&obs.spectrum);
+        let window = args.sampling.bins;
         let Pair { v1_sq, v2_sq } = sampled_wide_band(&obs, &sampling, window)?;
         Some(FiniteScan {
             stroke_um: sampling.stroke_um(),
             samples: sampling.samples(),
             dx_um: sampling.dx_um(),
             integrating: sampling.integrating(),
-            bins: format!("{:?}", args.sampling.bins).to_lowercase(),
+            bins: window.name().to_owned(),
             v1_sq,
             v2_sq,
             v1: v1_sq.sqrt(),

@@ -2,7 +2,8 @@
 
 use super::print_json;
 use std::process::ExitCode;
-use v2ref::claims::{evaluate, Effort};
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::evaluate;
 use v2ref::Result;
 
 /// Flags of `claims`.

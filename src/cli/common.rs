@@ -3,12 +3,12 @@
 use super::finite_f64;
 use clap::ValueEnum;
 use std::path::PathBuf;
-use v2ref::dispersion::SpectralPhase;
-use v2ref::estimator::BinWindow;
-use v2ref::interferogram::Sampling;
-use v2ref::observation::{Frequency, Observation};
-use v2ref::source::Source;
-use v2ref::spectrum::{Band, Spectrum};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::formalism::interferogram::Sampling;
+use v2ref::formalism::observation::{Frequency, Observation};
+use v2ref::formalism::phase::SpectralPhase;
+use v2ref::formalism::source::Source;
+use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::Result;
 
 /// Source model.
@@ -18,17 +18,6 @@ pub enum SourceKind {
     Point,
     /// Uniform disk of diameter --diameter-mas.
     Ud,
-}
-
-/// Fourier bins an estimator sums.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum BinsKind {
-    /// All N bins (the paper's Appendix).
-    All,
-    /// Positive frequencies 1 … N/2 − 1.
-    Positive,
-    /// Positive-frequency bins inside the band.
-    Band,
 }
 
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
@@ -112,7 +101,7 @@ pub struct SamplingArgs {
     pub integrating: bool,
     /// Fourier bins the estimators sum.
     #[arg(long, value_enum, default_value = "positive")]
-    pub bins: BinsKind,
+    pub bins: BinWindow,
 }
 
 impl SamplingArgs {
@@ -121,21 +110,6 @@ impl SamplingArgs {
         match self.stroke_um {
             Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
             None => Sampling::new(self.samples, self.dx_um, self.integrating),
-        }
-    }
-
-    /// The bin window these flags describe, for the band of `spectrum`.
-    pub fn window(&self, spectrum: &Spectrum) -> BinWindow {
-        match self.bins {
-            BinsKind::All => BinWindow::All,
-            BinsKind::Positive => BinWindow::PositiveHalf,
-            BinsKind::Band => {
-                let (lo, hi) = spectrum.support();
-                BinWindow::Band {
-                    lo_per_um: lo,
-                    hi_per_um: hi,
-                }
-            }
         }
     }
 }

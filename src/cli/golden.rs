@@ -9,7 +9,8 @@ use super::print_json;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use v2ref::{golden, Error, Result};
+use v2ref::reproduction::golden;
+use v2ref::{Error, Result};
 
 /// Flags of `golden`.
 #[derive(Debug, clap::Args)]

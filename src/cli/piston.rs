@@ -1,16 +1,17 @@
 //! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
 //! frequencies (paper, Section "Effect of differential piston").
 
-use super::common::{BinsKind, ObservationArgs, SamplingArgs};
+use super::common::{ObservationArgs, SamplingArgs};
 use super::{finite_f64, print_json, progress_bar};
 use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::error::{Error, Result};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
-    simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, Window, DEFAULT_SUB_SAMPLES,
+    simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
-use v2ref::turbulence::{PistonSpectrum, Turbulence};
 
 /// Where the fringe packet sits in each scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -103,7 +104,7 @@ struct Answer {
     results: Vec<Row>,
 }
 
-fn row(run: &PistonRun, window: Window) -> Row {
+fn row(run: &PistonRun, window: BinWindow) -> Row {
     let w = run.window(window);
     Row {
         fringe_hz: run.fringe_hz,
@@ -159,11 +160,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Detector::Sampled
     };
-    let window = match args.sampling.bins {
-        BinsKind::All => Window::All,
-        BinsKind::Positive => Window::Positive,
-        BinsKind::Band => Window::Band,
-    };
+    let window = args.sampling.bins;
     let reference = match args.reference {
         ReferenceKind::Mean => PistonReference::Mean,
         ReferenceKind::Centre => PistonReference::Centre,

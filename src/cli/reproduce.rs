@@ -7,7 +7,8 @@ use super::{print_json, progress_bar};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::claims::{evaluate, status_counts, to_markdown, ClaimResult, Effort};
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::{evaluate, status_counts, to_markdown, ClaimResult};
 use v2ref::{Error, Result};
 
 /// Flags of `reproduce`.
@@ -73,8 +74,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
-    let (claims, files) =
-        v2ref::golden::replace_dir_atomically(&args.out, |dir| build(dir, effort, args.quiet))?;
+    let (claims, files) = v2ref::reproduction::golden::replace_dir_atomically(&args.out, |dir| {
+        build(dir, effort, args.quiet)
+    })?;
     if args.json {
         print_json(&Answer {
             out: args.out.display().to_string(),
@@ -97,7 +99,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 /// files written (relative names).
 fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, Vec<String>)> {
     let bar = progress_bar(3, quiet, "figures");
-    let figures = v2ref::figures::all(effort)?;
+    let figures = v2ref::reproduction::figures::all(effort)?;
     bar.inc(1);
     bar.set_message("plots");
     let generator = format!(
@@ -108,10 +110,10 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
             ""
         }
     );
-    let mut files = v2ref::golden::write_figure_files(dir, &figures, &generator)?;
+    let mut files = v2ref::reproduction::golden::write_figure_files(dir, &figures, &generator)?;
     for fig in &figures {
         for table in &fig.tables {
-            let svg = v2ref::plot::table_svg(fig, table)?;
+            let svg = v2ref::reproduction::plot::table_svg(fig, table)?;
             write(dir, &format!("{}.svg", table.name), &svg, &mut files)?;
         }
     }

@@ -9,10 +9,10 @@ use super::snr::{NoiseArgs, MAX_WINDOW_SAMPLES};
 use super::{print_json, print_rows, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::estimator::{dft, raw_estimates};
-use v2ref::montecarlo::{simulate_noisy, EstimatorSummary, NoisySpec};
+use v2ref::formalism::estimator::{dft, raw_estimates};
+use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
+use v2ref::noise::window_variance::window_stats;
 use v2ref::noise::{window_bias, Formula};
-use v2ref::window_variance::window_stats;
 use v2ref::{Error, Result};
 
 /// Largest number of trials accepted.
@@ -99,8 +99,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let bar = progress_bar(args.trials, args.quiet, "simulate");
     let run = simulate_noisy(&spec, args.trials, args.seed, args.threads, &|t| bar.inc(t))?;
     bar.finish_and_clear();
-    let v1 = EstimatorSummary::normalized(&run.v1_sq, bias.v1_sq, calib.v1_sq);
-    let v2 = EstimatorSummary::normalized(&run.v2_sq, bias.v2_sq, calib.v2_sq);
+    // (x − bias)/calibration, exactly, on the accumulated moments.
+    let normalized = |raw: &v2ref::montecarlo::RunningStats, bias: f64, scale: f64| {
+        raw.affine(1.0 / scale, -bias / scale).summary()
+    };
+    let v1 = normalized(&run.v1_sq, bias.v1_sq, calib.v1_sq);
+    let v2 = normalized(&run.v2_sq, bias.v2_sq, calib.v2_sq);
     let true_bias = window_bias(
         Formula::Exact,
         &noise,

@@ -8,11 +8,11 @@ use super::{finite_f64, print_json, print_rows};
 use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::interferogram::Interferogram;
+use v2ref::formalism::interferogram::Interferogram;
+use v2ref::noise::window_variance::{window_stats, WindowStats};
 use v2ref::noise::{
     appendix_stats, paper_window_factor, scaled_interferogram, Formula, NoiseModel,
 };
-use v2ref::window_variance::{window_stats, WindowStats};
 use v2ref::Result;
 
 /// Largest N for which the exact windowed variance (N × N matrices) is computed.
@@ -71,7 +71,7 @@ impl NoiseArgs {
     ) -> Result<(
         Interferogram,
         Interferogram,
-        v2ref::interferogram::Sampling,
+        v2ref::formalism::interferogram::Sampling,
         Vec<usize>,
         f64,
     )> {
@@ -80,7 +80,7 @@ impl NoiseArgs {
         v2ref::error::non_negative("photons", self.photons)?;
         let ifg = scaled_interferogram(&o, &s, self.photons, self.visibility)?;
         let cal = scaled_interferogram(&o.calibrator(), &s, self.photons, 1.0)?;
-        let bins = sampling.window(&o.spectrum).bins(s.samples(), s.dx_um());
+        let bins = sampling.bins.bins(s.samples(), s.dx_um(), &o.spectrum);
         Ok((ifg, cal, s, bins, o.spectrum.width_per_um()))
     }
 }

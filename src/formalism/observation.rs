@@ -1,0 +1,84 @@
+//! One wide-band observation: spectrum, source, baseline and spectral phase.
+//!
+//! The spatial frequency of a wide-band measurement is `S = B σ_eff`
+//! (`CONVENTIONS.md`): a user may give either S (cycles/arcsec) or B (m);
+//! the other follows from the spectrum's effective wavenumber.
+
+use crate::error::{self, Result};
+use crate::formalism::phase::SpectralPhase;
+use crate::formalism::source::Source;
+use crate::formalism::spectrum::{Spectrum, CPAS_PER_M_PER_INV_UM};
+use num_complex::Complex64;
+
+/// Where on the (u, v) plane: a spatial frequency or a baseline.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Frequency {
+    /// Spatial frequency at σ_eff, cycles/arcsec (≥ 0).
+    SpatialFreqCpas(f64),
+    /// Projected baseline, m (≥ 0).
+    BaselineM(f64),
+}
+
+/// Everything that sets the noise-free fringe spectrum `W(σ) V(σ) e^{iφ(σ)}`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Observation {
+    /// S(σ)F(σ).
+    pub spectrum: Spectrum,
+    /// The source.
+    pub source: Source,
+    /// Projected baseline B, m.
+    pub baseline_m: f64,
+    /// φ(σ) (dispersion), rad.
+    pub phase: SpectralPhase,
+}
+
+impl Observation {
+    /// An observation of `source` through `spectrum` at `frequency`, with
+    /// spectral phase `phase`.
+    pub fn new(
+        spectrum: Spectrum,
+        source: Source,
+        frequency: Frequency,
+        phase: SpectralPhase,
+    ) -> Result<Observation> {
+        let baseline_m = match frequency {
+            Frequency::SpatialFreqCpas(s) => {
+                error::non_negative("spatial-freq-cpas", s)?;
+                s / (spectrum.sigma_eff_per_um() * CPAS_PER_M_PER_INV_UM)
+            }
+            Frequency::BaselineM(b) => error::non_negative("baseline-m", b)?,
+        };
+        Ok(Observation {
+            spectrum,
+            source,
+            baseline_m,
+            phase,
+        })
+    }
+
+    /// `S = B σ_eff`, cycles/arcsec.
+    pub fn spatial_freq_cpas(&self) -> f64 {
+        self.baseline_m * self.spectrum.sigma_eff_per_um() * CPAS_PER_M_PER_INV_UM
+    }
+
+    /// The complex fringe amplitude per unit W at σ: `V(σ) e^{iφ(σ)}`.
+    pub fn fringe_amplitude(&self, sigma_per_um: f64) -> Complex64 {
+        let v = self.source.visibility(sigma_per_um, self.baseline_m);
+        if self.phase.is_zero() {
+            v
+        } else {
+            v * Complex64::from_polar(1.0, self.phase.at(sigma_per_um))
+        }
+    }
+
+    /// The same observation of an unresolved source with no spectral phase:
+    /// the calibrator that normalizes sampled estimators.
+    pub fn calibrator(&self) -> Observation {
+        Observation {
+            spectrum: self.spectrum.clone(),
+            source: Source::Point,
+            baseline_m: self.baseline_m,
+            phase: SpectralPhase::zero(),
+        }
+    }
+}

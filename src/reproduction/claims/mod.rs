@@ -1,0 +1,260 @@
+//! The claims ledger: every quantitative statement of the paper
+//! (`paper/claims.toml`, a copy of the shared ledger with the same ids and
+//! printed values), computed by this crate and given a status.
+//!
+//! Each area of the paper has its own provider module returning the claims
+//! it computes; [`evaluate`] merges them with the ledger, and any claim no
+//! provider answers is `pending`.
+
+use crate::reproduction::cases::Effort;
+use serde::{Deserialize, Serialize};
+
+mod bias;
+mod foundation;
+mod noise;
+mod piston;
+
+/// The ledger as shipped in the crate.
+pub const LEDGER_TOML: &str = include_str!("../../../paper/claims.toml");
+
+/// One entry of the ledger.
+#[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
+pub struct ClaimSpec {
+    /// Stable id, `area.name`.
+    pub id: String,
+    /// The paper's section.
+    pub section: String,
+    /// closed-form | numerical | monte-carlo | qualitative.
+    pub kind: String,
+    /// Unit of `paper` and of the computed value.
+    pub unit: String,
+    /// Paraphrase of the statement.
+    pub statement: String,
+    /// The printed number, where there is one.
+    pub paper: Option<f64>,
+    /// Half-width of the paper's rounding, absolute, in `unit`.
+    pub tol: Option<f64>,
+}
+
+#[derive(Deserialize)]
+struct Ledger {
+    claim: Vec<ClaimSpec>,
+}
+
+/// Parses the ledger shipped with the crate.
+pub fn ledger() -> Vec<ClaimSpec> {
+    // The ledger is a compile-time constant checked by a test; a parse
+    // failure is a build defect, not user input.
+    toml::from_str::<Ledger>(LEDGER_TOML)
+        .expect("paper/claims.toml is valid")
+        .claim
+}
+
+/// A claim's verdict (listed in the header of `paper/claims.toml`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Computed, within the paper's rounding.
+    Reproduced,
+    /// Computed, outside the rounding; the note says why.
+    Differs,
+    /// The paper's statement is wrong; the note gives the right value.
+    Erratum,
+    /// A statement without a number; the note gives the computed evidence.
+    Qualitative,
+    /// Needs data the project cannot have; the note says which.
+    Unavailable,
+    /// Its computation failed; the note carries the error.
+    Failed,
+    /// Not computed yet.
+    Pending,
+}
+
+impl Status {
+    /// `Reproduced` if `|computed − paper| ≤ tol`, else `Differs`.
+    pub fn compare(paper: f64, tol: f64, computed: f64) -> Status {
+        if (computed - paper).abs() <= tol {
+            Status::Reproduced
+        } else {
+            Status::Differs
+        }
+    }
+
+    /// The lowercase name.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Status::Reproduced => "reproduced",
+            Status::Differs => "differs",
+            Status::Erratum => "erratum",
+            Status::Qualitative => "qualitative",
+            Status::Unavailable => "unavailable",
+            Status::Failed => "failed",
+            Status::Pending => "pending",
+        }
+    }
+}
+
+/// What a provider computed for one claim.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Computed {
+    /// The ledger id.
+    pub id: &'static str,
+    /// The computed value in the ledger's unit (None for statements without one).
+    pub value: Option<f64>,
+    /// The verdict.
+    pub status: Status,
+    /// The evidence, in words and numbers.
+    pub note: String,
+    /// For errata: the value the paper's printed formula gives.
+    pub published: Option<f64>,
+    /// For errata: the correct value.
+    pub exact: Option<f64>,
+}
+
+impl Computed {
+    /// A numeric claim judged against the ledger's paper value and rounding.
+    pub fn numeric(
+        spec: &ClaimSpec,
+        id: &'static str,
+        value: f64,
+        note: impl Into<String>,
+    ) -> Computed {
+        let status = match (spec.paper, spec.tol) {
+            (Some(p), Some(t)) => Status::compare(p, t, value),
+            _ => Status::Qualitative,
+        };
+        Computed {
+            id,
+            value: Some(value),
+            status,
+            note: note.into(),
+            published: None,
+            exact: None,
+        }
+    }
+
+    /// A claim whose computation failed with `error`: status
+    /// [`Status::Failed`], the error in the note (never silently `pending`).
+    pub fn failed(id: &'static str, error: &crate::Error) -> Computed {
+        Computed::with_status(
+            id,
+            None,
+            Status::Failed,
+            format!("computation failed: {error}"),
+        )
+    }
+
+    /// A claim with an explicit status.
+    pub fn with_status(
+        id: &'static str,
+        value: Option<f64>,
+        status: Status,
+        note: impl Into<String>,
+    ) -> Computed {
+        Computed {
+            id,
+            value,
+            status,
+            note: note.into(),
+            published: None,
+            exact: None,
+        }
+    }
+}
+
+/// One row of the `claims` answer (the CLI contract's fields).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct ClaimResult {
+    /// Ledger id.
+    pub id: String,
+    /// The paper's printed value.
+    pub paper: Option<f64>,
+    /// The computed value.
+    pub computed: Option<f64>,
+    /// Unit.
+    pub unit: String,
+    /// Verdict.
+    pub status: Status,
+    /// Evidence.
+    pub note: String,
+    /// Value from the formula as printed (errata only).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub published: Option<f64>,
+    /// Correct value (errata only).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub exact: Option<f64>,
+}
+
+/// Computes every claim of the ledger, in ledger order.
+pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
+    let specs = ledger();
+    let find = |id: &str| specs.iter().find(|s| s.id == id);
+    let mut computed: Vec<Computed> = Vec::new();
+    computed.extend(foundation::claims(&find));
+    computed.extend(noise::claims(&find, effort));
+    computed.extend(bias::claims(&find, effort));
+    computed.extend(piston::claims(&find, effort));
+    specs
+        .iter()
+        .map(|spec| {
+            let c = computed.iter().find(|c| c.id == spec.id);
+            ClaimResult {
+                id: spec.id.clone(),
+                paper: spec.paper,
+                computed: c.and_then(|c| c.value),
+                unit: spec.unit.clone(),
+                status: c.map_or(Status::Pending, |c| c.status),
+                note: c.map_or_else(
+                    || "not computed yet: the issue that computes it is open".to_owned(),
+                    |c| c.note.clone(),
+                ),
+                published: c.and_then(|c| c.published),
+                exact: c.and_then(|c| c.exact),
+            }
+        })
+        .collect()
+}
+
+/// Looks a spec up by id; providers receive one of these.
+pub type Find<'a> = dyn Fn(&str) -> Option<&'a ClaimSpec> + 'a;
+
+/// The claims table as Markdown: one row per claim with the paper's value,
+/// the computed value, the unit, the status and the evidence.
+pub fn to_markdown(results: &[ClaimResult]) -> String {
+    let fmt = |v: Option<f64>| v.map_or_else(|| "–".to_owned(), |x| format!("{x:.6}"));
+    let mut out = String::from(
+        "| claim | paper | computed | unit | status | evidence |\n|---|---:|---:|---|---|---|\n",
+    );
+    for r in results {
+        let mut note = r.note.replace('|', "\\|").replace('\n', " ");
+        if let (Some(p), Some(e)) = (r.published, r.exact) {
+            note = format!("published formula: {p:.6}; exact: {e:.6}. {note}");
+        }
+        out.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} | {} |\n",
+            r.id,
+            fmt(r.paper),
+            fmt(r.computed),
+            r.unit,
+            r.status.as_str(),
+            note
+        ));
+    }
+    out
+}
+
+/// How many claims have each status, in the order of [`Status`].
+pub fn status_counts(results: &[ClaimResult]) -> Vec<(Status, usize)> {
+    [
+        Status::Reproduced,
+        Status::Differs,
+        Status::Erratum,
+        Status::Qualitative,
+        Status::Unavailable,
+        Status::Failed,
+        Status::Pending,
+    ]
+    .into_iter()
+    .map(|s| (s, results.iter().filter(|r| r.status == s).count()))
+    .collect()
+}

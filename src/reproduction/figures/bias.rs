@@ -1,0 +1,387 @@
+//! Figures 0 to 3 of the paper: the noise-free bias curves.
+//!
+//! - `fig0`: the V2 normalization factor against OPD stroke
+//!   ([`crate::bias::normalization`]);
+//! - `fig1`: V1 − V_mono and V2 − V_mono of a 43 mas uniform disk at
+//!   2.2 µm for flat bands 12.5 to 400 nm wide ([`crate::bias::bandwidth`]);
+//! - `fig2`: V2 − V_mono of the same disk in the 400 nm band under 1, 1.5
+//!   and 2 rad of quadratic dispersion, and V2 of a point source against
+//!   dispersion, numerical and closed form ([`crate::math::special::fresnel`]);
+//! - `fig3`: the finite-scan bias of V1 and V2 for strokes 256 to 2 µm
+//!   ([`crate::bias::finite_scan`]), by the DFT path, checked by the convolution
+//!   path, and the ABCD case.
+//!
+//! Each curve is computed point by point in parallel (rayon); the points
+//! are independent and collected in order, so the numbers do not depend on
+//! the number of threads.
+
+use crate::bias::bandwidth;
+use crate::bias::finite_scan::{self, Kernel, Method};
+use crate::bias::normalization;
+use crate::error::Result;
+use crate::formalism::estimator::{v2_sq, wide_band};
+use crate::formalism::interferogram::Sampling;
+use crate::formalism::observation::{Frequency, Observation};
+use crate::formalism::phase::SpectralPhase;
+use crate::formalism::source::{uniform_disk_visibility, Source};
+use crate::formalism::spectrum::{Band, Spectrum};
+use crate::math::special::fresnel::point_source_v2_sq;
+use crate::reproduction::cases::Effort;
+use crate::reproduction::cases::{fig1_step, fig3_check_step, fig3_step};
+use crate::reproduction::table::{Column, Figure, Table};
+use rayon::prelude::*;
+use serde_json::json;
+
+use crate::reproduction::cases::{ABCD_DX_UM, DX_UM, STROKES_UM};
+use crate::reproduction::cases::{BANDWIDTHS_NM, DIAMETER_MAS, S_MAX_CPAS, WAVELENGTH_UM};
+
+/// Fig. 2 dispersions, peak-to-peak rad.
+pub const DISPERSIONS_RAD: [f64; 3] = [1.0, 1.5, 2.0];
+/// Fig. 0: largest number of samples (a stroke of 511.5 µm).
+pub const FIG0_MAX_SAMPLES: usize = 930;
+/// Fig. 0: the smooth band edge shown, µm⁻¹ (raised-cosine ramp width).
+pub const FIG0_EDGE_PER_UM: f64 = 0.02;
+/// Fig. 0: spectral indices shown (S F ∝ σ^index).
+pub const FIG0_INDICES: [f64; 3] = [-2.0, 2.0, 4.0];
+
+use crate::reproduction::cases::s_grid;
+
+fn k_band() -> Spectrum {
+    Spectrum::flat(Band::k())
+}
+
+fn disk() -> Source {
+    Source::UniformDisk {
+        diameter_mas: DIAMETER_MAS,
+    }
+}
+
+/// Column-name label of a number: 12.5 → "12p5".
+fn label(x: f64) -> String {
+    let s = format!("{x}");
+    s.replace('.', "p")
+}
+
+/// The figures of this area.
+pub(super) fn figures(effort: Effort) -> Result<Vec<Figure>> {
+    Ok(vec![fig0()?, fig1(effort)?, fig2(effort)?, fig3(effort)?])
+}
+
+/// Fig. 0.
+pub fn fig0() -> Result<Figure> {
+    let samples: Vec<usize> = (2..=FIG0_MAX_SAMPLES).collect();
+    let strokes: Vec<f64> = samples.iter().map(|&n| n as f64 * DX_UM).collect();
+    let flat = k_band();
+    let mut columns = vec![
+        Column::new("stroke", "um"),
+        Column::new("samples", ""),
+        Column::new("dev_v2_flat", ""),
+        Column::new("dev_v2sq_flat", ""),
+    ];
+    let mut data: Vec<Vec<f64>> =
+        vec![strokes.clone(), samples.iter().map(|&n| n as f64).collect()];
+    let dev_flat = normalization::deviation_curve(&flat, DX_UM, &samples)?;
+    data.push(dev_flat.clone());
+    data.push(
+        dev_flat
+            .iter()
+            .map(|d| (1.0 - (1.0 - d) * (1.0 - d)).abs())
+            .collect(),
+    );
+    for idx in FIG0_INDICES {
+        let sp = Spectrum::power_law(Band::k(), idx)?;
+        columns.push(Column::new(&format!("dev_v2_index_{}", label(idx)), ""));
+        data.push(normalization::deviation_curve(&sp, DX_UM, &samples)?);
+    }
+    let smooth = Spectrum::smooth_top_hat(Band::k(), FIG0_EDGE_PER_UM)?;
+    columns.push(Column::new("dev_v2_smooth_edges", ""));
+    data.push(normalization::deviation_curve(&smooth, DX_UM, &samples)?);
+    columns.push(Column::new("dev_riemann_flat", ""));
+    data.push(normalization::riemann_deviation(&flat, DX_UM, &samples)?);
+    Ok(Figure {
+        id: "fig0".into(),
+        caption: "Fig. 0 (fig:figure_0): |V2 normalized - V2 unnormalized| for a 100% visibility against OPD stroke, K band (2.0-2.4 um). dev_v2_* = |1 - u|, u the V2 of a point source from the positive-frequency bins without the normalization factor; dev_v2sq_flat = |1 - u^2| (the squared estimator); dev_riemann_flat = |1 - sum_k W(k dsigma) dsigma| (the factor read as a Riemann sum of the unconvolved W). The paper's G5 III spectrum is not available.".into(),
+        monte_carlo: false,
+        parameters: json!({
+            "band_um": [2.0, 2.4],
+            "dx_um": DX_UM,
+            "samples": [2, FIG0_MAX_SAMPLES],
+            "bins": "positive frequencies k = 1 .. ceil(N/2)-1",
+            "spectra": {
+                "flat": "S F constant in wavenumber",
+                "index": FIG0_INDICES,
+                "smooth_edges_per_um": FIG0_EDGE_PER_UM,
+            },
+            "threshold": 0.002,
+        }),
+        tables: vec![table("fig0_normalization", columns, data)],
+    })
+}
+
+/// Builds a table from columns of equal length.
+fn table(name: &str, columns: Vec<Column>, data: Vec<Vec<f64>>) -> Table {
+    let rows = (0..data.first().map_or(0, Vec::len))
+        .map(|i| data.iter().map(|c| c[i]).collect())
+        .collect();
+    Table {
+        name: name.into(),
+        columns,
+        rows,
+    }
+}
+
+/// Fig. 1.
+pub fn fig1(effort: Effort) -> Result<Figure> {
+    let grid = s_grid(fig1_step(effort));
+    let v_mono: Vec<f64> = grid
+        .iter()
+        .map(|&s| uniform_disk_visibility(DIAMETER_MAS, s).abs())
+        .collect();
+    let mut cols1 = vec![Column::new("s", "cycles/arcsec"), Column::new("v_mono", "")];
+    let mut cols2 = cols1.clone();
+    let mut d1 = vec![grid.clone(), v_mono.clone()];
+    let mut d2 = d1.clone();
+    for bw in BANDWIDTHS_NM {
+        let sp = Spectrum::flat(Band::new(WAVELENGTH_UM, bw * 1e-3)?);
+        let curve: Vec<_> = grid
+            .par_iter()
+            .map(|&s| bandwidth::curve(&sp, &disk(), &SpectralPhase::zero(), &[s]).map(|v| v[0]))
+            .collect::<Result<_>>()?;
+        cols1.push(Column::new(&format!("v1_minus_vmono_{}nm", label(bw)), ""));
+        cols2.push(Column::new(&format!("v2_minus_vmono_{}nm", label(bw)), ""));
+        d1.push(curve.iter().map(|w| w.v1 - w.v_mono).collect());
+        d2.push(curve.iter().map(|w| w.v2 - w.v_mono).collect());
+    }
+    Ok(Figure {
+        id: "fig1".into(),
+        caption: "Fig. 1 (fig:figure_1): wide-band V1 and V2 minus the monochromatic visibility |2J1(pi theta S)/(pi theta S)| of a 43 mas uniform disk, flat bands centred on 2.2 um, 12.5 to 400 nm wide, infinite scan, S = B sigma_eff.".into(),
+        monte_carlo: false,
+        parameters: json!({
+            "diameter_mas": DIAMETER_MAS,
+            "wavelength_um": WAVELENGTH_UM,
+            "bandwidths_nm": BANDWIDTHS_NM,
+            "spectrum": "flat in wavenumber",
+            "s_step_cpas": fig1_step(effort),
+            "s_max_cpas": S_MAX_CPAS,
+            "scan": "infinite",
+        }),
+        tables: vec![table("fig1_v1", cols1, d1), table("fig1_v2", cols2, d2)],
+    })
+}
+
+/// Fig. 2.
+pub fn fig2(effort: Effort) -> Result<Figure> {
+    let grid = s_grid(fig1_step(effort));
+    let band = k_band();
+    let v_mono: Vec<f64> = grid
+        .iter()
+        .map(|&s| uniform_disk_visibility(DIAMETER_MAS, s).abs())
+        .collect();
+    let mut cols = vec![Column::new("s", "cycles/arcsec"), Column::new("v_mono", "")];
+    let mut data = vec![grid.clone(), v_mono.clone()];
+    let mut cal_cols = Vec::new();
+    let mut cal_data = Vec::new();
+    for pp in std::iter::once(0.0).chain(DISPERSIONS_RAD) {
+        let phase = SpectralPhase::dispersion_peak_to_peak(&band, pp)?;
+        let point = Observation::new(
+            band.clone(),
+            Source::Point,
+            Frequency::SpatialFreqCpas(0.0),
+            phase.clone(),
+        )?;
+        let v2_point = v2_sq(&point).sqrt();
+        let v2: Vec<f64> = grid
+            .par_iter()
+            .map(|&s| {
+                Observation::new(
+                    band.clone(),
+                    disk(),
+                    Frequency::SpatialFreqCpas(s),
+                    phase.clone(),
+                )
+                .map(|o| v2_sq(&o).sqrt())
+            })
+            .collect::<Result<_>>()?;
+        cols.push(Column::new(&format!("v2_minus_vmono_{}rad", label(pp)), ""));
+        data.push(v2.iter().zip(&v_mono).map(|(v, m)| v - m).collect());
+        if pp > 0.0 {
+            cal_cols.push(Column::new(
+                &format!("v2_calibrated_minus_vmono_{}rad", label(pp)),
+                "",
+            ));
+            cal_data.push(
+                v2.iter()
+                    .zip(&v_mono)
+                    .map(|(v, m)| v / v2_point - m)
+                    .collect(),
+            );
+        }
+    }
+    cols.extend(cal_cols);
+    data.extend(cal_data);
+    // V2 of a point source against dispersion: numerical and closed form.
+    let pps: Vec<f64> = (0..=60).map(|i| i as f64 * 0.05).collect();
+    let numerical: Vec<f64> = pps
+        .iter()
+        .map(|&pp| {
+            let phase = SpectralPhase::dispersion_peak_to_peak(&band, pp)?;
+            Observation::new(
+                band.clone(),
+                Source::Point,
+                Frequency::BaselineM(0.0),
+                phase,
+            )
+            .map(|o| v2_sq(&o).sqrt())
+        })
+        .collect::<Result<_>>()?;
+    let closed: Vec<f64> = pps
+        .iter()
+        .map(|&pp| point_source_v2_sq(pp).sqrt())
+        .collect();
+    let diff: Vec<f64> = numerical.iter().zip(&closed).map(|(a, b)| a - b).collect();
+    Ok(Figure {
+        id: "fig2".into(),
+        caption: "Fig. 2 (fig:figure_2): V2 minus the monochromatic visibility of a 43 mas uniform disk in the flat 400 nm band at 2.2 um under quadratic dispersion phi = D (sigma - sigma0)^2 / 2 of 1, 1.5 and 2 rad peak-to-peak (0 rad for reference); calibrated columns divide by V2 of a point source with the same dispersion. Panel fig2_point: V2 of a point source against dispersion, by quadrature and by the Fresnel closed form.".into(),
+        monte_carlo: false,
+        parameters: json!({
+            "diameter_mas": DIAMETER_MAS,
+            "band_um": [2.0, 2.4],
+            "spectrum": "flat in wavenumber",
+            "dispersions_pp_rad": DISPERSIONS_RAD,
+            "peak_to_peak": "P = D (delta_sigma / 2)^2 / 2, sigma0 the band centre in wavenumber",
+            "s_step_cpas": fig1_step(effort),
+            "s_max_cpas": S_MAX_CPAS,
+            "scan": "infinite",
+        }),
+        tables: vec![
+            table("fig2_disk", cols, data),
+            table(
+                "fig2_point",
+                vec![
+                    Column::new("dispersion_pp", "rad"),
+                    Column::new("v2_numerical", ""),
+                    Column::new("v2_fresnel", ""),
+                    Column::new("difference", ""),
+                ],
+                vec![pps, numerical, closed, diff],
+            ),
+        ],
+    })
+}
+
+/// The Fig. 3 scans: (nominal stroke, sampling) at [`DX_UM`].
+pub fn fig3_samplings() -> Result<Vec<(f64, Sampling)>> {
+    STROKES_UM
+        .iter()
+        .map(|&st| Sampling::from_stroke(st, DX_UM, false).map(|s| (st, s)))
+        .collect()
+}
+
+/// Fig. 3.
+pub fn fig3(effort: Effort) -> Result<Figure> {
+    let band = k_band();
+    let scans = fig3_samplings()?;
+    let samplings: Vec<Sampling> = scans.iter().map(|s| s.1).collect();
+    let grid = s_grid(fig3_step(effort));
+    let inf: Vec<_> = grid
+        .par_iter()
+        .map(|&s| {
+            Observation::new(
+                band.clone(),
+                disk(),
+                Frequency::SpatialFreqCpas(s),
+                SpectralPhase::zero(),
+            )
+            .map(|o| wide_band(&o))
+        })
+        .collect::<Result<_>>()?;
+    let dft = finite_scan::disk_biases(&k_band(), &disk(), &grid, &samplings, Method::Dft)?;
+    let mut cols1 = vec![
+        Column::new("s", "cycles/arcsec"),
+        Column::new("v1_infinite", ""),
+    ];
+    let mut cols2 = vec![
+        Column::new("s", "cycles/arcsec"),
+        Column::new("v2_infinite", ""),
+    ];
+    let mut d1 = vec![grid.clone(), inf.iter().map(|w| w.v1).collect()];
+    let mut d2 = vec![grid.clone(), inf.iter().map(|w| w.v2).collect()];
+    for ((st, _), b) in scans.iter().zip(&dft) {
+        cols1.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
+        cols2.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
+        d1.push(b.iter().map(|x| x.v1).collect());
+        d2.push(b.iter().map(|x| x.v2).collect());
+    }
+    // The convolution path (eq:sampled_V) on a coarser grid.
+    let check_grid = s_grid(fig3_check_step(effort));
+    let conv = finite_scan::disk_biases(
+        &k_band(),
+        &disk(),
+        &check_grid,
+        &samplings,
+        Method::Convolution(Kernel::Dirichlet),
+    )?;
+    let mut cols_c = vec![Column::new("s", "cycles/arcsec")];
+    let mut d_c = vec![check_grid.clone()];
+    for ((st, _), b) in scans.iter().zip(&conv) {
+        cols_c.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
+        cols_c.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
+        d_c.push(b.iter().map(|x| x.v1).collect());
+        d_c.push(b.iter().map(|x| x.v2).collect());
+    }
+    // ABCD: 4 samples per fringe at 2 um, N = 4, both paths.
+    let abcd = Sampling::new(4, ABCD_DX_UM, false)?;
+    let a_dft =
+        finite_scan::disk_biases(&k_band(), &disk(), &grid, &[abcd], Method::Dft)?.remove(0);
+    let a_conv = finite_scan::disk_biases(
+        &k_band(),
+        &disk(),
+        &grid,
+        &[abcd],
+        Method::Convolution(Kernel::Dirichlet),
+    )?
+    .remove(0);
+    let abcd_table = table(
+        "fig3_abcd",
+        vec![
+            Column::new("s", "cycles/arcsec"),
+            Column::new("bias_v1_dft", ""),
+            Column::new("bias_v2_dft", ""),
+            Column::new("bias_v1_convolution", ""),
+            Column::new("bias_v2_convolution", ""),
+        ],
+        vec![
+            grid.clone(),
+            a_dft.iter().map(|b| b.v1).collect(),
+            a_dft.iter().map(|b| b.v2).collect(),
+            a_conv.iter().map(|b| b.v1).collect(),
+            a_conv.iter().map(|b| b.v2).collect(),
+        ],
+    );
+    Ok(Figure {
+        id: "fig3".into(),
+        caption: "Fig. 3 (fig:figure_3): finite-scan bias sqrt(V^2 finite) - sqrt(V^2 infinite) of V1 (fig3_v1) and V2 (fig3_v2) for a 43 mas uniform disk, flat 400 nm band at 2.2 um, 4 samples per fringe at 2.2 um, strokes 256 to 2 um (nominal; N = round(stroke/dx)). Both estimators sum the positive-frequency bins k = 1..ceil(N/2)-1 and are divided by the same estimator on a point source through the same scan. fig3_v1/fig3_v2: DFT of the synthesized interferogram; fig3_convolution: the same biases from eq:sampled_V (extended visibility convolved with the scan kernel) on a coarser grid; fig3_abcd: 4 samples at 0.5 um (ABCD at 2 um), both paths.".into(),
+        monte_carlo: false,
+        parameters: json!({
+            "diameter_mas": DIAMETER_MAS,
+            "band_um": [2.0, 2.4],
+            "spectrum": "flat in wavenumber",
+            "dx_um": DX_UM,
+            "strokes_nominal_um": STROKES_UM,
+            "samples": samplings.iter().map(Sampling::samples).collect::<Vec<_>>(),
+            "strokes_um": samplings.iter().map(Sampling::stroke_um).collect::<Vec<_>>(),
+            "bins": "positive frequencies k = 1 .. ceil(N/2)-1",
+            "normalization": "divided by the same estimator on a point source through the same scan",
+            "abcd": {"samples": 4, "dx_um": ABCD_DX_UM},
+            "s_step_cpas": fig3_step(effort),
+            "convolution_s_step_cpas": fig3_check_step(effort),
+            "s_max_cpas": S_MAX_CPAS,
+        }),
+        tables: vec![
+            table("fig3_v1", cols1, d1),
+            table("fig3_v2", cols2, d2),
+            table("fig3_convolution", cols_c, d_c),
+            abcd_table,
+        ],
+    })
+}

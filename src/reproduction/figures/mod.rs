@@ -1,0 +1,17 @@
+//! The registry of the paper's figures: each area provides the figures it
+//! computes; `golden/` and `v2ref reproduce` take them from here.
+
+use crate::error::Result;
+use crate::reproduction::cases::Effort;
+use crate::reproduction::table::Figure;
+
+mod bias;
+pub(crate) mod piston;
+
+/// Every figure (0 to 5), in order, at the given effort.
+pub fn all(effort: Effort) -> Result<Vec<Figure>> {
+    let mut out = bias::figures(effort)?;
+    out.extend(piston::figures(effort)?);
+    out.sort_by(|a, b| a.id.cmp(&b.id));
+    Ok(out)
+}

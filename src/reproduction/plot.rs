@@ -1,0 +1,328 @@
+//! SVG plots of figure tables (plotters, SVG backend), one per panel.
+//!
+//! A table is drawn by convention: the first column is the abscissa; every
+//! other column is a curve, except columns named `<curve>_stderr`, which
+//! become error bars on `<curve>`, and the context columns of [`hint`]
+//! (the monochromatic visibility beside its deviations, sample counts).
+//! Axis labels carry the columns' units. The ordinate is logarithmic when
+//! every plotted value is positive and they span more than three decades.
+//! Per-panel presentation (ordinate label, reference lines such as the
+//! paper's 0.2% accuracy) lives in [`hint`], apart from the data.
+
+use crate::error::{Error, Result};
+use crate::reproduction::table::{Figure, Table};
+use plotters::prelude::*;
+
+/// Curve colours (Okabe–Ito, distinguishable by colour-blind readers).
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(240, 228, 66),
+];
+
+/// Size of one panel, pixels.
+const SIZE: (u32, u32) = (900, 560);
+
+fn plot_error(e: impl std::fmt::Display) -> Error {
+    Error::Io {
+        path: "plot".into(),
+        reason: e.to_string(),
+    }
+}
+
+/// How one panel is presented.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PlotHint {
+    /// Columns not drawn (context kept in the CSV).
+    pub hidden: Vec<&'static str>,
+    /// Ordinate label (default: "value [unit]").
+    pub y_label: Option<&'static str>,
+    /// Horizontal reference lines: (ordinate, label).
+    pub lines: Vec<(f64, &'static str)>,
+    /// Column-name suffixes whose columns are not drawn (variants kept in
+    /// the CSV, such as other bin windows).
+    pub hidden_suffixes: Vec<&'static str>,
+    /// (curve, column) pairs: draw `column` as the error bars of `curve`
+    /// instead of `<curve>_stderr` (the paper's Fig. 4 shows the scatter).
+    pub error_columns: Vec<(&'static str, &'static str)>,
+    /// Draw |y| on a logarithmic ordinate (bias magnitudes spanning decades).
+    pub abs_log_y: bool,
+    /// Logarithmic abscissa.
+    pub log_x: bool,
+}
+
+/// Columns that give context to a panel rather than being its subject.
+const CONTEXT_COLUMNS: [&str; 6] = [
+    "v_mono",
+    "samples",
+    "v1_infinite",
+    "v2_infinite",
+    "difference",
+    "scans",
+];
+
+/// The paper's "current best accuracy" of single-mode interferometers (0.2%).
+const ACCURACY_0P2: f64 = 2e-3;
+
+/// The presentation of the panel called `table`.
+pub fn hint(table: &str) -> PlotHint {
+    let mut h = PlotHint {
+        hidden: CONTEXT_COLUMNS.to_vec(),
+        ..PlotHint::default()
+    };
+    match table {
+        "fig0_normalization" => {
+            h.y_label = Some("|V2 normalized - V2 unnormalized|, V = 1");
+            h.lines = vec![(ACCURACY_0P2, "0.2%")];
+        }
+        "fig1_v1" => h.y_label = Some("V1 - V mono"),
+        "fig1_v2" | "fig2_disk" => h.y_label = Some("V2 - V mono"),
+        "fig2_point" => h.y_label = Some("V2 of a point source"),
+        "fig3_v1" | "fig3_v2" | "fig3_abcd" | "fig3_convolution" => {
+            h.y_label = Some("bias against the infinite scan");
+            h.lines = vec![(ACCURACY_0P2, "+0.2%"), (-ACCURACY_0P2, "-0.2%")];
+        }
+        t if t.starts_with("fig4_") => {
+            h.y_label = Some("V(piston) - V(no piston); bars: scatter over scans");
+            h.hidden.extend([
+                "baseline_m",
+                "piston_rms_um",
+                "v1_no_piston",
+                "v2_no_piston",
+                "scatter_v1",
+                "scatter_v2",
+            ]);
+            h.error_columns = vec![("bias_v1", "scatter_v1"), ("bias_v2", "scatter_v2")];
+            h.lines = vec![(1e-3, "+0.1%"), (-1e-3, "-0.1%")];
+        }
+        t if t.starts_with("fig5_") => {
+            h.y_label = Some("|bias| and scatter of V");
+            h.hidden.extend(["scan_time_s", "residual_rms_um"]);
+            h.hidden_suffixes = vec!["_band", "_all"];
+            h.abs_log_y = true;
+            h.log_x = true;
+            h.lines = vec![(1e-2, "1%"), (1e-5, "1e-5")];
+        }
+        _ => {}
+    }
+    h
+}
+
+struct Series {
+    label: String,
+    points: Vec<(f64, f64)>,
+    errors: Option<Vec<f64>>,
+}
+
+fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
+    let x = match table.columns.first() {
+        Some(c) => table.column(&c.name).unwrap_or_default(),
+        None => return Vec::new(),
+    };
+    table
+        .columns
+        .iter()
+        .skip(1)
+        .filter(|c| {
+            !c.name.ends_with("_stderr")
+                && !hint.hidden.contains(&c.name.as_str())
+                && !hint.hidden_suffixes.iter().any(|sfx| c.name.ends_with(sfx))
+        })
+        .map(|c| {
+            let y = table.column(&c.name).unwrap_or_default();
+            let errors = match hint
+                .error_columns
+                .iter()
+                .find(|(curve, _)| *curve == c.name)
+            {
+                Some((_, col)) => table.column(col),
+                None => table.column(&format!("{}_stderr", c.name)),
+            };
+            let y: Vec<f64> = if hint.abs_log_y {
+                y.iter().map(|v| v.abs()).collect()
+            } else {
+                y
+            };
+            let errors = if hint.abs_log_y { None } else { errors };
+            // Keep points and their error bars together through the filter.
+            let keep: Vec<usize> = (0..x.len().min(y.len()))
+                .filter(|&i| {
+                    x[i].is_finite() && y[i].is_finite() && (!hint.abs_log_y || y[i] > 0.0)
+                })
+                .filter(|&i| !hint.log_x || x[i] > 0.0)
+                .collect();
+            Series {
+                label: c.name.clone(),
+                points: keep.iter().map(|&i| (x[i], y[i])).collect(),
+                errors: errors.map(|e| keep.iter().map(|&i| e[i]).collect()),
+            }
+        })
+        .collect()
+}
+
+/// The SVG text of one panel of `figure`.
+pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
+    let hint = hint(&table.name);
+    let series = series_of(table, &hint);
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .collect();
+    if all.is_empty() {
+        return Err(plot_error(format!(
+            "table {} has nothing to plot",
+            table.name
+        )));
+    }
+    let (mut x0, mut x1) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (mut y0, mut y1) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
+    for s in &series {
+        if let Some(e) = &s.errors {
+            for ((_, y), e) in s.points.iter().zip(e) {
+                y0 = y0.min(y - e);
+                y1 = y1.max(y + e);
+            }
+        }
+    }
+    if x1 <= x0 {
+        x0 -= 0.5;
+        x1 += 0.5;
+    }
+    let log_y = hint.abs_log_y || (y0 > 0.0 && y1 / y0 > 1e3);
+    if y1 <= y0 {
+        let pad = if y0 == 0.0 { 1.0 } else { 0.05 * y0.abs() };
+        y0 -= pad;
+        y1 += pad;
+    } else if !log_y {
+        let pad = 0.05 * (y1 - y0);
+        y0 -= pad;
+        y1 += pad;
+    }
+    let x_desc = table.columns[0].header();
+    let y_unit = table
+        .columns
+        .get(1)
+        .map(|c| c.unit.clone())
+        .unwrap_or_default();
+    let y_desc = match (hint.y_label, y_unit.is_empty()) {
+        (Some(l), _) => l.to_owned(),
+        (None, true) => "value".to_owned(),
+        (None, false) => format!("value [{y_unit}]"),
+    };
+    // Reference lines are drawn when they are within a span of the data.
+    let lines: Vec<(f64, &str)> = hint
+        .lines
+        .iter()
+        .copied()
+        .filter(|(y, _)| *y > y0 - (y1 - y0) && *y < y1 + (y1 - y0))
+        .collect();
+    for (y, _) in &lines {
+        y0 = y0.min(*y);
+        y1 = y1.max(*y);
+    }
+    let title = format!("{} — {}", figure.id, table.name);
+
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(&title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(80);
+        macro_rules! draw {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_desc.as_str())
+                    .y_desc(y_desc.as_str())
+                    .y_label_formatter(&|y: &f64| tick(*y))
+                    .x_label_formatter(&|x: &f64| tick(*x))
+                    .x_labels(10)
+                    .draw()
+                    .map_err(plot_error)?;
+                for (y, label) in &lines {
+                    let grey = RGBColor(120, 120, 120);
+                    chart
+                        .draw_series(LineSeries::new([(x0, *y), (x1, *y)], grey.stroke_width(1)))
+                        .map_err(plot_error)?
+                        .label(*label)
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+                }
+                for (i, s) in series.iter().enumerate() {
+                    let colour = PALETTE[i % PALETTE.len()];
+                    chart
+                        .draw_series(LineSeries::new(
+                            s.points.iter().copied(),
+                            colour.stroke_width(2),
+                        ))
+                        .map_err(plot_error)?
+                        .label(s.label.as_str())
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                        });
+                    if let Some(e) = &s.errors {
+                        chart
+                            .draw_series(s.points.iter().zip(e).map(|(&(x, y), &e)| {
+                                ErrorBar::new_vertical(x, y - e, y, y + e, colour.filled(), 6)
+                            }))
+                            .map_err(plot_error)?;
+                    }
+                }
+                chart
+                    .configure_series_labels()
+                    .position(SeriesLabelPosition::UpperRight)
+                    .border_style(BLACK)
+                    .background_style(WHITE.mix(0.85))
+                    .draw()
+                    .map_err(plot_error)?;
+            }};
+        }
+        match (hint.log_x, log_y) {
+            (false, true) => draw!(builder
+                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .map_err(plot_error)?),
+            (false, false) => draw!(builder
+                .build_cartesian_2d(x0..x1, y0..y1)
+                .map_err(plot_error)?),
+            (true, true) => draw!(builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(plot_error)?),
+            (true, false) => draw!(builder
+                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
+                .map_err(plot_error)?),
+        }
+        root.present().map_err(plot_error)?;
+    }
+    Ok(svg)
+}
+
+/// A compact tick label: plain for ordinary magnitudes, `1e-5` style beyond.
+fn tick(y: f64) -> String {
+    let a = y.abs();
+    if a < 1e-12 {
+        // Zero, or rounding noise of a tick placed at zero.
+        "0".to_owned()
+    } else if (1e-3..1e4).contains(&a) {
+        let s = format!("{y:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        format!("{y:.0e}")
+    }
+}
