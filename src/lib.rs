@@ -13,11 +13,7 @@
 //! ## Quick start
 //!
 //! ```
-//! use v2ref::formalism::phase::SpectralPhase;
-//! use v2ref::formalism::estimator::wide_band;
-//! use v2ref::formalism::observation::{Frequency, Observation};
-//! use v2ref::formalism::source::Source;
-//! use v2ref::formalism::spectrum::{Band, Spectrum};
+//! use v2ref::prelude::*;
 //!
 //! // A 43 mas uniform disk in the full K band (2.0–2.4 µm), at its first null.
 //! let k = Spectrum::flat(Band::new(2.2, 0.4)?);
@@ -34,50 +30,72 @@
 //! # Ok::<(), v2ref::Error>(())
 //! ```
 //!
-//! ## Units
+//! [`prelude`] gathers the dozen items a user calls first; the folders below
+//! follow the paper's table of contents.
+//!
+//! ## The crate, as the paper
+//!
+//! | paper | module |
+//! |---|---|
+//! | §1 Introduction (dynamic range) and §2 *General formalism*: spectrum and W(σ), source, the interferometric equation, sampled and integrated signals, the estimators | [`formalism`] |
+//! | §3 *Effect of spectral bandwidth* (with the line example and the normalization of V2, Fig. 0), §4 *chromatic dispersion*, §5 *finite scan length*, the integrating detector | [`bias`] |
+//! | §6 *Effect of differential piston*: turbulence, piston spectrum and sequences, scans through them | [`piston`] |
+//! | Appendix, *Estimator signal-to-noise ratio*: noise moments, closed forms, windowed variance, noisy Monte Carlo | [`noise`] |
+//! | the paper's cases, figures, claims, golden files and plots | [`reproduction`] |
+//! | special functions and quadrature | [`math`] |
+//! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
+//! | tolerances (one home), errors | [`tolerance`], [`error`] |
+//!
+//! ## Units and conventions
 //!
 //! Wavelength λ and OPD x in µm, wavenumber σ in µm⁻¹, angular diameter θ in
 //! mas, spatial frequency S in cycles/arcsec ($S = B\sigma_\mathrm{eff}$),
 //! baseline B in m, fringe frequency in Hz, phases in rad, counts in photons
 //! per sample. Names carry their unit where it is not obvious.
 //!
+//! The conventions a pipeline must match to agree with v2ref bit for bit —
+//! where sample 0 sits, which bins each window sums for even and odd N, how
+//! the estimators are normalized, which noise bias is subtracted, the random
+//! streams — are written out in the repository's `docs/conventions.md`;
+//! every equation of the paper, re-typeset, is in `docs/equations.md`.
+//! Where the paper is ambiguous, the choice and its effect are stated in the
+//! module docs and in `paper/reproduction.md`.
+//!
 //! ## Paper → code
 //!
-//! | paper | module / function | tests |
-//! |---|---|---|
-//! | Introduction, eq. `eq:dynamique` | [`dynamic_range::dynamic_range`] | `tests/claims.rs` |
-//! | §2.1 eq. `eq:interferogramme`, weighting function W, σ_eff | [`spectrum::Spectrum`] ([`spectrum::Spectrum::mean_w`], [`spectrum::Spectrum::mean_w2`], [`spectrum::Spectrum::sigma_eff_per_um`]), [`quadrature`] | `tests/foundation.rs`, `tests/spectrum_csv.rs` |
-//! | §2.2.1 continuous signals; extended visibility | [`observation::Observation::fringe_amplitude`] | `tests/foundation.rs` |
-//! | §2.2.2 sampled signals, sample 0 on the white-light fringe | [`interferogram::Sampling`], [`interferogram::Interferogram::synthesize`], [`interferogram::SpectralNodes`] (slow oracle: [`oracle`]) | `tests/foundation.rs` |
-//! | §2.2.2 integrating detector, sinc(σδx), 2/π at Nyquist | [`interferogram::sinc`], [`integration::wide_band_loss`], [`integration::calibrated_bias`] | `tests/foundation.rs`, `tests/bias_normalization.rs` |
-//! | §2.2.2 eq. `eq:sampled_V`, FTS resolution R = σΔx | [`interferogram::Sampling::delta_sigma_per_um`], [`finite_scan::convolution_bins`] | `tests/bias_finite_scan.rs` |
-//! | §3 eq. `eq:estimateurs` (spectral form) | [`estimator::v1_sq`], [`estimator::v2_sq`], [`estimator::wide_band`] | `tests/foundation.rs`, `tests/properties.rs` |
-//! | §3 uniform disk $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`source::Source::UniformDisk`], [`special::jinc`], [`special::bessel_j1_zero`] | `tests/special.rs` |
-//! | §3 continuum plus line example (0.50042) | [`source::Source::Composite`], [`source::FluxProfile`], [`line::channel_visibility`], [`line::top_hat_closed_form`] | `tests/bias_line.rs`, `tests/foundation.rs` |
-//! | §3 Fig. 0, V2 normalization factor against stroke | [`normalization::deviation_curve`], [`normalization::threshold_stroke`] | `tests/bias_normalization.rs` |
-//! | §3 Fig. 1, bandwidth bias | [`bandwidth::curve`], [`bandwidth::locate_max`] | `tests/bias_bandwidth.rs` |
-//! | §4 dispersion phase $\phi = \tfrac12 D(\sigma-\sigma_0)^2$ | [`dispersion::SpectralPhase`] | `tests/properties.rs` |
-//! | §4 Fig. 2, V2 of a point source under dispersion (Fresnel closed form) | [`special::fresnel::point_source_v2_sq`], [`special::fresnel::fresnel_cs`] | `tests/bias_dispersion.rs` |
-//! | §4 fluoride-fibre example (ZBLAN, Gan 1995) | [`dispersion::zblan_peak_to_peak_rad`] | `tests/bias_dispersion.rs` |
-//! | §5 Fig. 3, finite scan: DFT path and eq. `eq:sampled_V` convolution path | [`finite_scan::bias`], [`finite_scan::Kernel`] | `tests/bias_finite_scan.rs` |
-//! | §6 Kolmogorov/von Kármán turbulence, r0 from seeing, differential-piston PSD | [`turbulence::Turbulence`], [`turbulence::PistonSpectrum`], [`turbulence::differential_piston_variance_from_structure_um2`] | `tests/turbulence.rs` |
-//! | §6 piston sequences, scans with piston, bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`], [`piston::FringeTable`] | `tests/piston.rs`, `tests/cli_piston.rs` |
-//! | §6 Figs. 4 and 5 | [`figures::all`] (ids `fig4`, `fig5`) | `tests/piston_claims.rs`, `tests/golden.rs` |
-//! | Appendix, $B_k$ and the estimators from the DFT | [`estimator::dft`], [`estimator::raw_estimates`], [`estimator::noise_bias`], [`estimator::BinWindow`] (slow oracle: [`oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
-//! | Appendix, noise moments, bias terms, var V1², var V2², SNR (`published` / `exact`) | [`noise::moments`], [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
-//! | Appendix, filtered samples (window factor) — exact quadratic form | [`window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
-//! | Monte Carlo: deterministic parallel driver, noisy interferograms | [`montecarlo::run_units`], [`montecarlo::simulate_noisy`], [`montecarlo::WindowedEstimators`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
-//! | Figs. 0–5 as data, golden files | [`figure`], [`figures::all`], [`golden::check`], [`golden::update`] | `tests/golden.rs`, `tests/bias_snapshots.rs` |
-//! | the claims ledger | [`claims::evaluate`], [`claims::to_markdown`] | `tests/claims.rs` |
-//! | tolerances (one home) | [`tolerance`] | every test |
+//! The paper's labelled equations, written out (W is the normalized weight
+//! $S F/\int S F\,d\sigma$, $V_e$ the extended visibility $W V e^{i\phi}/2$
+//! on positive σ, $\delta\sigma = 1/\Delta x$):
 //!
-//! ## Conventions
+//! | label | equation | implemented by | tests |
+//! |---|---|---|---|
+//! | `eq:dynamique` (§1) | $\mathrm{DR} = \sqrt{N_\mathrm{vis}\,/\,\big((\delta V/V)^2 + \delta\phi^2\big)}$ | [`formalism::dynamic_range::dynamic_range`] | `tests/claims.rs` |
+//! | `eq:interferogramme` (§2.1) | $I(x) = \int_0^\infty S F\,d\sigma + \int_0^\infty S F\,V \cos\!\big(2\pi\sigma x + \phi(\sigma) + 2\pi\sigma p(x)\big)\,d\sigma$ | [`formalism::interferogram::Interferogram::synthesize`], [`formalism::observation::Observation::fringe_amplitude`] | `tests/foundation.rs` |
+//! | `eq:sampled_V` (§2.2.2) | $V_s(k\,\delta\sigma) = \big[V_e \ast \widetilde\Pi(\sigma\Delta x)\big](k\,\delta\sigma),\; k = 0,\dots,N-1$ | [`bias::finite_scan::convolution_bins`] | `tests/bias_finite_scan.rs` |
+//! | `eq:estimateurs` (§3) | $V_1^2 = \dfrac{4\sum_k \lvert V_e(k\delta\sigma)\rvert^2\,\delta\sigma}{\sum_k W^2(k\delta\sigma)\,\delta\sigma}$, $\;V_2^2 = \dfrac{4\,\lvert\sum_k V_e(k\delta\sigma)\,\delta\sigma\rvert^2}{\big(\sum_k W(k\delta\sigma)\,\delta\sigma\big)^2}$ | spectral form: [`formalism::estimator::v1_sq`], [`formalism::estimator::v2_sq`]; sampled form: [`formalism::estimator::sampled_wide_band`] | `tests/foundation.rs`, `tests/properties.rs` |
 //!
-//! The physics conventions (band edges, W, σ_eff, the dispersion's
-//! peak-to-peak definition, sample 0 on the white-light fringe) are those of
-//! the project's `CONVENTIONS.md`; the module docs state each one where it is
-//! used. Where the paper is ambiguous, the choice and its effect are written
-//! in the module docs and in `paper/reproduction.md`.
+//! And the rest of the paper, in order:
+//!
+//! | paper | formula | implemented by | tests |
+//! |---|---|---|---|
+//! | §2.1 weight, effective wavenumber | $W = SF/\int SF$, $\sigma_\mathrm{eff} = \int \sigma W\,d\sigma$ | [`formalism::spectrum::Spectrum`] (`mean_w`, `mean_w2`, `sigma_eff_per_um`), [`math::quadrature`] | `tests/foundation.rs`, `tests/spectrum_csv.rs` |
+//! | §2.2.2 sampling, sample 0 on the white-light fringe | $x_i = i\,\delta x$ for $i < \lceil N/2\rceil$, $(i - N)\,\delta x$ beyond (centred scan, DFT order) | [`formalism::interferogram::Sampling`], [`formalism::interferogram::SpectralNodes`] (slow oracle: [`formalism::oracle`]) | `tests/foundation.rs` |
+//! | §2.2.2 integrating detector | spectrum filtered by $\mathrm{sinc}(\sigma\delta x)$, $2/\pi$ at Nyquist | [`formalism::interferogram::sinc`], [`bias::integration`] | `tests/foundation.rs`, `tests/bias_normalization.rs` |
+//! | §3 uniform disk | $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`formalism::source::Source`], [`math::special::jinc`], [`math::special::bessel_j1_zero`] | `tests/special.rs` |
+//! | §3 continuum plus line (0.50042) | channel visibility, flux-weighted over one spectral element | [`bias::line::channel_visibility`], [`bias::line::top_hat_closed_form`] | `tests/bias_line.rs` |
+//! | §3 Fig. 0, normalization of V2 | $\big(\sum_k W\delta\sigma\big)^2$ against the stroke | [`bias::normalization::deviation_curve`] | `tests/bias_normalization.rs` |
+//! | §3 Fig. 1, bandwidth bias | $V_1 - V_\mathrm{mono}$, $V_2 - V_\mathrm{mono}$ against S | [`bias::bandwidth::curve`] | `tests/bias_bandwidth.rs` |
+//! | §4 dispersion | $\phi = \tfrac12 D(\sigma-\sigma_0)^2$, peak to peak $P = \tfrac12 D(\Delta\sigma/2)^2$ | [`formalism::phase::SpectralPhase`], [`bias::dispersion`] | `tests/bias_dispersion.rs` |
+//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::fresnel::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
+//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::bias`] | `tests/bias_finite_scan.rs` |
+//! | §6 turbulence and the differential-piston spectrum | Kolmogorov / von Kármán, $r_0$ from seeing, two-aperture filter | [`piston::turbulence`] | `tests/turbulence.rs` |
+//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`] | `tests/piston.rs`, `tests/piston_claims.rs` |
+//! | Appendix, the DFT and the raw estimators | $B_k = \sum_i M_i e^{-2\pi i\,ik/N}$, $V_1^2 = \sum_{K}\lvert B_k\rvert^2$, $V_2^2 = \lvert\sum_{K} B_k\rvert^2$ | [`formalism::estimator::dft`], [`formalism::estimator::raw_estimates`], [`formalism::estimator::BinWindow`] (slow oracle: [`formalism::oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
+//! | Appendix, additive-noise bias | $\lvert K\rvert \sum_i v_i$ and $\sum_i v_i \lvert\sum_K e^{-2\pi i\,ik/N}\rvert^2$ | [`formalism::estimator::noise_bias`] | `tests/noise.rs` |
+//! | Appendix, noise moments, var $V_1^2$, var $V_2^2$, SNR (printed and exact) | $\mathrm{SNR} = \langle V^2\rangle/\sqrt{\operatorname{var} V^2}$ | [`noise::moments()`](noise::moments()), [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Appendix, filtered samples — exact quadratic form | $\operatorname{var}(M^\mathsf{T} A M)$ | [`noise::window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Monte Carlo of noisy scans | | [`noise::simulation::simulate_noisy`], [`montecarlo::run_units`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | Figs. 0–5 as data, golden files, claims | | [`reproduction::figures::all`], [`reproduction::golden::check`], [`reproduction::claims::evaluate`] | `tests/golden.rs`, `tests/claims.rs` |
 
 #![warn(missing_docs)]
 
@@ -88,6 +106,7 @@ pub mod math;
 pub mod montecarlo;
 pub mod noise;
 pub mod piston;
+pub mod prelude;
 pub mod reproduction;
 pub mod tolerance;
 
