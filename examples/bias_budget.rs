@@ -9,12 +9,7 @@
 //! dispersion, 40 µm scans sampled every 0.35 µm. Change the constants to
 //! yours.
 
-use v2ref::formalism::estimator::{sampled_wide_band, wide_band, BinWindow};
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::prelude::*;
 
 const WAVELENGTH_UM: f64 = 1.65;
 const BANDWIDTH_UM: f64 = 0.30;
