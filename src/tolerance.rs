@@ -64,6 +64,13 @@ pub const ULPS: f64 = 1e-15;
 /// order one.
 pub const ROUNDING_REL: f64 = 1e-14;
 
+/// Scale floor of relative comparisons of V² (a relative tolerance is
+/// applied to max(V², 1e-3)): near a null V² is a difference of O(1)
+/// spectral integrals, so its absolute rounding does not fall with it;
+/// below 1e-3 the comparison becomes absolute at tolerance × 1e-3. This
+/// is a floor of the scale, not a tolerance of its own.
+pub const VISIBILITY_SQ_FLOOR: f64 = 1e-3;
+
 /// Default relative tolerance of [`assert_rel_eq!`](crate::assert_rel_eq):
 /// [`ROUNDING_REL`], the tightest bound that holds for any short
 /// deterministic computation in the crate.
@@ -92,12 +99,33 @@ pub const DIRECT_SUM_REL: f64 = 1e-12;
 /// twiddle factor moves a bin by O(1).
 pub const NAIVE_DFT_ABS: f64 = 1e-11;
 
+/// A sum over all N bins of an FFT against its closed form (Parseval:
+/// Σ|B_k|² = N Σ m_j²), relative, for N ≤ 10³: each bin carries ~ε log2 N
+/// of relative error and the N-term sum of positive terms adds ≲ N ε of
+/// its own, errors of random sign: ~√N ε log2 N + √N ε ≈ 2e-14 for
+/// N = 100; 1e-13 leaves a margin of ~5.
+pub const FFT_SUM_REL: f64 = 1e-13;
+
+/// The sum of all N FFT bins against N m_0 (the normalization's
+/// baseline), relative to N, for N ≤ 233: the bins have magnitudes up to
+/// ~N/2 and relative errors ~ε log2 N, so their sum carries up to
+/// ~N ε log2 N ≈ 4e-13 N of absolute rounding in the worst (coherent) case;
+/// 1e-11 N covers that with a margin of ~25.
+pub const BIN_SUM_REL: f64 = 1e-11;
+
 /// Two routes to the same finite-scan bias (the bin convolution and the
 /// direct DFT of the synthesized interferogram): both sit on spectral
 /// quadratures converged to ~1e-15 of the band integral, and the biases are
 /// differences of O(1) numbers, so they agree to rounding amplified by the
 /// ~10³ terms of the convolution: 1e-12 absolute.
 pub const PATHS_AGREE_ABS: f64 = 1e-12;
+
+/// A DFT bin from the convolution path against the same bin by adaptive
+/// quadrature (the oracle), absolute: bins are of size up to N/2 ≈ 30 for
+/// N = 58 samples, and each route is converged to [`QUADRATURE_REL`] of
+/// the band integral times that scale (~3e-12); 1e-11 leaves a margin of
+/// ~3 for the oracle's Kronrod estimate.
+pub const BIN_ORACLE_ABS: f64 = 1e-11;
 
 /// The closed-form turbulence constants (C_D, C_Φ, the profile integrals)
 /// by Gamma functions against mpmath: the Lanczos Γ is good to ~1e-15
@@ -245,6 +273,20 @@ pub const CLOSED_FORM_VS_NUMERICAL: f64 = 1e-10;
 /// sets the size; first derivatives with h = 1e-6 meet it with room.
 pub const FINITE_DIFFERENCE_REL: f64 = 1e-8;
 
+/// The five-point second difference of a phase that is exactly linear in
+/// σ (constant index), absolute (rad µm²): the truncation vanishes and
+/// only rounding remains, (1 + 16 + 30 + 16 + 1)/12 · ε|φ|/h² ≈ 5e-5 for
+/// |φ| ≈ 4e4 rad and h = 1e-3 µm⁻¹; 1e-4 is twice that, and a real
+/// dispersion of the test's glass (D ~ 10³) is 10⁷ times larger.
+pub const SECOND_DIFFERENCE_ABS: f64 = 1e-4;
+
+/// The glass residual phase (peak-to-peak beyond the linear term) is
+/// proportional to the glass length; doubling the length reproduces it to
+/// rounding, conditioned by |φ|/residual (the residual is a difference of
+/// phases ~10³–10⁴ times larger) and by the first difference that removes
+/// the slope: ~10⁴–10⁵ ε ≈ 2e-11; 1e-9 relative leaves a margin of ~50.
+pub const RESIDUAL_PHASE_REL: f64 = 1e-9;
+
 /// Entries of a Dirichlet-type window kernel smaller than this fraction of
 /// the kernel's scale (the number of bins) are rounding residues of exact
 /// zeros: each entry is a sum of up to ~10³ unit phasors with ~ε N of
@@ -295,6 +337,60 @@ pub const SCALING_LAW_REL: f64 = 0.05;
 /// 4) is ample and a Δσ¹ or Δσ⁴ law (ratio 2 or 16) fails.
 pub const SQUARE_LAW_REL: f64 = 0.025;
 
+/// The finite-scan bias falls roughly as 1/stroke: each doubling of the
+/// stroke halves it up to the modulation by the sidelobes of the scan's
+/// sinc response, which moves individual points of the curve by up to
+/// ~20%. 30% on the ratio 2 (1.4 to 2.6) allows that, while a bias that
+/// does not fall (ratio 1) or falls as 1/stroke² (ratio 4) fails.
+pub const ROUGH_SCALING_REL: f64 = 0.3;
+
+/// The line bias is linear in the line width for narrow lines: between
+/// widths of 1e-3 and 2e-3 resolution elements the ratio of biases is 2 up
+/// to the next order, relative O(width) ≲ 1e-3 · O(1); 1e-3 on the ratio
+/// (2e-3 absolute).
+pub const LINEAR_RESPONSE_REL: f64 = 1e-3;
+
+/// A small-argument limit checked at the first order of its series, at
+/// x = 1e-3: the first neglected terms are π²x⁴/40 ≈ 2.5e-13 (Fresnel C)
+/// and π²x⁴/56 ≈ 1.8e-13 (S) relative; 1e-12 relative bounds both with a
+/// margin of ~4 and would see a wrong leading coefficient at once.
+pub const LEADING_TERM_REL: f64 = 1e-12;
+
+/// The small-P expansion V2² ≈ 1 − 4P²/45 of a point source under
+/// quadratic dispersion, at P = 0.01 rad, absolute: the remainder is
+/// O(P⁴) with a coefficient of order (4/45)²/2 ≈ 4e-3, i.e. ~4e-11; 1e-9
+/// leaves a margin of ~20 while the P² term itself is 9e-6.
+pub const SMALL_P_EXPANSION_ABS: f64 = 1e-9;
+
+/// Between two points of the golden 0.1 cycles/arcsec grid, linear
+/// interpolation misses the bandwidth-bias curves by h² f''/8 relative to
+/// their size, with features on scales of ≳ 3 cycles/arcsec (the lobes of
+/// the 43 mas disk): (0.1/3)²/8 ≈ 1.4e-4 of the effect; 1e-3 of the
+/// largest effect (away from the kinks at the nulls) leaves a margin.
+pub const GRID_INTERPOLATION_REL: f64 = 1e-3;
+
+/// The Dirichlet kernel |sin(πNu)/(N sin πu)| against |sinc(Nu)| at small
+/// u, absolute: they differ by the factor πu/sin(πu) − 1 ≈ (πu)²/6 ≈ 8e-7
+/// at u = 7e-4; 1e-5 leaves a margin of ~12 while a kernel off by one
+/// sample (N − 1) misses by ~1e-3.
+pub const DIRICHLET_VS_SINC_ABS: f64 = 1e-5;
+
+/// The integrating-detector normalization factor 1/sinc²(1/p) tends to 1
+/// as the samples per fringe p grow, exceeding it by (π/p)²/3 ≈ 3.3e-12
+/// at p = 10⁶: 1e-11 absolute is three times that.
+pub const SAMPLING_LIMIT_ABS: f64 = 1e-11;
+
+/// A narrow band (Δλ = 1e-4 µm at 2.2 µm) against the monochromatic limit,
+/// absolute: the loss factors are even in the band width and depart from
+/// their limit at order (Δλ/λ)² ≈ 2e-9 times O(1) coefficients; 1e-8.
+pub const NARROW_BAND_LIMIT_ABS: f64 = 1e-8;
+
+/// A convergence sequence may stall at its floor: a step is allowed to
+/// increase the error by 5% (the finite-scan bias oscillates with the
+/// sinc sidelobes as the scan grows, by a few per cent at the strokes
+/// used), on top of an absolute floor of [`QUADRATURE_CHECK_REL`].
+pub const CONVERGENCE_GROWTH_REL: f64 = 0.05;
+
 /// A Riemann sum on a grid of step h against the integral it discretizes,
 /// absolute for normalized integrals of a flat band: the end cells of a
 /// top-hat give an error of at most h / width; with h = 1e-5 µm⁻¹ over the
@@ -325,6 +421,11 @@ pub const PRINTED_5_DECIMALS_ABS: f64 = 5e-6;
 /// to one unit in its last place (the printed value may be truncated rather
 /// than rounded).
 pub const PRINTED_3_DECIMALS_ABS: f64 = 1e-3;
+
+/// A value quoted to two decimals (e.g. the corrected OPD per coherence
+/// time, 29.95 µm, in the claims table): reproduced to one unit in its last
+/// place.
+pub const PRINTED_2_DECIMALS_ABS: f64 = 1e-2;
 
 // ---------------------------------------------------------------------------
 // Monte Carlo

@@ -2,6 +2,8 @@
 //! across thread counts, bad input (one line, status 2).
 
 use std::process::Command;
+use v2ref::assert_rel_eq;
+use v2ref::tolerance::ROUNDING_REL;
 
 fn v2ref(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -52,7 +54,7 @@ fn json_has_the_contract_fields_per_frequency() {
         assert_eq!(row["scans"].as_u64(), Some(60));
     }
     // 40 cycles/arcsec by default: the 18 m baseline.
-    assert!((v["baseline_m"].as_f64().unwrap() - 18.0).abs() < 0.01);
+    assert_rel_eq!(v["baseline_m"].as_f64().unwrap(), 18.0, ROUNDING_REL);
     assert_eq!(v["bins"], "positive");
     assert_eq!(v["detector"], "sampled");
 }
