@@ -13,24 +13,39 @@
 //!
 //! The constants fall in four groups:
 //!
-//! * deterministic identities (rounding only): [`ULPS`], [`ROUNDING_REL`],
-//!   [`DFT_REL_PER_LOG2N`], [`DIRECT_SUM_REL`], [`NAIVE_DFT_ABS`],
-//!   [`PATHS_AGREE_ABS`], [`GAMMA_REL`], [`IDENTITY_REL`],
-//!   [`NONNEGATIVE_REL`], [`GOLDEN_REL`], [`GOLDEN_ABS`],
-//!   [`EXAMPLE_GOLDEN_ABS`], [`VISIBILITY_SCALING_REL`],
-//!   [`VISIBILITY_SCALING_ABS`];
-//! * quadrature and special functions: [`QUADRATURE_REL`],
-//!   [`QUADRATURE_ABS`], [`QUADRATURE_CHECK_REL`], [`NODES_REL`],
-//!   [`TURBULENCE_QUADRATURE_REL`], [`TURBULENCE_CHECK_REL`],
-//!   [`FRINGE_TABLE_REL`], [`FRINGE_TABLE_CHECK_ABS`], [`BESSEL_ABS`],
+//! * deterministic identities (rounding only): [`EPS`], [`ULPS`],
+//!   [`ROUNDING_REL`], [`VISIBILITY_SQ_FLOOR`], [`DEFAULT_REL`],
+//!   [`DEFAULT_ABS`], [`DFT_REL_PER_LOG2N`], [`DIRECT_SUM_REL`],
+//!   [`NAIVE_DFT_ABS`], [`FFT_SUM_REL`], [`BIN_SUM_REL`],
+//!   [`PATHS_AGREE_ABS`], [`BIN_ORACLE_ABS`], [`GAMMA_REL`],
+//!   [`IDENTITY_REL`], [`IDENTITY_ABS`], [`CANCELLATION_ABS`],
+//!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`NONNEGATIVE_REL`],
+//!   [`GOLDEN_REL`], [`GOLDEN_ABS`], [`EXAMPLE_GOLDEN_ABS`],
+//!   [`VISIBILITY_SCALING_REL`], [`VISIBILITY_SCALING_ABS`];
+//! * quadrature and special functions (convergence targets, finite
+//!   differences, iteration stops): [`QUADRATURE_REL`], [`QUADRATURE_ABS`],
+//!   [`QUADRATURE_CHECK_REL`], [`NODES_REL`], [`TURBULENCE_QUADRATURE_REL`],
+//!   [`TURBULENCE_CHECK_REL`], [`TURBULENCE_SPECTRAL_REL`],
+//!   [`TURBULENCE_TAIL_REL`], [`CORNER_REL`], [`FRINGE_TABLE_REL`],
+//!   [`FRINGE_TABLE_CHECK_ABS`], [`FRINGE_ORACLE_ABS`], [`BESSEL_ABS`],
 //!   [`BESSEL_ZERO_REL`], [`FRESNEL_ABS`], [`CLOSED_FORM_VS_NUMERICAL`],
-//!   [`FINITE_DIFFERENCE_REL`], [`KERNEL_ZERO_REL`],
-//!   [`MINIMIZE_BRACKET_REL`], [`ARGMAX_ABS`];
-//! * convergence studies (truncations and discretizations):
-//!   [`SAMPLED_VS_SPECTRAL_ABS`], [`SCALING_LAW_REL`],
-//!   [`SQUARE_LAW_REL`], [`RIEMANN_SUM_ABS`], [`SINC_TAIL_ABS`],
+//!   [`FINITE_DIFFERENCE_REL`], [`SECOND_DIFFERENCE_ABS`],
+//!   [`RESIDUAL_PHASE_REL`], [`KERNEL_ZERO_REL`], [`MINIMIZE_BRACKET_REL`],
+//!   [`ARGMAX_ABS`];
+//! * convergence studies (truncated series, discretizations, asymptotic
+//!   regimes, printed precision): [`SAMPLED_VS_SPECTRAL_ABS`],
+//!   [`SCALING_LAW_REL`], [`SQUARE_LAW_REL`], [`PSD_TABLE_REL`],
+//!   [`PSD_TABLE_CORNER_REL`], [`PSD_TABLE_WIGGLE_REL`],
+//!   [`ASYMPTOTIC_LIMIT_REL`], [`ASYMPTOTIC_CORRECTION_REL`],
+//!   [`LOW_FREQ_VALUE_COEFF`], [`LOW_FREQ_SLOPE_COEFF`],
+//!   [`MID_FREQ_VALUE_COEFF`], [`MID_FREQ_SLOPE_COEFF`],
+//!   [`DECADE_SLOPE_ABS`], [`ROUGH_SCALING_REL`], [`LINEAR_RESPONSE_REL`],
+//!   [`LEADING_TERM_REL`], [`SMALL_P_EXPANSION_ABS`],
+//!   [`GRID_INTERPOLATION_REL`], [`DIRICHLET_VS_SINC_ABS`],
+//!   [`SAMPLING_LIMIT_ABS`], [`NARROW_BAND_LIMIT_ABS`],
+//!   [`CONVERGENCE_GROWTH_REL`], [`RIEMANN_SUM_ABS`], [`SINC_TAIL_ABS`],
 //!   [`INTEGRATION_LOSS_ABS`], [`PRINTED_5_DECIMALS_ABS`],
-//!   [`PRINTED_3_DECIMALS_ABS`];
+//!   [`PRINTED_3_DECIMALS_ABS`], [`PRINTED_2_DECIMALS_ABS`];
 //! * Monte Carlo: [`MC_SIGMAS`], [`SIGNIFICANCE_SIGMAS`], [`POWER_FACTOR`],
 //!   [`MC_POWER_SIGMAS`].
 //!
@@ -142,6 +157,35 @@ pub const GAMMA_REL: f64 = 1e-13;
 /// any wrong coefficient (which moves the result by ≥ 1e-3 relative).
 pub const IDENTITY_REL: f64 = 1e-10;
 
+/// Absolute floor of an [`IDENTITY_REL`] comparison for a quantity that
+/// vanishes exactly (an odd raw moment of a symmetric count distribution):
+/// the two routes cancel terms up to ~c⁴ ≈ 10⁴ (c ≤ 10 counts), leaving
+/// ~10⁴ ε × a few ≈ 1e-12 of rounding.
+pub const IDENTITY_ABS: f64 = 1e-12;
+
+/// Absolute floor for quantities that vanish through heavier cancellation:
+/// a third central moment from the raw ones (E M³ − 3m E M² + 2m³, terms
+/// up to ~10⁵ for means and spreads up to 10 with read noise), or the V2²
+/// signal of a window from bins of size up to N² ≈ 10⁴: ~10⁵–10⁶ ε ≈
+/// 2e-11–2e-10; 1e-9 leaves a margin of ~5.
+pub const CANCELLATION_ABS: f64 = 1e-9;
+
+/// The streaming (one-pass, merged) third central moment against the
+/// two-pass sum, relative, on data offset by ~10⁴ standard deviations (a
+/// mean of 10⁶, a spread of ~10²): each update subtracts terms ~(offset/σ)
+/// times larger than its result, so a condition number up to ~10⁸ on the
+/// relative error of the mean; 1e-7 leaves a margin, while a wrong update
+/// coefficient misses by O(1).
+pub const STREAMING_M3_REL: f64 = 1e-7;
+
+/// Absolute floor of the [`STREAMING_M3_REL`] comparison, in units of
+/// m2^{3/2} (the sum Σ(x − x̄)² to the power 3/2, the natural scale of the
+/// sum Σ(x − x̄)³): for nearly symmetric data the third moment is ≪ its
+/// scale and only the floor applies; 1e-3 of the scale corresponds to a
+/// skewness error of 1e-3·√n ≈ 0.03 for n = 1000, still far below that of
+/// a wrong formula.
+pub const STREAMING_M3_FLOOR: f64 = 1e-3;
+
 /// How negative a variance that is a difference of nearly equal sums (a
 /// window variance of a nearly flat spectrum) may come out, relative to
 /// max(|variance|, 1): the same cancellation as [`IDENTITY_REL`] (terms
@@ -228,6 +272,27 @@ pub const TURBULENCE_QUADRATURE_REL: f64 = 1e-11;
 /// between routes; a factor 10 above the target: 1e-10.
 pub const TURBULENCE_CHECK_REL: f64 = 1e-10;
 
+/// The differential piston variance by the spectral route (the 1-D
+/// integral of the piston PSD, itself an integral) against mpmath,
+/// relative: two nested integrals at [`TURBULENCE_QUADRATURE_REL`] plus the
+/// averaged asymptotic tail beyond 100/D, whose neglected oscillation is
+/// ~1e-10 of the total at B = 18 m; 1e-9.
+pub const TURBULENCE_SPECTRAL_REL: f64 = 1e-9;
+
+/// A turbulence spectral integral whose tail beyond 100/D is taken from
+/// the high-frequency asymptote with the Bessel oscillation averaged, at
+/// points where that matters most: the transverse integral G at f D = 3
+/// (the neglected oscillation leaves ~3e-9 of G), and the piston variance
+/// of other geometries (overlapping apertures B < D, D from 0.1 to 8 m),
+/// relative; 1e-8.
+pub const TURBULENCE_TAIL_REL: f64 = 1e-8;
+
+/// The piston spectrum's corner frequencies are closed forms, and the two
+/// asymptotes that cross there are power laws with exponents up to 17/3:
+/// a relative error δ of ν becomes 17/3 δ, and the prefactors combine a few
+/// Gamma functions ([`GAMMA_REL`]); ~10× [`GAMMA_REL`]: 1e-12.
+pub const CORNER_REL: f64 = 1e-12;
+
 /// Interpolation error target of the piston fringe table, relative to
 /// Σ|a_j| (the fringe amplitude): the table is built so that its cubic
 /// interpolation error, which falls as h⁴, is below 1e-12; the synthesized
@@ -240,6 +305,14 @@ pub const FRINGE_TABLE_REL: f64 = 1e-12;
 /// plus the rounding of a sum over ~10³ Gauss–Legendre nodes (~10³ ε ≈
 /// 2e-13), with a factor 10 for both: 1e-11.
 pub const FRINGE_TABLE_CHECK_ABS: f64 = 1e-11;
+
+/// The fringe table against the adaptive spectral oracle at single OPDs,
+/// absolute for a fringe of amplitude ~1: the oracle integrates an
+/// integrand with up to ~25 oscillations across the band (|x| ≤ 60 µm) to
+/// [`QUADRATURE_REL`] of ∫|integrand| per panel, and its Kronrod estimate
+/// on oscillatory panels is ~10× optimistic; 1e-10 allows both, ten
+/// times [`FRINGE_TABLE_CHECK_ABS`].
+pub const FRINGE_ORACLE_ABS: f64 = 1e-10;
 
 /// Absolute accuracy of `2 J1(z)/z` and of J0, J1 over |z| ≤ 100, checked
 /// against mpmath at 50 digits (`tests/data/bessel_reference.csv`). Miller's
@@ -337,6 +410,71 @@ pub const SCALING_LAW_REL: f64 = 0.05;
 /// 4) is ample and a Δσ¹ or Δσ⁴ law (ratio 2 or 16) fails.
 pub const SQUARE_LAW_REL: f64 = 0.025;
 
+/// The tabulated piston PSD (Catmull–Rom in ln G on 80 points per decade
+/// of frequency, step h = ln 10/80 ≈ 0.029) against the direct quadrature,
+/// relative, where f D ≤ 1: the cubic's error ~h⁴ |d⁴ ln G/d(ln f)⁴|/384
+/// is ≲ 1e-6 on the power laws and grows to ~1e-5 at the bends; integrals
+/// of the table over frequency inherit the same relative error.
+pub const PSD_TABLE_REL: f64 = 1e-5;
+
+/// The tabulated piston PSD over the whole range that carries power (up to
+/// 3 v/D), relative: the error of [`PSD_TABLE_REL`] peaks at ~3e-5 near
+/// the high-frequency corner, where ln G bends fastest (h⁴ times a larger
+/// fourth derivative); 1e-4.
+pub const PSD_TABLE_CORNER_REL: f64 = 1e-4;
+
+/// The tabulated piston PSD beyond f D ~ 1, relative: there the table
+/// under-resolves the surviving Bessel wiggle (period 1/D, relative
+/// amplitude ~(f D)^{−1/2}), sampled only a few times per period, but P is
+/// below 1e-6 of its peak; 1e-2 bounds the interpolation of the wiggle.
+pub const PSD_TABLE_WIGGLE_REL: f64 = 1e-2;
+
+/// A limit approached as a power of a small parameter, checked well inside
+/// its regime, relative: the piston variance for B ≫ D against the point
+/// structure function (D/B = 1e-5), the mid-frequency asymptote as the
+/// period average of the cosine factor at f D = 9e-4 (with 64 points per
+/// period), the outer-scale correction at L0 = 10¹² m ((B/L0)^{1/3} ≈
+/// 3e-4). Each correction is ≲ 3e-4; 1e-3 is loose enough for all three
+/// and still sees a wrong limit (which differs at O(1)).
+pub const ASYMPTOTIC_LIMIT_REL: f64 = 1e-3;
+
+/// A finite sum corrected to leading order by an asymptotic form: the
+/// variance of a synthesized piston sequence plus the power below its
+/// lowest frequency, taken from the ν^{−2/3} law, against the continuous
+/// variance. The missing piece is only approximately on that law (the
+/// spectrum starts to bend within a factor ~10 of the corner), so the
+/// correction itself is good to ~10–20% of a term that is ~20% of the
+/// total; 5%, while omitting the correction fails.
+pub const ASYMPTOTIC_CORRECTION_REL: f64 = 0.05;
+
+/// Below the low-frequency corner, P/asymptote − 1 falls linearly in
+/// r = ν/corner (the next term of the expansion in Bν/v): the test allows
+/// 2r, a coefficient of order one with a margin, at r = 1e-4 … 1e-2.
+pub const LOW_FREQ_VALUE_COEFF: f64 = 2.0;
+
+/// The log-slope of P below the low-frequency corner approaches −2/3 with
+/// an error linear in r = ν/corner; the log-derivative of a correction
+/// c r^p carries the extra factor p (up to ~4 for the terms of the
+/// expansion): 10 r.
+pub const LOW_FREQ_SLOPE_COEFF: f64 = 10.0;
+
+/// Between the corners, G against its f^{−8/3} asymptote: the aperture
+/// filter's expansion in (f D)² gives a relative error falling as (f D)²
+/// with a coefficient of order one; 10 (f D)² allows it with a margin and
+/// still fails for an error of first order in f D.
+pub const MID_FREQ_VALUE_COEFF: f64 = 10.0;
+
+/// The log-slope of G between the corners approaches −8/3 with an error
+/// in (f D)²: the log-derivative doubles the coefficient of
+/// [`MID_FREQ_VALUE_COEFF`]: 20 (f D)².
+pub const MID_FREQ_SLOPE_COEFF: f64 = 20.0;
+
+/// Decade-averaged log-log slope of G above the high-frequency corner,
+/// absolute: the residual Bessel oscillation enters the log ratio of two
+/// points a decade apart at both ends and shrinks as (f D)^{−1/2}; 0.05
+/// (1% of 17/3) resolves the −17/3 law while −8/3 or −11/3 miss by ≥ 2.
+pub const DECADE_SLOPE_ABS: f64 = 0.05;
+
 /// The finite-scan bias falls roughly as 1/stroke: each doubling of the
 /// stroke halves it up to the modulation by the sidelobes of the scan's
 /// sinc response, which moves individual points of the curve by up to
@@ -423,8 +561,9 @@ pub const PRINTED_5_DECIMALS_ABS: f64 = 5e-6;
 pub const PRINTED_3_DECIMALS_ABS: f64 = 1e-3;
 
 /// A value quoted to two decimals (e.g. the corrected OPD per coherence
-/// time, 29.95 µm, in the claims table): reproduced to one unit in its last
-/// place.
+/// time, 29.95 µm, in the claims table; the paper's 18 m baseline, which
+/// 40 cycles/arcsec gives at 2.2 µm as 18.0013 m): reproduced to one unit
+/// in its last place.
 pub const PRINTED_2_DECIMALS_ABS: f64 = 1e-2;
 
 // ---------------------------------------------------------------------------
