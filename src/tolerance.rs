@@ -100,18 +100,21 @@ pub const DEFAULT_ABS: f64 = ROUNDING_REL;
 /// `DFT_REL_PER_LOG2N * log2 N` with a safety factor of 10.
 pub const DFT_REL_PER_LOG2N: f64 = 10.0 * EPS;
 
-/// A direct sum of N unit phasors `e^{-2πi jk/N}` against its closed form
-/// (the Dirichlet kernel), relative to N: each phase 2π jk/N is rounded
-/// with an error ~ ε · 2π N, so every term carries up to ~10 N ε and the
-/// sum up to ~10 N² ε ≈ 2e-15 N² absolute. For the N ≤ 128 used, 1e-12 N
-/// is ≥ 30 times that, and still catches an off-by-one in the kernel
-/// (which moves it by O(1)).
+/// A direct sum of N unit phasors against its closed form (the Dirichlet
+/// kernel at u ≤ 3.5 for N ≤ 116), relative to N: each phase 2π j u is up
+/// to ~10³ rad and is rounded to ~10³ ε ≈ 2e-13, so the N-term sum carries
+/// at most ~2e-13 N of absolute error even when the errors add coherently;
+/// 1e-12 N leaves a margin of 5, while an off-by-one in the kernel moves
+/// it by O(1). Also the relative tolerance of the other phasor-sum closed
+/// forms: the noise-bias kernel |Σ_k e^{−2πi ik/N}|² (N = 16) and
+/// Σ_k B_k = N m_0 over N = 100 bins, each of relative error ~ε log2 N.
 pub const DIRECT_SUM_REL: f64 = 1e-12;
 
-/// A naive O(N²) DFT against the FFT, absolute, for inputs of order one and
-/// N ≤ 64: the naive sum accumulates ~N² ε of phase rounding (≈ 1e-12 at
-/// N = 64) and the FFT ε log2 N; 1e-11 leaves a factor ~10, while a wrong
-/// twiddle factor moves a bin by O(1).
+/// A naive O(N²) DFT against the FFT, absolute, for N = 100 inputs of
+/// magnitude ≤ 3: the naive phases 2π jk/N are reduced modulo N exactly, so
+/// each term is good to a few ε and the N-term sum to ~N · 3 · few ε ≈
+/// 1e-13 (the FFT to ε log2 N of the bin scale); 1e-11 leaves a wide
+/// margin, while a wrong twiddle factor moves a bin by O(1).
 pub const NAIVE_DFT_ABS: f64 = 1e-11;
 
 /// A sum over all N bins of an FFT against its closed form (Parseval:
@@ -128,11 +131,12 @@ pub const FFT_SUM_REL: f64 = 1e-13;
 /// 1e-11 N covers that with a margin of ~25.
 pub const BIN_SUM_REL: f64 = 1e-11;
 
-/// Two routes to the same finite-scan bias (the bin convolution and the
-/// direct DFT of the synthesized interferogram): both sit on spectral
-/// quadratures converged to ~1e-15 of the band integral, and the biases are
-/// differences of O(1) numbers, so they agree to rounding amplified by the
-/// ~10³ terms of the convolution: 1e-12 absolute.
+/// Two routes to the same finite-scan bias or bin (the bin convolution and
+/// the DFT of the synthesized interferogram): both sit on the same
+/// spectral nodes, converged to ~1e-15 of the band integral, and the
+/// biases are differences of O(1) numbers, so they agree to rounding
+/// amplified by the sums over nodes and samples (≲ 10³ terms): 1e-12
+/// absolute.
 pub const PATHS_AGREE_ABS: f64 = 1e-12;
 
 /// A DFT bin from the convolution path against the same bin by adaptive
@@ -142,11 +146,13 @@ pub const PATHS_AGREE_ABS: f64 = 1e-12;
 /// ~3 for the oracle's Kronrod estimate.
 pub const BIN_ORACLE_ABS: f64 = 1e-11;
 
-/// The closed-form turbulence constants (C_D, C_Φ, the profile integrals)
-/// by Gamma functions against mpmath: the Lanczos Γ is good to ~1e-15
-/// relative, and each constant is a product of up to ~6 Gammas and powers
-/// with exponents up to 11/3 (a relative error δ in the base becomes 11/3 δ
-/// in the power): ~30 ε ≈ 7e-15, so 1e-13 leaves a margin of ~15.
+/// Closed forms built of Gamma functions and non-integer powers against
+/// mpmath or against each other (the turbulence constants C_D, C_Φ, the
+/// profile integrals; the OPD spectrum at two wavelengths with r0 ∝
+/// λ^{6/5}): the Lanczos Γ is good to ~1e-15 relative, and each constant
+/// is a product of up to ~6 Gammas and powers with exponents up to 11/3
+/// (a relative error δ in the base becomes 11/3 δ in the power): ~30 ε ≈
+/// 7e-15, so 1e-13 leaves a margin of ~15.
 pub const GAMMA_REL: f64 = 1e-13;
 
 /// Agreement between two routes to the same closed form (cumulant recursion
@@ -212,12 +218,14 @@ pub const EXAMPLE_GOLDEN_ABS: f64 = 1e-6;
 
 /// The piston fringe is linear in the source visibility: run on the same
 /// piston sequence, the mean and scatter of V1 and V2 of a grey source of
-/// visibility V are V times those of a point source, to rounding. Between
-/// two runs the statistics are sums over ~10⁵ scans of values of order
-/// one, each rounded differently (the fringe table interpolates to
-/// [`FRINGE_TABLE_REL`]), relative to their scale (the scatter): 1e-9
-/// leaves a margin of ~10² over ~10⁵ × 10 ε and still sees any additive
-/// term (which breaks the scaling at O(1)).
+/// visibility V are V times those of a point source, to rounding (the grey
+/// fringe is V times the table's values, not the same floating-point
+/// numbers). Over ~10³ scans the statistics carry ~10³ ε of relative
+/// rounding, amplified up to ~10² where a mean is small against the
+/// scatter it is compared with: ~2e-11 of the scatter; 1e-9 leaves a margin
+/// of ~50 and still sees any additive term (which breaks the scaling at
+/// O(1)). Also the tolerance of the V2 bias ratio reported in the claims
+/// table (0.5 for V = 0.5).
 pub const VISIBILITY_SCALING_REL: f64 = 1e-9;
 
 /// The same scaling as [`VISIBILITY_SCALING_REL`], checked in the claims
@@ -321,12 +329,13 @@ pub const BESSEL_ABS: f64 = 1e-14;
 
 /// Accuracy of a located zero of J1, relative: Newton's method is iterated
 /// until its step is below one ulp, so the zero is limited by the accuracy
-/// of J1 near it ([`BESSEL_ABS`]) divided by the slope |J1'| ≥ 0.1 at the
-/// first ten zeros, relative to zeros ≥ 3.8: ~3e-15; 1e-14 with a margin.
+/// of J1 near it ([`BESSEL_ABS`]) divided by the slope |J1'| = |J0| ≈
+/// √(2/πx) ≥ 0.1 for zeros below ~60, relative to zeros ≥ 3.8: ≲ 3e-15;
+/// 1e-14 with a margin.
 pub const BESSEL_ZERO_REL: f64 = 1e-14;
 
 /// Fresnel integrals are O(1) and computed to a few ulps (a power series
-/// of alternating terms below x ≈ 1.8, a continued fraction above); 2e-15
+/// of alternating terms up to x = 1.5, a continued fraction above); 2e-15
 /// ≈ 9 [`EPS`] absolute. mpmath's 17-digit reference values are exact to
 /// 1e-17 (`tests/data/fresnel_reference.csv`).
 pub const FRESNEL_ABS: f64 = 2e-15;
@@ -334,9 +343,9 @@ pub const FRESNEL_ABS: f64 = 2e-15;
 /// The dispersion closed form (Fresnel integrals) against the numerical
 /// spectral path, absolute on V²: the requirement. The numerical
 /// path is converged to [`QUADRATURE_REL`] on a band integral whose
-/// integrand oscillates once per radian of dispersion phase, so 1e-10 is
-/// met with a wide margin at the ≤ 3 rad tested, and a 1% error in the
-/// phase moves V² by ≥ 1e-4 (a factor [`POWER_FACTOR`] above it).
+/// integrand turns through at most P ≤ 4 rad of phase, so 1e-10 is met
+/// with a wide margin, while a 1% error in P moves V² by ~1e-3 at P = 1,
+/// more than [`POWER_FACTOR`] tolerances.
 pub const CLOSED_FORM_VS_NUMERICAL: f64 = 1e-10;
 
 /// A central difference with step h against the exact derivative,
@@ -476,10 +485,11 @@ pub const MID_FREQ_SLOPE_COEFF: f64 = 20.0;
 pub const DECADE_SLOPE_ABS: f64 = 0.05;
 
 /// The finite-scan bias falls roughly as 1/stroke: each doubling of the
-/// stroke halves it up to the modulation by the sidelobes of the scan's
-/// sinc response, which moves individual points of the curve by up to
-/// ~20%. 30% on the ratio 2 (1.4 to 2.6) allows that, while a bias that
-/// does not fall (ratio 1) or falls as 1/stroke² (ratio 4) fails.
+/// stroke halves it, up to the modulation by the sidelobes of the scan's
+/// sinc response, which moves individual points of the curve by tens of
+/// per cent at most. 30% on the ratio 2 (1.4 to 2.6) allows that, while a
+/// bias that does not fall (ratio 1) or falls as 1/stroke² (ratio 4)
+/// fails.
 pub const ROUGH_SCALING_REL: f64 = 0.3;
 
 /// The line bias is linear in the line width for narrow lines: between
@@ -539,9 +549,9 @@ pub const RIEMANN_SUM_ABS: f64 = 2e-4;
 /// The sinc channel response truncated at ±200 resolution elements
 /// against the infinite top-hat closed form, absolute on a visibility: the
 /// discarded tails carry ~1/(π² · 200) ≈ 5e-4 of the response's area, but
-/// they are odd about the line to first order and the line covers only
-/// ~1/600 of the channel, so the visibility moves by ≲ 1e-6; 2e-6 allows
-/// twice that.
+/// the visibility is a ratio in which that area enters only through the
+/// line's own share of the channel (the line moves V by ~4e-4 from 0.5):
+/// ~5e-4 × 4e-4 × O(1) ≲ 1e-6; 2e-6.
 pub const SINC_TAIL_ABS: f64 = 2e-6;
 
 /// The integrating-detector loss of V1² measured on a synthesized
