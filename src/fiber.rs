@@ -53,7 +53,7 @@ const SLOPE_STEP_PER_UM: f64 = 1e-4;
 
 /// `D = d²φ/dσ²` (rad µm²) at `sigma0_per_um` for an extra glass length
 /// `length_um` of index `index(σ)`: `φ = 2π σ n(σ) L`, differentiated by a
-/// five-point central difference with step [`D2_STEP_PER_UM`] (the index
+/// five-point central difference with step `D2_STEP_PER_UM` (the index
 /// varies on scales of 1 µm⁻¹, so the truncation error is ~1e-12 relative).
 pub fn dispersion_coefficient(
     index: impl Fn(f64) -> f64,
