@@ -2,6 +2,7 @@
 //! golden curves are not grid or quadrature artefacts, and the effect
 //! follows its scaling laws.
 
+use v2ref::assert_rel_eq;
 use v2ref::bias::bandwidth::{curve, locate_max};
 use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
@@ -9,6 +10,9 @@ use v2ref::formalism::source::{uniform_disk_visibility, Source};
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::quadrature::gauss_legendre;
 use v2ref::reproduction::cases::s_grid;
+use v2ref::tolerance::{
+    ARGMAX_ABS, GRID_INTERPOLATION_REL, MINIMIZE_BRACKET_REL, QUADRATURE_REL, SCALING_LAW_REL, ULPS,
+};
 
 fn disk() -> Source {
     Source::UniformDisk { diameter_mas: 43.0 }
@@ -43,12 +47,12 @@ fn adaptive_quadrature_matches_an_independent_fixed_rule() {
             let w = curve(&band(bw), &disk(), &SpectralPhase::zero(), &[s]).unwrap()[0];
             let (v1, v2) = fixed_rule(bw, s);
             assert!(
-                (w.v1_sq - v1).abs() < 1e-13,
+                (w.v1_sq - v1).abs() < QUADRATURE_REL,
                 "bw {bw} S {s}: {} vs {v1}",
                 w.v1_sq
             );
             assert!(
-                (w.v2_sq - v2).abs() < 1e-13,
+                (w.v2_sq - v2).abs() < QUADRATURE_REL,
                 "bw {bw} S {s}: {} vs {v2}",
                 w.v2_sq
             );
@@ -80,7 +84,10 @@ fn the_golden_grid_resolves_the_curves() {
         let e2 = (d2(m) - 0.5 * (d2(&values[i]) + d2(&values[i + 1]))).abs();
         worst = (worst.0.max(e1), worst.1.max(e2));
     }
-    assert!(worst.0 < 1e-3 * 0.04 && worst.1 < 1e-3 * 0.006, "{worst:?}");
+    assert!(
+        worst.0 < GRID_INTERPOLATION_REL * 0.04 && worst.1 < GRID_INTERPOLATION_REL * 0.006,
+        "{worst:?}"
+    );
 }
 
 #[test]
@@ -107,7 +114,7 @@ fn located_maxima_are_stable_under_grid_refinement() {
         let (s_a, m_a) = locate_max(dev(which), 0.0, 80.0, 401);
         let (s_b, m_b) = locate_max(dev(which), 0.0, 80.0, 1601);
         assert!(
-            (s_a - s_b).abs() < 1e-4 && (m_a - m_b).abs() < 1e-9,
+            (s_a - s_b).abs() < ARGMAX_ABS && (m_a - m_b).abs() < MINIMIZE_BRACKET_REL,
             "{s_a} {m_a} vs {s_b} {m_b}"
         );
     }
@@ -122,11 +129,11 @@ fn bandwidth_scaling_laws() {
     let null = 28.364;
     let r1 = (at(200.0, null).v1 - at(200.0, null).v_mono)
         / (at(100.0, null).v1 - at(100.0, null).v_mono);
-    assert!((r1 - 2.0).abs() < 0.1, "V1 ratio {r1}");
+    assert_rel_eq!(r1, 2.0, SCALING_LAW_REL, "V1 ratio");
     let top = 61.4;
     let r2 =
         (at(200.0, top).v2 - at(200.0, top).v_mono) / (at(100.0, top).v2 - at(100.0, top).v_mono);
-    assert!((r2 - 4.0).abs() < 0.2, "V2 ratio {r2}");
+    assert_rel_eq!(r2, 4.0, SCALING_LAW_REL, "V2 ratio");
     // Zero bandwidth limit: both estimators are V_mono.
     let w = curve(
         &Spectrum::monochromatic(2.2).unwrap(),
@@ -135,5 +142,5 @@ fn bandwidth_scaling_laws() {
         &[40.0],
     )
     .unwrap()[0];
-    assert!((w.v1 - w.v_mono).abs() < 1e-15 && (w.v2 - w.v_mono).abs() < 1e-15);
+    assert!((w.v1 - w.v_mono).abs() < ULPS && (w.v2 - w.v_mono).abs() < ULPS);
 }

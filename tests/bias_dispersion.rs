@@ -4,6 +4,7 @@
 //! fluoride-glass dispersion helper.
 
 use proptest::prelude::*;
+use v2ref::assert_rel_eq;
 use v2ref::bias::dispersion;
 use v2ref::formalism::estimator::{v1_sq, v2_sq};
 use v2ref::formalism::observation::{Frequency, Observation};
@@ -11,12 +12,10 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::special::fresnel::{fresnel_cs, point_source_v2_sq};
-
-/// Fresnel integrals are O(1) and computed to a few ulps; mpmath's
-/// 17-digit values are exact to 1e-17.
-const FRESNEL_ABS: f64 = 2e-15;
-/// The requirement for the closed form against the numerical path.
-const CLOSED_FORM_VS_NUMERICAL: f64 = 1e-10;
+use v2ref::tolerance::{
+    CLOSED_FORM_VS_NUMERICAL, FINITE_DIFFERENCE_REL, FRESNEL_ABS, LEADING_TERM_REL, POWER_FACTOR,
+    RESIDUAL_PHASE_REL, ROUNDING_REL, SECOND_DIFFERENCE_ABS, SMALL_P_EXPANSION_ABS, ULPS,
+};
 
 fn reference() -> Vec<Vec<String>> {
     include_str!("data/fresnel_reference.csv")
@@ -56,7 +55,8 @@ fn fresnel_limits_and_symmetry() {
     }
     // Small x: C ≈ x, S ≈ π x³/6.
     let (c, s) = fresnel_cs(1e-3);
-    assert!((c - 1e-3).abs() < 1e-15 && (s - std::f64::consts::PI * 1e-9 / 6.0).abs() < 1e-20);
+    assert_rel_eq!(c, 1e-3, LEADING_TERM_REL);
+    assert_rel_eq!(s, std::f64::consts::PI * 1e-9 / 6.0, LEADING_TERM_REL);
 }
 
 #[test]
@@ -66,7 +66,7 @@ fn point_source_closed_form_matches_mpmath_quadrature() {
         let want: f64 = row[2].parse().unwrap();
         let got = point_source_v2_sq(p);
         assert!(
-            (got - want).abs() < 1e-14,
+            (got - want).abs() < ROUNDING_REL,
             "P = {p}: {got} vs mpmath {want}"
         );
     }
@@ -101,7 +101,7 @@ fn closed_form_matches_the_numerical_path_to_1e_10() {
     }
     // And the check has power: a 1% error in P is seen.
     let (a, b) = (numerical_point_v2_sq(1.0), point_source_v2_sq(1.01));
-    assert!((a - b).abs() > 100.0 * CLOSED_FORM_VS_NUMERICAL);
+    assert!((a - b).abs() > POWER_FACTOR * CLOSED_FORM_VS_NUMERICAL);
 }
 
 #[test]
@@ -118,7 +118,7 @@ fn dispersion_lowers_v2_monotonically_in_the_figure_range() {
     }
     // Small-P expansion: V2² ≈ 1 − 4P²/45.
     let p = 0.01;
-    assert!((point_source_v2_sq(p) - (1.0 - 4.0 * p * p / 45.0)).abs() < 1e-9);
+    assert!((point_source_v2_sq(p) - (1.0 - 4.0 * p * p / 45.0)).abs() < SMALL_P_EXPANSION_ABS);
 }
 
 proptest! {
@@ -141,7 +141,7 @@ proptest! {
             SpectralPhase::dispersion_peak_to_peak(&band, p).unwrap(),
         ).unwrap();
         let (a, b) = (v1_sq(&obs(pp)), v1_sq(&obs(0.0)));
-        prop_assert!((a - b).abs() <= 1e-15, "{a} vs {b}");
+        prop_assert!((a - b).abs() <= ULPS, "{a} vs {b}");
     }
 }
 
@@ -149,17 +149,17 @@ proptest! {
 fn glass_dispersion_identities() {
     // A constant index gives a phase linear in σ: no dispersion.
     let d0 = dispersion::dispersion_coefficient(|_| 1.5, 0.45, 1e4).unwrap();
-    assert!(d0.abs() < 1e-4, "{d0}");
+    assert!(d0.abs() < SECOND_DIFFERENCE_ABS, "{d0}");
     // n = a + bσ: φ = 2πL(aσ + bσ²), D = 4πLb.
     let (b, l) = (0.01, 1e4);
     let d = dispersion::dispersion_coefficient(|s| 1.4 + b * s, 0.45, l).unwrap();
     let want = 4.0 * std::f64::consts::PI * l * b;
-    assert!((d - want).abs() < 1e-8 * want, "{d} vs {want}");
+    assert_rel_eq!(d, want, FINITE_DIFFERENCE_REL);
     // Peak-to-peak scales linearly with the glass length.
     let (lo, hi) = (1.0 / 2.4, 1.0 / 2.0);
     let p1 = dispersion::zblan_peak_to_peak_rad(lo, hi, 1e4).unwrap();
     let p2 = dispersion::zblan_peak_to_peak_rad(lo, hi, 2e4).unwrap();
-    assert!((p2 - 2.0 * p1).abs() < 1e-9 * p2);
+    assert!((p2 - 2.0 * p1).abs() < RESIDUAL_PHASE_REL * p2);
     // ZBLAN's index near 2.2 µm is about 1.49 (Gan 1995).
     let n = dispersion::zblan_index(1.0 / 2.2);
     assert!((1.48..1.50).contains(&n), "{n}");

@@ -10,21 +10,26 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::{Component, FluxProfile, Source};
 use v2ref::formalism::spectrum::Spectrum;
+use v2ref::tolerance::{
+    EPS, LINEAR_RESPONSE_REL, PRINTED_3_DECIMALS_ABS, PRINTED_5_DECIMALS_ABS, QUADRATURE_CHECK_REL,
+    ROUNDING_REL, SINC_TAIL_ABS,
+};
+use v2ref::{assert_abs_eq, assert_rel_eq};
 
 #[test]
 fn paper_case_numbers() {
     let case = LineCase::paper();
-    assert!((1.0 / case.width_elements - 599.585).abs() < 1e-3);
+    assert_abs_eq!(1.0 / case.width_elements, 599.585, PRINTED_3_DECIMALS_ABS);
     let v = channel_visibility(&case).unwrap();
     let c = top_hat_closed_form(&case);
     assert!(
-        (v.unweighted - c.unweighted).abs() < 1e-14
-            && (v.flux_weighted - c.flux_weighted).abs() < 1e-14
+        (v.unweighted - c.unweighted).abs() < ROUNDING_REL
+            && (v.flux_weighted - c.flux_weighted).abs() < ROUNDING_REL
     );
     // The printed 0.50042 is the unweighted average; the flux-weighted
     // channel is about twice as far from 0.5.
-    assert!((v.unweighted - 0.50042).abs() < 5e-6, "{v:?}");
-    assert!((v.flux_weighted - 0.50083).abs() < 5e-6, "{v:?}");
+    assert_abs_eq!(v.unweighted, 0.50042, PRINTED_5_DECIMALS_ABS, "{v:?}");
+    assert_abs_eq!(v.flux_weighted, 0.50083, PRINTED_5_DECIMALS_ABS, "{v:?}");
 }
 
 #[test]
@@ -48,7 +53,8 @@ fn limits() {
     ] {
         let v = channel_visibility(&case).unwrap();
         assert!(
-            (v.unweighted - want).abs() < 1e-14 && (v.flux_weighted - want).abs() < 1e-14,
+            (v.unweighted - want).abs() < ROUNDING_REL
+                && (v.flux_weighted - want).abs() < ROUNDING_REL,
             "{v:?}"
         );
     }
@@ -58,7 +64,9 @@ fn limits() {
         ..base
     };
     let v = channel_visibility(&full).unwrap();
-    assert!((v.unweighted - 0.75).abs() < 1e-14 && (v.flux_weighted - 0.75).abs() < 1e-14);
+    assert!(
+        (v.unweighted - 0.75).abs() < ROUNDING_REL && (v.flux_weighted - 0.75).abs() < ROUNDING_REL
+    );
     // The bias grows linearly with the line width for narrow lines.
     let b = |w: f64| {
         channel_visibility(&LineCase {
@@ -69,13 +77,17 @@ fn limits() {
         .flux_weighted
             - 0.5
     };
-    assert!((b(2e-3) / b(1e-3) - 2.0).abs() < 2e-3);
+    assert_rel_eq!(b(2e-3) / b(1e-3), 2.0, LINEAR_RESPONSE_REL);
     assert!(channel_visibility(&LineCase {
         width_elements: -1.0,
         ..base
     })
     .is_err());
-    assert!((width_in_elements(2.0, 10.0, 100.0) - base.width_elements).abs() < 1e-18);
+    assert_rel_eq!(
+        width_in_elements(2.0, 10.0, 100.0),
+        base.width_elements,
+        EPS
+    );
 }
 
 #[test]
@@ -88,8 +100,8 @@ fn the_sinc_channel_agrees_for_a_centred_line() {
     let t = top_hat_closed_form(&LineCase::paper());
     // The sinc's tails beyond ±200 elements carry ~1/(π² 200) of its area.
     assert!(
-        (v.unweighted - t.unweighted).abs() < 2e-6
-            && (v.flux_weighted - t.flux_weighted).abs() < 2e-6,
+        (v.unweighted - t.unweighted).abs() < SINC_TAIL_ABS
+            && (v.flux_weighted - t.flux_weighted).abs() < SINC_TAIL_ABS,
         "{v:?} vs {t:?}"
     );
 }
@@ -139,7 +151,7 @@ fn the_crate_estimator_with_a_filter_only_spectrum_gives_the_unweighted_average(
     };
     let v = channel_visibility(&case).unwrap();
     assert!(
-        (via_estimator - v.unweighted).abs() < 1e-12,
+        (via_estimator - v.unweighted).abs() < QUADRATURE_CHECK_REL,
         "{via_estimator} vs {v:?}"
     );
     assert!((via_estimator - v.flux_weighted).abs() > 1e-3);

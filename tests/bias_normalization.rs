@@ -9,6 +9,10 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::tolerance::{
+    BIN_SUM_REL, INTEGRATION_LOSS_ABS, NARROW_BAND_LIMIT_ABS, QUADRATURE_CHECK_REL, QUADRATURE_REL,
+    ROUNDING_REL, SAMPLING_LIMIT_ABS, ULPS,
+};
 
 fn point(sp: &Spectrum) -> Observation {
     Observation::new(
@@ -33,9 +37,15 @@ fn deviation_matches_a_direct_synthesis() {
         let sum: num_complex::Complex64 = (1..n.div_ceil(2)).map(|k| b[k]).sum();
         // Σ over all bins is N m_0 = N exactly: the normalization's baseline.
         let all: num_complex::Complex64 = b.iter().sum();
-        assert!((all.re - n as f64).abs() < 1e-11 * n as f64 && all.im.abs() < 1e-11 * n as f64);
+        assert!(
+            (all.re - n as f64).abs() < BIN_SUM_REL * n as f64
+                && all.im.abs() < BIN_SUM_REL * n as f64
+        );
         let direct = (1.0 - 2.0 * sum.norm() / n as f64).abs();
-        assert!((direct - f).abs() < 1e-13, "N={n}: {direct} vs {f}");
+        assert!(
+            (direct - f).abs() < QUADRATURE_REL,
+            "N={n}: {direct} vs {f}"
+        );
     }
 }
 
@@ -73,7 +83,7 @@ fn the_riemann_reading_errs_by_the_grid_step() {
     let dev = riemann_deviation(&sp, 0.55, &[116]).unwrap()[0];
     let bound = (1.0 / (116.0 * 0.55)) / sp.width_per_um();
     assert!(
-        dev > 1e-3 && dev <= bound * (1.0 + 1e-12),
+        dev > 1e-3 && dev <= bound * (1.0 + QUADRATURE_CHECK_REL),
         "{dev} vs {bound}"
     );
 }
@@ -95,9 +105,9 @@ fn threshold_stroke_finds_the_last_crossing() {
 #[test]
 fn integrating_detector_monochromatic_factor() {
     let f = integration::monochromatic_norm_factor(4.0);
-    assert!((f - std::f64::consts::PI.powi(2) / 8.0).abs() < 1e-15);
-    assert!((integration::monochromatic_contrast(2.0) - 2.0 / std::f64::consts::PI).abs() < 1e-15);
-    assert!((integration::monochromatic_norm_factor(1e6) - 1.0).abs() < 1e-11);
+    assert!((f - std::f64::consts::PI.powi(2) / 8.0).abs() < ULPS);
+    assert!((integration::monochromatic_contrast(2.0) - 2.0 / std::f64::consts::PI).abs() < ULPS);
+    assert!((integration::monochromatic_norm_factor(1e6) - 1.0).abs() < SAMPLING_LIMIT_ABS);
     // More samples per fringe, less loss.
     let f: Vec<f64> = [2.0, 3.0, 4.0, 8.0, 16.0]
         .iter()
@@ -123,13 +133,13 @@ fn wide_band_loss_matches_synthesized_interferograms() {
         let (s, i) = (raw(false), raw(true));
         let loss = integration::wide_band_loss(&obs, dx);
         assert!(
-            (i.0 / s.0 - loss.v1_sq).abs() < 2e-3,
+            (i.0 / s.0 - loss.v1_sq).abs() < INTEGRATION_LOSS_ABS,
             "dx {dx}: {} vs {}",
             i.0 / s.0,
             loss.v1_sq
         );
         assert!(
-            (i.1 / s.1 - loss.v2_sq).abs() < 1e-12,
+            (i.1 / s.1 - loss.v2_sq).abs() < QUADRATURE_CHECK_REL,
             "dx {dx}: {} vs {}",
             i.1 / s.1,
             loss.v2_sq
@@ -142,14 +152,20 @@ fn wide_band_loss_matches_synthesized_interferograms() {
     let narrow = point(&Spectrum::flat(Band::new(2.2, 1e-4).unwrap()));
     let l = integration::wide_band_loss(&narrow, 0.55);
     let mono = 1.0 / integration::monochromatic_norm_factor(4.0);
-    assert!((l.v1_sq - mono).abs() < 1e-8 && (l.v2_sq - mono).abs() < 1e-8);
+    assert!(
+        (l.v1_sq - mono).abs() < NARROW_BAND_LIMIT_ABS
+            && (l.v2_sq - mono).abs() < NARROW_BAND_LIMIT_ABS
+    );
 }
 
 #[test]
 fn calibrated_integration_bias_is_small_and_vanishes_for_a_point_source() {
     let sp = Spectrum::flat(Band::k());
     let b = integration::calibrated_bias(&point(&sp), 0.55);
-    assert!(b.v1.abs() < 1e-14 && b.v2.abs() < 1e-14, "{b:?}");
+    assert!(
+        b.v1.abs() < ROUNDING_REL && b.v2.abs() < ROUNDING_REL,
+        "{b:?}"
+    );
     let disk = Observation::new(
         sp.clone(),
         Source::UniformDisk { diameter_mas: 43.0 },

@@ -3,6 +3,8 @@
 
 use v2ref::reproduction::cases::Effort;
 use v2ref::reproduction::claims::{evaluate, ledger, Status};
+use v2ref::tolerance::ROUNDING_REL;
+use v2ref::{assert_abs_eq, assert_rel_eq};
 
 #[test]
 fn project_ledger_matches_the_shared_ledger() {
@@ -98,11 +100,19 @@ fn foundation_claims_are_computed() {
 fn dynamic_range_formula_holds_its_scaling_laws() {
     use v2ref::formalism::dynamic_range::dynamic_range;
     let a = dynamic_range(100.0, 1e-3, 0.0).unwrap();
-    assert!((dynamic_range(400.0, 1e-3, 0.0).unwrap() / a - 2.0).abs() < 1e-14);
-    assert!((dynamic_range(100.0, 2e-3, 0.0).unwrap() / a - 0.5).abs() < 1e-14);
+    assert_abs_eq!(
+        dynamic_range(400.0, 1e-3, 0.0).unwrap() / a,
+        2.0,
+        ROUNDING_REL
+    );
+    assert_abs_eq!(
+        dynamic_range(100.0, 2e-3, 0.0).unwrap() / a,
+        0.5,
+        ROUNDING_REL
+    );
     // Modulus and phase errors add in quadrature.
     let b = dynamic_range(100.0, 3e-3, 4e-3).unwrap();
-    assert!((b - (100.0f64 / 25e-6).sqrt()).abs() < 1e-9 * b);
+    assert_rel_eq!(b, (100.0f64 / 25e-6).sqrt(), ROUNDING_REL);
     assert!(dynamic_range(0.5, 1e-3, 0.0).is_err());
     assert!(dynamic_range(10.0, 0.0, 0.0).is_err());
 }

@@ -2,6 +2,8 @@
 //! flag, never a panic; `--json` answers parse and carry the contract's fields.
 
 use std::process::Command;
+use v2ref::assert_rel_eq;
+use v2ref::tolerance::{QUADRATURE_CHECK_REL, ROUNDING_REL};
 
 fn v2ref(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -119,12 +121,12 @@ fn bias_json_carries_the_contract_fields() {
             assert!(x.is_finite());
         }
         let (v1, v1_sq) = (v["v1"].as_f64().unwrap(), v["v1_sq"].as_f64().unwrap());
-        assert!((v1 * v1 - v1_sq).abs() < 1e-14);
+        assert!((v1 * v1 - v1_sq).abs() < ROUNDING_REL);
     }
     // The paper's defaults: S = 40 cycles/arcsec by default.
     let (_, stdout, _) = v2ref(&["bias", "--json"]);
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-    assert!((v["spatial_freq_cpas"].as_f64().unwrap() - 40.0).abs() < 1e-9);
+    assert_rel_eq!(v["spatial_freq_cpas"].as_f64().unwrap(), 40.0, ROUNDING_REL);
     // A finite scan adds its block.
     let (_, stdout, _) = v2ref(&["bias", "--json", "--stroke-um", "64"]);
     let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
@@ -156,7 +158,7 @@ fn bias_reads_a_tabulated_spectrum() {
     // Linear interpolation in σ of a table flat in λ nodes is flat in σ.
     for f in ["v1", "v2", "v_mono"] {
         let (a, b) = (table[f].as_f64().unwrap(), flat[f].as_f64().unwrap());
-        assert!((a - b).abs() < 1e-12, "{f}: {a} vs {b}");
+        assert!((a - b).abs() < QUADRATURE_CHECK_REL, "{f}: {a} vs {b}");
     }
 }
 

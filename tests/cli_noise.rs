@@ -2,7 +2,8 @@
 
 use serde_json::Value;
 use std::process::Command;
-use v2ref::tolerance::IDENTITY_REL;
+use v2ref::assert_within_sigmas;
+use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
 
 fn v2ref(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -106,7 +107,7 @@ fn simulate_is_identical_for_one_and_two_threads() {
     for e in ["v1_sq", "v2_sq"] {
         let m = v[format!("mean_{e}")].as_f64().unwrap();
         let se = v[format!("stderr_mean_{e}")].as_f64().unwrap();
-        assert!((m - 1.0).abs() < 5.0 * se, "{e}: {m} +- {se}");
+        assert_within_sigmas!(m, 1.0, se, MC_SIGMAS, "{e}");
     }
 }
 

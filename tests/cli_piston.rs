@@ -2,6 +2,8 @@
 //! across thread counts, bad input (one line, status 2).
 
 use std::process::Command;
+use v2ref::assert_abs_eq;
+use v2ref::tolerance::PRINTED_2_DECIMALS_ABS;
 
 fn v2ref(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -52,7 +54,11 @@ fn json_has_the_contract_fields_per_frequency() {
         assert_eq!(row["scans"].as_u64(), Some(60));
     }
     // 40 cycles/arcsec by default: the 18 m baseline.
-    assert!((v["baseline_m"].as_f64().unwrap() - 18.0).abs() < 0.01);
+    assert_abs_eq!(
+        v["baseline_m"].as_f64().unwrap(),
+        18.0,
+        PRINTED_2_DECIMALS_ABS
+    );
     assert_eq!(v["bins"], "positive");
     assert_eq!(v["detector"], "sampled");
 }

@@ -8,12 +8,14 @@ mod check_against_golden;
 mod bias_budget;
 
 use std::path::Path;
+use v2ref::tolerance::EXAMPLE_GOLDEN_ABS;
 
 #[test]
 fn third_party_check_passes_on_the_golden_data_and_catches_an_error() {
     let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("golden");
-    let worst = check_against_golden::check(&golden, 1e-6).expect("agrees with golden");
-    assert!(worst < 1e-6);
+    let worst =
+        check_against_golden::check(&golden, EXAMPLE_GOLDEN_ABS).expect("agrees with golden");
+    assert!(worst < EXAMPLE_GOLDEN_ABS);
     // A golden file with one checked value (row 13) moved by 1e-4 must make the check fail.
     let dir = tempfile::tempdir().unwrap();
     for f in ["fig1_v1.csv", "fig1_v2.csv"] {
@@ -28,7 +30,7 @@ fn third_party_check_passes_on_the_golden_data_and_catches_an_error() {
     cells[last] = format!("{:e}", v + 1e-4);
     lines[14] = cells.join(",");
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
-    assert!(check_against_golden::check(dir.path(), 1e-6).is_err());
+    assert!(check_against_golden::check(dir.path(), EXAMPLE_GOLDEN_ABS).is_err());
 }
 
 #[test]

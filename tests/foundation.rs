@@ -2,8 +2,8 @@
 //! band and W, the spectral estimators' limits, the sampled interferogram
 //! against its slow oracle, the DFT identities.
 
-use approx::assert_relative_eq;
 use num_complex::Complex64;
+use v2ref::assert_rel_eq;
 use v2ref::formalism::estimator::{
     all_bins, dft, noise_bias, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band,
     BinWindow,
@@ -15,7 +15,11 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::{Component, FluxProfile, Source};
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::quadrature::{gauss_kronrod_15, gauss_legendre, integrate, Tolerance};
-use v2ref::tolerance::SAMPLED_VS_SPECTRAL_ABS;
+use v2ref::tolerance::{
+    CONVERGENCE_GROWTH_REL, DIRECT_SUM_REL, FFT_SUM_REL, NAIVE_DFT_ABS, NODES_REL,
+    QUADRATURE_CHECK_REL, QUADRATURE_REL, RIEMANN_SUM_ABS, ROUNDING_REL, SAMPLED_VS_SPECTRAL_ABS,
+    SQUARE_LAW_REL, ULPS,
+};
 use v2ref::Error;
 
 fn disk_obs(spectrum: Spectrum, s_cpas: f64, pp_rad: f64) -> Observation {
@@ -37,12 +41,12 @@ fn kronrod_15_is_exact_to_degree_22_and_gauss_7_to_degree_13() {
     // tables breaks exactness at these degrees.
     for p in (0..=22).step_by(2) {
         let (k, _) = gauss_kronrod_15(&|x: f64| x.powi(p), -1.0, 1.0);
-        assert_relative_eq!(k, 2.0 / f64::from(p + 1), max_relative = 1e-14);
+        assert_rel_eq!(k, 2.0 / f64::from(p + 1), ROUNDING_REL);
     }
     // The G7 part: K15 − G7 is the error estimate, zero for degree ≤ 13.
     for p in (0..=12).step_by(2) {
         let (_, err) = gauss_kronrod_15(&|x: f64| x.powi(p), -1.0, 1.0);
-        assert!(err < 1e-14, "degree {p}: K15 - G7 = {err:e}");
+        assert!(err < ROUNDING_REL, "degree {p}: K15 - G7 = {err:e}");
     }
     let (_, err) = gauss_kronrod_15(&|x: f64| x.powi(14), -1.0, 1.0);
     assert!(err > 1e-6, "G7 cannot be exact at degree 14");
@@ -54,7 +58,7 @@ fn gauss_legendre_is_exact_to_degree_2n_minus_1() {
         let (x, w) = gauss_legendre(n);
         for p in (0..2 * n as i32).step_by(2) {
             let q: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(p)).sum();
-            assert_relative_eq!(q, 2.0 / f64::from(p + 1), max_relative = 1e-13);
+            assert_rel_eq!(q, 2.0 / f64::from(p + 1), NODES_REL);
         }
     }
 }
@@ -65,7 +69,7 @@ fn adaptive_quadrature_converges_on_a_peaked_integrand() {
     let f = |x: f64| 1.0 / (1e-4 + (x - 0.3).powi(2));
     let want = 100.0 * (70f64.atan() + 30f64.atan());
     let got = integrate(f, 0.0, 1.0, Tolerance::default());
-    assert_relative_eq!(got, want, max_relative = 1e-12);
+    assert_rel_eq!(got, want, QUADRATURE_CHECK_REL);
 }
 
 // ---- band and W -------------------------------------------------------------
@@ -75,19 +79,19 @@ fn flat_band_has_the_closed_form_moments() {
     let band = Band::k();
     let sp = Spectrum::flat(band);
     let (lo, hi) = (1.0 / 2.4, 1.0 / 2.0);
-    assert_relative_eq!(sp.support().0, lo, max_relative = 1e-15);
-    assert_relative_eq!(sp.support().1, hi, max_relative = 1e-15);
-    assert_relative_eq!(sp.sigma_eff_per_um(), 0.5 * (lo + hi), max_relative = 1e-14);
-    assert_relative_eq!(sp.w2_integral_um(), 1.0 / (hi - lo), max_relative = 1e-13);
-    assert_relative_eq!(sp.mean_w(|_| 1.0), 1.0, max_relative = 1e-14);
-    assert_relative_eq!(
+    assert_rel_eq!(sp.support().0, lo, ULPS);
+    assert_rel_eq!(sp.support().1, hi, ULPS);
+    assert_rel_eq!(sp.sigma_eff_per_um(), 0.5 * (lo + hi), ROUNDING_REL);
+    assert_rel_eq!(sp.w2_integral_um(), 1.0 / (hi - lo), QUADRATURE_REL);
+    assert_rel_eq!(sp.mean_w(|_| 1.0), 1.0, ROUNDING_REL);
+    assert_rel_eq!(
         sp.mean_w(|s| s * s),
         (hi.powi(3) - lo.powi(3)) / (3.0 * (hi - lo)),
-        max_relative = 1e-13
+        QUADRATURE_REL
     );
     // Riemann sums on a fine grid approach the integrals.
     let (s1, s2) = sp.grid_sums(1e-5).unwrap();
-    assert!((s1 - 1.0).abs() < 2e-4 && (s2 * (hi - lo) - 1.0).abs() < 2e-4);
+    assert!((s1 - 1.0).abs() < RIEMANN_SUM_ABS && (s2 * (hi - lo) - 1.0).abs() < RIEMANN_SUM_ABS);
 }
 
 #[test]
@@ -141,9 +145,9 @@ fn monochromatic_band_gives_v1_equal_v2_equal_v_mono() {
         } else {
             (2.0 * v2ref::math::special::bessel_j1(z) / z).abs()
         };
-        assert_relative_eq!(wb.v_mono, exact, max_relative = 1e-13);
-        assert_relative_eq!(wb.v1, exact, max_relative = 1e-13);
-        assert_relative_eq!(wb.v2, exact, max_relative = 1e-13);
+        assert_rel_eq!(wb.v_mono, exact, QUADRATURE_REL);
+        assert_rel_eq!(wb.v1, exact, QUADRATURE_REL);
+        assert_rel_eq!(wb.v2, exact, QUADRATURE_REL);
     }
 }
 
@@ -165,8 +169,8 @@ fn bandwidth_bias_vanishes_as_the_band_narrows_with_the_square_of_its_width() {
         for pair in d.windows(2) {
             let r1 = pair[0].0 / pair[1].0;
             let r2 = pair[0].1 / pair[1].1;
-            assert!((r1 - 4.0).abs() < 0.1, "S = {s}: V1 ratio {r1}");
-            assert!((r2 - 4.0).abs() < 0.1, "S = {s}: V2 ratio {r2}");
+            assert_rel_eq!(r1, 4.0, SQUARE_LAW_REL, "S = {s}: V1 ratio");
+            assert_rel_eq!(r2, 4.0, SQUARE_LAW_REL, "S = {s}: V2 ratio");
         }
         assert!(d[2].0.abs() < 1e-3 && d[2].1.abs() < 1e-3);
     }
@@ -181,8 +185,8 @@ fn point_source_without_phase_reads_one() {
         SpectralPhase::zero(),
     )
     .unwrap();
-    assert_relative_eq!(v1_sq(&obs), 1.0, max_relative = 1e-13);
-    assert_relative_eq!(v2_sq(&obs), 1.0, max_relative = 1e-13);
+    assert_rel_eq!(v1_sq(&obs), 1.0, QUADRATURE_REL);
+    assert_rel_eq!(v2_sq(&obs), 1.0, QUADRATURE_REL);
     assert_eq!(v_mono(&obs), 1.0);
 }
 
@@ -205,7 +209,7 @@ fn composite_of_identical_components_is_the_component() {
     for sigma in [0.42, 0.4545, 0.49] {
         let a = comp.visibility(sigma, 30.0);
         let b = disk.visibility(sigma, 30.0);
-        assert!((a - b).norm() < 1e-15);
+        assert!((a - b).norm() < ULPS);
     }
     // And a continuum of visibility 0.5 with an unresolved line of equal peak
     // flux density reads 0.75 at the line centre, 0.5 far from it.
@@ -226,8 +230,8 @@ fn composite_of_identical_components_is_the_component() {
         },
     ])
     .unwrap();
-    assert_relative_eq!(lined.visibility(0.5, 10.0).re, 0.75, max_relative = 1e-15);
-    assert_relative_eq!(lined.visibility(0.4, 10.0).re, 0.5, max_relative = 1e-15);
+    assert_rel_eq!(lined.visibility(0.5, 10.0).re, 0.75, ULPS);
+    assert_rel_eq!(lined.visibility(0.4, 10.0).re, 0.5, ULPS);
 }
 
 // ---- sampled interferograms ----------------------------------------------------
@@ -247,7 +251,7 @@ fn fast_synthesis_matches_the_adaptive_oracle() {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         assert!(
-            worst < 1e-12,
+            worst < QUADRATURE_CHECK_REL,
             "integrating {integrating}, {pp} rad: max error {worst:e}"
         );
     }
@@ -264,16 +268,16 @@ fn white_light_fringe_of_a_point_source_is_the_continuum() {
     .unwrap();
     let sampling = Sampling::new(128, 0.5, false).unwrap();
     let ifg = Interferogram::synthesize(&obs, &sampling, 10.0, None).unwrap();
-    assert_relative_eq!(ifg.modulated[0], 10.0, max_relative = 1e-13);
+    assert_rel_eq!(ifg.modulated[0], 10.0, QUADRATURE_REL);
     assert!(ifg
         .modulated
         .iter()
-        .all(|m| m.abs() <= 10.0 * (1.0 + 1e-13)));
+        .all(|m| m.abs() <= 10.0 * (1.0 + QUADRATURE_REL)));
     assert_eq!(ifg.continuum, vec![10.0; 128]);
     // An OPD perturbation equal to a whole scan shift moves the fringe.
     let shift = vec![0.5; 128];
     let moved = Interferogram::synthesize(&obs, &sampling, 10.0, Some(&shift)).unwrap();
-    assert_relative_eq!(moved.modulated[127], 10.0, max_relative = 1e-12);
+    assert_rel_eq!(moved.modulated[127], 10.0, QUADRATURE_CHECK_REL);
 }
 
 #[test]
@@ -299,13 +303,13 @@ fn integrating_detector_multiplies_a_monochromatic_fringe_by_sinc() {
         };
         let (a, b) = (m(false), m(true));
         let ratio = b[0] / a[0];
-        assert_relative_eq!(ratio, sinc(1.0 / spf), max_relative = 1e-13);
+        assert_rel_eq!(ratio, sinc(1.0 / spf), QUADRATURE_REL);
     }
-    assert_relative_eq!(sinc(0.5), 2.0 / std::f64::consts::PI, max_relative = 1e-15);
-    assert_relative_eq!(
+    assert_rel_eq!(sinc(0.5), 2.0 / std::f64::consts::PI, ULPS);
+    assert_rel_eq!(
         1.0 / sinc(0.25).powi(2),
         std::f64::consts::PI.powi(2) / 8.0,
-        max_relative = 1e-15
+        ULPS
     );
 }
 
@@ -317,17 +321,17 @@ fn fft_matches_the_naive_dft_and_the_appendix_identities() {
     let fast = dft(&samples);
     let slow = naive_dft(&samples);
     for (a, b) in fast.iter().zip(&slow) {
-        assert!((a - b).norm() < 1e-11);
+        assert!((a - b).norm() < NAIVE_DFT_ABS);
     }
     let n = samples.len() as f64;
     let all = all_bins(samples.len());
     let raw = raw_estimates(&fast, &all);
-    assert_relative_eq!(
+    assert_rel_eq!(
         raw.v1_sq,
         n * samples.iter().map(|m| m * m).sum::<f64>(),
-        max_relative = 1e-13
+        FFT_SUM_REL
     );
-    assert_relative_eq!(raw.v2_sq, (n * samples[0]).powi(2), max_relative = 1e-12);
+    assert_rel_eq!(raw.v2_sq, (n * samples[0]).powi(2), DIRECT_SUM_REL);
 }
 
 #[test]
@@ -338,12 +342,8 @@ fn noise_bias_matches_its_definition() {
     let var: Vec<f64> = (0..n).map(|i| 1.0 + i as f64 * 0.1).collect();
     let all: Vec<usize> = (0..n).collect();
     let b = noise_bias(&var, &all);
-    assert_relative_eq!(
-        b.v1_sq,
-        n as f64 * var.iter().sum::<f64>(),
-        max_relative = 1e-14
-    );
-    assert_relative_eq!(b.v2_sq, (n * n) as f64 * var[0], max_relative = 1e-12);
+    assert_rel_eq!(b.v1_sq, n as f64 * var.iter().sum::<f64>(), ROUNDING_REL);
+    assert_rel_eq!(b.v2_sq, (n * n) as f64 * var[0], DIRECT_SUM_REL);
     let window = [2usize, 3, 4];
     let direct: f64 = var
         .iter()
@@ -361,11 +361,7 @@ fn noise_bias_matches_its_definition() {
             v * k.norm_sqr()
         })
         .sum();
-    assert_relative_eq!(
-        noise_bias(&var, &window).v2_sq,
-        direct,
-        max_relative = 1e-12
-    );
+    assert_rel_eq!(noise_bias(&var, &window).v2_sq, direct, DIRECT_SUM_REL);
 }
 
 #[test]
@@ -389,7 +385,7 @@ fn long_finely_sampled_scans_converge_to_the_spectral_estimators() {
                     .abs()
                     .max((sampled.v2_sq - spectral.1).abs());
                 assert!(
-                    err <= last * 1.05 + 1e-12,
+                    err <= last * (1.0 + CONVERGENCE_GROWTH_REL) + QUADRATURE_CHECK_REL,
                     "S {s}, {pp} rad, N {n}: error {err:e} grew from {last:e}"
                 );
                 last = err;
@@ -406,17 +402,13 @@ fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
     // Raised-cosine edges centred on the band edges keep the equivalent width
     // and, being symmetric, the centroid.
     let smooth = Spectrum::smooth_top_hat(band, 0.02).unwrap();
-    assert_relative_eq!(
-        smooth.sigma_eff_per_um(),
-        0.5 * (lo + hi),
-        max_relative = 1e-13
-    );
+    assert_rel_eq!(smooth.sigma_eff_per_um(), 0.5 * (lo + hi), QUADRATURE_REL);
     let raw_area = smooth.mean_w(|_| 1.0);
-    assert_relative_eq!(raw_area, 1.0, max_relative = 1e-13);
-    assert_relative_eq!(
+    assert_rel_eq!(raw_area, 1.0, QUADRATURE_REL);
+    assert_rel_eq!(
         smooth.weight(lo),
         0.5 * smooth.weight(0.5 * (lo + hi)),
-        max_relative = 1e-14
+        ROUNDING_REL
     );
     assert_eq!(smooth.weight(lo - 0.011), 0.0);
     assert!(Spectrum::smooth_top_hat(band, 0.5).is_err());
@@ -425,7 +417,7 @@ fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
         let sp = Spectrum::power_law(band, p).unwrap();
         let want = (p + 1.0) / (p + 2.0) * (hi.powf(p + 2.0) - lo.powf(p + 2.0))
             / (hi.powf(p + 1.0) - lo.powf(p + 1.0));
-        assert_relative_eq!(sp.sigma_eff_per_um(), want, max_relative = 1e-13);
+        assert_rel_eq!(sp.sigma_eff_per_um(), want, QUADRATURE_REL);
     }
     // A steep slope moves the effective wavenumber, hence S at fixed B.
     let blue = Spectrum::power_law(band, 4.0).unwrap();
@@ -436,13 +428,9 @@ fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
 fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
     let sp = Spectrum::tabulated(vec![0.40, 0.45, 0.50], vec![0.0, 2.0, 0.0]).unwrap();
     // A triangle: σ_eff at its apex, ∫W² = 2/3 / (base/2) per unit area².
-    assert_relative_eq!(sp.sigma_eff_per_um(), 0.45, max_relative = 1e-14);
-    assert_relative_eq!(
-        sp.weight(0.425) / sp.weight(0.45),
-        0.5,
-        max_relative = 1e-14
-    );
-    assert_relative_eq!(sp.w2_integral_um(), 2.0 / 3.0 / 0.05, max_relative = 1e-12);
+    assert_rel_eq!(sp.sigma_eff_per_um(), 0.45, ROUNDING_REL);
+    assert_rel_eq!(sp.weight(0.425) / sp.weight(0.45), 0.5, ROUNDING_REL);
+    assert_rel_eq!(sp.w2_integral_um(), 2.0 / 3.0 / 0.05, QUADRATURE_CHECK_REL);
     assert!(Spectrum::tabulated(vec![0.4], vec![1.0]).is_err());
     assert!(Spectrum::tabulated(vec![0.4, 0.4], vec![1.0, 1.0]).is_err());
     assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, -1.0]).is_err());

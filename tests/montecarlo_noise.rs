@@ -7,7 +7,7 @@ use v2ref::formalism::oracle::naive_dft;
 use v2ref::montecarlo::{unit_rng, RunningStats};
 use v2ref::noise::simulation::{PoissonSampler, WindowedEstimators};
 use v2ref::noise::{raw_moments_from_cumulants, NoiseModel};
-use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
+use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS, STREAMING_M3_FLOOR, STREAMING_M3_REL};
 
 #[test]
 fn moments4_matches_two_pass_and_merges() {
@@ -24,8 +24,8 @@ fn moments4_matches_two_pass_and_merges() {
     assert_relative_eq!(
         acc.m3,
         c(3),
-        max_relative = 1e-7,
-        epsilon = 1e-3 * c(2).powf(1.5)
+        max_relative = STREAMING_M3_REL,
+        epsilon = STREAMING_M3_FLOOR * c(2).powf(1.5)
     );
     assert_relative_eq!(acc.m4, c(4), max_relative = IDENTITY_REL);
     // merging two halves equals one pass

@@ -11,7 +11,7 @@ use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref::tolerance::IDENTITY_REL;
+use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
 
 fn gauss(s: f64) -> NoiseModel {
     NoiseModel::detector(s).unwrap()
@@ -51,7 +51,7 @@ fn closed_moments_match_the_generic_recursion() {
                     mo.raw[r],
                     raw_moment(&noise, m, m + c, r),
                     max_relative = IDENTITY_REL,
-                    epsilon = 1e-12
+                    epsilon = IDENTITY_ABS
                 );
             }
             let v = mo.raw[4] - mo.raw[2] * mo.raw[2];
@@ -62,7 +62,7 @@ fn closed_moments_match_the_generic_recursion() {
                 mo.central[3],
                 c3,
                 max_relative = IDENTITY_REL,
-                epsilon = 1e-9
+                epsilon = CANCELLATION_ABS
             );
         }
     }
@@ -215,7 +215,7 @@ fn window_variance_matches_the_four_index_oracle() {
             w.signal_v2_sq,
             r.v2_sq,
             max_relative = IDENTITY_REL,
-            epsilon = 1e-9
+            epsilon = CANCELLATION_ABS
         );
     }
 }
@@ -306,8 +306,8 @@ proptest! {
         let counts: Vec<f64> = m.iter().map(|x| x + c).collect();
         let k: Vec<usize> = (1..m.len() / 2 + 1).collect();
         let w = window_stats(&m, &counts, &noise, &k).unwrap();
-        prop_assert!(w.var_v1_sq >= -1e-9 * w.var_v1_sq.abs().max(1.0));
-        prop_assert!(w.var_v2_sq >= -1e-9 * w.var_v2_sq.abs().max(1.0));
+        prop_assert!(w.var_v1_sq >= -NONNEGATIVE_REL * w.var_v1_sq.abs().max(1.0));
+        prop_assert!(w.var_v2_sq >= -NONNEGATIVE_REL * w.var_v2_sq.abs().max(1.0));
     }
 
     #[test]

@@ -15,8 +15,12 @@ use v2ref::piston::{
     scan_samples, series_variance, simulate, synthesize_series, Detector, Estimate, FringeTable,
     PistonReference, PistonRun, RunSize, ScanSetup,
 };
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref::tolerance::{
+    ASYMPTOTIC_CORRECTION_REL, FRINGE_ORACLE_ABS, FRINGE_TABLE_CHECK_ABS, FRINGE_TABLE_REL,
+    MC_SIGMAS, ROUNDING_REL, ULPS, VISIBILITY_SCALING_REL,
+};
 use v2ref::Error;
+use v2ref::{assert_abs_eq, assert_within_sigmas};
 
 fn obs(source: Source) -> Observation {
     Observation::new(
@@ -90,7 +94,7 @@ fn sample_variance_matches_the_spectrum_within_its_standard_error() {
     let dnu = 1.0 / (len as f64 * dt);
     let missing = 2.0 * 3.0 * s.asymptote_low(1.0) * (0.5 * dnu).cbrt();
     let cont = s.variance_um2();
-    assert!(want < cont && ((want + missing) / cont - 1.0).abs() < 0.05);
+    assert!(want < cont && ((want + missing) / cont - 1.0).abs() < ASYMPTOTIC_CORRECTION_REL);
 }
 
 #[test]
@@ -116,7 +120,7 @@ fn periodogram_matches_the_spectrum_within_its_standard_error() {
     let mean = ratios.iter().sum::<f64>() / n;
     let se = 1.0 / n.sqrt(); // Exp(1): unit variance
     assert!(n > 100_000.0, "{n} bins");
-    assert!((mean - 1.0).abs() < MC_SIGMAS * se, "ratio {mean} ± {se}");
+    assert_within_sigmas!(mean, 1.0, se, MC_SIGMAS, "periodogram ratio");
     assert!((mean - 1.02).abs() > MC_SIGMAS * se, "no power");
     // Per decade too (the shape, not only the level).
     for (lo, hi) in [(0.05, 0.5), (0.5, 5.0), (5.0, 50.0)] {
@@ -209,10 +213,13 @@ fn fringe_table_matches_the_nodes_and_the_adaptive_oracle() {
             let x = -59.9 + i as f64 * 0.029_953;
             worst = worst.max((table.fringe(x) - nodes.fringe(x)).abs());
         }
-        assert!(worst < 1e-11, "table vs nodes {worst:e}");
+        assert!(worst < FRINGE_TABLE_CHECK_ABS, "table vs nodes {worst:e}");
         for x in [-41.3, -3.7, 0.0, 0.3, 12.9, 55.0] {
             let slow = v2ref::formalism::oracle::fringe_adaptive(&o, x, None);
-            assert!((table.fringe(x) - slow).abs() < 1e-10, "x = {x}");
+            assert!(
+                (table.fringe(x) - slow).abs() < FRINGE_ORACLE_ABS,
+                "x = {x}"
+            );
         }
     }
 }
@@ -258,7 +265,7 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
         e[0]
     );
     assert!(e[1] < e[0] / 10.0 && e[2] < e[1] / 1e4, "{e:?}");
-    assert!(e[3] < 1e-12 && e[4] < 1e-12, "{e:?}");
+    assert!(e[3] < FRINGE_TABLE_REL && e[4] < FRINGE_TABLE_REL, "{e:?}");
     // Same with the exact filter from the nodes at the centre OPD.
     let eight = scan_samples(
         &table,
@@ -268,7 +275,8 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
         0.0,
     )
     .unwrap();
-    assert!((0..128).all(|i| (eight[i] - exact.fringe(sampling.opd_um(i))).abs() < 1e-11));
+    assert!((0..128)
+        .all(|i| (eight[i] - exact.fringe(sampling.opd_um(i))).abs() < FRINGE_TABLE_CHECK_ABS));
     // With a linear piston drift (1 + ε) the average is the fringe filtered
     // by sinc(σ δx (1 + ε)) at the sample centre: sub-sampling converges
     // to it too (the piston is interpolated by a cubic, exact for a line).
@@ -276,7 +284,11 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
     let drift = move |tau: f64| eps * 0.5 * (tau - 64.0);
     let e: Vec<f64> = [2, 4, 6].iter().map(|&k| err(k, &drift, eps)).collect();
     assert!(e[0] > e[1] && e[1] > e[2], "{e:?}");
-    assert!(e[2] < 1e-11, "drift, 6 sub-samples: {:e}", e[2]);
+    assert!(
+        e[2] < FRINGE_TABLE_CHECK_ABS,
+        "drift, 6 sub-samples: {:e}",
+        e[2]
+    );
 }
 
 #[test]
@@ -319,10 +331,12 @@ fn piston_is_multiplicative_in_a_grey_visibility() {
     let g = run(&obs(grey), &s, setup, Detector::Sampled, 300, 9, 0);
     for (wp, wg) in p.windows.iter().zip(&g.windows) {
         for (a, b) in [(wp.v1, wg.v1), (wp.v2, wg.v2)] {
-            assert!((b.mean - 0.3 * a.mean).abs() <= 1e-9 * a.std.max(1e-300) + 1e-15);
-            assert!((b.std - 0.3 * a.std).abs() <= 1e-9 * a.std + 1e-15);
+            assert!(
+                (b.mean - 0.3 * a.mean).abs() <= VISIBILITY_SCALING_REL * a.std.max(1e-300) + ULPS
+            );
+            assert!((b.std - 0.3 * a.std).abs() <= VISIBILITY_SCALING_REL * a.std + ULPS);
         }
-        assert!((wg.v1_no_piston - 0.3).abs() < 1e-12);
+        assert_abs_eq!(wg.v1_no_piston, 0.3, FRINGE_TABLE_REL);
     }
 }
 
@@ -336,7 +350,7 @@ fn centred_all_bins_v2_reads_one_sample_and_ignores_piston() {
     let r = run(&obs(Source::Point), &s, setup, Detector::Sampled, 300, 2, 0);
     let all = r.window(BinWindow::All);
     assert!(
-        all.v2.mean.abs() < 1e-14 && all.v2.std < 1e-14,
+        all.v2.mean.abs() < ROUNDING_REL && all.v2.std < ROUNDING_REL,
         "{:?}",
         all.v2
     );
@@ -414,11 +428,11 @@ fn wind_speed_rescales_the_fringe_frequency_axis() {
 fn estimate_statistics_of_a_known_sample() {
     let e = Estimate::from_values(&[1.0, 2.0, 3.0, 4.0]);
     assert_eq!(e.mean, 2.5);
-    assert!((e.std - (5.0f64 / 3.0).sqrt()).abs() < 1e-15);
-    assert!((e.mean_stderr - (5.0f64 / 12.0).sqrt()).abs() < 1e-15);
+    assert_abs_eq!(e.std, (5.0f64 / 3.0).sqrt(), ULPS);
+    assert_abs_eq!(e.mean_stderr, (5.0f64 / 12.0).sqrt(), ULPS);
     // m4 = (2·1.5⁴ + 2·0.5⁴)/4 = 2.5625; var = 5/3.
     let want = ((2.5625 - 25.0 / 9.0f64).max(0.0) / 4.0).sqrt() / (2.0 * (5.0f64 / 3.0).sqrt());
-    assert!((e.std_stderr - want).abs() < 1e-15);
+    assert_abs_eq!(e.std_stderr, want, ULPS);
 }
 
 #[test]
@@ -466,7 +480,7 @@ fn bad_input_is_refused_with_typed_errors() {
         Err(Error::Aliasing { .. })
     ));
     // sinc is the detector's transfer function used above.
-    assert!((sinc(0.25) - (PI / 4.0).sin() / (PI / 4.0)).abs() < 1e-15);
+    assert!((sinc(0.25) - (PI / 4.0).sin() / (PI / 4.0)).abs() < ULPS);
 }
 
 #[test]

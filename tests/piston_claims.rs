@@ -1,8 +1,10 @@
 //! Every `piston.*` claim is computed (no `pending`), by the code path the
 //! user runs, at the quick effort; errata carry both values.
 
+use v2ref::assert_abs_eq;
 use v2ref::reproduction::cases::Effort;
 use v2ref::reproduction::claims::{evaluate, Status};
+use v2ref::tolerance::{PRINTED_2_DECIMALS_ABS, VISIBILITY_SCALING_REL};
 
 #[test]
 fn every_piston_claim_is_answered() {
@@ -26,8 +28,8 @@ fn every_piston_claim_is_answered() {
     // The swapped OPD-per-coherence-time pair.
     let o300 = get("piston.opd_per_tau_300hz_um");
     assert_eq!(o300.status, Status::Erratum);
-    assert!((o300.exact.unwrap() - 29.95).abs() < 0.01);
+    assert_abs_eq!(o300.exact.unwrap(), 29.95, PRINTED_2_DECIMALS_ABS);
     // Grey visibility: bias ratio 0.5 to rounding.
     let m = get("piston.multiplicative");
-    assert!((m.computed.unwrap() - 0.5).abs() < 1e-9);
+    assert_abs_eq!(m.computed.unwrap(), 0.5, VISIBILITY_SCALING_REL);
 }

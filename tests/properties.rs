@@ -11,7 +11,7 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::tolerance::DFT_REL_PER_LOG2N;
+use v2ref::tolerance::{DFT_REL_PER_LOG2N, QUADRATURE_REL, ROUNDING_REL, VISIBILITY_SQ_FLOOR};
 
 fn band() -> impl Strategy<Value = Band> {
     (1.0f64..4.0, 0.01f64..0.3).prop_map(|(l, frac)| Band::new(l, l * frac).unwrap())
@@ -51,7 +51,7 @@ proptest! {
         let sp = Spectrum::flat(b);
         let with = v1_sq(&obs(sp.clone(), d, s, phase(&sp, &coeffs)));
         let without = v1_sq(&obs(sp, d, s, SpectralPhase::zero()));
-        prop_assert!((with - without).abs() <= 1e-14 * without.max(1e-3));
+        prop_assert!((with - without).abs() <= ROUNDING_REL * without.max(VISIBILITY_SQ_FLOOR));
     }
 
     #[test]
@@ -67,9 +67,9 @@ proptest! {
         let bb = Spectrum::tabulated(sig, scaled).unwrap();
         let ph = phase(&a, &[0.0, 0.0, 1.0]);
         let (oa, ob) = (obs(a, d, s, ph.clone()), obs(bb, d, s, ph));
-        prop_assert!((v1_sq(&oa) - v1_sq(&ob)).abs() <= 1e-13 * v1_sq(&oa).max(1e-3));
-        prop_assert!((v2_sq(&oa) - v2_sq(&ob)).abs() <= 1e-13 * v2_sq(&oa).max(1e-3));
-        prop_assert!((oa.baseline_m - ob.baseline_m).abs() <= 1e-14 * oa.baseline_m.max(1e-9));
+        prop_assert!((v1_sq(&oa) - v1_sq(&ob)).abs() <= QUADRATURE_REL * v1_sq(&oa).max(VISIBILITY_SQ_FLOOR));
+        prop_assert!((v2_sq(&oa) - v2_sq(&ob)).abs() <= QUADRATURE_REL * v2_sq(&oa).max(VISIBILITY_SQ_FLOOR));
+        prop_assert!((oa.baseline_m - ob.baseline_m).abs() <= ROUNDING_REL * oa.baseline_m.max(1e-9));
     }
 
     #[test]
@@ -81,7 +81,7 @@ proptest! {
         let sp = Spectrum::flat(b);
         let o = obs(sp.clone(), d, s, phase(&sp, &coeffs));
         let (v1, v2) = (v1_sq(&o), v2_sq(&o));
-        let slack = 1e-13;
+        let slack = QUADRATURE_REL;
         prop_assert!(v2 >= 0.0);
         prop_assert!(v2 <= v1 + slack, "V2² {} > V1² {}", v2, v1);
         prop_assert!(v1 <= 1.0 + slack);

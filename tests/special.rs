@@ -2,7 +2,7 @@
 //! reference with its generator beside it).
 
 use v2ref::math::special::{bessel_j0_j1, bessel_j1_zero, jinc};
-use v2ref::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL};
+use v2ref::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL, FINITE_DIFFERENCE_REL};
 
 fn reference() -> Vec<Vec<String>> {
     include_str!("data/bessel_reference.csv")
@@ -70,7 +70,7 @@ fn wronskian_identity_holds() {
         let d = ((x + h) * bessel_j0_j1(x + h).1 - (x - h) * bessel_j0_j1(x - h).1) / (2.0 * h);
         let want = x * bessel_j0_j1(x).0;
         assert!(
-            (d - want).abs() < 1e-8 * x.max(1.0),
+            (d - want).abs() < FINITE_DIFFERENCE_REL * x.max(1.0),
             "x = {x}: {d} vs {want}"
         );
     }

@@ -3,6 +3,7 @@
 
 use proptest::prelude::*;
 use v2ref::formalism::spectrum::Spectrum;
+use v2ref::tolerance::ROUNDING_REL;
 use v2ref::Error;
 
 fn reason(text: &str) -> String {
@@ -26,7 +27,7 @@ fn a_well_formed_table_is_read_in_either_axis() {
         by_wavelength.sigma_eff_per_um(),
         by_wavenumber.sigma_eff_per_um(),
     );
-    assert!((a - b).abs() < 1e-14, "{a} vs {b}");
+    assert!((a - b).abs() < ROUNDING_REL, "{a} vs {b}");
 }
 
 #[test]

@@ -7,7 +7,13 @@ use v2ref::piston::turbulence::{
     differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
     r0_from_seeing_m, structure_coefficient, transverse_integral, PistonSpectrum, Turbulence,
 };
-use v2ref::Error;
+use v2ref::tolerance::{
+    ASYMPTOTIC_LIMIT_REL, CORNER_REL, DECADE_SLOPE_ABS, GAMMA_REL, LOW_FREQ_SLOPE_COEFF,
+    LOW_FREQ_VALUE_COEFF, MID_FREQ_SLOPE_COEFF, MID_FREQ_VALUE_COEFF, PRINTED_3_DECIMALS_ABS,
+    PSD_TABLE_CORNER_REL, PSD_TABLE_REL, PSD_TABLE_WIGGLE_REL, ROUNDING_REL, TURBULENCE_CHECK_REL,
+    TURBULENCE_SPECTRAL_REL, TURBULENCE_TAIL_REL, ULPS,
+};
+use v2ref::{assert_abs_eq, Error};
 
 const D: f64 = 0.45;
 
@@ -34,18 +40,18 @@ fn kolmogorov_constants_match_mpmath() {
     let cd = reference("C_D")[0].1;
     let cphi = reference("C_Phi")[0].1;
     assert!(
-        rel(structure_coefficient(), cd) < 1e-13,
+        rel(structure_coefficient(), cd) < GAMMA_REL,
         "{}",
         structure_coefficient()
     );
     assert!(
-        rel(psd_coefficient(), cphi) < 1e-13,
+        rel(psd_coefficient(), cphi) < GAMMA_REL,
         "{}",
         psd_coefficient()
     );
     // The profile integrals by Gamma functions against mpmath's quadrature.
     for (a, want) in reference("I") {
-        assert!(rel(profile_integral(a), want) < 1e-13, "I({a})");
+        assert!(rel(profile_integral(a), want) < GAMMA_REL, "I({a})");
     }
 }
 
@@ -53,12 +59,12 @@ fn kolmogorov_constants_match_mpmath() {
 fn r0_and_coherence_time_follow_the_conventions() {
     let r0 = r0_from_seeing_m(1.0, 2.2).unwrap();
     // λ/seeing, with 1 arcsec = π/648000 rad.
-    assert!(rel(r0, 2.2e-6 * 648_000.0 / PI) < 1e-15);
+    assert!(rel(r0, 2.2e-6 * 648_000.0 / PI) < ULPS);
     let t = paper();
-    assert!(rel(t.coherence_time_s(), r0 / 10.0) < 1e-15);
+    assert!(rel(t.coherence_time_s(), r0 / 10.0) < ULPS);
     // The OPD spectrum does not depend on the wavelength when r0 ∝ λ^{6/5}.
     let t2 = Turbulence::new(r0 * (1.65f64 / 2.2).powf(1.2), 1.65, 10.0, None).unwrap();
-    assert!(rel(t2.opd_psd(0.37), t.opd_psd(0.37)) < 1e-13);
+    assert!(rel(t2.opd_psd(0.37), t.opd_psd(0.37)) < GAMMA_REL);
     // Seeing 0 is no turbulence.
     let none = Turbulence::from_seeing(0.0, 2.2, 10.0, None).unwrap();
     assert_eq!(none.opd_psd(1.0), 0.0);
@@ -115,7 +121,7 @@ fn transverse_integral_matches_mpmath_and_the_table() {
         // 1e-8: the tail beyond 100/D is added with the Bessel oscillation
         // averaged, which leaves ~3e-9 of G at f D = 3.
         assert!(
-            rel(direct, want) < 1e-8,
+            rel(direct, want) < TURBULENCE_TAIL_REL,
             "G({fx}) = {direct}, mpmath {want}"
         );
         // The tabulated spectrum at ν = v f_x (away from the cosine's zeros).
@@ -124,7 +130,11 @@ fn transverse_integral_matches_mpmath_and_the_table() {
         let tab = s.psd_um2_per_hz(nu) * 10.0 / factor;
         // Beyond f D ~ 1 the table under-resolves the surviving Bessel
         // wiggle (period 1/D), where P is below 1e-6 of its peak.
-        let tol = if fx * D <= 1.0 { 1e-5 } else { 1e-2 };
+        let tol = if fx * D <= 1.0 {
+            PSD_TABLE_REL
+        } else {
+            PSD_TABLE_WIGGLE_REL
+        };
         assert!(rel(tab, want) < tol, "table G({fx}) = {tab}, mpmath {want}");
     }
 }
@@ -142,7 +152,10 @@ fn table_matches_direct_quadrature_over_the_range_that_carries_power() {
         }
     }
     // Catmull–Rom on 80 points per decade of ln G: ~3e-5 near the corner.
-    assert!(worst < 1e-4, "worst relative error {worst:e}");
+    assert!(
+        worst < PSD_TABLE_CORNER_REL,
+        "worst relative error {worst:e}"
+    );
 }
 
 #[test]
@@ -152,22 +165,22 @@ fn variance_from_the_spectrum_equals_the_structure_function_and_mpmath() {
     let spectral = PistonSpectrum::new(t, D, 18.0).unwrap().variance_um2();
     let pupil = differential_piston_variance_from_structure_um2(&t, D, 18.0);
     assert!(
-        rel(pupil, want) < 1e-10,
+        rel(pupil, want) < TURBULENCE_CHECK_REL,
         "pupil-plane {pupil}, mpmath {want}"
     );
     assert!(
-        rel(spectral, want) < 1e-9,
+        rel(spectral, want) < TURBULENCE_SPECTRAL_REL,
         "spectral {spectral}, mpmath {want}"
     );
     // Other geometries, including overlapping apertures (B < D).
     for (d, b) in [(0.45, 0.3), (1.8, 5.0), (8.0, 47.0), (0.1, 200.0)] {
         let a = PistonSpectrum::new(t, d, b).unwrap().variance_um2();
         let c = differential_piston_variance_from_structure_um2(&t, d, b);
-        assert!(rel(a, c) < 1e-8, "D {d} B {b}: {a} vs {c}");
+        assert!(rel(a, c) < TURBULENCE_TAIL_REL, "D {d} B {b}: {a} vs {c}");
     }
     // For B ≫ D the variance tends to the point structure function.
     let far = PistonSpectrum::new(t, 0.01, 1000.0).unwrap().variance_um2();
-    assert!(rel(far, t.opd_structure_function_um2(1000.0)) < 1e-3);
+    assert!(rel(far, t.opd_structure_function_um2(1000.0)) < ASYMPTOTIC_LIMIT_REL);
 }
 
 #[test]
@@ -188,13 +201,16 @@ fn variance_is_the_integral_of_the_temporal_spectrum() {
         &breaks,
         v2ref::math::quadrature::Tolerance {
             abs: 0.0,
-            rel: 1e-10,
+            rel: TURBULENCE_CHECK_REL,
         },
     );
     let low_tail = s.asymptote_low(lo) * lo * 3.0; // ∫_0^lo c ν^{−2/3} = 3 c lo^{1/3}
     let total = 2.0 * (body + low_tail);
     let want = s.variance_um2();
-    assert!(rel(total, want) < 1e-5, "∫P = {total}, variance {want}");
+    assert!(
+        rel(total, want) < PSD_TABLE_REL,
+        "∫P = {total}, variance {want}"
+    );
 }
 
 #[test]
@@ -210,9 +226,15 @@ fn asymptotes_slopes_and_corners() {
     for r in [1e-4, 1e-3, 1e-2] {
         let nu = r * s.corner_low_hz();
         let p = s.psd_direct_um2_per_hz(nu);
-        assert!(rel(p, s.asymptote_low(nu)) < 2.0 * r, "low ratio at {r}");
+        assert!(
+            rel(p, s.asymptote_low(nu)) < LOW_FREQ_VALUE_COEFF * r,
+            "low ratio at {r}"
+        );
         let sl = slope(&|x| s.psd_direct_um2_per_hz(x), nu);
-        assert!((sl + 2.0 / 3.0).abs() < 10.0 * r, "low slope {sl} at {r}");
+        assert!(
+            (sl + 2.0 / 3.0).abs() < LOW_FREQ_SLOPE_COEFF * r,
+            "low slope {sl} at {r}"
+        );
     }
     // Middle: G = v P / 2(1 − cos) → K I(11/6) f^{−8/3}; the relative error
     // falls as (f D)².
@@ -220,8 +242,11 @@ fn asymptotes_slopes_and_corners() {
     let mid_g = |fx: f64| s.asymptote_mid(v * fx) * v / 2.0;
     for fd in [1e-3, 1e-2] {
         let fx = fd / D;
-        assert!(rel(g(fx), mid_g(fx)) < 10.0 * fd * fd, "mid at fD {fd}");
-        assert!((slope(&g, fx) + 8.0 / 3.0).abs() < 20.0 * fd * fd);
+        assert!(
+            rel(g(fx), mid_g(fx)) < MID_FREQ_VALUE_COEFF * fd * fd,
+            "mid at fD {fd}"
+        );
+        assert!((slope(&g, fx) + 8.0 / 3.0).abs() < MID_FREQ_SLOPE_COEFF * fd * fd);
     }
     // The middle asymptote is the cosine's average: average P over one
     // period of 2(1 − cos(2πBν/v)) on a long baseline.
@@ -234,7 +259,7 @@ fn asymptotes_slopes_and_corners() {
     let avg: f64 = (0..n).map(|i| long.psd_um2_per_hz(at(i))).sum::<f64>() / n as f64;
     let mid_avg: f64 = (0..n).map(|i| long.asymptote_mid(at(i))).sum::<f64>() / n as f64;
     assert!(
-        rel(avg, mid_avg) < 1e-3,
+        rel(avg, mid_avg) < ASYMPTOTIC_LIMIT_REL,
         "period average {avg} vs {mid_avg}"
     );
     // High: G → K 4/(π⁴D³) I(10/3) f^{−17/3}; the Bessel oscillation
@@ -250,14 +275,17 @@ fn asymptotes_slopes_and_corners() {
     }
     // Decade-averaged slope −17/3 between f D = 30 and 300.
     let decade = (g(300.0 / D) / g(30.0 / D)).ln() / 10f64.ln();
-    assert!((decade + 17.0 / 3.0).abs() < 0.05, "decade slope {decade}");
+    assert!(
+        (decade + 17.0 / 3.0).abs() < DECADE_SLOPE_ABS,
+        "decade slope {decade}"
+    );
     // Corners: the crossings of the asymptotes, 0.225 v/B and 0.299 v/D.
     let c1 = s.corner_low_hz();
     let c2 = s.corner_high_hz();
-    assert!(rel(s.asymptote_low(c1), s.asymptote_mid(c1)) < 1e-12);
-    assert!(rel(s.asymptote_mid(c2), s.asymptote_high(c2)) < 1e-12);
-    assert!(rel(c1 * 18.0 / v, 1.0 / (2f64.sqrt() * PI)) < 1e-14);
-    assert!((c2 * D / v - 0.2994).abs() < 1e-3, "{}", c2 * D / v);
+    assert!(rel(s.asymptote_low(c1), s.asymptote_mid(c1)) < CORNER_REL);
+    assert!(rel(s.asymptote_mid(c2), s.asymptote_high(c2)) < CORNER_REL);
+    assert!(rel(c1 * 18.0 / v, 1.0 / (2f64.sqrt() * PI)) < ROUNDING_REL);
+    assert_abs_eq!(c2 * D / v, 0.2994, PRINTED_3_DECIMALS_ABS);
     // The computed spectrum turns there: its local slope passes half-way
     // between −8/3 and −17/3 within a factor 2 of the high corner.
     let mut x = 0.05 / D;
@@ -278,7 +306,7 @@ fn von_karman_outer_scale_reduces_and_saturates_the_piston() {
     // The outer-scale correction falls only as (B/L0)^{1/3}.
     let huge = Turbulence::from_seeing(1.0, 2.2, 10.0, Some(1e12)).unwrap();
     let rms = |t: Turbulence, b: f64| PistonSpectrum::new(t, D, b).unwrap().rms_um();
-    assert!(rel(rms(huge, 18.0), rms(k, 18.0)) < 1e-3);
+    assert!(rel(rms(huge, 18.0), rms(k, 18.0)) < ASYMPTOTIC_LIMIT_REL);
     assert!(rms(vk, 18.0) < rms(k, 18.0));
     // Saturation: from 50 to 100 m the von Kármán piston grows by < 1 %,
     // the Kolmogorov one by 2^{5/6} roughly.

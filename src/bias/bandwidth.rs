@@ -32,7 +32,8 @@ pub fn curve(
 
 /// The largest value of `f` over `[lo, hi]`: a scan on `points` equally
 /// spaced points, then golden-section refinement on the bracket around the
-/// best one (to a bracket width of 1e-9 of the interval). Returns (x, f(x)).
+/// best one (to a bracket width of [`crate::tolerance::MINIMIZE_BRACKET_REL`]
+/// of the interval). Returns (x, f(x)).
 /// Assumes `f` is unimodal within one grid step of its maximum, which the
 /// caller ensures by a grid finer than the features of `f`.
 pub fn locate_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64, points: usize) -> (f64, f64) {
@@ -51,7 +52,7 @@ pub fn locate_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64, points: usize) -> (f
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
     let (mut fc, mut fd) = (f(c), f(d));
-    while b - a > 1e-9 * (hi - lo) {
+    while b - a > crate::tolerance::MINIMIZE_BRACKET_REL * (hi - lo) {
         if fc > fd {
             b = d;
             d = c;

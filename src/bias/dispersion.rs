@@ -40,10 +40,21 @@ pub fn zblan_index(sigma_per_um: f64) -> f64 {
     (1.0 + term(ZBLAN_B1, ZBLAN_C1_UM) + term(ZBLAN_B2, ZBLAN_C2_UM)).sqrt()
 }
 
+/// Step (µm⁻¹) of the five-point second difference in
+/// [`dispersion_coefficient`]: the index varies on scales of 1 µm⁻¹, so the
+/// truncation error h⁴ is ~1e-12 relative, while the rounding error
+/// ε|φ|/h² stays ~1e-8 relative (a smaller step trades one for the other).
+const D2_STEP_PER_UM: f64 = 1e-3;
+
+/// Step (µm⁻¹) of the central first difference that removes the slope in
+/// [`residual_peak_to_peak`]: truncation h² ~ 1e-8 relative of a phase
+/// slope, far below the peak-to-peak being measured.
+const SLOPE_STEP_PER_UM: f64 = 1e-4;
+
 /// `D = d²φ/dσ²` (rad µm²) at `sigma0_per_um` for an extra glass length
 /// `length_um` of index `index(σ)`: `φ = 2π σ n(σ) L`, differentiated by a
-/// five-point central difference with step 1e-3 µm⁻¹ (the index varies on
-/// scales of 1 µm⁻¹, so the truncation error is ~1e-12 relative).
+/// five-point central difference with step `D2_STEP_PER_UM` (the index
+/// varies on scales of 1 µm⁻¹, so the truncation error is ~1e-12 relative).
 pub fn dispersion_coefficient(
     index: impl Fn(f64) -> f64,
     sigma0_per_um: f64,
@@ -52,7 +63,7 @@ pub fn dispersion_coefficient(
     error::positive("sigma0", sigma0_per_um)?;
     error::finite("glass-length-um", length_um)?;
     let phi = |s: f64| 2.0 * PI * s * index(s) * length_um;
-    let h = 1e-3;
+    let h = D2_STEP_PER_UM;
     let (s, f0) = (sigma0_per_um, phi(sigma0_per_um));
     let d2 = (-phi(s + 2.0 * h) + 16.0 * phi(s + h) - 30.0 * f0 + 16.0 * phi(s - h)
         - phi(s - 2.0 * h))
@@ -72,7 +83,7 @@ pub fn residual_peak_to_peak(
 ) -> f64 {
     let phi = |s: f64| 2.0 * PI * s * index(s) * length_um;
     let s0 = 0.5 * (lo_per_um + hi_per_um);
-    let h = 1e-4;
+    let h = SLOPE_STEP_PER_UM;
     let slope = (phi(s0 + h) - phi(s0 - h)) / (2.0 * h);
     let f0 = phi(s0);
     let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);

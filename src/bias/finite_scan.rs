@@ -49,6 +49,12 @@ use std::f64::consts::PI;
 /// The bins both estimators sum (see the module docs).
 pub const WINDOW: BinWindow = BinWindow::Positive;
 
+/// Below this |u − round(u)|, the Dirichlet ratio sin(πNu)/sin(πu) is taken
+/// from its series N(1 − π²r²(N² − 1)/6), which avoids the 0/0 at r = 0:
+/// the next term, O((πNr)⁴/120), is below 3e-14 relative for the scans of
+/// up to 4096 samples the crate uses.
+const DIRICHLET_SERIES_BELOW: f64 = 1e-7;
+
 /// The scan's response to a unit spectral line, as a function of
 /// `u = σ δx − k/N` (cycles per sample).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -77,7 +83,7 @@ impl Kernel {
                 // 1-periodic for even N); the ratio uses u reduced to
                 // [−½, ½], where sin(πu) vanishes only at 0.
                 let r = u - u.round();
-                let ratio = if r.abs() < 1e-7 {
+                let ratio = if r.abs() < DIRICHLET_SERIES_BELOW {
                     nf * (1.0 - PI * PI * r * r * (nf * nf - 1.0) / 6.0)
                 } else {
                     (PI * nf * r).sin() / (PI * r).sin()

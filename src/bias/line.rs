@@ -142,8 +142,8 @@ pub fn channel_visibility(case: &LineCase) -> Result<ChannelVisibility> {
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
     let tol = Tolerance {
-        abs: 1e-15,
-        rel: 1e-13,
+        abs: crate::tolerance::QUADRATURE_ABS,
+        rel: crate::tolerance::QUADRATURE_REL,
     };
     let [f, fv, fs, fsv] = integrate_pieces(
         &|u: f64| {

@@ -58,7 +58,7 @@ impl ObservationArgs {
             Some(path) => Spectrum::from_csv_path(path),
             None => Ok(Spectrum::flat(Band::new(
                 self.wavelength_um,
-                self.bandwidth_nm * 1e-3,
+                self.bandwidth_nm * v2ref::formalism::spectrum::UM_PER_NM,
             )?)),
         }
     }

@@ -122,9 +122,19 @@ impl Sampling {
     }
 }
 
+/// Below this |u|, [`sinc`] uses its Taylor series to (πu)⁴: the next term,
+/// (πu)⁶/5040 < 2e-22, is far below an ulp; the series avoids the 0/0 at
+/// u = 0.
+const SINC_SERIES_BELOW: f64 = 1e-4;
+
+/// Half-step (µm⁻¹) of the central difference that estimates the slope of
+/// the spectral phase when sizing the quadrature panels: only the order of
+/// magnitude of the rate matters there.
+const PHASE_STEP_PER_UM: f64 = 1e-6;
+
 /// `sinc(u) = sin(πu)/(πu)`, 1 at 0.
 pub fn sinc(u: f64) -> f64 {
-    if u.abs() < 1e-4 {
+    if u.abs() < SINC_SERIES_BELOW {
         let p = std::f64::consts::PI * u;
         1.0 - p * p / 6.0 + p.powi(4) / 120.0
     } else {
@@ -172,7 +182,7 @@ impl SpectralNodes {
         let disk_rate = match &obs.source {
             crate::formalism::source::Source::UniformDisk { diameter_mas } => {
                 0.5 * diameter_mas
-                    * 1e-3
+                    * crate::formalism::source::ARCSEC_PER_MAS
                     * obs.baseline_m
                     * crate::formalism::spectrum::CPAS_PER_M_PER_INV_UM
             }
@@ -180,7 +190,10 @@ impl SpectralNodes {
         };
         let (lo, hi) = spectrum.support();
         let phase_rate = {
-            let d = |s: f64| (obs.phase.at(s + 1e-6) - obs.phase.at(s - 1e-6)) / 2e-6;
+            let d = |s: f64| {
+                (obs.phase.at(s + PHASE_STEP_PER_UM) - obs.phase.at(s - PHASE_STEP_PER_UM))
+                    / (2.0 * PHASE_STEP_PER_UM)
+            };
             d(lo).abs().max(d(hi).abs()) / (2.0 * std::f64::consts::PI)
         };
         let rate = max_opd_um.abs() + disk_rate + phase_rate + 1.0 / (hi - lo);

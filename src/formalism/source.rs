@@ -16,6 +16,9 @@ use num_complex::Complex64;
 /// Milliarcseconds per arcsecond.
 const MAS_PER_ARCSEC: f64 = 1000.0;
 
+/// Arcseconds per milliarcsecond (unit conversion; multiply by it).
+pub const ARCSEC_PER_MAS: f64 = 1e-3;
+
 /// How a component's flux depends on wavenumber.
 #[derive(Debug, Clone, PartialEq)]
 pub enum FluxProfile {

@@ -25,6 +25,9 @@ use std::path::Path;
 /// wavenumber: `S = B σ · 10⁶ · π / 648000`.
 pub const CPAS_PER_M_PER_INV_UM: f64 = 1e6 * std::f64::consts::PI / 648_000.0;
 
+/// Micrometres per nanometre (unit conversion of bandwidths given in nm).
+pub const UM_PER_NM: f64 = 1e-3;
+
 /// A spectral band given by its centre wavelength and full width.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Band {

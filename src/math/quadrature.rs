@@ -137,7 +137,7 @@ pub struct Tolerance {
 impl Default for Tolerance {
     fn default() -> Self {
         Tolerance {
-            abs: 1e-15,
+            abs: crate::tolerance::QUADRATURE_ABS,
             rel: crate::tolerance::QUADRATURE_REL,
         }
     }
@@ -225,6 +225,10 @@ pub fn integrate_pieces<T: QuadValue>(f: &impl Fn(f64) -> T, breaks: &[f64], tol
     }
 }
 
+/// Newton's method for a Gauss–Legendre node stops when its step is below
+/// this (half an ulp of a node in [−1, 1]): the node no longer moves.
+const LEGENDRE_NEWTON_STOP: f64 = 1e-16;
+
 /// Nodes and weights of the n-point Gauss–Legendre rule on [−1, 1]
 /// (Newton's method on P_n from Tricomi's initial guesses; nodes accurate to
 /// a few ulps). Exact for polynomials of degree 2n − 1. Returns empty
@@ -250,7 +254,7 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
             dp = nf * (z * pn - pm) / (z * z - 1.0);
             let step = pn / dp;
             z -= step;
-            if step.abs() < 1e-16 {
+            if step.abs() < LEGENDRE_NEWTON_STOP {
                 break;
             }
         }

@@ -108,9 +108,9 @@ impl WindowedEstimators {
                 *im += ph.sin();
             }
         }
-        // A Dirichlet-type kernel: entries below 1e-12 |K| are rounding
+        // A Dirichlet-type kernel: entries below KERNEL_ZERO_REL |K| are rounding
         // residues of exact zeros (all bins: u_i = N δ_i0).
-        let floor = 1e-12 * bins.len().max(1) as f64;
+        let floor = crate::tolerance::KERNEL_ZERO_REL * bins.len().max(1) as f64;
         let significant: Vec<(usize, f64, f64)> = (0..n)
             .filter(|&i| u_re[i].hypot(u_im[i]) > floor)
             .map(|i| (i, u_re[i], u_im[i]))

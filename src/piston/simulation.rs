@@ -184,7 +184,7 @@ pub struct FringeTable {
 const MAX_STEP_PHASE: f64 = 0.06;
 
 /// Interpolation error target of [`FringeTable`], relative to Σ|a_j|.
-const TABLE_REL: f64 = 1e-12;
+const TABLE_REL: f64 = crate::tolerance::FRINGE_TABLE_REL;
 
 impl FringeTable {
     /// The table of the (unfiltered) fringe of `obs` over |x| ≤ `max_opd_um`.

@@ -57,6 +57,9 @@ use std::f64::consts::PI;
 /// Radians per arcsecond.
 pub const RAD_PER_ARCSEC: f64 = PI / 648_000.0;
 
+/// Metres per micrometre (unit conversion).
+const M_PER_UM: f64 = 1e-6;
+
 /// Γ(x) for x > 0 (Lanczos, g = 7, 9 terms; relative error ~1e-15 on the
 /// arguments used here, checked against mpmath through the constants).
 fn gamma(x: f64) -> f64 {
@@ -113,7 +116,7 @@ pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
     if seeing_arcsec == 0.0 {
         return Ok(f64::INFINITY);
     }
-    Ok(wavelength_um * 1e-6 / (seeing_arcsec * RAD_PER_ARCSEC))
+    Ok(wavelength_um * M_PER_UM / (seeing_arcsec * RAD_PER_ARCSEC))
 }
 
 /// The turbulent atmosphere above the interferometer, at the observing
@@ -232,11 +235,22 @@ pub fn aperture_filter(f_per_m: f64, aperture_m: f64) -> f64 {
 /// neglected oscillation of the Bessel envelope is below 1e-12 of G.
 const F_MAX_TIMES_D: f64 = 100.0;
 
+/// Below this z, `2(1 − J0(z))` is summed from its series to z⁶: the next
+/// term, z⁸/73728 < 2e-21 relative to z²/2 ≈ 5e-5, is below an ulp, and
+/// `1 − J0(z)` would lose ~log10(4/z²) digits to cancellation.
+const SMALL_Z_SERIES_BELOW: f64 = 1e-2;
+
+/// Where the piston integral splits off its low-frequency piece (with the
+/// f = u³ substitution for the f^{−2/3} behaviour), in units of
+/// 1/max(B, D): three decades below the first Bessel/aperture scale, where
+/// the integrand is still on its power law.
+const LOW_SPLIT_TIMES_SCALE: f64 = 1e-3;
+
 /// Integration tolerance of the spectral integrals.
 fn tol() -> Tolerance {
     Tolerance {
         abs: 0.0,
-        rel: 1e-11,
+        rel: crate::tolerance::TURBULENCE_QUADRATURE_REL,
     }
 }
 
@@ -474,7 +488,7 @@ impl PistonSpectrum {
             return 0.0;
         }
         let two_one_minus_j0 = |z: f64| {
-            if z < 1e-2 {
+            if z < SMALL_Z_SERIES_BELOW {
                 let z2 = z * z;
                 2.0 * (z2 / 4.0 - z2 * z2 / 64.0 + z2 * z2 * z2 / 2304.0)
             } else {
@@ -489,7 +503,7 @@ impl PistonSpectrum {
                 * two_one_minus_j0(2.0 * PI * b * f)
         };
         // Near 0 the Kolmogorov integrand goes as f^{−2/3}: substitute f = u³.
-        let f_a = 1e-3 / b.max(d);
+        let f_a = LOW_SPLIT_TIMES_SCALE / b.max(d);
         let u_a = f_a.cbrt();
         let low = integrate_pieces(
             &|u: f64| radial(u * u * u) * 3.0 * u * u,

@@ -9,7 +9,7 @@
 //!   with the identity `J0 + 2 Σ_k J_{2k} = 1` (A&S 9.1.46). Stable, and its
 //!   absolute error is a few ulps times the number of steps.
 //! - larger |x|: Hankel's asymptotic expansion (A&S 9.2.5–9.2.10), summed
-//!   until its terms fall below 1e-17 (at x ≥ 30 the smallest term is far
+//!   until its terms fall below `HANKEL_STOP` (at x ≥ 30 the smallest term is far
 //!   below that).
 //!
 //! Accuracy: |error| ≤ [`crate::tolerance::BESSEL_ABS`] for |x| ≤ 100, checked
@@ -17,6 +17,26 @@
 
 /// Where the Hankel expansion takes over from the recurrence.
 pub const ASYMPTOTIC_FROM: f64 = 30.0;
+
+/// Cut-off of the power series of `2 J1(z)/z` (|z| < 4, terms alternate and
+/// the sum is ≥ 0.13 there): a term below 1e-18 changes the sum by less
+/// than a hundredth of an ulp.
+const JINC_SERIES_STOP: f64 = 1e-18;
+/// Newton's method for a zero of J1 stops when its step is below this
+/// fraction of the zero (half an ulp): the iterate no longer moves.
+const NEWTON_STOP_REL: f64 = 1e-16;
+/// Seed of Miller's backward recurrence (any tiny nonzero value: the
+/// normalization removes it), far above underflow.
+const MILLER_SEED: f64 = 1e-300;
+/// Miller's recurrence rescales all its accumulators by [`MILLER_RESCALE`]
+/// when the current value exceeds this, to stay far from overflow.
+const MILLER_RESCALE_ABOVE: f64 = 1e250;
+/// The rescaling factor (exact ratios are all the normalization uses).
+const MILLER_RESCALE: f64 = 1e-250;
+/// Cut-off of Hankel's P and Q: terms below 1e-17 are under a tenth of an
+/// ulp of P ≈ 1 (the series is asymptotic and also stops at its smallest
+/// term).
+const HANKEL_STOP: f64 = 1e-17;
 
 /// J0(x) and J1(x) together (one recurrence gives both).
 pub fn bessel_j0_j1(x: f64) -> (f64, f64) {
@@ -55,7 +75,7 @@ pub fn jinc(z: f64) -> f64 {
             k += 1.0;
             term *= q / (k * (k + 1.0));
             sum += term;
-            if term.abs() < 1e-18 {
+            if term.abs() < JINC_SERIES_STOP {
                 break;
             }
         }
@@ -81,7 +101,7 @@ pub fn bessel_j1_zero(s: u32) -> f64 {
         let (j0, j1) = bessel_j0_j1(x);
         let step = j1 / (j0 - j1 / x);
         x -= step;
-        if step.abs() <= 1e-16 * x {
+        if step.abs() <= NEWTON_STOP_REL * x {
             break;
         }
     }
@@ -99,7 +119,7 @@ fn miller_j0_j1(x: f64) -> (f64, f64) {
         m + (m & 1)
     };
     let two_over_x = 2.0 / x;
-    let (mut j_next, mut j_cur) = (0.0_f64, 1e-300_f64); // J_{n+1}, J_n (unnormalized)
+    let (mut j_next, mut j_cur) = (0.0_f64, MILLER_SEED); // J_{n+1}, J_n (unnormalized)
     let mut even_sum = 0.0; // Σ J_{2k}, k ≥ 1
     let mut j1 = 0.0;
     let mut n = start;
@@ -115,12 +135,12 @@ fn miller_j0_j1(x: f64) -> (f64, f64) {
         if n == 1 {
             j1 = j_cur;
         }
-        if j_cur.abs() > 1e250 {
+        if j_cur.abs() > MILLER_RESCALE_ABOVE {
             // Rescale to avoid overflow; ratios are all that matter.
-            j_cur *= 1e-250;
-            j_next *= 1e-250;
-            even_sum *= 1e-250;
-            j1 *= 1e-250;
+            j_cur *= MILLER_RESCALE;
+            j_next *= MILLER_RESCALE;
+            even_sum *= MILLER_RESCALE;
+            j1 *= MILLER_RESCALE;
         }
     }
     let norm = j_cur + 2.0 * even_sum;
@@ -160,7 +180,7 @@ fn hankel_pq(mu: f64, x: f64) -> (f64, f64) {
             3 => q -= term,
             _ => p += term,
         }
-        if term.abs() < 1e-17 {
+        if term.abs() < HANKEL_STOP {
             break;
         }
         k += 1;

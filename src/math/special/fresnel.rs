@@ -22,6 +22,22 @@ use std::f64::consts::{FRAC_PI_2, PI};
 const SERIES_LIMIT: f64 = 1.5;
 /// Iteration cap of both expansions (each converges in well under 100).
 const MAX_TERMS: usize = 200;
+/// Series cut-off: stop when the next term is below this fraction of the
+/// larger partial sum (a tenth of an ulp, so the truncation is invisible).
+const SERIES_STOP_REL: f64 = 1e-17;
+/// Floor of the scale the series cut-off is relative to, as a fraction of
+/// x: C(x) ≈ x near 0, so the sums never fall far below 1e-3 x; the floor
+/// only keeps the very first iterations from stopping on a zero partial sum.
+const SERIES_SCALE_FLOOR: f64 = 1e-3;
+/// Lentz's method: the stand-in for a zero denominator (the smallest
+/// magnitude safely above underflow, so 1/TINY is still finite).
+const LENTZ_TINY: f64 = 1e-300;
+/// Continued-fraction cut-off: stop when the last factor differs from 1
+/// by less than this (half an ulp: the remaining factors change nothing).
+const CF_STOP: f64 = 1e-16;
+/// Below this T, [`point_source_v2_sq`] uses its series to T⁴: the next
+/// term is O(T⁸) < 1e-32, and (C² + S²)/T² would cancel to 1 − O(T⁴).
+const SMALL_T_SERIES_BELOW: f64 = 1e-8;
 
 /// `(C(x), S(x))`, the Fresnel integrals with the π/2 normalization.
 /// Accurate to a few 1e-16 absolute for every finite x; NaN for NaN.
@@ -69,7 +85,7 @@ fn series(x: f64) -> (f64, f64) {
             _ => s -= contribution,
         }
         term *= a / (k + 1) as f64;
-        if term < 1e-17 * c.abs().max(s.abs()).max(x * 1e-3) {
+        if term < SERIES_STOP_REL * c.abs().max(s.abs()).max(x * SERIES_SCALE_FLOOR) {
             break;
         }
     }
@@ -81,7 +97,7 @@ fn series(x: f64) -> (f64, f64) {
 /// variable `b = 1 − iπx²` (even part of the classical fraction).
 fn continued_fraction(x: f64) -> (f64, f64) {
     let pix2 = PI * x * x;
-    let tiny = 1e-300;
+    let tiny = LENTZ_TINY;
     let one = Complex64::new(1.0, 0.0);
     let mut b = Complex64::new(1.0, -pix2);
     let mut c = Complex64::new(1.0 / tiny, 0.0);
@@ -96,7 +112,7 @@ fn continued_fraction(x: f64) -> (f64, f64) {
         c = b + Complex64::new(a, 0.0) / c;
         let delta = c * d;
         h *= delta;
-        if (delta.re - 1.0).abs() + delta.im.abs() < 1e-16 {
+        if (delta.re - 1.0).abs() + delta.im.abs() < CF_STOP {
             break;
         }
     }
@@ -118,7 +134,7 @@ fn continued_fraction(x: f64) -> (f64, f64) {
 /// conjugates the sum). 1 at P = 0.
 pub fn point_source_v2_sq(peak_to_peak_rad: f64) -> f64 {
     let t = (2.0 * peak_to_peak_rad.abs() / PI).sqrt();
-    if t < 1e-8 {
+    if t < SMALL_T_SERIES_BELOW {
         // C ≈ T − (π/2)² T⁵/10, S ≈ (π/2) T³/3: V2² = 1 − (π/2)² T⁴ (1/5 − 1/9) + …
         return 1.0 - (FRAC_PI_2 * FRAC_PI_2) * t.powi(4) * 4.0 / 45.0;
     }

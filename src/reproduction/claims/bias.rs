@@ -186,15 +186,24 @@ fn line_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
 
 /// Spatial frequency (cycles/arcsec) of `z = π θ S` for the paper's disk.
 fn s_of_z(z: f64) -> f64 {
-    z / (PI * DIAMETER_MAS * 1e-3)
+    z / (PI * DIAMETER_MAS * crate::formalism::source::ARCSEC_PER_MAS)
 }
+
+/// Step in z of the second difference that locates the inflexion: only its
+/// sign is used, and the truncation error h² f⁽⁴⁾/12 ~ 1e-7 moves the sign
+/// change of a curvature that crosses zero with slope O(1) by ~1e-7 in z.
+const INFLEXION_STEP: f64 = 1e-3;
+
+/// Half-step in z of the central difference whose sign changes mark the
+/// lobe tops (zeros of J2): only the sign is used.
+const SLOPE_STEP: f64 = 1e-6;
 
 /// The inflexion point of the main lobe of `2J1(z)/z`, as a spatial
 /// frequency: where the second derivative changes sign (bisection on a
 /// central difference).
 fn main_lobe_inflexion_cpas() -> f64 {
     let d2 = |z: f64| {
-        let h = 1e-3;
+        let h = INFLEXION_STEP;
         (jinc(z + h) - 2.0 * jinc(z) + jinc(z - h)) / (h * h)
     };
     let (mut a, mut b) = (0.5, 3.5);
@@ -232,7 +241,7 @@ fn bandwidth_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
     // Lobe tops: zeros of J2 (the derivative of 2J1(z)/z is −2J2(z)/z),
     // found from the sign changes of that derivative.
     let lobe_tops: Vec<f64> = {
-        let deriv = |z: f64| (jinc(z + 1e-6) - jinc(z - 1e-6)) / 2e-6;
+        let deriv = |z: f64| (jinc(z + SLOPE_STEP) - jinc(z - SLOPE_STEP)) / (2.0 * SLOPE_STEP);
         let mut tops = Vec::new();
         let mut z = 4.0;
         while tops.len() < 2 {
@@ -270,7 +279,10 @@ fn bandwidth_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
         .iter()
         .map(|&bw| {
             let grid = crate::reproduction::cases::s_grid(0.1);
-            let sp = Spectrum::flat(Band::new(WAVELENGTH_UM, bw * 1e-3).expect("valid band"));
+            let sp = Spectrum::flat(
+                Band::new(WAVELENGTH_UM, bw * crate::formalism::spectrum::UM_PER_NM)
+                    .expect("valid band"),
+            );
             let (mut m1, mut m2) = (0.0_f64, 0.0_f64);
             for s in grid {
                 let wb = wide_band(&observe(&sp, &disk(), s, &SpectralPhase::zero()));

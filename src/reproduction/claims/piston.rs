@@ -16,6 +16,7 @@ use crate::reproduction::cases::Effort;
 use crate::reproduction::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
 use crate::reproduction::figures::piston::{fig4, fig5};
 use crate::reproduction::table::{Figure, Table};
+use crate::tolerance::{MC_SIGMAS, SIGNIFICANCE_SIGMAS};
 use num_complex::Complex64;
 
 /// Where a curve |y(f)| falls below a level for good (f increasing).
@@ -29,6 +30,10 @@ pub enum Crossing {
     At(f64),
 }
 
+/// Floor under |y| before taking its logarithm (a zero would give −∞ and a
+/// NaN crossing); any positive value far below every level looked for.
+const LOG_FLOOR: f64 = 1e-300;
+
 /// The last frequency at which `|y|` goes from ≥ `level` to < `level`.
 pub fn last_crossing(freqs: &[f64], y: &[f64], level: f64) -> Crossing {
     let n = freqs.len();
@@ -37,7 +42,10 @@ pub fn last_crossing(freqs: &[f64], y: &[f64], level: f64) -> Crossing {
         None => Crossing::BelowRange,
         Some(i) if i == n - 1 => Crossing::AboveRange,
         Some(i) => {
-            let (a, b) = (y[i].abs().max(1e-300).ln(), y[i + 1].abs().max(1e-300).ln());
+            let (a, b) = (
+                y[i].abs().max(LOG_FLOOR).ln(),
+                y[i + 1].abs().max(LOG_FLOOR).ln(),
+            );
             let t = if a > b {
                 (a - level.ln()) / (a - b)
             } else {
@@ -263,7 +271,7 @@ fn fig4_claims(f4: &Figure) -> Vec<Computed> {
         let se = col(ts, &format!("bias_{c}_stderr"));
         b.iter()
             .zip(&se)
-            .filter(|(b, s)| b.abs() > 3.0 * **s && **s > 0.0)
+            .filter(|(b, s)| b.abs() > SIGNIFICANCE_SIGMAS * **s && **s > 0.0)
             .count()
     };
     let n300 = col(&tabs300, "bias_v1").len();
@@ -273,7 +281,7 @@ fn fig4_claims(f4: &Figure) -> Vec<Computed> {
     let below = col(&tabs300, "bias_v1")
         .iter()
         .zip(col(&tabs300, "bias_v1_stderr"))
-        .filter(|(b, se)| b.abs() - 3.0 * se < 1e-3)
+        .filter(|(b, se)| b.abs() - SIGNIFICANCE_SIGMAS * se < 1e-3)
         .count();
     out.push(Computed::with_status(
         "piston.fig4_v1_bias_300hz",
@@ -359,7 +367,9 @@ fn fig5_claims<'a>(spec: impl Fn(&str) -> &'a super::ClaimSpec, f5: &Figure) -> 
     // V1 unbiased: lowest frequency above which every |bias| < 3 standard errors.
     let b1 = samp.column("bias_v1").unwrap_or_default();
     let se1 = samp.column("bias_v1_stderr").unwrap_or_default();
-    let last_sig = (0..b1.len()).rev().find(|&i| b1[i].abs() > 3.0 * se1[i]);
+    let last_sig = (0..b1.len())
+        .rev()
+        .find(|&i| b1[i].abs() > SIGNIFICANCE_SIGMAS * se1[i]);
     let unb = match last_sig {
         None => freqs[0],
         Some(i) if i + 1 < freqs.len() => freqs[i + 1],
@@ -505,7 +515,10 @@ fn scaling_claims(effort: Effort) -> Vec<Computed> {
         };
         let (z1, z2, zb2) = (z(&a, &b, false), z(&a, &b, true), zb(&a, &b));
         let (n1, n2) = (z(&a, &c, false), z(&a, &c, true));
-        let ok = z1.abs() < 5.0 && z2.abs() < 5.0 && zb2.abs() < 5.0 && n1.abs() > 5.0;
+        let ok = z1.abs() < MC_SIGMAS
+            && z2.abs() < MC_SIGMAS
+            && zb2.abs() < MC_SIGMAS
+            && n1.abs() > MC_SIGMAS;
         out.push(Computed::with_status(
             "piston.wind_rescaling",
             Some(z1),
@@ -538,7 +551,7 @@ fn scaling_claims(effort: Effort) -> Vec<Computed> {
         out.push(Computed::with_status(
             "piston.multiplicative",
             Some(r[1]),
-            holds(worst < 1e-6),
+            holds(worst < crate::tolerance::VISIBILITY_SCALING_ABS),
             format!(
                 "V = 0.5 (grey) against V = 1, same piston sequences at 150 Hz, {scans} scans: ratios bias V1 {:.9}, bias V2 {:.9}, scatter V1 {:.9}, scatter V2 {:.9} (0.5 expected; the fringe scales with V, so bias and scatter of V do too). For a resolved disk the visibility varies across the band and the scaling holds only approximately (see Fig. 4 tables)",
                 r[0], r[1], r[2], r[3]

@@ -142,7 +142,10 @@ pub fn fig1(effort: Effort) -> Result<Figure> {
     let mut d1 = vec![grid.clone(), v_mono.clone()];
     let mut d2 = d1.clone();
     for bw in BANDWIDTHS_NM {
-        let sp = Spectrum::flat(Band::new(WAVELENGTH_UM, bw * 1e-3)?);
+        let sp = Spectrum::flat(Band::new(
+            WAVELENGTH_UM,
+            bw * crate::formalism::spectrum::UM_PER_NM,
+        )?);
         let curve: Vec<_> = grid
             .par_iter()
             .map(|&s| bandwidth::curve(&sp, &disk(), &SpectralPhase::zero(), &[s]).map(|v| v[0]))
