@@ -11,6 +11,7 @@
 //! the computation and the parameters it computes (never its position in a
 //! list), so that a point's result does not depend on what else is asked.
 
+use crate::noise::ExampleSetup;
 use crate::piston::turbulence::Turbulence;
 
 /// How hard the Monte Carlo providers work.
@@ -73,6 +74,28 @@ pub fn fig3_check_step(effort: Effort) -> f64 {
         Effort::Quick => 4.0,
     }
 }
+
+// ---------------------------------------------------------------------------
+// Appendix: estimator SNR (the worked examples)
+
+/// The project's reading of the Appendix's worked examples: 128 samples,
+/// δx = 0.5 µm, centred scan, sampling detector, n = 10 continuum photons per
+/// sample, V = 1 (so `m_0 = n V`; [`crate::noise::example`] explains the
+/// choice).
+pub fn appendix_setup() -> ExampleSetup {
+    ExampleSetup {
+        samples: 128,
+        dx_um: 0.5,
+        integrating: false,
+        zero_start: false,
+        photons: 10.0,
+        visibility: 1.0,
+    }
+}
+
+/// The detector noise of the worked examples, σ_det = 0.2 n (photons per
+/// sample, n the continuum of [`appendix_setup`]).
+pub const APPENDIX_READ_NOISE_PER_PHOTON: f64 = 0.2;
 
 // ---------------------------------------------------------------------------
 // §6: differential piston (Figs. 4 and 5)
