@@ -671,7 +671,10 @@ mod tests {
         ]
         .concat();
         for id in &case_ids {
-            let c = out.iter().find(|c| c.id == *id).expect("every claim answered");
+            let c = out
+                .iter()
+                .find(|c| c.id == *id)
+                .expect("every claim answered");
             assert_eq!(c.status, Status::Failed, "{id}");
             assert!(c.note.starts_with("computation failed: "), "{}", c.note);
             assert_eq!(c.value, None);
