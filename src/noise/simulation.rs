@@ -222,7 +222,7 @@ pub struct NoisyRun {
 
 /// Trials per work unit of [`simulate_noisy`] (fixed, so that the answer does
 /// not depend on the thread count).
-pub(crate) const TRIALS_PER_UNIT: u64 = 8192;
+pub const TRIALS_PER_UNIT: u64 = 8192;
 
 /// Largest total size of the alias tables of [`PoissonSampler`] for one
 /// simulation (entries); beyond it the samples use `rand_distr::Poisson`.
