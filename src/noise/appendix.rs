@@ -6,6 +6,9 @@
 //! [`crate::noise::model`]; the worked examples' interferogram in
 //! [`crate::noise::example`].
 //!
+//! # Estimators over all bins
+//!
+//! With `B_k = Σ_i M_i e^{−2πi ik/N}` and all N bins, Parseval gives
 //! `V1²_raw = Σ_k |B_k|² = N Σ_i M_i²` and `V2²_raw = |Σ_k B_k|² = N² M_0²`,
 //! so that (samples independent)
 //!

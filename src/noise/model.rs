@@ -18,9 +18,8 @@
 //! cumulants equal to its mean; a Gaussian one has none beyond the second).
 //! Moments of any order come from the cumulants by the standard recursion
 //! `μ'_r = Σ_{k=1}^{r} C(r−1, k−1) κ_k μ'_{r−k}` ([`raw_moment`]).
-//!
-//! # Estimators over all bins
-//!
+//! The estimators' closed forms built on these moments are in
+//! [`crate::noise::appendix`].
 
 use crate::error::{self, Result};
 use serde::Serialize;
