@@ -12,12 +12,13 @@ use std::hint::black_box;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
-use v2ref::noise::{example_interferogram, ExampleSetup, NoiseModel};
+use v2ref::noise::{example_interferogram, NoiseModel};
+use v2ref::reproduction::cases::appendix_setup;
 
 const TRIALS: u64 = 1 << 16;
 
 fn spec(noise: NoiseModel, window: BinWindow) -> NoisySpec {
-    let ifg = example_interferogram(&ExampleSetup::appendix()).expect("the Appendix case");
+    let ifg = example_interferogram(&appendix_setup()).expect("the Appendix case");
     NoisySpec {
         bins: window.bins(128, 0.5, &Spectrum::flat(Band::k())),
         modulated: ifg.modulated,
@@ -60,7 +61,7 @@ fn throughput(c: &mut Criterion) {
     // The estimators alone on a fixed interferogram (per evaluation).
     let mut e = c.benchmark_group("estimators_128");
     e.sample_size(20);
-    let ifg = example_interferogram(&ExampleSetup::appendix()).expect("the Appendix case");
+    let ifg = example_interferogram(&appendix_setup()).expect("the Appendix case");
     for (wname, window) in [
         ("all", BinWindow::All),
         ("positive", BinWindow::Positive),

@@ -11,6 +11,7 @@ use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
+use v2ref::reproduction::cases::appendix_setup;
 use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
 
 fn gauss(s: f64) -> NoiseModel {
@@ -94,7 +95,7 @@ fn published_photon_moments_are_those_of_the_count_not_of_m() {
 
 #[test]
 fn detector_formulas_agree_published_and_exact() {
-    let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
+    let ifg = example_interferogram(&appendix_setup()).unwrap();
     let d = gauss(2.0);
     let a = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Exact).unwrap();
     let b = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Published).unwrap();
@@ -117,7 +118,7 @@ fn detector_formulas_agree_published_and_exact() {
 #[test]
 fn worked_examples_follow_from_sum_m2() {
     // SNR2 depends on m0 and σ only: 1/√(0.08·2.04) for σ = 0.2 n, m0 = n.
-    let w = worked_example(&ExampleSetup::appendix(), Formula::Published).unwrap();
+    let w = worked_example(&appendix_setup(), Formula::Published).unwrap();
     assert_relative_eq!(
         w.detector.1,
         1.0 / (0.08_f64 * 2.04).sqrt(),
@@ -136,7 +137,7 @@ fn worked_examples_follow_from_sum_m2() {
         100.0 / (20.0_f64 * 1721.0).sqrt(),
         max_relative = IDENTITY_REL
     );
-    let e = worked_example(&ExampleSetup::appendix(), Formula::Exact).unwrap();
+    let e = worked_example(&appendix_setup(), Formula::Exact).unwrap();
     assert_relative_eq!(
         e.photon.1,
         100.0 / 9620.0_f64.sqrt(),
@@ -148,7 +149,7 @@ fn worked_examples_follow_from_sum_m2() {
     let z = worked_example(
         &ExampleSetup {
             zero_start: true,
-            ..ExampleSetup::appendix()
+            ..appendix_setup()
         },
         Formula::Published,
     )
@@ -160,7 +161,7 @@ fn worked_examples_follow_from_sum_m2() {
 fn window_all_bins_equals_appendix() {
     let ifg = example_interferogram(&ExampleSetup {
         samples: 32,
-        ..ExampleSetup::appendix()
+        ..appendix_setup()
     })
     .unwrap();
     let all: Vec<usize> = (0..32).collect();
@@ -248,7 +249,7 @@ fn white_noise_window_factor_holds_only_without_signal() {
         max_relative = IDENTITY_REL
     );
     // With the fringe, the signal × noise term is not reduced.
-    let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
+    let ifg = example_interferogram(&appendix_setup()).unwrap();
     let obs = noise::example_observation();
     let (lo, hi) = obs.spectrum.support();
     let w2 = two_sided_band_bins(128, 0.5, lo, hi);
@@ -335,7 +336,7 @@ proptest! {
         extra in 1usize..500,
         photon in any::<bool>(),
     ) {
-        let ifg = example_interferogram(&ExampleSetup { samples: 32, ..ExampleSetup::appendix() }).unwrap();
+        let ifg = example_interferogram(&ExampleSetup { samples: 32, ..appendix_setup() }).unwrap();
         let noise = NoiseModel::new(s, photon).unwrap();
         for f in [Formula::Exact, Formula::Published] {
             let (a1, a2) = noise::snr_with_extra_samples(&ifg.modulated, &ifg.continuum, &noise, f, 0).unwrap();

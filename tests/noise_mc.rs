@@ -12,6 +12,7 @@ use v2ref::noise::window_variance::{
 use v2ref::noise::{
     appendix_stats, example_interferogram, published, raw_moment, ExampleSetup, Formula, NoiseModel,
 };
+use v2ref::reproduction::cases::appendix_setup;
 use v2ref::tolerance::{IDENTITY_REL, MC_POWER_SIGMAS, MC_SIGMAS, POWER_FACTOR};
 
 /// Asserts `mc` within MC_SIGMAS·se of `f` and outside MC_SIGMAS·se of 1.02 f.
@@ -101,7 +102,7 @@ fn all_bins(
 ) -> (Vec<f64>, Vec<f64>, RunningStats, RunningStats) {
     let ifg = example_interferogram(&ExampleSetup {
         samples,
-        ..ExampleSetup::appendix()
+        ..appendix_setup()
     })
     .unwrap();
     let spec = NoisySpec {
@@ -215,7 +216,7 @@ fn windowed_variance_gaussian_two_windows() {
     let nn = 32usize;
     let ifg = example_interferogram(&ExampleSetup {
         samples: nn,
-        ..ExampleSetup::appendix()
+        ..appendix_setup()
     })
     .unwrap();
     let s = 2.0;
@@ -278,7 +279,7 @@ fn windowed_variance_photon_third_and_fourth_cumulants() {
     let ifg = example_interferogram(&ExampleSetup {
         samples: nn,
         photons: 4.0,
-        ..ExampleSetup::appendix()
+        ..appendix_setup()
     })
     .unwrap();
     let noise = NoiseModel::photon();
@@ -322,7 +323,7 @@ fn windowed_variance_photon_third_and_fourth_cumulants() {
 
 #[test]
 fn simulation_is_bit_identical_across_thread_counts() {
-    let ifg = example_interferogram(&ExampleSetup::appendix()).unwrap();
+    let ifg = example_interferogram(&appendix_setup()).unwrap();
     let spec = NoisySpec {
         modulated: ifg.modulated.clone(),
         continuum: ifg.continuum.clone(),

@@ -1,10 +1,19 @@
 //! The Appendix of the paper, *Estimator signal-to-noise ratio*: the noise
-//! moments of a sample, the closed forms of the estimators' biases and
-//! variances (as printed and exact), the exact variance over any window of
-//! bins, and the Monte Carlo of noisy interferograms that checks them.
+//! model and the moments of a sample ([`model`]), the closed forms of the
+//! estimators' biases and variances as printed and exact ([`appendix`]), the
+//! worked examples ([`example`]), the exact variance over any window of bins
+//! ([`window_variance`]), and the Monte Carlo of noisy interferograms that
+//! checks them ([`simulation`]).
+//!
+//! Everything of [`model`], [`appendix`] and [`example`] is also reachable
+//! as `v2ref::noise::X`.
 
-pub mod moments;
+pub mod appendix;
+pub mod example;
+pub mod model;
 pub mod simulation;
 pub mod window_variance;
 
-pub use moments::*;
+pub use appendix::*;
+pub use example::*;
+pub use model::*;

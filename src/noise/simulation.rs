@@ -226,7 +226,7 @@ pub const TRIALS_PER_UNIT: u64 = 8192;
 
 /// Largest total size of the alias tables of [`PoissonSampler`] for one
 /// simulation (entries); beyond it the samples use `rand_distr::Poisson`.
-pub const ALIAS_BUDGET: usize = 1 << 20;
+pub(crate) const ALIAS_BUDGET: usize = 1 << 20;
 
 /// Poisson counts of one fixed mean λ.
 ///
@@ -238,6 +238,9 @@ pub const ALIAS_BUDGET: usize = 1 << 20;
 /// any λ in 1e−4 … 1e6 (checked with scipy.stats.poisson);
 /// `Direct` uses `rand_distr::Poisson` (for very large λ or long scans).
 /// The choice depends only on the inputs, never on the thread count.
+///
+/// Internal to [`simulate_noisy`]; public only for `tests/montecarlo_noise.rs`.
+#[doc(hidden)]
 #[derive(Debug, Clone)]
 pub enum PoissonSampler {
     /// λ = 0: always 0.
@@ -255,7 +258,7 @@ pub enum PoissonSampler {
 
 impl PoissonSampler {
     /// Table entries an alias sampler of mean `lambda` needs.
-    pub fn table_len(lambda: f64) -> usize {
+    pub(crate) fn table_len(lambda: f64) -> usize {
         let (lo, hi) = Self::support(lambda);
         (hi - lo + 1.0) as usize
     }
@@ -433,7 +436,9 @@ pub fn simulate_noisy(
 
 /// The noise draws of [`simulate_noisy`] alone (same generators, same
 /// samples, no estimator): the baseline of the throughput benchmark. Returns
-/// the sum of all samples so that nothing is optimized away.
+/// the sum of all samples so that nothing is optimized away. Public only
+/// for `benches/montecarlo.rs`.
+#[doc(hidden)]
 pub fn draw_noise_only(
     spec: &NoisySpec,
     trials: u64,

@@ -11,6 +11,9 @@
 //! the computation and the parameters it computes (never its position in a
 //! list), so that a point's result does not depend on what else is asked.
 
+use crate::formalism::source::Source;
+use crate::formalism::spectrum::{Band, Spectrum};
+use crate::noise::ExampleSetup;
 use crate::piston::turbulence::Turbulence;
 
 /// How hard the Monte Carlo providers work.
@@ -39,6 +42,27 @@ pub fn s_grid(step_cpas: f64) -> Vec<f64> {
     let n = (S_MAX_CPAS / step_cpas).round() as usize;
     (0..=n).map(|i| i as f64 * step_cpas).collect()
 }
+
+/// The paper's flat K band (2.0–2.4 µm, flat in wavenumber) of Figs. 0–3.
+pub fn k_band() -> Spectrum {
+    Spectrum::flat(Band::k())
+}
+
+/// The paper's uniform disk of [`DIAMETER_MAS`].
+pub fn disk() -> Source {
+    Source::UniformDisk {
+        diameter_mas: DIAMETER_MAS,
+    }
+}
+
+/// Fig. 0: largest number of samples (a stroke of 511.5 µm).
+pub const FIG0_MAX_SAMPLES: usize = 930;
+/// Fig. 0: the smooth band edge shown, µm⁻¹ (raised-cosine ramp width).
+pub const FIG0_EDGE_PER_UM: f64 = 0.02;
+/// Fig. 0: spectral indices shown (S F ∝ σ^index).
+pub const FIG0_INDICES: [f64; 3] = [-2.0, 2.0, 4.0];
+/// Fig. 2 dispersions, peak-to-peak rad.
+pub const DISPERSIONS_RAD: [f64; 3] = [1.0, 1.5, 2.0];
 
 /// The strokes of the paper's Fig. 3, µm (nominal: N = round(stroke/δx)).
 pub const STROKES_UM: [f64; 8] = [256.0, 128.0, 64.0, 32.0, 16.0, 8.0, 4.0, 2.0];
@@ -73,6 +97,28 @@ pub fn fig3_check_step(effort: Effort) -> f64 {
         Effort::Quick => 4.0,
     }
 }
+
+// ---------------------------------------------------------------------------
+// Appendix: estimator SNR (the worked examples)
+
+/// The project's reading of the Appendix's worked examples: 128 samples,
+/// δx = 0.5 µm, centred scan, sampling detector, n = 10 continuum photons per
+/// sample, V = 1 (so `m_0 = n V`; [`crate::noise::example`] explains the
+/// choice).
+pub fn appendix_setup() -> ExampleSetup {
+    ExampleSetup {
+        samples: 128,
+        dx_um: 0.5,
+        integrating: false,
+        zero_start: false,
+        photons: 10.0,
+        visibility: 1.0,
+    }
+}
+
+/// The detector noise of the worked examples, σ_det = 0.2 n (photons per
+/// sample, n the continuum of [`appendix_setup`]).
+pub const APPENDIX_READ_NOISE_PER_PHOTON: f64 = 0.2;
 
 // ---------------------------------------------------------------------------
 // §6: differential piston (Figs. 4 and 5)

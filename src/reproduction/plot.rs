@@ -11,6 +11,7 @@
 
 use crate::error::{Error, Result};
 use crate::reproduction::table::{Figure, Table};
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 
 /// Curve colours (Okabe–Ito, distinguishable by colour-blind readers).
@@ -169,48 +170,131 @@ fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
 pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
     let hint = hint(&table.name);
     let series = series_of(table, &hint);
-    let all: Vec<(f64, f64)> = series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .collect();
-    if all.is_empty() {
-        return Err(plot_error(format!(
-            "table {} has nothing to plot",
-            table.name
-        )));
-    }
-    let (mut x0, mut x1) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.0), b.max(p.0))
-        });
-    let (mut y0, mut y1) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.1), b.max(p.1))
-        });
-    for s in &series {
-        if let Some(e) = &s.errors {
-            for ((_, y), e) in s.points.iter().zip(e) {
-                y0 = y0.min(y - e);
-                y1 = y1.max(y + e);
-            }
+    let frame = Frame::new(table, &hint, &series)?;
+    let title = format!("{} — {}", figure.id, table.name);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(plot_error)?;
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(&title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(80);
+        let (x, y) = (frame.x.0..frame.x.1, frame.y.0..frame.y.1);
+        match (frame.log_x, frame.log_y) {
+            (false, true) => draw(
+                builder.build_cartesian_2d(x, y.log_scale()),
+                &frame,
+                &series,
+            )?,
+            (false, false) => draw(builder.build_cartesian_2d(x, y), &frame, &series)?,
+            (true, true) => draw(
+                builder.build_cartesian_2d(x.log_scale(), y.log_scale()),
+                &frame,
+                &series,
+            )?,
+            (true, false) => draw(
+                builder.build_cartesian_2d(x.log_scale(), y),
+                &frame,
+                &series,
+            )?,
         }
+        root.present().map_err(plot_error)?;
     }
+    Ok(svg)
+}
+
+/// The axes of one panel: ranges, scales, labels and the reference lines
+/// that fall within them.
+struct Frame {
+    x: (f64, f64),
+    y: (f64, f64),
+    log_x: bool,
+    log_y: bool,
+    x_desc: String,
+    y_desc: String,
+    lines: Vec<(f64, &'static str)>,
+}
+
+impl Frame {
+    fn new(table: &Table, hint: &PlotHint, series: &[Series]) -> Result<Frame> {
+        let (x, y) = data_ranges(series)
+            .ok_or_else(|| plot_error(format!("table {} has nothing to plot", table.name)))?;
+        let x = widen_if_flat(x);
+        let log_y = hint.abs_log_y || (y.0 > 0.0 && y.1 / y.0 > 1e3);
+        let y = pad_ordinate(y, log_y);
+        let lines = reference_lines(hint, y);
+        // The ordinate also covers the reference lines drawn.
+        let y = lines
+            .iter()
+            .fold(y, |(y0, y1), (l, _)| (y0.min(*l), y1.max(*l)));
+        let (x_desc, y_desc) = axis_labels(table, hint);
+        Ok(Frame {
+            x,
+            y,
+            log_x: hint.log_x,
+            log_y,
+            x_desc,
+            y_desc,
+            lines,
+        })
+    }
+}
+
+/// The abscissa and ordinate ranges of the points and their error bars
+/// (None when there is no point).
+fn data_ranges(series: &[Series]) -> Option<((f64, f64), (f64, f64))> {
+    let span = (f64::INFINITY, f64::NEG_INFINITY);
+    let points = series.iter().flat_map(|s| s.points.iter());
+    let (x, y) = points.fold((span, span), |(x, y), p| {
+        ((x.0.min(p.0), x.1.max(p.0)), (y.0.min(p.1), y.1.max(p.1)))
+    });
+    if x.0 > x.1 {
+        return None;
+    }
+    let bars = series
+        .iter()
+        .filter_map(|s| s.errors.as_ref().map(|e| s.points.iter().zip(e)))
+        .flatten();
+    let y = bars.fold(y, |(y0, y1), ((_, v), e)| (y0.min(v - e), y1.max(v + e)));
+    Some((x, y))
+}
+
+/// A range of one value widened to a unit span around it.
+fn widen_if_flat((x0, x1): (f64, f64)) -> (f64, f64) {
     if x1 <= x0 {
-        x0 -= 0.5;
-        x1 += 0.5;
+        (x0 - 0.5, x1 + 0.5)
+    } else {
+        (x0, x1)
     }
-    let log_y = hint.abs_log_y || (y0 > 0.0 && y1 / y0 > 1e3);
+}
+
+/// The ordinate range with a 5% margin (linear scale), or widened when flat.
+fn pad_ordinate((y0, y1): (f64, f64), log_y: bool) -> (f64, f64) {
     if y1 <= y0 {
         let pad = if y0 == 0.0 { 1.0 } else { 0.05 * y0.abs() };
-        y0 -= pad;
-        y1 += pad;
+        (y0 - pad, y1 + pad)
     } else if !log_y {
         let pad = 0.05 * (y1 - y0);
-        y0 -= pad;
-        y1 += pad;
+        (y0 - pad, y1 + pad)
+    } else {
+        (y0, y1)
     }
+}
+
+/// Reference lines are drawn when they are within a span of the data.
+fn reference_lines(hint: &PlotHint, (y0, y1): (f64, f64)) -> Vec<(f64, &'static str)> {
+    hint.lines
+        .iter()
+        .copied()
+        .filter(|(y, _)| *y > y0 - (y1 - y0) && *y < y1 + (y1 - y0))
+        .collect()
+}
+
+/// The abscissa label (first column with its unit) and the ordinate label.
+fn axis_labels(table: &Table, hint: &PlotHint) -> (String, String) {
     let x_desc = table.columns[0].header();
     let y_unit = table
         .columns
@@ -222,95 +306,96 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
         (None, true) => "value".to_owned(),
         (None, false) => format!("value [{y_unit}]"),
     };
-    // Reference lines are drawn when they are within a span of the data.
-    let lines: Vec<(f64, &str)> = hint
-        .lines
-        .iter()
-        .copied()
-        .filter(|(y, _)| *y > y0 - (y1 - y0) && *y < y1 + (y1 - y0))
-        .collect();
-    for (y, _) in &lines {
-        y0 = y0.min(*y);
-        y1 = y1.max(*y);
-    }
-    let title = format!("{} — {}", figure.id, table.name);
+    (x_desc, y_desc)
+}
 
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(plot_error)?;
-        let mut builder = ChartBuilder::on(&root);
-        builder
-            .caption(&title, ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(80);
-        macro_rules! draw {
-            ($chart:expr) => {{
-                let mut chart = $chart;
-                chart
-                    .configure_mesh()
-                    .x_desc(x_desc.as_str())
-                    .y_desc(y_desc.as_str())
-                    .y_label_formatter(&|y: &f64| tick(*y))
-                    .x_label_formatter(&|x: &f64| tick(*x))
-                    .x_labels(10)
-                    .draw()
-                    .map_err(plot_error)?;
-                for (y, label) in &lines {
-                    let grey = RGBColor(120, 120, 120);
-                    chart
-                        .draw_series(LineSeries::new([(x0, *y), (x1, *y)], grey.stroke_width(1)))
-                        .map_err(plot_error)?
-                        .label(*label)
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
-                }
-                for (i, s) in series.iter().enumerate() {
-                    let colour = PALETTE[i % PALETTE.len()];
-                    chart
-                        .draw_series(LineSeries::new(
-                            s.points.iter().copied(),
-                            colour.stroke_width(2),
-                        ))
-                        .map_err(plot_error)?
-                        .label(s.label.as_str())
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                        });
-                    if let Some(e) = &s.errors {
-                        chart
-                            .draw_series(s.points.iter().zip(e).map(|(&(x, y), &e)| {
-                                ErrorBar::new_vertical(x, y - e, y, y + e, colour.filled(), 6)
-                            }))
-                            .map_err(plot_error)?;
-                    }
-                }
-                chart
-                    .configure_series_labels()
-                    .position(SeriesLabelPosition::UpperRight)
-                    .border_style(BLACK)
-                    .background_style(WHITE.mix(0.85))
-                    .draw()
-                    .map_err(plot_error)?;
-            }};
-        }
-        match (hint.log_x, log_y) {
-            (false, true) => draw!(builder
-                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-                .map_err(plot_error)?),
-            (false, false) => draw!(builder
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(plot_error)?),
-            (true, true) => draw!(builder
-                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-                .map_err(plot_error)?),
-            (true, false) => draw!(builder
-                .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
-                .map_err(plot_error)?),
-        }
-        root.present().map_err(plot_error)?;
+/// A chart of the SVG backend on coordinates `X × Y` (linear or log).
+type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
+
+/// Draws mesh and ticks, reference lines, series with their error bars and
+/// the legend, in that order, on a built chart.
+fn draw<'a, 'b: 'a, X, Y, E>(
+    chart: std::result::Result<Chart<'a, 'b, X, Y>, E>,
+    frame: &Frame,
+    series: &[Series],
+) -> Result<()>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    E: std::fmt::Display,
+{
+    let mut chart = chart.map_err(plot_error)?;
+    draw_mesh(&mut chart, frame)?;
+    draw_reference_lines(&mut chart, frame)?;
+    for (i, s) in series.iter().enumerate() {
+        draw_series(&mut chart, s, PALETTE[i % PALETTE.len()])?;
     }
-    Ok(svg)
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.85))
+        .draw()
+        .map_err(plot_error)
+}
+
+/// Axes, grid and tick labels.
+fn draw_mesh<X, Y>(chart: &mut Chart<'_, '_, X, Y>, frame: &Frame) -> Result<()>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(frame.x_desc.as_str())
+        .y_desc(frame.y_desc.as_str())
+        .y_label_formatter(&|y: &f64| tick(*y))
+        .x_label_formatter(&|x: &f64| tick(*x))
+        .x_labels(10)
+        .draw()
+        .map_err(plot_error)
+}
+
+/// The horizontal reference lines, grey, across the whole abscissa.
+fn draw_reference_lines<X, Y>(chart: &mut Chart<'_, '_, X, Y>, frame: &Frame) -> Result<()>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let (x0, x1) = frame.x;
+    for (y, label) in &frame.lines {
+        let grey = RGBColor(120, 120, 120);
+        chart
+            .draw_series(LineSeries::new([(x0, *y), (x1, *y)], grey.stroke_width(1)))
+            .map_err(plot_error)?
+            .label(*label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+    }
+    Ok(())
+}
+
+/// One curve in `colour`, with its error bars if any.
+fn draw_series<X, Y>(chart: &mut Chart<'_, '_, X, Y>, s: &Series, colour: RGBColor) -> Result<()>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .draw_series(LineSeries::new(
+            s.points.iter().copied(),
+            colour.stroke_width(2),
+        ))
+        .map_err(plot_error)?
+        .label(s.label.as_str())
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+    if let Some(e) = &s.errors {
+        chart
+            .draw_series(s.points.iter().zip(e).map(|(&(x, y), &e)| {
+                ErrorBar::new_vertical(x, y - e, y, y + e, colour.filled(), 6)
+            }))
+            .map_err(plot_error)?;
+    }
+    Ok(())
 }
 
 /// A compact tick label: plain for ordinary magnitudes, `1e-5` style beyond.

@@ -162,6 +162,19 @@ impl Computed {
     }
 }
 
+/// The claims of one step of a provider: what it `computed`, or, if the
+/// step failed, [`Computed::failed`] for each of its claim `ids` (a failure
+/// is reported, never left `pending`).
+pub(super) fn settle(
+    ids: &[&'static str],
+    computed: crate::Result<Vec<Computed>>,
+) -> Vec<Computed> {
+    match computed {
+        Ok(claims) => claims,
+        Err(err) => ids.iter().map(|id| Computed::failed(id, &err)).collect(),
+    }
+}
+
 /// One row of the `claims` answer (the CLI contract's fields).
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct ClaimResult {

@@ -3,8 +3,15 @@
 //! [`crate::noise`] and [`crate::noise::window_variance`], checked by the Monte
 //! Carlo of [`crate::noise::simulation::simulate_noisy`] /
 //! [`crate::noise::simulation::sample_moments`] (seeds fixed below).
+//!
+//! One step per group of claims: the all-bins estimators of the Appendix
+//! case (one Monte Carlo run per noise, read by five claims), the moments of
+//! one sample, the windowed variance, the worked examples' SNRs, the
+//! crossover, and the ABCD variance. A step whose computation fails yields
+//! [`Computed::failed`] for each of its claims.
 
-use super::{Computed, Find, Status};
+use super::{settle, Computed, Find, Status};
+use crate::formalism::interferogram::Interferogram;
 use crate::montecarlo::RunningStats;
 use crate::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
 use crate::noise::window_variance::{two_sided_band_bins, window_stats};
@@ -13,7 +20,8 @@ use crate::noise::{
     example_interferogram, moments, published, var_m2, worked_example, ExampleSetup, Formula,
     NoiseModel,
 };
-use crate::reproduction::cases::Effort;
+use crate::reproduction::cases::{appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON};
+use crate::Result;
 
 /// Seed of every Monte Carlo of this provider.
 const SEED: u64 = 20_040_712;
@@ -44,77 +52,201 @@ fn versus(mc: f64, se: f64, reference: f64) -> String {
     )
 }
 
-fn mc_estimators(spec: &NoisySpec, trials: u64, seed: u64) -> Option<(RunningStats, RunningStats)> {
-    simulate_noisy(spec, trials, seed, 0, &|_| {})
-        .ok()
-        .map(|r| (r.v1_sq, r.v2_sq))
+/// V1² and V2² of `trials` noisy interferograms of `spec`.
+fn mc_estimators(spec: &NoisySpec, trials: u64, seed: u64) -> Result<(RunningStats, RunningStats)> {
+    simulate_noisy(spec, trials, seed, 0, &|_| {}).map(|r| (r.v1_sq, r.v2_sq))
+}
+
+/// The claims of the all-bins estimators (one Monte Carlo per noise).
+const ALL_BINS_IDS: [&str; 5] = [
+    "appendix.expectation_v1",
+    "appendix.expectation_v2",
+    "appendix.photon_bias_terms",
+    "appendix.detector_variances",
+    "appendix.photon_variances",
+];
+/// The claims of the moments of one sample.
+const SAMPLE_IDS: [&str; 3] = [
+    "appendix.gaussian_moments",
+    "appendix.photon_moments",
+    "snr.combined_noise_variance",
+];
+/// The claim of the windowed variance.
+const WINDOW_IDS: [&str; 1] = ["appendix.window_variance_factor"];
+/// The claims of the worked examples' SNRs.
+const WORKED_IDS: [&str; 5] = [
+    "snr.detector_v1",
+    "snr.detector_v2",
+    "snr.photon_v1",
+    "snr.photon_v2",
+    "sensitivity.v1_over_v2",
+];
+/// The claim of the crossover of SNR_1 and SNR_2.
+const CROSSOVER_IDS: [&str; 1] = ["snr.crossover_samples"];
+/// The claim of the ABCD variance.
+const ABCD_IDS: [&str; 1] = ["snr.colavita_correction"];
+
+/// The Appendix case every step reads: the setup, its noise-free
+/// interferogram and the two noises of the worked examples.
+struct Case {
+    setup: ExampleSetup,
+    ifg: Interferogram,
+    /// Detector noise σ_det = 0.2 n.
+    detector: NoiseModel,
+    /// Photon noise alone.
+    photon: NoiseModel,
+}
+
+impl Case {
+    fn new(setup: ExampleSetup) -> Result<Case> {
+        Ok(Case {
+            setup,
+            ifg: example_interferogram(&setup)?,
+            detector: NoiseModel {
+                read_noise: APPENDIX_READ_NOISE_PER_PHOTON * setup.photons,
+                photon: false,
+            },
+            photon: NoiseModel::photon(),
+        })
+    }
+
+    /// All N bins.
+    fn all_bins(&self) -> Vec<usize> {
+        (0..self.setup.samples).collect()
+    }
+
+    /// The noisy-interferogram spec of the case with `noise` over all bins.
+    fn spec(&self, noise: NoiseModel) -> NoisySpec {
+        NoisySpec {
+            modulated: self.ifg.modulated.clone(),
+            continuum: self.ifg.continuum.clone(),
+            noise,
+            bins: self.all_bins(),
+        }
+    }
 }
 
 /// The claims this area computes.
 pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
-    let sz = sizes(effort);
-    let mut out = Vec::new();
-    let setup = ExampleSetup::appendix();
-    let Ok(ifg) = example_interferogram(&setup) else {
-        return out;
-    };
-    let n = setup.photons;
-    let big_n = setup.samples as f64;
-    let all: Vec<usize> = (0..setup.samples).collect();
-    let sum_m2: f64 = ifg.modulated.iter().map(|m| m * m).sum();
-    let m0 = ifg.modulated[0];
-    let counts = ifg.mean_counts();
-    let detector = NoiseModel {
-        read_noise: 0.2 * n,
-        photon: false,
-    };
-    let photon = NoiseModel::photon();
+    claims_for(find, effort, appendix_setup())
+}
 
-    // --- Expectations (bias-subtracted), all bins, both noises. ---------
-    let spec_det = NoisySpec {
-        modulated: ifg.modulated.clone(),
-        continuum: ifg.continuum.clone(),
-        noise: detector,
-        bins: all.clone(),
-    };
-    let spec_phot = NoisySpec {
-        noise: photon,
-        ..spec_det.clone()
-    };
-    let det_run = mc_estimators(&spec_det, sz.interferograms, SEED);
-    let phot_run = mc_estimators(&spec_phot, sz.interferograms, SEED + 1);
-    if let (Some((d1, d2)), Some((p1, p2))) = (det_run, phot_run) {
-        let exact_phot = appendix_stats(&ifg.modulated, &ifg.continuum, &photon, Formula::Exact);
-        let pub_phot = appendix_stats(&ifg.modulated, &ifg.continuum, &photon, Formula::Published);
-        let exact_det = appendix_stats(&ifg.modulated, &ifg.continuum, &detector, Formula::Exact);
-        if let (Ok(ep), Ok(pp), Ok(ed)) = (exact_phot, pub_phot, exact_det) {
-            let sig1 = big_n * sum_m2;
-            let sig2 = big_n * big_n * m0 * m0;
-            let r_det1 = (d1.mean - ed.bias_v1_sq) / sig1;
-            let r_phot1 = (p1.mean - ep.bias_v1_sq) / sig1;
-            out.push(Computed::with_status(
-                "appendix.expectation_v1",
-                Some(r_phot1),
-                Status::Qualitative,
-                format!(
+/// One step: the claims of one group, computed from the case.
+type Step = fn(&Find<'_>, &Case, &Sizes) -> Result<Vec<Computed>>;
+
+/// The claims for the Appendix case `setup` (the paper's in [`claims`]);
+/// if the case itself cannot be built, every claim that reads it fails.
+fn claims_for(find: &Find<'_>, effort: Effort, setup: ExampleSetup) -> Vec<Computed> {
+    let sz = sizes(effort);
+    let case = Case::new(setup);
+    let steps: [(&[&'static str], Step); 5] = [
+        (&ALL_BINS_IDS, all_bins_claims),
+        (&SAMPLE_IDS, sample_moment_claims),
+        (&WINDOW_IDS, window_claims),
+        (&WORKED_IDS, worked_example_claims),
+        (&CROSSOVER_IDS, crossover_claims),
+    ];
+    let mut out = Vec::new();
+    for (ids, step) in steps {
+        let computed = case.as_ref().map_err(Clone::clone);
+        out.extend(settle(ids, computed.and_then(|c| step(find, c, &sz))));
+    }
+    out.extend(settle(&ABCD_IDS, abcd_claims(&sz)));
+    out
+}
+
+/// The all-bins Monte Carlo of the Appendix case (one run per noise) and
+/// the closed forms its five claims compare it with.
+struct AllBins {
+    /// V1², V2² under detector noise.
+    det: (RunningStats, RunningStats),
+    /// V1², V2² under photon noise.
+    phot: (RunningStats, RunningStats),
+    /// Exact photon-noise closed forms.
+    ep: noise::AppendixStats,
+    /// Printed photon-noise closed forms.
+    pp: noise::AppendixStats,
+    /// Exact detector-noise closed forms.
+    ed: noise::AppendixStats,
+    /// N Σ m_i² and N² m_0².
+    sig: (f64, f64),
+    /// N.
+    big_n: f64,
+    /// Interferograms per run.
+    trials: u64,
+}
+
+impl AllBins {
+    fn run(case: &Case, sz: &Sizes) -> Result<AllBins> {
+        let ifg = &case.ifg;
+        let det = mc_estimators(&case.spec(case.detector), sz.interferograms, SEED)?;
+        let phot = mc_estimators(&case.spec(case.photon), sz.interferograms, SEED + 1)?;
+        let stats = |noise: &NoiseModel, f: Formula| {
+            appendix_stats(&ifg.modulated, &ifg.continuum, noise, f)
+        };
+        let big_n = case.setup.samples as f64;
+        let sum_m2: f64 = ifg.modulated.iter().map(|m| m * m).sum();
+        let m0 = ifg.modulated[0];
+        Ok(AllBins {
+            det,
+            phot,
+            ep: stats(&case.photon, Formula::Exact)?,
+            pp: stats(&case.photon, Formula::Published)?,
+            ed: stats(&case.detector, Formula::Exact)?,
+            sig: (big_n * sum_m2, big_n * big_n * m0 * m0),
+            big_n,
+            trials: sz.interferograms,
+        })
+    }
+}
+
+/// Expectations, photon bias terms and variances of V1² and V2² over all
+/// bins: `appendix.expectation_*`, `appendix.photon_bias_terms`,
+/// `appendix.*_variances`.
+fn all_bins_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Computed>> {
+    let a = AllBins::run(case, sz)?;
+    Ok(vec![
+        expectation_v1_claim(&a),
+        expectation_v2_claim(&a, case),
+        photon_bias_claim(&a),
+        detector_variance_claim(&a),
+        photon_variance_claim(&a),
+    ])
+}
+
+fn expectation_v1_claim(a: &AllBins) -> Computed {
+    let ((d1, _), (p1, _)) = (&a.det, &a.phot);
+    let (ed, ep, pp, sig1) = (&a.ed, &a.ep, &a.pp, a.sig.0);
+    let r_det1 = (d1.mean - ed.bias_v1_sq) / sig1;
+    let r_phot1 = (p1.mean - ep.bias_v1_sq) / sig1;
+    Computed::with_status(
+        "appendix.expectation_v1",
+        Some(r_phot1),
+        Status::Qualitative,
+        format!(
                     "128-sample Appendix interferogram, {t} trials each: (mean V1^2_raw - exact bias) / (N sum m_i^2) = {} (detector noise, bias N^2 s^2) and {} (photon noise, bias N sum n_i); with the printed photon bias N sum m_i the mean exceeds N sum m_i^2 by N sum c_i = {:.4e}, i.e. ratio {:.4}. Exact: N sum m_i^2 holds once the right bias is removed",
                     versus(r_det1, d1.stderr_mean() / sig1, 1.0),
                     versus(r_phot1, p1.stderr_mean() / sig1, 1.0),
                     pp.expectation_v1_sq - sig1,
                     (p1.mean - pp.bias_v1_sq) / sig1,
-                    t = sz.interferograms
+                    t = a.trials
                 ),
-            ));
-            // V2 needs sample 0 on the white-light fringe: the same
-            // interferogram read half a sample off the fringe.
-            let shifted = half_sample_m0();
-            let r_phot2 = (p2.mean - ep.bias_v2_sq) / sig2;
-            let r_det2 = (d2.mean - ed.bias_v2_sq) / sig2;
-            out.push(Computed::with_status(
-                "appendix.expectation_v2",
-                Some(r_phot2),
-                Status::Qualitative,
-                format!(
+    )
+}
+
+fn expectation_v2_claim(a: &AllBins, case: &Case) -> Computed {
+    let ((_, d2), (_, p2)) = (&a.det, &a.phot);
+    let (ed, ep, pp, sig2) = (&a.ed, &a.ep, &a.pp, a.sig.1);
+    // V2 needs sample 0 on the white-light fringe: the same
+    // interferogram read half a sample off the fringe.
+    let shifted = half_sample_m0(&case.setup);
+    let r_phot2 = (p2.mean - ep.bias_v2_sq) / sig2;
+    let r_det2 = (d2.mean - ed.bias_v2_sq) / sig2;
+    Computed::with_status(
+        "appendix.expectation_v2",
+        Some(r_phot2),
+        Status::Qualitative,
+        format!(
                     "(mean V2^2_raw - exact bias) / (N^2 m_0^2) = {} (detector) and {} (photon, bias N^2 n_0; the printed N^2 m_0 leaves N^2 c_0 = {:.4e}). Sample 0 half a sample (0.25 um) off the white-light fringe gives m_0/n = {:.4}, so V2^2 reads {:.4} of its value: V2 needs sample 0 on the fringe",
                     versus(r_det2, d2.stderr_mean() / sig2, 1.0),
                     versus(r_phot2, p2.stderr_mean() / sig2, 1.0),
@@ -122,16 +254,21 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                     shifted,
                     shifted * shifted
                 ),
-            ));
-            // Photon bias terms.
-            let rel_pub = (p1.mean - pp.bias_v1_sq - sig1) / p1.stderr_mean();
-            out.push(Computed {
-                id: "appendix.photon_bias_terms",
-                value: Some(ep.bias_v1_sq / (big_n * big_n)),
-                status: Status::Erratum,
-                note: format!(
+    )
+}
+
+fn photon_bias_claim(a: &AllBins) -> Computed {
+    let (p1, p2) = &a.phot;
+    let (ep, pp, big_n) = (&a.ep, &a.pp, a.big_n);
+    let (sig1, sig2) = a.sig;
+    let rel_pub = (p1.mean - pp.bias_v1_sq - sig1) / p1.stderr_mean();
+    Computed {
+        id: "appendix.photon_bias_terms",
+        value: Some(ep.bias_v1_sq / (big_n * big_n)),
+        status: Status::Erratum,
+        note: format!(
                     "the photon-noise power in V1^2_raw is N sum n_i (n_i = c_i + m_i, the mean total count), not N sum m_i; in V2^2_raw N^2 n_0, not N^2 m_0. Monte Carlo ({} interferograms, photon noise, Appendix case): mean V1^2_raw - N sum m_i^2 = {} vs exact N sum n_i; the printed N sum m_i = {:.4e} misses by {:.0} se. V2: mean - N^2 m_0^2 = {} vs exact N^2 n_0. value = sum n_i / N (mean count per sample) = {:.4}; published sum m_i / N = {:.4}",
-                    sz.interferograms,
+            a.trials,
                     versus(p1.mean - sig1, p1.stderr_mean(), ep.bias_v1_sq),
                     pp.bias_v1_sq,
                     rel_pub,
@@ -141,31 +278,37 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 ),
                 published: Some(pp.bias_v1_sq / (big_n * big_n)),
                 exact: Some(ep.bias_v1_sq / (big_n * big_n)),
-            });
-            // Detector variances.
-            let rv1 = d1.variance() / ed.var_v1_sq;
-            let rv2 = d2.variance() / ed.var_v2_sq;
-            out.push(Computed::with_status(
-                "appendix.detector_variances",
-                Some(rv1),
-                Status::Qualitative,
-                format!(
+    }
+}
+
+fn detector_variance_claim(a: &AllBins) -> Computed {
+    let ((d1, d2), ed) = (&a.det, &a.ed);
+    let rv1 = d1.variance() / ed.var_v1_sq;
+    let rv2 = d2.variance() / ed.var_v2_sq;
+    Computed::with_status(
+        "appendix.detector_variances",
+        Some(rv1),
+        Status::Qualitative,
+        format!(
                     "printed and exact agree; Monte Carlo ({} interferograms, s = 0.2 n): var V1^2 / (2 N^2 s^2 [2 sum m^2 + N s^2]) = {}, var V2^2 / (2 N^4 s^2 [2 m_0^2 + s^2]) = {}",
-                    sz.interferograms,
+            a.trials,
                     versus(rv1, d1.stderr_variance() / ed.var_v1_sq, 1.0),
                     versus(rv2, d2.stderr_variance() / ed.var_v2_sq, 1.0),
                 ),
-            ));
-            // Photon variances.
-            let pv1 = p1.variance();
-            let pv2 = p2.variance();
-            out.push(Computed {
-                id: "appendix.photon_variances",
-                value: Some(ep.var_v1_sq),
-                status: Status::Erratum,
-                note: format!(
+    )
+}
+
+fn photon_variance_claim(a: &AllBins) -> Computed {
+    let ((p1, p2), ep, pp) = (&a.phot, &a.ep, &a.pp);
+    let pv1 = p1.variance();
+    let pv2 = p2.variance();
+    Computed {
+        id: "appendix.photon_variances",
+        value: Some(ep.var_v1_sq),
+        status: Status::Erratum,
+        note: format!(
                     "printed N^2 sum n_i(4n_i^2+6n_i+1) is N^2 sum var(I_i^2) of the total count; the estimator uses M = I - c: var V1^2 = N^2 sum (4 m_i^2 n_i + 4 m_i n_i + 2 n_i^2 + n_i), var V2^2 = N^4 (4 m_0^2 n_0 + 4 m_0 n_0 + 2 n_0^2 + n_0). Monte Carlo ({} interferograms, Appendix case, n = 10): var V1^2 = {} (exact), printed {:.4e} ({:.0} se away); var V2^2 = {} (exact), printed {:.4e} ({:.0} se away)",
-                    sz.interferograms,
+            a.trials,
                     versus(pv1, p1.stderr_variance(), ep.var_v1_sq),
                     pp.var_v1_sq,
                     (pv1 - pp.var_v1_sq) / p1.stderr_variance(),
@@ -175,25 +318,27 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 ),
                 published: Some(pp.var_v1_sq),
                 exact: Some(ep.var_v1_sq),
-            });
-        }
     }
+}
 
-    // --- Per-sample moments. -------------------------------------------
+/// The moments of one sample, printed vs exact, by Monte Carlo:
+/// `appendix.gaussian_moments`, `appendix.photon_moments` (m = c = n, sample
+/// 0 of the Appendix case), `snr.combined_noise_variance`.
+fn sample_moment_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Computed>> {
     let (m, s) = (10.0, 2.0);
     let gauss = NoiseModel {
         read_noise: s,
         photon: false,
     };
-    if let Ok(mc) = sample_moments(m, 0.0, &gauss, sz.scalar, SEED + 2, 0) {
-        let p4 = published::gaussian_m4(m, s);
-        let p2 = published::gaussian_m2(m, s);
-        let e = moments(&gauss, m, 0.0);
-        out.push(Computed::with_status(
-            "appendix.gaussian_moments",
-            Some(mc[3].mean / p4),
-            Status::Qualitative,
-            format!(
+    let mc = sample_moments(m, 0.0, &gauss, sz.scalar, SEED + 2, 0)?;
+    let p4 = published::gaussian_m4(m, s);
+    let p2 = published::gaussian_m2(m, s);
+    let e = moments(&gauss, m, 0.0);
+    let gaussian = Computed::with_status(
+        "appendix.gaussian_moments",
+        Some(mc[3].mean / p4),
+        Status::Qualitative,
+        format!(
                 "printed forms equal the exact cumulant forms ({p4} = {}, {p2} = {}); Monte Carlo m = {m}, s = {s}, {} draws: <M^4> = {}, <M^2> = {}",
                 e.raw[4],
                 e.raw[2],
@@ -201,20 +346,28 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 versus(mc[3].mean, mc[3].stderr_mean(), p4),
                 versus(mc[1].mean, mc[1].stderr_mean(), p2),
             ),
-        ));
-    }
+    );
+    Ok(vec![
+        gaussian,
+        photon_moment_claim(case, sz)?,
+        combined_noise_claim(case, s, sz)?,
+    ])
+}
+
+fn photon_moment_claim(case: &Case, sz: &Sizes) -> Result<Computed> {
     // Photon: c = 10, m = 10, n = 20 (sample 0 of the Appendix case).
+    let n = case.setup.photons;
     let (mp, cp) = (n, n);
     let nn = mp + cp;
-    if let Ok(mc) = sample_moments(mp, cp, &photon, sz.scalar, SEED + 3, 0) {
-        let e = moments(&photon, mp, nn);
-        let p4 = published::photon_m4(nn);
-        let p2 = published::photon_m2(nn);
-        out.push(Computed {
-            id: "appendix.photon_moments",
-            value: Some(e.raw[4]),
-            status: Status::Erratum,
-            note: format!(
+    let mc = sample_moments(mp, cp, &case.photon, sz.scalar, SEED + 3, 0)?;
+    let e = moments(&case.photon, mp, nn);
+    let p4 = published::photon_m4(nn);
+    let p2 = published::photon_m2(nn);
+    Ok(Computed {
+        id: "appendix.photon_moments",
+        value: Some(e.raw[4]),
+        status: Status::Erratum,
+        note: format!(
                 "the printed n^4+6n^3+7n^2+n and n^2+n are the raw moments of the Poisson count I (mean n), not of M = I - c. Exact for M = m + e (cumulants of e all equal n): <M^2> = m^2 + n, <M^4> = m^4 + 6m^2 n + 4mn + n + 3n^2. At m = c = {mp} (n = {nn}), {} draws: <M^4> = {} (printed {p4}, {:.0} se away); <M^2> = {} (printed {p2})",
                 sz.scalar,
                 versus(mc[3].mean, mc[3].stderr_mean(), e.raw[4]),
@@ -223,24 +376,33 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             ),
             published: Some(p4),
             exact: Some(e.raw[4]),
-        });
-    }
+    })
+}
+
+fn combined_noise_claim(case: &Case, s: f64, sz: &Sizes) -> Result<Computed> {
     // Combined noise: var(M^2) with both vs the sum of each alone.
+    let n = case.setup.photons;
+    let (mp, cp) = (n, n);
+    let nn = mp + cp;
+    let gauss = NoiseModel {
+        read_noise: s,
+        photon: false,
+    };
     let both = NoiseModel {
         read_noise: s,
         photon: true,
     };
-    if let Ok(mc) = sample_moments(mp, cp, &both, sz.scalar, SEED + 4, 0) {
-        let exact = var_m2(&both, mp, nn);
-        let sum = var_m2(&gauss, mp, nn) + var_m2(&photon, mp, nn);
-        // var(M^2) by Monte Carlo, from the moments of M^2 (sample 2 of mc).
-        let v = mc[1].variance();
-        let se = mc[1].stderr_variance();
-        out.push(Computed {
-            id: "snr.combined_noise_variance",
-            value: Some(exact),
-            status: Status::Erratum,
-            note: format!(
+    let mc = sample_moments(mp, cp, &both, sz.scalar, SEED + 4, 0)?;
+    let exact = var_m2(&both, mp, nn);
+    let sum = var_m2(&gauss, mp, nn) + var_m2(&case.photon, mp, nn);
+    // var(M^2) by Monte Carlo, from the moments of M^2 (sample 2 of mc).
+    let v = mc[1].variance();
+    let se = mc[1].stderr_variance();
+    Ok(Computed {
+        id: "snr.combined_noise_variance",
+        value: Some(exact),
+        status: Status::Erratum,
+        note: format!(
                 "var(M^2) with both noises is not the sum of the two: the 2 kappa2^2 term of var(M^2) = 4m^2 k2 + 4m k3 + k4 + 2 k2^2 with k2 = s^2 + n adds the cross term 4 s^2 n. At m = c = {mp}, n = {nn}, s = {s}: exact {exact}, sum of the parts {sum}; Monte Carlo ({} draws) var(M^2) = {} ({:.1} se from the sum). The paper's photon part is itself the erratum of appendix.photon_variances",
                 sz.scalar,
                 versus(v, se, exact),
@@ -248,40 +410,42 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             ),
             published: Some(sum),
             exact: Some(exact),
-        });
-    }
+    })
+}
 
-    // --- Window factor. -------------------------------------------------
+/// The windowed variance against the paper's window factor, detector
+/// noise: `appendix.window_variance_factor` (closed form and Monte Carlo of
+/// the two-sided band window).
+fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Computed>> {
+    let (setup, ifg, detector) = (&case.setup, &case.ifg, &case.detector);
+    let counts = ifg.mean_counts();
+    let all = case.all_bins();
     let obs = noise::example_observation();
     let (lo, hi) = obs.spectrum.support();
     let factor = noise::paper_window_factor(setup.dx_um, hi - lo);
     let window2 = two_sided_band_bins(setup.samples, setup.dx_um, lo, hi);
     let window1 = crate::formalism::estimator::band_bins(setup.samples, setup.dx_um, lo, hi);
-    if let (Ok(w_all), Ok(w2), Ok(w1)) = (
-        window_stats(&ifg.modulated, &counts, &detector, &all),
-        window_stats(&ifg.modulated, &counts, &detector, &window2),
-        window_stats(&ifg.modulated, &counts, &detector, &window1),
-    ) {
-        let ratio1 = w_all.var_v1_sq / w2.var_v1_sq;
-        let ratio2 = w_all.var_v2_sq / w2.var_v2_sq;
-        let spec_w = NoisySpec {
-            bins: window2.clone(),
-            ..spec_det.clone()
-        };
-        let mc_note = match mc_estimators(&spec_w, sz.interferograms, SEED + 5) {
-            Some((a, b)) => format!(
-                "; Monte Carlo of the two-sided window ({} interferograms): var V1^2 = {}, var V2^2 = {}",
-                sz.interferograms,
-                versus(a.variance(), a.stderr_variance(), w2.var_v1_sq),
-                versus(b.variance(), b.stderr_variance(), w2.var_v2_sq)
-            ),
-            None => String::new(),
-        };
-        out.push(Computed {
-            id: "appendix.window_variance_factor",
-            value: Some(ratio1),
-            status: Status::Erratum,
-            note: format!(
+    let w_all = window_stats(&ifg.modulated, &counts, detector, &all)?;
+    let w2 = window_stats(&ifg.modulated, &counts, detector, &window2)?;
+    let w1 = window_stats(&ifg.modulated, &counts, detector, &window1)?;
+    let ratio1 = w_all.var_v1_sq / w2.var_v1_sq;
+    let ratio2 = w_all.var_v2_sq / w2.var_v2_sq;
+    let spec_w = NoisySpec {
+        bins: window2.clone(),
+        ..case.spec(*detector)
+    };
+    let (a, b) = mc_estimators(&spec_w, sz.interferograms, SEED + 5)?;
+    let mc_note = format!(
+        "; Monte Carlo of the two-sided window ({} interferograms): var V1^2 = {}, var V2^2 = {}",
+        sz.interferograms,
+        versus(a.variance(), a.stderr_variance(), w2.var_v1_sq),
+        versus(b.variance(), b.stderr_variance(), w2.var_v2_sq)
+    );
+    Ok(vec![Computed {
+        id: "appendix.window_variance_factor",
+        value: Some(ratio1),
+        status: Status::Erratum,
+        note: format!(
                 "exact quadratic-form variances, detector case (s = 0.2 n), 128 samples: the band covers {} positive bins ({} with their mirror images, which a window must keep to keep the whole fringe of a real signal). Paper factor (1/dx)/delta-sigma_0 = {:.2}. Exact var(all bins)/var(two-sided band window): V1^2 {ratio1:.3}, V2^2 {ratio2:.3} (the white-noise argument divides only the noise x noise term; the signal x noise term of V1^2 lies inside the window and stays). SNR gain: V1 {:.3}, V2 {:.3} vs the paper's sqrt = {factor:.3}; positive-band-only window: SNR1 {:.3}, SNR2 {:.3} (all bins: {:.3}, {:.3}){mc_note}",
                 window1.len(),
                 window2.len(),
@@ -295,10 +459,50 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             ),
             published: Some(factor * factor),
             exact: Some(ratio1),
-        });
-    }
+    }])
+}
 
-    // --- The worked examples. --------------------------------------------
+/// The worked examples' SNRs, printed and exact formulas:
+/// `snr.detector_*`, `snr.photon_*`, `sensitivity.v1_over_v2`.
+fn worked_example_claims(find: &Find<'_>, case: &Case, _sz: &Sizes) -> Result<Vec<Computed>> {
+    let setup = case.setup;
+    let p = worked_example(&setup, Formula::Published)?;
+    let e = worked_example(&setup, Formula::Exact)?;
+    let table = variants_table(&setup)?;
+    let why = format!(
+            "project interferogram: 128 samples, dx = 0.5 um, flat 2.0-2.4 um band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}. sum m^2/n^2 = 11.41 would give both 7.63 and 1.33: the paper's interferogram carried 1.4 % less fringe power than ours"
+        );
+    let mut out = Vec::new();
+    if let Some(sp) = find("snr.detector_v1") {
+        out.push(Computed::numeric(
+            sp,
+            "snr.detector_v1",
+            p.detector.0,
+            format!(
+                    "SNR1 (all bins, without the window factor) = {:.4}; printed and exact formulas agree for detector noise. {why}",
+                    p.detector.0
+                ),
+        ));
+    }
+    if let Some(sp) = find("snr.detector_v2") {
+        out.push(Computed::numeric(
+            sp,
+            "snr.detector_v2",
+            p.detector.1,
+            format!(
+                    "SNR2 = m_0^2 / sqrt(2 s^2 (2 m_0^2 + s^2)) = 1/sqrt(0.08 * 2.04) = {:.4}, independent of the interferogram's shape",
+                    p.detector.1
+                ),
+        ));
+    }
+    out.extend(photon_snr_claims(&p, &e));
+    Ok(out)
+}
+
+/// The worked example's SNRs for the interferograms the paper might have
+/// used, with the printed formulas (one line each, for the notes).
+fn variants_table(setup: &ExampleSetup) -> Result<String> {
+    let setup = *setup;
     let variants = [
         ("centred scan, sampling detector", setup),
         (
@@ -324,49 +528,25 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             },
         ),
     ];
-    let table: Vec<String> = variants
+    let table = variants
         .iter()
-        .filter_map(|(name, v)| {
-            worked_example(v, Formula::Published).ok().map(|w| {
+        .map(|(name, v)| {
+            worked_example(v, Formula::Published).map(|w| {
                 format!(
                     "{name}: sum m^2/n^2 = {:.3}, SNR {:.3}/{:.3} (detector), {:.3}/{:.3} (photon)",
                     w.sum_m2_over_n2, w.detector.0, w.detector.1, w.photon.0, w.photon.1
                 )
             })
         })
-        .collect();
-    let table = table.join("; ");
-    if let (Ok(p), Ok(e)) = (
-        worked_example(&setup, Formula::Published),
-        worked_example(&setup, Formula::Exact),
-    ) {
-        let spec = |id: &str| find(id);
-        let why = format!(
-            "project interferogram: 128 samples, dx = 0.5 um, flat 2.0-2.4 um band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}. sum m^2/n^2 = 11.41 would give both 7.63 and 1.33: the paper's interferogram carried 1.4 % less fringe power than ours"
-        );
-        if let Some(sp) = spec("snr.detector_v1") {
-            out.push(Computed::numeric(
-                sp,
-                "snr.detector_v1",
-                p.detector.0,
-                format!(
-                    "SNR1 (all bins, without the window factor) = {:.4}; printed and exact formulas agree for detector noise. {why}",
-                    p.detector.0
-                ),
-            ));
-        }
-        if let Some(sp) = spec("snr.detector_v2") {
-            out.push(Computed::numeric(
-                sp,
-                "snr.detector_v2",
-                p.detector.1,
-                format!(
-                    "SNR2 = m_0^2 / sqrt(2 s^2 (2 m_0^2 + s^2)) = 1/sqrt(0.08 * 2.04) = {:.4}, independent of the interferogram's shape",
-                    p.detector.1
-                ),
-            ));
-        }
-        out.push(Computed {
+        .collect::<Result<Vec<String>>>()?;
+    Ok(table.join("; "))
+}
+
+/// `snr.photon_v1`, `snr.photon_v2` and `sensitivity.v1_over_v2` from the
+/// worked example in the printed (`p`) and exact (`e`) formulas.
+fn photon_snr_claims(p: &noise::WorkedExample, e: &noise::WorkedExample) -> Vec<Computed> {
+    vec![
+        Computed {
             id: "snr.photon_v1",
             value: Some(e.photon.0),
             status: Status::Erratum,
@@ -376,8 +556,8 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             ),
             published: Some(p.photon.0),
             exact: Some(e.photon.0),
-        });
-        out.push(Computed {
+        },
+        Computed {
             id: "snr.photon_v2",
             value: Some(e.photon.1),
             status: Status::Erratum,
@@ -387,9 +567,8 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
             ),
             published: Some(p.photon.1),
             exact: Some(e.photon.1),
-        });
-        // V1 vs V2.
-        out.push(Computed::with_status(
+        },
+        Computed::with_status(
             "sensitivity.v1_over_v2",
             Some(p.detector.0 / p.detector.1),
             Status::Qualitative,
@@ -399,18 +578,22 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 p.photon.0 / p.photon.1,
                 e.photon.0 / e.photon.1
             ),
-        ));
-        // Crossover.
-        let cross = |noise: &NoiseModel, f: Formula| {
-            crossover_samples(&ifg.modulated, &ifg.continuum, noise, f)
-                .ok()
-                .flatten()
-        };
-        let cd = cross(&detector, Formula::Exact);
-        let cpp = cross(&photon, Formula::Published);
-        let cpe = cross(&photon, Formula::Exact);
-        let fmt = |c: Option<usize>| c.map_or("never".to_owned(), |v| v.to_string());
-        out.push(Computed::with_status(
+        ),
+    ]
+}
+
+/// The crossover of SNR_1 and SNR_2 when the fringe packet is read with
+/// more and more empty samples: `snr.crossover_samples`.
+fn crossover_claims(_find: &Find<'_>, case: &Case, _sz: &Sizes) -> Result<Vec<Computed>> {
+    let ifg = &case.ifg;
+    let cross = |noise: &NoiseModel, f: Formula| {
+        crossover_samples(&ifg.modulated, &ifg.continuum, noise, f)
+    };
+    let cd = cross(&case.detector, Formula::Exact)?;
+    let cpp = cross(&case.photon, Formula::Published)?;
+    let cpe = cross(&case.photon, Formula::Exact)?;
+    let fmt = |c: Option<usize>| c.map_or("never".to_owned(), |v| v.to_string());
+    Ok(vec![Computed::with_status(
             "snr.crossover_samples",
             cd.map(|v| v as f64),
             Status::Qualitative,
@@ -420,10 +603,12 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 fmt(cpp),
                 fmt(cpe)
             ),
-        ));
-    }
+    )])
+}
 
-    // --- ABCD (Colavita). ---------------------------------------------------
+/// The ABCD estimator's detector-noise variance against Colavita's:
+/// `snr.colavita_correction`.
+fn abcd_claims(sz: &Sizes) -> Result<Vec<Computed>> {
     let (total, vis, sig) = (40.0, 1.0, 2.0);
     let abcd: Vec<f64> = (0..4)
         .map(|k| total / 4.0 * vis * (0.3 + k as f64 * std::f64::consts::FRAC_PI_2).cos())
@@ -437,10 +622,10 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
         },
         bins: vec![1],
     };
-    if let Some((z, _)) = mc_estimators(&spec_abcd, sz.scalar, SEED + 6) {
-        let exact = abcd_detector_variance(total, vis, sig);
-        let colavita = colavita_detector_variance(sig);
-        out.push(Computed::with_status(
+    let (z, _) = mc_estimators(&spec_abcd, sz.scalar, SEED + 6)?;
+    let exact = abcd_detector_variance(total, vis, sig);
+    let colavita = colavita_detector_variance(sig);
+    Ok(vec![Computed::with_status(
             "snr.colavita_correction",
             Some(z.variance() / exact),
             Status::Qualitative,
@@ -450,15 +635,67 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
                 versus(z.variance(), z.stderr_variance(), exact),
                 (z.variance() - colavita) / z.stderr_variance()
             ),
-        ));
-    }
-    out
+    )])
 }
 
 /// m_0/n when sample 0 sits half a sample (δx/2) off the white-light fringe.
-fn half_sample_m0() -> f64 {
-    let setup = ExampleSetup::appendix();
+fn half_sample_m0(setup: &ExampleSetup) -> f64 {
     let obs = noise::example_observation();
     crate::formalism::interferogram::SpectralNodes::new(&obs, setup.dx_um, None)
         .fringe(0.5 * setup.dx_um)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reproduction::claims::ledger;
+
+    /// A case whose interferogram cannot be built (no samples): every claim
+    /// that reads it is `failed` with the error in its note, none is
+    /// missing (which would leave it `pending`).
+    #[test]
+    fn a_failed_case_yields_failed_claims() {
+        let specs = ledger();
+        let find = |id: &str| specs.iter().find(|s| s.id == id);
+        let bad = ExampleSetup {
+            samples: 0,
+            ..appendix_setup()
+        };
+        let out = claims_for(&find, Effort::Quick, bad);
+        let case_ids = [
+            &ALL_BINS_IDS[..],
+            &SAMPLE_IDS,
+            &WINDOW_IDS,
+            &WORKED_IDS,
+            &CROSSOVER_IDS,
+        ]
+        .concat();
+        for id in &case_ids {
+            let c = out
+                .iter()
+                .find(|c| c.id == *id)
+                .expect("every claim answered");
+            assert_eq!(c.status, Status::Failed, "{id}");
+            assert!(c.note.starts_with("computation failed: "), "{}", c.note);
+            assert_eq!(c.value, None);
+        }
+        let abcd = out.iter().find(|c| c.id == ABCD_IDS[0]).expect("answered");
+        assert_ne!(abcd.status, Status::Failed, "ABCD does not read the case");
+    }
+
+    /// A step that fails yields `failed` for each of its ids.
+    #[test]
+    fn settle_reports_a_failed_step() {
+        let err = crate::Error::Invalid {
+            param: "samples",
+            reason: "none".into(),
+        };
+        let out = settle(&WORKED_IDS, Err(err.clone()));
+        assert_eq!(out.len(), WORKED_IDS.len());
+        for (c, id) in out.iter().zip(WORKED_IDS) {
+            assert_eq!(c.id, id);
+            assert_eq!(c.status, Status::Failed);
+            assert_eq!(c.note, format!("computation failed: {err}"));
+        }
+    }
 }

@@ -35,29 +35,13 @@ use serde_json::json;
 use crate::reproduction::cases::{ABCD_DX_UM, DX_UM, STROKES_UM};
 use crate::reproduction::cases::{BANDWIDTHS_NM, DIAMETER_MAS, S_MAX_CPAS, WAVELENGTH_UM};
 
-/// Fig. 2 dispersions, peak-to-peak rad.
-pub const DISPERSIONS_RAD: [f64; 3] = [1.0, 1.5, 2.0];
-/// Fig. 0: largest number of samples (a stroke of 511.5 µm).
-pub const FIG0_MAX_SAMPLES: usize = 930;
-/// Fig. 0: the smooth band edge shown, µm⁻¹ (raised-cosine ramp width).
-pub const FIG0_EDGE_PER_UM: f64 = 0.02;
-/// Fig. 0: spectral indices shown (S F ∝ σ^index).
-pub const FIG0_INDICES: [f64; 3] = [-2.0, 2.0, 4.0];
-
-use crate::reproduction::cases::s_grid;
-
-fn k_band() -> Spectrum {
-    Spectrum::flat(Band::k())
-}
-
-fn disk() -> Source {
-    Source::UniformDisk {
-        diameter_mas: DIAMETER_MAS,
-    }
-}
+use crate::reproduction::cases::{disk, k_band, s_grid};
+use crate::reproduction::cases::{
+    DISPERSIONS_RAD, FIG0_EDGE_PER_UM, FIG0_INDICES, FIG0_MAX_SAMPLES,
+};
 
 /// Column-name label of a number: 12.5 → "12p5".
-fn label(x: f64) -> String {
+pub(crate) fn label(x: f64) -> String {
     let s = format!("{x}");
     s.replace('.', "p")
 }
@@ -174,8 +158,29 @@ pub fn fig1(effort: Effort) -> Result<Figure> {
 
 /// Fig. 2.
 pub fn fig2(effort: Effort) -> Result<Figure> {
-    let grid = s_grid(fig1_step(effort));
     let band = k_band();
+    Ok(Figure {
+        id: "fig2".into(),
+        caption: "Fig. 2 (fig:figure_2): V2 minus the monochromatic visibility of a 43 mas uniform disk in the flat 400 nm band at 2.2 um under quadratic dispersion phi = D (sigma - sigma0)^2 / 2 of 1, 1.5 and 2 rad peak-to-peak (0 rad for reference); calibrated columns divide by V2 of a point source with the same dispersion. Panel fig2_point: V2 of a point source against dispersion, by quadrature and by the Fresnel closed form.".into(),
+        monte_carlo: false,
+        parameters: json!({
+            "diameter_mas": DIAMETER_MAS,
+            "band_um": [2.0, 2.4],
+            "spectrum": "flat in wavenumber",
+            "dispersions_pp_rad": DISPERSIONS_RAD,
+            "peak_to_peak": "P = D (delta_sigma / 2)^2 / 2, sigma0 the band centre in wavenumber",
+            "s_step_cpas": fig1_step(effort),
+            "s_max_cpas": S_MAX_CPAS,
+            "scan": "infinite",
+        }),
+        tables: vec![fig2_disk(&band, effort)?, fig2_point(&band)?],
+    })
+}
+
+/// Fig. 2, the disk: V2 − V_mono under each dispersion (and 0 rad), then
+/// the same calibrated on a point source with the same dispersion.
+fn fig2_disk(band: &Spectrum, effort: Effort) -> Result<Table> {
+    let grid = s_grid(fig1_step(effort));
     let v_mono: Vec<f64> = grid
         .iter()
         .map(|&s| uniform_disk_visibility(DIAMETER_MAS, s).abs())
@@ -185,7 +190,7 @@ pub fn fig2(effort: Effort) -> Result<Figure> {
     let mut cal_cols = Vec::new();
     let mut cal_data = Vec::new();
     for pp in std::iter::once(0.0).chain(DISPERSIONS_RAD) {
-        let phase = SpectralPhase::dispersion_peak_to_peak(&band, pp)?;
+        let phase = SpectralPhase::dispersion_peak_to_peak(band, pp)?;
         let point = Observation::new(
             band.clone(),
             Source::Point,
@@ -222,12 +227,17 @@ pub fn fig2(effort: Effort) -> Result<Figure> {
     }
     cols.extend(cal_cols);
     data.extend(cal_data);
-    // V2 of a point source against dispersion: numerical and closed form.
+    Ok(table("fig2_disk", cols, data))
+}
+
+/// Fig. 2, the point source: V2 against dispersion, numerical and closed
+/// form.
+fn fig2_point(band: &Spectrum) -> Result<Table> {
     let pps: Vec<f64> = (0..=60).map(|i| i as f64 * 0.05).collect();
     let numerical: Vec<f64> = pps
         .iter()
         .map(|&pp| {
-            let phase = SpectralPhase::dispersion_peak_to_peak(&band, pp)?;
+            let phase = SpectralPhase::dispersion_peak_to_peak(band, pp)?;
             Observation::new(
                 band.clone(),
                 Source::Point,
@@ -242,34 +252,16 @@ pub fn fig2(effort: Effort) -> Result<Figure> {
         .map(|&pp| point_source_v2_sq(pp).sqrt())
         .collect();
     let diff: Vec<f64> = numerical.iter().zip(&closed).map(|(a, b)| a - b).collect();
-    Ok(Figure {
-        id: "fig2".into(),
-        caption: "Fig. 2 (fig:figure_2): V2 minus the monochromatic visibility of a 43 mas uniform disk in the flat 400 nm band at 2.2 um under quadratic dispersion phi = D (sigma - sigma0)^2 / 2 of 1, 1.5 and 2 rad peak-to-peak (0 rad for reference); calibrated columns divide by V2 of a point source with the same dispersion. Panel fig2_point: V2 of a point source against dispersion, by quadrature and by the Fresnel closed form.".into(),
-        monte_carlo: false,
-        parameters: json!({
-            "diameter_mas": DIAMETER_MAS,
-            "band_um": [2.0, 2.4],
-            "spectrum": "flat in wavenumber",
-            "dispersions_pp_rad": DISPERSIONS_RAD,
-            "peak_to_peak": "P = D (delta_sigma / 2)^2 / 2, sigma0 the band centre in wavenumber",
-            "s_step_cpas": fig1_step(effort),
-            "s_max_cpas": S_MAX_CPAS,
-            "scan": "infinite",
-        }),
-        tables: vec![
-            table("fig2_disk", cols, data),
-            table(
-                "fig2_point",
-                vec![
-                    Column::new("dispersion_pp", "rad"),
-                    Column::new("v2_numerical", ""),
-                    Column::new("v2_fresnel", ""),
-                    Column::new("difference", ""),
-                ],
-                vec![pps, numerical, closed, diff],
-            ),
+    Ok(table(
+        "fig2_point",
+        vec![
+            Column::new("dispersion_pp", "rad"),
+            Column::new("v2_numerical", ""),
+            Column::new("v2_fresnel", ""),
+            Column::new("difference", ""),
         ],
-    })
+        vec![pps, numerical, closed, diff],
+    ))
 }
 
 /// The Fig. 3 scans: (nominal stroke, sampling) at [`DX_UM`].
@@ -282,85 +274,10 @@ pub fn fig3_samplings() -> Result<Vec<(f64, Sampling)>> {
 
 /// Fig. 3.
 pub fn fig3(effort: Effort) -> Result<Figure> {
-    let band = k_band();
     let scans = fig3_samplings()?;
     let samplings: Vec<Sampling> = scans.iter().map(|s| s.1).collect();
     let grid = s_grid(fig3_step(effort));
-    let inf: Vec<_> = grid
-        .par_iter()
-        .map(|&s| {
-            Observation::new(
-                band.clone(),
-                disk(),
-                Frequency::SpatialFreqCpas(s),
-                SpectralPhase::zero(),
-            )
-            .map(|o| wide_band(&o))
-        })
-        .collect::<Result<_>>()?;
-    let dft = finite_scan::disk_biases(&k_band(), &disk(), &grid, &samplings, Method::Dft)?;
-    let mut cols1 = vec![
-        Column::new("s", "cycles/arcsec"),
-        Column::new("v1_infinite", ""),
-    ];
-    let mut cols2 = vec![
-        Column::new("s", "cycles/arcsec"),
-        Column::new("v2_infinite", ""),
-    ];
-    let mut d1 = vec![grid.clone(), inf.iter().map(|w| w.v1).collect()];
-    let mut d2 = vec![grid.clone(), inf.iter().map(|w| w.v2).collect()];
-    for ((st, _), b) in scans.iter().zip(&dft) {
-        cols1.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
-        cols2.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
-        d1.push(b.iter().map(|x| x.v1).collect());
-        d2.push(b.iter().map(|x| x.v2).collect());
-    }
-    // The convolution path (eq:sampled_V) on a coarser grid.
-    let check_grid = s_grid(fig3_check_step(effort));
-    let conv = finite_scan::disk_biases(
-        &k_band(),
-        &disk(),
-        &check_grid,
-        &samplings,
-        Method::Convolution(Kernel::Dirichlet),
-    )?;
-    let mut cols_c = vec![Column::new("s", "cycles/arcsec")];
-    let mut d_c = vec![check_grid.clone()];
-    for ((st, _), b) in scans.iter().zip(&conv) {
-        cols_c.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
-        cols_c.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
-        d_c.push(b.iter().map(|x| x.v1).collect());
-        d_c.push(b.iter().map(|x| x.v2).collect());
-    }
-    // ABCD: 4 samples per fringe at 2 um, N = 4, both paths.
-    let abcd = Sampling::new(4, ABCD_DX_UM, false)?;
-    let a_dft =
-        finite_scan::disk_biases(&k_band(), &disk(), &grid, &[abcd], Method::Dft)?.remove(0);
-    let a_conv = finite_scan::disk_biases(
-        &k_band(),
-        &disk(),
-        &grid,
-        &[abcd],
-        Method::Convolution(Kernel::Dirichlet),
-    )?
-    .remove(0);
-    let abcd_table = table(
-        "fig3_abcd",
-        vec![
-            Column::new("s", "cycles/arcsec"),
-            Column::new("bias_v1_dft", ""),
-            Column::new("bias_v2_dft", ""),
-            Column::new("bias_v1_convolution", ""),
-            Column::new("bias_v2_convolution", ""),
-        ],
-        vec![
-            grid.clone(),
-            a_dft.iter().map(|b| b.v1).collect(),
-            a_dft.iter().map(|b| b.v2).collect(),
-            a_conv.iter().map(|b| b.v1).collect(),
-            a_conv.iter().map(|b| b.v2).collect(),
-        ],
-    );
+    let (v1, v2) = fig3_dft(&scans, &grid)?;
     Ok(Figure {
         id: "fig3".into(),
         caption: "Fig. 3 (fig:figure_3): finite-scan bias sqrt(V^2 finite) - sqrt(V^2 infinite) of V1 (fig3_v1) and V2 (fig3_v2) for a 43 mas uniform disk, flat 400 nm band at 2.2 um, 4 samples per fringe at 2.2 um, strokes 256 to 2 um (nominal; N = round(stroke/dx)). Both estimators sum the positive-frequency bins k = 1..ceil(N/2)-1 and are divided by the same estimator on a point source through the same scan. fig3_v1/fig3_v2: DFT of the synthesized interferogram; fig3_convolution: the same biases from eq:sampled_V (extended visibility convolved with the scan kernel) on a coarser grid; fig3_abcd: 4 samples at 0.5 um (ABCD at 2 um), both paths.".into(),
@@ -381,10 +298,102 @@ pub fn fig3(effort: Effort) -> Result<Figure> {
             "s_max_cpas": S_MAX_CPAS,
         }),
         tables: vec![
-            table("fig3_v1", cols1, d1),
-            table("fig3_v2", cols2, d2),
-            table("fig3_convolution", cols_c, d_c),
-            abcd_table,
+            v1,
+            v2,
+            fig3_convolution(&scans, effort)?,
+            fig3_abcd(&grid)?,
         ],
     })
+}
+
+/// Fig. 3 by the DFT path: the infinite-scan V1, V2 and the bias of each
+/// scan (tables `fig3_v1`, `fig3_v2`).
+fn fig3_dft(scans: &[(f64, Sampling)], grid: &[f64]) -> Result<(Table, Table)> {
+    let band = k_band();
+    let samplings: Vec<Sampling> = scans.iter().map(|s| s.1).collect();
+    let inf: Vec<_> = grid
+        .par_iter()
+        .map(|&s| {
+            Observation::new(
+                band.clone(),
+                disk(),
+                Frequency::SpatialFreqCpas(s),
+                SpectralPhase::zero(),
+            )
+            .map(|o| wide_band(&o))
+        })
+        .collect::<Result<_>>()?;
+    let dft = finite_scan::disk_biases(&k_band(), &disk(), grid, &samplings, Method::Dft)?;
+    let mut cols1 = vec![
+        Column::new("s", "cycles/arcsec"),
+        Column::new("v1_infinite", ""),
+    ];
+    let mut cols2 = vec![
+        Column::new("s", "cycles/arcsec"),
+        Column::new("v2_infinite", ""),
+    ];
+    let mut d1 = vec![grid.to_vec(), inf.iter().map(|w| w.v1).collect()];
+    let mut d2 = vec![grid.to_vec(), inf.iter().map(|w| w.v2).collect()];
+    for ((st, _), b) in scans.iter().zip(&dft) {
+        cols1.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
+        cols2.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
+        d1.push(b.iter().map(|x| x.v1).collect());
+        d2.push(b.iter().map(|x| x.v2).collect());
+    }
+    Ok((table("fig3_v1", cols1, d1), table("fig3_v2", cols2, d2)))
+}
+
+/// Fig. 3 by the convolution path (eq:sampled_V) on a coarser grid (table
+/// `fig3_convolution`).
+fn fig3_convolution(scans: &[(f64, Sampling)], effort: Effort) -> Result<Table> {
+    let samplings: Vec<Sampling> = scans.iter().map(|s| s.1).collect();
+    let check_grid = s_grid(fig3_check_step(effort));
+    let conv = finite_scan::disk_biases(
+        &k_band(),
+        &disk(),
+        &check_grid,
+        &samplings,
+        Method::Convolution(Kernel::Dirichlet),
+    )?;
+    let mut cols_c = vec![Column::new("s", "cycles/arcsec")];
+    let mut d_c = vec![check_grid.clone()];
+    for ((st, _), b) in scans.iter().zip(&conv) {
+        cols_c.push(Column::new(&format!("bias_v1_{}um", label(*st)), ""));
+        cols_c.push(Column::new(&format!("bias_v2_{}um", label(*st)), ""));
+        d_c.push(b.iter().map(|x| x.v1).collect());
+        d_c.push(b.iter().map(|x| x.v2).collect());
+    }
+    Ok(table("fig3_convolution", cols_c, d_c))
+}
+
+/// Fig. 3, ABCD: 4 samples per fringe at 2 µm, N = 4, both paths (table
+/// `fig3_abcd`).
+fn fig3_abcd(grid: &[f64]) -> Result<Table> {
+    let abcd = Sampling::new(4, ABCD_DX_UM, false)?;
+    let a_dft = finite_scan::disk_biases(&k_band(), &disk(), grid, &[abcd], Method::Dft)?.remove(0);
+    let a_conv = finite_scan::disk_biases(
+        &k_band(),
+        &disk(),
+        grid,
+        &[abcd],
+        Method::Convolution(Kernel::Dirichlet),
+    )?
+    .remove(0);
+    Ok(table(
+        "fig3_abcd",
+        vec![
+            Column::new("s", "cycles/arcsec"),
+            Column::new("bias_v1_dft", ""),
+            Column::new("bias_v2_dft", ""),
+            Column::new("bias_v1_convolution", ""),
+            Column::new("bias_v2_convolution", ""),
+        ],
+        vec![
+            grid.to_vec(),
+            a_dft.iter().map(|b| b.v1).collect(),
+            a_dft.iter().map(|b| b.v2).collect(),
+            a_conv.iter().map(|b| b.v1).collect(),
+            a_conv.iter().map(|b| b.v2).collect(),
+        ],
+    ))
 }

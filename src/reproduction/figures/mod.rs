@@ -5,7 +5,7 @@ use crate::error::Result;
 use crate::reproduction::cases::Effort;
 use crate::reproduction::table::Figure;
 
-mod bias;
+pub(crate) mod bias;
 pub(crate) mod piston;
 
 /// Every figure (0 to 5), in order, at the given effort.

@@ -1,23 +1,10 @@
-//! Additive noise on the modulated samples and the closed-form statistics of
-//! the two estimators built from all N Fourier bins (paper, Appendix
-//! "Estimator signal-to-noise ratio").
-//!
-//! # Per-sample model
-//!
-//! Sample i reads `M_i = m_i + e_i`, with `m_i` the noise-free modulated
-//! signal (photons per sample) and `e_i` independent between samples:
-//!
-//! - detector noise: Gaussian, variance `σ_det²` (photons²);
-//! - photon noise: the total count `I_i` is Poisson with mean
-//!   `n_i = c_i + m_i`, the continuum `c_i` is removed without noise, so
-//!   `M_i = I_i − c_i` and `e_i = I_i − n_i`;
-//! - both: the sum of the two, independent.
-//!
-//! Everything follows from the cumulants of `e_i` ([`Cumulants`]):
-//! `κ2 = σ_det² + n_i`, `κ_r = n_i` for r ≥ 3 (a Poisson variable has all its
-//! cumulants equal to its mean; a Gaussian one has none beyond the second).
-//! Moments of any order come from the cumulants by the standard recursion
-//! `μ'_r = Σ_{k=1}^{r} C(r−1, k−1) κ_k μ'_{r−k}` ([`raw_moment`]).
+//! The Appendix's closed forms (*Estimator signal-to-noise ratio*): the
+//! noise bias and the variances of V1² and V2² built from all N Fourier
+//! bins, as printed (`published`) and exact, the SNRs, the paper's window
+//! factor, the crossover of SNR_1 and SNR_2, and the ABCD (Colavita)
+//! variances. The noise model and the per-sample moments are in
+//! [`crate::noise::model`]; the worked examples' interferogram in
+//! [`crate::noise::example`].
 //!
 //! # Estimators over all bins
 //!
@@ -72,44 +59,9 @@
 //! SNR_2 (the fringe packet read with more and more empty samples) comes at
 //! N ≈ 6245 for detector noise, 5876 for exact photon noise, 968 with the
 //! printed photon variances ([`crossover_samples`]).
-//!
-//! # The worked examples: which 128-sample interferogram
-//!
-//! The Appendix gives SNR_1 = 7.63 and SNR_2 = 2.48 (detector noise
-//! σ_det = 0.2 n) and 1.33 / 0.54 (photon noise, n = 10) for 128 samples at
-//! δx = 0.5 µm in a flat 2.0–2.4 µm band with `m_0 = n V`, V = 1. SNR_2
-//! depends on m_0 only; SNR_1 on `Σ m_i²/n²` and, for photon noise, on the
-//! distribution of the m_i. With the paper's (published) formulas and
-//! `c = n`, `n_i = c + m_i`:
-//!
-//! | interferogram | Σm²/n² | SNR1 det | SNR2 det | SNR1 phot | SNR2 phot |
-//! |---|---|---|---|---|---|
-//! | centred scan, sampling detector (**project**) | 11.566 | 7.693 | 2.475 | 1.350 | 0.539 |
-//! | centred scan, integrating detector, m_0 = c·∫W sinc | 9.698 | 6.925 | 2.262 | 1.150 | 0.481 |
-//! | centred scan, integrating detector rescaled to m_0 = n | 11.568 | 7.694 | 2.475 | 1.350 | 0.539 |
-//! | scan starting at zero OPD, sampling detector | 6.383 | 5.336 | 2.475 | 0.775 | 0.539 |
-//! | scan starting at zero OPD, integrating detector | 5.351 | 4.756 | 2.262 | 0.656 | 0.481 |
-//! | what 7.63 and 1.33 both need | ≈ 11.41 | 7.63 | | 1.33 | |
-//!
-//! The project uses the first row: the scan is centred on the white-light
-//! fringe (as the Appendix's V2 requires sample 0 on it, and as the
-//! sampled-signal section's window Π(x/Δx) describes), the detector samples
-//! (the paper states it neglects integration, Section "Sampled signals"),
-//! W is flat in wavenumber, and the continuum equals n (so `m_0 = n` for
-//! V = 1 and `n_0 = 2n`, which is what SNR_2 = 0.54 requires). The
-//! one-sided scan halves the fringe power and cannot give 7.63; the
-//! integrating detector lowers m_0 below n, against the stated `m_0 = nV`.
-//! The residual 0.8 % in SNR_1 is a fringe power 1.4 % lower than ours in
-//! the paper's interferogram (Σm²/n² ≈ 11.41 reproduces both 7.63 and 1.33
-//! at once, i.e. one common cause, e.g. a band ≈ 1.4 % wider in
-//! wavenumber). [`worked_example`] computes these numbers from
-//! [`crate::formalism::interferogram::Interferogram::synthesize`].
 
-use crate::error::{self, Error, Result};
-use crate::formalism::interferogram::{Interferogram, Sampling};
-use crate::formalism::observation::{Frequency, Observation};
-use crate::formalism::source::Source;
-use crate::formalism::spectrum::{Band, Spectrum};
+use crate::error::{Error, Result};
+use crate::noise::model::{var_m2, NoiseModel};
 use serde::Serialize;
 
 /// Which version of a formula: as printed in the paper, or derived and
@@ -121,126 +73,6 @@ pub enum Formula {
     Published,
     /// Derived from the cumulants of the noise (confirmed by Monte Carlo).
     Exact,
-}
-
-/// The noise on the modulated samples (`CONVENTIONS.md`, Noise).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct NoiseModel {
-    /// Detector (read) noise standard deviation σ_det, photons per sample (≥ 0).
-    pub read_noise: f64,
-    /// Whether the counts carry Poisson photon noise.
-    pub photon: bool,
-}
-
-impl NoiseModel {
-    /// Read noise `read_noise` (photons, ≥ 0) and, if `photon`, Poisson
-    /// photon noise.
-    pub fn new(read_noise: f64, photon: bool) -> Result<NoiseModel> {
-        error::non_negative("read-noise", read_noise)?;
-        Ok(NoiseModel { read_noise, photon })
-    }
-
-    /// Detector noise only.
-    pub fn detector(read_noise: f64) -> Result<NoiseModel> {
-        Self::new(read_noise, false)
-    }
-
-    /// Photon noise only.
-    pub fn photon() -> NoiseModel {
-        NoiseModel {
-            read_noise: 0.0,
-            photon: true,
-        }
-    }
-
-    /// Cumulants of the noise `e = M − m` of a sample whose mean total count
-    /// is `mean_count` (`n_i = c_i + m_i`, photons; used only with photon
-    /// noise).
-    pub fn cumulants(&self, mean_count: f64) -> Cumulants {
-        let p = if self.photon { mean_count } else { 0.0 };
-        Cumulants {
-            k2: self.read_noise * self.read_noise + p,
-            k3: p,
-            k4: p,
-        }
-    }
-}
-
-/// Cumulants κ2, κ3, κ4 of a zero-mean per-sample noise (photons², ³, ⁴).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Cumulants {
-    /// κ2, the variance.
-    pub k2: f64,
-    /// κ3 (third central moment).
-    pub k3: f64,
-    /// κ4 (fourth cumulant: μ4 − 3κ2²).
-    pub k4: f64,
-}
-
-/// All cumulants κ_1 … κ_order of `M = m + e` for the noise model: κ1 = m,
-/// κ2 = σ_det² + n, κ_r = n for r ≥ 3 (n counted only with photon noise).
-pub fn cumulants_of_sample(noise: &NoiseModel, m: f64, mean_count: f64, order: usize) -> Vec<f64> {
-    let c = noise.cumulants(mean_count);
-    (1..=order)
-        .map(|r| match r {
-            1 => m,
-            2 => c.k2,
-            _ => c.k3,
-        })
-        .collect()
-}
-
-/// Raw moments `⟨M^r⟩`, r = 0 … `order`, from the cumulants `κ_1 … κ_order`
-/// (`cumulants[r−1] = κ_r`), by `μ'_r = Σ_{k=1}^{r} C(r−1, k−1) κ_k μ'_{r−k}`.
-pub fn raw_moments_from_cumulants(cumulants: &[f64]) -> Vec<f64> {
-    let order = cumulants.len();
-    let mut mu = vec![1.0; order + 1];
-    for r in 1..=order {
-        let mut binom = 1.0; // C(r−1, k−1) for k = 1
-        let mut acc = 0.0;
-        for k in 1..=r {
-            acc += binom * cumulants[k - 1] * mu[r - k];
-            binom *= (r - k) as f64 / k as f64;
-        }
-        mu[r] = acc;
-    }
-    mu
-}
-
-/// `⟨M^r⟩` for one sample of mean `m` and mean total count `mean_count`.
-pub fn raw_moment(noise: &NoiseModel, m: f64, mean_count: f64, r: usize) -> f64 {
-    raw_moments_from_cumulants(&cumulants_of_sample(noise, m, mean_count, r.max(1)))[r]
-}
-
-/// Raw and central moments of one sample up to order 4.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Moments {
-    /// `⟨M^r⟩`, r = 0 … 4.
-    pub raw: [f64; 5],
-    /// `⟨(M − m)^r⟩`, r = 0 … 4.
-    pub central: [f64; 5],
-}
-
-/// Raw and central moments up to order 4 of `M = m + e` (closed forms:
-/// `⟨M²⟩ = m² + κ2`, `⟨M³⟩ = m³ + 3mκ2 + κ3`,
-/// `⟨M⁴⟩ = m⁴ + 6m²κ2 + 4mκ3 + κ4 + 3κ2²`; central `κ2, κ3, κ4 + 3κ2²`).
-pub fn moments(noise: &NoiseModel, m: f64, mean_count: f64) -> Moments {
-    let c = noise.cumulants(mean_count);
-    let raw = [
-        1.0,
-        m,
-        m * m + c.k2,
-        m.powi(3) + 3.0 * m * c.k2 + c.k3,
-        m.powi(4) + 6.0 * m * m * c.k2 + 4.0 * m * c.k3 + c.k4 + 3.0 * c.k2 * c.k2,
-    ];
-    let central = [1.0, 0.0, c.k2, c.k3, c.k4 + 3.0 * c.k2 * c.k2];
-    Moments { raw, central }
-}
-
-/// `var(M²) = ⟨M⁴⟩ − ⟨M²⟩² = 4m²κ2 + 4mκ3 + κ4 + 2κ2²` (exact).
-pub fn var_m2(noise: &NoiseModel, m: f64, mean_count: f64) -> f64 {
-    let c = noise.cumulants(mean_count);
-    4.0 * m * m * c.k2 + 4.0 * m * c.k3 + c.k4 + 2.0 * c.k2 * c.k2
 }
 
 /// The formulas as printed in the Appendix.
@@ -416,108 +248,6 @@ pub fn paper_window_factor(dx_um: f64, band_width_per_um: f64) -> f64 {
     ((1.0 / dx_um) / band_width_per_um).sqrt()
 }
 
-/// The interferogram of the Appendix's worked examples (or a variant of it).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ExampleSetup {
-    /// N.
-    pub samples: usize,
-    /// δx, µm.
-    pub dx_um: f64,
-    /// Integrating detector.
-    pub integrating: bool,
-    /// Scan starting at zero OPD (`x_i = i δx`) instead of centred.
-    pub zero_start: bool,
-    /// Continuum photons per sample, n (m_0 = n V).
-    pub photons: f64,
-    /// V.
-    pub visibility: f64,
-}
-
-impl ExampleSetup {
-    /// The project's reading of the Appendix: 128 samples, δx = 0.5 µm,
-    /// centred scan, sampling detector, n = 10, V = 1.
-    pub fn appendix() -> ExampleSetup {
-        ExampleSetup {
-            samples: 128,
-            dx_um: 0.5,
-            integrating: false,
-            zero_start: false,
-            photons: 10.0,
-            visibility: 1.0,
-        }
-    }
-}
-
-/// The four SNRs of the Appendix's worked examples for one setup.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct WorkedExample {
-    /// The setup.
-    pub setup: ExampleSetup,
-    /// Σ m_i² / n².
-    pub sum_m2_over_n2: f64,
-    /// Detector noise σ_det = 0.2 n: SNR_1, SNR_2 (no window factor).
-    pub detector: (f64, f64),
-    /// Photon noise only: SNR_1, SNR_2 (no window factor).
-    pub photon: (f64, f64),
-}
-
-/// The K-band point-source observation of the worked examples: flat
-/// 2.0–2.4 µm band, unresolved source, no dispersion.
-pub fn example_observation() -> Observation {
-    // Constants of the paper: a valid band and a zero frequency.
-    let spectrum = Spectrum::flat(Band::new(2.2, 0.4).expect("the K band is valid"));
-    Observation::new(
-        spectrum,
-        Source::Point,
-        Frequency::SpatialFreqCpas(0.0),
-        crate::formalism::phase::SpectralPhase::zero(),
-    )
-    .expect("zero spatial frequency is valid")
-}
-
-/// Samples m_i, c_i of a setup (synthesized by
-/// [`Interferogram::synthesize`]; the zero-start variant shifts the OPDs by
-/// `+N/2 δx` for the negative half, i.e. `x_i = i δx`).
-pub fn example_interferogram(setup: &ExampleSetup) -> Result<Interferogram> {
-    let obs = example_observation();
-    let sampling = Sampling::new(setup.samples, setup.dx_um, setup.integrating)?;
-    let perturbation: Option<Vec<f64>> = setup.zero_start.then(|| {
-        (0..setup.samples)
-            .map(|i| i as f64 * setup.dx_um - sampling.opd_um(i))
-            .collect()
-    });
-    let mut ifg =
-        Interferogram::synthesize(&obs, &sampling, setup.photons, perturbation.as_deref())?;
-    for m in &mut ifg.modulated {
-        *m *= setup.visibility;
-    }
-    Ok(ifg)
-}
-
-/// The four SNRs of the worked examples in `formula` (detector noise
-/// σ_det = 0.2 n without photon noise; photon noise alone).
-pub fn worked_example(setup: &ExampleSetup, formula: Formula) -> Result<WorkedExample> {
-    let ifg = example_interferogram(setup)?;
-    let det = appendix_stats(
-        &ifg.modulated,
-        &ifg.continuum,
-        &NoiseModel::detector(0.2 * setup.photons)?,
-        formula,
-    )?;
-    let phot = appendix_stats(
-        &ifg.modulated,
-        &ifg.continuum,
-        &NoiseModel::photon(),
-        formula,
-    )?;
-    Ok(WorkedExample {
-        setup: *setup,
-        sum_m2_over_n2: det.sum_m2 / (setup.photons * setup.photons),
-        detector: (det.snr1, det.snr2),
-        photon: (phot.snr1, phot.snr2),
-    })
-}
-
 /// SNR_1 and SNR_2 (all bins, no window factor) when the scan is extended
 /// with `extra` samples that carry no fringe (m = 0, continuum c): the same
 /// fringe packet read with more noise.
@@ -602,21 +332,4 @@ pub fn window_bias(
         .map(|(&m, &c)| sample_bias(formula, noise, m, m + c))
         .collect();
     crate::formalism::estimator::noise_bias(&per_sample, bins)
-}
-
-/// The noise-free interferogram of `obs` with `photons` continuum photons
-/// per sample and its modulated part scaled by `visibility` (so that an
-/// unresolved source has `m_0 = n V`, the Appendix's convention).
-pub fn scaled_interferogram(
-    obs: &Observation,
-    sampling: &Sampling,
-    photons: f64,
-    visibility: f64,
-) -> Result<Interferogram> {
-    error::in_range("visibility", visibility, 0.0, 1.0)?;
-    let mut ifg = Interferogram::synthesize(obs, sampling, photons, None)?;
-    for m in &mut ifg.modulated {
-        *m *= visibility;
-    }
-    Ok(ifg)
 }
