@@ -136,7 +136,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         args.fringe_hz.clone()
     };
     for &f in &freqs {
-        v2ref::error::in_range("fringe-hz", f, 1e-3, 1e7)?;
+        v2ref::error::in_range("fringe_hz", f, 1e-3, 1e7)?;
     }
     if args.scans < 2 {
         return Err(Error::OutOfRange {
@@ -145,7 +145,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             accepted: ">= 2".into(),
         });
     }
-    v2ref::error::positive("aperture-m", args.aperture_m)?;
+    v2ref::error::positive("aperture_m", args.aperture_m)?;
     let turb = Turbulence::from_seeing(
         args.seeing_arcsec,
         args.obs.wavelength_um,

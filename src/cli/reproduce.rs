@@ -36,16 +36,9 @@ struct Answer {
     files: Vec<String>,
 }
 
-fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    }
-}
-
 fn write(dir: &Path, name: &str, contents: &str, files: &mut Vec<String>) -> Result<()> {
     let path = dir.join(name);
-    std::fs::write(&path, contents).map_err(|e| io_error(&path, e))?;
+    std::fs::write(&path, contents).map_err(|e| Error::file(Some("out"), path, e))?;
     files.push(name.to_owned());
     Ok(())
 }
@@ -121,7 +114,10 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
     bar.set_message("claims");
     let claims = evaluate(effort);
     write(dir, "claims.md", &to_markdown(&claims), &mut files)?;
-    let json = serde_json::to_string_pretty(&claims).map_err(|e| io_error(dir, e))?;
+    let json = serde_json::to_string_pretty(&claims).map_err(|e| Error::Io {
+        path: dir.join("claims.json").display().to_string(),
+        reason: e.to_string(),
+    })?;
     write(dir, "claims.json", &json, &mut files)?;
     bar.inc(1);
     bar.finish_and_clear();

@@ -37,15 +37,15 @@ impl Band {
     /// (Δλ, µm). Requires λ0 > 0 and 0 < Δλ < 2 λ0 (the band must not reach
     /// zero wavelength).
     pub fn new(wavelength_um: f64, bandwidth_um: f64) -> Result<Band> {
-        error::positive("wavelength-um", wavelength_um)?;
-        error::positive("bandwidth-nm", bandwidth_um)?;
+        error::positive("wavelength_um", wavelength_um)?;
+        error::positive("bandwidth_um", bandwidth_um)?;
         if bandwidth_um >= 2.0 * wavelength_um {
             return Err(Error::OutOfRange {
-                param: "bandwidth-nm",
-                value: bandwidth_um * 1e3,
+                param: "bandwidth_um",
+                value: bandwidth_um,
                 accepted: format!(
-                    "0 < bandwidth < {} nm (twice the centre wavelength: the band must not reach zero wavelength)",
-                    2e3 * wavelength_um
+                    "0 < bandwidth_um < {} (twice the centre wavelength: the band must not reach zero wavelength)",
+                    2.0 * wavelength_um
                 ),
             });
         }
@@ -121,7 +121,7 @@ impl Spectrum {
 
     /// A monochromatic spectrum at `wavelength_um`: the zero-bandwidth limit.
     pub fn monochromatic(wavelength_um: f64) -> Result<Spectrum> {
-        error::positive("wavelength-um", wavelength_um)?;
+        error::positive("wavelength_um", wavelength_um)?;
         Ok(Self::build(Shape::Line {
             sigma: 1.0 / wavelength_um,
         }))
@@ -130,7 +130,7 @@ impl Spectrum {
     /// S F ∝ (σ/σ_c)^index over the band, σ_c the band centre in
     /// wavenumber: a smooth model of a spectral slope (index 0 is flat).
     pub fn power_law(band: Band, index: f64) -> Result<Spectrum> {
-        error::in_range("spectral-index", index, -20.0, 20.0)?;
+        error::in_range("index", index, -20.0, 20.0)?;
         Ok(Self::build(Shape::PowerLaw {
             lo: band.sigma_min_per_um(),
             hi: band.sigma_max_per_um(),
@@ -144,10 +144,10 @@ impl Spectrum {
     /// `0 < edge_per_um ≤ σ_max − σ_min`.
     pub fn smooth_top_hat(band: Band, edge_per_um: f64) -> Result<Spectrum> {
         let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
-        error::positive("edge-per-um", edge_per_um)?;
+        error::positive("edge_per_um", edge_per_um)?;
         if edge_per_um > hi - lo {
             return Err(Error::OutOfRange {
-                param: "edge-per-um",
+                param: "edge_per_um",
                 value: edge_per_um,
                 accepted: format!("0 < edge <= {} per um (the band width)", hi - lo),
             });
@@ -307,10 +307,8 @@ impl Spectrum {
     /// (the photon spectrum per unit wavenumber times the transmission, any
     /// scale); it is interpolated linearly in wavenumber.
     pub fn from_csv_path(path: &Path) -> Result<Spectrum> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|e| Error::file(Some("spectrum"), path, e))?;
         Self::from_csv_str(&text)
     }
 
@@ -512,7 +510,7 @@ impl Spectrum {
     /// k: the normalization sums of the paper's eq. `eq:estimateurs` on the
     /// grid of a scan of length `1/δσ`. `delta_sigma_per_um` must be > 0.
     pub fn grid_sums(&self, delta_sigma_per_um: f64) -> Result<(f64, f64)> {
-        error::positive("delta-sigma", delta_sigma_per_um)?;
+        error::positive("delta_sigma_per_um", delta_sigma_per_um)?;
         let (lo, hi) = self.support();
         let k0 = (lo / delta_sigma_per_um).ceil() as i64;
         let k1 = (hi / delta_sigma_per_um).floor() as i64;
