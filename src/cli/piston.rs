@@ -3,7 +3,6 @@
 
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{finite_f64, print_json, progress_bar};
-use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::error::{Error, Result};
@@ -12,17 +11,6 @@ use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
     simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
-
-/// Where the fringe packet sits in each scan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ReferenceKind {
-    /// Centred on the scan-mean piston.
-    Mean,
-    /// Centred on the piston at the middle (zero-OPD) sample.
-    Centre,
-    /// Not re-centred: the packet wanders with the absolute piston.
-    Absolute,
-}
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
@@ -54,7 +42,7 @@ pub struct Args {
     sub_samples: usize,
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
-    reference: ReferenceKind,
+    reference: PistonReference,
     /// Random seed.
     #[arg(long, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
@@ -161,11 +149,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Detector::Sampled
     };
     let window = args.sampling.bins;
-    let reference = match args.reference {
-        ReferenceKind::Mean => PistonReference::Mean,
-        ReferenceKind::Centre => PistonReference::Centre,
-        ReferenceKind::Absolute => PistonReference::Absolute,
-    };
+    let reference = args.reference;
     let bar = progress_bar(
         (freqs.len() * args.scans) as u64,
         args.quiet || args.json,

@@ -80,7 +80,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         });
     }
     let noise = args.noise.noise()?;
-    let formula: Formula = args.noise.formula.into();
+    let formula = args.noise.formula;
     let (ifg, cal, sampling, bins, _) = args.noise.interferograms(&args.obs, &args.sampling)?;
     let calib = raw_estimates(&dft(&cal.modulated), &bins);
     if !(calib.v1_sq > 0.0 && calib.v2_sq > 0.0) {

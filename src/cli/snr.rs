@@ -5,7 +5,6 @@
 
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{finite_f64, print_json, print_rows};
-use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::formalism::interferogram::Interferogram;
@@ -17,24 +16,6 @@ use v2ref::Result;
 
 /// Largest N for which the exact windowed variance (N × N matrices) is computed.
 pub const MAX_WINDOW_SAMPLES: usize = 4096;
-
-/// Which formula (`--formula`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum FormulaArg {
-    /// As printed in the paper.
-    Published,
-    /// Derived and confirmed by Monte Carlo.
-    Exact,
-}
-
-impl From<FormulaArg> for Formula {
-    fn from(f: FormulaArg) -> Formula {
-        match f {
-            FormulaArg::Published => Formula::Published,
-            FormulaArg::Exact => Formula::Exact,
-        }
-    }
-}
 
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]
@@ -53,7 +34,7 @@ pub struct NoiseArgs {
     pub no_photon_noise: bool,
     /// Formula: as printed in the paper, or exact.
     #[arg(long, value_enum, default_value = "exact")]
-    pub formula: FormulaArg,
+    pub formula: Formula,
 }
 
 impl NoiseArgs {
@@ -134,7 +115,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let noise = args.noise.noise()?;
     let (ifg, _cal, sampling, bins, band_width) =
         args.noise.interferograms(&args.obs, &args.sampling)?;
-    let formula: Formula = args.noise.formula.into();
+    let formula = args.noise.formula;
     let st = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, formula)?;
     let factor = paper_window_factor(sampling.dx_um(), band_width);
     let window_exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
