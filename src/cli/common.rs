@@ -1,4 +1,6 @@
-//! Flags shared by `bias`, `snr`, `simulate` and `piston`.
+//! Flags shared by several subcommands: the observation and sampling
+//! (`bias`, `snr`, `simulate`, `piston`), the output (`--json`, `--quiet`)
+//! and the Monte Carlo runs (`--seed`, `--threads`).
 
 use super::finite_f64;
 use clap::ValueEnum;
@@ -132,4 +134,26 @@ impl SamplingArgs {
             None => Sampling::new(self.samples, self.dx_um, self.integrating),
         }
     }
+}
+
+/// Output flags of the subcommands that draw progress on stderr.
+#[derive(Debug, Clone, clap::Args)]
+pub struct OutputArgs {
+    /// One JSON document instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress bar or spinner.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Flags of the Monte Carlo runs.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Seed of the generators.
+    #[arg(long, default_value = "1", allow_negative_numbers = true)]
+    pub seed: u64,
+    /// Worker threads (0 = all cores); the answer does not depend on it.
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    pub threads: usize,
 }

@@ -1,7 +1,7 @@
 //! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
 //! frequencies (paper, Section "Effect of differential piston").
 
-use super::common::{ObservationArgs, SamplingArgs};
+use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
 use super::{finite_f64, print_json, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
@@ -43,18 +43,10 @@ pub struct Args {
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
     reference: PistonReference,
-    /// Random seed.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
-    seed: u64,
-    /// Worker threads (0 = all cores); results do not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
-    threads: usize,
-    /// One JSON document instead of the table.
-    #[arg(long)]
-    json: bool,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -152,7 +144,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let reference = args.reference;
     let bar = progress_bar(
         (freqs.len() * args.scans) as u64,
-        args.quiet || args.json,
+        args.output.quiet || args.output.json,
         "piston scans",
     );
     let tick = |k: u64| bar.inc(k);
@@ -173,8 +165,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
             &RunSize {
                 scans: args.scans,
                 // One seed per frequency, derived from the user's.
-                seed: args.seed ^ ((i as u64) << 40),
-                threads: args.threads,
+                seed: args.run.seed ^ ((i as u64) << 40),
+                threads: args.run.threads,
             },
             Some(&tick),
         )?;
@@ -195,7 +187,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         stroke_um: sampling.stroke_um(),
         results,
     };
-    if args.json {
+    if args.output.json {
         print_json(&answer);
     } else {
         outln!(

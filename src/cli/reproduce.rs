@@ -3,6 +3,7 @@
 //! into one directory, atomically: everything is written to a fresh sibling
 //! directory first and moved into place only when complete.
 
+use super::common::OutputArgs;
 use super::{print_json, progress_bar};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -20,12 +21,8 @@ pub struct Args {
     /// Fewer Monte Carlo scans and coarser grids, same code paths.
     #[arg(long)]
     quick: bool,
-    /// One JSON document (claims and files) instead of the summary table.
-    #[arg(long)]
-    json: bool,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -68,9 +65,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Effort::Full
     };
     let (claims, files) = v2ref::reproduction::golden::replace_dir_atomically(&args.out, |dir| {
-        build(dir, effort, args.quiet)
+        build(dir, effort, args.output.quiet)
     })?;
-    if args.json {
+    if args.output.json {
         print_json(&Answer {
             out: args.out.display().to_string(),
             effort: if args.quick { "quick" } else { "full" },

@@ -4,7 +4,7 @@
 //! V = 1, same photons), so that an unbiased estimator of a source of
 //! visibility V has mean V².
 
-use super::common::{ObservationArgs, SamplingArgs};
+use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
 use super::snr::{NoiseArgs, MAX_WINDOW_SAMPLES};
 use super::{print_json, print_rows, progress_bar};
 use serde::Serialize;
@@ -30,18 +30,10 @@ pub struct Args {
     /// Number of noisy interferograms.
     #[arg(long, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
-    /// Seed of the generators.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
-    seed: u64,
-    /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
-    threads: usize,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
-    /// One JSON document instead of the table.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -96,8 +88,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         noise,
         bins: bins.clone(),
     };
-    let bar = progress_bar(args.trials, args.quiet, "simulate");
-    let run = simulate_noisy(&spec, args.trials, args.seed, args.threads, &|t| bar.inc(t))?;
+    let bar = progress_bar(args.trials, args.output.quiet, "simulate");
+    let run = simulate_noisy(&spec, args.trials, args.run.seed, args.run.threads, &|t| bar.inc(t))?;
     bar.finish_and_clear();
     // (x − bias)/calibration, exactly, on the accumulated moments.
     let normalized = |raw: &v2ref::montecarlo::RunningStats, bias: f64, scale: f64| {
@@ -144,9 +136,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
             .as_ref()
             .map(|w| w.var_v2_sq / (calib.v2_sq * calib.v2_sq)),
         trials: args.trials,
-        seed: args.seed,
+        seed: args.run.seed,
     };
-    if args.json {
+    if args.output.json {
         print_json(&answer);
     } else {
         let opt = |v: Option<f64>| v.map_or("-".to_owned(), |x| format!("{x:.6e}"));
