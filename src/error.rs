@@ -173,9 +173,16 @@ impl PartialEq for Error {
                 },
             ) => a == b && x == y,
             (SpectrumTable { reason: a }, SpectrumTable { reason: b }) => a == b,
-            (Invalid { param: a, reason: x }, Invalid { param: b, reason: y }) => {
-                a == b && x == y
-            }
+            (
+                Invalid {
+                    param: a,
+                    reason: x,
+                },
+                Invalid {
+                    param: b,
+                    reason: y,
+                },
+            ) => a == b && x == y,
             (Io { path: a, reason: x }, Io { path: b, reason: y }) => a == b && x == y,
             (
                 File {

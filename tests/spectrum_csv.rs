@@ -99,7 +99,11 @@ fn a_missing_file_keeps_the_system_error_as_source() {
     let source = e.source().expect("the io::Error is kept");
     let io = source.downcast_ref::<std::io::Error>().unwrap();
     assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
-    assert!(e.detail().starts_with("/nonexistent/spectrum.csv: "), "{}", e.detail());
+    assert!(
+        e.detail().starts_with("/nonexistent/spectrum.csv: "),
+        "{}",
+        e.detail()
+    );
 }
 
 proptest! {

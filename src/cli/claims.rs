@@ -24,7 +24,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
-    let spinner = super::spinner(args.output.quiet, "computing every claim (Monte Carlo included)");
+    let spinner = super::spinner(
+        args.output.quiet,
+        "computing every claim (Monte Carlo included)",
+    );
     let results = evaluate(effort);
     spinner.finish_and_clear();
     if args.output.json {

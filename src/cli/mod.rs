@@ -41,7 +41,10 @@ pub fn flag_of(param: &str) -> String {
     FLAG_OF_PARAM
         .iter()
         .find(|(p, _)| *p == param.replace('-', "_"))
-        .map_or_else(|| format!("--{}", param.replace('_', "-")), |(_, f)| (*f).to_owned())
+        .map_or_else(
+            || format!("--{}", param.replace('_', "-")),
+            |(_, f)| (*f).to_owned(),
+        )
 }
 
 /// Prints a library error as one line naming the flag

@@ -3,6 +3,7 @@
 //! variances (as printed and exact), the exact variance over any window of
 //! bins, and the Monte Carlo of noisy interferograms that checks them.
 
+pub mod calibrated;
 pub mod moments;
 pub mod simulation;
 pub mod window_variance;
