@@ -37,8 +37,16 @@ fn the_exact_formula_gives_v_squared_and_the_window_variance_over_calib_squared(
         // A point source's fringe scaled by V: signal = V² calib, and the
         // exact bias is the one subtracted.
         let v2 = VISIBILITY * VISIBILITY;
-        assert!((e.mean_v1_sq - v2).abs() < 1e-12, "{window:?}: {}", e.mean_v1_sq);
-        assert!((e.mean_v2_sq - v2).abs() < 1e-12, "{window:?}: {}", e.mean_v2_sq);
+        assert!(
+            (e.mean_v1_sq - v2).abs() < 1e-12,
+            "{window:?}: {}",
+            e.mean_v1_sq
+        );
+        assert!(
+            (e.mean_v2_sq - v2).abs() < 1e-12,
+            "{window:?}: {}",
+            e.mean_v2_sq
+        );
         assert_eq!(e.true_bias, e.subtracted_bias);
         let calib = raw_estimates(&dft(&s.calibrator.modulated), &s.bins);
         assert_eq!(e.calibration, calib);
@@ -50,8 +58,18 @@ fn the_exact_formula_gives_v_squared_and_the_window_variance_over_calib_squared(
         )
         .unwrap();
         let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
-        assert!(rel(e.var_v1_sq.unwrap(), w.var_v1_sq / (calib.v1_sq * calib.v1_sq)) < 1e-12);
-        assert!(rel(e.var_v2_sq.unwrap(), w.var_v2_sq / (calib.v2_sq * calib.v2_sq)) < 1e-12);
+        assert!(
+            rel(
+                e.var_v1_sq.unwrap(),
+                w.var_v1_sq / (calib.v1_sq * calib.v1_sq)
+            ) < 1e-12
+        );
+        assert!(
+            rel(
+                e.var_v2_sq.unwrap(),
+                w.var_v2_sq / (calib.v2_sq * calib.v2_sq)
+            ) < 1e-12
+        );
     }
 }
 
@@ -65,8 +83,16 @@ fn the_published_formula_leaves_the_bias_difference_over_calib() {
     let v2 = VISIBILITY * VISIBILITY;
     let want1 = v2 + (exact.v1_sq - published.v1_sq) / e.calibration.v1_sq;
     let want2 = v2 + (exact.v2_sq - published.v2_sq) / e.calibration.v2_sq;
-    assert!((e.mean_v1_sq - want1).abs() < 1e-12, "{} vs {want1}", e.mean_v1_sq);
-    assert!((e.mean_v2_sq - want2).abs() < 1e-12, "{} vs {want2}", e.mean_v2_sq);
+    assert!(
+        (e.mean_v1_sq - want1).abs() < 1e-12,
+        "{} vs {want1}",
+        e.mean_v1_sq
+    );
+    assert!(
+        (e.mean_v2_sq - want2).abs() < 1e-12,
+        "{} vs {want2}",
+        e.mean_v2_sq
+    );
 }
 
 #[test]
@@ -99,11 +125,22 @@ fn the_monte_carlo_mean_and_variance_match_the_expectation() {
         ("V2²", run.v2_sq, e.mean_v2_sq, e.var_v2_sq.unwrap()),
     ] {
         let z = (mc.mean - mean) / mc.stderr_mean;
-        assert!(z.abs() < 5.0, "{name}: mean {} vs {mean} (z = {z})", mc.mean);
+        assert!(
+            z.abs() < 5.0,
+            "{name}: mean {} vs {mean} (z = {z})",
+            mc.mean
+        );
         // Power: a 2 % error in the expectation would be caught.
         let z_wrong = (mc.mean - 1.02 * mean) / mc.stderr_mean;
-        assert!(z_wrong.abs() > 5.0, "{name}: cannot tell 1.02 x (z = {z_wrong})");
+        assert!(
+            z_wrong.abs() > 5.0,
+            "{name}: cannot tell 1.02 x (z = {z_wrong})"
+        );
         let z_var = (mc.var - var) / mc.stderr_var;
-        assert!(z_var.abs() < 5.0, "{name}: var {} vs {var} (z = {z_var})", mc.var);
+        assert!(
+            z_var.abs() < 5.0,
+            "{name}: var {} vs {var} (z = {z_var})",
+            mc.var
+        );
     }
 }
