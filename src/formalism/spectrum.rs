@@ -215,76 +215,26 @@ impl Spectrum {
 
     /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
-        let bad = |line: usize, reason: String| {
-            Err(Error::SpectrumTable {
-                reason: format!("line {line}: {reason}"),
-            })
-        };
         let mut axis: Option<bool> = None; // Some(true): wavelength
-        let mut xs = Vec::new();
-        let mut ws = Vec::new();
+        let (mut xs, mut ws) = (Vec::new(), Vec::new());
         for (n, raw) in text.lines().enumerate() {
-            let line_no = n + 1;
             let line = raw.trim();
             if line.is_empty() || line.starts_with('#') {
                 continue;
             }
+            let at = |reason: String| Error::SpectrumTable {
+                reason: format!("line {}: {reason}", n + 1),
+            };
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != 2 {
-                return bad(line_no, format!("{} columns; expected 2", cells.len()));
+                return Err(at(format!("{} columns; expected 2", cells.len())));
             }
-            match axis {
-                None => {
-                    let is_wavelength = match cells[0] {
-                        "wavelength_um" => true,
-                        "wavenumber_per_um" => false,
-                        other => {
-                            return bad(
-                                line_no,
-                                format!("header '{other}': the first column must be wavelength_um or wavenumber_per_um"),
-                            )
-                        }
-                    };
-                    if cells[1] != "weight" {
-                        return bad(
-                            line_no,
-                            format!("header '{}': the second column must be weight", cells[1]),
-                        );
-                    }
-                    axis = Some(is_wavelength);
-                }
-                Some(_) => {
-                    let parse = |s: &str, what: &str| -> std::result::Result<f64, String> {
-                        match s.parse::<f64>() {
-                            Ok(v) if v.is_finite() => Ok(v),
-                            _ => Err(format!("{what} '{s}' is not a finite number")),
-                        }
-                    };
-                    let x = match parse(cells[0], "axis value") {
-                        Ok(v) => v,
-                        Err(e) => return bad(line_no, e),
-                    };
-                    let w = match parse(cells[1], "weight") {
-                        Ok(v) => v,
-                        Err(e) => return bad(line_no, e),
-                    };
-                    if x <= 0.0 {
-                        return bad(line_no, format!("axis value {x} must be > 0"));
-                    }
-                    if w < 0.0 {
-                        return bad(line_no, format!("weight {w} must be >= 0"));
-                    }
-                    if let Some(&prev) = xs.last() {
-                        if x <= prev {
-                            return bad(
-                                line_no,
-                                format!("axis value {x} after {prev}: values must be strictly increasing (no duplicates)"),
-                            );
-                        }
-                    }
-                    xs.push(x);
-                    ws.push(w);
-                }
+            if axis.is_none() {
+                axis = Some(csv_header(&cells).map_err(at)?);
+            } else {
+                let (x, w) = csv_row(&cells, xs.last().copied()).map_err(at)?;
+                xs.push(x);
+                ws.push(w);
             }
         }
         let Some(is_wavelength) = axis else {
@@ -522,4 +472,47 @@ impl Spectrum {
         }
         Ok((s1 * delta_sigma_per_um, s2 * delta_sigma_per_um))
     }
+}
+
+/// The CSV header's two cells: `true` for `wavelength_um,weight`, `false`
+/// for `wavenumber_per_um,weight`.
+fn csv_header(cells: &[&str]) -> std::result::Result<bool, String> {
+    let is_wavelength = match cells[0] {
+        "wavelength_um" => true,
+        "wavenumber_per_um" => false,
+        other => {
+            return Err(format!(
+                "header '{other}': the first column must be wavelength_um or wavenumber_per_um"
+            ))
+        }
+    };
+    if cells[1] != "weight" {
+        return Err(format!(
+            "header '{}': the second column must be weight",
+            cells[1]
+        ));
+    }
+    Ok(is_wavelength)
+}
+
+/// One CSV data row: the axis value (> 0, above `prev`) and the weight (≥ 0).
+fn csv_row(cells: &[&str], prev: Option<f64>) -> std::result::Result<(f64, f64), String> {
+    let parse = |s: &str, what: &str| match s.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("{what} '{s}' is not a finite number")),
+    };
+    let x = parse(cells[0], "axis value")?;
+    let w = parse(cells[1], "weight")?;
+    if x <= 0.0 {
+        return Err(format!("axis value {x} must be > 0"));
+    }
+    if w < 0.0 {
+        return Err(format!("weight {w} must be >= 0"));
+    }
+    if let Some(prev) = prev.filter(|&p| x <= p) {
+        return Err(format!(
+            "axis value {x} after {prev}: values must be strictly increasing (no duplicates)"
+        ));
+    }
+    Ok((x, w))
 }
