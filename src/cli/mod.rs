@@ -134,3 +134,19 @@ pub fn spinner(quiet: bool, what: &str) -> indicatif::ProgressBar {
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
 }
+
+#[cfg(test)]
+mod tests {
+    use super::flag_of;
+
+    #[test]
+    fn library_parameters_map_to_their_flags() {
+        assert_eq!(flag_of("dx_um"), "--dx-um");
+        assert_eq!(flag_of("read_noise"), "--read-noise");
+        // Folders not yet converted still spell names with '-'.
+        assert_eq!(flag_of("fringe-hz"), "--fringe-hz");
+        assert_eq!(flag_of("spectrum"), "--spectrum-csv");
+        assert_eq!(flag_of("photons_per_sample"), "--photons");
+        assert_eq!(flag_of("peak_to_peak_rad"), "--dispersion-pp-rad");
+    }
+}
