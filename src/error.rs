@@ -1,66 +1,204 @@
 //! The library's typed error.
 //!
 //! Every check on user input returns one of these variants, naming the
-//! parameter (as the CLI flag spells it, without the dashes) and the range it
-//! accepts. Nothing in the library panics on user input.
+//! parameter and the range it accepts. Nothing in the library panics on user
+//! input.
+//!
+//! **Parameter names are the library's own**: the Rust name of the argument
+//! or field that was refused, in snake_case (`wavelength_um`, `dx_um`,
+//! `read_noise`, `fringe_hz`), never a command-line flag. A front end maps
+//! them to its own spelling with [`Error::param`] and renders the rest with
+//! [`Error::detail`]; `Display` is `param: detail` (or `detail` alone where
+//! there is no parameter).
 
-use thiserror::Error;
+use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Result alias used across the crate.
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// What went wrong with an input, and what would have been accepted.
-#[derive(Debug, Clone, PartialEq, Error)]
+#[derive(Debug, Clone)]
 pub enum Error {
     /// A number was NaN or infinite.
-    #[error("{param}: {value} is not a finite number")]
     NotFinite {
-        /// Parameter name (CLI flag without dashes).
+        /// Library parameter name (Rust name, snake_case).
         param: &'static str,
         /// The offending value.
         value: f64,
     },
     /// A number was outside the accepted range.
-    #[error("{param}: {value} is out of range; accepted: {accepted}")]
     OutOfRange {
-        /// Parameter name (CLI flag without dashes).
+        /// Library parameter name (Rust name, snake_case).
         param: &'static str,
         /// The offending value.
         value: f64,
         /// The accepted range, in words (for example `> 0`).
         accepted: String,
     },
-    /// The sample spacing is too coarse for the band: the shortest
+    /// The sample spacing `dx_um` is too coarse for the band: the shortest
     /// wavelength is sampled with fewer than two samples per fringe.
-    #[error("dx-um: {dx_um} um aliases the band; accepted: 0 < dx-um < {max_dx_um} um (half the shortest wavelength)")]
     Aliasing {
         /// The requested sample spacing, µm.
         dx_um: f64,
         /// The largest spacing without aliasing, µm.
         max_dx_um: f64,
     },
-    /// A spectrum table could not be used.
-    #[error("spectrum-csv: {reason}")]
+    /// A tabulated spectrum (parameter `spectrum`) could not be used.
     SpectrumTable {
         /// Why the table was refused (with its line number where there is one).
         reason: String,
     },
     /// Two parameters that cannot be given together, or a missing one.
-    #[error("{param}: {reason}")]
     Invalid {
-        /// Parameter name (CLI flag without dashes).
+        /// Library parameter name (Rust name, snake_case).
         param: &'static str,
         /// What is wrong.
         reason: String,
     },
-    /// Reading or writing a file failed.
-    #[error("{path}: {reason}")]
+    /// A file or an output could not be produced or read back, with no
+    /// system error behind it (a table that does not parse, a plot that
+    /// cannot be drawn). System failures are [`Error::File`].
     Io {
-        /// The file.
+        /// The file (or what was being produced).
         path: String,
-        /// The system's message.
+        /// What went wrong.
         reason: String,
     },
+    /// Reading or writing a file failed; keeps the system's error as
+    /// [`std::error::Error::source`].
+    File {
+        /// The library parameter that named the file, where there is one.
+        param: Option<&'static str>,
+        /// The file.
+        path: PathBuf,
+        /// The system's error (shared so that `Error` stays `Clone`).
+        source: Arc<std::io::Error>,
+    },
+}
+
+impl Error {
+    /// A failed file operation on `path`, named by `param` where known.
+    pub fn file(
+        param: Option<&'static str>,
+        path: impl Into<PathBuf>,
+        source: std::io::Error,
+    ) -> Error {
+        Error::File {
+            param,
+            path: path.into(),
+            source: Arc::new(source),
+        }
+    }
+
+    /// The library parameter this error is about (Rust name, snake_case),
+    /// if any.
+    pub fn param(&self) -> Option<&'static str> {
+        match self {
+            Error::NotFinite { param, .. }
+            | Error::OutOfRange { param, .. }
+            | Error::Invalid { param, .. } => Some(param),
+            Error::Aliasing { .. } => Some("dx_um"),
+            Error::SpectrumTable { .. } => Some("spectrum"),
+            Error::File { param, .. } => *param,
+            Error::Io { .. } => None,
+        }
+    }
+
+    /// The message without the parameter prefix (what follows `param: `
+    /// in `Display`).
+    pub fn detail(&self) -> String {
+        match self {
+            Error::NotFinite { value, .. } => format!("{value} is not a finite number"),
+            Error::OutOfRange {
+                value, accepted, ..
+            } => format!("{value} is out of range; accepted: {accepted}"),
+            Error::Aliasing { dx_um, max_dx_um } => format!(
+                "{dx_um} um aliases the band; accepted: 0 < spacing < {max_dx_um} um (half the shortest wavelength)"
+            ),
+            Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
+            Error::Io { path, reason } => format!("{path}: {reason}"),
+            Error::File { path, source, .. } => format!("{}: {source}", path.display()),
+        }
+    }
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.param() {
+            Some(p) => write!(f, "{p}: {}", self.detail()),
+            None => f.write_str(&self.detail()),
+        }
+    }
+}
+
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::File { source, .. } => Some(source.as_ref()),
+            _ => None,
+        }
+    }
+}
+
+/// Equal when the same variant carries the same values; two file errors
+/// compare their system errors by kind and message.
+impl PartialEq for Error {
+    fn eq(&self, other: &Error) -> bool {
+        use Error::*;
+        match (self, other) {
+            (NotFinite { param: a, value: x }, NotFinite { param: b, value: y }) => {
+                a == b && x == y
+            }
+            (
+                OutOfRange {
+                    param: a,
+                    value: x,
+                    accepted: s,
+                },
+                OutOfRange {
+                    param: b,
+                    value: y,
+                    accepted: t,
+                },
+            ) => a == b && x == y && s == t,
+            (
+                Aliasing {
+                    dx_um: a,
+                    max_dx_um: x,
+                },
+                Aliasing {
+                    dx_um: b,
+                    max_dx_um: y,
+                },
+            ) => a == b && x == y,
+            (SpectrumTable { reason: a }, SpectrumTable { reason: b }) => a == b,
+            (
+                Invalid {
+                    param: a,
+                    reason: x,
+                },
+                Invalid {
+                    param: b,
+                    reason: y,
+                },
+            ) => a == b && x == y,
+            (Io { path: a, reason: x }, Io { path: b, reason: y }) => a == b && x == y,
+            (
+                File {
+                    param: a,
+                    path: p,
+                    source: x,
+                },
+                File {
+                    param: b,
+                    path: q,
+                    source: y,
+                },
+            ) => a == b && p == q && x.kind() == y.kind() && x.to_string() == y.to_string(),
+            _ => false,
+        }
+    }
 }
 
 /// Checks that `value` is finite.

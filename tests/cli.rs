@@ -176,6 +176,7 @@ fn table_output_and_help_work() {
 fn claims_json_parses_with_the_contract_fields() {
     let (code, stdout, stderr) = v2ref(&["claims", "--json", "--quick"]);
     assert_eq!(code, 0, "{stderr}");
+    assert_no_duplicate_keys(&["claims", "--json", "--quick"], &stdout);
     let v: serde_json::Value = serde_json::from_str(&stdout).expect("valid JSON");
     let rows = v.as_array().expect("an array");
     assert!(rows.len() > 50);
@@ -204,5 +205,101 @@ fn negative_numbers_are_refused_naming_their_flag() {
         (vec!["snr", "--photons", "-10"], "--photons"),
     ] {
         assert_bad_input(&args, flag);
+    }
+}
+
+/// Any JSON value; deserializing it fails on an object that repeats a key
+/// (serde_json's `Value` would silently keep the last one).
+struct NoDuplicateKeys;
+
+impl<'de> serde::Deserialize<'de> for NoDuplicateKeys {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(NoDuplicateKeys)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for NoDuplicateKeys {
+    type Value = NoDuplicateKeys;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("any JSON value")
+    }
+    fn visit_bool<E>(self, _: bool) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_i64<E>(self, _: i64) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_u64<E>(self, _: u64) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_f64<E>(self, _: f64) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_str<E>(self, _: &str) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_unit<E>(self) -> Result<Self, E> {
+        Ok(self)
+    }
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Self, A::Error> {
+        while seq.next_element::<NoDuplicateKeys>()?.is_some() {}
+        Ok(self)
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Self, A::Error> {
+        let mut seen = std::collections::HashSet::new();
+        while let Some(key) = map.next_key::<String>()? {
+            if !seen.insert(key.clone()) {
+                return Err(serde::de::Error::custom(format!("duplicate key '{key}'")));
+            }
+            map.next_value::<NoDuplicateKeys>()?;
+        }
+        Ok(self)
+    }
+}
+
+fn assert_no_duplicate_keys(args: &[&str], stdout: &str) {
+    if let Err(e) = serde_json::from_str::<NoDuplicateKeys>(stdout) {
+        panic!("{args:?}: {e}");
+    }
+}
+
+#[test]
+fn the_duplicate_key_check_catches_a_repeated_key() {
+    assert!(serde_json::from_str::<NoDuplicateKeys>(r#"{"a": [1, {"b": 2, "b": 3}]}"#).is_err());
+    assert!(serde_json::from_str::<NoDuplicateKeys>(r#"{"a": [1, {"b": 2}], "b": null}"#).is_ok());
+}
+
+/// Every subcommand with `--json` prints keys once per object (strict JSON
+/// readers refuse duplicates). `claims` is checked in its own test above.
+#[test]
+fn json_answers_have_no_duplicate_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let golden = dir.path().join("golden");
+    let out = dir.path().join("reproduction");
+    let (golden, out) = (golden.to_str().unwrap(), out.to_str().unwrap());
+    let small = ["--samples", "32", "--quiet"];
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["bias", "--json"],
+        vec!["bias", "--json", "--stroke-um", "64", "--baseline-m", "30"],
+        vec!["snr", "--json"],
+        vec![
+            "snr",
+            "--json",
+            "--formula",
+            "published",
+            "--samples",
+            "8192",
+        ],
+        [&["simulate", "--json", "--trials", "200"][..], &small].concat(),
+        [&["piston", "--json", "--scans", "4"][..], &small].concat(),
+        vec!["golden", "--update", "--json", "--dir", golden],
+        vec!["golden", "--check", "--json", "--dir", golden],
+        vec!["reproduce", "--quick", "--quiet", "--json", "--out", out],
+    ];
+    for args in &cases {
+        let (code, stdout, stderr) = v2ref(args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        assert_no_duplicate_keys(args, &stdout);
     }
 }

@@ -82,11 +82,29 @@ fn other_defects_are_refused() {
 }
 
 #[test]
-fn the_error_reaches_the_user_as_one_line_naming_the_flag() {
+fn the_error_is_one_line_naming_the_library_parameter() {
     let e = Spectrum::from_csv_str("wavelength_um,weight\n2.0,1\n2.2,abc\n").unwrap_err();
+    assert_eq!(e.param(), Some("spectrum"));
+    assert!(e.detail().starts_with("line 3"), "{}", e.detail());
     let msg = e.to_string();
-    assert!(msg.starts_with("spectrum-csv: line 3"), "{msg}");
+    assert!(msg.starts_with("spectrum: line 3"), "{msg}");
     assert!(!msg.contains('\n'));
+}
+
+#[test]
+fn a_missing_file_keeps_the_system_error_as_source() {
+    use std::error::Error as _;
+    let path = std::path::Path::new("/nonexistent/spectrum.csv");
+    let e = Spectrum::from_csv_path(path).unwrap_err();
+    assert_eq!(e.param(), Some("spectrum"));
+    let source = e.source().expect("the io::Error is kept");
+    let io = source.downcast_ref::<std::io::Error>().unwrap();
+    assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
+    assert!(
+        e.detail().starts_with("/nonexistent/spectrum.csv: "),
+        "{}",
+        e.detail()
+    );
 }
 
 proptest! {

@@ -60,8 +60,8 @@ pub fn dispersion_coefficient(
     sigma0_per_um: f64,
     length_um: f64,
 ) -> Result<f64> {
-    error::positive("sigma0", sigma0_per_um)?;
-    error::finite("glass-length-um", length_um)?;
+    error::positive("sigma0_per_um", sigma0_per_um)?;
+    error::finite("length_um", length_um)?;
     let phi = |s: f64| 2.0 * PI * s * index(s) * length_um;
     let h = D2_STEP_PER_UM;
     let (s, f0) = (sigma0_per_um, phi(sigma0_per_um));

@@ -102,11 +102,11 @@ pub struct ChannelVisibility {
 /// The channel visibility of `case` by adaptive quadrature (σ in units of
 /// spectral elements from the channel centre).
 pub fn channel_visibility(case: &LineCase) -> Result<ChannelVisibility> {
-    error::in_range("continuum-visibility", case.continuum_visibility, -1.0, 1.0)?;
-    error::in_range("line-visibility", case.line_visibility, -1.0, 1.0)?;
-    error::non_negative("flux-ratio", case.flux_ratio)?;
-    error::positive("line-width", case.width_elements)?;
-    error::finite("line-offset", case.offset_elements)?;
+    error::in_range("continuum_visibility", case.continuum_visibility, -1.0, 1.0)?;
+    error::in_range("line_visibility", case.line_visibility, -1.0, 1.0)?;
+    error::non_negative("flux_ratio", case.flux_ratio)?;
+    error::positive("width_elements", case.width_elements)?;
+    error::finite("offset_elements", case.offset_elements)?;
     let (vc, vl, r, w, c) = (
         case.continuum_visibility,
         case.line_visibility,

@@ -40,7 +40,6 @@ struct FiniteScan {
 struct Answer {
     #[serde(flatten)]
     infinite_scan: WideBand,
-    baseline_m: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     finite_scan: Option<FiniteScan>,
 }
@@ -69,7 +68,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
     };
     let answer = Answer {
         infinite_scan: wb,
-        baseline_m: obs.baseline_m,
         finite_scan,
     };
     if args.json {

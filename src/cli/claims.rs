@@ -1,5 +1,6 @@
 //! `v2ref claims`: every claim of the ledger with the computed value and status.
 
+use super::common::OutputArgs;
 use super::print_json;
 use std::process::ExitCode;
 use v2ref::reproduction::cases::Effort;
@@ -12,12 +13,8 @@ pub struct Args {
     /// Smaller Monte Carlo runs (same code paths).
     #[arg(long)]
     quick: bool,
-    /// One JSON document instead of the table.
-    #[arg(long)]
-    json: bool,
-    /// No progress spinner.
-    #[arg(long)]
-    quiet: bool,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 /// Runs `claims`.
@@ -27,10 +24,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
-    let spinner = super::spinner(args.quiet, "computing every claim (Monte Carlo included)");
+    let spinner = super::spinner(
+        args.output.quiet,
+        "computing every claim (Monte Carlo included)",
+    );
     let results = evaluate(effort);
     spinner.finish_and_clear();
-    if args.json {
+    if args.output.json {
         print_json(&results);
         return Ok(ExitCode::SUCCESS);
     }

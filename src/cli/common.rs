@@ -1,4 +1,6 @@
-//! Flags shared by `bias`, `snr`, `simulate` and `piston`.
+//! Flags shared by several subcommands: the observation and sampling
+//! (`bias`, `snr`, `simulate`, `piston`), the output (`--json`, `--quiet`)
+//! and the Monte Carlo runs (`--seed`, `--threads`).
 
 use super::finite_f64;
 use clap::ValueEnum;
@@ -58,9 +60,29 @@ impl ObservationArgs {
             Some(path) => Spectrum::from_csv_path(path),
             None => Ok(Spectrum::flat(Band::new(
                 self.wavelength_um,
-                self.bandwidth_nm * v2ref::formalism::spectrum::UM_PER_NM,
+                self.bandwidth_um()?,
             )?)),
         }
+    }
+
+    /// `--bandwidth-nm` in µm, for [`Band::new`]. The flag is checked here in
+    /// its own unit (nm) so that a refusal quotes the number the user typed;
+    /// the rule is the library's (`0 < Δλ < 2 λ0`), checked again there.
+    fn bandwidth_um(&self) -> Result<f64> {
+        // The centre first, as Band::new does.
+        let centre_um = v2ref::error::positive("wavelength_um", self.wavelength_um)?;
+        let nm = v2ref::error::positive("bandwidth_nm", self.bandwidth_nm)?;
+        let max_nm = 2e3 * centre_um;
+        if nm >= max_nm {
+            return Err(v2ref::Error::OutOfRange {
+                param: "bandwidth_nm",
+                value: nm,
+                accepted: format!(
+                    "0 < bandwidth < {max_nm} nm (twice the centre wavelength: the band must not reach zero wavelength)"
+                ),
+            });
+        }
+        Ok(nm * 1e-3)
     }
 
     /// The source these flags describe.
@@ -112,4 +134,26 @@ impl SamplingArgs {
             None => Sampling::new(self.samples, self.dx_um, self.integrating),
         }
     }
+}
+
+/// Output flags of the subcommands that draw progress on stderr.
+#[derive(Debug, Clone, clap::Args)]
+pub struct OutputArgs {
+    /// One JSON document instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress bar or spinner.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Flags of the Monte Carlo runs.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RunArgs {
+    /// Seed of the generators.
+    #[arg(long, default_value = "1", allow_negative_numbers = true)]
+    pub seed: u64,
+    /// Worker threads (0 = all cores); the answer does not depend on it.
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    pub threads: usize,
 }

@@ -27,15 +27,33 @@ use v2ref::Error;
 /// Exit status for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
 
-/// Prints a library error as one line naming the flag, and returns status 2.
+/// Library parameter names (Rust names, snake_case) whose flag is not
+/// `--` + the name with `_` turned into `-`.
+const FLAG_OF_PARAM: &[(&str, &str)] = &[
+    ("spectrum", "--spectrum-csv"),
+    ("peak_to_peak_rad", "--dispersion-pp-rad"),
+    ("photons_per_sample", "--photons"),
+];
+
+/// The flag that sets the library parameter `param`: an entry of
+/// [`FLAG_OF_PARAM`], else `--` + `param` with `_` (or a legacy `-`) as `-`.
+pub fn flag_of(param: &str) -> String {
+    FLAG_OF_PARAM
+        .iter()
+        .find(|(p, _)| *p == param.replace('-', "_"))
+        .map_or_else(
+            || format!("--{}", param.replace('_', "-")),
+            |(_, f)| (*f).to_owned(),
+        )
+}
+
+/// Prints a library error as one line naming the flag
+/// (`error: --flag: detail`, or `error: detail` where the error names no
+/// parameter), and returns status 2.
 pub fn fail(e: &Error) -> ExitCode {
-    let msg = e.to_string();
-    // Library messages start with the parameter's flag name: prefix the dashes.
-    let line = match msg.split_once(':') {
-        Some((flag, rest)) if !flag.contains(' ') && !flag.contains('/') && !flag.contains('.') => {
-            format!("--{flag}:{rest}")
-        }
-        _ => msg,
+    let line = match e.param() {
+        Some(p) => format!("{}: {}", flag_of(p), e.detail()),
+        None => e.detail(),
     };
     eprintln!("error: {}", line.replace('\n', " "));
     ExitCode::from(EXIT_BAD_INPUT)
@@ -115,4 +133,20 @@ pub fn spinner(quiet: bool, what: &str) -> indicatif::ProgressBar {
     bar.set_message(what.to_owned());
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flag_of;
+
+    #[test]
+    fn library_parameters_map_to_their_flags() {
+        assert_eq!(flag_of("dx_um"), "--dx-um");
+        assert_eq!(flag_of("read_noise"), "--read-noise");
+        // Folders not yet converted still spell names with '-'.
+        assert_eq!(flag_of("fringe-hz"), "--fringe-hz");
+        assert_eq!(flag_of("spectrum"), "--spectrum-csv");
+        assert_eq!(flag_of("photons_per_sample"), "--photons");
+        assert_eq!(flag_of("peak_to_peak_rad"), "--dispersion-pp-rad");
+    }
 }

@@ -1,28 +1,18 @@
 //! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
 //! frequencies (paper, Section "Effect of differential piston").
 
-use super::common::{ObservationArgs, SamplingArgs};
+use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
 use super::{finite_f64, print_json, progress_bar};
-use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::error::{Error, Result};
 use v2ref::formalism::estimator::BinWindow;
+use v2ref::formalism::interferogram::Sampling;
+use v2ref::formalism::observation::Observation;
 use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
     simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
-
-/// Where the fringe packet sits in each scan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ReferenceKind {
-    /// Centred on the scan-mean piston.
-    Mean,
-    /// Centred on the piston at the middle (zero-OPD) sample.
-    Centre,
-    /// Not re-centred: the packet wanders with the absolute piston.
-    Absolute,
-}
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
@@ -54,19 +44,11 @@ pub struct Args {
     sub_samples: usize,
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
-    reference: ReferenceKind,
-    /// Random seed.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
-    seed: u64,
-    /// Worker threads (0 = all cores); results do not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
-    threads: usize,
-    /// One JSON document instead of the table.
-    #[arg(long)]
-    json: bool,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
+    reference: PistonReference,
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -130,22 +112,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let obs = args.obs.observation()?;
     let sampling = args.sampling.sampling()?;
     sampling.check_aliasing(&obs)?;
-    let freqs = if args.fringe_hz.is_empty() {
-        vec![300.0, 1000.0]
-    } else {
-        args.fringe_hz.clone()
-    };
-    for &f in &freqs {
-        v2ref::error::in_range("fringe-hz", f, 1e-3, 1e7)?;
-    }
-    if args.scans < 2 {
-        return Err(Error::OutOfRange {
-            param: "scans",
-            value: args.scans as f64,
-            accepted: ">= 2".into(),
-        });
-    }
-    v2ref::error::positive("aperture-m", args.aperture_m)?;
+    let freqs = fringe_frequencies(&args.fringe_hz)?;
+    check_scans(args.scans)?;
+    v2ref::error::positive("aperture_m", args.aperture_m)?;
     let turb = Turbulence::from_seeing(
         args.seeing_arcsec,
         args.obs.wavelength_um,
@@ -160,15 +129,68 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Detector::Sampled
     };
+    let runs = simulate_each(&args, &obs, &spectrum, &sampling, detector, &freqs)?;
     let window = args.sampling.bins;
-    let reference = match args.reference {
-        ReferenceKind::Mean => PistonReference::Mean,
-        ReferenceKind::Centre => PistonReference::Centre,
-        ReferenceKind::Absolute => PistonReference::Absolute,
+    let answer = Answer {
+        detector: detector.name(),
+        bins: window.name(),
+        reference: args.reference.name(),
+        baseline_m: obs.baseline_m,
+        spatial_freq_cpas: obs.spatial_freq_cpas(),
+        r0_m: turb.r0_m(),
+        coherence_time_s: turb.coherence_time_s(),
+        piston_rms_um: spectrum.rms_um(),
+        samples: sampling.samples(),
+        dx_um: sampling.dx_um(),
+        stroke_um: sampling.stroke_um(),
+        results: runs.iter().map(|r| row(r, window)).collect(),
     };
+    if args.output.json {
+        print_json(&answer);
+    } else {
+        print_table(&answer);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The `--fringe-hz` values (300 and 1000 Hz when none), each checked.
+fn fringe_frequencies(given: &[f64]) -> Result<Vec<f64>> {
+    let freqs = if given.is_empty() {
+        vec![300.0, 1000.0]
+    } else {
+        given.to_vec()
+    };
+    for &f in &freqs {
+        v2ref::error::in_range("fringe_hz", f, 1e-3, 1e7)?;
+    }
+    Ok(freqs)
+}
+
+/// Refuses fewer than 2 scans.
+fn check_scans(scans: usize) -> Result<()> {
+    if scans < 2 {
+        return Err(Error::OutOfRange {
+            param: "scans",
+            value: scans as f64,
+            accepted: ">= 2".into(),
+        });
+    }
+    Ok(())
+}
+
+/// One piston Monte Carlo per fringe frequency, with a progress bar over
+/// all scans.
+fn simulate_each(
+    args: &Args,
+    obs: &Observation,
+    spectrum: &PistonSpectrum,
+    sampling: &Sampling,
+    detector: Detector,
+    freqs: &[f64],
+) -> Result<Vec<PistonRun>> {
     let bar = progress_bar(
         (freqs.len() * args.scans) as u64,
-        args.quiet || args.json,
+        args.output.quiet || args.output.json,
         "piston scans",
     );
     let tick = |k: u64| bar.inc(k);
@@ -179,76 +201,55 @@ pub fn run(args: Args) -> Result<ExitCode> {
             dx_um: sampling.dx_um(),
             wavelength_um: args.obs.wavelength_um,
             fringe_hz: f,
-            reference,
+            reference: args.reference,
         };
-        let runs = simulate(
-            &obs,
-            &spectrum,
-            &setup,
-            &[detector],
-            &RunSize {
-                scans: args.scans,
-                // One seed per frequency, derived from the user's.
-                seed: args.seed ^ ((i as u64) << 40),
-                threads: args.threads,
-            },
-            Some(&tick),
-        )?;
-        results.push(row(&runs[0], window));
+        let size = RunSize {
+            scans: args.scans,
+            // One seed per frequency, derived from the user's.
+            seed: args.run.seed ^ ((i as u64) << 40),
+            threads: args.run.threads,
+        };
+        let mut runs = simulate(obs, spectrum, &setup, &[detector], &size, Some(&tick))?;
+        results.push(runs.swap_remove(0));
     }
     bar.finish_and_clear();
-    let answer = Answer {
-        detector: detector.name(),
-        bins: window.name(),
-        reference: reference.name(),
-        baseline_m: obs.baseline_m,
-        spatial_freq_cpas: obs.spatial_freq_cpas(),
-        r0_m: turb.r0_m(),
-        coherence_time_s: turb.coherence_time_s(),
-        piston_rms_um: spectrum.rms_um(),
-        samples: sampling.samples(),
-        dx_um: sampling.dx_um(),
-        stroke_um: sampling.stroke_um(),
-        results,
-    };
-    if args.json {
-        print_json(&answer);
-    } else {
+    Ok(results)
+}
+
+fn print_table(answer: &Answer) {
+    outln!(
+        "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms, piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
+        answer.baseline_m,
+        answer.spatial_freq_cpas,
+        100.0 * answer.r0_m,
+        1e3 * answer.coherence_time_s,
+        answer.piston_rms_um,
+        answer.detector,
+        answer.bins,
+        answer.reference,
+        answer.samples,
+        answer.dx_um
+    );
+    outln!(
+        "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
+        "f [Hz]",
+        "bias V1",
+        "bias V2",
+        "scatter V1",
+        "scatter V2"
+    );
+    for r in &answer.results {
         outln!(
-            "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms, piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
-            answer.baseline_m,
-            answer.spatial_freq_cpas,
-            100.0 * answer.r0_m,
-            1e3 * answer.coherence_time_s,
-            answer.piston_rms_um,
-            answer.detector,
-            answer.bins,
-            answer.reference,
-            answer.samples,
-            answer.dx_um
+            "{:>10.2}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
+            r.fringe_hz,
+            r.bias_v1,
+            r.bias_v1_stderr,
+            r.bias_v2,
+            r.bias_v2_stderr,
+            r.scatter_v1,
+            r.scatter_v1_stderr,
+            r.scatter_v2,
+            r.scatter_v2_stderr
         );
-        outln!(
-            "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
-            "f [Hz]",
-            "bias V1",
-            "bias V2",
-            "scatter V1",
-            "scatter V2"
-        );
-        for r in &answer.results {
-            outln!(
-                "{:>10.2}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
-                r.fringe_hz,
-                r.bias_v1,
-                r.bias_v1_stderr,
-                r.bias_v2,
-                r.bias_v2_stderr,
-                r.scatter_v1,
-                r.scatter_v1_stderr,
-                r.scatter_v2,
-                r.scatter_v2_stderr
-            );
-        }
     }
-    Ok(ExitCode::SUCCESS)
 }

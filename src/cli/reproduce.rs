@@ -3,6 +3,7 @@
 //! into one directory, atomically: everything is written to a fresh sibling
 //! directory first and moved into place only when complete.
 
+use super::common::OutputArgs;
 use super::{print_json, progress_bar};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -20,12 +21,8 @@ pub struct Args {
     /// Fewer Monte Carlo scans and coarser grids, same code paths.
     #[arg(long)]
     quick: bool,
-    /// One JSON document (claims and files) instead of the summary table.
-    #[arg(long)]
-    json: bool,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -36,16 +33,9 @@ struct Answer {
     files: Vec<String>,
 }
 
-fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    }
-}
-
 fn write(dir: &Path, name: &str, contents: &str, files: &mut Vec<String>) -> Result<()> {
     let path = dir.join(name);
-    std::fs::write(&path, contents).map_err(|e| io_error(&path, e))?;
+    std::fs::write(&path, contents).map_err(|e| Error::file(Some("out"), path, e))?;
     files.push(name.to_owned());
     Ok(())
 }
@@ -75,9 +65,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Effort::Full
     };
     let (claims, files) = v2ref::reproduction::golden::replace_dir_atomically(&args.out, |dir| {
-        build(dir, effort, args.quiet)
+        build(dir, effort, args.output.quiet)
     })?;
-    if args.json {
+    if args.output.json {
         print_json(&Answer {
             out: args.out.display().to_string(),
             effort: if args.quick { "quick" } else { "full" },
@@ -121,7 +111,10 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
     bar.set_message("claims");
     let claims = evaluate(effort);
     write(dir, "claims.md", &to_markdown(&claims), &mut files)?;
-    let json = serde_json::to_string_pretty(&claims).map_err(|e| io_error(dir, e))?;
+    let json = serde_json::to_string_pretty(&claims).map_err(|e| Error::Io {
+        path: dir.join("claims.json").display().to_string(),
+        reason: e.to_string(),
+    })?;
     write(dir, "claims.json", &json, &mut files)?;
     bar.inc(1);
     bar.finish_and_clear();

@@ -4,15 +4,13 @@
 //! V = 1, same photons), so that an unbiased estimator of a source of
 //! visibility V has mean V².
 
-use super::common::{ObservationArgs, SamplingArgs};
-use super::snr::{NoiseArgs, MAX_WINDOW_SAMPLES};
+use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
+use super::snr::NoiseArgs;
 use super::{print_json, print_rows, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::formalism::estimator::{dft, raw_estimates};
-use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
-use v2ref::noise::window_variance::window_stats;
-use v2ref::noise::{window_bias, Formula};
+use v2ref::noise::calibrated::{calibrated_run, CalibratedRun, Trials};
+use v2ref::noise::Formula;
 use v2ref::{Error, Result};
 
 /// Largest number of trials accepted.
@@ -30,18 +28,10 @@ pub struct Args {
     /// Number of noisy interferograms.
     #[arg(long, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
-    /// Seed of the generators.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
-    seed: u64,
-    /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
-    threads: usize,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
-    /// One JSON document instead of the table.
-    #[arg(long)]
-    json: bool,
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    output: OutputArgs,
 }
 
 #[derive(Serialize)]
@@ -72,61 +62,47 @@ struct Answer {
 
 /// Runs `simulate`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    if !(2..=MAX_TRIALS).contains(&args.trials) {
-        return Err(Error::OutOfRange {
-            param: "trials",
-            value: args.trials as f64,
-            accepted: format!("2 to {MAX_TRIALS}"),
-        });
-    }
+    check_trials(args.trials)?;
     let noise = args.noise.noise()?;
-    let formula: Formula = args.noise.formula.into();
-    let (ifg, cal, sampling, bins, _) = args.noise.interferograms(&args.obs, &args.sampling)?;
-    let calib = raw_estimates(&dft(&cal.modulated), &bins);
-    if !(calib.v1_sq > 0.0 && calib.v2_sq > 0.0) {
-        return Err(Error::Invalid {
-            param: "bins",
-            reason: "the window holds no fringe of the calibrator (nothing to normalize by); choose --bins all or positive, or more photons".into(),
-        });
-    }
-    let bias = window_bias(formula, &noise, &ifg.modulated, &ifg.continuum, &bins);
-    let spec = NoisySpec {
-        modulated: ifg.modulated.clone(),
-        continuum: ifg.continuum.clone(),
-        noise,
-        bins: bins.clone(),
+    let obs = args.obs.observation()?;
+    let sampling = args.sampling.sampling()?;
+    let setup = args.noise.setup(&obs, &sampling, args.sampling.bins)?;
+    let bar = progress_bar(args.trials, args.output.quiet, "simulate");
+    let size = Trials {
+        trials: args.trials,
+        seed: args.run.seed,
+        threads: args.run.threads,
     };
-    let bar = progress_bar(args.trials, args.quiet, "simulate");
-    let run = simulate_noisy(&spec, args.trials, args.seed, args.threads, &|t| bar.inc(t))?;
+    let run = calibrated_run(&setup, &noise, args.noise.formula, size, &|t| bar.inc(t))?;
     bar.finish_and_clear();
-    // (x − bias)/calibration, exactly, on the accumulated moments.
-    let normalized = |raw: &v2ref::montecarlo::RunningStats, bias: f64, scale: f64| {
-        raw.affine(1.0 / scale, -bias / scale).summary()
-    };
-    let v1 = normalized(&run.v1_sq, bias.v1_sq, calib.v1_sq);
-    let v2 = normalized(&run.v2_sq, bias.v2_sq, calib.v2_sq);
-    let true_bias = window_bias(
-        Formula::Exact,
-        &noise,
-        &ifg.modulated,
-        &ifg.continuum,
-        &bins,
-    );
-    let signal = raw_estimates(&dft(&ifg.modulated), &bins);
-    let exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
-        Some(window_stats(
-            &ifg.modulated,
-            &ifg.mean_counts(),
-            &noise,
-            &bins,
-        )?)
+    let answer = answer(&args, sampling.samples(), &run);
+    if args.output.json {
+        print_json(&answer);
     } else {
-        None
-    };
-    let answer = Answer {
-        formula,
-        bins: format!("{:?}", args.sampling.bins).to_lowercase(),
-        samples: sampling.samples(),
+        print_table(&answer);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses fewer than 2 or more than [`MAX_TRIALS`] trials.
+fn check_trials(trials: u64) -> Result<()> {
+    if (2..=MAX_TRIALS).contains(&trials) {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange {
+            param: "trials",
+            value: trials as f64,
+            accepted: format!("2 to {MAX_TRIALS}"),
+        })
+    }
+}
+
+fn answer(args: &Args, samples: usize, run: &CalibratedRun) -> Answer {
+    let (v1, v2, e) = (&run.v1_sq, &run.v2_sq, &run.expected);
+    Answer {
+        formula: args.noise.formula,
+        bins: args.sampling.bins.name().to_owned(),
+        samples,
         mean_v1_sq: v1.mean,
         mean_v2_sq: v2.mean,
         var_v1_sq: v1.var,
@@ -135,67 +111,48 @@ pub fn run(args: Args) -> Result<ExitCode> {
         stderr_mean_v2_sq: v2.stderr_mean,
         stderr_var_v1_sq: v1.stderr_var,
         stderr_var_v2_sq: v2.stderr_var,
-        expected_mean_v1_sq: (signal.v1_sq + true_bias.v1_sq - bias.v1_sq) / calib.v1_sq,
-        expected_mean_v2_sq: (signal.v2_sq + true_bias.v2_sq - bias.v2_sq) / calib.v2_sq,
-        expected_var_v1_sq: exact
-            .as_ref()
-            .map(|w| w.var_v1_sq / (calib.v1_sq * calib.v1_sq)),
-        expected_var_v2_sq: exact
-            .as_ref()
-            .map(|w| w.var_v2_sq / (calib.v2_sq * calib.v2_sq)),
+        expected_mean_v1_sq: e.mean_v1_sq,
+        expected_mean_v2_sq: e.mean_v2_sq,
+        expected_var_v1_sq: e.var_v1_sq,
+        expected_var_v2_sq: e.var_v2_sq,
         trials: args.trials,
-        seed: args.seed,
-    };
-    if args.json {
-        print_json(&answer);
-    } else {
-        let opt = |v: Option<f64>| v.map_or("-".to_owned(), |x| format!("{x:.6e}"));
-        print_rows(&[
-            ("formula", format!("{:?}", formula).to_lowercase()),
-            ("bins", answer.bins.clone()),
-            ("trials", answer.trials.to_string()),
-            ("seed", answer.seed.to_string()),
-            (
-                "mean V1^2",
-                format!(
-                    "{:.6} +- {:.2e} (expected {:.6})",
-                    v1.mean, v1.stderr_mean, answer.expected_mean_v1_sq
-                ),
-            ),
-            (
-                "mean V2^2",
-                format!(
-                    "{:.6} +- {:.2e} (expected {:.6})",
-                    v2.mean, v2.stderr_mean, answer.expected_mean_v2_sq
-                ),
-            ),
-            (
-                "var V1^2",
-                format!(
-                    "{:.6e} +- {:.2e} (expected {})",
-                    v1.var,
-                    v1.stderr_var,
-                    opt(answer.expected_var_v1_sq)
-                ),
-            ),
-            (
-                "var V2^2",
-                format!(
-                    "{:.6e} +- {:.2e} (expected {})",
-                    v2.var,
-                    v2.stderr_var,
-                    opt(answer.expected_var_v2_sq)
-                ),
-            ),
-            (
-                "SNR1 (Monte Carlo)",
-                format!("{:.4}", v1.mean / v1.var.sqrt()),
-            ),
-            (
-                "SNR2 (Monte Carlo)",
-                format!("{:.4}", v2.mean / v2.var.sqrt()),
-            ),
-        ]);
+        seed: args.run.seed,
     }
-    Ok(ExitCode::SUCCESS)
+}
+
+fn print_table(a: &Answer) {
+    let opt = |v: Option<f64>| v.map_or("-".to_owned(), |x| format!("{x:.6e}"));
+    let mean = |m: f64, se: f64, e: f64| format!("{m:.6} +- {se:.2e} (expected {e:.6})");
+    let var =
+        |v: f64, se: f64, e: Option<f64>| format!("{v:.6e} +- {se:.2e} (expected {})", opt(e));
+    print_rows(&[
+        ("formula", format!("{:?}", a.formula).to_lowercase()),
+        ("bins", a.bins.clone()),
+        ("trials", a.trials.to_string()),
+        ("seed", a.seed.to_string()),
+        (
+            "mean V1^2",
+            mean(a.mean_v1_sq, a.stderr_mean_v1_sq, a.expected_mean_v1_sq),
+        ),
+        (
+            "mean V2^2",
+            mean(a.mean_v2_sq, a.stderr_mean_v2_sq, a.expected_mean_v2_sq),
+        ),
+        (
+            "var V1^2",
+            var(a.var_v1_sq, a.stderr_var_v1_sq, a.expected_var_v1_sq),
+        ),
+        (
+            "var V2^2",
+            var(a.var_v2_sq, a.stderr_var_v2_sq, a.expected_var_v2_sq),
+        ),
+        (
+            "SNR1 (Monte Carlo)",
+            format!("{:.4}", a.mean_v1_sq / a.var_v1_sq.sqrt()),
+        ),
+        (
+            "SNR2 (Monte Carlo)",
+            format!("{:.4}", a.mean_v2_sq / a.var_v2_sq.sqrt()),
+        ),
+    ]);
 }

@@ -5,36 +5,15 @@
 
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{finite_f64, print_json, print_rows};
-use clap::ValueEnum;
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::formalism::interferogram::Interferogram;
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::formalism::interferogram::Sampling;
+use v2ref::formalism::observation::Observation;
+use v2ref::noise::calibrated::{CalibratedSetup, MAX_WINDOW_SAMPLES};
 use v2ref::noise::window_variance::{window_stats, WindowStats};
-use v2ref::noise::{
-    appendix_stats, paper_window_factor, scaled_interferogram, Formula, NoiseModel,
-};
+use v2ref::noise::{appendix_stats, paper_window_factor, Formula, NoiseModel};
 use v2ref::Result;
-
-/// Largest N for which the exact windowed variance (N × N matrices) is computed.
-pub const MAX_WINDOW_SAMPLES: usize = 4096;
-
-/// Which formula (`--formula`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum FormulaArg {
-    /// As printed in the paper.
-    Published,
-    /// Derived and confirmed by Monte Carlo.
-    Exact,
-}
-
-impl From<FormulaArg> for Formula {
-    fn from(f: FormulaArg) -> Formula {
-        match f {
-            FormulaArg::Published => Formula::Published,
-            FormulaArg::Exact => Formula::Exact,
-        }
-    }
-}
 
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]
@@ -53,7 +32,7 @@ pub struct NoiseArgs {
     pub no_photon_noise: bool,
     /// Formula: as printed in the paper, or exact.
     #[arg(long, value_enum, default_value = "exact")]
-    pub formula: FormulaArg,
+    pub formula: Formula,
 }
 
 impl NoiseArgs {
@@ -62,26 +41,15 @@ impl NoiseArgs {
         NoiseModel::new(self.read_noise, !self.no_photon_noise)
     }
 
-    /// The noise-free interferogram and the calibrator's (point source,
-    /// V = 1, same photons).
-    pub fn interferograms(
+    /// The noise-free interferograms (source and calibrator) of `obs`
+    /// sampled by `sampling`, and the bins of `window`.
+    pub fn setup(
         &self,
-        obs: &ObservationArgs,
-        sampling: &SamplingArgs,
-    ) -> Result<(
-        Interferogram,
-        Interferogram,
-        v2ref::formalism::interferogram::Sampling,
-        Vec<usize>,
-        f64,
-    )> {
-        let o = obs.observation()?;
-        let s = sampling.sampling()?;
-        v2ref::error::non_negative("photons", self.photons)?;
-        let ifg = scaled_interferogram(&o, &s, self.photons, self.visibility)?;
-        let cal = scaled_interferogram(&o.calibrator(), &s, self.photons, 1.0)?;
-        let bins = sampling.bins.bins(s.samples(), s.dx_um(), &o.spectrum);
-        Ok((ifg, cal, s, bins, o.spectrum.width_per_um()))
+        obs: &Observation,
+        sampling: &Sampling,
+        window: BinWindow,
+    ) -> Result<CalibratedSetup> {
+        CalibratedSetup::new(obs, sampling, self.photons, self.visibility, window)
     }
 }
 
@@ -132,15 +100,17 @@ struct Answer {
 /// Runs `snr`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let noise = args.noise.noise()?;
-    let (ifg, _cal, sampling, bins, band_width) =
-        args.noise.interferograms(&args.obs, &args.sampling)?;
-    let formula: Formula = args.noise.formula.into();
+    let obs = args.obs.observation()?;
+    let sampling = args.sampling.sampling()?;
+    let setup = args.noise.setup(&obs, &sampling, args.sampling.bins)?;
+    let ifg = &setup.signal;
+    let formula = args.noise.formula;
     let st = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, formula)?;
-    let factor = paper_window_factor(sampling.dx_um(), band_width);
+    let factor = paper_window_factor(sampling.dx_um(), obs.spectrum.width_per_um());
     let window_exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
         Some(Window {
-            window: format!("{:?}", args.sampling.bins).to_lowercase(),
-            stats: window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &bins)?,
+            window: args.sampling.bins.name().to_owned(),
+            stats: window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &setup.bins)?,
         })
     } else {
         None
@@ -168,31 +138,35 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if args.json {
         print_json(&answer);
     } else {
-        let mut rows = vec![
-            ("formula", format!("{:?}", formula).to_lowercase()),
-            ("samples N", st.samples.to_string()),
-            ("sum m_i^2 [photons^2]", format!("{:.6}", st.sum_m2)),
-            ("m_0 [photons]", format!("{:.6}", st.m0)),
-            ("bias V1^2 (all bins)", format!("{:.6e}", st.bias_v1_sq)),
-            ("bias V2^2 (all bins)", format!("{:.6e}", st.bias_v2_sq)),
-            ("var V1^2 (all bins)", format!("{:.6e}", st.var_v1_sq)),
-            ("var V2^2 (all bins)", format!("{:.6e}", st.var_v2_sq)),
-            ("SNR1 (all bins)", format!("{:.4}", st.snr1)),
-            ("SNR2 (all bins)", format!("{:.4}", st.snr2)),
-            (
-                "paper window factor sqrt(dsigma/dsigma0)",
-                format!("{factor:.4}"),
-            ),
-        ];
-        if let Some(w) = &answer.window_exact {
-            rows.push((
-                "window (exact)",
-                format!("{} ({} bins)", w.window, w.stats.bins),
-            ));
-            rows.push(("SNR1 (window, exact)", format!("{:.4}", w.stats.snr1)));
-            rows.push(("SNR2 (window, exact)", format!("{:.4}", w.stats.snr2)));
-        }
-        print_rows(&rows);
+        print_table(&answer);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+fn print_table(a: &Answer) {
+    let mut rows = vec![
+        ("formula", format!("{:?}", a.formula).to_lowercase()),
+        ("samples N", a.samples.to_string()),
+        ("sum m_i^2 [photons^2]", format!("{:.6}", a.sum_m2)),
+        ("m_0 [photons]", format!("{:.6}", a.m0)),
+        ("bias V1^2 (all bins)", format!("{:.6e}", a.bias_v1_sq)),
+        ("bias V2^2 (all bins)", format!("{:.6e}", a.bias_v2_sq)),
+        ("var V1^2 (all bins)", format!("{:.6e}", a.var_v1_sq)),
+        ("var V2^2 (all bins)", format!("{:.6e}", a.var_v2_sq)),
+        ("SNR1 (all bins)", format!("{:.4}", a.snr1)),
+        ("SNR2 (all bins)", format!("{:.4}", a.snr2)),
+        (
+            "paper window factor sqrt(dsigma/dsigma0)",
+            format!("{:.4}", a.window_factor),
+        ),
+    ];
+    if let Some(w) = &a.window_exact {
+        rows.push((
+            "window (exact)",
+            format!("{} ({} bins)", w.window, w.stats.bins),
+        ));
+        rows.push(("SNR1 (window, exact)", format!("{:.4}", w.stats.snr1)));
+        rows.push(("SNR2 (window, exact)", format!("{:.4}", w.stats.snr2)));
+    }
+    print_rows(&rows);
 }

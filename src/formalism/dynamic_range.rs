@@ -9,13 +9,13 @@ use crate::error::{self, Error, Result};
 /// relative modulus error `dv_over_v` and phase error `dphi_rad` (rad).
 /// Requires `n_vis ≥ 1` and errors ≥ 0, not both zero.
 pub fn dynamic_range(n_vis: f64, dv_over_v: f64, dphi_rad: f64) -> Result<f64> {
-    error::in_range("n-vis", n_vis, 1.0, f64::MAX)?;
-    error::non_negative("dv-over-v", dv_over_v)?;
-    error::non_negative("dphi-rad", dphi_rad)?;
+    error::in_range("n_vis", n_vis, 1.0, f64::MAX)?;
+    error::non_negative("dv_over_v", dv_over_v)?;
+    error::non_negative("dphi_rad", dphi_rad)?;
     let e2 = dv_over_v * dv_over_v + dphi_rad * dphi_rad;
     if e2 == 0.0 {
         return Err(Error::Invalid {
-            param: "dv-over-v",
+            param: "dv_over_v",
             reason: "the visibility and phase errors cannot both be zero (infinite dynamic range)"
                 .into(),
         });

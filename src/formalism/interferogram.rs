@@ -50,7 +50,7 @@ impl Sampling {
                 accepted: format!("2 to {MAX_SAMPLES}"),
             });
         }
-        error::positive("dx-um", dx_um)?;
+        error::positive("dx_um", dx_um)?;
         Ok(Sampling {
             samples,
             dx_um,
@@ -60,15 +60,15 @@ impl Sampling {
 
     /// A scan of `stroke_um` (Δx) at spacing `dx_um`: N = round(Δx/δx).
     pub fn from_stroke(stroke_um: f64, dx_um: f64, integrating: bool) -> Result<Sampling> {
-        error::positive("stroke-um", stroke_um)?;
-        error::positive("dx-um", dx_um)?;
+        error::positive("stroke_um", stroke_um)?;
+        error::positive("dx_um", dx_um)?;
         let n = (stroke_um / dx_um).round();
         if !(2.0..=MAX_SAMPLES as f64).contains(&n) {
             return Err(Error::OutOfRange {
-                param: "stroke-um",
+                param: "stroke_um",
                 value: stroke_um,
                 accepted: format!(
-                    "{} to {} um at dx-um = {dx_um} (2 to {MAX_SAMPLES} samples)",
+                    "{} to {} um at dx_um = {dx_um} (2 to {MAX_SAMPLES} samples)",
                     2.0 * dx_um,
                     MAX_SAMPLES as f64 * dx_um
                 ),
@@ -258,19 +258,19 @@ impl Interferogram {
         photons_per_sample: f64,
         opd_perturbation_um: Option<&[f64]>,
     ) -> Result<Interferogram> {
-        error::non_negative("photons", photons_per_sample)?;
+        error::non_negative("photons_per_sample", photons_per_sample)?;
         sampling.check_aliasing(obs)?;
         let n = sampling.samples();
         if let Some(p) = opd_perturbation_um {
             if p.len() != n {
                 return Err(Error::Invalid {
-                    param: "opd-perturbation",
+                    param: "opd_perturbation_um",
                     reason: format!("{} values for {n} samples", p.len()),
                 });
             }
             if let Some(&bad) = p.iter().find(|v| !v.is_finite()) {
                 return Err(Error::NotFinite {
-                    param: "opd-perturbation",
+                    param: "opd_perturbation_um",
                     value: bad,
                 });
             }

@@ -43,10 +43,10 @@ impl Observation {
     ) -> Result<Observation> {
         let baseline_m = match frequency {
             Frequency::SpatialFreqCpas(s) => {
-                error::non_negative("spatial-freq-cpas", s)?;
+                error::non_negative("spatial_freq_cpas", s)?;
                 s / (spectrum.sigma_eff_per_um() * CPAS_PER_M_PER_INV_UM)
             }
-            Frequency::BaselineM(b) => error::non_negative("baseline-m", b)?,
+            Frequency::BaselineM(b) => error::non_negative("baseline_m", b)?,
         };
         Ok(Observation {
             spectrum,

@@ -29,7 +29,7 @@ impl SpectralPhase {
     /// value over the band of `spectrum` is `peak_to_peak_rad`:
     /// `D = 8 P / Δσ²`, σ0 and Δσ the centre and width of the band.
     pub fn dispersion_peak_to_peak(spectrum: &Spectrum, peak_to_peak_rad: f64) -> Result<Self> {
-        error::finite("dispersion-pp-rad", peak_to_peak_rad)?;
+        error::finite("peak_to_peak_rad", peak_to_peak_rad)?;
         let width = spectrum.width_per_um();
         let d = if width > 0.0 {
             8.0 * peak_to_peak_rad / (width * width)

@@ -59,9 +59,9 @@ impl FluxProfile {
     /// carrying `flux` in total (integrated over wavenumber):
     /// `fwhm_σ = σ_c v/c`, `peak = flux / (fwhm_σ √(π / 4 ln 2))`.
     pub fn gaussian_line_velocity(wavelength_um: f64, fwhm_km_s: f64, flux: f64) -> Result<Self> {
-        error::positive("line-wavelength-um", wavelength_um)?;
-        error::positive("line-fwhm-km-s", fwhm_km_s)?;
-        error::non_negative("line-flux", flux)?;
+        error::positive("wavelength_um", wavelength_um)?;
+        error::positive("fwhm_km_s", fwhm_km_s)?;
+        error::non_negative("flux", flux)?;
         let centre = 1.0 / wavelength_um;
         let fwhm = centre * fwhm_km_s / SPEED_OF_LIGHT_KM_S;
         let area_per_peak = fwhm * (std::f64::consts::PI / (4.0 * std::f64::consts::LN_2)).sqrt();
@@ -110,7 +110,7 @@ pub enum Source {
 impl Source {
     /// A uniform disk of diameter `diameter_mas` (> 0).
     pub fn uniform_disk(diameter_mas: f64) -> Result<Source> {
-        error::positive("diameter-mas", diameter_mas)?;
+        error::positive("diameter_mas", diameter_mas)?;
         Ok(Source::UniformDisk { diameter_mas })
     }
 
@@ -119,19 +119,19 @@ impl Source {
     pub fn composite(components: Vec<Component>) -> Result<Source> {
         if components.is_empty() {
             return Err(Error::Invalid {
-                param: "source",
+                param: "components",
                 reason: "a composite source needs at least one component".into(),
             });
         }
         for c in &components {
             if let Source::Composite(_) = c.source {
                 return Err(Error::Invalid {
-                    param: "source",
+                    param: "components",
                     reason: "composite sources cannot be nested".into(),
                 });
             }
             if let Source::UniformDisk { diameter_mas } = c.source {
-                error::positive("diameter-mas", diameter_mas)?;
+                error::positive("diameter_mas", diameter_mas)?;
             }
             match c.flux {
                 FluxProfile::Flat { flux } => {
@@ -142,9 +142,9 @@ impl Source {
                     fwhm_per_um,
                     peak,
                 } => {
-                    error::positive("line-centre", centre_per_um)?;
-                    error::positive("line-fwhm", fwhm_per_um)?;
-                    error::non_negative("line-peak", peak)?;
+                    error::positive("centre_per_um", centre_per_um)?;
+                    error::positive("fwhm_per_um", fwhm_per_um)?;
+                    error::non_negative("peak", peak)?;
                 }
             }
         }

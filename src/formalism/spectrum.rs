@@ -40,15 +40,15 @@ impl Band {
     /// (Δλ, µm). Requires λ0 > 0 and 0 < Δλ < 2 λ0 (the band must not reach
     /// zero wavelength).
     pub fn new(wavelength_um: f64, bandwidth_um: f64) -> Result<Band> {
-        error::positive("wavelength-um", wavelength_um)?;
-        error::positive("bandwidth-nm", bandwidth_um)?;
+        error::positive("wavelength_um", wavelength_um)?;
+        error::positive("bandwidth_um", bandwidth_um)?;
         if bandwidth_um >= 2.0 * wavelength_um {
             return Err(Error::OutOfRange {
-                param: "bandwidth-nm",
-                value: bandwidth_um * 1e3,
+                param: "bandwidth_um",
+                value: bandwidth_um,
                 accepted: format!(
-                    "0 < bandwidth < {} nm (twice the centre wavelength: the band must not reach zero wavelength)",
-                    2e3 * wavelength_um
+                    "0 < bandwidth_um < {} (twice the centre wavelength: the band must not reach zero wavelength)",
+                    2.0 * wavelength_um
                 ),
             });
         }
@@ -124,7 +124,7 @@ impl Spectrum {
 
     /// A monochromatic spectrum at `wavelength_um`: the zero-bandwidth limit.
     pub fn monochromatic(wavelength_um: f64) -> Result<Spectrum> {
-        error::positive("wavelength-um", wavelength_um)?;
+        error::positive("wavelength_um", wavelength_um)?;
         Ok(Self::build(Shape::Line {
             sigma: 1.0 / wavelength_um,
         }))
@@ -133,7 +133,7 @@ impl Spectrum {
     /// S F ∝ (σ/σ_c)^index over the band, σ_c the band centre in
     /// wavenumber: a smooth model of a spectral slope (index 0 is flat).
     pub fn power_law(band: Band, index: f64) -> Result<Spectrum> {
-        error::in_range("spectral-index", index, -20.0, 20.0)?;
+        error::in_range("index", index, -20.0, 20.0)?;
         Ok(Self::build(Shape::PowerLaw {
             lo: band.sigma_min_per_um(),
             hi: band.sigma_max_per_um(),
@@ -147,10 +147,10 @@ impl Spectrum {
     /// `0 < edge_per_um ≤ σ_max − σ_min`.
     pub fn smooth_top_hat(band: Band, edge_per_um: f64) -> Result<Spectrum> {
         let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
-        error::positive("edge-per-um", edge_per_um)?;
+        error::positive("edge_per_um", edge_per_um)?;
         if edge_per_um > hi - lo {
             return Err(Error::OutOfRange {
-                param: "edge-per-um",
+                param: "edge_per_um",
                 value: edge_per_um,
                 accepted: format!("0 < edge <= {} per um (the band width)", hi - lo),
             });
@@ -218,76 +218,26 @@ impl Spectrum {
 
     /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
-        let bad = |line: usize, reason: String| {
-            Err(Error::SpectrumTable {
-                reason: format!("line {line}: {reason}"),
-            })
-        };
         let mut axis: Option<bool> = None; // Some(true): wavelength
-        let mut xs = Vec::new();
-        let mut ws = Vec::new();
+        let (mut xs, mut ws) = (Vec::new(), Vec::new());
         for (n, raw) in text.lines().enumerate() {
-            let line_no = n + 1;
             let line = raw.trim();
             if line.is_empty() || line.starts_with('#') {
                 continue;
             }
+            let at = |reason: String| Error::SpectrumTable {
+                reason: format!("line {}: {reason}", n + 1),
+            };
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != 2 {
-                return bad(line_no, format!("{} columns; expected 2", cells.len()));
+                return Err(at(format!("{} columns; expected 2", cells.len())));
             }
-            match axis {
-                None => {
-                    let is_wavelength = match cells[0] {
-                        "wavelength_um" => true,
-                        "wavenumber_per_um" => false,
-                        other => {
-                            return bad(
-                                line_no,
-                                format!("header '{other}': the first column must be wavelength_um or wavenumber_per_um"),
-                            )
-                        }
-                    };
-                    if cells[1] != "weight" {
-                        return bad(
-                            line_no,
-                            format!("header '{}': the second column must be weight", cells[1]),
-                        );
-                    }
-                    axis = Some(is_wavelength);
-                }
-                Some(_) => {
-                    let parse = |s: &str, what: &str| -> std::result::Result<f64, String> {
-                        match s.parse::<f64>() {
-                            Ok(v) if v.is_finite() => Ok(v),
-                            _ => Err(format!("{what} '{s}' is not a finite number")),
-                        }
-                    };
-                    let x = match parse(cells[0], "axis value") {
-                        Ok(v) => v,
-                        Err(e) => return bad(line_no, e),
-                    };
-                    let w = match parse(cells[1], "weight") {
-                        Ok(v) => v,
-                        Err(e) => return bad(line_no, e),
-                    };
-                    if x <= 0.0 {
-                        return bad(line_no, format!("axis value {x} must be > 0"));
-                    }
-                    if w < 0.0 {
-                        return bad(line_no, format!("weight {w} must be >= 0"));
-                    }
-                    if let Some(&prev) = xs.last() {
-                        if x <= prev {
-                            return bad(
-                                line_no,
-                                format!("axis value {x} after {prev}: values must be strictly increasing (no duplicates)"),
-                            );
-                        }
-                    }
-                    xs.push(x);
-                    ws.push(w);
-                }
+            if axis.is_none() {
+                axis = Some(csv_header(&cells).map_err(at)?);
+            } else {
+                let (x, w) = csv_row(&cells, xs.last().copied()).map_err(at)?;
+                xs.push(x);
+                ws.push(w);
             }
         }
         let Some(is_wavelength) = axis else {
@@ -310,10 +260,8 @@ impl Spectrum {
     /// (the photon spectrum per unit wavenumber times the transmission, any
     /// scale); it is interpolated linearly in wavenumber.
     pub fn from_csv_path(path: &Path) -> Result<Spectrum> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
-            path: path.display().to_string(),
-            reason: e.to_string(),
-        })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|e| Error::file(Some("spectrum"), path, e))?;
         Self::from_csv_str(&text)
     }
 
@@ -515,7 +463,7 @@ impl Spectrum {
     /// k: the normalization sums of the paper's eq. `eq:estimateurs` on the
     /// grid of a scan of length `1/δσ`. `delta_sigma_per_um` must be > 0.
     pub fn grid_sums(&self, delta_sigma_per_um: f64) -> Result<(f64, f64)> {
-        error::positive("delta-sigma", delta_sigma_per_um)?;
+        error::positive("delta_sigma_per_um", delta_sigma_per_um)?;
         let (lo, hi) = self.support();
         let k0 = (lo / delta_sigma_per_um).ceil() as i64;
         let k1 = (hi / delta_sigma_per_um).floor() as i64;
@@ -527,4 +475,47 @@ impl Spectrum {
         }
         Ok((s1 * delta_sigma_per_um, s2 * delta_sigma_per_um))
     }
+}
+
+/// The CSV header's two cells: `true` for `wavelength_um,weight`, `false`
+/// for `wavenumber_per_um,weight`.
+fn csv_header(cells: &[&str]) -> std::result::Result<bool, String> {
+    let is_wavelength = match cells[0] {
+        "wavelength_um" => true,
+        "wavenumber_per_um" => false,
+        other => {
+            return Err(format!(
+                "header '{other}': the first column must be wavelength_um or wavenumber_per_um"
+            ))
+        }
+    };
+    if cells[1] != "weight" {
+        return Err(format!(
+            "header '{}': the second column must be weight",
+            cells[1]
+        ));
+    }
+    Ok(is_wavelength)
+}
+
+/// One CSV data row: the axis value (> 0, above `prev`) and the weight (≥ 0).
+fn csv_row(cells: &[&str], prev: Option<f64>) -> std::result::Result<(f64, f64), String> {
+    let parse = |s: &str, what: &str| match s.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("{what} '{s}' is not a finite number")),
+    };
+    let x = parse(cells[0], "axis value")?;
+    let w = parse(cells[1], "weight")?;
+    if x <= 0.0 {
+        return Err(format!("axis value {x} must be > 0"));
+    }
+    if w < 0.0 {
+        return Err(format!("weight {w} must be >= 0"));
+    }
+    if let Some(prev) = prev.filter(|&p| x <= p) {
+        return Err(format!(
+            "axis value {x} after {prev}: values must be strictly increasing (no duplicates)"
+        ));
+    }
+    Ok((x, w))
 }

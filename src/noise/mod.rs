@@ -9,6 +9,7 @@
 //! as `v2ref::noise::X`.
 
 pub mod appendix;
+pub mod calibrated;
 pub mod example;
 pub mod model;
 pub mod simulation;

@@ -37,7 +37,7 @@ impl NoiseModel {
     /// Read noise `read_noise` (photons, ≥ 0) and, if `photon`, Poisson
     /// photon noise.
     pub fn new(read_noise: f64, photon: bool) -> Result<NoiseModel> {
-        error::non_negative("read-noise", read_noise)?;
+        error::non_negative("read_noise", read_noise)?;
         Ok(NoiseModel { read_noise, photon })
     }
 

@@ -345,6 +345,7 @@ impl Detector {
 /// Where the fringe packet sits in each scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum PistonReference {
     /// The piston at the time of the middle (zero-OPD) sample is removed:
     /// the scan is centred on the white-light fringe at that instant.
