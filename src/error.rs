@@ -56,10 +56,11 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
-    /// A file or an output could not be produced or read back, with no
-    /// system error behind it (a table that does not parse, a plot that
-    /// cannot be drawn). System failures are [`Error::File`].
-    Io {
+    /// An output could not be produced or a file's content read back, with
+    /// no system error behind it (a table that does not parse, a plot that
+    /// cannot be drawn, an answer that cannot be serialized). Failures of
+    /// the system are [`Error::Io`].
+    Output {
         /// The file (or what was being produced).
         path: String,
         /// What went wrong.
@@ -67,7 +68,7 @@ pub enum Error {
     },
     /// Reading or writing a file failed; keeps the system's error as
     /// [`std::error::Error::source`].
-    File {
+    Io {
         /// The library parameter that named the file, where there is one.
         param: Option<&'static str>,
         /// The file.
@@ -84,7 +85,7 @@ impl Error {
         path: impl Into<PathBuf>,
         source: std::io::Error,
     ) -> Error {
-        Error::File {
+        Error::Io {
             param,
             path: path.into(),
             source: Arc::new(source),
@@ -100,8 +101,8 @@ impl Error {
             | Error::Invalid { param, .. } => Some(param),
             Error::Aliasing { .. } => Some("dx_um"),
             Error::SpectrumTable { .. } => Some("spectrum"),
-            Error::File { param, .. } => *param,
-            Error::Io { .. } => None,
+            Error::Io { param, .. } => *param,
+            Error::Output { .. } => None,
         }
     }
 
@@ -117,8 +118,8 @@ impl Error {
                 "{dx_um} um aliases the band; accepted: 0 < spacing < {max_dx_um} um (half the shortest wavelength)"
             ),
             Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
-            Error::Io { path, reason } => format!("{path}: {reason}"),
-            Error::File { path, source, .. } => format!("{}: {source}", path.display()),
+            Error::Output { path, reason } => format!("{path}: {reason}"),
+            Error::Io { path, source, .. } => format!("{}: {source}", path.display()),
         }
     }
 }
@@ -135,7 +136,7 @@ impl std::fmt::Display for Error {
 impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
-            Error::File { source, .. } => Some(source.as_ref()),
+            Error::Io { source, .. } => Some(source.as_ref()),
             _ => None,
         }
     }
@@ -183,14 +184,14 @@ impl PartialEq for Error {
                     reason: y,
                 },
             ) => a == b && x == y,
-            (Io { path: a, reason: x }, Io { path: b, reason: y }) => a == b && x == y,
+            (Output { path: a, reason: x }, Output { path: b, reason: y }) => a == b && x == y,
             (
-                File {
+                Io {
                     param: a,
                     path: p,
                     source: x,
                 },
-                File {
+                Io {
                     param: b,
                     path: q,
                     source: y,

@@ -1,5 +1,5 @@
 //! `v2ref`: the command-line face of the library (contract in
-//! `CONVENTIONS.md`). Every subcommand prints a table, or one JSON document
+//! `docs/conventions.md`). Every subcommand prints a table, or one JSON document
 //! with `--json`; bad input exits with status 2 and one line naming the flag.
 
 mod cli;

@@ -8,7 +8,7 @@
 //! re-centred on it); the quadratic part is the paper's dispersion,
 //! `D = d²φ/dσ² = 2π L (2 n'(σ) + σ n''(σ))` at the band centre σ0
 //! (derivatives in wavenumber), and its peak-to-peak value over a band of
-//! width Δσ is `P = ½ D (Δσ/2)²` (`CONVENTIONS.md`).
+//! width Δσ is `P = ½ D (Δσ/2)²` (`docs/conventions.md`).
 //!
 //! The refractive index of ZBLAN is the two-term Sellmeier formula of
 //! F. Gan, "Optical properties of fluoride glasses: a review", J. Non-Cryst.

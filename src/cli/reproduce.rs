@@ -111,7 +111,7 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
     bar.set_message("claims");
     let claims = evaluate(effort);
     write(dir, "claims.md", &to_markdown(&claims), &mut files)?;
-    let json = serde_json::to_string_pretty(&claims).map_err(|e| Error::Io {
+    let json = serde_json::to_string_pretty(&claims).map_err(|e| Error::Output {
         path: dir.join("claims.json").display().to_string(),
         reason: e.to_string(),
     })?;

@@ -12,7 +12,7 @@
 //! for γ_s with the door function), 1 for a sampling one.
 //!
 //! Sample positions: N samples at spacing δx with sample 0 on the
-//! white-light fringe (`CONVENTIONS.md`). The scan is centred on it, in DFT
+//! white-light fringe (`docs/conventions.md`). The scan is centred on it, in DFT
 //! order: `x_i = i δx` for `i < N/2` and `(i − N) δx` beyond, i.e. the
 //! stroke `[−Δx/2, Δx/2)` of the paper's window `Π(x/Δx)`, replicated with
 //! period Δx as the DFT assumes. A per-sample OPD perturbation `p_i` (piston)

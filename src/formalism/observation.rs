@@ -1,7 +1,7 @@
 //! One wide-band observation: spectrum, source, baseline and spectral phase.
 //!
 //! The spatial frequency of a wide-band measurement is `S = B σ_eff`
-//! (`CONVENTIONS.md`): a user may give either S (cycles/arcsec) or B (m);
+//! (`docs/conventions.md`): a user may give either S (cycles/arcsec) or B (m);
 //! the other follows from the spectrum's effective wavenumber.
 
 use crate::error::{self, Result};

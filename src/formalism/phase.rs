@@ -4,7 +4,7 @@
 //! A [`SpectralPhase`] is a polynomial in `(σ − σ0)`, σ0 the centre of the
 //! band in wavenumber. The paper's dispersion is the quadratic term; its
 //! strength is given as the peak-to-peak phase P over the band, with
-//! `P = ½ D (Δσ/2)²` (`CONVENTIONS.md`), so that φ runs from 0 at the band
+//! `P = ½ D (Δσ/2)²` (`docs/conventions.md`), so that φ runs from 0 at the band
 //! centre to P at both edges.
 
 use crate::error::{self, Result};

@@ -13,7 +13,7 @@
 //! monochromatic spectrum (a Dirac line) is the limit where both averages
 //! are `f(σ0)`.
 //!
-//! Conventions (`CONVENTIONS.md`): a band of centre λ0 and width Δλ covers
+//! Conventions (`docs/conventions.md`): a band of centre λ0 and width Δλ covers
 //! `[λ0 − Δλ/2, λ0 + Δλ/2]`, i.e. `σ ∈ [1/(λ0 + Δλ/2), 1/(λ0 − Δλ/2)]`; a
 //! flat spectrum is constant in σ over that interval.
 

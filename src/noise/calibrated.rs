@@ -10,7 +10,7 @@
 //!   noise-free estimate of the window, `true_bias` the exact noise bias and
 //!   `bias` the one subtracted (equal to `true_bias` for [`Formula::Exact`]);
 //! * variance: the exact windowed variance
-//!   ([`window_stats`](crate::noise::window_variance::window_stats)) over
+//!   ([`window_stats`]) over
 //!   `calib²`, computed up to [`MAX_WINDOW_SAMPLES`] samples.
 //!
 //! [`calibrated_run`] adds the Monte Carlo and normalizes its accumulated

@@ -24,7 +24,7 @@
 use crate::error::{self, Result};
 use serde::Serialize;
 
-/// The noise on the modulated samples (`CONVENTIONS.md`, Noise).
+/// The noise on the modulated samples (`docs/conventions.md`, noise).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct NoiseModel {
     /// Detector (read) noise standard deviation σ_det, photons per sample (≥ 0).

@@ -91,8 +91,14 @@ pub struct Report {
     pub mismatches: Vec<Mismatch>,
 }
 
-fn io(path: &Path, e: impl std::fmt::Display) -> Error {
-    Error::Io {
+/// A failed file operation on `path` (inside the golden folder).
+fn io(path: &Path, e: std::io::Error) -> Error {
+    Error::file(None, path, e)
+}
+
+/// An output that could not be produced (no system error behind it).
+fn output(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Output {
         path: path.display().to_string(),
         reason: e.to_string(),
     }
@@ -216,7 +222,7 @@ pub fn write_figure_files(dir: &Path, figures: &[Figure], generator: &str) -> Re
         let p = dir.join(&name);
         let mut meta = FigureMeta::of(fig);
         meta.generator = generator.to_owned();
-        let json = serde_json::to_string_pretty(&meta).map_err(|e| io(&p, e))?;
+        let json = serde_json::to_string_pretty(&meta).map_err(|e| output(&p, e))?;
         std::fs::write(&p, json + "\n").map_err(|e| io(&p, e))?;
         files.push(name);
     }
@@ -235,7 +241,7 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
     let stem = dir
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| io(dir, "not a directory name"))?;
+        .ok_or_else(|| output(dir, "not a directory name"))?;
     std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
     let pid = std::process::id();
     let tmp = parent.join(format!(".{stem}.tmp-{pid}"));

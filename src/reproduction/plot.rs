@@ -30,7 +30,7 @@ const PALETTE: [RGBColor; 8] = [
 const SIZE: (u32, u32) = (900, 560);
 
 fn plot_error(e: impl std::fmt::Display) -> Error {
-    Error::Io {
+    Error::Output {
         path: "plot".into(),
         reason: e.to_string(),
     }

@@ -65,7 +65,7 @@ impl Table {
 
     /// Parses CSV text written by [`Table::to_csv`].
     pub fn from_csv(name: &str, text: &str) -> Result<Table> {
-        let bad = |reason: String| Error::Io {
+        let bad = |reason: String| Error::Output {
             path: format!("{name}.csv"),
             reason,
         };
