@@ -83,6 +83,18 @@ pub fn v_mono(obs: &Observation) -> f64 {
 }
 
 /// All noise-free infinite-scan numbers for `obs`.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // A point source reads V1 = V2 = 1 whatever the band.
+/// let obs = Observation::new(Spectrum::flat(Band::k()), Source::Point, Frequency::BaselineM(100.0), SpectralPhase::zero())?;
+/// let wb = wide_band(&obs);
+/// assert!((wb.v1 - 1.0).abs() < 1e-12 && (wb.v2 - 1.0).abs() < 1e-12);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn wide_band(obs: &Observation) -> WideBand {
     let (v1_sq, v2_sq) = (v1_sq(obs), v2_sq(obs));
     WideBand {
@@ -203,6 +215,19 @@ pub struct Pair {
 }
 
 /// `B_k = Σ_i M_i e^{−2πi ik/N}` by FFT (rustfft).
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // A cosine of 2 cycles over 8 samples puts N/2 in bins 2 and N − 2.
+/// let m: Vec<f64> = (0..8).map(|i| (std::f64::consts::PI * i as f64 / 2.0).cos()).collect();
+/// let b = dft(&m);
+/// assert!((b[2].re - 4.0).abs() < 1e-12 && (b[6].re - 4.0).abs() < 1e-12);
+/// assert!(b[1].norm() < 1e-12);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn dft(samples: &[f64]) -> Vec<Complex64> {
     let mut buf: Vec<Complex64> = samples.iter().map(|&m| Complex64::new(m, 0.0)).collect();
     if !buf.is_empty() {
@@ -214,6 +239,20 @@ pub fn dft(samples: &[f64]) -> Vec<Complex64> {
 }
 
 /// `(Σ_{k∈K} |B_k|², |Σ_{k∈K} B_k|²)`: the raw estimators over `bins`.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // With all N bins, Parseval gives V1² = N Σ M² and V2² = N² M_0².
+/// let m = [3.0, -1.0, 0.5, 2.0, -0.25];
+/// let raw = raw_estimates(&dft(&m), &all_bins(m.len()));
+/// let n = m.len() as f64;
+/// assert!((raw.v1_sq - n * m.iter().map(|x| x * x).sum::<f64>()).abs() < 1e-12);
+/// assert!((raw.v2_sq - n * n * m[0] * m[0]).abs() < 1e-12);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
     let (mut power, mut sum) = (0.0, Complex64::new(0.0, 0.0));
     for &k in bins {
@@ -234,6 +273,20 @@ pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
 ///
 /// Detector noise has `v_i = σ_det²`; photon noise `v_i = n_i`, the mean
 /// total count of sample i.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // White noise of variance 4 on 16 samples, positive half (7 bins):
+/// // V1² gains 7 · 16 · 4; V2² gains Σ_i 4 |Σ_k e^{−2πi ik/N}|².
+/// let var = vec![4.0; 16];
+/// let b = noise_bias(&var, &positive_bins(16));
+/// assert!((b.v1_sq - 7.0 * 16.0 * 4.0).abs() < 1e-9);
+/// assert!((b.v2_sq - 4.0 * 7.0 * 16.0).abs() < 1e-9); // Parseval on the kernel
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn noise_bias(variance: &[f64], bins: &[usize]) -> Pair {
     let n = variance.len();
     let total: f64 = variance.iter().sum();
@@ -257,6 +310,19 @@ pub fn noise_bias(variance: &[f64], bins: &[usize]) -> Pair {
 /// Noise-free sampled estimates of `obs`, normalized by the same estimator
 /// on [`Observation::calibrator`]: a source of visibility V reads V² when the
 /// sampling resolves the band.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // A long, fine scan gives the spectral (infinite-scan) estimators back.
+/// let obs = Observation::new(Spectrum::flat(Band::k()), Source::uniform_disk(10.0)?, Frequency::SpatialFreqCpas(40.0), SpectralPhase::zero())?;
+/// let scan = sampled_wide_band(&obs, &Sampling::new(2048, 0.5, false)?, BinWindow::Positive)?;
+/// let wb = wide_band(&obs);
+/// assert!((scan.v1_sq - wb.v1_sq).abs() < 2e-3 && (scan.v2_sq - wb.v2_sq).abs() < 2e-3);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn sampled_wide_band(
     obs: &Observation,
     sampling: &Sampling,

@@ -32,6 +32,22 @@ use num_complex::Complex64;
 pub const MAX_SAMPLES: usize = 1 << 24;
 
 /// How the interferogram is sampled.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // 128 samples of 0.5 µm: a 64 µm stroke centred on the white-light fringe,
+/// // stored in DFT order (sample 0 at zero OPD, the negative half last).
+/// let s = Sampling::new(128, 0.5, false)?;
+/// assert_eq!(s.stroke_um(), 64.0);
+/// assert_eq!((s.opd_um(0), s.opd_um(63), s.opd_um(64)), (0.0, 31.5, -32.0));
+/// // Odd N: indices 0 … (N−1)/2 are the non-negative OPDs.
+/// let odd = Sampling::new(7, 0.5, false)?;
+/// assert_eq!((odd.opd_um(3), odd.opd_um(4)), (1.5, -1.5));
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sampling {
     samples: usize,
@@ -240,6 +256,20 @@ impl SpectralNodes {
 }
 
 /// A noise-free sampled interferogram in photon units.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // An unresolved source without spectral phase: m_0 = c (full contrast at
+/// // zero OPD).
+/// let obs = Observation::new(Spectrum::flat(Band::k()), Source::Point, Frequency::BaselineM(18.0), SpectralPhase::zero())?;
+/// let ifg = Interferogram::synthesize(&obs, &Sampling::new(128, 0.5, false)?, 100.0, None)?;
+/// assert!((ifg.modulated[0] - 100.0).abs() < 1e-9);
+/// assert!(ifg.continuum.iter().all(|&c| c == 100.0));
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Interferogram {
     /// c_i, photons per sample.

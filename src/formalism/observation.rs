@@ -20,6 +20,20 @@ pub enum Frequency {
 }
 
 /// Everything that sets the noise-free fringe spectrum `W(σ) V(σ) e^{iφ(σ)}`.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // The same baseline given as S = B σ_eff or as B.
+/// let k = Spectrum::flat(Band::k());
+/// let by_s = Observation::new(k.clone(), Source::Point, Frequency::SpatialFreqCpas(40.0), SpectralPhase::zero())?;
+/// let by_b = Observation::new(k, Source::Point, Frequency::BaselineM(by_s.baseline_m), SpectralPhase::zero())?;
+/// assert!((by_b.spatial_freq_cpas() - 40.0).abs() < 1e-12);
+/// assert!((by_s.baseline_m - 18.0).abs() < 0.01); // the paper's 18 m in K
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Observation {
     /// S(σ)F(σ).

@@ -11,6 +11,21 @@ use crate::error::{self, Result};
 use crate::formalism::spectrum::Spectrum;
 
 /// `φ(σ) = Σ_k a_k (σ − σ0)^k`, radians, σ in µm⁻¹.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // Quadratic dispersion of 1 rad peak to peak over K: φ is 0 at the band
+/// // centre and 1 rad at both edges.
+/// let k = Spectrum::flat(Band::k());
+/// let phi = SpectralPhase::dispersion_peak_to_peak(&k, 1.0)?;
+/// let (lo, hi) = k.support();
+/// assert!(phi.at(0.5 * (lo + hi)).abs() < 1e-15);
+/// assert!((phi.at(lo) - 1.0).abs() < 1e-12 && (phi.at(hi) - 1.0).abs() < 1e-12);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SpectralPhase {
     /// σ0, µm⁻¹.

@@ -86,6 +86,21 @@ pub struct Component {
 }
 
 /// A source's brightness distribution, through its complex visibility.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // A 43 mas uniform disk vanishes at its first null, πθS = 3.8317…
+/// let disk = Source::uniform_disk(43.0)?;
+/// let s_null_cpas = 3.831_705_970_207_512 / (std::f64::consts::PI * 43.0e-3);
+/// let sigma = 0.5; // µm⁻¹: B = S/σ in m for S in cycles/arcsec (see CPAS_PER_M_PER_INV_UM)
+/// let b = s_null_cpas / (sigma * v2ref::formalism::spectrum::CPAS_PER_M_PER_INV_UM);
+/// assert!(disk.visibility(sigma, b).norm() < 1e-9);
+/// assert_eq!(Source::Point.visibility(sigma, b).norm(), 1.0);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source {
     /// Unresolved: V = 1 at every spatial frequency.

@@ -29,6 +29,19 @@ pub const CPAS_PER_M_PER_INV_UM: f64 = 1e6 * std::f64::consts::PI / 648_000.0;
 pub const UM_PER_NM: f64 = 1e-3;
 
 /// A spectral band given by its centre wavelength and full width.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// let k = Band::k(); // 2.0–2.4 µm
+/// assert_eq!(k, Band::new(2.2, 0.4)?);
+/// assert!((k.sigma_min_per_um() - 1.0 / 2.4).abs() < 1e-15);
+/// // A band reaching zero wavelength is refused, naming the parameter.
+/// assert_eq!(Band::new(1.0, 2.5).unwrap_err().param(), Some("bandwidth_um"));
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Band {
     centre_um: f64,
@@ -101,6 +114,20 @@ enum Shape {
 }
 
 /// S(σ)F(σ) over a band, with its normalization and effective wavenumber.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // A flat band in wavenumber: σ_eff is the centre of [1/2.4, 1/2.0] µm⁻¹.
+/// let k = Spectrum::flat(Band::k());
+/// assert!((k.sigma_eff_per_um() - 0.5 * (1.0 / 2.4 + 0.5)).abs() < 1e-12);
+/// // A source spectrum ∝ σ² (Rayleigh–Jeans) moves σ_eff blueward.
+/// let rj = Spectrum::power_law(Band::k(), 2.0)?;
+/// assert!(rj.sigma_eff_per_um() > k.sigma_eff_per_um());
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spectrum {
     shape: Shape,

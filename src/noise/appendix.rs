@@ -170,6 +170,19 @@ pub struct AppendixStats {
 
 /// The Appendix's closed forms for samples of mean `modulated[i]` = m_i and
 /// continuum `continuum[i]` = c_i (photons), all N bins, in `formula`.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // The exact bias makes both estimators unbiased: expectation = signal.
+/// let (m, c) = (vec![5.0, 3.0, -1.0, -4.0], vec![10.0; 4]);
+/// let s = appendix_stats(&m, &c, &NoiseModel::new(1.0, true)?, Formula::Exact)?;
+/// assert!((s.expectation_v1_sq - s.signal_v1_sq).abs() < 1e-9 * s.signal_v1_sq);
+/// assert!((s.expectation_v2_sq - s.signal_v2_sq).abs() < 1e-9 * s.signal_v2_sq);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn appendix_stats(
     modulated: &[f64],
     continuum: &[f64],

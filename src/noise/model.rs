@@ -25,6 +25,21 @@ use crate::error::{self, Result};
 use serde::Serialize;
 
 /// The noise on the modulated samples (`docs/conventions.md`, noise).
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // Read noise 2 photons plus photon noise: the variance of a sample of mean
+/// // count 10 is 4 + 10.
+/// let noise = NoiseModel::new(2.0, true)?;
+/// let c = noise.cumulants(10.0);
+/// assert!((c.k2 - 14.0).abs() < 1e-12);
+/// // A negative read noise is refused, naming the parameter.
+/// assert_eq!(NoiseModel::new(-1.0, false).unwrap_err().param(), Some("read_noise"));
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct NoiseModel {
     /// Detector (read) noise standard deviation σ_det, photons per sample (≥ 0).

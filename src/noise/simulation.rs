@@ -401,6 +401,28 @@ fn unit_trials(trials: u64, unit: u64) -> u64 {
 /// estimators (seeded per unit of [`TRIALS_PER_UNIT`] trials from
 /// (`seed`, unit); bit-identical for any `threads`). `progress(done)` is
 /// called with the number of trials of each finished unit.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// use v2ref::formalism::estimator::{all_bins, positive_bins};
+/// // 20 000 noisy interferograms; same seed, same bits, any thread count.
+/// let spec = NoisySpec {
+///     modulated: vec![5.0, 3.0, -1.0, -4.0],
+///     continuum: vec![10.0; 4],
+///     noise: NoiseModel::new(1.0, true)?,
+///     bins: all_bins(4),
+/// };
+/// let one = simulate_noisy(&spec, 20_000, 7, 1, &|_| {})?;
+/// let two = simulate_noisy(&spec, 20_000, 7, 2, &|_| {})?;
+/// assert_eq!(one, two);
+/// // The mean of V1²_raw is its signal plus the exact bias, within 5 standard errors.
+/// let s = appendix_stats(&spec.modulated, &spec.continuum, &spec.noise, Formula::Exact)?;
+/// let expected = s.signal_v1_sq + s.bias_v1_sq;
+/// assert!((one.v1_sq.mean - expected).abs() < 5.0 * one.v1_sq.stderr_mean());
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 pub fn simulate_noisy(
     spec: &NoisySpec,
     trials: u64,
