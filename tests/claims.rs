@@ -1,32 +1,12 @@
-//! The claims ledger: the project's copy matches the shared ledger, every
-//! claim is answered honestly, and the foundation's claims hold.
+//! The claims ledger: every claim is answered honestly, and the
+//! foundation's claims hold. (That the project's ledger lists the same
+//! claims as the steering ledger is checked by `.ci/run`, where that ledger
+//! is available.)
 
 use v2ref::reproduction::cases::Effort;
 use v2ref::reproduction::claims::{evaluate, ledger, Status};
 use v2ref::tolerance::ROUNDING_REL;
 use v2ref::{assert_abs_eq, assert_rel_eq};
-
-#[test]
-fn project_ledger_matches_the_shared_ledger() {
-    let shared = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/claims.toml");
-    let Ok(text) = std::fs::read_to_string(&shared) else {
-        eprintln!("../shared/claims.toml not beside the checkout: comparison skipped");
-        return;
-    };
-    #[derive(serde::Deserialize)]
-    struct L {
-        claim: Vec<v2ref::reproduction::claims::ClaimSpec>,
-    }
-    let theirs: L = toml::from_str(&text).expect("shared ledger parses");
-    let ours = ledger();
-    assert_eq!(ours.len(), theirs.claim.len());
-    for (a, b) in ours.iter().zip(&theirs.claim) {
-        assert_eq!(a.id, b.id);
-        assert_eq!(a.paper, b.paper, "{}", a.id);
-        assert_eq!(a.tol, b.tol, "{}", a.id);
-        assert_eq!(a.unit, b.unit, "{}", a.id);
-    }
-}
 
 #[test]
 fn every_claim_is_answered_honestly() {
