@@ -20,7 +20,7 @@ use crate::formalism::estimator::{raw_estimates, BinWindow, Pair, BIN_WINDOWS};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
 use crate::formalism::source::Source;
-use crate::montecarlo::run_units;
+use crate::montecarlo::{derive_seed, run_units, RunningStats, Summary};
 use crate::piston::fringe_table::{FringeTable, MAX_OPD_UM};
 use crate::piston::scan::{fill_scan, interp, Detector, PistonReference, ScanSetup};
 use crate::piston::series::{synthesize_series, MAX_SERIES};
@@ -28,53 +28,10 @@ use crate::piston::turbulence::PistonSpectrum;
 use num_complex::Complex64;
 use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// Scans per work unit in [`simulate`].
 const SCAN_BLOCK: usize = 100;
-
-/// A mean and a standard deviation over scans, with their standard errors.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
-pub struct Estimate {
-    /// Mean (the bias).
-    pub mean: f64,
-    /// Its standard error, std/√n.
-    pub mean_stderr: f64,
-    /// Standard deviation (the scatter), n − 1 denominator.
-    pub std: f64,
-    /// Its standard error, √((m4 − s⁴)/n)/(2s) (no normality assumed).
-    pub std_stderr: f64,
-}
-
-impl Estimate {
-    /// The estimate from a sample (two passes).
-    pub fn from_values(x: &[f64]) -> Estimate {
-        let n = x.len() as f64;
-        if x.is_empty() {
-            return Estimate::default();
-        }
-        let mean = x.iter().sum::<f64>() / n;
-        let (mut m2, mut m4) = (0.0, 0.0);
-        for v in x {
-            let d = (v - mean) * (v - mean);
-            m2 += d;
-            m4 += d * d;
-        }
-        let var = if x.len() > 1 { m2 / (n - 1.0) } else { 0.0 };
-        let std = var.sqrt();
-        let m4 = m4 / n;
-        let std_stderr = if std > 0.0 {
-            ((m4 - var * var).max(0.0) / n).sqrt() / (2.0 * std)
-        } else {
-            0.0
-        };
-        Estimate {
-            mean,
-            mean_stderr: (var / n).sqrt(),
-            std,
-            std_stderr,
-        }
-    }
-}
 
 /// Piston statistics for one window of bins.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -85,10 +42,11 @@ pub struct WindowResult {
     pub v1_no_piston: f64,
     /// V2 of the piston-free scan.
     pub v2_no_piston: f64,
-    /// V1(piston) − V1(no piston) over scans.
-    pub v1: Estimate,
+    /// V1(piston) − V1(no piston) over scans: the mean is the bias, the
+    /// standard deviation the scatter.
+    pub v1: Summary,
     /// V2(piston) − V2(no piston) over scans.
-    pub v2: Estimate,
+    pub v2: Summary,
 }
 
 /// The result of one piston Monte Carlo at one fringe frequency.
@@ -134,19 +92,363 @@ pub struct RunSize {
     pub threads: usize,
 }
 
-/// Raw estimates per window.
-fn raw_per_window(
-    fft: &dyn Fft<f64>,
-    samples: &[f64],
-    bins: &[Vec<usize>],
-    buf: &mut Vec<Complex64>,
-    scratch: &mut Vec<Complex64>,
-) -> Vec<Pair> {
-    buf.clear();
-    buf.extend(samples.iter().map(|&m| Complex64::new(m, 0.0)));
-    scratch.resize(fft.get_inplace_scratch_len(), Complex64::new(0.0, 0.0));
-    fft.process_with_scratch(buf, scratch);
-    bins.iter().map(|b| raw_estimates(buf, b)).collect()
+/// Checks the scan setup and that `size.scans` scans fit in one sequence.
+fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
+    setup.validate()?;
+    let n = setup.samples;
+    if size.scans < 2 || size.scans.saturating_mul(n) > MAX_SERIES - 4 {
+        return Err(Error::OutOfRange {
+            param: "scans",
+            value: size.scans as f64,
+            accepted: format!("2 to {} with {n} samples per scan", (MAX_SERIES - 4) / n),
+        });
+    }
+    Ok(())
+}
+
+/// The piston sequence read by consecutive scans, and where the fringe
+/// packet sits in each.
+struct PistonSequence {
+    /// p at each sample time, µm (periodic, at least scans × N + 4 long).
+    series: Vec<f64>,
+    /// N.
+    samples: usize,
+    /// How each scan's reference is taken.
+    reference: PistonReference,
+}
+
+impl PistonSequence {
+    /// Synthesises the sequence of `size.scans` scans of `setup` from the
+    /// differential-piston spectrum, from `size.seed` (all its randomness).
+    fn synthesize(spectrum: &PistonSpectrum, setup: &ScanSetup, size: &RunSize) -> Result<Self> {
+        let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
+        let n = setup.samples;
+        let series = synthesize_series(
+            &psd,
+            setup.sample_time_s(),
+            size.scans * n + 4,
+            size.seed,
+            size.threads,
+        )?;
+        Ok(PistonSequence {
+            series,
+            samples: n,
+            reference: setup.reference,
+        })
+    }
+
+    /// RMS of the whole sequence, µm.
+    fn rms_um(&self) -> f64 {
+        let m = self.series.len() as f64;
+        (self.series.iter().map(|p| p * p).sum::<f64>() / m).sqrt()
+    }
+
+    /// The piston removed from scan `s`, µm.
+    fn reference_um(&self, s: usize) -> f64 {
+        let (n, base) = (self.samples, s * self.samples);
+        match self.reference {
+            PistonReference::Centre => self.series[base + n / 2],
+            PistonReference::Mean => self.series[base..base + n].iter().sum::<f64>() / n as f64,
+            PistonReference::Absolute => 0.0,
+        }
+    }
+
+    /// The piston of scan `s` at τ sample intervals from its start, µm.
+    fn at(&self, s: usize, tau: f64) -> f64 {
+        interp(&self.series, (s * self.samples) as f64 + tau)
+    }
+
+    /// Over `scans` scans: the largest |p − reference| any sub-sample can
+    /// reach (the cubic reads one sample either side of the scan), and the
+    /// RMS of p − reference over the samples.
+    fn excursion_and_residual(&self, scans: usize) -> (f64, f64) {
+        let (n, m) = (self.samples, self.series.len());
+        let (mut excursion, mut resid2) = (0.0_f64, 0.0);
+        for s in 0..scans {
+            let r = self.reference_um(s);
+            for j in 0..=n + 1 {
+                let d = self.series[(s * n + j) % m] - r;
+                excursion = excursion.max(d.abs());
+                if j < n {
+                    resid2 += d * d;
+                }
+            }
+            let prev = self.series[(s * n + m - 1) % m] - r;
+            excursion = excursion.max(prev.abs());
+        }
+        (excursion, (resid2 / (scans * n) as f64).sqrt())
+    }
+}
+
+/// The OPD range (µm) the fringe table must cover for scans of `setup`
+/// whose piston moves the packet by up to `excursion_um`.
+fn table_range_um(setup: &ScanSetup, excursion_um: f64) -> Result<f64> {
+    let max_opd = (setup.samples / 2 + 1) as f64 * setup.dx_um + 1.5 * excursion_um + 1.0;
+    if max_opd > MAX_OPD_UM {
+        return Err(Error::Invalid {
+            param: "reference",
+            reason: format!(
+                "the piston moves the fringe packet by up to {excursion_um:.0} um within the scans (at most {MAX_OPD_UM} um of OPD is simulated): lower the seeing, raise the fringe frequency or re-centre the scans (--reference mean)"
+            ),
+        });
+    }
+    Ok(max_opd)
+}
+
+/// What every scan needs: the fringe tables of the source and of the
+/// unresolved calibrator, the bins of each window and the FFT plan.
+struct ScanContext<'a> {
+    setup: &'a ScanSetup,
+    table: FringeTable,
+    /// `None` when the source is its own calibrator.
+    cal_table: Option<FringeTable>,
+    bins: Vec<Vec<usize>>,
+    fft: Arc<dyn Fft<f64>>,
+}
+
+impl<'a> ScanContext<'a> {
+    fn new(obs: &Observation, setup: &'a ScanSetup, max_opd_um: f64) -> Result<Self> {
+        let cal_table = if obs.source == Source::Point && obs.phase.is_zero() {
+            None
+        } else {
+            Some(FringeTable::new(&obs.calibrator(), max_opd_um)?)
+        };
+        Ok(ScanContext {
+            setup,
+            table: FringeTable::new(obs, max_opd_um)?,
+            cal_table,
+            bins: BIN_WINDOWS
+                .iter()
+                .map(|w| w.bins(setup.samples, setup.dx_um, &obs.spectrum))
+                .collect(),
+            fft: FftPlanner::new().plan_fft_forward(setup.samples),
+        })
+    }
+}
+
+/// Reusable buffers of one thread's scans.
+struct Workspace {
+    samples: Vec<f64>,
+    buf: Vec<Complex64>,
+    scratch: Vec<Complex64>,
+}
+
+impl Workspace {
+    fn new(n: usize) -> Self {
+        Workspace {
+            samples: vec![0.0; n],
+            buf: Vec::with_capacity(n),
+            scratch: Vec::new(),
+        }
+    }
+
+    /// The raw V1², V2² per window of the samples now in the workspace.
+    fn raw_per_window(&mut self, ctx: &ScanContext) -> Vec<Pair> {
+        self.buf.clear();
+        self.buf
+            .extend(self.samples.iter().map(|&m| Complex64::new(m, 0.0)));
+        let zero = Complex64::new(0.0, 0.0);
+        self.scratch.resize(ctx.fft.get_inplace_scratch_len(), zero);
+        ctx.fft
+            .process_with_scratch(&mut self.buf, &mut self.scratch);
+        ctx.bins
+            .iter()
+            .map(|b| raw_estimates(&self.buf, b))
+            .collect()
+    }
+}
+
+/// One detector's piston-free calibration: per window, the raw estimates of
+/// the calibrator (the normalization) and V1, V2 of the source without
+/// piston (what the piston's effect is measured from).
+#[derive(Debug, Clone)]
+pub struct Calibration {
+    /// The detector.
+    pub detector: Detector,
+    /// Sub-sample offsets and weights of the detector.
+    sub: (Vec<f64>, Vec<f64>),
+    /// Raw V1², V2² of the calibrator, per window.
+    calibrator: Vec<Pair>,
+    /// V1, V2 (not squared) of the source without piston, per window.
+    no_piston: Vec<Pair>,
+}
+
+impl Calibration {
+    fn new(ctx: &ScanContext, detector: Detector, ws: &mut Workspace) -> Result<Self> {
+        let sub = detector.sub_samples()?;
+        let (u, w) = (&sub.0, &sub.1);
+        fill_scan(&ctx.table, ctx.setup, u, w, &|_| 0.0, 0.0, &mut ws.samples);
+        let source = ws.raw_per_window(ctx);
+        let calibrator = match &ctx.cal_table {
+            None => source.clone(),
+            Some(t) => {
+                fill_scan(t, ctx.setup, u, w, &|_| 0.0, 0.0, &mut ws.samples);
+                ws.raw_per_window(ctx)
+            }
+        };
+        let no_piston = source
+            .iter()
+            .zip(&calibrator)
+            .map(|(s, c)| Pair {
+                v1_sq: (s.v1_sq / c.v1_sq).sqrt(),
+                v2_sq: (s.v2_sq / c.v2_sq).sqrt(),
+            })
+            .collect();
+        Ok(Calibration {
+            detector,
+            sub,
+            calibrator,
+            no_piston,
+        })
+    }
+
+    /// V(piston) − V(no piston) of V1 and V2 per window, from the raw
+    /// estimates of a scan with piston.
+    fn differences(&self, raw: &[Pair]) -> Vec<Pair> {
+        raw.iter()
+            .zip(self.calibrator.iter().zip(&self.no_piston))
+            .map(|(r, (c, v0))| Pair {
+                v1_sq: (r.v1_sq / c.v1_sq).sqrt() - v0.v1_sq,
+                v2_sq: (r.v2_sq / c.v2_sq).sqrt() - v0.v2_sq,
+            })
+            .collect()
+    }
+}
+
+/// One scan's effect of the piston: per detector, per window, the V1 and V2
+/// differences (in the `v1_sq`, `v2_sq` fields of [`Pair`], here not
+/// squared).
+struct ScanResult {
+    per_detector: Vec<Vec<Pair>>,
+}
+
+/// Running statistics of the differences, one accumulator per detector ×
+/// window × estimator.
+#[derive(Clone)]
+struct DifferenceStats {
+    /// `[detector][window]` → (V1, V2).
+    per_detector: Vec<Vec<(RunningStats, RunningStats)>>,
+}
+
+impl DifferenceStats {
+    fn new(detectors: usize) -> Self {
+        let window = (RunningStats::default(), RunningStats::default());
+        DifferenceStats {
+            per_detector: vec![vec![window; BIN_WINDOWS.len()]; detectors],
+        }
+    }
+
+    fn push(&mut self, scan: &ScanResult) {
+        for (acc, diffs) in self.per_detector.iter_mut().zip(&scan.per_detector) {
+            for ((v1, v2), d) in acc.iter_mut().zip(diffs) {
+                v1.push(d.v1_sq);
+                v2.push(d.v2_sq);
+            }
+        }
+    }
+
+    fn merge(&mut self, other: &DifferenceStats) {
+        for (acc, o) in self.per_detector.iter_mut().zip(&other.per_detector) {
+            for ((v1, v2), (o1, o2)) in acc.iter_mut().zip(o) {
+                v1.merge(o1);
+                v2.merge(o2);
+            }
+        }
+    }
+}
+
+/// Scan `s` of the sequence seen by every calibrated detector.
+fn scan(
+    ctx: &ScanContext,
+    sequence: &PistonSequence,
+    calibrations: &[Calibration],
+    s: usize,
+    ws: &mut Workspace,
+) -> ScanResult {
+    let r = sequence.reference_um(s);
+    let p = |tau: f64| sequence.at(s, tau);
+    let per_detector = calibrations
+        .iter()
+        .map(|cal| {
+            let (u, w) = (&cal.sub.0, &cal.sub.1);
+            fill_scan(&ctx.table, ctx.setup, u, w, &p, r, &mut ws.samples);
+            cal.differences(&ws.raw_per_window(ctx))
+        })
+        .collect();
+    ScanResult { per_detector }
+}
+
+/// All scans, in units of [`SCAN_BLOCK`] consecutive scans run in parallel
+/// and merged in unit order (deterministic whatever the thread count).
+fn scan_all(
+    ctx: &ScanContext,
+    sequence: &PistonSequence,
+    calibrations: &[Calibration],
+    size: &RunSize,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> DifferenceStats {
+    let units = size.scans.div_ceil(SCAN_BLOCK) as u64;
+    // The scans draw no random numbers (all the randomness is in the
+    // sequence): the units' generators are unused, their seed is a label.
+    let unit_seed = derive_seed(size.seed, "piston-scans", &[]);
+    let per_unit = run_units(unit_seed, units, size.threads, |unit, _rng| {
+        let first = unit as usize * SCAN_BLOCK;
+        let last = (first + SCAN_BLOCK).min(size.scans);
+        let mut ws = Workspace::new(ctx.setup.samples);
+        let mut stats = DifferenceStats::new(calibrations.len());
+        for s in first..last {
+            stats.push(&scan(ctx, sequence, calibrations, s, &mut ws));
+        }
+        if let Some(cb) = progress {
+            cb((last - first) as u64);
+        }
+        stats
+    });
+    let mut total = DifferenceStats::new(calibrations.len());
+    for u in &per_unit {
+        total.merge(u);
+    }
+    total
+}
+
+/// What a run reports of the sequence besides the differences.
+struct SequenceFacts {
+    piston_rms_um: f64,
+    residual_rms_um: f64,
+}
+
+/// One [`PistonRun`] per detector from the merged statistics.
+fn reduce(
+    setup: &ScanSetup,
+    size: &RunSize,
+    facts: &SequenceFacts,
+    calibrations: &[Calibration],
+    stats: &DifferenceStats,
+) -> Vec<PistonRun> {
+    calibrations
+        .iter()
+        .zip(&stats.per_detector)
+        .map(|(cal, acc)| PistonRun {
+            fringe_hz: setup.fringe_hz,
+            detector: cal.detector,
+            scans: size.scans,
+            seed: size.seed,
+            scan_time_s: setup.scan_time_s(),
+            piston_rms_um: facts.piston_rms_um,
+            residual_rms_um: facts.residual_rms_um,
+            windows: BIN_WINDOWS
+                .iter()
+                .zip(cal.no_piston.iter().zip(acc))
+                .map(|(&window, (v0, (v1, v2)))| WindowResult {
+                    window,
+                    v1_no_piston: v0.v1_sq,
+                    v2_no_piston: v0.v2_sq,
+                    v1: v1.summary(),
+                    v2: v2.summary(),
+                })
+                .collect(),
+        })
+        .collect()
 }
 
 /// Runs the piston Monte Carlo: synthesises one piston sequence for `scans`
@@ -155,7 +457,8 @@ fn raw_per_window(
 /// for all), and returns one [`PistonRun`] per detector.
 ///
 /// `progress`, if given, is called with the number of scans just finished.
-/// Deterministic in the seed whatever the thread count.
+/// Deterministic in the seed whatever the thread count; memory does not
+/// grow with the number of scans beyond the sequence itself.
 pub fn simulate(
     obs: &Observation,
     spectrum: &PistonSpectrum,
@@ -164,166 +467,59 @@ pub fn simulate(
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Vec<PistonRun>> {
-    let RunSize {
-        scans,
-        seed,
-        threads,
-    } = *size;
-    setup.validate()?;
-    let n = setup.samples;
-    if scans < 2 || scans.saturating_mul(n) > MAX_SERIES - 4 {
-        return Err(Error::OutOfRange {
-            param: "scans",
-            value: scans as f64,
-            accepted: format!("2 to {} with {n} samples per scan", (MAX_SERIES - 4) / n),
-        });
+    validate_size(setup, size)?;
+    for d in detectors {
+        d.sub_samples()?;
     }
-    let subs = detectors
+    Sampling::new(setup.samples, setup.dx_um, false)?.check_aliasing(obs)?;
+    let sequence = PistonSequence::synthesize(spectrum, setup, size)?;
+    let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
+    let ctx = ScanContext::new(obs, setup, table_range_um(setup, excursion)?)?;
+    let mut ws = Workspace::new(setup.samples);
+    let calibrations = detectors
         .iter()
-        .map(Detector::sub_samples)
+        .map(|&d| Calibration::new(&ctx, d, &mut ws))
         .collect::<Result<Vec<_>>>()?;
-    Sampling::new(n, setup.dx_um, false)?.check_aliasing(obs)?;
-    let dt = setup.sample_time_s();
-    let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
-    // The sequence: stream 0 of the seed's unit space is the coefficient
-    // blocks; scans use no further randomness.
-    let series = synthesize_series(&psd, dt, scans * n + 4, seed, threads)?;
-    let m = series.len();
-    let piston_rms_um = (series.iter().map(|p| p * p).sum::<f64>() / m as f64).sqrt();
-    let reference = |s: usize| -> f64 {
-        let base = s * n;
-        match setup.reference {
-            PistonReference::Centre => series[base + n / 2],
-            PistonReference::Mean => series[base..base + n].iter().sum::<f64>() / n as f64,
-            PistonReference::Absolute => 0.0,
-        }
+    let stats = scan_all(&ctx, &sequence, &calibrations, size, progress);
+    let facts = SequenceFacts {
+        piston_rms_um: sequence.rms_um(),
+        residual_rms_um,
     };
-    // Largest OPD any sub-sample reaches, for the table.
-    let (mut excursion, mut resid2) = (0.0_f64, 0.0);
-    for s in 0..scans {
-        let r = reference(s);
-        for j in 0..=n + 1 {
-            let d = series[(s * n + j) % m] - r;
-            excursion = excursion.max(d.abs());
-            if j < n {
-                resid2 += d * d;
-            }
-        }
-        let prev = series[(s * n + m - 1) % m] - r;
-        excursion = excursion.max(prev.abs());
-    }
-    let residual_rms_um = (resid2 / (scans * n) as f64).sqrt();
-    let max_opd = (n / 2 + 1) as f64 * setup.dx_um + 1.5 * excursion + 1.0;
-    if max_opd > MAX_OPD_UM {
-        return Err(Error::Invalid {
-            param: "reference",
-            reason: format!(
-                "the piston moves the fringe packet by up to {excursion:.0} um within the scans (at most {MAX_OPD_UM} um of OPD is simulated): lower the seeing, raise the fringe frequency or re-centre the scans (--reference mean)"
-            ),
-        });
-    }
-    let table = FringeTable::new(obs, max_opd)?;
-    let cal_obs = obs.calibrator();
-    let cal_table = if obs.source == Source::Point && obs.phase.is_zero() {
-        None
-    } else {
-        Some(FringeTable::new(&cal_obs, max_opd)?)
-    };
-    let bins: Vec<Vec<usize>> = BIN_WINDOWS
+    Ok(reduce(setup, size, &facts, &calibrations, &stats))
+}
+
+/// The seed of the run at fringe frequency `fringe_hz` of a sweep from
+/// `seed`: keyed by the frequency, so a frequency's result does not depend
+/// on the other frequencies asked.
+pub fn sweep_seed(seed: u64, fringe_hz: f64) -> u64 {
+    derive_seed(seed, "piston", &[fringe_hz])
+}
+
+/// [`simulate`] at each fringe frequency of `frequencies` (the template
+/// `setup` with its `fringe_hz` replaced), each from its own sequence of
+/// seed [`sweep_seed`]`(size.seed, f)`. Returns, per frequency, one
+/// [`PistonRun`] per detector; `progress` counts scans over all of them.
+pub fn sweep(
+    obs: &Observation,
+    spectrum: &PistonSpectrum,
+    frequencies: &[f64],
+    setup: &ScanSetup,
+    detectors: &[Detector],
+    size: &RunSize,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<Vec<PistonRun>>> {
+    frequencies
         .iter()
-        .map(|w| w.bins(n, setup.dx_um, &obs.spectrum))
-        .collect();
-    let fft = FftPlanner::new().plan_fft_forward(n);
-    let mut out = Vec::new();
-    // All detectors' scans are computed in one pass per block.
-    struct Fixed {
-        cal: Vec<Pair>,
-        v0: Vec<Pair>,
-    }
-    let mut fixed = Vec::new();
-    for (u, w) in &subs {
-        let mut buf = Vec::new();
-        let mut scratch = Vec::new();
-        let mut samples = vec![0.0; n];
-        fill_scan(&table, setup, u, w, &|_| 0.0, 0.0, &mut samples);
-        let src = raw_per_window(fft.as_ref(), &samples, &bins, &mut buf, &mut scratch);
-        let cal = match &cal_table {
-            None => src.clone(),
-            Some(t) => {
-                fill_scan(t, setup, u, w, &|_| 0.0, 0.0, &mut samples);
-                raw_per_window(fft.as_ref(), &samples, &bins, &mut buf, &mut scratch)
-            }
-        };
-        let v0 = src
-            .iter()
-            .zip(&cal)
-            .map(|(s, c)| Pair {
-                v1_sq: (s.v1_sq / c.v1_sq).sqrt(),
-                v2_sq: (s.v2_sq / c.v2_sq).sqrt(),
-            })
-            .collect();
-        fixed.push(Fixed { cal, v0 });
-    }
-    let units = scans.div_ceil(SCAN_BLOCK) as u64;
-    let nw = BIN_WINDOWS.len();
-    let per_unit = run_units(seed ^ 0x5CA4_5CA4, units, threads, |unit, _rng| {
-        let first = unit as usize * SCAN_BLOCK;
-        let last = (first + SCAN_BLOCK).min(scans);
-        let mut buf = Vec::with_capacity(n);
-        let mut scratch = Vec::new();
-        let mut samples = vec![0.0; n];
-        // Per detector, per scan: [d1, d2] per window.
-        let mut diffs = vec![Vec::with_capacity((last - first) * 2 * nw); subs.len()];
-        for s in first..last {
-            let base = (s * n) as f64;
-            let r = reference(s);
-            let p = |tau: f64| interp(&series, base + tau);
-            for (di, (u, w)) in subs.iter().enumerate() {
-                fill_scan(&table, setup, u, w, &p, r, &mut samples);
-                let raw = raw_per_window(fft.as_ref(), &samples, &bins, &mut buf, &mut scratch);
-                for (k, pr) in raw.iter().enumerate() {
-                    let c = &fixed[di].cal[k];
-                    let v0 = &fixed[di].v0[k];
-                    diffs[di].push((pr.v1_sq / c.v1_sq).sqrt() - v0.v1_sq);
-                    diffs[di].push((pr.v2_sq / c.v2_sq).sqrt() - v0.v2_sq);
-                }
-            }
-        }
-        if let Some(cb) = progress {
-            cb((last - first) as u64);
-        }
-        diffs
-    });
-    for (di, det) in detectors.iter().enumerate() {
-        let windows = BIN_WINDOWS
-            .iter()
-            .enumerate()
-            .map(|(k, &window)| {
-                let pick = |e: usize| -> Vec<f64> {
-                    per_unit
-                        .iter()
-                        .flat_map(|u| u[di].chunks(2 * nw).map(move |c| c[2 * k + e]))
-                        .collect()
-                };
-                WindowResult {
-                    window,
-                    v1_no_piston: fixed[di].v0[k].v1_sq,
-                    v2_no_piston: fixed[di].v0[k].v2_sq,
-                    v1: Estimate::from_values(&pick(0)),
-                    v2: Estimate::from_values(&pick(1)),
-                }
-            })
-            .collect();
-        out.push(PistonRun {
-            fringe_hz: setup.fringe_hz,
-            detector: *det,
-            scans,
-            seed,
-            scan_time_s: setup.scan_time_s(),
-            piston_rms_um,
-            residual_rms_um,
-            windows,
-        });
-    }
-    Ok(out)
+        .map(|&f| {
+            let setup = ScanSetup {
+                fringe_hz: f,
+                ..*setup
+            };
+            let size = RunSize {
+                seed: sweep_seed(size.seed, f),
+                ..*size
+            };
+            simulate(obs, spectrum, &setup, detectors, &size, progress)
+        })
+        .collect()
 }
