@@ -2,8 +2,9 @@
 //! differential-piston spectrum, piston sequences, scans through them, and
 //! the Monte Carlo of the bias and scatter they give V1 and V2.
 //!
-//! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing, and the temporal
-//!   spectrum of the differential piston ([`turbulence::PistonSpectrum`]).
+//! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing.
+//! - [`spectrum`]: the temporal spectrum of the differential piston
+//!   ([`spectrum::PistonSpectrum`], also at `piston::turbulence::PistonSpectrum`).
 //! - [`series`]: piston sequences synthesised from that spectrum.
 //! - [`fringe_table`]: the fringe tabulated against OPD.
 //! - [`scan`]: the detectors, the packet reference and one scan's samples.
@@ -15,6 +16,7 @@ pub mod fringe_table;
 pub mod scan;
 pub mod series;
 pub mod simulation;
+pub mod spectrum;
 pub mod turbulence;
 
 pub use fringe_table::*;
