@@ -8,10 +8,12 @@
 //! - [`series`]: piston sequences synthesised from that spectrum.
 //! - [`fringe_table`]: the fringe tabulated against OPD.
 //! - [`scan`]: the detectors, the packet reference and one scan's samples.
+//! - [`calibration`]: the piston-free calibration of each detector.
 //! - [`simulation`]: the Monte Carlo over consecutive scans (Figs. 4, 5).
 //!
 //! Everything is re-exported here: `v2ref::piston::simulate` etc.
 
+pub mod calibration;
 pub mod fringe_table;
 pub mod scan;
 pub mod series;
@@ -19,6 +21,7 @@ pub mod simulation;
 pub mod spectrum;
 pub mod turbulence;
 
+pub use calibration::Calibration;
 pub use fringe_table::*;
 pub use scan::*;
 pub use series::*;
