@@ -166,7 +166,8 @@ fn max_abs(x: &[f64]) -> f64 {
     x.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
-/// `claims` for each of `ids` when what they are computed from failed.
+/// A failed claim for each of `ids`, with the error that stopped what they
+/// are computed from.
 fn failed_all(ids: &[&'static str], err: &Error) -> Vec<Computed> {
     ids.iter().map(|id| Computed::failed(id, err)).collect()
 }
