@@ -238,10 +238,7 @@ fn fig5_runs(
         .collect())
 }
 
-fn make_fig5(effort: Effort) -> Result<Figure> {
-    let (count, scans) = fig5_size(effort);
-    let freqs = fig5_frequencies(count);
-    let runs = fig5_runs(paper_turbulence(), &freqs, scans, FIGURE_SEED)?;
+fn fig5_columns() -> Vec<Column> {
     let mut columns = vec![
         Column::new("fringe_hz", "Hz"),
         Column::new("scan_time_s", "s"),
@@ -255,26 +252,41 @@ fn make_fig5(effort: Effort) -> Result<Figure> {
         estimate_columns(&format!("v1{suffix}"), &mut columns);
         estimate_columns(&format!("v2{suffix}"), &mut columns);
     }
-    let table = |name: &str, pick: &dyn Fn(&(PistonRun, PistonRun)) -> &PistonRun| {
-        let rows = runs
-            .iter()
-            .map(|pair| {
-                let r = pick(pair);
-                let mut row = vec![r.fringe_hz, r.scan_time_s, r.residual_rms_um];
-                for w in BIN_WINDOWS {
-                    let wr = r.window(w);
-                    estimate_cells(&wr.v1, &mut row);
-                    estimate_cells(&wr.v2, &mut row);
-                }
-                row
-            })
-            .collect();
-        Table {
-            name: name.into(),
-            columns: columns.clone(),
-            rows,
-        }
-    };
+    columns
+}
+
+/// One Fig. 5 panel: a row per frequency of one detector's runs.
+fn fig5_table<'a>(name: &str, runs: impl Iterator<Item = &'a PistonRun>) -> Table {
+    let rows = runs
+        .map(|r| {
+            let mut row = vec![r.fringe_hz, r.scan_time_s, r.residual_rms_um];
+            for w in BIN_WINDOWS {
+                let wr = r.window(w);
+                estimate_cells(&wr.v1, &mut row);
+                estimate_cells(&wr.v2, &mut row);
+            }
+            row
+        })
+        .collect();
+    Table {
+        name: name.into(),
+        columns: fig5_columns(),
+        rows,
+    }
+}
+
+fn make_fig5(effort: Effort) -> Result<Figure> {
+    let (count, scans) = fig5_size(effort);
+    let freqs = fig5_frequencies(count);
+    let runs = fig5_runs(paper_turbulence(), &freqs, scans, FIGURE_SEED)?;
+    let tables = vec![
+        fig5_table("fig5_sampled", runs.iter().map(|p| &p.0)),
+        fig5_table("fig5_integrating", runs.iter().map(|p| &p.1)),
+    ];
+    fig5_figure(count, scans, tables)
+}
+
+fn fig5_figure(count: usize, scans: usize, tables: Vec<Table>) -> Result<Figure> {
     Ok(Figure {
         id: "fig5".into(),
         caption: "Fig. 5: bias and scatter of V1 and V2 from differential piston against fringe frequency, unresolved source, 18 m baseline; sampled detector (left, fig5_sampled) and integrating detector (right, fig5_integrating) on the same piston sequences. Unsuffixed columns sum the positive-frequency bins; _band the bins inside the band; _all every bin.".into(),
@@ -298,10 +310,7 @@ fn make_fig5(effort: Effort) -> Result<Figure> {
             "frequencies": count,
             "seed": FIGURE_SEED,
         }),
-        tables: vec![
-            table("fig5_sampled", &|p| &p.0),
-            table("fig5_integrating", &|p| &p.1),
-        ],
+        tables,
     })
 }
 
