@@ -10,10 +10,11 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::montecarlo::{RunningStats, Summary};
 use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
-    scan_samples, series_variance, simulate, synthesize_series, Detector, Estimate, FringeTable,
-    PistonReference, PistonRun, RunSize, ScanSetup,
+    scan_samples, series_variance, simulate, sweep, sweep_seed, synthesize_series, Detector,
+    FringeTable, PistonReference, PistonRun, RunSize, ScanSetup,
 };
 use v2ref::tolerance::{
     ASYMPTOTIC_CORRECTION_REL, FRINGE_ORACLE_ABS, FRINGE_TABLE_CHECK_ABS, FRINGE_TABLE_REL,
@@ -401,8 +402,8 @@ fn wind_speed_rescales_the_fringe_frequency_axis() {
         23,
         0,
     );
-    let z_mean = |x: Estimate, y: Estimate| (x.mean - y.mean) / x.mean_stderr.hypot(y.mean_stderr);
-    let z_std = |x: Estimate, y: Estimate| (x.std - y.std) / x.std_stderr.hypot(y.std_stderr);
+    let z_mean = |x: Summary, y: Summary| (x.mean - y.mean) / x.stderr_mean.hypot(y.stderr_mean);
+    let z_std = |x: Summary, y: Summary| (x.std - y.std) / x.stderr_std.hypot(y.stderr_std);
     let (wa, wb, wc) = (
         a.window(BinWindow::Positive),
         b.window(BinWindow::Positive),
@@ -425,14 +426,46 @@ fn wind_speed_rescales_the_fringe_frequency_axis() {
 }
 
 #[test]
-fn estimate_statistics_of_a_known_sample() {
-    let e = Estimate::from_values(&[1.0, 2.0, 3.0, 4.0]);
+fn run_statistics_are_the_running_statistics_of_the_differences() {
+    // The results carry montecarlo::Summary: mean, std (n − 1) and their
+    // standard errors from the sample fourth moment,
+    // se(s²) = √((μ4 − (n−3)/(n−1) s⁴)/n), se(s) = se(s²)/(2s).
+    let e = RunningStats::from_values(&[1.0, 2.0, 3.0, 4.0]).summary();
     assert_eq!(e.mean, 2.5);
     assert_abs_eq!(e.std, (5.0f64 / 3.0).sqrt(), ULPS);
-    assert_abs_eq!(e.mean_stderr, (5.0f64 / 12.0).sqrt(), ULPS);
-    // m4 = (2·1.5⁴ + 2·0.5⁴)/4 = 2.5625; var = 5/3.
-    let want = ((2.5625 - 25.0 / 9.0f64).max(0.0) / 4.0).sqrt() / (2.0 * (5.0f64 / 3.0).sqrt());
-    assert_abs_eq!(e.std_stderr, want, ULPS);
+    assert_abs_eq!(e.stderr_mean, (5.0f64 / 12.0).sqrt(), ULPS);
+    // μ4 = (2·1.5⁴ + 2·0.5⁴)/4 = 2.5625; s² = 5/3; (n−3)/(n−1) = 1/3.
+    let want = ((2.5625 - 25.0 / 27.0f64) / 4.0).sqrt() / (2.0 * (5.0f64 / 3.0).sqrt());
+    assert_abs_eq!(e.stderr_std, want, ULPS);
+}
+
+#[test]
+fn a_sweep_frequency_does_not_depend_on_the_others() {
+    // Seeds are keyed by the fringe frequency: 300 Hz alone or after 120 Hz
+    // gives the same run, equal to simulate at sweep_seed(seed, 300).
+    let o = obs(Source::Point);
+    let s = spectrum(1.0, 10.0, 18.0);
+    let size = RunSize {
+        scans: 20,
+        seed: 5,
+        threads: 0,
+    };
+    let det = [Detector::Sampled];
+    let setup = ScanSetup::paper(1.0);
+    let alone = sweep(&o, &s, &[300.0], &setup, &det, &size, None).unwrap();
+    let both = sweep(&o, &s, &[120.0, 300.0], &setup, &det, &size, None).unwrap();
+    assert_eq!(alone[0], both[1]);
+    assert_ne!(both[0][0].seed, both[1][0].seed);
+    let direct = run(
+        &o,
+        &s,
+        ScanSetup::paper(300.0),
+        Detector::Sampled,
+        20,
+        sweep_seed(5, 300.0),
+        0,
+    );
+    assert_eq!(alone[0][0], direct);
 }
 
 #[test]
@@ -450,7 +483,7 @@ fn bad_input_is_refused_with_typed_errors() {
     assert!(matches!(
         go(ScanSetup::paper(0.0), Detector::Sampled, size),
         Err(Error::OutOfRange {
-            param: "fringe-hz",
+            param: "fringe_hz",
             ..
         })
     ));
@@ -461,7 +494,7 @@ fn bad_input_is_refused_with_typed_errors() {
             size
         ),
         Err(Error::OutOfRange {
-            param: "sub-samples",
+            param: "sub_samples",
             ..
         })
     ));

@@ -78,35 +78,35 @@ fn bad_parameters_are_typed_errors() {
     assert!(matches!(
         Turbulence::from_seeing(1.0, 2.2, 0.0, None),
         Err(Error::OutOfRange {
-            param: "wind-mps",
+            param: "wind_mps",
             ..
         })
     ));
     assert!(matches!(
         Turbulence::from_seeing(-1.0, 2.2, 10.0, None),
         Err(Error::OutOfRange {
-            param: "seeing-arcsec",
+            param: "seeing_arcsec",
             ..
         })
     ));
     assert!(matches!(
         Turbulence::from_seeing(1.0, 2.2, 10.0, Some(-3.0)),
         Err(Error::OutOfRange {
-            param: "outer-scale-m",
+            param: "outer_scale_m",
             ..
         })
     ));
     assert!(matches!(
         PistonSpectrum::new(paper(), 0.0, 18.0),
         Err(Error::OutOfRange {
-            param: "aperture-m",
+            param: "aperture_m",
             ..
         })
     ));
     assert!(matches!(
         PistonSpectrum::new(paper(), D, f64::NAN),
         Err(Error::NotFinite {
-            param: "baseline-m",
+            param: "baseline_m",
             ..
         })
     ));

@@ -11,7 +11,7 @@ use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
 use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
 use v2ref::piston::{
-    simulate, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
+    sweep, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
 
 /// Flags of `piston`.
@@ -94,10 +94,10 @@ fn row(run: &PistonRun, window: BinWindow) -> Row {
         bias_v2: w.v2.mean,
         scatter_v1: w.v1.std,
         scatter_v2: w.v2.std,
-        bias_v1_stderr: w.v1.mean_stderr,
-        bias_v2_stderr: w.v2.mean_stderr,
-        scatter_v1_stderr: w.v1.std_stderr,
-        scatter_v2_stderr: w.v2.std_stderr,
+        bias_v1_stderr: w.v1.stderr_mean,
+        bias_v2_stderr: w.v2.stderr_mean,
+        scatter_v1_stderr: w.v1.stderr_std,
+        scatter_v2_stderr: w.v2.stderr_std,
         v1_no_piston: w.v1_no_piston,
         v2_no_piston: w.v2_no_piston,
         scan_time_s: run.scan_time_s,
@@ -194,24 +194,30 @@ fn simulate_each(
         "piston scans",
     );
     let tick = |k: u64| bar.inc(k);
-    let mut results = Vec::new();
-    for (i, &f) in freqs.iter().enumerate() {
-        let setup = ScanSetup {
-            samples: sampling.samples(),
-            dx_um: sampling.dx_um(),
-            wavelength_um: args.obs.wavelength_um,
-            fringe_hz: f,
-            reference: args.reference,
-        };
-        let size = RunSize {
-            scans: args.scans,
-            // One seed per frequency, derived from the user's.
-            seed: args.run.seed ^ ((i as u64) << 40),
-            threads: args.run.threads,
-        };
-        let mut runs = simulate(obs, spectrum, &setup, &[detector], &size, Some(&tick))?;
-        results.push(runs.swap_remove(0));
-    }
+    let setup = ScanSetup {
+        samples: sampling.samples(),
+        dx_um: sampling.dx_um(),
+        wavelength_um: args.obs.wavelength_um,
+        fringe_hz: freqs[0],
+        reference: args.reference,
+    };
+    let size = RunSize {
+        scans: args.scans,
+        // Each frequency's seed is derived from the user's and the
+        // frequency's value (piston::sweep_seed), not its place in the list.
+        seed: args.run.seed,
+        threads: args.run.threads,
+    };
+    let runs = sweep(
+        obs,
+        spectrum,
+        freqs,
+        &setup,
+        &[detector],
+        &size,
+        Some(&tick),
+    )?;
+    let results: Vec<PistonRun> = runs.into_iter().flatten().collect();
     bar.finish_and_clear();
     Ok(results)
 }

@@ -1,8 +1,28 @@
 //! §6 of the paper, *Effect of differential piston*: the turbulence and the
 //! differential-piston spectrum, piston sequences, scans through them, and
 //! the Monte Carlo of the bias and scatter they give V1 and V2.
+//!
+//! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing.
+//! - [`spectrum`]: the temporal spectrum of the differential piston
+//!   ([`spectrum::PistonSpectrum`], also at `piston::turbulence::PistonSpectrum`).
+//! - [`series`]: piston sequences synthesised from that spectrum.
+//! - [`fringe_table`]: the fringe tabulated against OPD.
+//! - [`scan`]: the detectors, the packet reference and one scan's samples.
+//! - [`calibration`]: the piston-free calibration of each detector.
+//! - [`simulation`]: the Monte Carlo over consecutive scans (Figs. 4, 5).
+//!
+//! Everything is re-exported here: `v2ref::piston::simulate` etc.
 
+pub mod calibration;
+pub mod fringe_table;
+pub mod scan;
+pub mod series;
 pub mod simulation;
+pub mod spectrum;
 pub mod turbulence;
 
+pub use calibration::Calibration;
+pub use fringe_table::*;
+pub use scan::*;
+pub use series::*;
 pub use simulation::*;

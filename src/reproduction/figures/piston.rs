@@ -21,9 +21,10 @@ use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
+use crate::montecarlo::{derive_seed, Summary};
 use crate::piston::turbulence::{PistonSpectrum, TransverseTable, Turbulence};
 use crate::piston::{
-    simulate, Detector, Estimate, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
+    simulate, sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
 use crate::reproduction::cases::{
     fig4_size, fig5_frequencies, fig5_size, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M,
@@ -49,8 +50,10 @@ fn estimate_columns(prefix: &str, cols: &mut Vec<Column>) {
     }
 }
 
-fn estimate_cells(e: &Estimate, row: &mut Vec<f64>) {
-    row.extend([e.mean, e.mean_stderr, e.std, e.std_stderr]);
+/// bias = mean, bias_stderr = stderr_mean, scatter = std, scatter_stderr =
+/// stderr_std.
+fn estimate_cells(e: &Summary, row: &mut Vec<f64>) {
+    row.extend([e.mean, e.stderr_mean, e.std, e.stderr_std]);
 }
 
 /// A process-wide cache: the claims and the figure registry share one run.
@@ -85,65 +88,90 @@ pub fn fig4(effort: Effort) -> Result<Figure> {
     cached("fig4", effort, || make_fig4(effort))
 }
 
+/// The Fig. 4 cases: (disk diameter, mas; fringe frequency, Hz).
+const FIG4_CASES: [(f64, f64); 4] = [(43.0, 300.0), (43.0, 1000.0), (10.0, 300.0), (10.0, 1000.0)];
+
+fn fig4_columns() -> Vec<Column> {
+    let mut columns = vec![
+        Column::new("spatial_freq_cpas", "cycles/arcsec"),
+        Column::new("baseline_m", "m"),
+        Column::new("piston_rms_um", "um"),
+        Column::new("v1_no_piston", ""),
+        Column::new("v2_no_piston", ""),
+    ];
+    estimate_columns("v1", &mut columns);
+    estimate_columns("v2", &mut columns);
+    columns
+}
+
+/// The seed of the Fig. 4 point (disk, fringe frequency, spatial frequency):
+/// keyed by what it computes, not by its position in the figure.
+pub fn fig4_seed(seed: u64, diameter_mas: f64, fringe_hz: f64, s_cpas: f64) -> u64 {
+    derive_seed(seed, "fig4", &[diameter_mas, fringe_hz, s_cpas])
+}
+
+/// One Fig. 4 row: the disk of `diameter_mas` at spatial frequency `s`
+/// (the baseline follows it), sampled detector, positive bins.
+fn fig4_row(
+    table: &Arc<TransverseTable>,
+    (diameter_mas, fringe_hz): (f64, f64),
+    s: f64,
+    scans: usize,
+) -> Result<Vec<f64>> {
+    let obs = k_band_obs(
+        Source::uniform_disk(diameter_mas)?,
+        Frequency::SpatialFreqCpas(s),
+    )?;
+    let spectrum = PistonSpectrum::from_table(table.clone(), obs.baseline_m)?;
+    let size = RunSize {
+        scans,
+        seed: fig4_seed(FIGURE_SEED, diameter_mas, fringe_hz, s),
+        threads: 0,
+    };
+    let setup = ScanSetup::paper(fringe_hz);
+    let run = &simulate(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)?[0];
+    let w = run.window(BinWindow::Positive);
+    let mut row = vec![
+        s,
+        obs.baseline_m,
+        spectrum.rms_um(),
+        w.v1_no_piston,
+        w.v2_no_piston,
+    ];
+    estimate_cells(&w.v1, &mut row);
+    estimate_cells(&w.v2, &mut row);
+    Ok(row)
+}
+
+/// One Fig. 4 panel: S from 0 to 80 cycles/arcsec by `step`.
+fn fig4_table(
+    table: &Arc<TransverseTable>,
+    case: (f64, f64),
+    step: f64,
+    scans: usize,
+) -> Result<Table> {
+    let points = (80.0 / step).round() as usize + 1;
+    let rows = (0..points)
+        .map(|p| fig4_row(table, case, p as f64 * step, scans))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Table {
+        name: format!("fig4_{}mas_{}hz", case.0 as u32, case.1 as u32),
+        columns: fig4_columns(),
+        rows,
+    })
+}
+
 fn make_fig4(effort: Effort) -> Result<Figure> {
     let (step, scans) = fig4_size(effort);
-    let turb = paper_turbulence();
-    let table = Arc::new(TransverseTable::new(turb, APERTURE_M)?);
-    let points = (80.0 / step).round() as usize + 1;
-    let mut tables = Vec::new();
-    for (ti, (diameter_mas, fringe_hz)) in
-        [(43.0, 300.0), (43.0, 1000.0), (10.0, 300.0), (10.0, 1000.0)]
-            .into_iter()
-            .enumerate()
-    {
-        let mut columns = vec![
-            Column::new("spatial_freq_cpas", "cycles/arcsec"),
-            Column::new("baseline_m", "m"),
-            Column::new("piston_rms_um", "um"),
-            Column::new("v1_no_piston", ""),
-            Column::new("v2_no_piston", ""),
-        ];
-        estimate_columns("v1", &mut columns);
-        estimate_columns("v2", &mut columns);
-        let mut rows = Vec::new();
-        for p in 0..points {
-            let s = p as f64 * step;
-            let obs = k_band_obs(
-                Source::uniform_disk(diameter_mas)?,
-                Frequency::SpatialFreqCpas(s),
-            )?;
-            let spectrum = PistonSpectrum::from_table(table.clone(), obs.baseline_m)?;
-            let seed = FIGURE_SEED ^ ((4 + ti as u64) << 32) ^ p as u64;
-            let run = &simulate(
-                &obs,
-                &spectrum,
-                &ScanSetup::paper(fringe_hz),
-                &[Detector::Sampled],
-                &RunSize {
-                    scans,
-                    seed,
-                    threads: 0,
-                },
-                None,
-            )?[0];
-            let w = run.window(BinWindow::Positive);
-            let mut row = vec![
-                s,
-                obs.baseline_m,
-                spectrum.rms_um(),
-                w.v1_no_piston,
-                w.v2_no_piston,
-            ];
-            estimate_cells(&w.v1, &mut row);
-            estimate_cells(&w.v2, &mut row);
-            rows.push(row);
-        }
-        tables.push(Table {
-            name: format!("fig4_{}mas_{}hz", diameter_mas as u32, fringe_hz as u32),
-            columns,
-            rows,
-        });
-    }
+    let table = Arc::new(TransverseTable::new(paper_turbulence(), APERTURE_M)?);
+    let tables = FIG4_CASES
+        .iter()
+        .map(|&case| fig4_table(&table, case, step, scans))
+        .collect::<Result<Vec<_>>>()?;
+    fig4_figure(step, scans, tables)
+}
+
+fn fig4_figure(step: f64, scans: usize, tables: Vec<Table>) -> Result<Figure> {
     Ok(Figure {
         id: "fig4".into(),
         caption: "Fig. 4: bias (mean of V with piston minus V without) and scatter (standard deviation over scans) of V1 and V2 for 43 and 10 mas uniform disks at 300 and 1000 Hz fringe frequency, against spatial frequency; the baseline follows the spatial frequency so the piston grows with it. Positive-frequency bins.".into(),
@@ -176,8 +204,10 @@ pub fn fig5(effort: Effort) -> Result<Figure> {
 }
 
 /// The Fig. 5 runs (sampled, integrating) at each frequency of `freqs`, on
-/// 18 m for an unresolved source with turbulence `turb`.
-pub fn fig5_runs(
+/// 18 m for an unresolved source with turbulence `turb`, through
+/// [`crate::piston::sweep`]: the run at f has seed
+/// [`crate::piston::sweep_seed`]`(seed, f)`, whatever the other frequencies.
+fn fig5_runs(
     turb: Turbulence,
     freqs: &[f64],
     scans: usize,
@@ -185,36 +215,30 @@ pub fn fig5_runs(
 ) -> Result<Vec<(PistonRun, PistonRun)>> {
     let obs = k_band_obs(Source::Point, Frequency::BaselineM(FIG5_BASELINE_M))?;
     let spectrum = PistonSpectrum::new(turb, APERTURE_M, FIG5_BASELINE_M)?;
-    let mut out = Vec::new();
-    for (i, &f) in freqs.iter().enumerate() {
-        let mut runs = simulate(
-            &obs,
-            &spectrum,
-            &ScanSetup::paper(f),
-            &[
-                Detector::Sampled,
-                Detector::Integrating {
-                    sub_samples: DEFAULT_SUB_SAMPLES,
-                },
-            ],
-            &RunSize {
-                scans,
-                seed: seed ^ ((i as u64) << 40),
-                threads: 0,
-            },
-            None,
-        )?;
-        let integ = runs.pop().expect("two detectors");
-        let samp = runs.pop().expect("two detectors");
-        out.push((samp, integ));
-    }
-    Ok(out)
+    let detectors = [
+        Detector::Sampled,
+        Detector::Integrating {
+            sub_samples: DEFAULT_SUB_SAMPLES,
+        },
+    ];
+    let size = RunSize {
+        scans,
+        seed,
+        threads: 0,
+    };
+    let template = ScanSetup::paper(freqs.first().copied().unwrap_or(1.0));
+    let runs = sweep(&obs, &spectrum, freqs, &template, &detectors, &size, None)?;
+    Ok(runs
+        .into_iter()
+        .map(|mut r| {
+            let integ = r.pop().expect("two detectors");
+            let samp = r.pop().expect("two detectors");
+            (samp, integ)
+        })
+        .collect())
 }
 
-fn make_fig5(effort: Effort) -> Result<Figure> {
-    let (count, scans) = fig5_size(effort);
-    let freqs = fig5_frequencies(count);
-    let runs = fig5_runs(paper_turbulence(), &freqs, scans, FIGURE_SEED)?;
+fn fig5_columns() -> Vec<Column> {
     let mut columns = vec![
         Column::new("fringe_hz", "Hz"),
         Column::new("scan_time_s", "s"),
@@ -228,26 +252,41 @@ fn make_fig5(effort: Effort) -> Result<Figure> {
         estimate_columns(&format!("v1{suffix}"), &mut columns);
         estimate_columns(&format!("v2{suffix}"), &mut columns);
     }
-    let table = |name: &str, pick: &dyn Fn(&(PistonRun, PistonRun)) -> &PistonRun| {
-        let rows = runs
-            .iter()
-            .map(|pair| {
-                let r = pick(pair);
-                let mut row = vec![r.fringe_hz, r.scan_time_s, r.residual_rms_um];
-                for w in BIN_WINDOWS {
-                    let wr = r.window(w);
-                    estimate_cells(&wr.v1, &mut row);
-                    estimate_cells(&wr.v2, &mut row);
-                }
-                row
-            })
-            .collect();
-        Table {
-            name: name.into(),
-            columns: columns.clone(),
-            rows,
-        }
-    };
+    columns
+}
+
+/// One Fig. 5 panel: a row per frequency of one detector's runs.
+fn fig5_table<'a>(name: &str, runs: impl Iterator<Item = &'a PistonRun>) -> Table {
+    let rows = runs
+        .map(|r| {
+            let mut row = vec![r.fringe_hz, r.scan_time_s, r.residual_rms_um];
+            for w in BIN_WINDOWS {
+                let wr = r.window(w);
+                estimate_cells(&wr.v1, &mut row);
+                estimate_cells(&wr.v2, &mut row);
+            }
+            row
+        })
+        .collect();
+    Table {
+        name: name.into(),
+        columns: fig5_columns(),
+        rows,
+    }
+}
+
+fn make_fig5(effort: Effort) -> Result<Figure> {
+    let (count, scans) = fig5_size(effort);
+    let freqs = fig5_frequencies(count);
+    let runs = fig5_runs(paper_turbulence(), &freqs, scans, FIGURE_SEED)?;
+    let tables = vec![
+        fig5_table("fig5_sampled", runs.iter().map(|p| &p.0)),
+        fig5_table("fig5_integrating", runs.iter().map(|p| &p.1)),
+    ];
+    fig5_figure(count, scans, tables)
+}
+
+fn fig5_figure(count: usize, scans: usize, tables: Vec<Table>) -> Result<Figure> {
     Ok(Figure {
         id: "fig5".into(),
         caption: "Fig. 5: bias and scatter of V1 and V2 from differential piston against fringe frequency, unresolved source, 18 m baseline; sampled detector (left, fig5_sampled) and integrating detector (right, fig5_integrating) on the same piston sequences. Unsuffixed columns sum the positive-frequency bins; _band the bins inside the band; _all every bin.".into(),
@@ -271,10 +310,7 @@ fn make_fig5(effort: Effort) -> Result<Figure> {
             "frequencies": count,
             "seed": FIGURE_SEED,
         }),
-        tables: vec![
-            table("fig5_sampled", &|p| &p.0),
-            table("fig5_integrating", &|p| &p.1),
-        ],
+        tables,
     })
 }
 

@@ -1,0 +1,427 @@
+//! The temporal spectrum of the differential piston between two apertures
+//! (paper, Section "Effect of differential piston"): P(ν) in µm²/Hz of
+//! frequency ν in Hz, from the turbulence of [`crate::piston::turbulence`].
+//!
+//! # Differential piston
+//!
+//! The piston of one circular aperture of diameter D is the OPD averaged over
+//! the pupil, which filters the spectrum by `A(f) = [2J1(πDf)/(πDf)]²`; the
+//! difference between two apertures on baseline **B** multiplies it by
+//! `2[1 − cos(2π **B**·**f**)]`. Under frozen flow at wind speed v along the
+//! baseline, the temporal (two-sided) power spectrum of the differential
+//! piston is
+//!
+//! `P(ν) = (1/v) · 2[1 − cos(2πBν/v)] · G(ν/v)`, with
+//! `G(f_x) = ∫ Φ_opd(√(f_x² + f_y²)) A(√(f_x² + f_y²)) df_y`  (µm² m),
+//!
+//! P in µm²/Hz, `∫_{−∞}^{∞} P dν = σ_p²` (Conan, Rousset & Madec 1995,
+//! JOSA A 12, 1559; Perrin 1997, A&AS 121, 553 for its use in simulating
+//! scanned interferograms). G is computed by adaptive quadrature and
+//! tabulated against ln(f_x D) once per (r0, D, L0); P at any ν then costs
+//! one interpolation.
+//!
+//! Kolmogorov asymptotes (checked in `tests/turbulence.rs`), with
+//! `I(a) = ∫(1+u²)^{−a} du = √π Γ(a − ½)/Γ(a)` and `K = (λ0/2π)² C_Φ r0^{−5/3}`:
+//!
+//! - ν ≪ v/B: `P ≈ (2πB)² K I(11/6) v^{−1/3} ν^{−2/3}` — slope −2/3;
+//! - v/B ≪ ν ≪ v/D: `P ≈ 2 K I(11/6) v^{5/3} ν^{−8/3}` (the cosine averaged) — slope −8/3;
+//! - ν ≫ v/D: `P ≈ 2 K I(10/3) 4/(π⁴D³) v^{14/3} ν^{−17/3}` (the Bessel
+//!   oscillation averaged) — slope −17/3.
+//!
+//! The low/middle asymptotes cross at `ν = v/(√2 π B) ≈ 0.225 v/B`, the
+//! middle/high ones at `ν = [4 I(10/3)/(π⁴ I(11/6))]^{1/3} v/D ≈ 0.299 v/D`.
+//!
+//! The wind is taken along the baseline, the case where the −2/3 regime
+//! exists (a wind across the baseline flattens the lowest frequencies);
+//! other directions are not implemented.
+
+use crate::error::{self, Result};
+use crate::math::quadrature::{integrate_pieces, Tolerance};
+use crate::math::special::{bessel_j0, jinc};
+use crate::piston::turbulence::{profile_integral, Turbulence};
+use std::f64::consts::PI;
+
+/// Below this z, `2(1 − J0(z))` is summed from its series to z⁶: the next
+/// term, z⁸/73728 < 2e-21 relative to z²/2 ≈ 5e-5, is below an ulp, and
+/// `1 − J0(z)` would lose ~log10(4/z²) digits to cancellation.
+const SMALL_Z_SERIES_BELOW: f64 = 1e-2;
+
+/// Where the piston integral splits off its low-frequency piece (with the
+/// f = u³ substitution for the f^{−2/3} behaviour), in units of
+/// 1/max(B, D): three decades below the first Bessel/aperture scale, where
+/// the integrand is still on its power law.
+const LOW_SPLIT_TIMES_SCALE: f64 = 1e-3;
+
+/// The single-aperture piston filter `A(f) = [2J1(πDf)/(πDf)]²`.
+pub fn aperture_filter(f_per_m: f64, aperture_m: f64) -> f64 {
+    let j = jinc(PI * aperture_m * f_per_m);
+    j * j
+}
+
+/// Upper limit of the numerical spectral integrals, in units of 1/D; the
+/// rest is added from the averaged high-frequency asymptote. At 100/D the
+/// neglected oscillation of the Bessel envelope is below 1e-12 of G.
+const F_MAX_TIMES_D: f64 = 100.0;
+
+/// Integration tolerance of the spectral integrals.
+fn tol() -> Tolerance {
+    Tolerance {
+        abs: 0.0,
+        rel: crate::tolerance::TURBULENCE_QUADRATURE_REL,
+    }
+}
+
+/// Geometric breaks from `a` to `b` (ratio 2), starting with [0, a].
+fn breaks_from_zero(a: f64, b: f64) -> Vec<f64> {
+    let mut out = vec![0.0, a];
+    let mut x = a;
+    while x * 2.0 < b {
+        x *= 2.0;
+        out.push(x);
+    }
+    out.push(b);
+    out
+}
+
+/// `G(f_x) = ∫_{−∞}^{∞} Φ_opd(f) A(f) df_y`, µm² m, `f = √(f_x² + f_y²)`,
+/// by adaptive quadrature (the slow, direct form; the tabulated one is in
+/// [`PistonSpectrum`]).
+pub fn transverse_integral(turb: &Turbulence, aperture_m: f64, fx_per_m: f64) -> f64 {
+    let k = turb.opd_psd_scale();
+    if k == 0.0 {
+        return 0.0;
+    }
+    let f_max = (F_MAX_TIMES_D / aperture_m).max(F_MAX_TIMES_D * fx_per_m);
+    let integrand = |fy: f64| {
+        let f = (fx_per_m * fx_per_m + fy * fy).sqrt();
+        turb.opd_psd(f) * aperture_filter(f, aperture_m)
+    };
+    let body = integrate_pieces(&integrand, &breaks_from_zero(fx_per_m, f_max), tol());
+    // Tail: A averaged to 4/(π⁴D³f³), f ≈ f_y, Φ ≈ K f^{−11/3}.
+    let tail = k * 4.0 / (PI.powi(4) * aperture_m.powi(3)) * (3.0 / 17.0) * f_max.powf(-17.0 / 3.0);
+    2.0 * (body + tail)
+}
+
+/// Points per decade of the G table.
+const TABLE_PER_DECADE: usize = 80;
+/// Table range in log10(f_x D).
+const TABLE_LOG10_MIN: f64 = -7.0;
+const TABLE_LOG10_MAX: f64 = 2.0;
+
+/// The transverse integral G(f_x) tabulated for one (turbulence, aperture):
+/// ln G on a uniform grid of ln(f_x D), cubic (Catmull–Rom) interpolation,
+/// power-law extrapolation with the end slopes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransverseTable {
+    turb: Turbulence,
+    aperture_m: f64,
+    ln_g: std::sync::OnceLock<Vec<f64>>,
+    s0: f64,
+    h: f64,
+}
+
+impl TransverseTable {
+    /// The table of G for `turb` and apertures of diameter `aperture_m`
+    /// (> 0), computed on first use: the points are independent
+    /// quadratures, computed in parallel (each the same whatever the thread
+    /// count).
+    pub fn new(turb: Turbulence, aperture_m: f64) -> Result<TransverseTable> {
+        error::positive("aperture_m", aperture_m)?;
+        Ok(TransverseTable {
+            turb,
+            aperture_m,
+            ln_g: std::sync::OnceLock::new(),
+            s0: TABLE_LOG10_MIN * std::f64::consts::LN_10,
+            h: std::f64::consts::LN_10 / TABLE_PER_DECADE as f64,
+        })
+    }
+
+    /// ln G on the grid, computed on first use.
+    fn values(&self) -> &[f64] {
+        self.ln_g.get_or_init(|| {
+            if self.turb.opd_psd_scale() == 0.0 {
+                return Vec::new();
+            }
+            let n = ((TABLE_LOG10_MAX - TABLE_LOG10_MIN) * TABLE_PER_DECADE as f64).round()
+                as usize
+                + 1;
+            use rayon::prelude::*;
+            (0..n)
+                .into_par_iter()
+                .map(|i| {
+                    let fx = (self.s0 + i as f64 * self.h).exp() / self.aperture_m;
+                    transverse_integral(&self.turb, self.aperture_m, fx).ln()
+                })
+                .collect()
+        })
+    }
+
+    /// The turbulence tabulated.
+    pub fn turbulence(&self) -> &Turbulence {
+        &self.turb
+    }
+    /// D, m.
+    pub fn aperture_m(&self) -> f64 {
+        self.aperture_m
+    }
+
+    /// G(f_x), µm² m, interpolated.
+    pub fn g(&self, fx_per_m: f64) -> f64 {
+        let y = self.values();
+        let n = y.len();
+        if n == 0 || fx_per_m <= 0.0 {
+            return if n == 0 { 0.0 } else { f64::INFINITY };
+        }
+        let s = (fx_per_m * self.aperture_m).ln();
+        let t = (s - self.s0) / self.h;
+        if t <= 0.0 {
+            return (y[0] + (y[1] - y[0]) * t).exp();
+        }
+        let last = (n - 1) as f64;
+        if t >= last {
+            return (y[n - 1] + (y[n - 1] - y[n - 2]) * (t - last)).exp();
+        }
+        let i = (t.floor() as usize).min(n - 2);
+        let u = t - i as f64;
+        let p1 = y[i];
+        let p2 = y[i + 1];
+        let p0 = if i == 0 { 2.0 * p1 - p2 } else { y[i - 1] };
+        let p3 = if i + 2 < n { y[i + 2] } else { 2.0 * p2 - p1 };
+        // Catmull–Rom cubic Hermite.
+        let u2 = u * u;
+        let u3 = u2 * u;
+        let v = 0.5
+            * ((2.0 * p1)
+                + (-p0 + p2) * u
+                + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * u2
+                + (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * u3);
+        v.exp()
+    }
+}
+
+/// The temporal power spectrum of the differential piston between two
+/// apertures of diameter D on baseline B, wind along the baseline.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PistonSpectrum {
+    table: std::sync::Arc<TransverseTable>,
+    baseline_m: f64,
+    wind_mps: f64,
+}
+
+impl PistonSpectrum {
+    /// The spectrum for `turb`, apertures `aperture_m` (> 0) and baseline
+    /// `baseline_m` (≥ 0; 0 gives no piston).
+    pub fn new(turb: Turbulence, aperture_m: f64, baseline_m: f64) -> Result<PistonSpectrum> {
+        let table = std::sync::Arc::new(TransverseTable::new(turb, aperture_m)?);
+        PistonSpectrum::from_table(table, baseline_m)
+    }
+
+    /// The spectrum on `baseline_m` sharing an existing table (G does not
+    /// depend on B).
+    pub fn from_table(
+        table: std::sync::Arc<TransverseTable>,
+        baseline_m: f64,
+    ) -> Result<PistonSpectrum> {
+        error::non_negative("baseline_m", baseline_m)?;
+        let wind_mps = table.turb.wind_mps();
+        Ok(PistonSpectrum {
+            table,
+            baseline_m,
+            wind_mps,
+        })
+    }
+
+    /// The same spectrum at another wind speed (> 0), sharing the table (G
+    /// does not depend on the wind).
+    pub fn with_wind(&self, wind_mps: f64) -> Result<PistonSpectrum> {
+        error::positive("wind_mps", wind_mps)?;
+        Ok(PistonSpectrum {
+            table: self.table.clone(),
+            baseline_m: self.baseline_m,
+            wind_mps,
+        })
+    }
+
+    /// Wind speed, m/s.
+    pub fn wind_mps(&self) -> f64 {
+        self.wind_mps
+    }
+
+    /// The shared table.
+    pub fn table(&self) -> &std::sync::Arc<TransverseTable> {
+        &self.table
+    }
+    /// The turbulence of the table (its wind speed may differ from
+    /// [`PistonSpectrum::wind_mps`], which is the one used).
+    pub fn turbulence(&self) -> &Turbulence {
+        &self.table.turb
+    }
+    /// D, m.
+    pub fn aperture_m(&self) -> f64 {
+        self.table.aperture_m
+    }
+    /// B, m.
+    pub fn baseline_m(&self) -> f64 {
+        self.baseline_m
+    }
+
+    /// `2[1 − cos(2πBν/v)]`, computed without cancellation.
+    fn baseline_factor(&self, nu_hz: f64) -> f64 {
+        let s = (PI * self.baseline_m * nu_hz / self.wind_mps).sin();
+        4.0 * s * s
+    }
+
+    /// Two-sided temporal PSD P(ν), µm²/Hz, from the table.
+    pub fn psd_um2_per_hz(&self, nu_hz: f64) -> f64 {
+        let nu = nu_hz.abs();
+        let v = self.wind_mps;
+        let bf = self.baseline_factor(nu);
+        if bf == 0.0 {
+            return 0.0;
+        }
+        bf * self.table.g(nu / v) / v
+    }
+
+    /// Two-sided temporal PSD P(ν), µm²/Hz, by direct quadrature (slow;
+    /// the reference for the table).
+    pub fn psd_direct_um2_per_hz(&self, nu_hz: f64) -> f64 {
+        let nu = nu_hz.abs();
+        let v = self.wind_mps;
+        let bf = self.baseline_factor(nu);
+        if bf == 0.0 {
+            return 0.0;
+        }
+        bf * transverse_integral(&self.table.turb, self.table.aperture_m, nu / v) / v
+    }
+
+    /// Variance of the differential piston σ_p², µm², from the radial
+    /// spectral integral `∫ 2πf Φ_opd A 2[1 − J0(2πBf)] df` (the angular
+    /// average of the two-aperture term).
+    pub fn variance_um2(&self) -> f64 {
+        let turb = &self.table.turb;
+        let k = turb.opd_psd_scale();
+        let (d, b) = (self.table.aperture_m, self.baseline_m);
+        if k == 0.0 || b == 0.0 {
+            return 0.0;
+        }
+        let two_one_minus_j0 = |z: f64| {
+            if z < SMALL_Z_SERIES_BELOW {
+                let z2 = z * z;
+                2.0 * (z2 / 4.0 - z2 * z2 / 64.0 + z2 * z2 * z2 / 2304.0)
+            } else {
+                2.0 * (1.0 - bessel_j0(z))
+            }
+        };
+        let radial = |f: f64| {
+            2.0 * PI
+                * f
+                * turb.opd_psd(f)
+                * aperture_filter(f, d)
+                * two_one_minus_j0(2.0 * PI * b * f)
+        };
+        // Near 0 the Kolmogorov integrand goes as f^{−2/3}: substitute f = u³.
+        let f_a = LOW_SPLIT_TIMES_SCALE / b.max(d);
+        let u_a = f_a.cbrt();
+        let low = integrate_pieces(
+            &|u: f64| radial(u * u * u) * 3.0 * u * u,
+            &[0.0, u_a],
+            tol(),
+        );
+        let f_max = F_MAX_TIMES_D / d;
+        let mut br = vec![f_a];
+        while br[br.len() - 1] * 2.0 < f_max {
+            let x = br[br.len() - 1] * 2.0;
+            br.push(x);
+        }
+        br.push(f_max);
+        let body = integrate_pieces(&radial, &br, tol());
+        // Tail: A → 4/(π⁴D³f³), 2(1 − J0) → 2.
+        let tail = 2.0 * PI * k * 2.0 * 4.0 / (PI.powi(4) * d.powi(3))
+            * (3.0 / 14.0)
+            * f_max.powf(-14.0 / 3.0);
+        low + body + tail
+    }
+
+    /// σ_p, µm.
+    pub fn rms_um(&self) -> f64 {
+        self.variance_um2().sqrt()
+    }
+
+    /// Low-frequency Kolmogorov asymptote `(2πB)² K I(11/6) v^{−1/3} ν^{−2/3}`.
+    pub fn asymptote_low(&self, nu_hz: f64) -> f64 {
+        let t = &self.table.turb;
+        let v = self.wind_mps;
+        (2.0 * PI * self.baseline_m).powi(2)
+            * t.opd_psd_scale()
+            * profile_integral(11.0 / 6.0)
+            * v.powf(-1.0 / 3.0)
+            * nu_hz.abs().powf(-2.0 / 3.0)
+    }
+
+    /// Middle Kolmogorov asymptote `2 K I(11/6) v^{5/3} ν^{−8/3}` (the
+    /// two-aperture cosine averaged).
+    pub fn asymptote_mid(&self, nu_hz: f64) -> f64 {
+        let t = &self.table.turb;
+        2.0 * t.opd_psd_scale()
+            * profile_integral(11.0 / 6.0)
+            * self.wind_mps.powf(5.0 / 3.0)
+            * nu_hz.abs().powf(-8.0 / 3.0)
+    }
+
+    /// High-frequency asymptote `2 K I(10/3) 4/(π⁴D³) v^{14/3} ν^{−17/3}`
+    /// (the Bessel oscillation and the cosine averaged).
+    pub fn asymptote_high(&self, nu_hz: f64) -> f64 {
+        let t = &self.table.turb;
+        let d = self.table.aperture_m;
+        2.0 * t.opd_psd_scale() * profile_integral(10.0 / 3.0) * 4.0 / (PI.powi(4) * d.powi(3))
+            * self.wind_mps.powf(14.0 / 3.0)
+            * nu_hz.abs().powf(-17.0 / 3.0)
+    }
+
+    /// Where the low and middle asymptotes cross: `v/(√2 π B)`, Hz.
+    pub fn corner_low_hz(&self) -> f64 {
+        self.wind_mps / (2f64.sqrt() * PI * self.baseline_m)
+    }
+
+    /// Where the middle and high asymptotes cross:
+    /// `[4 I(10/3)/(π⁴ I(11/6))]^{1/3} v/D`, Hz.
+    pub fn corner_high_hz(&self) -> f64 {
+        let c = (4.0 * profile_integral(10.0 / 3.0) / (PI.powi(4) * profile_integral(11.0 / 6.0)))
+            .cbrt();
+        c * self.wind_mps / self.table.aperture_m
+    }
+}
+
+/// Variance of the differential piston σ_p² (µm²) for Kolmogorov turbulence
+/// from the aperture-averaged structure function, computed in the pupil
+/// plane independently of the spectrum:
+///
+/// `σ_p² = ∫ T(ρ) [D(|ρ + B|) − D(|ρ|)] d²ρ`,
+///
+/// T the pupil autocorrelation normalized to unit integral,
+/// `T(ρ) = (2/π)[arccos u − u√(1−u²)] / (πD²/4)`, u = ρ/D (ρ ≤ D), and D the
+/// OPD structure function (infinite outer scale only).
+pub fn differential_piston_variance_from_structure_um2(
+    turb: &Turbulence,
+    aperture_m: f64,
+    baseline_m: f64,
+) -> f64 {
+    let d = aperture_m;
+    let area = PI * d * d / 4.0;
+    let t_of = |rho: f64| {
+        let u = (rho / d).min(1.0);
+        (2.0 / PI) * (u.acos() - u * (1.0 - u * u).sqrt()) / area
+    };
+    let sf = |r: f64| turb.opd_structure_function_um2(r);
+    let outer = |rho: f64| {
+        let inner = |theta: f64| {
+            let r = (rho * rho + baseline_m * baseline_m + 2.0 * rho * baseline_m * theta.cos())
+                .max(0.0)
+                .sqrt();
+            sf(r) - sf(rho)
+        };
+        let ring = 2.0 * integrate_pieces(&inner, &[0.0, 0.5 * PI, PI], tol());
+        rho * t_of(rho) * ring
+    };
+    integrate_pieces(&outer, &[0.0, 0.25 * d, 0.5 * d, 0.75 * d, d], tol())
+}
