@@ -13,7 +13,7 @@
 //!
 //! Sample positions: N samples at spacing δx with sample 0 on the
 //! white-light fringe (`docs/conventions.md`). The scan is centred on it, in DFT
-//! order: `x_i = i δx` for `i < N/2` and `(i − N) δx` beyond, i.e. the
+//! order: `x_i = i δx` for `i < ⌈N/2⌉` and `(i − N) δx` beyond, i.e. the
 //! stroke `[−Δx/2, Δx/2)` of the paper's window `Π(x/Δx)`, replicated with
 //! period Δx as the DFT assumes. A per-sample OPD perturbation `p_i` (piston)
 //! is added to `x_i`.

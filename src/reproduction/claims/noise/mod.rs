@@ -20,11 +20,16 @@ use crate::noise::{
     example_interferogram, moments, published, var_m2, worked_example, ExampleSetup, Formula,
     NoiseModel,
 };
-use crate::reproduction::cases::{appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON};
+use crate::reproduction::cases::{
+    appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON, APPENDIX_SEED,
+};
 use crate::Result;
 
-/// Seed of every Monte Carlo of this provider.
-const SEED: u64 = 20_040_712;
+/// The seed of the Monte Carlo that computes `what` (a claim id or group):
+/// derived from the Appendix base seed by the crate's one rule.
+fn seed(what: &str) -> u64 {
+    crate::montecarlo::derive_seed(APPENDIX_SEED, what, &[])
+}
 
 struct Sizes {
     scalar: u64,
@@ -179,8 +184,16 @@ struct AllBins {
 impl AllBins {
     fn run(case: &Case, sz: &Sizes) -> Result<AllBins> {
         let ifg = &case.ifg;
-        let det = mc_estimators(&case.spec(case.detector), sz.interferograms, SEED)?;
-        let phot = mc_estimators(&case.spec(case.photon), sz.interferograms, SEED + 1)?;
+        let det = mc_estimators(
+            &case.spec(case.detector),
+            sz.interferograms,
+            seed("appendix.all_bins.detector"),
+        )?;
+        let phot = mc_estimators(
+            &case.spec(case.photon),
+            sz.interferograms,
+            seed("appendix.all_bins.photon"),
+        )?;
         let stats = |noise: &NoiseModel, f: Formula| {
             appendix_stats(&ifg.modulated, &ifg.continuum, noise, f)
         };
@@ -330,7 +343,14 @@ fn sample_moment_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec
         read_noise: s,
         photon: false,
     };
-    let mc = sample_moments(m, 0.0, &gauss, sz.scalar, SEED + 2, 0)?;
+    let mc = sample_moments(
+        m,
+        0.0,
+        &gauss,
+        sz.scalar,
+        seed("appendix.gaussian_moments"),
+        0,
+    )?;
     let p4 = published::gaussian_m4(m, s);
     let p2 = published::gaussian_m2(m, s);
     let e = moments(&gauss, m, 0.0);
@@ -359,7 +379,14 @@ fn photon_moment_claim(case: &Case, sz: &Sizes) -> Result<Computed> {
     let n = case.setup.photons;
     let (mp, cp) = (n, n);
     let nn = mp + cp;
-    let mc = sample_moments(mp, cp, &case.photon, sz.scalar, SEED + 3, 0)?;
+    let mc = sample_moments(
+        mp,
+        cp,
+        &case.photon,
+        sz.scalar,
+        seed("appendix.photon_moments"),
+        0,
+    )?;
     let e = moments(&case.photon, mp, nn);
     let p4 = published::photon_m4(nn);
     let p2 = published::photon_m2(nn);
@@ -392,7 +419,14 @@ fn combined_noise_claim(case: &Case, s: f64, sz: &Sizes) -> Result<Computed> {
         read_noise: s,
         photon: true,
     };
-    let mc = sample_moments(mp, cp, &both, sz.scalar, SEED + 4, 0)?;
+    let mc = sample_moments(
+        mp,
+        cp,
+        &both,
+        sz.scalar,
+        seed("snr.combined_noise_variance"),
+        0,
+    )?;
     let exact = var_m2(&both, mp, nn);
     let sum = var_m2(&gauss, mp, nn) + var_m2(&case.photon, mp, nn);
     // var(M^2) by Monte Carlo, from the moments of M^2 (sample 2 of mc).
@@ -434,7 +468,11 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
         bins: window2.clone(),
         ..case.spec(*detector)
     };
-    let (a, b) = mc_estimators(&spec_w, sz.interferograms, SEED + 5)?;
+    let (a, b) = mc_estimators(
+        &spec_w,
+        sz.interferograms,
+        seed("appendix.window_variance_factor"),
+    )?;
     let mc_note = format!(
         "; Monte Carlo of the two-sided window ({} interferograms): var V1^2 = {}, var V2^2 = {}",
         sz.interferograms,
