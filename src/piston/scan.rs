@@ -108,6 +108,17 @@ impl PistonReference {
 }
 
 /// One scan's acquisition parameters.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// // The paper's scans: 128 samples of 0.5 µm, fringes at 2.2 µm.
+/// let s = ScanSetup::paper(1000.0);
+/// assert_eq!(s.opd_speed_um_per_s(), 2200.0);           // v = f λ0
+/// assert!((s.scan_time_s() - 128.0 * 0.5 / 2200.0).abs() < 1e-15); // N δx / v
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScanSetup {
     /// N.

@@ -201,6 +201,22 @@ impl TransverseTable {
 
 /// The temporal power spectrum of the differential piston between two
 /// apertures of diameter D on baseline B, wind along the baseline.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// // The differential piston of two 45 cm apertures 18 m apart: its rms grows
+/// // with the baseline, and a finite outer scale lowers it.
+/// let t = Turbulence::from_seeing(1.0, 2.2, 10.0, None)?;
+/// let b18 = PistonSpectrum::new(t, 0.45, 18.0)?;
+/// let b36 = PistonSpectrum::new(t, 0.45, 36.0)?;
+/// assert!(b36.rms_um() > b18.rms_um());
+/// let l0 = PistonSpectrum::new(Turbulence::from_seeing(1.0, 2.2, 10.0, Some(25.0))?, 0.45, 18.0)?;
+/// assert!(l0.rms_um() < b18.rms_um());
+/// assert!(b18.corner_low_hz() < b18.corner_high_hz());
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct PistonSpectrum {
     table: std::sync::Arc<TransverseTable>,

@@ -94,6 +94,19 @@ pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
 
 /// The turbulent atmosphere above the interferometer, at the observing
 /// wavelength.
+///
+/// # Example
+///
+/// ```
+/// use v2ref::prelude::*;
+/// // The paper's seeing: 1 arcsec at 2.2 µm gives r0 = λ/seeing ≈ 45 cm.
+/// let t = Turbulence::from_seeing(1.0, 2.2, 10.0, None)?;
+/// assert!((t.r0_m() - 0.454).abs() < 1e-3);
+/// // The same seeing quoted at 1.65 µm means a smaller r0 (r0 = λ/seeing).
+/// let h = Turbulence::from_seeing(1.0, 1.65, 10.0, None)?;
+/// assert!((h.r0_m() / t.r0_m() - 1.65 / 2.2).abs() < 1e-12);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turbulence {
     wavelength_um: f64,
