@@ -176,7 +176,20 @@ fn fig4_figure(step: f64, scans: usize, tables: Vec<Table>) -> Result<Figure> {
         id: "fig4".into(),
         caption: "Fig. 4: bias (mean of V with piston minus V without) and scatter (standard deviation over scans) of V1 and V2 for 43 and 10 mas uniform disks at 300 and 1000 Hz fringe frequency, against spatial frequency; the baseline follows the spatial frequency so the piston grows with it. Positive-frequency bins.".into(),
         monte_carlo: true,
-        parameters: serde_json::json!({
+        parameters: with_paper_setup(serde_json::json!({
+            "detector": "sampled",
+            "window": "positive",
+            "scans_per_point": scans,
+            "spatial_freq_step_cpas": step,
+        })),
+        tables,
+    })
+}
+
+/// The parameters both piston figures share (the paper's turbulence, band,
+/// apertures, scans and seed), added to a figure's own.
+fn with_paper_setup(mut own: serde_json::Value) -> serde_json::Value {
+    let common = serde_json::json!({
             "seeing_arcsec": SEEING_ARCSEC,
             "wavelength_um": 2.2,
             "bandwidth_um": 0.4,
@@ -187,15 +200,13 @@ fn fig4_figure(step: f64, scans: usize, tables: Vec<Table>) -> Result<Figure> {
             "samples": 128,
             "dx_um": 0.5,
             "stroke_um": 64.0,
-            "detector": "sampled",
-            "window": "positive",
             "piston_reference": "mean",
-            "scans_per_point": scans,
-            "spatial_freq_step_cpas": step,
             "seed": FIGURE_SEED,
-        }),
-        tables,
-    })
+    });
+    if let (Some(own), serde_json::Value::Object(common)) = (own.as_object_mut(), common) {
+        own.extend(common);
+    }
+    own
 }
 
 /// Fig. 5 at `effort`.
@@ -291,25 +302,13 @@ fn fig5_figure(count: usize, scans: usize, tables: Vec<Table>) -> Result<Figure>
         id: "fig5".into(),
         caption: "Fig. 5: bias and scatter of V1 and V2 from differential piston against fringe frequency, unresolved source, 18 m baseline; sampled detector (left, fig5_sampled) and integrating detector (right, fig5_integrating) on the same piston sequences. Unsuffixed columns sum the positive-frequency bins; _band the bins inside the band; _all every bin.".into(),
         monte_carlo: true,
-        parameters: serde_json::json!({
-            "seeing_arcsec": SEEING_ARCSEC,
-            "wavelength_um": 2.2,
-            "bandwidth_um": 0.4,
-            "wind_mps": WIND_MPS,
-            "wind_direction": "along the baseline",
-            "outer_scale_m": null,
-            "aperture_m": APERTURE_M,
+        parameters: with_paper_setup(serde_json::json!({
             "baseline_m": FIG5_BASELINE_M,
             "source": "point",
-            "samples": 128,
-            "dx_um": 0.5,
-            "stroke_um": 64.0,
             "integrating_sub_samples": DEFAULT_SUB_SAMPLES,
-            "piston_reference": "mean",
             "scans_per_point": scans,
             "frequencies": count,
-            "seed": FIGURE_SEED,
-        }),
+        })),
         tables,
     })
 }
