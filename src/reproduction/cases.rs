@@ -11,6 +11,9 @@
 //! the computation and the parameters it computes (never its position in a
 //! list), so that a point's result does not depend on what else is asked.
 
+use crate::error::Result;
+use crate::formalism::observation::{Frequency, Observation};
+use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::ExampleSetup;
@@ -46,6 +49,23 @@ pub fn s_grid(step_cpas: f64) -> Vec<f64> {
 /// The paper's flat K band (2.0–2.4 µm, flat in wavenumber) of Figs. 0–3.
 pub fn k_band() -> Spectrum {
     Spectrum::flat(Band::k())
+}
+
+/// `source` seen through `spectrum` at spatial frequency `s_cpas`
+/// (cycles/arcsec) with spectral phase `phase`: the observation every
+/// bias figure and claim sweeps over S.
+pub fn observe_at(
+    spectrum: &Spectrum,
+    source: Source,
+    s_cpas: f64,
+    phase: &SpectralPhase,
+) -> Result<Observation> {
+    Observation::new(
+        spectrum.clone(),
+        source,
+        Frequency::SpatialFreqCpas(s_cpas),
+        phase.clone(),
+    )
 }
 
 /// The paper's uniform disk of [`DIAMETER_MAS`].

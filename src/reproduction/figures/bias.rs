@@ -35,7 +35,7 @@ use serde_json::json;
 use crate::reproduction::cases::{ABCD_DX_UM, DX_UM, STROKES_UM};
 use crate::reproduction::cases::{BANDWIDTHS_NM, DIAMETER_MAS, S_MAX_CPAS, WAVELENGTH_UM};
 
-use crate::reproduction::cases::{disk, k_band, s_grid};
+use crate::reproduction::cases::{disk, k_band, observe_at, s_grid};
 use crate::reproduction::cases::{
     DISPERSIONS_RAD, FIG0_EDGE_PER_UM, FIG0_INDICES, FIG0_MAX_SAMPLES,
 };
@@ -191,24 +191,11 @@ fn fig2_disk(band: &Spectrum, effort: Effort) -> Result<Table> {
     let mut cal_data = Vec::new();
     for pp in std::iter::once(0.0).chain(DISPERSIONS_RAD) {
         let phase = SpectralPhase::dispersion_peak_to_peak(band, pp)?;
-        let point = Observation::new(
-            band.clone(),
-            Source::Point,
-            Frequency::SpatialFreqCpas(0.0),
-            phase.clone(),
-        )?;
+        let point = observe_at(band, Source::Point, 0.0, &phase)?;
         let v2_point = v2_sq(&point).sqrt();
         let v2: Vec<f64> = grid
             .par_iter()
-            .map(|&s| {
-                Observation::new(
-                    band.clone(),
-                    disk(),
-                    Frequency::SpatialFreqCpas(s),
-                    phase.clone(),
-                )
-                .map(|o| v2_sq(&o).sqrt())
-            })
+            .map(|&s| observe_at(band, disk(), s, &phase).map(|o| v2_sq(&o).sqrt()))
             .collect::<Result<_>>()?;
         cols.push(Column::new(&format!("v2_minus_vmono_{}rad", label(pp)), ""));
         data.push(v2.iter().zip(&v_mono).map(|(v, m)| v - m).collect());
@@ -313,15 +300,7 @@ fn fig3_dft(scans: &[(f64, Sampling)], grid: &[f64]) -> Result<(Table, Table)> {
     let samplings: Vec<Sampling> = scans.iter().map(|s| s.1).collect();
     let inf: Vec<_> = grid
         .par_iter()
-        .map(|&s| {
-            Observation::new(
-                band.clone(),
-                disk(),
-                Frequency::SpatialFreqCpas(s),
-                SpectralPhase::zero(),
-            )
-            .map(|o| wide_band(&o))
-        })
+        .map(|&s| observe_at(&band, disk(), s, &SpectralPhase::zero()).map(|o| wide_band(&o)))
         .collect::<Result<_>>()?;
     let dft = finite_scan::disk_biases(&k_band(), &disk(), grid, &samplings, Method::Dft)?;
     let mut cols1 = vec![

@@ -53,13 +53,8 @@ fn observe(
     s_cpas: f64,
     phase: &SpectralPhase,
 ) -> Observation {
-    Observation::new(
-        spectrum.clone(),
-        source.clone(),
-        Frequency::SpatialFreqCpas(s_cpas),
-        phase.clone(),
-    )
-    .expect("valid observation")
+    crate::reproduction::cases::observe_at(spectrum, source.clone(), s_cpas, phase)
+        .expect("valid observation")
 }
 
 fn integration_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
