@@ -66,6 +66,19 @@ pub enum Error {
         /// What went wrong.
         reason: String,
     },
+    /// A data file (interferograms, estimates, a sidecar) was read but its
+    /// content is unusable: wrong type or shape, a non-finite value, a size
+    /// that does not match its sidecar.
+    Data {
+        /// The library parameter that named the file.
+        param: &'static str,
+        /// The file.
+        path: PathBuf,
+        /// Where in it (`row 3, column 7`, `field truth.windows`), or empty.
+        location: String,
+        /// What is wrong, and what is accepted.
+        reason: String,
+    },
     /// Reading or writing a file failed; keeps the system's error as
     /// [`std::error::Error::source`].
     Io {
@@ -92,6 +105,22 @@ impl Error {
         }
     }
 
+    /// Unusable content in the data file `path` (named by `param`), at
+    /// `location` (may be empty).
+    pub fn data(
+        param: &'static str,
+        path: impl Into<PathBuf>,
+        location: impl Into<String>,
+        reason: impl Into<String>,
+    ) -> Error {
+        Error::Data {
+            param,
+            path: path.into(),
+            location: location.into(),
+            reason: reason.into(),
+        }
+    }
+
     /// The library parameter this error is about (Rust name, snake_case),
     /// if any.
     pub fn param(&self) -> Option<&'static str> {
@@ -102,6 +131,7 @@ impl Error {
             Error::Aliasing { .. } => Some("dx_um"),
             Error::SpectrumTable { .. } => Some("spectrum"),
             Error::Io { param, .. } => *param,
+            Error::Data { param, .. } => Some(param),
             Error::Output { .. } => None,
         }
     }
@@ -120,6 +150,18 @@ impl Error {
             Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
             Error::Output { path, reason } => format!("{path}: {reason}"),
             Error::Io { path, source, .. } => format!("{}: {source}", path.display()),
+            Error::Data {
+                path,
+                location,
+                reason,
+                ..
+            } if location.is_empty() => format!("{}: {reason}", path.display()),
+            Error::Data {
+                path,
+                location,
+                reason,
+                ..
+            } => format!("{}: {location}: {reason}", path.display()),
         }
     }
 }
@@ -197,6 +239,20 @@ impl PartialEq for Error {
                     source: y,
                 },
             ) => a == b && p == q && x.kind() == y.kind() && x.to_string() == y.to_string(),
+            (
+                Data {
+                    param: a,
+                    path: p,
+                    location: l,
+                    reason: x,
+                },
+                Data {
+                    param: b,
+                    path: q,
+                    location: m,
+                    reason: y,
+                },
+            ) => a == b && p == q && l == m && x == y,
             _ => false,
         }
     }

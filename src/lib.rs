@@ -100,6 +100,7 @@
 #![warn(missing_docs)]
 
 pub mod bias;
+pub mod conformance;
 pub mod error;
 pub mod formalism;
 pub mod math;
@@ -108,6 +109,7 @@ pub mod noise;
 pub mod piston;
 pub mod prelude;
 pub mod reproduction;
+pub mod simulator;
 pub mod tolerance;
 
 pub use error::{Error, Result};

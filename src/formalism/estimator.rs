@@ -132,7 +132,7 @@ pub fn wide_band(obs: &Observation) -> WideBand {
 /// assert_eq!(BinWindow::Band.bins(64, 0.5, &k), vec![14, 15, 16]);
 /// assert_eq!(BinWindow::All.bins(4, 0.5, &k), vec![0, 1, 2, 3]);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum BinWindow {
@@ -206,7 +206,7 @@ pub fn dft_phase(i: usize, k: usize, n: usize) -> f64 {
 }
 
 /// A pair of values, one per estimator.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default, serde::Deserialize)]
 pub struct Pair {
     /// For V1².
     pub v1_sq: f64,

@@ -311,6 +311,15 @@ impl Spectrum {
         s
     }
 
+    /// The nodes (σ_j µm⁻¹, w_j) of a tabulated spectrum; None for the
+    /// analytic shapes.
+    pub fn table(&self) -> Option<(&[f64], &[f64])> {
+        match &self.shape {
+            Shape::Table { sigma, weight } => Some((sigma, weight)),
+            _ => None,
+        }
+    }
+
     /// Whether this is a Dirac line.
     pub fn is_monochromatic(&self) -> bool {
         matches!(self.shape, Shape::Line { .. })

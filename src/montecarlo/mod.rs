@@ -46,15 +46,34 @@ where
     T: Send,
     F: Fn(u64, &mut Rng) -> T + Sync + Send,
 {
-    let job = || {
-        (0..units)
+    run_unit_range(seed, 0..units, threads, work)
+}
+
+/// [`run_units`] for the units of `range` only (a run processed in
+/// batches: unit u has the same generator whatever batch it is in).
+pub fn run_unit_range<T, F>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+) -> Vec<T>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> T + Sync + Send,
+{
+    in_pool(threads, || {
+        range
             .into_par_iter()
             .map(|u| {
                 let mut rng = unit_rng(seed, u);
                 work(u, &mut rng)
             })
             .collect::<Vec<T>>()
-    };
+    })
+}
+
+/// Runs `job` on a pool of `threads` threads (0 = rayon's default pool).
+pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
     if threads == 0 {
         job()
     } else {

@@ -314,7 +314,7 @@ impl PoissonSampler {
 }
 
 /// Per-sample noise generator of a [`NoisySpec`] (rand_distr draws).
-struct SampleNoise {
+pub(crate) struct SampleNoise {
     sigma: f64,
     poisson: Vec<PoissonSampler>,
     offset: Vec<f64>,
@@ -322,7 +322,7 @@ struct SampleNoise {
 }
 
 impl SampleNoise {
-    fn new(spec: &NoisySpec) -> crate::Result<SampleNoise> {
+    pub(crate) fn new(spec: &NoisySpec) -> crate::Result<SampleNoise> {
         let n = spec.modulated.len();
         if n < 2 || spec.continuum.len() != n {
             return Err(crate::Error::Invalid {
@@ -372,7 +372,7 @@ impl SampleNoise {
 
     /// Fills `out` with one noisy interferogram M_i.
     #[inline]
-    fn draw(&self, rng: &mut Rng, out: &mut [f64]) {
+    pub(crate) fn draw(&self, rng: &mut Rng, out: &mut [f64]) {
         use rand_distr::{Distribution, StandardNormal};
         if self.poisson.is_empty() {
             for (o, &m) in out.iter_mut().zip(&self.modulated) {

@@ -90,7 +90,7 @@ pub struct RunSize {
 }
 
 /// Checks the scan setup and that `size.scans` scans fit in one sequence.
-fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
+pub(crate) fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
     setup.validate()?;
     let n = setup.samples;
     if size.scans < 2 || size.scans.saturating_mul(n) > MAX_SERIES - 4 {
@@ -105,7 +105,7 @@ fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
 
 /// The piston sequence read by consecutive scans, and where the fringe
 /// packet sits in each.
-struct PistonSequence {
+pub(crate) struct PistonSequence {
     /// p at each sample time, µm (periodic, at least scans × N + 4 long).
     series: Vec<f64>,
     /// N.
@@ -117,7 +117,11 @@ struct PistonSequence {
 impl PistonSequence {
     /// Synthesises the sequence of `size.scans` scans of `setup` from the
     /// differential-piston spectrum, from `size.seed` (all its randomness).
-    fn synthesize(spectrum: &PistonSpectrum, setup: &ScanSetup, size: &RunSize) -> Result<Self> {
+    pub(crate) fn synthesize(
+        spectrum: &PistonSpectrum,
+        setup: &ScanSetup,
+        size: &RunSize,
+    ) -> Result<Self> {
         let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
         let n = setup.samples;
         let series = synthesize_series(
@@ -135,13 +139,13 @@ impl PistonSequence {
     }
 
     /// RMS of the whole sequence, µm.
-    fn rms_um(&self) -> f64 {
+    pub(crate) fn rms_um(&self) -> f64 {
         let m = self.series.len() as f64;
         (self.series.iter().map(|p| p * p).sum::<f64>() / m).sqrt()
     }
 
     /// The piston removed from scan `s`, µm.
-    fn reference_um(&self, s: usize) -> f64 {
+    pub(crate) fn reference_um(&self, s: usize) -> f64 {
         let (n, base) = (self.samples, s * self.samples);
         match self.reference {
             PistonReference::Centre => self.series[base + n / 2],
@@ -151,14 +155,14 @@ impl PistonSequence {
     }
 
     /// The piston of scan `s` at τ sample intervals from its start, µm.
-    fn at(&self, s: usize, tau: f64) -> f64 {
+    pub(crate) fn at(&self, s: usize, tau: f64) -> f64 {
         interp(&self.series, (s * self.samples) as f64 + tau)
     }
 
     /// Over `scans` scans: the largest |p − reference| any sub-sample can
     /// reach (the cubic reads one sample either side of the scan), and the
     /// RMS of p − reference over the samples.
-    fn excursion_and_residual(&self, scans: usize) -> (f64, f64) {
+    pub(crate) fn excursion_and_residual(&self, scans: usize) -> (f64, f64) {
         let (n, m) = (self.samples, self.series.len());
         let (mut excursion, mut resid2) = (0.0_f64, 0.0);
         for s in 0..scans {
@@ -179,7 +183,7 @@ impl PistonSequence {
 
 /// The OPD range (µm) the fringe table must cover for scans of `setup`
 /// whose piston moves the packet by up to `excursion_um`.
-fn table_range_um(setup: &ScanSetup, excursion_um: f64) -> Result<f64> {
+pub(crate) fn table_range_um(setup: &ScanSetup, excursion_um: f64) -> Result<f64> {
     let max_opd = (setup.samples / 2 + 1) as f64 * setup.dx_um + 1.5 * excursion_um + 1.0;
     if max_opd > MAX_OPD_UM {
         return Err(Error::Invalid {

@@ -1,0 +1,168 @@
+//! The JSON sidecar of a synth set: what makes a file of interferograms
+//! self-describing — every physical input, the sample positions, the
+//! continuum, the seed and version, and the truth each estimate is scored
+//! against.
+
+use crate::conformance::estimate::BiasConvention;
+use crate::formalism::estimator::{BinWindow, Pair};
+use crate::simulator::Inputs;
+use serde::{Deserialize, Serialize};
+
+/// The value of [`Sidecar::format`] this version writes and reads.
+pub const FORMAT: &str = "v2ref-synth-1";
+
+/// The sidecar of one synth set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Sidecar {
+    /// [`FORMAT`].
+    pub format: String,
+    /// The v2ref version that wrote the set.
+    pub version: String,
+    /// The data files.
+    pub data: DataFiles,
+    /// The seed of the set's random draws.
+    pub seed: u64,
+    /// Every physical input.
+    pub inputs: Inputs,
+    /// Whether the continuum c_i was subtracted from each row (rows hold
+    /// `M_i = I_i − c_i`) or not (rows hold the counts `I_i`).
+    pub continuum_subtracted: bool,
+    /// x_i, the OPD of each column at zero piston, µm (DFT order: column 0
+    /// at the white-light fringe).
+    pub sample_opd_um: Vec<f64>,
+    /// c_i, the continuum of each column, photons.
+    pub continuum_photons: Vec<f64>,
+    /// n_i = c_i + m_i, the noise-free mean count of each column without
+    /// piston, photons (what the `model` bias convention uses).
+    pub mean_counts_photons: Vec<f64>,
+    /// What the estimators should give.
+    pub truth: Truth,
+}
+
+/// The files a set is stored in, relative to the sidecar's folder.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DataFiles {
+    /// The `.npy` file: float64, C order, shape (rows, samples).
+    pub npy: String,
+    /// The same rows as CSV (one row per line, no header), if written.
+    pub csv: Option<String>,
+    /// Number of rows (scans).
+    pub rows: u64,
+    /// N, samples per row.
+    pub samples: usize,
+}
+
+/// The truth of a set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Truth {
+    /// σ_eff, µm⁻¹.
+    pub sigma_eff_per_um: f64,
+    /// S = B σ_eff, cycles/arcsec.
+    pub spatial_freq_cpas: f64,
+    /// |V(σ_eff)| times the `visibility` scale: the monochromatic
+    /// visibility at the effective wavenumber.
+    pub v_sigma_eff: f64,
+    /// V1² of the configuration in its spectral form (infinite scan, no
+    /// noise, no piston), times visibility².
+    pub v1_sq_spectral: f64,
+    /// V2² likewise.
+    pub v2_sq_spectral: f64,
+    /// Per window of bins.
+    pub windows: Vec<WindowTruth>,
+    /// The independent run the truth's statistics come from where there is
+    /// no closed form.
+    pub reference_run: ReferenceRun,
+}
+
+/// The truth of one window of bins.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WindowTruth {
+    /// The window.
+    pub bins: BinWindow,
+    /// The bins k it sums.
+    pub bin_indices: Vec<usize>,
+    /// The model calibrator's noise-free raw estimates (point source, same
+    /// photons and sampling, no piston): the divisors of the normalized
+    /// estimates.
+    pub calibration: Pair,
+    /// The noise-free normalized estimates of this set's configuration
+    /// without piston (what a noiseless, piston-free row reads).
+    pub noise_free: Pair,
+    /// The noise bias the `model` convention subtracts (raw units).
+    pub model_bias: Pair,
+    /// The expected statistics of the normalized estimates, per bias
+    /// convention.
+    pub conventions: Vec<ConventionTruth>,
+}
+
+/// Expected statistics of both normalized estimators under one bias
+/// convention.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ConventionTruth {
+    /// The bias convention.
+    pub bias: BiasConvention,
+    /// Normalized V1².
+    pub v1_sq: EstimatorTruth,
+    /// Normalized V2².
+    pub v2_sq: EstimatorTruth,
+}
+
+/// Where a truth value comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TruthSource {
+    /// An exact closed form (no uncertainty).
+    ClosedForm,
+    /// The independent reference run of [`Truth::reference_run`].
+    ReferenceRun,
+}
+
+/// The expected mean and variance over rows of one normalized estimator,
+/// and how much a set of this many rows is expected to scatter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EstimatorTruth {
+    /// Expected mean over rows.
+    pub mean: f64,
+    /// Expected variance over rows.
+    pub var: f64,
+    /// Where `mean` comes from.
+    pub mean_source: TruthSource,
+    /// Where `var` comes from.
+    pub var_source: TruthSource,
+    /// Standard error of `mean` itself (0 for a closed form).
+    pub stderr_mean: f64,
+    /// Standard error of `var` itself (0 for a closed form).
+    pub stderr_var: f64,
+    /// The standard deviation of the mean of a set of [`DataFiles::rows`]
+    /// rows (from the reference run's blocks of that size: it includes the
+    /// correlation of consecutive piston scans).
+    pub set_stderr_mean: f64,
+    /// The standard deviation of the variance of such a set (from the
+    /// reference run; None when it was not run).
+    pub set_stderr_var: Option<f64>,
+}
+
+/// The size and seed of the reference run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ReferenceRun {
+    /// Its seed (derived from the set's, never equal to it).
+    pub seed: u64,
+    /// Blocks of [`DataFiles::rows`] rows each, each an independent
+    /// replicate of the set (0: no reference run).
+    pub blocks: u64,
+    /// Rows per block (the set's size).
+    pub rows_per_block: u64,
+}
+
+impl Sidecar {
+    /// The truth of `window` under `bias`, if the sidecar has it.
+    pub fn truth(&self, window: BinWindow, bias: BiasConvention) -> Option<&ConventionTruth> {
+        self.truth
+            .windows
+            .iter()
+            .find(|w| w.bins == window)?
+            .conventions
+            .iter()
+            .find(|c| c.bias == bias)
+    }
+}

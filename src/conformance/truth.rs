@@ -1,0 +1,1 @@
+//! The truth of a synth set (placeholder).

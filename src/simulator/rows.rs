@@ -1,0 +1,293 @@
+//! The rows of a set: one noisy interferogram per scan, with every effect
+//! at once.
+//!
+//! Row s holds the modulated samples `M_i = I_i − c_i` of scan s in DFT
+//! order ([`crate::formalism::interferogram::Sampling::opd_um`]):
+//!
+//! 1. the noise-free modulated signal: the model's `m_i` (photons · V ·
+//!    fringe of the source through the spectrum, dispersion and detector),
+//!    or, with piston, the same fringe read at the OPD of each sample of
+//!    scan s through the differential-piston sequence
+//!    ([`crate::piston::scan`]);
+//! 2. the counts `I_i`: Poisson of mean `c_i + m_i` with photon noise
+//!    (else `c_i + m_i`), plus Gaussian read noise `σ_det`.
+//!
+//! Randomness: the noise of the rows of work unit u (rows
+//! `u·ROWS_PER_UNIT …`) comes from the generator of (seed, u); the piston
+//! sequence of the whole set from [`piston::sweep_seed`]`(seed, f)`. Without
+//! piston the draws are exactly those of `v2ref simulate`
+//! ([`crate::noise::simulation::simulate_noisy`]); with piston and no noise
+//! the rows are those of `v2ref piston` at the same seed.
+
+use crate::error::{Error, Result};
+use crate::montecarlo::{run_unit_range, Rng};
+use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
+use crate::piston::fringe_table::FringeTable;
+use crate::piston::scan::{fill_scan, ScanSetup};
+use crate::piston::simulation::{table_range_um, validate_size, PistonSequence};
+use crate::piston::{self, RunSize};
+use crate::simulator::Model;
+
+/// Rows per work unit (that of `simulate`, so that a noise-only set draws
+/// what `simulate` draws).
+pub const ROWS_PER_UNIT: u64 = TRIALS_PER_UNIT;
+
+/// The scans through the piston of one set.
+struct PistonScans {
+    sequence: PistonSequence,
+    table: FringeTable,
+    setup: ScanSetup,
+    sub: (Vec<f64>, Vec<f64>),
+    /// photons · V: the modulated signal per unit fringe.
+    scale: f64,
+    residual_rms_um: f64,
+}
+
+/// What a set's piston was.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PistonFacts {
+    /// f, Hz.
+    pub fringe_hz: f64,
+    /// The seed of the piston sequence.
+    pub sequence_seed: u64,
+    /// Duration of one scan, s.
+    pub scan_time_s: f64,
+    /// RMS of the piston sequence, µm.
+    pub piston_rms_um: f64,
+    /// RMS of the piston left in the scans after the reference is removed, µm.
+    pub residual_rms_um: f64,
+}
+
+/// A set of `rows` rows of one model from one seed.
+pub struct Rows<'a> {
+    model: &'a Model,
+    rows: u64,
+    seed: u64,
+    /// The draws without piston (the modulated signal is the same in every row).
+    fixed: Option<SampleNoise>,
+    piston: Option<PistonScans>,
+}
+
+impl Model {
+    /// The set of `rows` rows (≥ 1) from `seed`; `threads` synthesizes the
+    /// piston sequence (the rows do not depend on it).
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use v2ref::simulator::{Inputs, Model};
+    /// let model = Model::new(&Inputs { samples: 16, ..Inputs::default() })?;
+    /// let set = model.rows(3, 7, 1)?;
+    /// let mut rows = Vec::new();
+    /// set.fill_unit(0, &mut v2ref::montecarlo::unit_rng(7, 0), &mut rows);
+    /// assert_eq!(rows.len(), 3 * 16);
+    /// # Ok::<(), v2ref::Error>(())
+    /// ```
+    pub fn rows(&self, rows: u64, seed: u64, threads: usize) -> Result<Rows<'_>> {
+        if rows == 0 {
+            return Err(Error::OutOfRange {
+                param: "rows",
+                value: 0.0,
+                accepted: ">= 1".into(),
+            });
+        }
+        let piston = match (self.inputs.piston, self.inputs.scan_setup()) {
+            (Some(p), Some(setup)) => Some(self.piston_scans(&p, setup, rows, seed, threads)?),
+            _ => None,
+        };
+        let fixed = match piston {
+            Some(_) => None,
+            None => Some(SampleNoise::new(&NoisySpec {
+                modulated: self.signal.modulated.clone(),
+                continuum: self.signal.continuum.clone(),
+                noise: self.noise,
+                bins: Vec::new(),
+            })?),
+        };
+        Ok(Rows {
+            model: self,
+            rows,
+            seed,
+            fixed,
+            piston,
+        })
+    }
+
+    fn piston_scans(
+        &self,
+        p: &crate::simulator::PistonInputs,
+        setup: ScanSetup,
+        rows: u64,
+        seed: u64,
+        threads: usize,
+    ) -> Result<PistonScans> {
+        let size = RunSize {
+            scans: usize::try_from(rows).unwrap_or(usize::MAX),
+            seed: piston::sweep_seed(seed, p.fringe_hz),
+            threads,
+        };
+        validate_size(&setup, &size)?;
+        let spectrum = p.spectrum(self.observation.baseline_m)?;
+        let sequence = PistonSequence::synthesize(&spectrum, &setup, &size)?;
+        let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
+        let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
+        Ok(PistonScans {
+            sequence,
+            table,
+            setup,
+            sub: self.inputs.detector().sub_samples()?,
+            scale: self.inputs.photons * self.inputs.visibility,
+            residual_rms_um,
+        })
+    }
+}
+
+impl Rows<'_> {
+    /// The model.
+    pub fn model(&self) -> &Model {
+        self.model
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// The seed.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// N.
+    pub fn samples(&self) -> usize {
+        self.model.samples()
+    }
+
+    /// Number of work units.
+    pub fn units(&self) -> u64 {
+        self.rows.div_ceil(ROWS_PER_UNIT)
+    }
+
+    /// Rows in unit `u`.
+    pub fn unit_rows(&self, u: u64) -> u64 {
+        (self.rows - u * ROWS_PER_UNIT).min(ROWS_PER_UNIT)
+    }
+
+    /// The piston of the set, if any.
+    pub fn piston_facts(&self) -> Option<PistonFacts> {
+        self.piston.as_ref().map(|p| PistonFacts {
+            fringe_hz: p.setup.fringe_hz,
+            sequence_seed: piston::sweep_seed(self.seed, p.setup.fringe_hz),
+            scan_time_s: p.setup.scan_time_s(),
+            piston_rms_um: p.sequence.rms_um(),
+            residual_rms_um: p.residual_rms_um,
+        })
+    }
+
+    /// The noise-free modulated samples of row `s` (with its piston).
+    pub fn noise_free_row(&self, s: u64, out: &mut [f64]) {
+        match &self.piston {
+            None => out.copy_from_slice(&self.model.signal.modulated),
+            Some(p) => p.scan(s as usize, out),
+        }
+    }
+
+    /// The noise-free modulated samples of a scan without piston, read the
+    /// way the piston scans read the fringe (for differences that cancel
+    /// the fringe table's own error); the model's `m_i` without piston.
+    pub fn piston_free_row(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.samples()];
+        match &self.piston {
+            None => out.copy_from_slice(&self.model.signal.modulated),
+            Some(p) => {
+                fill_scan(
+                    &p.table,
+                    &p.setup,
+                    &p.sub.0,
+                    &p.sub.1,
+                    &|_| 0.0,
+                    0.0,
+                    &mut out,
+                );
+                out.iter_mut().for_each(|m| *m *= p.scale);
+            }
+        }
+        out
+    }
+
+    /// Appends the rows of unit `u` (row-major) to `out`, drawing from
+    /// `rng`, which must be the unit's generator (`unit_rng(seed, u)`).
+    pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) {
+        let n = self.samples();
+        let first = u * ROWS_PER_UNIT;
+        for s in first..first + self.unit_rows(u) {
+            let start = out.len();
+            out.resize(start + n, 0.0);
+            let row = &mut out[start..];
+            match &self.fixed {
+                Some(noise) => noise.draw(rng, row),
+                None => {
+                    self.noise_free_row(s, row);
+                    self.add_noise(rng, row);
+                }
+            }
+        }
+    }
+
+    /// `work(u, rows of unit u)` for each unit of `range`, in parallel on
+    /// `threads` threads, results in unit order.
+    pub fn map_units<T: Send>(
+        &self,
+        range: std::ops::Range<u64>,
+        threads: usize,
+        work: impl Fn(u64, &[f64]) -> T + Sync + Send,
+    ) -> Vec<T> {
+        run_unit_range(self.seed, range, threads, |u, rng| {
+            let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
+            self.fill_unit(u, rng, &mut rows);
+            work(u, &rows)
+        })
+    }
+
+    /// Photon and read noise on a row of varying modulated signal (the
+    /// Poisson counts first, then the Gaussian read noise, as
+    /// [`SampleNoise`] draws them).
+    fn add_noise(&self, rng: &mut Rng, row: &mut [f64]) {
+        use rand_distr::{Distribution, Poisson, StandardNormal};
+        let noise = &self.model.noise;
+        if noise.photon {
+            for (m, &c) in row.iter_mut().zip(&self.model.signal.continuum) {
+                let mean = (c + *m).max(0.0);
+                let count = match Poisson::new(mean) {
+                    Ok(p) => p.sample(rng),
+                    Err(_) => 0.0, // mean 0: no photon
+                };
+                *m = count - c;
+            }
+        }
+        if noise.read_noise > 0.0 {
+            for m in row.iter_mut() {
+                let z: f64 = StandardNormal.sample(rng);
+                *m += noise.read_noise * z;
+            }
+        }
+    }
+}
+
+impl PistonScans {
+    /// The noise-free modulated samples of scan `s`.
+    fn scan(&self, s: usize, out: &mut [f64]) {
+        let r = self.sequence.reference_um(s);
+        let p = |tau: f64| self.sequence.at(s, tau);
+        fill_scan(
+            &self.table,
+            &self.setup,
+            &self.sub.0,
+            &self.sub.1,
+            &p,
+            r,
+            out,
+        );
+        out.iter_mut().for_each(|m| *m *= self.scale);
+    }
+}
