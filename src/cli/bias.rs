@@ -48,7 +48,7 @@ struct Answer {
 pub fn run(args: Args) -> Result<ExitCode> {
     let obs = args.obs.observation()?;
     let wb = wide_band(&obs);
-    let finite_scan = if args.finite_scan || args.sampling.stroke_um.is_some() {
+    let finite_scan = if args.finite_scan || args.sampling.scan.stroke_um.is_some() {
         let sampling = args.sampling.sampling()?;
         let window = args.sampling.bins;
         let Pair { v1_sq, v2_sq } = sampled_wide_band(&obs, &sampling, window)?;

@@ -106,9 +106,9 @@ impl ObservationArgs {
     }
 }
 
-/// How the interferogram is sampled.
+/// How the interferogram is scanned and sampled.
 #[derive(Debug, Clone, clap::Args)]
-pub struct SamplingArgs {
+pub struct ScanArgs {
     /// OPD stroke Δx, µm (sets N = Δx/δx; default: --samples × --dx-um).
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub stroke_um: Option<f64>,
@@ -121,6 +121,23 @@ pub struct SamplingArgs {
     /// Integrating detector (each sample averages the fringe over δx).
     #[arg(long)]
     pub integrating: bool,
+}
+
+impl ScanArgs {
+    /// The sampling these flags describe.
+    pub fn sampling(&self) -> Result<Sampling> {
+        match self.stroke_um {
+            Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
+            None => Sampling::new(self.samples, self.dx_um, self.integrating),
+        }
+    }
+}
+
+/// How the interferogram is sampled, and the bins the estimators sum.
+#[derive(Debug, Clone, clap::Args)]
+pub struct SamplingArgs {
+    #[command(flatten)]
+    pub scan: ScanArgs,
     /// Fourier bins the estimators sum.
     #[arg(long, value_enum, default_value = "positive")]
     pub bins: BinWindow,
@@ -129,11 +146,31 @@ pub struct SamplingArgs {
 impl SamplingArgs {
     /// The sampling these flags describe.
     pub fn sampling(&self) -> Result<Sampling> {
-        match self.stroke_um {
-            Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
-            None => Sampling::new(self.samples, self.dx_um, self.integrating),
-        }
+        self.scan.sampling()
     }
+}
+
+/// The turbulence, the telescopes and the scans through the piston (§6).
+#[derive(Debug, Clone, clap::Args)]
+pub struct TurbulenceArgs {
+    /// Wind speed, m/s (frozen flow along the baseline).
+    #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
+    pub wind_mps: f64,
+    /// Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
+    pub seeing_arcsec: f64,
+    /// Telescope aperture diameter, m.
+    #[arg(long, default_value = "0.45", value_parser = finite_f64, allow_negative_numbers = true)]
+    pub aperture_m: f64,
+    /// von Kármán outer scale, m [default: infinite].
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    pub outer_scale_m: Option<f64>,
+    /// Sub-samples per sample of the integrating detector.
+    #[arg(long, default_value_t = v2ref::piston::DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
+    pub sub_samples: usize,
+    /// Where the fringe packet sits in each scan.
+    #[arg(long, value_enum, default_value = "mean")]
+    pub reference: v2ref::piston::PistonReference,
 }
 
 /// Output flags of the subcommands that draw progress on stderr.
@@ -156,4 +193,28 @@ pub struct RunArgs {
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, default_value = "0", allow_negative_numbers = true)]
     pub threads: usize,
+}
+
+/// The light: the fringe's visibility scale, the photons, the noise.
+#[derive(Debug, Clone, clap::Args)]
+pub struct LightArgs {
+    /// Visibility V scaling the fringe (m_0 = n V for a point source), 0 to 1.
+    #[arg(long, default_value = "1", value_parser = finite_f64, allow_hyphen_values = true)]
+    pub visibility: f64,
+    /// Continuum photons per sample n (c = n), >= 0.
+    #[arg(long, default_value = "10", value_parser = finite_f64, allow_hyphen_values = true)]
+    pub photons: f64,
+    /// Detector noise standard deviation σ_det, photons per sample, >= 0.
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_hyphen_values = true)]
+    pub read_noise: f64,
+    /// No Poisson photon noise (detector noise only).
+    #[arg(long)]
+    pub no_photon_noise: bool,
+}
+
+impl LightArgs {
+    /// The noise model these flags describe.
+    pub fn noise(&self) -> Result<v2ref::noise::NoiseModel> {
+        v2ref::noise::NoiseModel::new(self.read_noise, !self.no_photon_noise)
+    }
 }

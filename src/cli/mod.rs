@@ -15,6 +15,7 @@ pub mod bias;
 pub mod claims;
 pub mod common;
 pub mod golden;
+pub mod inputs;
 pub mod piston;
 pub mod reproduce;
 pub mod simulate;

@@ -1,7 +1,7 @@
 //! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
 //! frequencies (paper, Section "Effect of differential piston").
 
-use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
+use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs, TurbulenceArgs};
 use super::{finite_f64, print_json, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
@@ -10,9 +10,7 @@ use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
 use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
-use v2ref::piston::{
-    sweep, Detector, PistonReference, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
-};
+use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
@@ -24,27 +22,11 @@ pub struct Args {
     /// Fringe frequency f = v/λ0, Hz (repeatable) [default: 300 and 1000].
     #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
     fringe_hz: Vec<f64>,
-    /// Wind speed, m/s (frozen flow along the baseline).
-    #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
-    wind_mps: f64,
-    /// Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
-    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
-    seeing_arcsec: f64,
-    /// Telescope aperture diameter, m.
-    #[arg(long, default_value = "0.45", value_parser = finite_f64, allow_negative_numbers = true)]
-    aperture_m: f64,
-    /// von Kármán outer scale, m [default: infinite].
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
-    outer_scale_m: Option<f64>,
+    #[command(flatten)]
+    turbulence: TurbulenceArgs,
     /// Number of consecutive scans per fringe frequency.
     #[arg(long, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
-    /// Sub-samples per sample of the integrating detector.
-    #[arg(long, default_value_t = DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
-    sub_samples: usize,
-    /// Where the fringe packet sits in each scan.
-    #[arg(long, value_enum, default_value = "mean")]
-    reference: PistonReference,
     #[command(flatten)]
     run: RunArgs,
     #[command(flatten)]
@@ -114,17 +96,17 @@ pub fn run(args: Args) -> Result<ExitCode> {
     sampling.check_aliasing(&obs)?;
     let freqs = fringe_frequencies(&args.fringe_hz)?;
     check_scans(args.scans)?;
-    v2ref::error::positive("aperture_m", args.aperture_m)?;
+    v2ref::error::positive("aperture_m", args.turbulence.aperture_m)?;
     let turb = Turbulence::from_seeing(
-        args.seeing_arcsec,
+        args.turbulence.seeing_arcsec,
         args.obs.wavelength_um,
-        args.wind_mps,
-        args.outer_scale_m,
+        args.turbulence.wind_mps,
+        args.turbulence.outer_scale_m,
     )?;
-    let spectrum = PistonSpectrum::new(turb, args.aperture_m, obs.baseline_m)?;
+    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?;
     let detector = if sampling.integrating() {
         Detector::Integrating {
-            sub_samples: args.sub_samples,
+            sub_samples: args.turbulence.sub_samples,
         }
     } else {
         Detector::Sampled
@@ -134,7 +116,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let answer = Answer {
         detector: detector.name(),
         bins: window.name(),
-        reference: args.reference.name(),
+        reference: args.turbulence.reference.name(),
         baseline_m: obs.baseline_m,
         spatial_freq_cpas: obs.spatial_freq_cpas(),
         r0_m: turb.r0_m(),
@@ -199,7 +181,7 @@ fn simulate_each(
         dx_um: sampling.dx_um(),
         wavelength_um: args.obs.wavelength_um,
         fringe_hz: freqs[0],
-        reference: args.reference,
+        reference: args.turbulence.reference,
     };
     let size = RunSize {
         scans: args.scans,

@@ -1,16 +1,21 @@
-//! `v2ref simulate`: Monte Carlo of both estimators on noisy sampled
-//! interferograms, bias-subtracted (in the `--formula` chosen) and
-//! normalized by the noise-free estimate of a calibrator (point source,
-//! V = 1, same photons), so that an unbiased estimator of a source of
-//! visibility V has mean V².
+//! `v2ref simulate`: the end-to-end simulator's Monte Carlo — noisy
+//! interferograms with every effect at once (band, source, dispersion,
+//! scan, detector, piston with `--fringe-hz`, photon and detector noise),
+//! each row bias-subtracted (`--bias`, `--formula`) and normalized by the
+//! calibrator (point source, V = 1, same photons), so that an unbiased
+//! estimator of a source of visibility V has mean V².
 
-use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs};
-use super::snr::NoiseArgs;
+use super::common::{OutputArgs, RunArgs};
+use super::inputs::InputsArgs;
 use super::{print_json, print_rows, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::noise::calibrated::{calibrated_run, CalibratedRun, Trials};
+use v2ref::conformance::estimate::BiasConvention;
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
+use v2ref::simulator::run::PistonEffect;
+use v2ref::simulator::{simulate, Inputs, Model, PistonFacts, SimulationRun};
 use v2ref::{Error, Result};
 
 /// Largest number of trials accepted.
@@ -20,12 +25,18 @@ pub const MAX_TRIALS: u64 = 1 << 40;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    obs: ObservationArgs,
-    #[command(flatten)]
-    sampling: SamplingArgs,
-    #[command(flatten)]
-    noise: NoiseArgs,
-    /// Number of noisy interferograms.
+    inputs: InputsArgs,
+    /// Fourier bins the estimators sum.
+    #[arg(long, value_enum, default_value = "positive")]
+    bins: BinWindow,
+    /// Where the photon bias takes the mean counts from: the model's
+    /// noise-free counts, or each row's own counts.
+    #[arg(long, value_enum, default_value = "model")]
+    bias: BiasConvention,
+    /// Formula of the subtracted bias: as printed in the paper, or exact.
+    #[arg(long, value_enum, default_value = "exact")]
+    formula: Formula,
+    /// Number of noisy interferograms (rows).
     #[arg(long, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
     #[command(flatten)]
@@ -38,6 +49,7 @@ pub struct Args {
 struct Answer {
     formula: Formula,
     bins: String,
+    bias: BiasConvention,
     samples: usize,
     mean_v1_sq: f64,
     mean_v2_sq: f64,
@@ -47,35 +59,40 @@ struct Answer {
     stderr_mean_v2_sq: f64,
     stderr_var_v1_sq: f64,
     stderr_var_v2_sq: f64,
-    /// Closed-form expectation of the normalized V1² (exact noise, this
-    /// formula's bias).
-    expected_mean_v1_sq: f64,
+    /// Closed-form expectation of the normalized V1² (null with piston).
+    expected_mean_v1_sq: Option<f64>,
     /// Same for V2².
-    expected_mean_v2_sq: f64,
+    expected_mean_v2_sq: Option<f64>,
     /// Exact closed-form variance of the normalized V1² over the window.
     expected_var_v1_sq: Option<f64>,
     /// Same for V2².
     expected_var_v2_sq: Option<f64>,
     trials: u64,
     seed: u64,
+    /// The piston sequence (null without --fringe-hz).
+    piston: Option<PistonFacts>,
+    /// With piston and no noise: V − V(no piston) (what `piston` reports).
+    piston_effect: Option<PistonEffect>,
+    /// Every physical input.
+    inputs: Inputs,
 }
 
 /// Runs `simulate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
-    let noise = args.noise.noise()?;
-    let obs = args.obs.observation()?;
-    let sampling = args.sampling.sampling()?;
-    let setup = args.noise.setup(&obs, &sampling, args.sampling.bins)?;
+    let inputs = args.inputs.inputs()?;
+    let model = Model::new(&inputs)?;
     let bar = progress_bar(args.trials, args.output.quiet, "simulate");
     let size = Trials {
         trials: args.trials,
         seed: args.run.seed,
         threads: args.run.threads,
     };
-    let run = calibrated_run(&setup, &noise, args.noise.formula, size, &|t| bar.inc(t))?;
+    let run = simulate(&model, args.bins, args.bias, args.formula, size, &|t| {
+        bar.inc(t)
+    })?;
     bar.finish_and_clear();
-    let answer = answer(&args, sampling.samples(), &run);
+    let answer = answer(&args, inputs, &run);
     if args.output.json {
         print_json(&answer);
     } else {
@@ -97,12 +114,13 @@ fn check_trials(trials: u64) -> Result<()> {
     }
 }
 
-fn answer(args: &Args, samples: usize, run: &CalibratedRun) -> Answer {
-    let (v1, v2, e) = (&run.v1_sq, &run.v2_sq, &run.expected);
+fn answer(args: &Args, inputs: Inputs, run: &SimulationRun) -> Answer {
+    let (v1, v2, e) = (&run.v1_sq, &run.v2_sq, run.expected.as_ref());
     Answer {
-        formula: args.noise.formula,
-        bins: args.sampling.bins.name().to_owned(),
-        samples,
+        formula: args.formula,
+        bins: args.bins.name().to_owned(),
+        bias: args.bias,
+        samples: inputs.samples,
         mean_v1_sq: v1.mean,
         mean_v2_sq: v2.mean,
         var_v1_sq: v1.var,
@@ -111,25 +129,36 @@ fn answer(args: &Args, samples: usize, run: &CalibratedRun) -> Answer {
         stderr_mean_v2_sq: v2.stderr_mean,
         stderr_var_v1_sq: v1.stderr_var,
         stderr_var_v2_sq: v2.stderr_var,
-        expected_mean_v1_sq: e.mean_v1_sq,
-        expected_mean_v2_sq: e.mean_v2_sq,
-        expected_var_v1_sq: e.var_v1_sq,
-        expected_var_v2_sq: e.var_v2_sq,
+        expected_mean_v1_sq: e.map(|e| e.mean_v1_sq),
+        expected_mean_v2_sq: e.map(|e| e.mean_v2_sq),
+        expected_var_v1_sq: e.and_then(|e| e.var_v1_sq),
+        expected_var_v2_sq: e.and_then(|e| e.var_v2_sq),
         trials: args.trials,
         seed: args.run.seed,
+        piston: run.piston,
+        piston_effect: run.piston_effect,
+        inputs,
     }
 }
 
 fn print_table(a: &Answer) {
-    let opt = |v: Option<f64>| v.map_or("-".to_owned(), |x| format!("{x:.6e}"));
-    let mean = |m: f64, se: f64, e: f64| format!("{m:.6} +- {se:.2e} (expected {e:.6})");
+    let opt = |v: Option<f64>, p: usize| v.map_or("-".to_owned(), |x| format!("{x:.p$e}"));
+    let mean = |m: f64, se: f64, e: Option<f64>| {
+        let e = e.map_or("-".to_owned(), |x| format!("{x:.6}"));
+        format!("{m:.6} +- {se:.2e} (expected {e})")
+    };
     let var =
-        |v: f64, se: f64, e: Option<f64>| format!("{v:.6e} +- {se:.2e} (expected {})", opt(e));
-    print_rows(&[
+        |v: f64, se: f64, e: Option<f64>| format!("{v:.6e} +- {se:.2e} (expected {})", opt(e, 6));
+    let mut rows = vec![
         ("formula", format!("{:?}", a.formula).to_lowercase()),
         ("bins", a.bins.clone()),
+        ("bias", a.bias.name().to_owned()),
         ("trials", a.trials.to_string()),
         ("seed", a.seed.to_string()),
+        (
+            "baseline",
+            format!("{:.3} m, {} samples", a.inputs.baseline_m, a.samples),
+        ),
         (
             "mean V1^2",
             mean(a.mean_v1_sq, a.stderr_mean_v1_sq, a.expected_mean_v1_sq),
@@ -154,5 +183,25 @@ fn print_table(a: &Answer) {
             "SNR2 (Monte Carlo)",
             format!("{:.4}", a.mean_v2_sq / a.var_v2_sq.sqrt()),
         ),
-    ]);
+    ];
+    if let Some(p) = &a.piston {
+        rows.push((
+            "piston",
+            format!(
+                "{} Hz, scan {:.3e} s, rms {:.2} um, residual {:.3} um",
+                p.fringe_hz, p.scan_time_s, p.piston_rms_um, p.residual_rms_um
+            ),
+        ));
+    }
+    if let Some(e) = &a.piston_effect {
+        rows.push((
+            "piston bias on V1, V2 (not squared)",
+            format!("{:+.3e}, {:+.3e}", e.v1.mean, e.v2.mean),
+        ));
+        rows.push((
+            "piston scatter on V1, V2",
+            format!("{:.3e}, {:.3e}", e.v1.std, e.v2.std),
+        ));
+    }
+    print_rows(&rows);
 }

@@ -3,8 +3,8 @@
 //! paper's window factor kept apart and the exact variance of the chosen
 //! bin window beside it.
 
-use super::common::{ObservationArgs, SamplingArgs};
-use super::{finite_f64, print_json, print_rows};
+use super::common::{LightArgs, ObservationArgs, SamplingArgs};
+use super::{print_json, print_rows};
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::formalism::estimator::BinWindow;
@@ -18,18 +18,8 @@ use v2ref::Result;
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct NoiseArgs {
-    /// Visibility V scaling the fringe (m_0 = n V for a point source), 0 to 1.
-    #[arg(long, default_value = "1", value_parser = finite_f64, allow_hyphen_values = true)]
-    pub visibility: f64,
-    /// Continuum photons per sample n (c = n), >= 0.
-    #[arg(long, default_value = "10", value_parser = finite_f64, allow_hyphen_values = true)]
-    pub photons: f64,
-    /// Detector noise standard deviation σ_det, photons per sample, >= 0.
-    #[arg(long, default_value = "0", value_parser = finite_f64, allow_hyphen_values = true)]
-    pub read_noise: f64,
-    /// No Poisson photon noise (detector noise only).
-    #[arg(long)]
-    pub no_photon_noise: bool,
+    #[command(flatten)]
+    pub light: LightArgs,
     /// Formula: as printed in the paper, or exact.
     #[arg(long, value_enum, default_value = "exact")]
     pub formula: Formula,
@@ -38,7 +28,7 @@ pub struct NoiseArgs {
 impl NoiseArgs {
     /// The noise model these flags describe.
     pub fn noise(&self) -> Result<NoiseModel> {
-        NoiseModel::new(self.read_noise, !self.no_photon_noise)
+        self.light.noise()
     }
 
     /// The noise-free interferograms (source and calibrator) of `obs`
@@ -49,7 +39,8 @@ impl NoiseArgs {
         sampling: &Sampling,
         window: BinWindow,
     ) -> Result<CalibratedSetup> {
-        CalibratedSetup::new(obs, sampling, self.photons, self.visibility, window)
+        let l = &self.light;
+        CalibratedSetup::new(obs, sampling, l.photons, l.visibility, window)
     }
 }
 
@@ -118,8 +109,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let answer = Answer {
         formula,
         samples: st.samples,
-        photons: args.noise.photons,
-        visibility: args.noise.visibility,
+        photons: args.noise.light.photons,
+        visibility: args.noise.light.visibility,
         read_noise: noise.read_noise,
         photon_noise: noise.photon,
         sum_m2: st.sum_m2,

@@ -1,0 +1,234 @@
+//! The end-to-end simulator and the per-row estimator: the fast paths
+//! against their slow oracles, the general path against the specialised
+//! ones it replaces (`simulate`'s noise-only reduction, the piston Monte
+//! Carlo), and the truth's reference run against its closed forms.
+
+use v2ref::conformance::estimate::{estimate_row_oracle, BiasConvention, RowEstimator};
+use v2ref::conformance::sidecar::TruthSource;
+use v2ref::conformance::truth::{truth, TruthSize};
+use v2ref::formalism::estimator::{BinWindow, BIN_WINDOWS};
+use v2ref::montecarlo::unit_rng;
+use v2ref::noise::calibrated::Trials;
+use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
+use v2ref::noise::Formula;
+use v2ref::piston::{simulate as simulate_piston, Detector, RunSize, ScanSetup};
+use v2ref::simulator::{simulate, Inputs, Model, PistonInputs};
+use v2ref::tolerance::{MC_SIGMAS, PATHS_AGREE_ABS};
+use v2ref::{assert_abs_eq, assert_rel_eq, assert_within_sigmas};
+
+fn small(samples: usize) -> Inputs {
+    Inputs {
+        samples,
+        read_noise: 1.5,
+        ..Inputs::default()
+    }
+}
+
+/// Every window, both conventions, even and odd N, counts kept or not:
+/// the fast estimator equals the naive DFT with the bias by its definition.
+#[test]
+fn row_estimator_matches_its_oracle() {
+    for n in [16, 17] {
+        let model = Model::new(&small(n)).unwrap();
+        let set = model.rows(5, 11, 1).unwrap();
+        let mut rows = Vec::new();
+        set.fill_unit(0, &mut unit_rng(11, 0), &mut rows);
+        for window in BIN_WINDOWS {
+            for bias in [BiasConvention::Model, BiasConvention::Counts] {
+                let est = RowEstimator::new(&model, window, bias, true).unwrap();
+                let kept = RowEstimator::new(&model, window, bias, false).unwrap();
+                let bins = model.bins(window);
+                for row in rows.chunks_exact(n) {
+                    let variance: Vec<f64> = match bias {
+                        BiasConvention::Model => model.sample_variance(),
+                        BiasConvention::Counts => row
+                            .iter()
+                            .zip(&model.signal.continuum)
+                            .map(|(m, c)| 1.5 * 1.5 + c + m)
+                            .collect(),
+                    };
+                    let want = estimate_row_oracle(row, &bins, &variance, est.calibration());
+                    let got = est.estimate(row);
+                    let counts: Vec<f64> = row
+                        .iter()
+                        .zip(&model.signal.continuum)
+                        .map(|(m, c)| m + c)
+                        .collect();
+                    let got_kept = kept.estimate(&counts);
+                    for (g, w) in [
+                        (got.v1_sq_raw, want.v1_sq_raw),
+                        (got.v2_sq_raw, want.v2_sq_raw),
+                        (got.v1_sq_bias, want.v1_sq_bias),
+                        (got.v2_sq_bias, want.v2_sq_bias),
+                        (got_kept.v1_sq_raw, want.v1_sq_raw),
+                    ] {
+                        assert_rel_eq!(g, w, 1e-10, "N = {n}, {window:?}, {bias:?}");
+                    }
+                    assert_abs_eq!(got.v1_sq, want.v1_sq, PATHS_AGREE_ABS);
+                    assert_abs_eq!(got.v2_sq, want.v2_sq, PATHS_AGREE_ABS);
+                }
+            }
+        }
+    }
+}
+
+/// Without piston a set's rows are exactly the draws of `simulate_noisy`:
+/// the raw estimators accumulated over the rows have the same bits.
+#[test]
+fn noise_only_rows_are_simulates_draws() {
+    let model = Model::new(&small(32)).unwrap();
+    let trials = 10_000;
+    let set = model.rows(trials, 5, 2).unwrap();
+    let est = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
+    let parts = set.map_units(0..set.units(), 2, |_, block| {
+        let mut s = v2ref::montecarlo::RunningStats::default();
+        for row in block.chunks_exact(32) {
+            s.push(est.estimate(row).v1_sq_raw);
+        }
+        s
+    });
+    let mut mine = v2ref::montecarlo::RunningStats::default();
+    parts.iter().for_each(|p| mine.merge(p));
+    let spec = NoisySpec {
+        modulated: model.signal.modulated.clone(),
+        continuum: model.signal.continuum.clone(),
+        noise: model.noise,
+        bins: model.bins(BinWindow::Positive),
+    };
+    let theirs = simulate_noisy(&spec, trials, 5, 1, &|_| {}).unwrap();
+    assert_eq!(mine.count, theirs.v1_sq.count);
+    assert_rel_eq!(mine.mean, theirs.v1_sq.mean, 1e-12);
+    assert_rel_eq!(mine.variance(), theirs.v1_sq.variance(), 1e-10);
+}
+
+/// The general path (every row estimated) agrees with the fast path of the
+/// `model` convention, and the counts convention has the same mean.
+#[test]
+fn general_path_agrees_with_the_fast_path() {
+    let inputs = Inputs {
+        photon_noise: false,
+        ..small(32)
+    };
+    let model = Model::new(&inputs).unwrap();
+    let size = Trials {
+        trials: 20_000,
+        seed: 9,
+        threads: 0,
+    };
+    let fast = simulate(
+        &model,
+        BinWindow::Positive,
+        BiasConvention::Model,
+        Formula::Exact,
+        size,
+        &|_| {},
+    )
+    .unwrap();
+    // Detector noise only: the counts convention is the same estimator, by the general path.
+    let general = simulate(
+        &model,
+        BinWindow::Positive,
+        BiasConvention::Counts,
+        Formula::Exact,
+        size,
+        &|_| {},
+    )
+    .unwrap();
+    assert_rel_eq!(general.v1_sq.mean, fast.v1_sq.mean, 1e-10);
+    assert_rel_eq!(general.v2_sq.var, fast.v2_sq.var, 1e-8);
+    let e = fast.expected.unwrap();
+    assert_within_sigmas!(fast.v1_sq.mean, e.mean_v1_sq, fast.v1_sq.stderr_mean);
+    assert_within_sigmas!(fast.v2_sq.var, e.var_v2_sq.unwrap(), fast.v2_sq.stderr_var);
+}
+
+/// A piston-only set reproduces the piston Monte Carlo at the same seed:
+/// bias and scatter of V1 and V2.
+#[test]
+fn piston_only_reproduces_the_piston_monte_carlo() {
+    let inputs = Inputs {
+        photon_noise: false,
+        read_noise: 0.0,
+        piston: Some(PistonInputs::paper(300.0)),
+        ..Inputs::default()
+    };
+    let model = Model::new(&inputs).unwrap();
+    let scans = 300;
+    let size = Trials {
+        trials: scans,
+        seed: 4,
+        threads: 0,
+    };
+    let run = simulate(
+        &model,
+        BinWindow::Positive,
+        BiasConvention::Model,
+        Formula::Exact,
+        size,
+        &|_| {},
+    )
+    .unwrap();
+    let effect = run.piston_effect.unwrap();
+    let spectrum = inputs
+        .piston
+        .unwrap()
+        .spectrum(model.observation.baseline_m)
+        .unwrap();
+    let piston_seed = v2ref::piston::sweep_seed(4, 300.0);
+    let rs = RunSize {
+        scans: scans as usize,
+        seed: piston_seed,
+        threads: 0,
+    };
+    let theirs = simulate_piston(
+        &model.observation,
+        &spectrum,
+        &ScanSetup::paper(300.0),
+        &[Detector::Sampled],
+        &rs,
+        None,
+    )
+    .unwrap();
+    let w = theirs[0].window(BinWindow::Positive);
+    // Same rows; the estimators differ only in rounding (FFT against the
+    // windowed sums, and the calibrators' quadratures, ~1e-12 relative).
+    assert_abs_eq!(effect.v1.mean, w.v1.mean, 1e-9);
+    assert_abs_eq!(effect.v2.mean, w.v2.mean, 1e-9);
+    assert_rel_eq!(effect.v1.std, w.v1.std, 1e-6);
+    assert_rel_eq!(effect.v2.std, w.v2.std, 1e-6);
+    assert!(w.v2.std > 1e-4, "the comparison must see the piston");
+}
+
+/// The truth's reference run agrees with the closed forms it stands beside,
+/// and the closed forms are used where they exist.
+#[test]
+fn reference_run_agrees_with_closed_forms() {
+    let model = Model::new(&small(24)).unwrap();
+    let size = TruthSize {
+        rows: 2000,
+        seed: 1,
+        reference_blocks: 24,
+        threads: 0,
+    };
+    let t = truth(&model, size, &|_| {}).unwrap();
+    let w = &t.windows[0];
+    let model_conv = &w.conventions[0];
+    assert_eq!(model_conv.v1_sq.mean_source, TruthSource::ClosedForm);
+    assert_eq!(model_conv.v1_sq.var_source, TruthSource::ClosedForm);
+    let counts = &w.conventions[1];
+    assert_eq!(counts.v1_sq.var_source, TruthSource::ReferenceRun);
+    // The reference mean of the model convention, recomputed from the blocks,
+    // is not reported; check the counts convention's reference variance is
+    // positive and of the model's order, and the set spread is consistent.
+    for (c, m) in [
+        (&counts.v1_sq, &model_conv.v1_sq),
+        (&counts.v2_sq, &model_conv.v2_sq),
+    ] {
+        assert!(c.var > 0.0 && c.var < 10.0 * m.var);
+        assert_rel_eq!(m.set_stderr_mean, (m.var / 2000.0).sqrt(), 1e-12);
+        let s = m.set_stderr_var.unwrap();
+        // The spread of a set's variance: var·sqrt(2/(n−1)) for a Gaussian,
+        // more for a heavier tail; never below half the Gaussian value.
+        assert!(s > 0.5 * m.var * (2.0f64 / 1999.0).sqrt(), "{s}");
+    }
+    let _ = MC_SIGMAS;
+}
