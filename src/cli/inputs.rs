@@ -33,6 +33,14 @@ pub struct InputsArgs {
 impl InputsArgs {
     /// The inputs these flags describe, checked.
     pub fn inputs(&self) -> Result<Inputs> {
+        let inputs = self.inputs_unchecked()?;
+        inputs.validate()?;
+        Ok(inputs)
+    }
+
+    /// The inputs, before the checks that involve N (a file's width may
+    /// still set it).
+    pub fn inputs_unchecked(&self) -> Result<Inputs> {
         let obs = self.obs.observation()?;
         let sampling = self.scan.sampling()?;
         let t = &self.piston.turbulence;
@@ -67,7 +75,6 @@ impl InputsArgs {
                 sub_samples: t.sub_samples,
             }),
         };
-        inputs.validate()?;
         Ok(inputs)
     }
 }

@@ -17,3 +17,4 @@ pub mod estimate;
 pub mod score;
 pub mod sidecar;
 pub mod truth;
+pub mod vectors;

@@ -249,6 +249,28 @@ impl Rows<'_> {
         })
     }
 
+    /// Hands every row to `sink` in row order, `batch` units at a time
+    /// (generated in parallel on `threads` threads, so memory stays at
+    /// about `batch · ROWS_PER_UNIT · N` values); stops at the first error
+    /// of `sink`.
+    pub fn stream<E>(
+        &self,
+        threads: usize,
+        batch: u64,
+        mut sink: impl FnMut(&[f64]) -> std::result::Result<(), E>,
+    ) -> std::result::Result<(), E> {
+        let batch = batch.max(1);
+        let mut first = 0;
+        while first < self.units() {
+            let last = (first + batch).min(self.units());
+            for block in self.map_units(first..last, threads, |_, rows| rows.to_vec()) {
+                sink(&block)?;
+            }
+            first = last;
+        }
+        Ok(())
+    }
+
     /// Photon and read noise on a row of varying modulated signal (the
     /// Poisson counts first, then the Gaussian read noise, as
     /// [`SampleNoise`] draws them).

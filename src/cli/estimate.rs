@@ -1,0 +1,237 @@
+//! `v2ref estimate`: per row of a file of interferograms, V1² and V2² raw,
+//! bias-subtracted and normalized (`v2ref::conformance::estimate`), for a
+//! window of bins, a bias convention and a calibrator.
+
+use super::files::{read_matrix, CsvRowWriter, Matrix, NpyRowWriter};
+use super::inputs::InputsArgs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use v2ref::conformance::sidecar::{Sidecar, FORMAT};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::simulator::{Inputs, Model};
+use v2ref::{Error, Result};
+
+/// The columns written, in order.
+pub const COLUMNS: [&str; 6] = [
+    "v1_sq_raw",
+    "v2_sq_raw",
+    "v1_sq_bias",
+    "v2_sq_bias",
+    "v1_sq",
+    "v2_sq",
+];
+
+/// Flags of `estimate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Interferograms: .npy (float64, rows × N) or .csv (one row per line);
+    /// default: the sidecar's .npy.
+    #[arg(long, value_name = "FILE")]
+    input: Option<PathBuf>,
+    /// A synth sidecar (SET.json): the configuration comes from it, and the
+    /// physical flags are refused.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["ObservationArgs", "ScanArgs", "LightArgs", "PistonArgs", "TurbulenceArgs", "counts"])]
+    sidecar: Option<PathBuf>,
+    #[command(flatten)]
+    inputs: InputsArgs,
+    /// Without --sidecar: the rows hold the counts I_i (continuum not
+    /// subtracted) rather than M_i = I_i − c_i.
+    #[arg(long)]
+    counts: bool,
+    /// Fourier bins the estimators sum.
+    #[arg(long, value_enum, default_value = "positive")]
+    bins: BinWindow,
+    /// Where the photon bias takes the mean counts from.
+    #[arg(long, value_enum, default_value = "model")]
+    bias: BiasConvention,
+    /// `model` (the configuration's point source, noise-free) or a file of
+    /// a calibrator's interferograms (same N and continuum convention):
+    /// the mean of its bias-subtracted estimates.
+    #[arg(long, default_value = "model", value_name = "model|FILE")]
+    calibrator: String,
+    /// Output file (.csv or .npy); default: CSV on standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Worker threads (0 = all cores); the answer does not depend on it.
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    threads: usize,
+}
+
+/// The configuration and the file to read.
+struct Source {
+    inputs: Inputs,
+    input: PathBuf,
+    continuum_subtracted: bool,
+    expected_rows: Option<u64>,
+}
+
+/// Runs `estimate`.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let source = source(&args)?;
+    let data = read_matrix(&source.input, "input")?;
+    let inputs = check_shape(&source, &data)?;
+    let model = Model::new(&inputs)?;
+    let est = RowEstimator::new(&model, args.bins, args.bias, source.continuum_subtracted)?;
+    let est = match args.calibrator.as_str() {
+        "model" => est,
+        path => {
+            let cal = calibration(&args, &model, path, source.continuum_subtracted)?;
+            est.with_calibration(cal)?
+        }
+    };
+    let rows = est.estimate_rows(&data.data, args.threads)?;
+    write(&args.out, &rows)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn source(args: &Args) -> Result<Source> {
+    match &args.sidecar {
+        Some(path) => {
+            let sidecar = read_sidecar(path)?;
+            let folder = path.parent().unwrap_or(Path::new("."));
+            let (input, expected_rows) = match &args.input {
+                Some(p) => (p.clone(), None),
+                None => (folder.join(&sidecar.data.npy), Some(sidecar.data.rows)),
+            };
+            Ok(Source {
+                inputs: sidecar.inputs,
+                input,
+                continuum_subtracted: sidecar.continuum_subtracted,
+                expected_rows,
+            })
+        }
+        None => {
+            let input = args.input.clone().ok_or_else(|| Error::Invalid {
+                param: "input",
+                reason: "give the interferograms (--input FILE) or a synth sidecar (--sidecar SET.json)".into(),
+            })?;
+            Ok(Source {
+                inputs: args.inputs.inputs_unchecked()?,
+                input,
+                continuum_subtracted: !args.counts,
+                expected_rows: None,
+            })
+        }
+    }
+}
+
+/// A sidecar read and parsed, or an error naming the file and the field.
+pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::file(Some("sidecar"), path, e))?;
+    let sidecar: Sidecar = serde_json::from_str(&text).map_err(|e| {
+        Error::data(
+            "sidecar",
+            path,
+            format!("line {}, column {}", e.line(), e.column()),
+            format!("not a v2ref synth sidecar: {e}"),
+        )
+    })?;
+    if sidecar.format != FORMAT {
+        return Err(Error::data(
+            "sidecar",
+            path,
+            "field format",
+            format!("\"{}\" is not {FORMAT}", sidecar.format),
+        ));
+    }
+    Ok(sidecar)
+}
+
+/// The inputs with N from the file (without a sidecar) or checked against
+/// it (with one).
+fn check_shape(source: &Source, data: &Matrix) -> Result<Inputs> {
+    if let Some(rows) = source.expected_rows {
+        if data.rows as u64 != rows {
+            return Err(Error::data(
+                "input",
+                &source.input,
+                "",
+                format!("{} rows; its sidecar says {rows}", data.rows),
+            ));
+        }
+    }
+    let mut inputs = source.inputs.clone();
+    if inputs.samples != data.cols {
+        if source.expected_rows.is_some() || source.inputs.piston.is_some() {
+            return Err(Error::data(
+                "input",
+                &source.input,
+                "",
+                format!(
+                    "{} columns; the configuration has {} samples per row",
+                    data.cols, inputs.samples
+                ),
+            ));
+        }
+        inputs.samples = data.cols;
+    }
+    inputs.validate()?;
+    Ok(inputs)
+}
+
+/// The calibration measured on a calibrator's file.
+fn calibration(
+    args: &Args,
+    model: &Model,
+    path: &str,
+    continuum_subtracted: bool,
+) -> Result<v2ref::formalism::estimator::Pair> {
+    let path = Path::new(path);
+    let data = read_matrix(path, "calibrator")?;
+    if data.cols != model.samples() {
+        return Err(Error::data(
+            "calibrator",
+            path,
+            "",
+            format!(
+                "{} columns; the interferograms have {}",
+                data.cols,
+                model.samples()
+            ),
+        ));
+    }
+    let cal_model = model.calibrator_model()?;
+    let est = RowEstimator::new(&cal_model, args.bins, args.bias, continuum_subtracted)?;
+    est.calibration_from_rows(&data.data, args.threads)
+}
+
+fn values(e: &RowEstimate) -> [f64; 6] {
+    [
+        e.v1_sq_raw,
+        e.v2_sq_raw,
+        e.v1_sq_bias,
+        e.v2_sq_bias,
+        e.v1_sq,
+        e.v2_sq,
+    ]
+}
+
+fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
+    let flat: Vec<f64> = rows.iter().flat_map(values).collect();
+    match out {
+        Some(p) if p.extension().is_some_and(|e| e == "npy") => {
+            let mut w = NpyRowWriter::create(p, rows.len() as u64, COLUMNS.len())?;
+            w.write_rows(&flat)?;
+            w.finish()
+        }
+        Some(p) => {
+            let mut w = CsvRowWriter::create(p, COLUMNS.len(), Some(&COLUMNS.join(",")))?;
+            w.write_rows(&flat)?;
+            w.finish()
+        }
+        None => {
+            let stdout = std::io::stdout();
+            let mut w = std::io::BufWriter::new(stdout.lock());
+            let fail = |e: std::io::Error| Error::file(Some("out"), "<stdout>", e);
+            writeln!(w, "{}", COLUMNS.join(",")).map_err(fail)?;
+            for r in rows {
+                let v = values(r);
+                writeln!(w, "{:?},{:?},{:?},{:?},{:?},{:?}", v[0], v[1], v[2], v[3], v[4], v[5])
+                    .map_err(fail)?;
+            }
+            w.flush().map_err(fail)
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! `v2ref synth`: a set of test interferograms for a pipeline — the rows as
+//! NumPy `.npy` (float64, one row per scan, columns in the order of
+//! `sample_opd_um`), optionally CSV, and a JSON sidecar with every input
+//! and the truth (`v2ref::conformance::sidecar`).
+
+use super::common::RunArgs;
+use super::files::{write_text_atomic, CsvRowWriter, NpyRowWriter};
+use super::inputs::InputsArgs;
+use super::progress_bar;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use v2ref::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
+use v2ref::conformance::truth::{truth, TruthSize};
+use v2ref::simulator::Model;
+use v2ref::{Error, Result};
+
+/// Most rows of a set.
+pub const MAX_ROWS: u64 = 1 << 32;
+/// Most values (rows × samples) of a set: 2^31 float64, 16 GiB.
+pub const MAX_VALUES: u64 = 1 << 31;
+/// Most replicates in the reference run.
+pub const MAX_REFERENCE_BLOCKS: u64 = 1000;
+/// Units generated at once while streaming (memory ≈ this × 8192 rows).
+const STREAM_BATCH_UNITS: u64 = 8;
+
+/// Flags of `synth`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    inputs: InputsArgs,
+    /// The set's path without extension: writes OUT.npy, OUT.json (the
+    /// sidecar) and, with --csv, OUT.csv.
+    #[arg(long, value_name = "PATH")]
+    out: PathBuf,
+    /// Number of rows (scans).
+    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
+    rows: u64,
+    /// Also write the rows as CSV (one row per line, no header).
+    #[arg(long)]
+    csv: bool,
+    /// Write the counts I_i instead of the modulated samples M_i = I_i − c_i.
+    #[arg(long)]
+    keep_continuum: bool,
+    /// Replicates of the set in the truth's reference run (0: closed forms only).
+    #[arg(long, default_value = "32", allow_negative_numbers = true)]
+    reference_blocks: u64,
+    #[command(flatten)]
+    run: RunArgs,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Runs `synth`.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let inputs = args.inputs.inputs()?;
+    check_size(args.rows, inputs.samples, args.reference_blocks)?;
+    let model = Model::new(&inputs)?;
+    let stem = Stem::new(&args.out)?;
+    let size = TruthSize {
+        rows: args.rows,
+        seed: args.run.seed,
+        reference_blocks: args.reference_blocks,
+        threads: args.run.threads,
+    };
+    let bar = progress_bar(args.rows * (1 + args.reference_blocks), args.quiet, "synth");
+    let truth = truth(&model, size, &|k| bar.inc(k))?;
+    let set = model.rows(args.rows, args.run.seed, args.run.threads)?;
+    let continuum = &model.signal.continuum;
+    let keep = args.keep_continuum;
+    let mut npy = NpyRowWriter::create(&stem.npy, args.rows, inputs.samples)?;
+    let mut csv = if args.csv {
+        Some(CsvRowWriter::create(&stem.csv, inputs.samples, None)?)
+    } else {
+        None
+    };
+    let mut shifted = Vec::new();
+    set.stream(args.run.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
+        let rows: &[f64] = if keep {
+            shifted.clear();
+            shifted.extend(
+                block
+                    .iter()
+                    .zip(continuum.iter().cycle())
+                    .map(|(m, c)| m + c),
+            );
+            &shifted
+        } else {
+            block
+        };
+        npy.write_rows(rows)?;
+        if let Some(c) = csv.as_mut() {
+            c.write_rows(rows)?;
+        }
+        bar.inc((block.len() / inputs.samples) as u64);
+        Ok::<(), Error>(())
+    })?;
+    let sidecar = Sidecar {
+        format: FORMAT.to_owned(),
+        version: env!("CARGO_PKG_VERSION").to_owned(),
+        data: DataFiles {
+            npy: stem.file_name(&stem.npy),
+            csv: args.csv.then(|| stem.file_name(&stem.csv)),
+            rows: args.rows,
+            samples: inputs.samples,
+        },
+        seed: args.run.seed,
+        continuum_subtracted: !keep,
+        sample_opd_um: model.sample_opd_um(),
+        continuum_photons: continuum.clone(),
+        mean_counts_photons: model.signal.mean_counts(),
+        inputs,
+        truth,
+    };
+    let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
+        path: stem.json.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    // The data first, the sidecar last: a set with a sidecar is complete.
+    npy.finish()?;
+    if let Some(c) = csv {
+        c.finish()?;
+    }
+    write_text_atomic(&stem.json, &(json + "\n"))?;
+    bar.finish_and_clear();
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses empty or oversized sets.
+fn check_size(rows: u64, samples: usize, blocks: u64) -> Result<()> {
+    let max_rows = MAX_ROWS.min(MAX_VALUES / samples as u64);
+    if !(2..=max_rows).contains(&rows) {
+        return Err(Error::OutOfRange {
+            param: "rows",
+            value: rows as f64,
+            accepted: format!("2 to {max_rows} with {samples} samples per row"),
+        });
+    }
+    if blocks > MAX_REFERENCE_BLOCKS || blocks == 1 {
+        return Err(Error::OutOfRange {
+            param: "reference_blocks",
+            value: blocks as f64,
+            accepted: format!("0 (none) or 2 to {MAX_REFERENCE_BLOCKS}"),
+        });
+    }
+    Ok(())
+}
+
+/// The three paths of a set.
+struct Stem {
+    npy: PathBuf,
+    csv: PathBuf,
+    json: PathBuf,
+}
+
+impl Stem {
+    fn new(out: &Path) -> Result<Stem> {
+        let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
+        let Some(name) = name.filter(|n| !n.is_empty() && n != "." && n != "..") else {
+            return Err(Error::Invalid {
+                param: "out",
+                reason: format!("{}: needs a file name (the set's stem)", out.display()),
+            });
+        };
+        let with = |ext: &str| out.with_file_name(format!("{name}.{ext}"));
+        let stem = Stem {
+            npy: with("npy"),
+            csv: with("csv"),
+            json: with("json"),
+        };
+        for p in [&stem.npy, &stem.csv, &stem.json] {
+            if p.is_dir() {
+                return Err(Error::Invalid {
+                    param: "out",
+                    reason: format!("{} is a folder", p.display()),
+                });
+            }
+        }
+        Ok(stem)
+    }
+
+    fn file_name(&self, p: &Path) -> String {
+        p.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    }
+}
