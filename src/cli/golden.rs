@@ -27,6 +27,18 @@ pub struct Args {
     /// One JSON document instead of text.
     #[arg(long)]
     json: bool,
+    /// Only this part of the golden data.
+    #[arg(long, value_enum)]
+    only: Option<Part>,
+}
+
+/// A part of the golden data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Part {
+    /// The figures' tables (golden/*.csv, *.json).
+    Figures,
+    /// The conformance vectors (golden/vectors/).
+    Vectors,
 }
 
 #[derive(Serialize)]
@@ -59,8 +71,17 @@ pub fn run(args: Args) -> Result<ExitCode> {
             reason: "give exactly one of --check or --update".into(),
         });
     }
+    let figures = args.only != Some(Part::Vectors);
+    let vectors = args.only != Some(Part::Figures);
     if args.update {
-        let files = golden::update(&args.dir)?;
+        let mut files = Vec::new();
+        if figures {
+            // Replaces the whole folder: the vectors are written after it.
+            files.extend(golden::update(&args.dir)?);
+        }
+        if vectors {
+            files.extend(super::vectors::update(&args.dir)?);
+        }
         if args.json {
             print_json(&UpdateJson {
                 dir: args.dir.display().to_string(),
@@ -73,7 +94,28 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    let report = golden::check(&args.dir)?;
+    if !args.dir.is_dir() {
+        return Err(Error::Invalid {
+            param: "dir",
+            reason: format!(
+                "{}: no golden folder here (run from the repository root, or give --dir)",
+                args.dir.display()
+            ),
+        });
+    }
+    let mut report = if figures {
+        golden::check(&args.dir)?
+    } else {
+        golden::Report::default()
+    };
+    if vectors {
+        let (checked, bad) = super::vectors::check(&args.dir)?;
+        report.checked += checked;
+        report.mismatches.extend(bad.into_iter().map(|m| golden::Mismatch {
+            table: m.file,
+            detail: m.detail,
+        }));
+    }
     if args.json {
         print_json(&CheckJson {
             checked: report.checked,

@@ -56,34 +56,67 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
     check_size(args.rows, inputs.samples, args.reference_blocks)?;
     let model = Model::new(&inputs)?;
-    let stem = Stem::new(&args.out)?;
-    let size = TruthSize {
+    let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,
         reference_blocks: args.reference_blocks,
         threads: args.run.threads,
+        csv: args.csv,
+        keep_continuum: args.keep_continuum,
     };
     let bar = progress_bar(args.rows * (1 + args.reference_blocks), args.quiet, "synth");
-    let truth = truth(&model, size, &|k| bar.inc(k))?;
-    let set = model.rows(args.rows, args.run.seed, args.run.threads)?;
+    write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
+    bar.finish_and_clear();
+    Ok(ExitCode::SUCCESS)
+}
+
+/// What to write of a set.
+#[derive(Debug, Clone, Copy)]
+pub struct SetSpec {
+    /// Rows.
+    pub rows: u64,
+    /// Seed.
+    pub seed: u64,
+    /// Replicates in the reference run.
+    pub reference_blocks: u64,
+    /// Worker threads (0: all); the files do not depend on it.
+    pub threads: usize,
+    /// Also write CSV.
+    pub csv: bool,
+    /// Write the counts rather than the continuum-subtracted samples.
+    pub keep_continuum: bool,
+}
+
+/// Writes the set of `model` described by `spec` at `out` (.npy, .json and
+/// optionally .csv beside it); returns the sidecar.
+pub fn write_set(
+    model: &Model,
+    spec: &SetSpec,
+    out: &Path,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Sidecar> {
+    let stem = Stem::new(out)?;
+    let inputs = &model.inputs;
+    let size = TruthSize {
+        rows: spec.rows,
+        seed: spec.seed,
+        reference_blocks: spec.reference_blocks,
+        threads: spec.threads,
+    };
+    let truth = truth(model, size, progress)?;
+    let set = model.rows(spec.rows, spec.seed, spec.threads)?;
     let continuum = &model.signal.continuum;
-    let keep = args.keep_continuum;
-    let mut npy = NpyRowWriter::create(&stem.npy, args.rows, inputs.samples)?;
-    let mut csv = if args.csv {
+    let mut npy = NpyRowWriter::create(&stem.npy, spec.rows, inputs.samples)?;
+    let mut csv = if spec.csv {
         Some(CsvRowWriter::create(&stem.csv, inputs.samples, None)?)
     } else {
         None
     };
     let mut shifted = Vec::new();
-    set.stream(args.run.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
-        let rows: &[f64] = if keep {
+    set.stream(spec.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
+        let rows: &[f64] = if spec.keep_continuum {
             shifted.clear();
-            shifted.extend(
-                block
-                    .iter()
-                    .zip(continuum.iter().cycle())
-                    .map(|(m, c)| m + c),
-            );
+            shifted.extend(block.iter().zip(continuum.iter().cycle()).map(|(m, c)| m + c));
             &shifted
         } else {
             block
@@ -92,7 +125,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         if let Some(c) = csv.as_mut() {
             c.write_rows(rows)?;
         }
-        bar.inc((block.len() / inputs.samples) as u64);
+        progress((block.len() / inputs.samples) as u64);
         Ok::<(), Error>(())
     })?;
     let sidecar = Sidecar {
@@ -100,16 +133,16 @@ pub fn run(args: Args) -> Result<ExitCode> {
         version: env!("CARGO_PKG_VERSION").to_owned(),
         data: DataFiles {
             npy: stem.file_name(&stem.npy),
-            csv: args.csv.then(|| stem.file_name(&stem.csv)),
-            rows: args.rows,
+            csv: spec.csv.then(|| stem.file_name(&stem.csv)),
+            rows: spec.rows,
             samples: inputs.samples,
         },
-        seed: args.run.seed,
-        continuum_subtracted: !keep,
+        seed: spec.seed,
+        continuum_subtracted: !spec.keep_continuum,
         sample_opd_um: model.sample_opd_um(),
         continuum_photons: continuum.clone(),
         mean_counts_photons: model.signal.mean_counts(),
-        inputs,
+        inputs: inputs.clone(),
         truth,
     };
     let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
@@ -122,12 +155,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         c.finish()?;
     }
     write_text_atomic(&stem.json, &(json + "\n"))?;
-    bar.finish_and_clear();
-    Ok(ExitCode::SUCCESS)
+    Ok(sidecar)
 }
 
 /// Refuses empty or oversized sets.
-fn check_size(rows: u64, samples: usize, blocks: u64) -> Result<()> {
+pub fn check_size(rows: u64, samples: usize, blocks: u64) -> Result<()> {
     let max_rows = MAX_ROWS.min(MAX_VALUES / samples as u64);
     if !(2..=max_rows).contains(&rows) {
         return Err(Error::OutOfRange {
