@@ -32,6 +32,8 @@ enum Command {
     Golden(cli::golden::Args),
     /// Regenerate every figure and table of the paper.
     Reproduce(cli::reproduce::Args),
+    /// Score a pipeline's per-row estimates against a synth set's truth.
+    Score(cli::score::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +49,7 @@ fn main() -> ExitCode {
         Command::Piston(a) => cli::piston::run(a),
         Command::Golden(a) => cli::golden::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
+        Command::Score(a) => cli::score::run(a),
     };
     match result {
         Ok(code) => code,

@@ -14,10 +14,12 @@ macro_rules! outln {
 pub mod bias;
 pub mod claims;
 pub mod common;
+pub mod files;
 pub mod golden;
 pub mod inputs;
 pub mod piston;
 pub mod reproduce;
+pub mod score;
 pub mod simulate;
 pub mod snr;
 
@@ -34,6 +36,7 @@ const FLAG_OF_PARAM: &[(&str, &str)] = &[
     ("spectrum", "--spectrum-csv"),
     ("peak_to_peak_rad", "--dispersion-pp-rad"),
     ("photons_per_sample", "--photons"),
+    ("truth", "--sidecar"),
 ];
 
 /// The flag that sets the library parameter `param`: an entry of

@@ -1,1 +1,337 @@
-//! (placeholder: filled by the score work)
+//! Scoring a pipeline's per-row estimates against a synth set's truth.
+//!
+//! For one estimator and a set of n rows `x_1 … x_n` (the pipeline's
+//! normalized V1² or V2², one per interferogram), with the sample mean
+//! `x̄` and the unbiased sample variance `s² = Σ (x_r − x̄)²/(n − 1)`
+//! ([`RunningStats`]), and the truth `T` of the set ([`EstimatorTruth`]):
+//!
+//! - `z_mean = (x̄ − T.mean) / √(T.set_stderr_mean² + T.stderr_mean²)`:
+//!   the scatter a set of n rows is expected to have, plus the
+//!   uncertainty of the truth itself;
+//! - `z_var = (s² − T.var) / √(se_set_var² + T.stderr_var²)`, where
+//!   `se_set_var` is `T.set_stderr_var`, or, when the sidecar has none, the
+//!   sample's own standard error of the variance
+//!   `√((μ4 − (n−3)/(n−1) s⁴)/n)` ([`RunningStats::stderr_variance`]).
+//!
+//! **Threshold.** Each z is tested two-sided; with `m` tests made (2 per
+//! estimator scored) the family-wise false-alarm rate is held at `alpha`
+//! by Bonferroni: `z_crit = Φ⁻¹(1 − alpha/(2m))`. The default
+//! `alpha` is [`DEFAULT_ALPHA`] = 10⁻³: a correct pipeline fails one
+//! set in a thousand. The verdict passes when every `|z| ≤ z_crit`.
+//!
+//! **Power.** A pipeline whose mean is off by a relative bias ε has
+//! `E z_mean = ε |T.mean| / se_mean`; it is caught with probability
+//! 0.9 when `ε ≥ (z_crit + Φ⁻¹(0.9)) · se_mean / |T.mean|`
+//! ([`EstimatorScore::min_detectable_rel_bias_mean`], with
+//! `se_mean = √(T.set_stderr_mean² + T.stderr_mean²)`); likewise for
+//! the variance with its denominator. A set too small to see the bias one
+//! cares about must be made larger.
+//!
+//! The truth is stated for a set of a given size (the sidecar's
+//! `data.rows`): the scores refuse estimates of any other length.
+
+use crate::conformance::sidecar::{ConventionTruth, EstimatorTruth};
+use crate::error::{Error, Result};
+use crate::montecarlo::RunningStats;
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, Normal};
+
+/// The default family-wise false-alarm rate of the verdict: 10⁻³.
+pub const DEFAULT_ALPHA: f64 = 1e-3;
+
+/// The detection probability the power figures are stated for.
+pub const POWER: f64 = 0.9;
+
+/// Tests made per estimator scored (mean and variance).
+pub const TESTS_PER_ESTIMATOR: usize = 2;
+
+/// Φ⁻¹(p), the standard normal quantile (statrs).
+fn normal_quantile(p: f64) -> f64 {
+    // Normal::new(0, 1) cannot fail; standard() is the same distribution.
+    Normal::standard().inverse_cdf(p)
+}
+
+/// The two-sided Bonferroni threshold `z_crit = Φ⁻¹(1 − alpha/(2·tests))`.
+///
+/// Refuses `alpha` outside (0, 1) and `tests == 0`.
+pub fn critical_z(alpha: f64, tests: usize) -> Result<f64> {
+    crate::error::finite("alpha", alpha)?;
+    if !(alpha > 0.0 && alpha < 1.0) {
+        return Err(Error::OutOfRange {
+            param: "alpha",
+            value: alpha,
+            accepted: "0 < alpha < 1".into(),
+        });
+    }
+    if tests == 0 {
+        return Err(Error::Invalid {
+            param: "estimates",
+            reason: "no estimator to score".into(),
+        });
+    }
+    Ok(normal_quantile(1.0 - alpha / (2.0 * tests as f64)))
+}
+
+/// Where the standard error of a set's variance comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VarStderrSource {
+    /// `EstimatorTruth::set_stderr_var` (the reference run's blocks).
+    Truth,
+    /// The sample's own standard error of the variance (no reference run).
+    Sample,
+}
+
+/// The score of one estimator.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EstimatorScore {
+    /// n, rows scored.
+    pub rows: u64,
+    /// x̄, the sample mean of the estimates.
+    pub mean: f64,
+    /// T.mean, the expected mean.
+    pub expected_mean: f64,
+    /// `se_mean = √(T.set_stderr_mean² + T.stderr_mean²)`, the denominator
+    /// of `z_mean`.
+    pub stderr_mean: f64,
+    /// `(x̄ − T.mean)/se_mean`.
+    pub z_mean: f64,
+    /// s², the unbiased sample variance of the estimates.
+    pub var: f64,
+    /// T.var, the expected variance.
+    pub expected_var: f64,
+    /// `se_var = √(se_set_var² + T.stderr_var²)`, the denominator of
+    /// `z_var`.
+    pub stderr_var: f64,
+    /// Where `se_set_var` came from.
+    pub stderr_var_source: VarStderrSource,
+    /// `(s² − T.var)/se_var`.
+    pub z_var: f64,
+    /// The threshold both z are held to.
+    pub z_crit: f64,
+    /// `(z_crit + Φ⁻¹(0.9)) · se_mean/|T.mean|`: the smallest relative bias
+    /// of the mean caught with probability 0.9 (infinite when T.mean = 0).
+    pub min_detectable_rel_bias_mean: f64,
+    /// `(z_crit + Φ⁻¹(0.9)) · se_var/|T.var|`, the same for the variance.
+    pub min_detectable_rel_bias_var: f64,
+    /// `|z_mean| ≤ z_crit`.
+    pub pass_mean: bool,
+    /// `|z_var| ≤ z_crit`.
+    pub pass_var: bool,
+    /// Both.
+    pub pass: bool,
+}
+
+fn check_truth(truth: &EstimatorTruth) -> Result<()> {
+    let bad = |what: &str, v: f64| Error::Invalid {
+        param: "truth",
+        reason: format!("{what} is {v}; a finite number is needed"),
+    };
+    for (what, v) in [("mean", truth.mean), ("var", truth.var)] {
+        if !v.is_finite() {
+            return Err(bad(what, v));
+        }
+    }
+    let mut errs = vec![
+        ("stderr_mean", truth.stderr_mean),
+        ("stderr_var", truth.stderr_var),
+        ("set_stderr_mean", truth.set_stderr_mean),
+    ];
+    if let Some(v) = truth.set_stderr_var {
+        errs.push(("set_stderr_var", v));
+    }
+    for (what, v) in errs {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(Error::Invalid {
+                param: "truth",
+                reason: format!("{what} is {v}; a finite number >= 0 is needed"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Scores one estimator's `estimates` (one per row) against `truth`, made
+/// for a set of `expected_rows` rows, at the threshold `z_crit` (see
+/// [`critical_z`]). Formulas in the [module documentation](self).
+///
+/// Refuses (parameter `estimates`) a length other than `expected_rows`,
+/// fewer than 2 rows (4 when the variance's standard error must come from
+/// the sample), and a non-finite estimate (naming its 1-based row);
+/// (parameter `truth`) a non-finite or negative truth, or a zero
+/// denominator.
+pub fn score_with_threshold(
+    estimates: &[f64],
+    truth: &EstimatorTruth,
+    expected_rows: u64,
+    z_crit: f64,
+) -> Result<EstimatorScore> {
+    check_truth(truth)?;
+    if estimates.len() as u64 != expected_rows {
+        return Err(Error::Invalid {
+            param: "estimates",
+            reason: format!(
+                "{} rows, but the truth is for a set of {expected_rows} rows; \
+                 score the whole set, one estimate per row",
+                estimates.len()
+            ),
+        });
+    }
+    let min_rows = if truth.set_stderr_var.is_some() { 2 } else { 4 };
+    if estimates.len() < min_rows {
+        return Err(Error::Invalid {
+            param: "estimates",
+            reason: format!(
+                "{} rows; at least {min_rows} are needed for a variance and its standard error",
+                estimates.len()
+            ),
+        });
+    }
+    if let Some(r) = estimates.iter().position(|x| !x.is_finite()) {
+        return Err(Error::Invalid {
+            param: "estimates",
+            reason: format!(
+                "row {} (1-based) is {}; every estimate must be a finite number",
+                r + 1,
+                estimates[r]
+            ),
+        });
+    }
+    let stats = RunningStats::from_values(estimates);
+    let mean = stats.mean;
+    let var = stats.variance();
+    let se_mean = truth.set_stderr_mean.hypot(truth.stderr_mean);
+    let (se_set_var, stderr_var_source) = match truth.set_stderr_var {
+        Some(v) => (v, VarStderrSource::Truth),
+        None => (stats.stderr_variance(), VarStderrSource::Sample),
+    };
+    let se_var = se_set_var.hypot(truth.stderr_var);
+    for (what, v) in [("mean", se_mean), ("variance", se_var)] {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(Error::Invalid {
+                param: "truth",
+                reason: format!(
+                    "the standard error of the {what} is {v}; a z-score needs one > 0"
+                ),
+            });
+        }
+    }
+    let z_mean = (mean - truth.mean) / se_mean;
+    let z_var = (var - truth.var) / se_var;
+    let reach = z_crit + normal_quantile(POWER);
+    let pass_mean = z_mean.abs() <= z_crit;
+    let pass_var = z_var.abs() <= z_crit;
+    Ok(EstimatorScore {
+        rows: stats.count,
+        mean,
+        expected_mean: truth.mean,
+        stderr_mean: se_mean,
+        z_mean,
+        var,
+        expected_var: truth.var,
+        stderr_var: se_var,
+        stderr_var_source,
+        z_var,
+        z_crit,
+        min_detectable_rel_bias_mean: reach * se_mean / truth.mean.abs(),
+        min_detectable_rel_bias_var: reach * se_var / truth.var.abs(),
+        pass_mean,
+        pass_var,
+        pass: pass_mean && pass_var,
+    })
+}
+
+/// Scores one estimator alone (2 tests: `z_crit = Φ⁻¹(1 − alpha/4)`); see
+/// [`score_with_threshold`].
+pub fn score(
+    estimates: &[f64],
+    truth: &EstimatorTruth,
+    expected_rows: u64,
+    alpha: f64,
+) -> Result<EstimatorScore> {
+    let z_crit = critical_z(alpha, TESTS_PER_ESTIMATOR)?;
+    score_with_threshold(estimates, truth, expected_rows, z_crit)
+}
+
+/// Which estimator a score is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Estimator {
+    /// Normalized V1².
+    V1Sq,
+    /// Normalized V2².
+    V2Sq,
+}
+
+impl Estimator {
+    /// `v1_sq` or `v2_sq`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Estimator::V1Sq => "v1_sq",
+            Estimator::V2Sq => "v2_sq",
+        }
+    }
+}
+
+/// One estimator's score, named.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NamedScore {
+    /// The estimator.
+    pub estimator: Estimator,
+    /// Its score.
+    #[serde(flatten)]
+    pub score: EstimatorScore,
+}
+
+/// The scores of the estimators given, under one Bonferroni threshold.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ScoreReport {
+    /// The family-wise false-alarm rate.
+    pub alpha: f64,
+    /// Tests made: 2 per estimator scored.
+    pub tests: usize,
+    /// `Φ⁻¹(1 − alpha/(2·tests))`.
+    pub z_crit: f64,
+    /// One entry per estimator given, V1² first.
+    pub estimators: Vec<NamedScore>,
+    /// Every |z| ≤ z_crit.
+    pub pass: bool,
+}
+
+/// Scores the estimators given (at least one) against `truth`, for a set
+/// of `expected_rows` rows, with the family-wise rate `alpha` shared
+/// among all the tests made (Bonferroni).
+pub fn score_report(
+    v1_sq: Option<&[f64]>,
+    v2_sq: Option<&[f64]>,
+    truth: &ConventionTruth,
+    expected_rows: u64,
+    alpha: f64,
+) -> Result<ScoreReport> {
+    let given: Vec<(Estimator, &[f64], &EstimatorTruth)> = [
+        (Estimator::V1Sq, v1_sq, &truth.v1_sq),
+        (Estimator::V2Sq, v2_sq, &truth.v2_sq),
+    ]
+    .into_iter()
+    .filter_map(|(e, x, t)| x.map(|x| (e, x, t)))
+    .collect();
+    let tests = TESTS_PER_ESTIMATOR * given.len();
+    let z_crit = critical_z(alpha, tests)?;
+    let estimators = given
+        .into_iter()
+        .map(|(estimator, x, t)| {
+            Ok(NamedScore {
+                estimator,
+                score: score_with_threshold(x, t, expected_rows, z_crit)?,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let pass = estimators.iter().all(|s| s.score.pass);
+    Ok(ScoreReport {
+        alpha,
+        tests,
+        z_crit,
+        estimators,
+        pass,
+    })
+}

@@ -1,0 +1,206 @@
+//! `v2ref score`: a pipeline's per-row estimates of a synth set scored
+//! against the set's truth (formulas in `v2ref::conformance::score`).
+//! Exit status 0 on pass, 1 on fail, 2 on bad input.
+
+use super::files::read_estimates;
+use super::{print_json, print_rows};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use v2ref::conformance::estimate::BiasConvention;
+use v2ref::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
+use v2ref::conformance::sidecar::{self, Sidecar};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::{Error, Result};
+
+/// Exit status of a failed verdict.
+pub const EXIT_FAIL: u8 = 1;
+
+/// Flags of `score`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The set's JSON sidecar (written by `v2ref synth`).
+    #[arg(long)]
+    sidecar: PathBuf,
+    /// The pipeline's per-row estimates: .csv with a header naming the
+    /// columns (v1_sq and/or v2_sq read, others ignored), or a float64 .npy.
+    #[arg(long)]
+    estimates: PathBuf,
+    /// Names of the .npy file's columns, in order (v1_sq and v2_sq are
+    /// read, other names ignored); default v1_sq,v2_sq.
+    #[arg(long, value_delimiter = ',')]
+    columns: Option<Vec<String>>,
+    /// Window of bins the estimates sum.
+    #[arg(long, value_enum, default_value = "positive")]
+    bins: BinWindow,
+    /// Bias convention the estimates subtract.
+    #[arg(long, value_enum, default_value = "model")]
+    bias: BiasConvention,
+    /// Family-wise false-alarm rate of the verdict (Bonferroni over the
+    /// tests made).
+    #[arg(long, default_value_t = DEFAULT_ALPHA, value_parser = super::finite_f64)]
+    alpha: f64,
+    /// Print one JSON document instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Serialize)]
+struct Answer<'a> {
+    sidecar: String,
+    estimates: String,
+    bins: BinWindow,
+    bias: BiasConvention,
+    rows: u64,
+    #[serde(flatten)]
+    report: &'a ScoreReport,
+}
+
+/// Reads and checks a sidecar.
+pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
+    const P: &str = "sidecar";
+    let text = std::fs::read_to_string(path).map_err(|e| Error::file(Some(P), path, e))?;
+    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
+        Error::data(
+            P,
+            path,
+            format!("line {}, column {}", e.line(), e.column()),
+            format!("not JSON ({e}); the sidecar written by v2ref synth is needed"),
+        )
+    })?;
+    match value.get("format") {
+        Some(serde_json::Value::String(f)) if f == sidecar::FORMAT => {}
+        Some(f) => {
+            return Err(Error::data(
+                P,
+                path,
+                "field format",
+                format!("{f}; \"{}\" is needed", sidecar::FORMAT),
+            ))
+        }
+        None => {
+            return Err(Error::data(
+                P,
+                path,
+                "field format",
+                format!("missing; \"{}\" is needed", sidecar::FORMAT),
+            ))
+        }
+    }
+    serde_json::from_value::<Sidecar>(value).map_err(|e| {
+        Error::data(
+            P,
+            path,
+            "",
+            format!("not a v2ref sidecar: {e}"),
+        )
+    })
+}
+
+/// Runs `score`.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let sc = read_sidecar(&args.sidecar)?;
+    let truth = sc.truth(args.bins, args.bias).ok_or_else(|| {
+        Error::data(
+            "sidecar",
+            &args.sidecar,
+            "field truth.windows",
+            format!(
+                "no truth for --bins {} --bias {}; pick a window and convention the set has",
+                args.bins.name(),
+                args.bias.name()
+            ),
+        )
+    })?;
+    let est = read_estimates(&args.estimates, args.columns.as_deref())?;
+    let rows = sc.data.rows;
+    let report = score_report(
+        est.v1_sq.as_deref(),
+        est.v2_sq.as_deref(),
+        truth,
+        rows,
+        args.alpha,
+    )
+    .map_err(|e| match e {
+        // Name the file the estimates came from.
+        Error::Invalid {
+            param: "estimates",
+            reason,
+        } => Error::data("estimates", &args.estimates, "", reason),
+        other => other,
+    })?;
+    if args.json {
+        print_json(&Answer {
+            sidecar: args.sidecar.display().to_string(),
+            estimates: args.estimates.display().to_string(),
+            bins: args.bins,
+            bias: args.bias,
+            rows,
+            report: &report,
+        });
+    } else {
+        print_table(&args, rows, &report);
+    }
+    Ok(if report.pass {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(EXIT_FAIL)
+    })
+}
+
+fn verdict(pass: bool) -> &'static str {
+    if pass {
+        "PASS"
+    } else {
+        "FAIL"
+    }
+}
+
+fn print_table(args: &Args, rows: u64, r: &ScoreReport) {
+    print_rows(&[
+        ("sidecar", args.sidecar.display().to_string()),
+        ("estimates", args.estimates.display().to_string()),
+        ("bins", args.bins.name().to_owned()),
+        ("bias", args.bias.name().to_owned()),
+        ("rows", rows.to_string()),
+        (
+            "threshold",
+            format!(
+                "|z| <= {:.4} (alpha {}, Bonferroni over {} tests)",
+                r.z_crit, r.alpha, r.tests
+            ),
+        ),
+    ]);
+    outln!();
+    outln!(
+        "{:<6}  {:>14}  {:>14}  {:>8}  {:>14}  {:>14}  {:>8}  {:>10}  {:>10}  verdict",
+        "",
+        "mean",
+        "expected",
+        "z_mean",
+        "var",
+        "expected",
+        "z_var",
+        "mdb_mean",
+        "mdb_var"
+    );
+    for s in &r.estimators {
+        let e = &s.score;
+        outln!(
+            "{:<6}  {:>14.7e}  {:>14.7e}  {:>8.3}  {:>14.7e}  {:>14.7e}  {:>8.3}  {:>10.3e}  {:>10.3e}  {}",
+            s.estimator.name(),
+            e.mean,
+            e.expected_mean,
+            e.z_mean,
+            e.var,
+            e.expected_var,
+            e.z_var,
+            e.min_detectable_rel_bias_mean,
+            e.min_detectable_rel_bias_var,
+            verdict(e.pass)
+        );
+    }
+    outln!();
+    outln!("mdb: min detectable relative bias (caught with probability 0.9)");
+    outln!("{}", verdict(r.pass));
+}
