@@ -32,6 +32,10 @@ enum Command {
     Golden(cli::golden::Args),
     /// Regenerate every figure and table of the paper.
     Reproduce(cli::reproduce::Args),
+    /// Write a set of test interferograms (.npy, CSV) and its sidecar with the truth.
+    Synth(cli::synth::Args),
+    /// Per-row V1² and V2² (raw, bias-subtracted, normalized) of a file of interferograms.
+    Estimate(cli::estimate::Args),
     /// Score a pipeline's per-row estimates against a synth set's truth.
     Score(cli::score::Args),
 }
@@ -49,6 +53,8 @@ fn main() -> ExitCode {
         Command::Piston(a) => cli::piston::run(a),
         Command::Golden(a) => cli::golden::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
+        Command::Synth(a) => cli::synth::run(a),
+        Command::Estimate(a) => cli::estimate::run(a),
         Command::Score(a) => cli::score::run(a),
     };
     match result {

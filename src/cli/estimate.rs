@@ -105,7 +105,9 @@ fn source(args: &Args) -> Result<Source> {
         None => {
             let input = args.input.clone().ok_or_else(|| Error::Invalid {
                 param: "input",
-                reason: "give the interferograms (--input FILE) or a synth sidecar (--sidecar SET.json)".into(),
+                reason:
+                    "give the interferograms (--input FILE) or a synth sidecar (--sidecar SET.json)"
+                        .into(),
             })?;
             Ok(Source {
                 inputs: args.inputs.inputs_unchecked()?,
@@ -212,12 +214,18 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
     let flat: Vec<f64> = rows.iter().flat_map(values).collect();
     match out {
         Some(p) if p.extension().is_some_and(|e| e == "npy") => {
-            let mut w = NpyRowWriter::create(p, rows.len() as u64, COLUMNS.len())?;
+            let mut w = NpyRowWriter::create(p, rows.len() as u64, COLUMNS.len(), "out")?;
             w.write_rows(&flat)?;
             w.finish()
         }
         Some(p) => {
-            let mut w = CsvRowWriter::create(p, COLUMNS.len(), Some(&COLUMNS.join(",")))?;
+            let mut w = CsvRowWriter::create(
+                p,
+                rows.len() as u64,
+                COLUMNS.len(),
+                Some(&COLUMNS.join(",")),
+                "out",
+            )?;
             w.write_rows(&flat)?;
             w.finish()
         }
@@ -228,8 +236,12 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
             writeln!(w, "{}", COLUMNS.join(",")).map_err(fail)?;
             for r in rows {
                 let v = values(r);
-                writeln!(w, "{:?},{:?},{:?},{:?},{:?},{:?}", v[0], v[1], v[2], v[3], v[4], v[5])
-                    .map_err(fail)?;
+                writeln!(
+                    w,
+                    "{:?},{:?},{:?},{:?},{:?},{:?}",
+                    v[0], v[1], v[2], v[3], v[4], v[5]
+                )
+                .map_err(fail)?;
             }
             w.flush().map_err(fail)
         }

@@ -312,7 +312,9 @@ fn check_width(
             param,
             path,
             format!("row {row} (1-based, line {line})"),
-            format!("{got} columns, the rows above have {want}; every row must have the same number"),
+            format!(
+                "{got} columns, the rows above have {want}; every row must have the same number"
+            ),
         ))
     }
 }
@@ -377,7 +379,12 @@ pub fn read_estimates(path: &Path, columns: Option<&[String]>) -> Result<Estimat
     for (name, col) in [("v1_sq", &est.v1_sq), ("v2_sq", &est.v2_sq)] {
         if let Some(x) = col {
             if x.is_empty() {
-                return Err(Error::data(P, path, "", "no rows; one estimate per row is needed"));
+                return Err(Error::data(
+                    P,
+                    path,
+                    "",
+                    "no rows; one estimate per row is needed",
+                ));
             }
             if let Some(r) = x.iter().position(|v| !v.is_finite()) {
                 return Err(not_finite(

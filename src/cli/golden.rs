@@ -111,10 +111,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if vectors {
         let (checked, bad) = super::vectors::check(&args.dir)?;
         report.checked += checked;
-        report.mismatches.extend(bad.into_iter().map(|m| golden::Mismatch {
-            table: m.file,
-            detail: m.detail,
-        }));
+        report.mismatches.extend(
+            bad.into_iter()
+                .map(|m| v2ref::reproduction::table::Mismatch {
+                    table: m.file,
+                    detail: m.detail,
+                }),
+        );
     }
     if args.json {
         print_json(&CheckJson {

@@ -14,6 +14,7 @@ macro_rules! outln {
 pub mod bias;
 pub mod claims;
 pub mod common;
+pub mod estimate;
 pub mod files;
 pub mod golden;
 pub mod inputs;
@@ -22,6 +23,8 @@ pub mod reproduce;
 pub mod score;
 pub mod simulate;
 pub mod snr;
+pub mod synth;
+pub mod vectors;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;

@@ -87,14 +87,8 @@ pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
             ))
         }
     }
-    serde_json::from_value::<Sidecar>(value).map_err(|e| {
-        Error::data(
-            P,
-            path,
-            "",
-            format!("not a v2ref sidecar: {e}"),
-        )
-    })
+    serde_json::from_value::<Sidecar>(value)
+        .map_err(|e| Error::data(P, path, "", format!("not a v2ref sidecar: {e}")))
 }
 
 /// Runs `score`.

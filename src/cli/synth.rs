@@ -106,9 +106,15 @@ pub fn write_set(
     let truth = truth(model, size, progress)?;
     let set = model.rows(spec.rows, spec.seed, spec.threads)?;
     let continuum = &model.signal.continuum;
-    let mut npy = NpyRowWriter::create(&stem.npy, spec.rows, inputs.samples)?;
+    let mut npy = NpyRowWriter::create(&stem.npy, spec.rows, inputs.samples, "out")?;
     let mut csv = if spec.csv {
-        Some(CsvRowWriter::create(&stem.csv, inputs.samples, None)?)
+        Some(CsvRowWriter::create(
+            &stem.csv,
+            spec.rows,
+            inputs.samples,
+            None,
+            "out",
+        )?)
     } else {
         None
     };
@@ -116,7 +122,12 @@ pub fn write_set(
     set.stream(spec.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
         let rows: &[f64] = if spec.keep_continuum {
             shifted.clear();
-            shifted.extend(block.iter().zip(continuum.iter().cycle()).map(|(m, c)| m + c));
+            shifted.extend(
+                block
+                    .iter()
+                    .zip(continuum.iter().cycle())
+                    .map(|(m, c)| m + c),
+            );
             &shifted
         } else {
             block

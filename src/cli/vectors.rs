@@ -39,7 +39,8 @@ fn write_all(dir: &Path) -> Result<Vec<String>> {
         table.push(readme_line(&v, &sidecar));
     }
     let readme = dir.join("README.md");
-    std::fs::write(&readme, readme_text(&table)).map_err(|e| Error::file(Some("dir"), &readme, e))?;
+    std::fs::write(&readme, readme_text(&table))
+        .map_err(|e| Error::file(Some("dir"), &readme, e))?;
     files.push("README.md".into());
     Ok(files)
 }
