@@ -32,7 +32,7 @@ fn base() -> Inputs {
         samples: VECTOR_SAMPLES,
         source: SourceInput::Point,
         visibility: 0.6,
-        photons: 20.0,
+        photons: 50.0,
         read_noise: 0.0,
         photon_noise: true,
         ..Inputs::default()
@@ -90,11 +90,11 @@ pub fn catalogue() -> Vec<Vector> {
         },
         Vector {
             name: "bandwidth_disk",
-            tests: "full K band, 43 mas uniform disk at 25 cycles/arcsec (before the first null): bandwidth smearing of V1² against V2²",
+            tests: "full K band, 43 mas uniform disk at 20 cycles/arcsec (V ≈ 0.33): bandwidth smearing of V1² against V2²",
             inputs: photon(Inputs {
                 spectrum: k_band,
                 source: SourceInput::Ud { diameter_mas: 43.0 },
-                baseline_m: 25.0 / 40.0 * Inputs::default().baseline_m,
+                baseline_m: 20.0 / 40.0 * Inputs::default().baseline_m,
                 visibility: 1.0,
                 photons: 50.0,
                 ..base()
@@ -112,7 +112,7 @@ pub fn catalogue() -> Vec<Vector> {
         },
         Vector {
             name: "short_scan_odd",
-            tests: "odd N = 25 (12 µm stroke): sample positions and bins 1 … (N−1)/2 for odd N, finite-scan bias",
+            tests: "odd N = 25 (12.5 µm stroke): sample positions and bins 1 … (N−1)/2 for odd N, a scan shorter than the coherence length",
             inputs: Inputs {
                 samples: 25,
                 ..base()

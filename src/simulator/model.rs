@@ -8,6 +8,7 @@ use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::noise::calibrated::CalibratedSetup;
 use crate::noise::{scaled_interferogram, NoiseModel};
+use crate::piston::turbulence::PistonSpectrum;
 use crate::simulator::inputs::Inputs;
 
 /// A configuration built from its [`Inputs`].
@@ -27,6 +28,8 @@ pub struct Model {
     /// The calibrator: an unresolved, phase-free source with the same
     /// photons (V = 1).
     pub calibrator: Interferogram,
+    /// The differential-piston spectrum on the baseline, with piston.
+    pub piston_spectrum: Option<PistonSpectrum>,
 }
 
 impl Model {
@@ -49,7 +52,12 @@ impl Model {
             scaled_interferogram(&observation, &sampling, inputs.photons, inputs.visibility)?;
         let calibrator =
             scaled_interferogram(&observation.calibrator(), &sampling, inputs.photons, 1.0)?;
+        let piston_spectrum = match &inputs.piston {
+            Some(p) => Some(p.spectrum(observation.baseline_m)?),
+            None => None,
+        };
         Ok(Model {
+            piston_spectrum,
             inputs: inputs.clone(),
             noise: inputs.noise()?,
             observation,

@@ -91,8 +91,10 @@ impl Model {
                 accepted: ">= 1".into(),
             });
         }
-        let piston = match (self.inputs.piston, self.inputs.scan_setup()) {
-            (Some(p), Some(setup)) => Some(self.piston_scans(&p, setup, rows, seed, threads)?),
+        let piston = match (&self.piston_spectrum, self.inputs.scan_setup()) {
+            (Some(spectrum), Some(setup)) => {
+                Some(self.piston_scans(spectrum, setup, rows, seed, threads)?)
+            }
             _ => None,
         };
         let fixed = match piston {
@@ -115,7 +117,7 @@ impl Model {
 
     fn piston_scans(
         &self,
-        p: &crate::simulator::PistonInputs,
+        spectrum: &crate::piston::turbulence::PistonSpectrum,
         setup: ScanSetup,
         rows: u64,
         seed: u64,
@@ -123,12 +125,11 @@ impl Model {
     ) -> Result<PistonScans> {
         let size = RunSize {
             scans: usize::try_from(rows).unwrap_or(usize::MAX),
-            seed: piston::sweep_seed(seed, p.fringe_hz),
+            seed: piston::sweep_seed(seed, setup.fringe_hz),
             threads,
         };
         validate_size(&setup, &size)?;
-        let spectrum = p.spectrum(self.observation.baseline_m)?;
-        let sequence = PistonSequence::synthesize(&spectrum, &setup, &size)?;
+        let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
         let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
