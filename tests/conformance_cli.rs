@@ -1,0 +1,299 @@
+//! The conformance kit from the command line: `synth` → `estimate` →
+//! `score`, the continuum conventions, the calibrator file, determinism
+//! across thread counts, the vectors, and bad input.
+
+use std::path::Path;
+use std::process::Command;
+use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::simulator::{Inputs, Model, SourceInput};
+
+fn v2ref(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn ok(args: &[&str]) -> String {
+    let (code, out, err) = v2ref(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    out
+}
+
+const SET: &[&str] = &[
+    "--rows",
+    "400",
+    "--samples",
+    "32",
+    "--source",
+    "point",
+    "--visibility",
+    "0.6",
+    "--photons",
+    "30",
+    "--read-noise",
+    "1",
+    "--reference-blocks",
+    "8",
+    "--quiet",
+];
+
+fn synth(dir: &Path, name: &str, extra: &[&str]) -> String {
+    let stem = dir.join(name).display().to_string();
+    let mut args = vec!["synth", "--out", &stem];
+    args.extend_from_slice(SET);
+    args.extend_from_slice(extra);
+    ok(&args);
+    format!("{stem}.json")
+}
+
+/// (v1_sq, v2_sq) columns of `estimate`'s CSV.
+fn columns(csv: &str) -> Vec<[f64; 6]> {
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3], v[4], v[5]]
+        })
+        .collect()
+}
+
+#[test]
+fn synth_estimate_score_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let sidecar = synth(dir.path(), "set", &[]);
+    let est = dir.path().join("est.csv").display().to_string();
+    ok(&["estimate", "--sidecar", &sidecar, "--out", &est]);
+    let (code, out, err) = v2ref(&[
+        "score",
+        "--sidecar",
+        &sidecar,
+        "--estimates",
+        &est,
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("\"pass\": true"), "{out}");
+    // The CLI's estimates are the library's, row for row.
+    let text = std::fs::read_to_string(&est).unwrap();
+    let rows = columns(&text);
+    let inputs = Inputs {
+        samples: 32,
+        source: SourceInput::Point,
+        visibility: 0.6,
+        photons: 30.0,
+        read_noise: 1.0,
+        ..Inputs::default()
+    };
+    let model = Model::new(&inputs).unwrap();
+    let lib = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
+    let data = read_npy_f64(&dir.path().join("set.npy"), 32);
+    for (row, cli) in data.chunks_exact(32).zip(&rows) {
+        let e = lib.estimate(row);
+        assert_eq!([e.v1_sq, e.v2_sq], [cli[4], cli[5]]);
+    }
+    // Scaling the estimates by 1.2 fails the score (exit 1).
+    let scaled = dir.path().join("scaled.csv");
+    let body: String = rows
+        .iter()
+        .map(|r| format!("{},{}\n", 1.2 * r[4], 1.2 * r[5]))
+        .collect();
+    std::fs::write(&scaled, format!("v1_sq,v2_sq\n{body}")).unwrap();
+    let (code, _, _) = v2ref(&[
+        "score",
+        "--sidecar",
+        &sidecar,
+        "--estimates",
+        scaled.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+}
+
+/// The data of a float64 (rows, n) .npy written by `synth` (little-endian,
+/// C order; the header is skipped by its length field).
+fn read_npy_f64(path: &Path, n: usize) -> Vec<f64> {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..6], b"\x93NUMPY");
+    let header = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    let body = &bytes[10 + header..];
+    let v: Vec<f64> = body
+        .chunks_exact(8)
+        .map(|b| f64::from_le_bytes(b.try_into().unwrap()))
+        .collect();
+    assert_eq!(v.len() % n, 0);
+    v
+}
+
+#[test]
+fn same_files_whatever_the_thread_count_and_continuum_convention() {
+    let dir = tempfile::tempdir().unwrap();
+    synth(dir.path(), "one", &["--threads", "1"]);
+    synth(dir.path(), "two", &["--threads", "2"]);
+    let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+    assert_eq!(read("one.npy"), read("two.npy"));
+    let json = |f: &str| {
+        String::from_utf8(read(f))
+            .unwrap()
+            .replace("one.npy", "two.npy")
+    };
+    assert_eq!(json("one.json"), json("two.json"));
+    // Counts kept: the same draws plus c_i, and the same estimates.
+    let kept = synth(dir.path(), "kept", &["--keep-continuum", "--threads", "2"]);
+    let a = read_npy_f64(&dir.path().join("two.npy"), 32);
+    let b = read_npy_f64(&dir.path().join("kept.npy"), 32);
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x + 30.0, *y);
+    }
+    let two = dir.path().join("two.json").display().to_string();
+    let e1 = columns(&ok(&["estimate", "--sidecar", &two]));
+    let e2 = columns(&ok(&["estimate", "--sidecar", &kept]));
+    for (p, q) in e1.iter().zip(&e2) {
+        // (M + c) − c rounds at 1 ulp of c per sample.
+        v2ref::assert_rel_eq!(q[0], p[0], 1e-12);
+        v2ref::assert_abs_eq!(q[4], p[4], 1e-10);
+        v2ref::assert_abs_eq!(q[5], p[5], 1e-10);
+    }
+}
+
+#[test]
+fn estimate_without_a_sidecar_and_with_a_calibrator_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let sidecar = synth(dir.path(), "set", &["--csv"]);
+    let csv = dir.path().join("set.csv").display().to_string();
+    // The physical flags instead of the sidecar: the same estimates.
+    let flags = [
+        "--source",
+        "point",
+        "--visibility",
+        "0.6",
+        "--photons",
+        "30",
+        "--read-noise",
+        "1",
+    ];
+    let mut args = vec!["estimate", "--input", &csv];
+    args.extend_from_slice(&flags);
+    let by_flags = ok(&args);
+    let by_sidecar = ok(&["estimate", "--sidecar", &sidecar]);
+    assert_eq!(by_flags, by_sidecar);
+    // A calibrator observed like the source (point source, V = 1, many rows):
+    // the normalized means agree with the model calibrator's within the
+    // calibrator's own noise.
+    let cal_stem = dir.path().join("cal").display().to_string();
+    ok(&[
+        "synth",
+        "--out",
+        &cal_stem,
+        "--rows",
+        "20000",
+        "--samples",
+        "32",
+        "--source",
+        "point",
+        "--photons",
+        "30",
+        "--read-noise",
+        "1",
+        "--reference-blocks",
+        "0",
+        "--seed",
+        "9",
+        "--quiet",
+    ]);
+    let cal = format!("{cal_stem}.npy");
+    let model = columns(&by_sidecar);
+    let measured = columns(&ok(&[
+        "estimate",
+        "--sidecar",
+        &sidecar,
+        "--calibrator",
+        &cal,
+    ]));
+    let mean = |r: &[[f64; 6]], k: usize| r.iter().map(|x| x[k]).sum::<f64>() / r.len() as f64;
+    for k in [4, 5] {
+        let ratio = mean(&measured, k) / mean(&model, k);
+        // 20 000 calibrator rows: the calibration is known to ~0.3 % (V1²) and
+        // ~1 % (V2²) at 1σ; 5σ allowed.
+        assert!((ratio - 1.0).abs() < 0.05, "column {k}: ratio {ratio}");
+        assert!(
+            ratio != 1.0,
+            "the calibrator file must change the normalization"
+        );
+    }
+}
+
+#[test]
+fn vectors_regenerate_byte_for_byte() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let golden = format!("{root}/golden");
+    let (code, out, err) = v2ref(&["golden", "--check", "--only", "vectors", "--dir", &golden]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("0 mismatch"), "{out}");
+}
+
+fn assert_bad(args: &[&str], names: &[&str]) {
+    let (code, out, err) = v2ref(args);
+    assert_eq!(code, 2, "{args:?}: exit {code}: {err}");
+    assert!(out.is_empty(), "{args:?}: {out}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    for n in names {
+        assert!(err.contains(n), "{args:?}: {err} does not name {n}");
+    }
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let sidecar = synth(dir.path(), "set", &["--csv"]);
+    let d = |f: &str| dir.path().join(f).display().to_string();
+    // A file whose rows do not match its sidecar.
+    let other = d("other");
+    ok(&[
+        "synth",
+        "--out",
+        &other,
+        "--rows",
+        "300",
+        "--samples",
+        "32",
+        "--reference-blocks",
+        "0",
+        "--quiet",
+    ]);
+    std::fs::copy(d("other.npy"), d("set.npy")).unwrap();
+    assert_bad(
+        &["estimate", "--sidecar", &sidecar],
+        &["set.npy", "300 rows", "400"],
+    );
+    // NaN in row 3, column 6 of a CSV.
+    let text = std::fs::read_to_string(d("set.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let mut cells: Vec<String> = lines[2].split(',').map(str::to_owned).collect();
+    cells[5] = "NaN".into();
+    lines[2] = cells.join(",");
+    std::fs::write(d("nan.csv"), lines.join("\n")).unwrap();
+    assert_bad(
+        &["estimate", "--input", &d("nan.csv")],
+        &["nan.csv", "row 3"],
+    );
+    // Not an .npy file.
+    std::fs::write(d("junk.npy"), b"hello").unwrap();
+    assert_bad(&["estimate", "--input", &d("junk.npy")], &["junk.npy"]);
+    // A sidecar that is not one.
+    std::fs::write(d("bad.json"), b"{\"format\": 3}").unwrap();
+    assert_bad(&["estimate", "--sidecar", &d("bad.json")], &["bad.json"]);
+    // Physical flags with a sidecar are refused by the parser.
+    let (code, _, _) = v2ref(&["estimate", "--sidecar", &sidecar, "--photons", "3"]);
+    assert_eq!(code, 2);
+    // Nothing half written: a failed estimate leaves no output file.
+    let out = d("never.csv");
+    let (code, _, _) = v2ref(&["estimate", "--input", &d("junk.npy"), "--out", &out]);
+    assert_eq!(code, 2);
+    assert!(!Path::new(&out).exists());
+}
