@@ -41,6 +41,8 @@
 //! | §3 *Effect of spectral bandwidth* (with the line example and the normalization of V2, Fig. 0), §4 *chromatic dispersion*, §5 *finite scan length*, the integrating detector | [`bias`] |
 //! | §6 *Effect of differential piston*: turbulence, piston spectrum and sequences, scans through them | [`piston`] |
 //! | Appendix, *Estimator signal-to-noise ratio*: noise moments, closed forms, windowed variance, noisy Monte Carlo | [`noise`] |
+//! | all of the above at once: noisy interferograms with every effect, for any instrument | [`simulator`] |
+//! | the conformance kit: per-row estimates, the truth of a synth set, the score of a pipeline | [`conformance`] |
 //! | the paper's cases, figures, claims, golden files and plots | [`reproduction`] |
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
@@ -95,6 +97,9 @@
 //! | Appendix, noise moments, var $V_1^2$, var $V_2^2$, SNR (printed and exact) | $\mathrm{SNR} = \langle V^2\rangle/\sqrt{\operatorname{var} V^2}$ | [`noise::moments()`](noise::moments()), [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
 //! | Appendix, filtered samples — exact quadratic form | $\operatorname{var}(M^\mathsf{T} A M)$ | [`noise::window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
 //! | Monte Carlo of noisy scans | | [`noise::simulation::simulate_noisy`], [`montecarlo::run_units`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | all effects at once: rows of one synth set | $I_i \sim \mathrm{Poisson}(c_i + m_i(\text{piston}_s)) + \sigma_\mathrm{det}\,\mathcal N(0,1)$, $M_i = I_i - c_i$ | [`simulator::Model::rows`], [`simulator::simulate`] | `tests/simulator.rs` |
+//! | per-row estimates, bias conventions | $(V^2_\mathrm{raw} - b)/C$, $v_i = \sigma_\mathrm{det}^2 + n_i$ with $n_i$ from the model or the row | [`conformance::estimate::RowEstimator`] (slow oracle: [`conformance::estimate::estimate_row_oracle`]) | `tests/simulator.rs`, `tests/conformance_cli.rs` |
+//! | the truth of a set and the score of a pipeline | $z = (\bar x - \mu)/\sigma_\mathrm{set}$, $\lvert z\rvert \le \Phi^{-1}(1-\alpha/2m)$ | [`conformance::truth::truth`], [`conformance::score`] | `tests/conformance_score.rs`, `tests/conformance_cli.rs` |
 //! | Figs. 0–5 as data, golden files, claims | | [`reproduction::figures::all`], [`reproduction::golden::check`], [`reproduction::claims::evaluate`] | `tests/golden.rs`, `tests/claims.rs` |
 
 #![warn(missing_docs)]
