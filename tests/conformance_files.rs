@@ -4,7 +4,6 @@
 //! are atomic.
 
 #[path = "../src/cli/files.rs"]
-#[allow(dead_code)]
 mod files;
 
 use files::{read_estimates, read_matrix, write_text_atomic, CsvRowWriter, NpyRowWriter};
@@ -107,7 +106,11 @@ impl Fixture {
     fn new() -> Fixture {
         let dir = tempfile::tempdir().unwrap();
         let sidecar = dir.path().join("set.json");
-        std::fs::write(&sidecar, serde_json::to_string_pretty(&self::sidecar()).unwrap()).unwrap();
+        std::fs::write(
+            &sidecar,
+            serde_json::to_string_pretty(&self::sidecar()).unwrap(),
+        )
+        .unwrap();
         Fixture { dir, sidecar }
     }
 
@@ -150,15 +153,16 @@ fn npy<T: npyz::AutoSerialize + Clone>(path: &Path, shape: &[u64], values: &[T])
     std::fs::write(path, out).unwrap();
 }
 
-fn assert_bad(
-    out: (i32, String, String),
-    must_contain: &[&str],
-) {
+fn assert_bad(out: (i32, String, String), must_contain: &[&str]) {
     let (code, stdout, stderr) = out;
     assert_eq!(code, 2, "exit {code}, stderr {stderr}");
     assert!(stdout.is_empty(), "wrote to stdout: {stdout}");
     assert!(!stderr.contains("panicked"), "panicked: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "not one line: {stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "not one line: {stderr}"
+    );
     for m in must_contain {
         assert!(stderr.contains(m), "message lacks {m:?}: {stderr}");
     }
@@ -170,8 +174,14 @@ fn score_passes_and_fails_with_its_exit_status() {
     let good = f.write("good.csv", GOOD_CSV.as_bytes());
     let (code, stdout, stderr) = f.score(&good, &[]);
     assert_eq!(code, 0, "{stdout}{stderr}");
-    assert!(stdout.contains("PASS") && !stdout.contains("FAIL"), "{stdout}");
-    assert!(stdout.contains("v1_sq") && stdout.contains("v2_sq"), "{stdout}");
+    assert!(
+        stdout.contains("PASS") && !stdout.contains("FAIL"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("v1_sq") && stdout.contains("v2_sq"),
+        "{stdout}"
+    );
 
     let (code, stdout, _) = f.score(&good, &["--json"]);
     assert_eq!(code, 0);
@@ -224,7 +234,10 @@ fn bad_sidecars_exit_2_naming_the_file_and_field() {
     let mut v = serde_json::to_value(sidecar()).unwrap();
     v["format"] = "v2ref-synth-0".into();
     let wrong = f.write("wrong.json", v.to_string().as_bytes());
-    assert_bad(run(&wrong), &["--sidecar", "wrong.json", "field format", sidecar::FORMAT]);
+    assert_bad(
+        run(&wrong),
+        &["--sidecar", "wrong.json", "field format", sidecar::FORMAT],
+    );
 
     let mut v = serde_json::to_value(sidecar()).unwrap();
     v.as_object_mut().unwrap().remove("truth");
@@ -235,10 +248,19 @@ fn bad_sidecars_exit_2_naming_the_file_and_field() {
 
     // A window the sidecar has no truth for.
     let (code, _, stderr) = v2ref(&[
-        "score", "--sidecar", s(&f.sidecar), "--estimates", s(&good), "--bins", "band",
+        "score",
+        "--sidecar",
+        s(&f.sidecar),
+        "--estimates",
+        s(&good),
+        "--bins",
+        "band",
     ]);
     assert_eq!(code, 2, "{stderr}");
-    assert!(stderr.contains("truth.windows") && stderr.contains("band"), "{stderr}");
+    assert!(
+        stderr.contains("truth.windows") && stderr.contains("band"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -249,7 +271,10 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     // Wrong dtypes.
     let p = f.path("f32.npy");
     npy(&p, &[4, 2], &[1.0f32; 8]);
-    assert_bad(f.score(&p, &[]), &[e[0], "f32.npy", "header", "float32", "float64"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "f32.npy", "header", "float32", "float64"],
+    );
     let p = f.path("i64.npy");
     npy(&p, &[4, 2], &[1i64; 8]);
     assert_bad(f.score(&p, &[]), &[e[0], "i64.npy", "int64", "float64"]);
@@ -262,10 +287,16 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     npy(&p, &[4, 2], &[1.0f64; 8]);
     let bytes = std::fs::read(&p).unwrap();
     std::fs::write(&p, &bytes[..bytes.len() - 8]).unwrap();
-    assert_bad(f.score(&p, &[]), &[e[0], "short.npy", "truncated", "64 bytes", "56"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "short.npy", "truncated", "64 bytes", "56"],
+    );
     // Not an npy file.
     let p = f.write("text.npy", b"v1_sq,v2_sq\n1,2\n");
-    assert_bad(f.score(&p, &[]), &[e[0], "text.npy", "not a NumPy .npy file"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "text.npy", "not a NumPy .npy file"],
+    );
     // Empty files.
     let p = f.write("empty.npy", b"");
     assert_bad(f.score(&p, &[]), &[e[0], "empty.npy", "empty"]);
@@ -273,10 +304,20 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     assert_bad(f.score(&p, &[]), &[e[0], "empty.csv", "empty"]);
     // NaN in a row, CSV and npy.
     let p = f.write("nan.csv", b"v1_sq,v2_sq\n1,8.5\n2,9.5\nnan,10.5\n4,11.5\n");
-    assert_bad(f.score(&p, &[]), &[e[0], "nan.csv", "row 3", "column 1", "1-based", "finite"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "nan.csv", "row 3", "column 1", "1-based", "finite"],
+    );
     let p = f.path("nan.npy");
-    npy(&p, &[4, 2], &[1.0, 8.5, 2.0, f64::NAN, 3.0, 10.5, 4.0, 11.5]);
-    assert_bad(f.score(&p, &[]), &[e[0], "nan.npy", "row 2", "v2_sq", "finite"]);
+    npy(
+        &p,
+        &[4, 2],
+        &[1.0, 8.5, 2.0, f64::NAN, 3.0, 10.5, 4.0, 11.5],
+    );
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "nan.npy", "row 2", "v2_sq", "finite"],
+    );
     let p = f.write("inf.csv", b"v1_sq\n1\n2\n3\ninf\n");
     assert_bad(f.score(&p, &[]), &[e[0], "inf.csv", "row 4"]);
     // Not a number.
@@ -284,7 +325,10 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     assert_bad(f.score(&p, &[]), &[e[0], "word.csv", "row 3", "\"three\""]);
     // Ragged CSV.
     let p = f.write("ragged.csv", b"v1_sq,v2_sq\n1,8.5\n2\n3,10.5\n4,11.5\n");
-    assert_bad(f.score(&p, &[]), &[e[0], "ragged.csv", "row 2", "line 3", "1 columns"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "ragged.csv", "row 2", "line 3", "1 columns"],
+    );
     // No estimate column.
     let p = f.write("nocol.csv", b"a,b\n1,2\n");
     assert_bad(f.score(&p, &[]), &[e[0], "nocol.csv", "header", "v1_sq"]);
@@ -297,8 +341,14 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     // Columns that do not match the file.
     let p = f.path("wide.npy");
     npy(&p, &[4, 3], &[1.0f64; 12]);
-    assert_bad(f.score(&p, &[]), &[e[0], "wide.npy", "3 column", "2 are named"]);
-    assert_bad(f.score(&p, &["--columns", "a,b,c"]), &["--columns", "v1_sq"]);
+    assert_bad(
+        f.score(&p, &[]),
+        &[e[0], "wide.npy", "3 column", "2 are named"],
+    );
+    assert_bad(
+        f.score(&p, &["--columns", "a,b,c"]),
+        &["--columns", "v1_sq"],
+    );
     // Unknown extension, missing file.
     let p = f.write("est.txt", GOOD_CSV.as_bytes());
     assert_bad(f.score(&p, &[]), &[e[0], "est.txt", ".npy", ".csv"]);
@@ -319,7 +369,7 @@ fn awkward_values(n: usize) -> Vec<f64> {
         -f64::MIN_POSITIVE,
         1.0 / 3.0,
         std::f64::consts::PI * 1e-300,
-        123456789.123456789e200,
+        1.234_567_891_234_567_9e208,
     ];
     let mut x = 0x9E37_79B9_7F4A_7C15u64;
     (0..n)
@@ -369,7 +419,11 @@ fn npy_writer_round_trips_bits_atomically() {
     }
     assert!(!target.exists(), "target written before finish");
     w.finish().unwrap();
-    assert_eq!(entries(dir.path()), vec!["rows.npy"], "temp file left behind");
+    assert_eq!(
+        entries(dir.path()),
+        vec!["rows.npy"],
+        "temp file left behind"
+    );
     let m = read_matrix(&target, "data").unwrap();
     assert_eq!((m.rows, m.cols), (rows, cols));
     same_bits(&m.data, &values);
@@ -419,7 +473,8 @@ fn csv_writer_round_trips_bits() {
     let target = dir.path().join("rows.csv");
     let (rows, cols) = (23usize, 6usize);
     let values = awkward_values(rows * cols);
-    let mut w = CsvRowWriter::create(&target, rows as u64, cols, Some("a,b,c,d,e,f"), "out").unwrap();
+    let mut w =
+        CsvRowWriter::create(&target, rows as u64, cols, Some("a,b,c,d,e,f"), "out").unwrap();
     w.write_rows(&values[..cols * 3]).unwrap();
     w.write_rows(&values[cols * 3..]).unwrap();
     w.finish().unwrap();
@@ -433,7 +488,10 @@ fn csv_writer_round_trips_bits() {
     w.write_rows(&[0.1, -0.0, 5e-324]).unwrap();
     w.finish().unwrap();
     assert_eq!(std::fs::read_to_string(&bare).unwrap(), "0.1,-0.0,5e-324\n");
-    same_bits(&read_matrix(&bare, "data").unwrap().data, &[0.1, -0.0, 5e-324]);
+    same_bits(
+        &read_matrix(&bare, "data").unwrap().data,
+        &[0.1, -0.0, 5e-324],
+    );
 }
 
 #[test]
@@ -475,7 +533,10 @@ fn matrices_read_in_either_order_and_refuse_bad_content() {
     let p = dir.path().join("m.csv");
     std::fs::write(&p, "# c\nx,y\n\n1,2\n# mid\n3, 4\n").unwrap();
     let m = read_matrix(&p, "data").unwrap();
-    assert_eq!((m.rows, m.cols, m.data.clone()), (2, 2, vec![1.0, 2.0, 3.0, 4.0]));
+    assert_eq!(
+        (m.rows, m.cols, m.data.clone()),
+        (2, 2, vec![1.0, 2.0, 3.0, 4.0])
+    );
 
     // Refusals are typed Data errors naming the parameter, file and place.
     let check = |name: &str, content: &[u8], location: &str, words: &[&str]| {
@@ -512,7 +573,16 @@ fn matrices_read_in_either_order_and_refuse_bad_content() {
     assert!(e.to_string().contains("row 2, column 1 (1-based)"), "{e}");
     // A missing file is an I/O error naming the parameter.
     let e = read_matrix(&dir.path().join("none.npy"), "data").unwrap_err();
-    assert!(matches!(e, Error::Io { param: Some("data"), .. }), "{e:?}");
+    assert!(
+        matches!(
+            e,
+            Error::Io {
+                param: Some("data"),
+                ..
+            }
+        ),
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -553,5 +623,8 @@ fn npy_writer_streams_a_gigabyte() {
     let len = std::fs::metadata(&target).unwrap().len();
     let data = rows * cols as u64 * 8;
     assert!(len > data && len < data + 4096, "{len}");
-    eprintln!("1 GB written in {secs:.2} s ({:.0} MB/s)", len as f64 / secs / 1e6);
+    eprintln!(
+        "1 GB written in {secs:.2} s ({:.0} MB/s)",
+        len as f64 / secs / 1e6
+    );
 }

@@ -25,7 +25,14 @@ const Z_POWER: f64 = 1.2815515655446008;
 /// statrs' erfc_inv against AS241: agreement to well below this.
 const QUANTILE_REL: f64 = 1e-12;
 
-fn truth(mean: f64, var: f64, set_se_mean: f64, se_mean: f64, set_se_var: Option<f64>, se_var: f64) -> EstimatorTruth {
+fn truth(
+    mean: f64,
+    var: f64,
+    set_se_mean: f64,
+    se_mean: f64,
+    set_se_var: Option<f64>,
+    se_var: f64,
+) -> EstimatorTruth {
     EstimatorTruth {
         mean,
         var,
@@ -67,7 +74,11 @@ fn exact_scores_of_a_four_row_set() {
     assert_rel_eq!(s.z_var, 2.0 / 3.0, 1e-14);
     assert_rel_eq!(s.z_crit, Z_2_TESTS, QUANTILE_REL);
     // (z_crit + Φ⁻¹(0.9)) · 0.5/2 and (z_crit + Φ⁻¹(0.9)) · 1/1.
-    assert_rel_eq!(s.min_detectable_rel_bias_mean, (Z_2_TESTS + Z_POWER) * 0.25, 1e-12);
+    assert_rel_eq!(
+        s.min_detectable_rel_bias_mean,
+        (Z_2_TESTS + Z_POWER) * 0.25,
+        1e-12
+    );
     assert_rel_eq!(s.min_detectable_rel_bias_var, Z_2_TESTS + Z_POWER, 1e-12);
     assert!(s.pass_mean && s.pass_var && s.pass);
 }
@@ -143,7 +154,9 @@ fn report_shares_alpha_over_every_test_made() {
 /// n rows alternating mean ± d: mean exactly `mean` (n even), unbiased
 /// variance d² n/(n − 1).
 fn alternating(n: usize, mean: f64, d: f64) -> Vec<f64> {
-    (0..n).map(|i| if i % 2 == 0 { mean + d } else { mean - d }).collect()
+    (0..n)
+        .map(|i| if i % 2 == 0 { mean + d } else { mean - d })
+        .collect()
 }
 
 #[test]
@@ -181,18 +194,36 @@ fn refusals_name_the_parameter() {
     // Length other than the set's.
     let e = score(&x, &t, 5, 1e-3).unwrap_err();
     assert_eq!(e.param(), Some("estimates"));
-    assert!(e.to_string().contains("4 rows") && e.to_string().contains("5 rows"), "{e}");
+    assert!(
+        e.to_string().contains("4 rows") && e.to_string().contains("5 rows"),
+        "{e}"
+    );
     let e = score(&x[..3], &t, 4, 1e-3).unwrap_err();
     assert_eq!(e.param(), Some("estimates"));
     // A NaN, named by its row.
     let e = score(&[1.0, f64::NAN, 3.0, 4.0], &t, 4, 1e-3).unwrap_err();
-    assert!(matches!(e, Error::Invalid { param: "estimates", .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            Error::Invalid {
+                param: "estimates",
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("row 2"), "{e}");
     // Too few rows for a variance.
-    assert_eq!(score(&[1.0], &t, 1, 1e-3).unwrap_err().param(), Some("estimates"));
+    assert_eq!(
+        score(&[1.0], &t, 1, 1e-3).unwrap_err().param(),
+        Some("estimates")
+    );
     // A truth that cannot make a z-score.
     let zero = truth(2.0, 1.0, 0.0, 0.0, Some(0.6), 0.8);
-    assert_eq!(score(&x, &zero, 4, 1e-3).unwrap_err().param(), Some("truth"));
+    assert_eq!(
+        score(&x, &zero, 4, 1e-3).unwrap_err().param(),
+        Some("truth")
+    );
     let nan = truth(f64::NAN, 1.0, 0.4, 0.3, Some(0.6), 0.8);
     assert_eq!(score(&x, &nan, 4, 1e-3).unwrap_err().param(), Some("truth"));
     let neg = truth(2.0, 1.0, -0.4, 0.3, Some(0.6), 0.8);

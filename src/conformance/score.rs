@@ -210,9 +210,7 @@ pub fn score_with_threshold(
         if !(v > 0.0 && v.is_finite()) {
             return Err(Error::Invalid {
                 param: "truth",
-                reason: format!(
-                    "the standard error of the {what} is {v}; a z-score needs one > 0"
-                ),
+                reason: format!("the standard error of the {what} is {v}; a z-score needs one > 0"),
             });
         }
     }
