@@ -244,6 +244,14 @@ fn bad_sidecars_exit_2_naming_the_file_and_field() {
     let missing = f.write("missing.json", v.to_string().as_bytes());
     assert_bad(run(&missing), &["--sidecar", "missing.json", "truth"]);
 
+    let mut v = serde_json::to_value(sidecar()).unwrap();
+    v.as_object_mut().unwrap().remove("format");
+    let unformatted = f.write("unformatted.json", v.to_string().as_bytes());
+    assert_bad(
+        run(&unformatted),
+        &["--sidecar", "unformatted.json", "field format", "missing"],
+    );
+
     assert_bad(run(&f.path("absent.json")), &["--sidecar", "absent.json"]);
 
     // A window the sidecar has no truth for.
@@ -278,6 +286,19 @@ fn bad_estimates_exit_2_naming_the_file_and_where() {
     let p = f.path("i64.npy");
     npy(&p, &[4, 2], &[1i64; 8]);
     assert_bad(f.score(&p, &[]), &[e[0], "i64.npy", "int64", "float64"]);
+    // Big-endian float64.
+    let p = f.path("be.npy");
+    let mut out = Vec::new();
+    let mut w = npyz::WriteOptions::<f64>::new()
+        .dtype(npyz::DType::Plain(">f8".parse().unwrap()))
+        .shape(&[4, 2])
+        .writer(&mut out)
+        .begin_nd()
+        .unwrap();
+    w.extend([1.0f64; 8]).unwrap();
+    w.finish().unwrap();
+    std::fs::write(&p, out).unwrap();
+    assert_bad(f.score(&p, &[]), &[e[0], "be.npy", "big-endian", "'<f8'"]);
     // 3-D.
     let p = f.path("cube.npy");
     npy(&p, &[2, 2, 2], &[1.0f64; 8]);
@@ -625,6 +646,15 @@ fn npy_writer_streams_a_gigabyte() {
     assert!(len > data && len < data + 4096, "{len}");
     eprintln!(
         "1 GB written in {secs:.2} s ({:.0} MB/s)",
+        len as f64 / secs / 1e6
+    );
+    let start = std::time::Instant::now();
+    let m = read_matrix(&target, "data").unwrap();
+    let secs = start.elapsed().as_secs_f64();
+    assert_eq!((m.rows, m.cols), (rows as usize, cols));
+    assert_eq!(m.row(999_999), &block[999 * cols..]);
+    eprintln!(
+        "1 GB read in {secs:.2} s ({:.0} MB/s)",
         len as f64 / secs / 1e6
     );
 }
