@@ -310,26 +310,66 @@ fn every_effect_at_once_passes_its_own_score() {
     let mut csv = String::from("wavelength_um,weight\n");
     for j in 0..=30 {
         let wl = 1.5 + 0.01 * j as f64;
-        let dip = if (wl - 1.65_f64).abs() < 0.025 { 0.4 } else { 1.0 };
+        let dip = if (wl - 1.65_f64).abs() < 0.025 {
+            0.4
+        } else {
+            1.0
+        };
         csv += &format!("{wl},{}\n", (1.0 + 2.0 * (wl - 1.5)) * dip);
     }
     std::fs::write(&spectrum, csv).unwrap();
     let stem = dir.path().join("all").display().to_string();
     let spectrum = spectrum.display().to_string();
     ok(&[
-        "synth", "--out", &stem, "--rows", "300", "--samples", "48", "--spectrum-csv", &spectrum,
-        "--wavelength-um", "1.65", "--source", "ud", "--diameter-mas", "2", "--baseline-m", "100",
-        "--dispersion-pp-rad", "1", "--integrating", "--dx-um", "0.6", "--fringe-hz", "800",
-        "--photons", "40", "--read-noise", "2", "--reference-blocks", "12", "--quiet",
+        "synth",
+        "--out",
+        &stem,
+        "--rows",
+        "300",
+        "--samples",
+        "48",
+        "--spectrum-csv",
+        &spectrum,
+        "--wavelength-um",
+        "1.65",
+        "--source",
+        "ud",
+        "--diameter-mas",
+        "2",
+        "--baseline-m",
+        "100",
+        "--dispersion-pp-rad",
+        "1",
+        "--integrating",
+        "--dx-um",
+        "0.6",
+        "--fringe-hz",
+        "800",
+        "--photons",
+        "40",
+        "--read-noise",
+        "2",
+        "--reference-blocks",
+        "12",
+        "--quiet",
     ]);
     let sidecar = format!("{stem}.json");
     let text = std::fs::read_to_string(&sidecar).unwrap();
-    assert!(text.contains("\"kind\": \"table\""), "the sidecar carries the table");
+    assert!(
+        text.contains("\"kind\": \"table\""),
+        "the sidecar carries the table"
+    );
     let est = dir.path().join("est.csv").display().to_string();
     ok(&["estimate", "--sidecar", &sidecar, "--out", &est]);
     for bias in ["model", "counts"] {
         let (code, out, err) = v2ref(&[
-            "score", "--sidecar", &sidecar, "--estimates", &est, "--bias", bias,
+            "score",
+            "--sidecar",
+            &sidecar,
+            "--estimates",
+            &est,
+            "--bias",
+            bias,
         ]);
         // The model-convention estimates against the counts truth differ in
         // variance only; both must pass at the default threshold.

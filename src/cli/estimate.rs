@@ -8,7 +8,6 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
-use v2ref::conformance::sidecar::{Sidecar, FORMAT};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
@@ -89,7 +88,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 fn source(args: &Args) -> Result<Source> {
     match &args.sidecar {
         Some(path) => {
-            let sidecar = read_sidecar(path)?;
+            let sidecar = super::score::read_sidecar(path)?;
             let folder = path.parent().unwrap_or(Path::new("."));
             let (input, expected_rows) = match &args.input {
                 Some(p) => (p.clone(), None),
@@ -117,28 +116,6 @@ fn source(args: &Args) -> Result<Source> {
             })
         }
     }
-}
-
-/// A sidecar read and parsed, or an error naming the file and the field.
-pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::file(Some("sidecar"), path, e))?;
-    let sidecar: Sidecar = serde_json::from_str(&text).map_err(|e| {
-        Error::data(
-            "sidecar",
-            path,
-            format!("line {}, column {}", e.line(), e.column()),
-            format!("not a v2ref synth sidecar: {e}"),
-        )
-    })?;
-    if sidecar.format != FORMAT {
-        return Err(Error::data(
-            "sidecar",
-            path,
-            "field format",
-            format!("\"{}\" is not {FORMAT}", sidecar.format),
-        ));
-    }
-    Ok(sidecar)
 }
 
 /// The inputs with N from the file (without a sidecar) or checked against

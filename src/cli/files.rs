@@ -11,7 +11,6 @@
 
 // The writers and `read_matrix` serve `synth` and `estimate`; the tests
 // include this file by path.
-#![allow(dead_code)]
 
 use npyz::{Endianness, NpyHeader, Order, TypeChar, WriterBuilder};
 use std::fs::File;
@@ -32,6 +31,7 @@ pub struct Matrix {
 
 impl Matrix {
     /// Row `r` (0-based).
+    #[allow(dead_code)] // read by tests/conformance_files.rs, which compiles this file
     pub fn row(&self, r: usize) -> &[f64] {
         &self.data[r * self.cols..(r + 1) * self.cols]
     }
@@ -224,7 +224,7 @@ fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> 
     let data_start = reader
         .stream_position()
         .map_err(|e| Error::file(Some(param), path, e))?;
-    let need = count.checked_mul(8).unwrap_or(u64::MAX);
+    let need = count.saturating_mul(8);
     let have = file_len.saturating_sub(data_start);
     if have != need {
         let what = if have < need { "truncated" } else { "too long" };
@@ -496,7 +496,7 @@ fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Result<Estimat
             ),
         ));
     }
-    let rows = if cols == 0 { 0 } else { data.len() / cols };
+    let rows = data.len().checked_div(cols).unwrap_or(0);
     let column = |c: usize| (0..rows).map(|r| data[r * cols + c]).collect::<Vec<f64>>();
     Ok(Estimates {
         v1_sq: i1.map(column),
@@ -573,14 +573,19 @@ const WRITE_BUFFER: usize = 1 << 20;
 /// after row into a temporary file that replaces the target only at
 /// [`finish`](Self::finish); dropped unfinished, it leaves the target as
 /// it was.
+///
+/// npyz writes the header; the values follow it as the little-endian
+/// bytes of each f64 in row order (the `<f8` C-order data section), in
+/// blocks, at disk speed.
 pub struct NpyRowWriter {
     // Declared before `temp` so that it is closed before the temp file is
     // removed on drop.
-    writer: npyz::NpyWriter<f64, BufWriter<File>>,
+    out: BufWriter<File>,
     temp: TempTarget,
     cols: usize,
     rows: u64,
     written: u64,
+    bytes: Vec<u8>,
 }
 
 impl NpyRowWriter {
@@ -588,18 +593,19 @@ impl NpyRowWriter {
     /// file in errors.
     pub fn create(path: &Path, rows: u64, cols: usize, param: &'static str) -> Result<Self> {
         let (temp, file) = TempTarget::create(path, Some(param))?;
-        let writer = npyz::WriteOptions::<f64>::new()
+        let out = npyz::WriteOptions::new_header_only()
             .dtype(npyz::DType::Plain("<f8".parse().expect("a valid dtype")))
             .shape(&[rows, cols as u64])
             .writer(BufWriter::with_capacity(WRITE_BUFFER, file))
-            .begin_nd()
+            .write_header_only()
             .map_err(|e| temp.io(e))?;
         Ok(NpyRowWriter {
-            writer,
+            out,
             temp,
             cols,
             rows,
             written: 0,
+            bytes: Vec::new(),
         })
     }
 
@@ -609,8 +615,13 @@ impl NpyRowWriter {
         if self.written + n > self.rows {
             return Err(too_many(&self.temp, self.rows));
         }
-        for v in values {
-            self.writer.push(v).map_err(|e| self.temp.io(e))?;
+        for block in values.chunks(WRITE_BUFFER / 8) {
+            self.bytes.clear();
+            self.bytes
+                .extend(block.iter().flat_map(|v| v.to_le_bytes()));
+            self.out
+                .write_all(&self.bytes)
+                .map_err(|e| self.temp.io(e))?;
         }
         self.written += n;
         Ok(())
@@ -619,20 +630,25 @@ impl NpyRowWriter {
     /// Checks the row count, flushes, syncs and renames onto the target.
     pub fn finish(self) -> Result<()> {
         let NpyRowWriter {
-            writer,
+            out,
             temp,
             rows,
             written,
             ..
         } = self;
-        if written != rows {
-            return Err(row_count(&temp, rows, written));
-        }
-        writer.finish().map_err(|e| temp.io(e))?;
-        // `finish` flushed the buffer; sync through a fresh handle.
-        sync(&temp)?;
-        temp.persist()
+        finish_file(out, temp, rows, written)
     }
+}
+
+/// Checks the row count, flushes, syncs, closes and renames.
+fn finish_file(out: BufWriter<File>, temp: TempTarget, rows: u64, written: u64) -> Result<()> {
+    if written != rows {
+        return Err(row_count(&temp, rows, written));
+    }
+    let file = out.into_inner().map_err(|e| temp.io(e.into_error()))?;
+    file.sync_all().map_err(|e| temp.io(e))?;
+    drop(file);
+    temp.persist()
 }
 
 fn whole_rows(len: usize, cols: usize, temp: &TempTarget) -> Result<u64> {
@@ -657,12 +673,6 @@ fn row_count(temp: &TempTarget, rows: u64, written: u64) -> Error {
         path: temp.target.display().to_string(),
         reason: format!("{written} rows written, {rows} announced; the file was not written"),
     }
-}
-
-fn sync(temp: &TempTarget) -> Result<()> {
-    File::open(&temp.temp)
-        .and_then(|f| f.sync_all())
-        .map_err(|e| temp.io(e))
 }
 
 /// A CSV writer of rows of float64 (shortest round-trip formatting: the
@@ -735,13 +745,7 @@ impl CsvRowWriter {
             written,
             ..
         } = self;
-        if written != rows {
-            return Err(row_count(&temp, rows, written));
-        }
-        let file = out.into_inner().map_err(|e| temp.io(e.into_error()))?;
-        file.sync_all().map_err(|e| temp.io(e))?;
-        drop(file);
-        temp.persist()
+        finish_file(out, temp, rows, written)
     }
 }
 

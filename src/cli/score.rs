@@ -87,8 +87,15 @@ pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
             ))
         }
     }
-    serde_json::from_value::<Sidecar>(value)
-        .map_err(|e| Error::data(P, path, "", format!("not a v2ref sidecar: {e}")))
+    // Parsed again from the text so that an error carries its line.
+    serde_json::from_str::<Sidecar>(&text).map_err(|e| {
+        Error::data(
+            P,
+            path,
+            format!("line {}, column {}", e.line(), e.column()),
+            format!("not a v2ref sidecar: {e}"),
+        )
+    })
 }
 
 /// Runs `score`.
