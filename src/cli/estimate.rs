@@ -2,7 +2,7 @@
 //! bias-subtracted and normalized (`v2ref::conformance::estimate`), for a
 //! window of bins, a bias convention and a calibrator.
 
-use super::files::{read_matrix, CsvRowWriter, Matrix, NpyRowWriter};
+use super::files::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows};
 use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -66,23 +66,44 @@ struct Source {
     expected_rows: Option<u64>,
 }
 
+/// Rows estimated at a time from a streamed `.npy` (8 MB at N = 128).
+const STREAM_ROWS: usize = 8192;
+
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let source = source(&args)?;
-    let data = read_matrix(&source.input, "input")?;
-    let inputs = check_shape(&source, &data)?;
-    let model = Model::new(&inputs)?;
-    let est = RowEstimator::new(&model, args.bins, args.bias, source.continuum_subtracted)?;
-    let est = match args.calibrator.as_str() {
-        "model" => est,
-        path => {
-            let cal = calibration(&args, &model, path, source.continuum_subtracted)?;
-            est.with_calibration(cal)?
+    let rows = match NpyRows::open(&source.input, "input")? {
+        Some(mut stream) => {
+            let est = estimator(&args, &source, stream.rows, stream.cols)?;
+            let mut out = Vec::with_capacity(stream.rows);
+            let mut block = Vec::new();
+            while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
+                out.extend(est.estimate_rows(&block, args.threads)?);
+            }
+            out
+        }
+        None => {
+            let data = read_matrix(&source.input, "input")?;
+            let est = estimator(&args, &source, data.rows, data.cols)?;
+            est.estimate_rows(&data.data, args.threads)?
         }
     };
-    let rows = est.estimate_rows(&data.data, args.threads)?;
     write(&args.out, &rows)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The estimator of `rows` rows of `cols` samples under the flags.
+fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<RowEstimator> {
+    let inputs = check_shape(source, rows, cols)?;
+    let model = Model::new(&inputs)?;
+    let est = RowEstimator::new(&model, args.bins, args.bias, source.continuum_subtracted)?;
+    match args.calibrator.as_str() {
+        "model" => Ok(est),
+        path => {
+            let cal = calibration(args, &model, path, source.continuum_subtracted)?;
+            est.with_calibration(cal)
+        }
+    }
 }
 
 fn source(args: &Args) -> Result<Source> {
@@ -120,19 +141,19 @@ fn source(args: &Args) -> Result<Source> {
 
 /// The inputs with N from the file (without a sidecar) or checked against
 /// it (with one).
-fn check_shape(source: &Source, data: &Matrix) -> Result<Inputs> {
-    if let Some(rows) = source.expected_rows {
-        if data.rows as u64 != rows {
+fn check_shape(source: &Source, rows: usize, cols: usize) -> Result<Inputs> {
+    if let Some(expected) = source.expected_rows {
+        if rows as u64 != expected {
             return Err(Error::data(
                 "input",
                 &source.input,
                 "",
-                format!("{} rows; its sidecar says {rows}", data.rows),
+                format!("{rows} rows; its sidecar says {expected}"),
             ));
         }
     }
     let mut inputs = source.inputs.clone();
-    if inputs.samples != data.cols {
+    if inputs.samples != cols {
         if source.expected_rows.is_some() || source.inputs.piston.is_some() {
             return Err(Error::data(
                 "input",
@@ -140,11 +161,11 @@ fn check_shape(source: &Source, data: &Matrix) -> Result<Inputs> {
                 "",
                 format!(
                     "{} columns; the configuration has {} samples per row",
-                    data.cols, inputs.samples
+                    cols, inputs.samples
                 ),
             ));
         }
-        inputs.samples = data.cols;
+        inputs.samples = cols;
     }
     inputs.validate()?;
     Ok(inputs)

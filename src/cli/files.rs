@@ -170,7 +170,7 @@ fn dtype_name(dtype: &npyz::DType) -> String {
 /// Reads a `.npy` file of `<f8` values: its shape (any number of
 /// dimensions) and its values in C order (a Fortran-order file is
 /// transposed). Values are not checked for finiteness.
-fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> {
+fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
     let file = open(path, param)?;
     let file_len = file
         .metadata()
@@ -237,7 +237,41 @@ fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> 
             ),
         ));
     }
-    let order = header.order();
+    Ok(NpyData {
+        reader,
+        shape,
+        order: header.order(),
+        bytes: need,
+    })
+}
+
+/// The data section of a checked `<f8` `.npy` file, its reader positioned
+/// at the first value.
+struct NpyData {
+    reader: BufReader<File>,
+    shape: Vec<usize>,
+    order: Order,
+    bytes: u64,
+}
+
+/// Appends the little-endian float64 values of `bytes` (a multiple of 8) to
+/// `out`.
+fn push_le_f64(bytes: &[u8], out: &mut Vec<f64>) {
+    out.extend(
+        bytes
+            .chunks_exact(8)
+            .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])),
+    );
+}
+
+fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> {
+    let NpyData {
+        mut reader,
+        shape,
+        order,
+        bytes: need,
+    } = open_npy(path, param)?;
+    let count = need / 8;
     use std::io::Read as _;
     // npyz has parsed and checked the header; the data section of a '<f8'
     // array is `count` little-endian 8-byte values, read here in bulk
@@ -250,11 +284,7 @@ fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> 
         reader
             .read_exact(&mut chunk[..take])
             .map_err(|e| Error::file(Some(param), path, e))?;
-        data.extend(
-            chunk[..take]
-                .chunks_exact(8)
-                .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])),
-        );
+        push_le_f64(&chunk[..take], &mut data);
         left -= take;
     }
     if order == Order::Fortran && shape.len() == 2 {
@@ -275,6 +305,65 @@ fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> 
         ));
     }
     Ok((shape, data))
+}
+
+/// A 2-D C-order `<f8` `.npy` file read a block of rows at a time, each
+/// value checked finite (memory stays at one block however large the file).
+pub struct NpyRows {
+    data: NpyData,
+    path: PathBuf,
+    param: &'static str,
+    /// Rows in the file.
+    pub rows: usize,
+    /// Values per row.
+    pub cols: usize,
+    done: usize,
+    buf: Vec<u8>,
+}
+
+impl NpyRows {
+    /// Opens `path` when it is a `.npy` file whose rows can be streamed (2-D,
+    /// C order); None for any other file, which [`read_matrix`] reads whole
+    /// (and refuses with its own message when it must).
+    pub fn open(path: &Path, param: &'static str) -> Result<Option<NpyRows>> {
+        if !matches!(kind_of(path, param)?, Kind::Npy) {
+            return Ok(None);
+        }
+        let data = open_npy(path, param)?;
+        if data.shape.len() != 2 || data.order != Order::C || data.shape.contains(&0) {
+            return Ok(None);
+        }
+        let (rows, cols) = (data.shape[0], data.shape[1]);
+        Ok(Some(NpyRows {
+            data,
+            path: path.to_path_buf(),
+            param,
+            rows,
+            cols,
+            done: 0,
+            buf: Vec::new(),
+        }))
+    }
+
+    /// Replaces `out` with the next block of at most `max_rows` rows
+    /// (row-major); returns the number of rows, 0 at the end.
+    pub fn next_block(&mut self, max_rows: usize, out: &mut Vec<f64>) -> Result<usize> {
+        use std::io::Read as _;
+        let take = max_rows.max(1).min(self.rows - self.done);
+        out.clear();
+        self.buf.resize(take * self.cols * 8, 0);
+        self.data
+            .reader
+            .read_exact(&mut self.buf)
+            .map_err(|e| Error::file(Some(self.param), &self.path, e))?;
+        push_le_f64(&self.buf, out);
+        if let Some(i) = out.iter().position(|v| !v.is_finite()) {
+            let location = at(self.done + i / self.cols + 1, i % self.cols + 1);
+            return Err(not_finite(self.param, &self.path, location, out[i]));
+        }
+        self.done += take;
+        Ok(take)
+    }
 }
 
 /// The content lines of a CSV file: (1-based line number, fields), comments
