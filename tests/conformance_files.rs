@@ -658,3 +658,41 @@ fn npy_writer_streams_a_gigabyte() {
         len as f64 / secs / 1e6
     );
 }
+
+/// The streaming reader gives the whole reader's values, block by block,
+/// locates a NaN by its row in the file, and declines what it cannot stream.
+#[test]
+fn npy_rows_stream_what_read_matrix_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let (rows, cols) = (23usize, 5usize);
+    let values = awkward_values(rows * cols);
+    let path = dir.path().join("m.npy");
+    npy(&path, &[rows as u64, cols as u64], &values);
+    let whole = read_matrix(&path, "input").unwrap();
+    let mut stream = files::NpyRows::open(&path, "input").unwrap().unwrap();
+    assert_eq!((stream.rows, stream.cols), (rows, cols));
+    let (mut got, mut block) = (Vec::new(), Vec::new());
+    while stream.next_block(4, &mut block).unwrap() > 0 {
+        got.extend_from_slice(&block);
+    }
+    same_bits(&got, &whole.data);
+    // A NaN in row 18 (1-based), column 2, found in the fifth block.
+    let mut bad = values.clone();
+    bad[17 * cols + 1] = f64::NAN;
+    npy(&path, &[rows as u64, cols as u64], &bad);
+    let mut stream = files::NpyRows::open(&path, "input").unwrap().unwrap();
+    let err = loop {
+        match stream.next_block(4, &mut block) {
+            Ok(0) => panic!("the NaN was not found"),
+            Ok(_) => {}
+            Err(e) => break e.to_string(),
+        }
+    };
+    assert!(err.contains("row 18") && err.contains("column 2"), "{err}");
+    // A CSV or a 1-D array is left to read_matrix.
+    let csv = dir.path().join("m.csv");
+    std::fs::write(&csv, "1,2\n3,4\n").unwrap();
+    assert!(files::NpyRows::open(&csv, "input").unwrap().is_none());
+    npy(&path, &[4], &[1.0f64, 2.0, 3.0, 4.0]);
+    assert!(files::NpyRows::open(&path, "input").unwrap().is_none());
+}
