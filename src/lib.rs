@@ -112,6 +112,7 @@ pub mod math;
 pub mod montecarlo;
 pub mod noise;
 pub mod piston;
+pub mod plan;
 pub mod prelude;
 pub mod reproduction;
 pub mod simulator;

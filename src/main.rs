@@ -28,6 +28,8 @@ enum Command {
     Simulate(cli::simulate::Args),
     /// Piston Monte Carlo at one or more fringe frequencies.
     Piston(cli::piston::Args),
+    /// The estimator, fringe frequency, stroke and scans that reach a target σ(V²).
+    Plan(cli::plan::Args),
     /// Compare (--check) or rewrite (--update) golden/ from the code.
     Golden(cli::golden::Args),
     /// Regenerate every figure and table of the paper.
@@ -51,6 +53,7 @@ fn main() -> ExitCode {
         Command::Snr(a) => cli::snr::run(a),
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Piston(a) => cli::piston::run(a),
+        Command::Plan(a) => cli::plan::run(a),
         Command::Golden(a) => cli::golden::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
         Command::Synth(a) => cli::synth::run(a),

@@ -19,6 +19,7 @@ pub mod files;
 pub mod golden;
 pub mod inputs;
 pub mod piston;
+pub mod plan;
 pub mod reproduce;
 pub mod score;
 pub mod simulate;

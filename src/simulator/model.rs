@@ -45,6 +45,19 @@ impl Model {
     /// # Ok::<(), v2ref::Error>(())
     /// ```
     pub fn new(inputs: &Inputs) -> Result<Model> {
+        Self::build(inputs, None)
+    }
+
+    /// [`Model::new`] with the differential-piston spectrum given (it is
+    /// the costly part of a model with piston, and depends only on the
+    /// atmosphere, the apertures and the baseline: a caller that builds
+    /// many models under one sky builds it once). It must be the spectrum of
+    /// `inputs.piston` on `inputs.baseline_m`.
+    pub fn with_piston_spectrum(inputs: &Inputs, spectrum: PistonSpectrum) -> Result<Model> {
+        Self::build(inputs, Some(spectrum))
+    }
+
+    fn build(inputs: &Inputs, given: Option<PistonSpectrum>) -> Result<Model> {
         inputs.validate()?;
         let observation = inputs.observation()?;
         let sampling = inputs.sampling()?;
@@ -52,9 +65,10 @@ impl Model {
             scaled_interferogram(&observation, &sampling, inputs.photons, inputs.visibility)?;
         let calibrator =
             scaled_interferogram(&observation.calibrator(), &sampling, inputs.photons, 1.0)?;
-        let piston_spectrum = match &inputs.piston {
-            Some(p) => Some(p.spectrum(observation.baseline_m)?),
-            None => None,
+        let piston_spectrum = match (&inputs.piston, given) {
+            (Some(_), Some(s)) => Some(s),
+            (Some(p), None) => Some(p.spectrum(observation.baseline_m)?),
+            (None, _) => None,
         };
         Ok(Model {
             piston_spectrum,

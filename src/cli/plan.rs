@@ -1,0 +1,237 @@
+//! `v2ref plan`: the estimator, fringe frequency, stroke and number of scans
+//! that reach a target σ(V²) (or the σ reached in a time budget) for an
+//! instrument, a source and a site (`v2ref::plan`).
+
+use super::common::{ObservationArgs, TurbulenceArgs};
+use super::{finite_f64, print_json, progress_bar};
+use serde::Serialize;
+use std::process::ExitCode;
+use v2ref::plan::{default_grid, plan, Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use v2ref::{Error, Result};
+
+/// Flags of `plan`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    obs: ObservationArgs,
+    /// Samples per fringe at λ0 (δx = λ0 / this).
+    #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
+    samples_per_fringe: f64,
+    /// Integrating detector (each sample averages the fringe over δx).
+    #[arg(long)]
+    integrating: bool,
+    /// Continuum photons per second at the detector in the band.
+    #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
+    photon_rate_per_s: f64,
+    /// Detector noise standard deviation per sample, photons.
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    read_noise: f64,
+    /// No Poisson photon noise (detector noise only).
+    #[arg(long)]
+    no_photon_noise: bool,
+    /// Dead time between scans, s.
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    dead_time_s: f64,
+    #[command(flatten)]
+    turbulence: TurbulenceArgs,
+    /// Target σ of the averaged V² [default: 1e-3 when no --time-budget-s].
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "time_budget_s")]
+    target_sigma_v2: Option<f64>,
+    /// Instead of a target σ, the time to spend, s: report the σ reached.
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    time_budget_s: Option<f64>,
+    /// Fringe frequencies of the grid, Hz (repeatable) [default: 20 from 20 to 2000, log].
+    #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
+    fringe_hz: Vec<f64>,
+    /// Strokes of the grid, µm (repeatable) [default: 16, 32, 64, 128].
+    #[arg(long = "stroke-um", value_parser = finite_f64, allow_negative_numbers = true)]
+    stroke_um: Vec<f64>,
+    /// Scans of each piston Monte Carlo (the piston scatter's standard
+    /// error is printed; more scans for a tighter estimate).
+    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
+    scans: u64,
+    /// Seed of the piston Monte Carlo.
+    #[arg(long, default_value = "1", allow_negative_numbers = true)]
+    seed: u64,
+    /// Worker threads (0 = all cores); the answer does not depend on it.
+    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    threads: usize,
+    /// One JSON document (every term of every grid point) instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+#[derive(Serialize)]
+struct Answer<'a> {
+    inputs: &'a PlanInputs,
+    #[serde(flatten)]
+    plan: &'a Plan,
+}
+
+/// The plan's inputs from the flags.
+fn plan_inputs(args: &Args) -> Result<PlanInputs> {
+    let obs = args.obs.observation()?;
+    let t = &args.turbulence;
+    let (fringe_hz, stroke_um) = default_grid();
+    let target = match (args.target_sigma_v2, args.time_budget_s) {
+        (_, Some(b)) => Target::TimeBudgetS(b),
+        (Some(s), None) => Target::SigmaV2(s),
+        (None, None) => Target::SigmaV2(1e-3),
+    };
+    Ok(PlanInputs {
+        instrument: Inputs {
+            spectrum: SpectrumInput::from_spectrum(
+                &obs.spectrum,
+                (args.obs.wavelength_um, args.obs.bandwidth_nm),
+            ),
+            source: match args.obs.source {
+                super::common::SourceKind::Point => SourceInput::Point,
+                super::common::SourceKind::Ud => SourceInput::Ud {
+                    diameter_mas: args.obs.diameter_mas,
+                },
+            },
+            baseline_m: obs.baseline_m,
+            dispersion_pp_rad: args.obs.dispersion_pp_rad,
+            integrating: args.integrating,
+            read_noise: args.read_noise,
+            photon_noise: !args.no_photon_noise,
+            ..Inputs::default()
+        },
+        atmosphere: PistonInputs {
+            fringe_hz: 1.0,
+            wavelength_um: args.obs.wavelength_um,
+            seeing_arcsec: t.seeing_arcsec,
+            wind_mps: t.wind_mps,
+            aperture_m: t.aperture_m,
+            outer_scale_m: t.outer_scale_m,
+            reference: t.reference,
+            sub_samples: t.sub_samples,
+        },
+        samples_per_fringe: args.samples_per_fringe,
+        photon_rate_per_s: args.photon_rate_per_s,
+        dead_time_s: args.dead_time_s,
+        fringe_hz: if args.fringe_hz.is_empty() {
+            fringe_hz
+        } else {
+            args.fringe_hz.clone()
+        },
+        stroke_um: if args.stroke_um.is_empty() {
+            stroke_um
+        } else {
+            args.stroke_um.clone()
+        },
+        target,
+        scans: args.scans,
+        seed: args.seed,
+    })
+}
+
+/// Runs `plan`.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let inputs = plan_inputs(&args)?;
+    let points = (inputs.fringe_hz.len() * inputs.stroke_um.len()) as u64;
+    let bar = progress_bar(points, args.quiet || args.json, "plan");
+    let result = plan(&inputs, args.threads, &|k| bar.inc(k))?;
+    bar.finish_and_clear();
+    if args.json {
+        print_json(&Answer {
+            inputs: &inputs,
+            plan: &result,
+        });
+    } else {
+        print_table(&inputs, &result)?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn name(e: Estimator) -> &'static str {
+    match e {
+        Estimator::V1 => "V1^2",
+        Estimator::V2 => "V2^2",
+    }
+}
+
+fn describe(p: &PlanPoint) -> String {
+    let reach = match (p.sigma_reached, p.time_s) {
+        (Some(s), Some(t)) => format!(
+            "sigma(V^2) {s:.2e} in {t:.1} s ({:.0} scans)",
+            p.scans_needed.unwrap_or(0.0)
+        ),
+        (None, Some(t)) => format!("{:.0} scans, {t:.1} s", p.scans_needed.unwrap_or(0.0)),
+        _ => "unreachable (piston bias above the target)".into(),
+    };
+    format!(
+        "{} at {:.0} Hz, {:.0} um stroke ({} samples, {:.1} photons/sample): {reach}; per scan sigma {:.2e} = noise {:.2e} (+) piston {:.2e}, piston bias {:+.1e}",
+        name(p.estimator),
+        p.fringe_hz,
+        p.stroke_um,
+        p.samples,
+        p.photons_per_sample,
+        p.sigma_per_scan,
+        p.sigma_noise_per_scan,
+        p.sigma_piston_per_scan,
+        p.bias_piston
+    )
+}
+
+fn print_table(inputs: &PlanInputs, plan: &Plan) -> Result<()> {
+    let target = match inputs.target {
+        Target::SigmaV2(s) => format!("target sigma(V^2) = {s:e}"),
+        Target::TimeBudgetS(t) => format!("time budget {t} s"),
+    };
+    match &plan.recommended {
+        Some(p) => outln!("recommended ({target}): {}", describe(p)),
+        None => outln!("no setting of the grid reaches the {target}: the piston bias exceeds it everywhere; see the rows below"),
+    }
+    for p in [&plan.best_v1, &plan.best_v2].into_iter().flatten() {
+        outln!("best {}", describe(p));
+    }
+    if let Some(p) = plan.recommended {
+        outln!(
+            "deterministic (computed, correctable): bandwidth+dispersion {:+.2e}, scan+detector {:+.2e} on V^2 = {:.4}",
+            p.bias_bandwidth_dispersion, p.bias_scan_detector, p.v_sq_sampled
+        );
+    }
+    outln!("");
+    outln!(
+        "{:>5} {:>8} {:>7} {:>8} {:>10} {:>10} {:>10} {:>11} {:>10} {:>10}",
+        "est",
+        "f [Hz]",
+        "stroke",
+        "ph/samp",
+        "sig_noise",
+        "sig_pist",
+        "bias_pist",
+        "scans",
+        "time [s]",
+        "sig_reach"
+    );
+    for p in &plan.points {
+        let opt =
+            |v: Option<f64>, w: usize| v.map_or(format!("{:>w$}", "-"), |x| format!("{x:>w$.3e}"));
+        outln!(
+            "{:>5} {:>8.1} {:>7.0} {:>8.2} {:>10.2e} {:>10.2e} {:>+10.1e} {} {} {}",
+            name(p.estimator),
+            p.fringe_hz,
+            p.stroke_um,
+            p.photons_per_sample,
+            p.sigma_noise_per_scan,
+            p.sigma_piston_per_scan,
+            p.bias_piston,
+            opt(p.scans_needed, 11),
+            opt(p.time_s, 10),
+            opt(p.sigma_reached, 10)
+        );
+    }
+    if plan.points.is_empty() {
+        return Err(Error::Invalid {
+            param: "fringe_hz",
+            reason: "empty grid".into(),
+        });
+    }
+    Ok(())
+}
