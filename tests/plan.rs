@@ -184,3 +184,60 @@ fn piston_only_v1_low_v2_high() {
         reached(2)
     );
 }
+
+/// `v2ref plan` answers from the command line, writes its JSON and its SVG.
+#[test]
+fn cli_plan_writes_json_and_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("plan.svg");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args([
+            "plan",
+            "--wavelength-um",
+            "1.65",
+            "--bandwidth-nm",
+            "300",
+            "--source",
+            "ud",
+            "--diameter-mas",
+            "2",
+            "--baseline-m",
+            "100",
+            "--fringe-hz",
+            "100",
+            "--fringe-hz",
+            "1000",
+            "--stroke-um",
+            "32",
+            "--scans",
+            "300",
+            "--json",
+            "--svg",
+        ])
+        .arg(&svg)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["points"].as_array().unwrap().len(), 4);
+    assert!(
+        json["recommended"]["fringe_hz"].as_f64().is_some(),
+        "{json}"
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<svg") && text.contains("target"),
+        "an SVG with the target"
+    );
+    // Bad input: one line naming the flag, exit 2.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["plan", "--photon-rate-per-s", "-5"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--photon-rate-per-s"));
+}

@@ -20,6 +20,7 @@ pub mod golden;
 pub mod inputs;
 pub mod piston;
 pub mod plan;
+pub mod plan_svg;
 pub mod reproduce;
 pub mod score;
 pub mod simulate;

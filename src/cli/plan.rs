@@ -63,6 +63,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
+    #[arg(long, value_name = "FILE")]
+    svg: Option<std::path::PathBuf>,
 }
 
 #[derive(Serialize)]
@@ -137,6 +140,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let bar = progress_bar(points, args.quiet || args.json, "plan");
     let result = plan(&inputs, args.threads, &|k| bar.inc(k))?;
     bar.finish_and_clear();
+    if let Some(path) = &args.svg {
+        super::plan_svg::write(path, &result, &inputs)?;
+    }
     if args.json {
         print_json(&Answer {
             inputs: &inputs,

@@ -1,0 +1,135 @@
+//! The planner's figure: the σ(V²) each estimator reaches against fringe
+//! frequency (best stroke at each), in the plan's time, with the target.
+
+use plotters::prelude::*;
+use std::path::Path;
+use v2ref::plan::{Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref::{Error, Result};
+
+/// σ(V²) reached by `p` in `time_s`: `sqrt(σ²_scan/n + bias²)`.
+fn reached(p: &PlanPoint, inputs: &PlanInputs, time_s: f64) -> Option<f64> {
+    let n = (time_s / (p.scan_time_s + inputs.dead_time_s)).floor();
+    (n >= 1.0 && p.sigma_per_scan.is_finite())
+        .then(|| (p.sigma_per_scan * p.sigma_per_scan / n + p.bias_piston * p.bias_piston).sqrt())
+}
+
+/// (f, best σ reached over the strokes) for one estimator.
+fn curve(plan: &Plan, inputs: &PlanInputs, e: Estimator, time_s: f64) -> Vec<(f64, f64)> {
+    inputs
+        .fringe_hz
+        .iter()
+        .filter_map(|&f| {
+            plan.points
+                .iter()
+                .filter(|p| p.estimator == e && p.fringe_hz == f)
+                .filter_map(|p| reached(p, inputs, time_s))
+                .min_by(f64::total_cmp)
+                .map(|s| (f, s))
+        })
+        .collect()
+}
+
+fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Output {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    }
+}
+
+/// Writes the figure to `path` (SVG).
+pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
+    let time_s = match inputs.target {
+        Target::TimeBudgetS(t) => t,
+        Target::SigmaV2(_) => plan.recommended.and_then(|p| p.time_s).unwrap_or(3600.0),
+    };
+    let v1 = curve(plan, inputs, Estimator::V1, time_s);
+    let v2 = curve(plan, inputs, Estimator::V2, time_s);
+    let all: Vec<f64> = v1.iter().chain(&v2).map(|p| p.1).collect();
+    let target = match inputs.target {
+        Target::SigmaV2(s) => Some(s),
+        Target::TimeBudgetS(_) => None,
+    };
+    let lo = all
+        .iter()
+        .copied()
+        .chain(target)
+        .fold(f64::INFINITY, f64::min)
+        / 2.0;
+    let hi = all.iter().copied().chain(target).fold(0.0, f64::max) * 2.0;
+    let (f0, f1) = (
+        inputs
+            .fringe_hz
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min),
+        inputs.fringe_hz.iter().copied().fold(0.0, f64::max),
+    );
+    if all.is_empty() || !(lo > 0.0 && hi > lo && f1 > f0) {
+        return Err(fail(
+            path,
+            "nothing to plot: no grid point reaches any accuracy",
+        ));
+    }
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail(path, e))?;
+        let title = format!(
+            "σ(V²) reached in {time_s:.1} s against fringe frequency (best stroke at each)"
+        );
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d((f0 / 1.2..f1 * 1.2).log_scale(), (lo..hi).log_scale())
+            .map_err(|e| fail(path, e))?;
+        chart
+            .configure_mesh()
+            .x_desc("fringe frequency [Hz]")
+            .x_label_formatter(&|f| format!("{f:.0}"))
+            .y_desc("σ(V²) of the averaged measurement")
+            .light_line_style(WHITE)
+            .draw()
+            .map_err(|e| fail(path, e))?;
+        let blue = RGBColor(0, 114, 178);
+        let orange = RGBColor(213, 94, 0);
+        for (points, colour, label) in [
+            (&v1, blue, "V1² (sum of |B_k|²)"),
+            (&v2, orange, "V2² (|Σ B_k|²)"),
+        ] {
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    colour.stroke_width(2),
+                ))
+                .map_err(|e| fail(path, e))?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+            chart
+                .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .map_err(|e| fail(path, e))?;
+        }
+        if let Some(t) = target {
+            chart
+                .draw_series(LineSeries::new(
+                    [(f0 / 1.2, t), (f1 * 1.2, t)],
+                    BLACK.stroke_width(1),
+                ))
+                .map_err(|e| fail(path, e))?
+                .label(format!("target σ(V²) = {t:e}"))
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLACK));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| fail(path, e))?;
+        root.present().map_err(|e| fail(path, e))?;
+    }
+    super::files::write_text_atomic(path, &svg)
+}
