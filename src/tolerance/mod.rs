@@ -19,7 +19,8 @@
 //!   [`NAIVE_DFT_ABS`], [`FFT_SUM_REL`], [`BIN_SUM_REL`],
 //!   [`PATHS_AGREE_ABS`], [`BIN_ORACLE_ABS`], [`GAMMA_REL`],
 //!   [`IDENTITY_REL`], [`IDENTITY_ABS`], [`CANCELLATION_ABS`],
-//!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`NONNEGATIVE_REL`],
+//!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`STREAMING_LARGE_MEAN_REL`],
+//!   [`NONNEGATIVE_REL`],
 //!   [`GOLDEN_REL`], [`GOLDEN_ABS`], [`EXAMPLE_GOLDEN_ABS`],
 //!   [`VISIBILITY_SCALING_REL`], [`VISIBILITY_SCALING_ABS`];
 //! * quadrature and special functions (convergence targets, finite
