@@ -69,11 +69,14 @@ fn jinc_reference(z: f64) -> f64 {
     }
 }
 
+/// W(σ) up to scale, as the reference evaluates it.
+type Weight = Box<dyn Fn(f64) -> f64>;
+
 /// An observation as the reference sees it: W up to scale, its kinks, the
 /// disk, the baseline and a quadratic phase a2 (σ − σ0)².
 struct Model {
     breaks: Vec<f64>,
-    weight: Box<dyn Fn(f64) -> f64>,
+    weight: Weight,
     diameter_mas: f64,
     baseline_m: f64,
     sigma0: f64,
@@ -120,7 +123,7 @@ impl Model {
 
     fn reference(&self) -> Reference {
         let w = &self.weight;
-        let i1 = self.integrate(|s| w(s));
+        let i1 = self.integrate(w);
         let i2 = self.integrate(|s| w(s) * w(s));
         let sigma_eff = self.integrate(|s| s * w(s)) / i1;
         let phase = |s: f64| self.a2 * (s - self.sigma0) * (s - self.sigma0);
@@ -218,7 +221,7 @@ fn case(
     let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
     let c = 0.5 * (lo + hi);
     let half = 0.5 * (hi - lo);
-    let (spectrum, breaks, weight): (Spectrum, Vec<f64>, Box<dyn Fn(f64) -> f64>) = match kind {
+    let (spectrum, breaks, weight): (Spectrum, Vec<f64>, Weight) = match kind {
         Kind::PowerLaw { index } => (
             Spectrum::power_law(band, index).unwrap(),
             vec![lo, hi],
