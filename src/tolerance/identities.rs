@@ -174,3 +174,15 @@ pub const VISIBILITY_SCALING_REL: f64 = 1e-9;
 /// small as ~1e-4, so the rounding above is amplified up to 10⁴ times):
 /// 1e-6 absolute on a ratio of 0.5.
 pub const VISIBILITY_SCALING_ABS: f64 = 1e-6;
+
+/// The one-pass and merged running statistics against an exact two-pass
+/// computation on data whose mean (10⁹) dwarfs their spread (σ ≈ 0.6):
+/// every update rounds the running mean to half an ulp of 10⁹ (6e-8), i.e.
+/// r ≈ 1e-7 of σ. The mean's error is a weighted walk of these roundings,
+/// ~√(n/3) r ≈ 2e-6 σ for n = 10³; the central sums Σ(x − x̄)^p see the
+/// mean's error only at second order, but each deviation carries r, so p r
+/// ≲ 4e-7 relative even when the roundings add coherently. 1e-5 (the mean
+/// in units of σ, m2 and m4 relative, m3 relative to m2^{3/2}) covers both,
+/// while an n instead of an n − 1 in the variance moves it by 1/n = 1e-3 and
+/// a wrong merge coefficient by O(1).
+pub const STREAMING_LARGE_MEAN_REL: f64 = 1e-5;

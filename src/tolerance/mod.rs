@@ -19,7 +19,8 @@
 //!   [`NAIVE_DFT_ABS`], [`FFT_SUM_REL`], [`BIN_SUM_REL`],
 //!   [`PATHS_AGREE_ABS`], [`BIN_ORACLE_ABS`], [`GAMMA_REL`],
 //!   [`IDENTITY_REL`], [`IDENTITY_ABS`], [`CANCELLATION_ABS`],
-//!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`NONNEGATIVE_REL`],
+//!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`STREAMING_LARGE_MEAN_REL`],
+//!   [`NONNEGATIVE_REL`],
 //!   [`GOLDEN_REL`], [`GOLDEN_ABS`], [`EXAMPLE_GOLDEN_ABS`],
 //!   [`VISIBILITY_SCALING_REL`], [`VISIBILITY_SCALING_ABS`];
 //! * quadrature and special functions (convergence targets, finite
@@ -31,6 +32,7 @@
 //!   [`BESSEL_ZERO_REL`], [`FRESNEL_ABS`], [`CLOSED_FORM_VS_NUMERICAL`],
 //!   [`FINITE_DIFFERENCE_REL`], [`SECOND_DIFFERENCE_ABS`],
 //!   [`RESIDUAL_PHASE_REL`], [`KERNEL_ZERO_REL`], [`MINIMIZE_BRACKET_REL`],
+//!   [`REFERENCE_QUADRATURE_REL`],
 //!   [`ARGMAX_ABS`];
 //! * convergence studies (truncated series, discretizations, asymptotic
 //!   regimes, printed precision): [`SAMPLED_VS_SPECTRAL_ABS`],

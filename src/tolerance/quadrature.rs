@@ -156,3 +156,16 @@ pub const MINIMIZE_BRACKET_REL: f64 = 1e-9;
 /// value at the maximum, flat to second order, agrees to
 /// [`MINIMIZE_BRACKET_REL`].
 pub const ARGMAX_ABS: f64 = 1e-4;
+
+/// The library's spectral estimators against the composite Simpson
+/// reference written in `tests/spectral_estimators.rs` (≥ 4000 panels over
+/// the band, 2 J1(z)/z from Bessel's integral), relative on V² (with the
+/// floor [`VISIBILITY_SQ_FLOOR`](super::VISIBILITY_SQ_FLOOR)): Simpson's
+/// truncation h⁴ L max|f⁗|/180 is ≲ 1e-15 for |V|² with z ≤ 20 and
+/// power-law or piecewise-linear W (h ≤ Δσ/4000), its ~4000-term sums carry
+/// up to ~4000 ε ≈ 1e-12 of rounding when the errors add coherently, and
+/// the library's ratio of two integrals carries
+/// [`QUADRATURE_CHECK_REL`]; 1e-11 allows both with a margin of ~5, while
+/// V1² weighted by W instead of W² moves it by ≥ 1e-3 relative on any band
+/// whose W changes by a few per cent across it.
+pub const REFERENCE_QUADRATURE_REL: f64 = 1e-11;
