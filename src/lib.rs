@@ -113,6 +113,8 @@ pub mod montecarlo;
 pub mod noise;
 pub mod piston;
 pub mod prelude;
+#[cfg(feature = "python")]
+pub mod python;
 pub mod reproduction;
 pub mod simulator;
 pub mod tolerance;
