@@ -40,6 +40,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         best = best.min(t.elapsed().as_secs_f64());
         checksum = rows.iter().map(|r| r.v1_sq + r.v2_sq).sum::<f64>();
     }
-    println!("{} {samples} {best:.6} {checksum:.17e}", data.len() / samples);
+    println!(
+        "{} {samples} {best:.6} {checksum:.17e}",
+        data.len() / samples
+    );
     Ok(())
 }

@@ -84,14 +84,19 @@ fn check_finite(param: &str, data: &[f64], cols: usize) -> PyResult<()> {
 }
 
 /// A 2-D C-contiguous float64 array as (rows, cols, data).
-fn matrix<'a>(param: &str, a: &'a PyReadonlyArray2<'_, f64>) -> PyResult<(usize, usize, &'a [f64])> {
+fn matrix<'a>(
+    param: &str,
+    a: &'a PyReadonlyArray2<'_, f64>,
+) -> PyResult<(usize, usize, &'a [f64])> {
     let shape = a.shape();
     let (rows, cols) = (shape[0], shape[1]);
     if rows == 0 || cols == 0 {
         return Err(data_error(
             param,
             "",
-            &format!("empty ({rows} rows, {cols} columns); at least one row and one column are needed"),
+            &format!(
+                "empty ({rows} rows, {cols} columns); at least one row and one column are needed"
+            ),
         ));
     }
     let data = a.as_slice().map_err(|_| {
@@ -133,7 +138,11 @@ fn parse_sidecar(text: &str, name: &str) -> PyResult<Sidecar> {
         .map_err(|e| data_error("sidecar", name, &format!("not a v2ref sidecar: {e}")))
 }
 
-fn column<'py>(py: Python<'py>, rows: &[RowEstimate], f: impl Fn(&RowEstimate) -> f64) -> Bound<'py, PyArray1<f64>> {
+fn column<'py>(
+    py: Python<'py>,
+    rows: &[RowEstimate],
+    f: impl Fn(&RowEstimate) -> f64,
+) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_vec(py, rows.iter().map(f).collect())
 }
 
@@ -204,7 +213,12 @@ fn estimate<'py>(
     }
     ok(inputs.validate())?;
     let model = ok(Model::new(&inputs))?;
-    let est = ok(RowEstimator::new(&model, window, bias, continuum_subtracted))?;
+    let est = ok(RowEstimator::new(
+        &model,
+        window,
+        bias,
+        continuum_subtracted,
+    ))?;
     let cal = match &calibrator {
         None => None,
         Some(c) => {
@@ -368,7 +382,11 @@ fn simulate(
     seed: u64,
     threads: usize,
 ) -> PyResult<String> {
-    let (window, bias, formula) = (ok(window(bins))?, ok(convention(bias))?, ok(self::formula(formula))?);
+    let (window, bias, formula) = (
+        ok(window(bins))?,
+        ok(convention(bias))?,
+        ok(self::formula(formula))?,
+    );
     if !(2..=MAX_TRIALS).contains(&trials) {
         return Err(Error::OutOfRange {
             param: "trials",
@@ -672,7 +690,15 @@ fn piston(
         threads,
     };
     let runs = interruptible(py, |tick| {
-        sweep(&obs, &spectrum, &freqs, &setup, &[detector], &size, Some(tick))
+        sweep(
+            &obs,
+            &spectrum,
+            &freqs,
+            &setup,
+            &[detector],
+            &size,
+            Some(tick),
+        )
     })?;
     let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
     json(&PistonAnswer {
@@ -696,9 +722,7 @@ fn piston(
 #[pyo3(signature = (quick))]
 fn claims(py: Python<'_>, quick: bool) -> PyResult<String> {
     let effort = if quick { Effort::Quick } else { Effort::Full };
-    let results = interruptible(py, |_| {
-        Ok(crate::reproduction::claims::evaluate(effort))
-    })?;
+    let results = interruptible(py, |_| Ok(crate::reproduction::claims::evaluate(effort)))?;
     json(&results)
 }
 
@@ -769,7 +793,10 @@ fn score(
                     return Err(data_error(
                         "estimates",
                         &format!("row {} (1-based), column {name}", r + 1),
-                        &format!("{} is not a finite number; every value must be finite", x[r]),
+                        &format!(
+                            "{} is not a finite number; every value must be finite",
+                            x[r]
+                        ),
                     ));
                 }
                 slices.push(Some(x));

@@ -185,7 +185,11 @@ impl Physical {
 
     /// Where the fringe packet sits.
     pub fn reference(&self) -> Result<PistonReference> {
-        parse_enum("reference", &self.reference, &["centre", "mean", "absolute"])
+        parse_enum(
+            "reference",
+            &self.reference,
+            &["centre", "mean", "absolute"],
+        )
     }
 
     /// The spectrum (as `ObservationArgs::spectrum`).

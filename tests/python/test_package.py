@@ -326,6 +326,29 @@ def test_results_do_not_depend_on_threads():
     assert not np.array_equal(a, c)
 
 
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: v2ref.simulate(trials=10**9, samples=64),
+        lambda: v2ref.simulate(trials=10**9, samples=64, bias="counts"),
+        lambda: v2ref.synthesize(rows=10**6, samples=64, reference_blocks=1000),
+        lambda: v2ref.piston(scans=200000, samples=64, fringe_hz=[100, 200, 300, 1000]),
+    ],
+)
+def test_ctrl_c_stops_long_calls(call):
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call()
+    timer.join()
+    assert time.perf_counter() - start < 5.0
+
+
 # --------------------------------------------------------------------------
 # Bad input.
 
