@@ -224,7 +224,7 @@ fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> 
     let data_start = reader
         .stream_position()
         .map_err(|e| Error::file(Some(param), path, e))?;
-    let need = count.checked_mul(8).unwrap_or(u64::MAX);
+    let need = count.saturating_mul(8);
     let have = file_len.saturating_sub(data_start);
     if have != need {
         let what = if have < need { "truncated" } else { "too long" };
@@ -496,7 +496,7 @@ fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Result<Estimat
             ),
         ));
     }
-    let rows = if cols == 0 { 0 } else { data.len() / cols };
+    let rows = data.len().checked_div(cols).unwrap_or(0);
     let column = |c: usize| (0..rows).map(|r| data[r * cols + c]).collect::<Vec<f64>>();
     Ok(Estimates {
         v1_sq: i1.map(column),
