@@ -104,7 +104,6 @@ fn matrix<'a>(
             "{param}: not a C-contiguous array (pass numpy.ascontiguousarray(x))"
         ))
     })?;
-    check_finite(param, data, cols)?;
     Ok((rows, cols, data))
 }
 
@@ -138,12 +137,39 @@ fn parse_sidecar(text: &str, name: &str) -> PyResult<Sidecar> {
         .map_err(|e| data_error("sidecar", name, &format!("not a v2ref sidecar: {e}")))
 }
 
-fn column<'py>(
-    py: Python<'py>,
-    rows: &[RowEstimate],
-    f: impl Fn(&RowEstimate) -> f64,
-) -> Bound<'py, PyArray1<f64>> {
-    PyArray1::from_vec(py, rows.iter().map(f).collect())
+/// The columns of `estimate`, in the order of `v2ref estimate`.
+const ESTIMATE_COLUMNS: [&str; 6] = [
+    "v1_sq_raw",
+    "v2_sq_raw",
+    "v1_sq_bias",
+    "v2_sq_bias",
+    "v1_sq",
+    "v2_sq",
+];
+
+/// The first non-finite value of the interferograms, found without a
+/// pass over all of them: a NaN or infinity in a row makes its raw
+/// estimates non-finite (sums and products with unit-modulus twiddles
+/// keep it), so only the rows whose raw estimates are not finite are
+/// searched, in order.
+fn check_rows_finite(data: &[f64], cols: usize, rows: &[RowEstimate]) -> PyResult<()> {
+    for (r, e) in rows.iter().enumerate() {
+        if e.v1_sq_raw.is_finite() && e.v2_sq_raw.is_finite() {
+            continue;
+        }
+        let row = &data[r * cols..(r + 1) * cols];
+        if let Some(c) = row.iter().position(|v| !v.is_finite()) {
+            return Err(data_error(
+                "interferograms",
+                &format!("row {}, column {} (1-based)", r + 1, c + 1),
+                &format!(
+                    "{} is not a finite number; every value must be finite",
+                    row[c]
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// `estimate`: per-row V1², V2² (raw, bias, normalized), as `v2ref
@@ -223,6 +249,7 @@ fn estimate<'py>(
         None => None,
         Some(c) => {
             let (_, ccols, cdata) = matrix("calibrator", c)?;
+            check_finite("calibrator", cdata, ccols)?;
             if ccols != cols {
                 return Err(data_error(
                     "calibrator",
@@ -246,13 +273,24 @@ fn estimate<'py>(
         est.estimate_rows(data, threads)
     });
     let rows = ok(rows)?;
+    check_rows_finite(data, cols, &rows)?;
+    let mut columns: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(rows.len()));
+    for e in &rows {
+        for (c, v) in columns.iter_mut().zip([
+            e.v1_sq_raw,
+            e.v2_sq_raw,
+            e.v1_sq_bias,
+            e.v2_sq_bias,
+            e.v1_sq,
+            e.v2_sq,
+        ]) {
+            c.push(v);
+        }
+    }
     let out = PyDict::new(py);
-    out.set_item("v1_sq_raw", column(py, &rows, |e| e.v1_sq_raw))?;
-    out.set_item("v2_sq_raw", column(py, &rows, |e| e.v2_sq_raw))?;
-    out.set_item("v1_sq_bias", column(py, &rows, |e| e.v1_sq_bias))?;
-    out.set_item("v2_sq_bias", column(py, &rows, |e| e.v2_sq_bias))?;
-    out.set_item("v1_sq", column(py, &rows, |e| e.v1_sq))?;
-    out.set_item("v2_sq", column(py, &rows, |e| e.v2_sq))?;
+    for (name, c) in ESTIMATE_COLUMNS.iter().zip(columns) {
+        out.set_item(name, PyArray1::from_vec(py, c))?;
+    }
     Ok(out)
 }
 

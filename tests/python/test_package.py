@@ -398,6 +398,12 @@ def test_bad_arrays_and_words_raise():
     y[2, 5] = np.nan
     with pytest.raises(ValueError, match=r"interferograms: row 3, column 6 \(1-based\): NaN is not a finite number"):
         v2ref.estimate(y)
+    y[1, 15] = -np.inf
+    for window in ("positive", "band", "all"):
+        with pytest.raises(ValueError, match=r"interferograms: row 2, column 16 \(1-based\): -inf is not a finite"):
+            v2ref.estimate(y, bins=window, bias="counts")
+    with pytest.raises(ValueError, match=r"calibrator: row 2, column 16 \(1-based\): -inf is not a finite"):
+        v2ref.estimate(x, calibrator=y)
     with pytest.raises(ValueError, match="bins: 'middle' is not one of: positive, band, all"):
         v2ref.estimate(x, bins="middle")
     with pytest.raises(ValueError, match="bias: 'x' is not one of: model, counts"):
