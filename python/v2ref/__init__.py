@@ -416,7 +416,8 @@ def synthesize(
     (ndarray of shape (rows, N), dict)
         The interferograms (float64, photons per sample) and the sidecar:
         the same JSON document as ``v2ref synth``'s OUT.json, parsed
-        (``truth`` holds what each window and bias convention must give).
+        (``truth`` holds what each window and bias convention must give;
+        ``data.npy`` is the data file's name with ``out``, else empty).
     """
     values = dict(locals())
     physical = _physical(_ALL, values)

@@ -143,7 +143,8 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
     (ndarray of shape (rows, N), dict)
         The interferograms (float64, photons per sample) and the sidecar:
         the same JSON document as ``v2ref synth``'s OUT.json, parsed
-        (``truth`` holds what each window and bias convention must give).
+        (``truth`` holds what each window and bias convention must give;
+        ``data.npy`` is the data file's name with ``out``, else empty).
     """
     ...
 
