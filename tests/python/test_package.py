@@ -170,6 +170,20 @@ def test_estimate_equals_cli(tmp_path, window, convention):
 
 
 @needs_cli
+def test_estimate_with_piston_integrating_and_spectrum_equals_cli(tmp_path):
+    x = np.random.default_rng(5).normal(scale=5.0, size=(30, 64))
+    np.save(tmp_path / "x.npy", x)
+    (tmp_path / "s.csv").write_text("wavelength_um,weight\n2.0,1\n2.2,2\n2.4,1\n")
+    kw = dict(fringe_hz=300.0, integrating=True, seeing_arcsec=0.8, reference="centre", bins="band")
+    cli("estimate", "--input", tmp_path / "x.npy", "--out", tmp_path / "e.npy", "--samples", "64",
+        "--spectrum-csv", tmp_path / "s.csv", *flags(**kw))
+    want = np.load(tmp_path / "e.npy")
+    got = v2ref.estimate(x, spectrum_csv=tmp_path / "s.csv", **kw)
+    for i, k in enumerate(v2ref.ESTIMATE_COLUMNS):
+        np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
+
+
+@needs_cli
 def test_estimate_with_calibrator_and_counts_equals_cli(tmp_path):
     rng = np.random.default_rng(4)
     x = rng.normal(scale=5.0, size=(50, 32)) + 10.0
