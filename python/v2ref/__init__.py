@@ -474,7 +474,7 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
         )
     if a.shape[1] != len(names):
         raise ValueError(
-            f"estimates: {a.shape[1]} columns; columns names {len(names)} ({','.join(names)})"
+            f"estimates: {a.shape[1]} columns; columns names {len(names)} ({','.join(names)}): one name per column is needed"
         )
     if "v1_sq" not in names and "v2_sq" not in names:
         raise ValueError(f"columns: no column named v1_sq or v2_sq ({','.join(names)}); one of them is needed")

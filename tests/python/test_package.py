@@ -462,6 +462,20 @@ def test_sidecar_errors():
         v2ref.score({"v1_sq": rows[:, 0]}, sc, alpha=2.0)
 
 
+def test_score_takes_every_shape_of_estimates():
+    rows, sc = v2ref.synthesize(rows=2000, samples=32, seed=8, reference_blocks=2)
+    est = v2ref.estimate(rows, sidecar=sc)
+    want = v2ref.score(est, sc)
+    both = np.column_stack([est["v2_sq"], est["v1_sq"]])
+    assert v2ref.score(both, sc, columns=["v2_sq", "v1_sq"]) == want
+    rec = np.rec.fromarrays([est["v1_sq"], est["v2_sq"]], names="v1_sq,v2_sq")
+    assert v2ref.score(rec, sc) == want
+    one = v2ref.score(est["v2_sq"], sc, columns=["v2_sq"])
+    assert one["estimators"] == v2ref.score({"v2_sq": est["v2_sq"]}, sc)["estimators"]
+    with pytest.raises(ValueError, match="estimates: 2 columns"):
+        v2ref.score(both, sc, columns=["v1_sq"])
+
+
 def test_help_shows_the_docstrings():
     assert "Sample spacing δx, µm" in v2ref.estimate.__doc__
     assert "v2ref synth" in v2ref.synthesize.__doc__
