@@ -151,6 +151,23 @@ def test_estimate_takes_c_contiguous_float64_without_copy_and_converts_others():
     assert ints["v1_sq"].dtype == np.float64
 
 
+def test_estimate_does_not_copy_a_c_contiguous_float64_array():
+    import tracemalloc
+
+    x = np.random.default_rng(2).normal(size=(20000, 128))  # 20 MB
+    v2ref.estimate(x[:10])
+    tracemalloc.start()
+    v2ref.estimate(x)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert peak < x.nbytes / 10, peak
+    tracemalloc.start()
+    v2ref.estimate(np.asfortranarray(x))  # a copy here, and tracemalloc sees it
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert peak >= x.nbytes
+
+
 # --------------------------------------------------------------------------
 # Against the CLI.
 
