@@ -114,6 +114,8 @@ pub mod noise;
 pub mod piston;
 pub mod plan;
 pub mod prelude;
+#[cfg(feature = "python")]
+pub mod python;
 pub mod reproduction;
 pub mod simulator;
 pub mod tolerance;

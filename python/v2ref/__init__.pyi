@@ -1,0 +1,309 @@
+"""Type stubs of the v2ref package (units in every parameter description)."""
+
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+import os
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+_PathLike = Union[str, "os.PathLike[str]"]
+
+__version__: str
+ESTIMATE_COLUMNS: Tuple[str, ...]
+
+def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, NDArray[np.float64]]:
+    """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
+
+    Parameters
+    ----------
+    interferograms : array_like, shape (rows, N)
+        One scan per row, columns in the order of the sidecar's
+        ``sample_opd_um`` (column 0 at the white-light fringe); photons per
+        sample. N is the array's width. A C-contiguous float64 array is used
+        without a copy; other real dtypes are converted.
+    sidecar : dict or path, optional
+        A synth sidecar (the dict from :func:`synthesize` or a SET.json
+        path): the configuration comes from it, and the physical keyword
+        arguments must be left at their defaults.
+    bins : {"positive", "band", "all"}
+        Fourier bins the estimators sum.
+    bias : {"model", "counts"}
+        Where the photon bias takes the mean counts from: the model's
+        noise-free counts, or each row's own counts.
+    calibrator : array_like, shape (rows', N), optional
+        A calibrator's interferograms (same N and continuum convention): the
+        normalization is the mean of their bias-subtracted estimates.
+        Default: the configuration's point source, noise-free (``model``).
+    continuum_subtracted : bool, optional
+        Without ``sidecar``: True (default) when the rows hold
+        M_i = I_i − c_i (photons), False when they hold the counts I_i
+        (the CLI's ``--counts``).
+    threads : int
+        Worker threads (0: all cores); the answer does not depend on it.
+    wavelength_um : float
+        Centre wavelength λ0, µm.
+    bandwidth_nm : float
+        Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: CSV with header
+        ``wavelength_um,weight`` or ``wavenumber_per_um,weight``.
+    source : {"ud", "point"}
+        Source model: uniform disk of ``diameter_mas``, or unresolved.
+    diameter_mas : float
+        Uniform-disk diameter θ, mas.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec (default 40, the
+        paper's 18 m baseline in K).
+    baseline_m : float, optional
+        Projected baseline B, m (instead of ``spatial_freq_cpas``).
+    dispersion_pp_rad : float
+        Quadratic dispersion phase, peak-to-peak over the band, rad.
+    dx_um : float
+        Sample spacing δx, µm.
+    integrating : bool
+        Integrating detector (each sample averages the fringe over δx).
+    visibility : float
+        Visibility V scaling the fringe, 0 to 1.
+    photons : float
+        Continuum photons per sample n (c = n), >= 0.
+    read_noise : float
+        Detector noise standard deviation σ_det, photons per sample, >= 0.
+    photon_noise : bool
+        Poisson photon noise (False: detector noise only; the CLI's
+        ``--no-photon-noise``).
+    fringe_hz : float, optional
+        Fringe frequency f = v/λ0, Hz: the rows carry the differential
+        piston of §6 (then N must be the configuration's ``samples``).
+    wind_mps : float
+        Wind speed, m/s (frozen flow along the baseline).
+    seeing_arcsec : float
+        Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+    aperture_m : float
+        Telescope aperture diameter, m.
+    outer_scale_m : float, optional
+        von Kármán outer scale, m (default: infinite).
+    sub_samples : int
+        Sub-samples per sample of the integrating detector.
+    reference : {"mean", "centre", "absolute"}
+        Where the fringe packet sits in each scan.
+
+    Returns
+    -------
+    dict of str to ndarray, shape (rows,)
+        ``v1_sq_raw``, ``v2_sq_raw`` (photons²), ``v1_sq_bias``,
+        ``v2_sq_bias`` (photons²), ``v1_sq``, ``v2_sq`` (normalized,
+        dimensionless): the columns of ``v2ref estimate``.
+    """
+    ...
+
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: int=32, keep_continuum: bool=False, out: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
+    """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
+
+    The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
+    with the same flags and ``seed``, whatever ``threads``.
+
+    Parameters
+    ----------
+    rows : int
+        Number of rows (scans), 2 to 2^31 / samples.
+    seed : int
+        Seed of the set's random draws.
+    threads : int
+        Worker threads (0: all cores); the set does not depend on it.
+    reference_blocks : int
+        Replicates of the set in the truth's reference run (0: closed forms
+        only; else 2 to 1000).
+    keep_continuum : bool
+        Rows hold the counts I_i (photons) instead of M_i = I_i − c_i.
+    out : path, optional
+        Also write the set as ``v2ref synth --out`` does: OUT.npy and the
+        sidecar OUT.json.
+    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
+        The observation: λ0 (µm), Δλ (nm), a tabulated spectrum (CSV path),
+        "ud" or "point", the disk's diameter (mas), S (cycles/arcsec,
+        default 40) or B (m), dispersion peak-to-peak (rad); see
+        :func:`estimate`.
+    stroke_um : float, optional
+        OPD stroke Δx, µm (sets N = Δx/δx; default ``samples`` × ``dx_um``).
+    dx_um : float
+        Sample spacing δx, µm.
+    samples : int
+        Number of samples N per row (ignored when ``stroke_um`` is given).
+    integrating : bool
+        Integrating detector.
+    visibility, photons, read_noise, photon_noise
+        V (0 to 1), continuum photons per sample, detector noise σ_det
+        (photons per sample), Poisson photon noise on/off.
+    fringe_hz, wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
+        The differential piston (on when ``fringe_hz``, Hz, is given): wind
+        (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+        infinite), sub-samples, packet reference.
+
+    Returns
+    -------
+    (ndarray of shape (rows, N), dict)
+        The interferograms (float64, photons per sample) and the sidecar:
+        the same JSON document as ``v2ref synth``'s OUT.json, parsed
+        (``truth`` holds what each window and bias convention must give;
+        ``data.npy`` is the data file's name with ``out``, else empty).
+    """
+    ...
+
+def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[Mapping[str, Any], _PathLike], *, bins: str='positive', bias: str='model', alpha: float=0.001, columns: Optional[Sequence[str]]=None) -> Dict[str, Any]:
+    """Score a pipeline's per-row estimates against a set's truth, as ``v2ref score --json``.
+
+    Parameters
+    ----------
+    estimates : dict, structured array or array_like
+        The normalized per-row estimates (dimensionless), one per row of
+        the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
+        :func:`estimate`), a structured array with those fields, or a 2-D
+        array whose columns are named by ``columns`` (default
+        ``v1_sq,v2_sq``; a 1-D array needs one name).
+    sidecar : dict or path
+        The set's sidecar (from :func:`synthesize`, or a SET.json path):
+        the truth scored against.
+    bins : {"positive", "band", "all"}
+        Window of bins the estimates sum.
+    bias : {"model", "counts"}
+        Bias convention the estimates subtract.
+    alpha : float
+        Family-wise false-alarm rate of the verdict (Bonferroni over the
+        tests made), 0 < alpha < 1.
+    columns : sequence of str, optional
+        Names of a plain array's columns (others than v1_sq, v2_sq ignored).
+
+    Returns
+    -------
+    dict
+        The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
+        ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
+        ``estimators`` (per estimator: mean, expected_mean, z_mean, var,
+        expected_var, z_var, minimum detectable biases, pass), ``pass``.
+    """
+    ...
+
+def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+    """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
+
+    Parameters
+    ----------
+    trials : int
+        Number of noisy interferograms (rows), 2 to 2^40.
+    seed : int
+        Seed of the generators.
+    threads : int
+        Worker threads (0: all cores); the answer does not depend on it.
+    bins : {"positive", "band", "all"}
+        Fourier bins the estimators sum.
+    bias : {"model", "counts"}
+        Where the photon bias takes the mean counts from.
+    formula : {"exact", "published"}
+        Formula of the subtracted bias: exact, or as printed in the paper.
+    wavelength_um, bandwidth_nm, ..., reference
+        The physical inputs, as for :func:`synthesize` (units: µm, nm, mas,
+        cycles/arcsec, m, rad, photons per sample, Hz, m/s, arcsec).
+
+    Returns
+    -------
+    dict
+        ``mean_v1_sq``, ``var_v1_sq``, their standard errors and closed-form
+        expectations (None with piston), the same for V2², ``trials``,
+        ``seed``, ``piston``, ``piston_effect`` and every input.
+    """
+    ...
+
+def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False) -> Dict[str, Any]:
+    """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
+
+    Parameters
+    ----------
+    finite_scan : bool
+        Also compute the finite-scan estimators from a sampled interferogram
+        (implied by ``stroke_um``).
+    bins : {"positive", "band", "all"}
+        Fourier bins of the finite-scan estimators.
+    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
+        The observation (µm, nm, CSV path, "ud"/"point", mas,
+        cycles/arcsec, m, rad); see :func:`estimate`.
+    stroke_um, dx_um, samples, integrating
+        The scan: stroke (µm), spacing (µm), N, integrating detector.
+
+    Returns
+    -------
+    dict
+        ``v_mono``, ``v1``, ``v2``, ``v1_sq``, ``v2_sq``,
+        ``spatial_freq_cpas``, ``sigma_eff_per_um`` (µm⁻¹), ``baseline_m``
+        and, with a finite scan, ``finite_scan``.
+    """
+    ...
+
+def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True) -> Dict[str, Any]:
+    """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
+
+    Parameters
+    ----------
+    bins : {"positive", "band", "all"}
+        Window of the exact window statistics (``window_exact``).
+    formula : {"exact", "published"}
+        Formula: exact, or as printed in the paper's Appendix.
+    wavelength_um, ..., integrating
+        The observation and scan, as for :func:`bias`.
+    visibility, photons, read_noise, photon_noise
+        V (0 to 1), continuum photons per sample, detector noise σ_det
+        (photons per sample), Poisson photon noise on/off.
+
+    Returns
+    -------
+    dict
+        ``bias_v1_sq``, ``var_v1_sq``, ``snr1``, … (all bins, photons²),
+        ``window_factor``, and ``window_exact`` (None above the largest N
+        the exact window statistics take).
+    """
+    ...
+
+def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+    """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
+
+    Parameters
+    ----------
+    fringe_hz : float or sequence of float, optional
+        Fringe frequencies f = v/λ0, Hz (default: 300 and 1000).
+    scans : int
+        Consecutive scans per fringe frequency, >= 2.
+    seed : int
+        Seed (each frequency's seed derives from it and the frequency).
+    threads : int
+        Worker threads (0: all cores); the answer does not depend on it.
+    bins : {"positive", "band", "all"}
+        Fourier bins the estimators sum.
+    wavelength_um, ..., integrating
+        The observation and scan, as for :func:`bias`.
+    wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
+        Wind (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+        infinite), integrating sub-samples, packet reference
+        ("mean", "centre", "absolute").
+
+    Returns
+    -------
+    dict
+        ``detector``, ``bins``, ``reference``, ``baseline_m``, ``r0_m``,
+        ``coherence_time_s``, ``piston_rms_um``, …, and ``results``: per
+        frequency the bias and scatter of V1 and V2 with standard errors.
+    """
+    ...
+
+def claims(*, quick: bool=False) -> list:
+    """Every claim of the paper: printed value, computed value, status, as ``v2ref claims --json``.
+
+    Parameters
+    ----------
+    quick : bool
+        Smaller Monte Carlo runs (same code paths).
+
+    Returns
+    -------
+    list of dict
+        One entry per claim: ``id``, ``paper``, ``computed``, ``status``,
+        ``note``, …
+    """
+    ...

@@ -1,0 +1,164 @@
+//! Python bindings (feature `python`): the extension module `v2ref._v2ref`
+//! that the Python package `v2ref` (`python/v2ref/`) wraps. A thin layer:
+//! convert, call the library, convert back. Answers that the CLI prints as
+//! JSON come back as JSON text built from the same fields (the Python side
+//! parses it), per-row estimates and interferograms as NumPy arrays.
+//!
+//! Long calls release the GIL and run on a worker thread; the calling
+//! thread checks for signals every 100 ms and, on Ctrl-C, raises
+//! `KeyboardInterrupt` after stopping the work at its next progress report.
+
+mod answers;
+mod inputs;
+
+use crate::error::Error;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Condvar, Mutex};
+use std::time::Duration;
+
+/// Library parameter names whose Python keyword is not the same name
+/// (the CLI's `FLAG_OF_PARAM`, without the `--`).
+const KEYWORD_OF_PARAM: &[(&str, &str)] = &[
+    ("spectrum", "spectrum_csv"),
+    ("peak_to_peak_rad", "dispersion_pp_rad"),
+    ("photons_per_sample", "photons"),
+    ("truth", "sidecar"),
+    ("input", "interferograms"),
+];
+
+/// The keyword that sets the library parameter `param`.
+pub fn keyword_of(param: &str) -> String {
+    let p = param.replace('-', "_");
+    KEYWORD_OF_PARAM
+        .iter()
+        .find(|(k, _)| *k == p)
+        .map_or(p, |(_, f)| (*f).to_owned())
+}
+
+/// The message of a library error: `keyword: detail`.
+pub fn message(e: &Error) -> String {
+    let line = match e.param() {
+        Some(p) => format!("{}: {}", keyword_of(p), e.detail()),
+        None => e.detail(),
+    };
+    line.replace('\n', " ")
+}
+
+/// Library errors as Python exceptions (ValueError, or OSError for a file
+/// that cannot be read).
+pub trait Fail {
+    /// The Python exception.
+    fn into_py_err(self) -> PyErr;
+}
+
+impl Fail for Error {
+    fn into_py_err(self) -> PyErr {
+        match &self {
+            Error::Io { .. } => pyo3::exceptions::PyOSError::new_err(message(&self)),
+            _ => PyValueError::new_err(message(&self)),
+        }
+    }
+}
+
+/// `Result<T, Error>` to `PyResult<T>`.
+pub fn ok<T>(r: crate::Result<T>) -> PyResult<T> {
+    r.map_err(Fail::into_py_err)
+}
+
+/// A lowercase name parsed into one of the library's enums (their serde
+/// names), or an error listing `accepted`.
+pub fn parse_enum<T: serde::de::DeserializeOwned>(
+    param: &'static str,
+    value: &str,
+    accepted: &[&str],
+) -> crate::Result<T> {
+    serde_json::from_value(serde_json::Value::String(value.to_owned())).map_err(|_| {
+        Error::Invalid {
+            param,
+            reason: format!("'{value}' is not one of: {}", accepted.join(", ")),
+        }
+    })
+}
+
+/// The payload of the unwind that stops a cancelled run.
+struct Cancelled;
+
+/// Runs `work` on a thread of its own with the GIL released, handing it a
+/// progress callback; checks for signals (Ctrl-C) every 100 ms meanwhile.
+/// On a signal the callback stops the work at its next call and the
+/// signal's exception is raised. A panic in the work becomes a
+/// `RuntimeError` (nothing unwinds into Python).
+pub fn interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&(dyn Fn(u64) + Sync)) -> crate::Result<T> + Send,
+) -> PyResult<T> {
+    let cancel = AtomicBool::new(false);
+    let tick = |_: u64| {
+        if cancel.load(Ordering::Relaxed) {
+            resume_unwind(Box::new(Cancelled));
+        }
+    };
+    let finished = (Mutex::new(false), Condvar::new());
+    std::thread::scope(|s| {
+        let handle = s.spawn(|| {
+            let out = catch_unwind(AssertUnwindSafe(|| work(&tick)));
+            let (lock, cvar) = &finished;
+            *lock.lock().unwrap_or_else(|e| e.into_inner()) = true;
+            cvar.notify_all();
+            out
+        });
+        let mut interrupted: Option<PyErr> = None;
+        loop {
+            let done = py.allow_threads(|| {
+                let (lock, cvar) = &finished;
+                let guard = lock.lock().unwrap_or_else(|e| e.into_inner());
+                let (guard, _) = cvar
+                    .wait_timeout_while(guard, Duration::from_millis(100), |done| !*done)
+                    .unwrap_or_else(|e| e.into_inner());
+                *guard
+            });
+            if done {
+                break;
+            }
+            if interrupted.is_none() {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::Relaxed);
+                    interrupted = Some(e);
+                }
+            }
+        }
+        let out = py.allow_threads(|| handle.join());
+        let out = match out {
+            Ok(r) => r,
+            Err(p) => Err(p),
+        };
+        match (interrupted, out) {
+            (Some(e), _) => Err(e),
+            (None, Ok(r)) => ok(r),
+            (None, Err(p)) if p.is::<Cancelled>() => {
+                Err(PyKeyboardInterrupt::new_err("interrupted"))
+            }
+            (None, Err(p)) => {
+                let what = p
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| p.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                    .unwrap_or_else(|| "unknown".into());
+                Err(PyRuntimeError::new_err(format!(
+                    "internal error (please report): {what}"
+                )))
+            }
+        }
+    })
+}
+
+/// The extension module `v2ref._v2ref`.
+#[pymodule]
+fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("PHYSICAL_KEYWORDS", inputs::NAMES.to_vec())?;
+    answers::register(m)
+}

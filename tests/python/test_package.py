@@ -1,0 +1,508 @@
+"""Tests of the Python package `v2ref` (issue 11).
+
+Each function against the CLI's JSON for the same inputs (the binary from
+$V2REF_BIN, default target/release/v2ref), `estimate` against an
+independent NumPy implementation, a synthesize → estimate → score round
+trip, determinism across `threads`, bad inputs, and the example.
+
+Build and install first: `pip install .` (or `maturin develop --release`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import v2ref
+
+ROOT = Path(__file__).resolve().parents[2]
+BIN = Path(os.environ.get("V2REF_BIN", ROOT / "target" / "release" / "v2ref"))
+if not BIN.is_absolute():
+    BIN = ROOT / BIN
+
+needs_cli = pytest.mark.skipif(not BIN.exists(), reason=f"no v2ref binary at {BIN} (set V2REF_BIN)")
+
+
+def cli(*args: str, ok=(0,)) -> str:
+    p = subprocess.run([str(BIN), *map(str, args)], capture_output=True, text=True)
+    assert p.returncode in ok, p.stderr
+    return p.stdout
+
+
+def cli_error(*args: str) -> str:
+    p = subprocess.run([str(BIN), *map(str, args)], capture_output=True, text=True)
+    assert p.returncode == 2, (p.returncode, p.stdout)
+    line = p.stderr.strip().splitlines()[-1]
+    assert line.startswith("error: "), line
+    return line[len("error: ") :]
+
+
+def flags(**kw) -> list:
+    """CLI flags of keyword arguments (True: a bare flag)."""
+    out = []
+    for k, v in kw.items():
+        if v is True:
+            out.append("--" + k.replace("_", "-"))
+        else:
+            out += ["--" + k.replace("_", "-"), str(v)]
+    return out
+
+
+# --------------------------------------------------------------------------
+# An independent NumPy implementation of the per-row estimates.
+
+
+def window_bins(window: str, n: int, dx_um: float, wavelength_um=2.2, bandwidth_nm=400.0):
+    positive = np.arange(1, (n + 1) // 2)
+    if window == "positive":
+        return positive
+    if window == "all":
+        return np.arange(n)
+    lo = 1.0 / (wavelength_um + bandwidth_nm * 1e-3 / 2)
+    hi = 1.0 / (wavelength_um - bandwidth_nm * 1e-3 / 2)
+    s = positive / (n * dx_um)
+    return positive[(s >= lo) & (s <= hi)]
+
+
+def numpy_estimate(rows, bins, variance_of, calibration):
+    """raw, bias and normalized V1², V2² of each row; `variance_of(M)` gives
+    the per-sample noise variance of each row (rows × N)."""
+    n = rows.shape[1]
+    f = np.fft.fft(rows, axis=1)[:, bins]
+    raw1 = (np.abs(f) ** 2).sum(axis=1)
+    raw2 = np.abs(f.sum(axis=1)) ** 2
+    i = np.arange(n)
+    kernel = np.abs(np.exp(-2j * np.pi * np.outer(i, bins) / n).sum(axis=1)) ** 2
+    var = variance_of(rows)
+    b1 = len(bins) * var.sum(axis=1)
+    b2 = (var * kernel).sum(axis=1)
+    return {
+        "v1_sq_raw": raw1,
+        "v2_sq_raw": raw2,
+        "v1_sq_bias": b1,
+        "v2_sq_bias": b2,
+        "v1_sq": (raw1 - b1) / calibration[0],
+        "v2_sq": (raw2 - b2) / calibration[1],
+    }
+
+
+@pytest.mark.parametrize("n", [64, 63])
+@pytest.mark.parametrize("window", ["positive", "band", "all"])
+@pytest.mark.parametrize("convention", ["model", "counts"])
+def test_estimate_matches_numpy(n, window, convention):
+    rng = np.random.default_rng(n)
+    read = 1.5
+    # The configuration's sidecar gives c_i, n_i and the model calibration.
+    _, sc = v2ref.synthesize(rows=2, samples=n, read_noise=read, reference_blocks=0)
+    x = rng.normal(scale=6.0, size=(40, n))
+    got = v2ref.estimate(x, bins=window, bias=convention, read_noise=read)
+    w = next(t for t in sc["truth"]["windows"] if t["bins"] == window)
+    bins = window_bins(window, n, 0.5)
+    assert list(bins) == w["bin_indices"]
+    c = np.array(sc["continuum_photons"])
+    if convention == "model":
+        counts = np.array(sc["mean_counts_photons"])
+        var_of = lambda m: np.broadcast_to(read**2 + counts, m.shape)
+    else:
+        var_of = lambda m: read**2 + c + m
+    cal = (w["calibration"]["v1_sq"], w["calibration"]["v2_sq"])
+    want = numpy_estimate(x, bins, var_of, cal)
+    assert set(got) == set(v2ref.ESTIMATE_COLUMNS)
+    for k in v2ref.ESTIMATE_COLUMNS:
+        assert got[k].shape == (40,)
+        np.testing.assert_allclose(got[k], want[k], rtol=1e-9, atol=1e-9 * np.abs(want[k]).max(), err_msg=k)
+
+
+@pytest.mark.parametrize("n", [32, 31])
+def test_estimate_counts_and_calibrator_array_match_numpy(n):
+    rng = np.random.default_rng(7)
+    c = 10.0
+    x = rng.normal(scale=4.0, size=(25, n)) + c  # counts I_i
+    cal_rows = rng.normal(scale=4.0, size=(30, n)) + c
+    cal_rows[:, 0] += 40.0  # a fringe to normalize by
+    got = v2ref.estimate(
+        x, bins="all", bias="counts", continuum_subtracted=False, calibrator=cal_rows, photons=c
+    )
+    bins = np.arange(n)
+    var_of = lambda m: c + m
+    cal = numpy_estimate(cal_rows - c, bins, var_of, (1.0, 1.0))
+    calibration = ((cal["v1_sq_raw"] - cal["v1_sq_bias"]).mean(), (cal["v2_sq_raw"] - cal["v2_sq_bias"]).mean())
+    want = numpy_estimate(x - c, bins, var_of, calibration)
+    for k in v2ref.ESTIMATE_COLUMNS:
+        np.testing.assert_allclose(got[k], want[k], rtol=1e-9, atol=1e-9 * np.abs(want[k]).max(), err_msg=k)
+
+
+def test_estimate_takes_c_contiguous_float64_without_copy_and_converts_others():
+    x = np.random.default_rng(1).normal(size=(10, 16))
+    a = v2ref.estimate(x)
+    b = v2ref.estimate(np.asfortranarray(x))
+    c = v2ref.estimate(x.astype(np.float32).astype(np.float64))
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k])
+    assert np.isfinite(c["v1_sq"]).all()
+    ints = v2ref.estimate(np.arange(160).reshape(10, 16))
+    assert ints["v1_sq"].dtype == np.float64
+
+
+def test_estimate_does_not_copy_a_c_contiguous_float64_array():
+    import tracemalloc
+
+    x = np.random.default_rng(2).normal(size=(20000, 128))  # 20 MB
+    v2ref.estimate(x[:10])
+    tracemalloc.start()
+    v2ref.estimate(x)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert peak < x.nbytes / 10, peak
+    tracemalloc.start()
+    v2ref.estimate(np.asfortranarray(x))  # a copy here, and tracemalloc sees it
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert peak >= x.nbytes
+
+
+# --------------------------------------------------------------------------
+# Against the CLI.
+
+
+@needs_cli
+@pytest.mark.parametrize("window", ["positive", "band", "all"])
+@pytest.mark.parametrize("convention", ["model", "counts"])
+def test_estimate_equals_cli(tmp_path, window, convention):
+    x = np.random.default_rng(3).normal(scale=5.0, size=(100, 45))
+    np.save(tmp_path / "x.npy", x)
+    kw = dict(read_noise=0.5, visibility=0.8, diameter_mas=20.0, bins=window, bias=convention)
+    cli("estimate", "--input", tmp_path / "x.npy", "--out", tmp_path / "e.npy", *flags(**kw))
+    want = np.load(tmp_path / "e.npy")
+    got = v2ref.estimate(x, **kw)
+    for i, k in enumerate(v2ref.ESTIMATE_COLUMNS):
+        np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
+
+
+@needs_cli
+def test_estimate_with_piston_integrating_and_spectrum_equals_cli(tmp_path):
+    x = np.random.default_rng(5).normal(scale=5.0, size=(30, 64))
+    np.save(tmp_path / "x.npy", x)
+    (tmp_path / "s.csv").write_text("wavelength_um,weight\n2.0,1\n2.2,2\n2.4,1\n")
+    kw = dict(fringe_hz=300.0, integrating=True, seeing_arcsec=0.8, reference="centre", bins="band")
+    cli("estimate", "--input", tmp_path / "x.npy", "--out", tmp_path / "e.npy", "--samples", "64",
+        "--spectrum-csv", tmp_path / "s.csv", *flags(**kw))
+    want = np.load(tmp_path / "e.npy")
+    got = v2ref.estimate(x, spectrum_csv=tmp_path / "s.csv", **kw)
+    for i, k in enumerate(v2ref.ESTIMATE_COLUMNS):
+        np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
+
+
+@needs_cli
+def test_estimate_with_calibrator_and_counts_equals_cli(tmp_path):
+    rng = np.random.default_rng(4)
+    x = rng.normal(scale=5.0, size=(50, 32)) + 10.0
+    cal = rng.normal(scale=5.0, size=(60, 32)) + 10.0
+    cal[:, 0] += 30
+    np.save(tmp_path / "x.npy", x)
+    np.save(tmp_path / "c.npy", cal)
+    cli("estimate", "--input", tmp_path / "x.npy", "--calibrator", tmp_path / "c.npy", "--counts",
+        "--bias", "counts", "--out", tmp_path / "e.npy")
+    want = np.load(tmp_path / "e.npy")
+    got = v2ref.estimate(x, calibrator=cal, continuum_subtracted=False, bias="counts")
+    for i, k in enumerate(v2ref.ESTIMATE_COLUMNS):
+        np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
+
+
+SYNTH = dict(rows=300, samples=40, seed=5, reference_blocks=4, read_noise=0.7, visibility=0.9)
+
+
+@needs_cli
+@pytest.mark.parametrize("keep_continuum", [False, True])
+def test_synthesize_equals_cli(tmp_path, keep_continuum):
+    kw = dict(SYNTH)
+    extra = ["--keep-continuum"] if keep_continuum else []
+    cli("synth", "--out", tmp_path / "set", "--quiet", *flags(**kw), *extra)
+    want_rows = np.load(tmp_path / "set.npy")
+    want = json.loads((tmp_path / "set.json").read_text())
+    rows, sidecar = v2ref.synthesize(keep_continuum=keep_continuum, out=tmp_path / "py", **kw)
+    np.testing.assert_array_equal(rows, want_rows)
+    assert sidecar["data"]["npy"] == "py.npy"
+    sidecar["data"]["npy"] = "set.npy"
+    assert sidecar == want
+    # The files written by out= read back the same, and the CLI takes them.
+    np.testing.assert_array_equal(np.load(tmp_path / "py.npy"), rows)
+    out = cli("estimate", "--sidecar", tmp_path / "py.json")
+    assert out.startswith("v1_sq_raw,")
+
+
+@needs_cli
+def test_estimate_with_sidecar_equals_cli(tmp_path):
+    cli("synth", "--out", tmp_path / "set", "--quiet", *flags(**SYNTH), "--keep-continuum")
+    cli("estimate", "--sidecar", tmp_path / "set.json", "--bias", "counts", "--out", tmp_path / "e.npy")
+    want = np.load(tmp_path / "e.npy")
+    rows = np.load(tmp_path / "set.npy")
+    for sc in (tmp_path / "set.json", json.loads((tmp_path / "set.json").read_text())):
+        got = v2ref.estimate(rows, sidecar=sc, bias="counts")
+        for i, k in enumerate(v2ref.ESTIMATE_COLUMNS):
+            np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
+
+
+@needs_cli
+@pytest.mark.parametrize("convention", ["model", "counts"])
+def test_score_equals_cli(tmp_path, convention):
+    rows, sc = v2ref.synthesize(out=tmp_path / "set", **SYNTH)
+    est = v2ref.estimate(rows, sidecar=sc, bias=convention)
+    np.save(tmp_path / "est.npy", np.column_stack([est["v1_sq"], est["v2_sq"]]))
+    want = json.loads(
+        cli("score", "--sidecar", tmp_path / "set.json", "--estimates", tmp_path / "est.npy",
+            "--bias", convention, "--json", ok=(0, 1))
+    )
+    for estimates in (est, np.column_stack([est["v1_sq"], est["v2_sq"]])):
+        got = v2ref.score(estimates, tmp_path / "set.json", bias=convention)
+        assert got["sidecar"] == want["sidecar"] == str(tmp_path / "set.json")
+        assert got["estimates"] == "<array>"
+        assert {k: v for k, v in got.items() if k != "estimates"} == {
+            k: v for k, v in want.items() if k != "estimates"
+        }
+    # One estimator only, from a dict sidecar.
+    want1 = json.loads(
+        cli("score", "--sidecar", tmp_path / "set.json", "--estimates", tmp_path / "est.npy",
+            "--columns", "v2_sq,ignored", "--bias", convention, "--json", ok=(0, 1))
+    )
+    got1 = v2ref.score({"v2_sq": est["v1_sq"]}, sc, bias=convention)
+    assert got1["sidecar"] == "<dict>"
+    assert len(got1["estimators"]) == 1 and got1["estimators"][0]["estimator"] == "v2_sq"
+    assert got1["tests"] == want1["tests"] == 2
+
+
+@needs_cli
+def test_simulate_equals_cli():
+    kw = dict(trials=3000, samples=32, seed=9, read_noise=1.0, bins="all", bias="counts")
+    want = json.loads(cli("simulate", "--json", "--quiet", *flags(**kw)))
+    assert v2ref.simulate(**kw) == want
+    kw = dict(trials=2000, samples=64, seed=2, fringe_hz=500.0, photons=50.0)
+    want = json.loads(cli("simulate", "--json", "--quiet", *flags(**kw)))
+    assert v2ref.simulate(**kw) == want
+
+
+@needs_cli
+def test_bias_snr_equal_cli():
+    for kw in (dict(), dict(baseline_m=30.0, source="point"), dict(stroke_um=40.0, bins="band")):
+        want = json.loads(cli("bias", "--json", *flags(**kw)))
+        assert v2ref.bias(**kw) == want
+    want = json.loads(cli("bias", "--json", "--finite-scan", "--dispersion-pp-rad", "2"))
+    assert v2ref.bias(finite_scan=True, dispersion_pp_rad=2.0) == want
+    for kw in (dict(), dict(read_noise=3.0, photons=100.0, samples=64, formula="published", bins="all")):
+        want = json.loads(cli("snr", "--json", *flags(**kw)))
+        assert v2ref.snr(**kw) == want
+    want = json.loads(cli("snr", "--json", "--no-photon-noise", "--read-noise", "2", "--integrating"))
+    assert v2ref.snr(photon_noise=False, read_noise=2.0, integrating=True) == want
+
+
+@needs_cli
+def test_piston_equals_cli():
+    want = json.loads(
+        cli("piston", "--json", "--quiet", "--scans", "40", "--samples", "64", "--fringe-hz", "300",
+            "--fringe-hz", "1000", "--seed", "3", "--reference", "centre")
+    )
+    got = v2ref.piston(scans=40, samples=64, fringe_hz=[300, 1000], seed=3, reference="centre")
+    assert got == want
+    want = json.loads(cli("piston", "--json", "--quiet", "--scans", "20", "--samples", "32", "--integrating"))
+    assert v2ref.piston(scans=20, samples=32, integrating=True) == want
+
+
+@needs_cli
+def test_claims_equal_cli():
+    want = json.loads(cli("claims", "--quick", "--json", "--quiet"))
+    assert v2ref.claims(quick=True) == want
+
+
+# --------------------------------------------------------------------------
+# Round trip, determinism.
+
+
+def test_round_trip_reaches_the_truth_within_its_standard_errors():
+    rows, sc = v2ref.synthesize(rows=20000, samples=64, seed=11, reference_blocks=4, read_noise=0.5)
+    for window in ("positive", "band", "all"):
+        w = next(t for t in sc["truth"]["windows"] if t["bins"] == window)
+        for convention in ("model", "counts"):
+            truth = next(c for c in w["conventions"] if c["bias"] == convention)
+            est = v2ref.estimate(rows, sidecar=sc, bins=window, bias=convention)
+            for k in ("v1_sq", "v2_sq"):
+                t = truth[k]
+                se = math.hypot(t["set_stderr_mean"], t["stderr_mean"])
+                assert abs(est[k].mean() - t["mean"]) < 5 * se, (window, convention, k)
+                if t["var"] is None or t["set_stderr_var"] is None:
+                    continue
+                se_var = math.hypot(t["set_stderr_var"], t["stderr_var"] or 0.0)
+                assert abs(est[k].var(ddof=1) - t["var"]) < 5 * se_var, (window, convention, k)
+            report = v2ref.score(est, sc, bins=window, bias=convention)
+            assert report["pass"], report
+
+
+def test_results_do_not_depend_on_threads():
+    a, sa = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=2, threads=1)
+    b, sb = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=2, threads=2)
+    np.testing.assert_array_equal(a, b)
+    assert sa == sb
+    ea = v2ref.estimate(a, sidecar=sa, threads=1)
+    eb = v2ref.estimate(a, sidecar=sa, threads=3)
+    for k in ea:
+        np.testing.assert_array_equal(ea[k], eb[k])
+    assert v2ref.simulate(trials=4000, samples=32, threads=1) == v2ref.simulate(trials=4000, samples=32, threads=2)
+    c, _ = v2ref.synthesize(rows=5000, samples=32, seed=5, reference_blocks=2)
+    assert not np.array_equal(a, c)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: v2ref.simulate(trials=10**9, samples=64),
+        lambda: v2ref.simulate(trials=10**9, samples=64, bias="counts"),
+        lambda: v2ref.synthesize(rows=10**6, samples=64, reference_blocks=1000),
+        lambda: v2ref.piston(scans=200000, samples=64, fringe_hz=[100, 200, 300, 1000]),
+    ],
+)
+def test_ctrl_c_stops_long_calls(call):
+    import signal
+    import threading
+    import time
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call()
+    timer.join()
+    assert time.perf_counter() - start < 5.0
+
+
+# --------------------------------------------------------------------------
+# Bad input.
+
+
+@needs_cli
+@pytest.mark.parametrize(
+    "cmd, kw",
+    [
+        ("simulate", dict(dx_um=-1.0)),
+        ("simulate", dict(visibility=2.0)),
+        ("simulate", dict(photons=-1.0)),
+        ("simulate", dict(bandwidth_nm=5000.0)),
+        ("simulate", dict(dx_um=2.0)),
+        ("simulate", dict(diameter_mas=-3.0)),
+        ("simulate", dict(read_noise=-1.0)),
+        ("simulate", dict(trials=1)),
+        ("simulate", dict(fringe_hz=-5.0)),
+        ("synth", dict(rows=1)),
+        ("synth", dict(reference_blocks=1)),
+        ("snr", dict(samples=1)),
+        ("piston", dict(scans=1)),
+        ("piston", dict(aperture_m=0.0)),
+    ],
+)
+def test_errors_use_the_cli_words(tmp_path, cmd, kw):
+    extra = ["--out", tmp_path / "s", "--quiet"] if cmd == "synth" else []
+    line = cli_error(cmd, *flags(**kw), *extra)
+    flag, detail = line.split(": ", 1)
+    name = flag[2:].replace("-", "_")
+    fn = {"simulate": v2ref.simulate, "synth": v2ref.synthesize, "snr": v2ref.snr, "piston": v2ref.piston}[cmd]
+    with pytest.raises(ValueError) as e:
+        fn(**kw)
+    assert str(e.value) == f"{name}: {detail}"
+
+
+def test_bad_arrays_and_words_raise():
+    x = np.zeros((4, 16))
+    with pytest.raises(TypeError, match="interferograms: 1-D array"):
+        v2ref.estimate(np.zeros(16))
+    with pytest.raises(TypeError, match="interferograms: dtype complex128"):
+        v2ref.estimate(np.zeros((4, 16), complex))
+    with pytest.raises(TypeError, match="interferograms: dtype <U1|interferograms: dtype"):
+        v2ref.estimate([["a"]])
+    with pytest.raises(ValueError, match=r"interferograms: empty \(0 rows"):
+        v2ref.estimate(np.zeros((0, 16)))
+    y = x.copy()
+    y[2, 5] = np.nan
+    with pytest.raises(ValueError, match=r"interferograms: row 3, column 6 \(1-based\): NaN is not a finite number"):
+        v2ref.estimate(y)
+    y[1, 15] = -np.inf
+    for window in ("positive", "band", "all"):
+        with pytest.raises(ValueError, match=r"interferograms: row 2, column 16 \(1-based\): -inf is not a finite"):
+            v2ref.estimate(y, bins=window, bias="counts")
+    with pytest.raises(ValueError, match=r"calibrator: row 2, column 16 \(1-based\): -inf is not a finite"):
+        v2ref.estimate(x, calibrator=y)
+    with pytest.raises(ValueError, match="bins: 'middle' is not one of: positive, band, all"):
+        v2ref.estimate(x, bins="middle")
+    with pytest.raises(ValueError, match="bias: 'x' is not one of: model, counts"):
+        v2ref.estimate(x, bias="x")
+    with pytest.raises(ValueError, match="source: 'disk' is not one of: point, ud"):
+        v2ref.estimate(x, source="disk")
+    with pytest.raises(ValueError, match="baseline_m: cannot be used with spatial_freq_cpas"):
+        v2ref.bias(baseline_m=10.0, spatial_freq_cpas=20.0)
+    with pytest.raises(ValueError, match="wavelength_um: NaN is not a finite number"):
+        v2ref.bias(wavelength_um=float("nan"))
+    with pytest.raises(ValueError, match="calibrator: 8 columns; the interferograms have 16"):
+        v2ref.estimate(x, calibrator=np.ones((3, 8)))
+    with pytest.raises(ValueError, match="threads: -1 is out of range"):
+        v2ref.estimate(x, threads=-1)
+    with pytest.raises(TypeError, match="dx_um: 'a' is not a real number"):
+        v2ref.estimate(x, dx_um="a")
+    with pytest.raises(ValueError, match="formula: 'paper' is not one of: published, exact"):
+        v2ref.snr(formula="paper")
+    with pytest.raises(OSError, match="spectrum_csv: .*nope.csv"):
+        v2ref.bias(spectrum_csv="/nope.csv")
+
+
+def test_sidecar_errors():
+    rows, sc = v2ref.synthesize(rows=10, samples=16, reference_blocks=0)
+    with pytest.raises(ValueError, match="dx_um: cannot be used with sidecar"):
+        v2ref.estimate(rows, sidecar=sc, dx_um=0.4)
+    with pytest.raises(ValueError, match="interferograms: 9 rows; its sidecar says 10"):
+        v2ref.estimate(rows[:9], sidecar=sc)
+    with pytest.raises(ValueError, match="interferograms: 8 columns; the configuration has 16 samples per row"):
+        v2ref.estimate(rows[:, :8], sidecar=sc)
+    with pytest.raises(ValueError, match='sidecar: <dict>: field format: "x"; "v2ref-synth-1" is needed'):
+        v2ref.score({"v1_sq": rows[:, 0]}, dict(sc, format="x"))
+    with pytest.raises(OSError, match="sidecar: /nope.json"):
+        v2ref.score({"v1_sq": rows[:, 0]}, "/nope.json")
+    with pytest.raises(ValueError, match="estimates: no column named v1_sq or v2_sq"):
+        v2ref.score({"v3": rows[:, 0]}, sc)
+    bad = rows[:, 0].copy()
+    bad[3] = np.inf
+    with pytest.raises(ValueError, match=r"estimates: row 4 \(1-based\), column v1_sq: inf is not a finite number"):
+        v2ref.score({"v1_sq": bad}, sc)
+    with pytest.raises(ValueError, match="alpha"):
+        v2ref.score({"v1_sq": rows[:, 0]}, sc, alpha=2.0)
+
+
+def test_score_takes_every_shape_of_estimates():
+    rows, sc = v2ref.synthesize(rows=2000, samples=32, seed=8, reference_blocks=2)
+    est = v2ref.estimate(rows, sidecar=sc)
+    want = v2ref.score(est, sc)
+    both = np.column_stack([est["v2_sq"], est["v1_sq"]])
+    assert v2ref.score(both, sc, columns=["v2_sq", "v1_sq"]) == want
+    rec = np.rec.fromarrays([est["v1_sq"], est["v2_sq"]], names="v1_sq,v2_sq")
+    assert v2ref.score(rec, sc) == want
+    one = v2ref.score(est["v2_sq"], sc, columns=["v2_sq"])
+    assert one["estimators"] == v2ref.score({"v2_sq": est["v2_sq"]}, sc)["estimators"]
+    with pytest.raises(ValueError, match="estimates: 2 columns"):
+        v2ref.score(both, sc, columns=["v1_sq"])
+
+
+def test_help_shows_the_docstrings():
+    assert "Sample spacing δx, µm" in v2ref.estimate.__doc__
+    assert "v2ref synth" in v2ref.synthesize.__doc__
+    stub = Path(v2ref.__file__).with_name("__init__.pyi")
+    assert stub.exists()
+    assert (Path(v2ref.__file__).with_name("py.typed")).exists()
+
+
+def test_example_runs():
+    ex = ROOT / "examples" / "python" / "validate_my_pipeline.py"
+    p = subprocess.run([sys.executable, str(ex), "--rows", "4000"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "PASS" in p.stdout
