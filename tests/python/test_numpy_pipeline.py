@@ -206,3 +206,60 @@ def write_summary():
             f"{_fmt(v1[0])} | {_fmt(v1[1])} | {_fmt(v2[0])} | {_fmt(v2[1])} |"
         )
     Path(path).write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def _load_pipeline():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("numpy_pipeline", PIPELINE)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.mark.parametrize("n", [8, 7, 25])
+@pytest.mark.parametrize("bias", ["model", "counts"])
+@pytest.mark.parametrize("subtracted", [True, False])
+def test_pipeline_against_definitions(n, bias, subtracted):
+    """The FFT pipeline against the definitions summed term by term (no
+    vectors needed): naive DFT, b1 = |K|Σv_i, b2 = Σ_i |u_i|² v_i."""
+    import cmath
+
+    import numpy as np
+
+    p = _load_pipeline()
+    rng = np.random.default_rng(n)
+    cont = rng.uniform(5, 10, n)
+    mean = cont + rng.uniform(-3, 3, n)
+    band = [1, 2] if n > 4 else [1]
+    sc = {
+        "inputs": {"read_noise": 1.5, "photon_noise": True},
+        "continuum_subtracted": subtracted,
+        "continuum_photons": cont.tolist(),
+        "mean_counts_photons": mean.tolist(),
+        "truth": {
+            "windows": [
+                {"bins": w, "bin_indices": b, "calibration": {"v1_sq": 3.0, "v2_sq": 7.0}}
+                for w, b in (("positive", None), ("band", band), ("all", None))
+            ]
+        },
+    }
+    rows = rng.normal(0, 4, (3, n)) + (0 if subtracted else cont)
+    for window, bins in (
+        ("positive", list(range(1, (n + 1) // 2))),
+        ("band", band),
+        ("all", list(range(n))),
+    ):
+        v1, v2 = p.estimate(sc, rows, window, bias)
+        for r in range(rows.shape[0]):
+            m = [rows[r, i] - (0 if subtracted else cont[i]) for i in range(n)]
+            dft = [sum(m[i] * cmath.exp(-2j * cmath.pi * i * k / n) for i in range(n)) for k in bins]
+            raw1 = sum(abs(b) ** 2 for b in dft)
+            raw2 = abs(sum(dft)) ** 2
+            nn = [mean[i] if bias == "model" else cont[i] + m[i] for i in range(n)]
+            v = [1.5**2 + nn[i] for i in range(n)]
+            u2 = [abs(sum(cmath.exp(-2j * cmath.pi * i * k / n) for k in bins)) ** 2 for i in range(n)]
+            b1 = len(bins) * sum(v)
+            b2 = sum(u2[i] * v[i] for i in range(n))
+            assert v1[r] == pytest.approx((raw1 - b1) / 3.0, rel=1e-10, abs=1e-9)
+            assert v2[r] == pytest.approx((raw2 - b2) / 7.0, rel=1e-10, abs=1e-9)
