@@ -1,20 +1,26 @@
 #!/usr/bin/env bash
-# Every test of v2ref: the Rust suite, then the independent NumPy pipeline
-# scored by the release binary on the conformance vectors (tests/python).
-# Run from anywhere.
+# Every test of v2ref, on a fresh machine: the Rust suite, then the Python
+# suite (the `v2ref` package built from this checkout, and the independent
+# NumPy pipeline scored by the release binary on the conformance vectors).
+# Creates .venv and installs what it needs (numpy, pytest, maturin) from the
+# package registry; nothing installed by hand is assumed. Run from anywhere.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
+.venv/bin/pip install --quiet --upgrade pip
 .venv/bin/pip install --quiet -r tests/python/requirements.txt
 
 cargo test --release
 cargo build --release
 
+# The package, built by maturin from this checkout into the venv.
+.venv/bin/pip install --quiet --no-build-isolation .
+
 status=0
-V2REF_BIN=target/release/v2ref .venv/bin/python -m pytest -q tests/python || status=$?
+V2REF_BIN="${CARGO_TARGET_DIR:-target}/release/v2ref" .venv/bin/python -m pytest -q tests/python || status=$?
 if [ "$status" -eq 5 ]; then
     echo "scripts/test.sh: pytest collected no tests in tests/python; there must be tests" >&2
     exit 1
