@@ -21,6 +21,10 @@ pub struct Args {
     /// Integrating detector (each sample averages the fringe over δx).
     #[arg(long)]
     integrating: bool,
+    /// Visibility V scaling the fringe (a source of known V: --source point
+    /// --visibility V), 0 to 1.
+    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
+    visibility: f64,
     /// Continuum photons per second at the detector in the band.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
     photon_rate_per_s: f64,
@@ -102,6 +106,7 @@ fn plan_inputs(args: &Args) -> Result<PlanInputs> {
             integrating: args.integrating,
             read_noise: args.read_noise,
             photon_noise: !args.no_photon_noise,
+            visibility: args.visibility,
             ..Inputs::default()
         },
         atmosphere: PistonInputs {
