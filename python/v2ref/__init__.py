@@ -41,6 +41,7 @@ __all__ = [
     "bias",
     "snr",
     "piston",
+    "plan",
     "claims",
     "ESTIMATE_COLUMNS",
 ]
@@ -95,6 +96,12 @@ def _uint(name: str, value: Any) -> int:
     if value < 0:
         raise ValueError(f"{name}: {value} is out of range; accepted: an integer >= 0")
     return int(value)
+
+
+def _float(name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, _np.integer, _np.floating)):
+        raise TypeError(f"{name}: {value!r} is not a number")
+    return float(value)
 
 
 def _word(name: str, value: Any) -> str:
@@ -780,6 +787,93 @@ def piston(
             _physical(_OBS + _SCAN + _TURB, values),
             freqs,
             _word("bins", bins),
+            _uint("scans", scans),
+            _uint("seed", seed),
+            _uint("threads", threads),
+        )
+    )
+
+
+def plan(
+    *,
+    target_sigma_v2: Optional[float] = None,
+    time_budget_s: Optional[float] = None,
+    photon_rate_per_s: float = 1e6,
+    samples_per_fringe: float = 4.0,
+    dead_time_s: float = 0.0,
+    fringe_hz: Optional[Sequence[float]] = None,
+    stroke_um: Optional[Sequence[float]] = None,
+    scans: int = 1000,
+    seed: int = 1,
+    threads: int = 0,
+    wavelength_um: float = 2.2,
+    bandwidth_nm: float = 400.0,
+    spectrum_csv: Optional[_PathLike] = None,
+    source: str = "ud",
+    diameter_mas: float = 43.0,
+    spatial_freq_cpas: Optional[float] = None,
+    baseline_m: Optional[float] = None,
+    dispersion_pp_rad: float = 0.0,
+    integrating: bool = False,
+    visibility: float = 1.0,
+    read_noise: float = 0.0,
+    photon_noise: bool = True,
+    wind_mps: float = 10.0,
+    seeing_arcsec: float = 1.0,
+    aperture_m: float = 0.45,
+    outer_scale_m: Optional[float] = None,
+    sub_samples: int = 6,
+    reference: str = "mean",
+) -> Dict[str, Any]:
+    """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
+
+    Parameters
+    ----------
+    target_sigma_v2 : float, optional
+        σ of the averaged V² to reach (default 1e-3 when no time budget).
+    time_budget_s : float, optional
+        Instead, the time to spend, s: the σ reached is reported.
+    photon_rate_per_s : float
+        Continuum photons per second at the detector in the band.
+    samples_per_fringe : float
+        Samples per fringe at λ0 (δx = λ0 / this).
+    dead_time_s : float
+        Dead time between scans, s.
+    fringe_hz, stroke_um : sequence of float, optional
+        The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
+        and strokes (µm; default 16, 32, 64, 128).
+    scans : int
+        Scans of each piston Monte Carlo.
+    seed, threads : int
+        Seed of the piston Monte Carlo; worker threads (0: all cores; the
+        answer does not depend on it).
+    wavelength_um, ..., reference
+        The instrument, source, noise and atmosphere, as for :func:`simulate`
+        (seeing λ0/r0 in arcsec at ``wavelength_um``, wind m/s, aperture m,
+        outer scale m).
+
+    Returns
+    -------
+    dict
+        ``inputs``, ``points`` (every estimator × fringe frequency × stroke
+        with each term: bandwidth and scan biases, noise and piston σ per
+        scan, piston bias, scans, time), ``best_v1``, ``best_v2``,
+        ``recommended``.
+    """
+    values = dict(locals())
+    values.update(stroke_um=None, dx_um=0.5, samples=128, photons=10.0, fringe_hz=None)
+    names = _OBS + _SCAN + _LIGHT + _TURB
+    opt = lambda name, v: None if v is None else _float(name, v)
+    return _json.loads(
+        _v2ref.plan(
+            _physical(names, values),
+            _float("samples_per_fringe", samples_per_fringe),
+            _float("photon_rate_per_s", photon_rate_per_s),
+            _float("dead_time_s", dead_time_s),
+            [float(f) for f in (fringe_hz or [])],
+            [float(s) for s in (stroke_um or [])],
+            opt("target_sigma_v2", target_sigma_v2),
+            opt("time_budget_s", time_budget_s),
             _uint("scans", scans),
             _uint("seed", seed),
             _uint("threads", threads),

@@ -854,7 +854,85 @@ fn score(
 }
 
 /// Adds the functions to the module.
+/// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
+/// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3).
+#[pyfunction]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads))]
+#[allow(clippy::too_many_arguments)]
+fn plan(
+    py: Python<'_>,
+    physical: &Bound<'_, PyDict>,
+    samples_per_fringe: f64,
+    photon_rate_per_s: f64,
+    dead_time_s: f64,
+    fringe_hz: Vec<f64>,
+    stroke_um: Vec<f64>,
+    target_sigma_v2: Option<f64>,
+    time_budget_s: Option<f64>,
+    scans: u64,
+    seed: u64,
+    threads: usize,
+) -> PyResult<String> {
+    use crate::plan::{default_grid, PlanInputs, Target};
+    let p = Physical::from_dict(physical)?;
+    let instrument = ok(p.inputs_unchecked())?;
+    let target = match (target_sigma_v2, time_budget_s) {
+        (Some(_), Some(_)) => {
+            return Err(Error::Invalid {
+                param: "time_budget_s",
+                reason: "give target_sigma_v2 or time_budget_s, not both".into(),
+            }
+            .into_py_err())
+        }
+        (_, Some(b)) => Target::TimeBudgetS(b),
+        (Some(s), None) => Target::SigmaV2(s),
+        (None, None) => Target::SigmaV2(1e-3),
+    };
+    let (default_f, default_s) = default_grid();
+    let inputs = PlanInputs {
+        atmosphere: crate::simulator::PistonInputs {
+            fringe_hz: 1.0,
+            wavelength_um: p.wavelength_um,
+            seeing_arcsec: p.seeing_arcsec,
+            wind_mps: p.wind_mps,
+            aperture_m: p.aperture_m,
+            outer_scale_m: p.outer_scale_m,
+            reference: ok(p.reference())?,
+            sub_samples: p.sub_samples,
+        },
+        instrument,
+        samples_per_fringe,
+        photon_rate_per_s,
+        dead_time_s,
+        fringe_hz: if fringe_hz.is_empty() {
+            default_f
+        } else {
+            fringe_hz
+        },
+        stroke_um: if stroke_um.is_empty() {
+            default_s
+        } else {
+            stroke_um
+        },
+        target,
+        scans,
+        seed,
+    };
+    let result = interruptible(py, |tick| crate::plan::plan(&inputs, threads, tick))?;
+    #[derive(serde::Serialize)]
+    struct Answer<'a> {
+        inputs: &'a PlanInputs,
+        #[serde(flatten)]
+        plan: &'a crate::plan::Plan,
+    }
+    json(&Answer {
+        inputs: &inputs,
+        plan: &result,
+    })
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(plan, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;

@@ -506,3 +506,16 @@ def test_example_runs():
     p = subprocess.run([sys.executable, str(ex), "--rows", "4000"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "PASS" in p.stdout
+
+
+@needs_cli
+def test_plan_matches_the_cli():
+    args = dict(wavelength_um=1.65, bandwidth_nm=300.0, source="ud", diameter_mas=2.0,
+                baseline_m=100.0, fringe_hz=[100.0, 1000.0], stroke_um=[32.0], scans=200)
+    mine = v2ref.plan(**args)
+    out = cli("plan", "--wavelength-um", "1.65", "--bandwidth-nm", "300", "--source", "ud",
+              "--diameter-mas", "2", "--baseline-m", "100", "--fringe-hz", "100", "--fringe-hz",
+              "1000", "--stroke-um", "32", "--scans", "200", "--json")
+    assert mine == json.loads(out)
+    with pytest.raises(ValueError, match="photon_rate_per_s"):
+        v2ref.plan(photon_rate_per_s=-1.0, fringe_hz=[100.0], stroke_um=[32.0])
