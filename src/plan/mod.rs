@@ -41,6 +41,10 @@ use crate::simulator::{simulate, Inputs, Model, PistonInputs};
 use rayon::prelude::*;
 use serde::Serialize;
 
+/// Fewest samples per scan a grid point may have (two fringes at four
+/// samples per fringe: fewer leave the positive window nearly empty).
+pub const MIN_SAMPLES: usize = 8;
+
 /// The two estimators.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -202,7 +206,18 @@ impl PlanInputs {
         error::in_range("fringe_hz", fringe_hz, 1e-3, 1e7)?;
         error::positive("stroke_um", stroke_um)?;
         let dx_um = self.wavelength_um() / self.samples_per_fringe;
-        let samples = (stroke_um / dx_um).round().max(2.0) as usize;
+        let samples = (stroke_um / dx_um).round();
+        if samples < MIN_SAMPLES as f64 {
+            return Err(Error::OutOfRange {
+                param: "stroke_um",
+                value: stroke_um,
+                accepted: format!(
+                    ">= {} um ({MIN_SAMPLES} samples of {dx_um} um: a scan must hold a fringe)",
+                    MIN_SAMPLES as f64 * dx_um
+                ),
+            });
+        }
+        let samples = samples as usize;
         let sample_time_s = 1.0 / (self.samples_per_fringe * fringe_hz);
         let i = &self.instrument;
         Ok(Inputs {
