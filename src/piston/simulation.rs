@@ -409,18 +409,25 @@ pub fn sweep(
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Vec<Vec<PistonRun>>> {
-    frequencies
-        .iter()
-        .map(|&f| {
-            let setup = ScanSetup {
-                fringe_hz: f,
-                ..*setup
-            };
-            let size = RunSize {
-                seed: sweep_seed(size.seed, f),
-                ..*size
-            };
-            simulate(obs, spectrum, &setup, detectors, &size, progress)
-        })
-        .collect()
+    // Each frequency's run is independent and keyed by its value: the
+    // frequencies run in parallel (each also spreads its own scans and
+    // series over the pool), and the answer does not depend on the order in
+    // which they finish.
+    let run = |f: f64| {
+        let setup = ScanSetup {
+            fringe_hz: f,
+            ..*setup
+        };
+        // threads 0 inside: the pool installed below is the current one.
+        let size = RunSize {
+            seed: sweep_seed(size.seed, f),
+            threads: 0,
+            ..*size
+        };
+        simulate(obs, spectrum, &setup, detectors, &size, progress)
+    };
+    crate::montecarlo::in_pool(size.threads, || {
+        use rayon::prelude::*;
+        frequencies.par_iter().map(|&f| run(f)).collect()
+    })
 }
