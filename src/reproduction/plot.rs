@@ -214,10 +214,17 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
     let hint = hint(&table.name);
     let series = series_of(table, &hint);
     let frame = Frame::new(table, &hint, &series)?;
-    let title = match hint.title {
+    let mut title = match hint.title {
         Some(t) => t.to_owned(),
         None => format!("{} — {}", figure.id, table.name),
     };
+    // Fig. 4's panels differ by diameter and fringe frequency: say which.
+    if let Some(rest) = table.name.strip_prefix("fig4_") {
+        if let Some((mas, hz)) = rest.split_once("mas_") {
+            let hz = hz.trim_end_matches("hz");
+            title.push_str(&format!(", {mas} mas disk, {hz} Hz fringes"));
+        }
+    }
     let subtitle = parameter_line(&figure.parameters);
     let mut svg = String::new();
     {
