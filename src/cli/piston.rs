@@ -218,13 +218,14 @@ fn print_table(answer: &Answer) {
         answer.samples,
         answer.dx_um
     );
+    outln!("bias and scatter over scans of V (not V^2): V1 and V2 with piston minus without, then their standard deviation");
     outln!(
         "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
         "f [Hz]",
-        "bias V1",
-        "bias V2",
-        "scatter V1",
-        "scatter V2"
+        "bias V1 (of V)",
+        "bias V2 (of V)",
+        "scatter V1 (of V)",
+        "scatter V2 (of V)"
     );
     for r in &answer.results {
         outln!(

@@ -55,6 +55,13 @@ pub struct PlotHint {
     pub abs_log_y: bool,
     /// Logarithmic abscissa.
     pub log_x: bool,
+    /// What the panel shows, in words (default: the figure and panel ids).
+    pub title: Option<&'static str>,
+    /// Curves drawn dashed with markers (so that a curve lying on another
+    /// stays visible).
+    pub dashed: Vec<&'static str>,
+    /// A caveat printed under the parameters.
+    pub note: Option<&'static str>,
 }
 
 /// Columns that give context to a panel rather than being its subject.
@@ -70,6 +77,9 @@ const CONTEXT_COLUMNS: [&str; 6] = [
 /// The paper's "current best accuracy" of single-mode interferometers (0.2%).
 const ACCURACY_0P2: f64 = 2e-3;
 
+/// Why Fig. 1's curves drop steeply at the nulls of the disk.
+const FIG1_NOTE: &str = "Steep drops at the nulls: |V mono| and the wide-band |V| vanish at slightly different S; the grid step is 0.1 cycles/arcsec.";
+
 /// The presentation of the panel called `table`.
 pub fn hint(table: &str) -> PlotHint {
     let mut h = PlotHint {
@@ -79,17 +89,43 @@ pub fn hint(table: &str) -> PlotHint {
     match table {
         "fig0_normalization" => {
             h.y_label = Some("|V2 normalized - V2 unnormalized|, V = 1");
+            h.title =
+                Some("Fig. 0: effect of normalizing V2 by the mean flux, against scan stroke");
             h.lines = vec![(ACCURACY_0P2, "0.2%")];
         }
-        "fig1_v1" => h.y_label = Some("V1 - V mono"),
-        "fig1_v2" | "fig2_disk" => h.y_label = Some("V2 - V mono"),
-        "fig2_point" => h.y_label = Some("V2 of a point source"),
+        "fig1_v1" => {
+            h.note = Some(FIG1_NOTE);
+            h.y_label = Some("V1 - V mono");
+            h.title = Some("Fig. 1: wide-band V1 minus monochromatic V, uniform disk");
+        }
+        "fig1_v2" => {
+            h.note = Some(FIG1_NOTE);
+            h.y_label = Some("V2 - V mono");
+            h.title = Some("Fig. 1: wide-band V2 minus monochromatic V, uniform disk");
+        }
+        "fig2_disk" => {
+            h.y_label = Some("V2 - V mono");
+            h.title = Some("Fig. 2: V2 minus monochromatic V under dispersion, uniform disk");
+        }
+        "fig2_point" => {
+            h.y_label = Some("V2 of a point source");
+            h.title =
+                Some("Fig. 2: V2 of a point source against dispersion (numerical and Fresnel)");
+            h.dashed = vec!["v2_fresnel"];
+        }
         "fig3_v1" | "fig3_v2" | "fig3_abcd" | "fig3_convolution" => {
             h.y_label = Some("bias against the infinite scan");
+            h.title = Some(match table {
+                "fig3_v1" => "Fig. 3: bias of V1 from a finite scan, against spatial frequency",
+                "fig3_v2" => "Fig. 3: bias of V2 from a finite scan, against spatial frequency",
+                "fig3_abcd" => "Fig. 3: finite-scan bias, DFT against convolution estimators",
+                _ => "Fig. 3: finite-scan bias of V1 and V2 (convolution estimator)",
+            });
             h.lines = vec![(ACCURACY_0P2, "+0.2%"), (-ACCURACY_0P2, "-0.2%")];
         }
         t if t.starts_with("fig4_") => {
             h.y_label = Some("V(piston) - V(no piston); bars: scatter over scans");
+            h.title = Some("Fig. 4: bias of V1 and V2 (on V) from atmospheric piston");
             h.hidden.extend([
                 "baseline_m",
                 "piston_rms_um",
@@ -103,6 +139,11 @@ pub fn hint(table: &str) -> PlotHint {
         }
         t if t.starts_with("fig5_") => {
             h.y_label = Some("|bias| and scatter of V");
+            h.title = Some(if table == "fig5_sampled" {
+                "Fig. 5: piston bias and scatter of V against fringe frequency (sampled)"
+            } else {
+                "Fig. 5: piston bias and scatter of V against fringe frequency (integrating)"
+            });
             h.hidden.extend(["scan_time_s", "residual_rms_um"]);
             h.hidden_suffixes = vec!["_band", "_all"];
             h.abs_log_y = true;
@@ -116,6 +157,7 @@ pub fn hint(table: &str) -> PlotHint {
 
 struct Series {
     label: String,
+    dashed: bool,
     points: Vec<(f64, f64)>,
     errors: Option<Vec<f64>>,
 }
@@ -158,7 +200,8 @@ fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
                 .filter(|&i| !hint.log_x || x[i] > 0.0)
                 .collect();
             Series {
-                label: c.name.clone(),
+                label: legend_label(&c.name),
+                dashed: hint.dashed.contains(&c.name.as_str()),
                 points: keep.iter().map(|&i| (x[i], y[i])).collect(),
                 errors: errors.map(|e| keep.iter().map(|&i| e[i]).collect()),
             }
@@ -171,14 +214,46 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
     let hint = hint(&table.name);
     let series = series_of(table, &hint);
     let frame = Frame::new(table, &hint, &series)?;
-    let title = format!("{} — {}", figure.id, table.name);
+    let mut title = match hint.title {
+        Some(t) => t.to_owned(),
+        None => format!("{} — {}", figure.id, table.name),
+    };
+    // Fig. 4's panels differ by diameter and fringe frequency: say which.
+    if let Some(rest) = table.name.strip_prefix("fig4_") {
+        if let Some((mas, hz)) = rest.split_once("mas_") {
+            let hz = hz.trim_end_matches("hz");
+            title.push_str(&format!(", {mas} mas disk, {hz} Hz fringes"));
+        }
+    }
+    let subtitle = parameter_line(&figure.parameters);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(plot_error)?;
+        let (head, root) = root.split_vertically(if hint.note.is_some() { 72 } else { 52 });
+        if let Some(note) = hint.note {
+            head.draw(&Text::new(
+                note,
+                (15, 52),
+                ("sans-serif", 13).into_font().color(&RGBColor(150, 40, 40)),
+            ))
+            .map_err(plot_error)?;
+        }
+        head.draw(&Text::new(
+            title.clone(),
+            (15, 8),
+            ("sans-serif", 19).into_font().color(&BLACK),
+        ))
+        .map_err(plot_error)?;
+        head.draw(&Text::new(
+            subtitle,
+            (15, 32),
+            ("sans-serif", 13).into_font().color(&RGBColor(70, 70, 70)),
+        ))
+        .map_err(plot_error)?;
+        let root = root;
         let mut builder = ChartBuilder::on(&root);
         builder
-            .caption(&title, ("sans-serif", 20))
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(80);
@@ -351,7 +426,9 @@ where
         .y_desc(frame.y_desc.as_str())
         .y_label_formatter(&|y: &f64| tick(*y))
         .x_label_formatter(&|x: &f64| tick(*x))
-        .x_labels(10)
+        .x_labels(if frame.log_x { 5 } else { 10 })
+        .light_line_style(RGBColor(242, 242, 242))
+        .bold_line_style(RGBColor(215, 215, 215))
         .draw()
         .map_err(plot_error)
 }
@@ -363,13 +440,28 @@ where
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let (x0, x1) = frame.x;
+    // Distinct colours (and dash lengths) per level, so two lines on one
+    // panel are told apart; a +/- pair of one level shares its style.
+    const STYLES: [(RGBColor, i32); 2] = [(RGBColor(200, 30, 30), 8), (RGBColor(110, 60, 160), 3)];
+    let mut levels: Vec<f64> = Vec::new();
     for (y, label) in &frame.lines {
-        let grey = RGBColor(120, 120, 120);
+        let level = match levels.iter().position(|l| *l == y.abs()) {
+            Some(i) => i,
+            None => {
+                levels.push(y.abs());
+                levels.len() - 1
+            }
+        };
+        let (colour, dash) = STYLES[level % STYLES.len()];
+        let style = colour.stroke_width(2);
+        let text = format!("reference: {label}");
         chart
-            .draw_series(LineSeries::new([(x0, *y), (x1, *y)], grey.stroke_width(1)))
+            .draw_series(DashedLineSeries::new([(x0, *y), (x1, *y)], dash, 4, style))
             .map_err(plot_error)?
-            .label(*label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+            .label(text)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + dash, y)], colour.stroke_width(2))
+            });
     }
     Ok(())
 }
@@ -380,14 +472,37 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    chart
-        .draw_series(LineSeries::new(
-            s.points.iter().copied(),
-            colour.stroke_width(2),
-        ))
-        .map_err(plot_error)?
-        .label(s.label.as_str())
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+    if s.dashed {
+        chart
+            .draw_series(DashedLineSeries::new(
+                s.points.iter().copied(),
+                10,
+                6,
+                colour.stroke_width(3),
+            ))
+            .map_err(plot_error)?;
+        chart
+            .draw_series(
+                s.points
+                    .iter()
+                    .step_by((s.points.len() / 12).max(1))
+                    .map(|&p| Circle::new(p, 4, colour.stroke_width(2))),
+            )
+            .map_err(plot_error)?
+            .label(format!("{} (dashed, circles)", s.label))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 4, colour.stroke_width(2)));
+    } else {
+        chart
+            .draw_series(LineSeries::new(
+                s.points.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(plot_error)?
+            .label(s.label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+    }
     if let Some(e) = &s.errors {
         chart
             .draw_series(s.points.iter().zip(e).map(|(&(x, y), &e)| {
@@ -410,4 +525,120 @@ fn tick(y: f64) -> String {
     } else {
         format!("{y:.0e}")
     }
+}
+
+/// A column name in words, with units: `v2_minus_vmono_12p5nm` becomes
+/// "V2 - V mono, band 12.5 nm".
+pub fn legend_label(name: &str) -> String {
+    let (head, qualifier) = split_qualifier(name);
+    let head = head.replace('_', " ");
+    let words = match head.as_str() {
+        "v1 minus vmono" => "V1 - V mono".to_owned(),
+        "v2 minus vmono" => "V2 - V mono".to_owned(),
+        "v2 calibrated minus vmono" => "V2 calibrated - V mono".to_owned(),
+        "bias v1" => "bias of V1 (on V)".to_owned(),
+        "bias v2" => "bias of V2 (on V)".to_owned(),
+        "scatter v1" => "scatter of V1 (on V)".to_owned(),
+        "scatter v2" => "scatter of V2 (on V)".to_owned(),
+        "bias v1 dft" => "bias of V1, DFT".to_owned(),
+        "bias v2 dft" => "bias of V2, DFT".to_owned(),
+        "bias v1 convolution" => "bias of V1, convolution".to_owned(),
+        "bias v2 convolution" => "bias of V2, convolution".to_owned(),
+        "v2 numerical" => "V2, numerical integration".to_owned(),
+        "v2 fresnel" => "V2, Fresnel integrals".to_owned(),
+        "dev v2 flat" => "V2, flat band".to_owned(),
+        "dev v2sq flat" => "V2 squared, flat band".to_owned(),
+        "dev v2 smooth edges" => "V2, band with smooth edges".to_owned(),
+        "dev riemann flat" => "V2, flat band, Riemann sum".to_owned(),
+        "dev v2 index" => "V2, power-law band, index".to_owned(),
+        other => other.to_owned(),
+    };
+    match qualifier {
+        Some(q) if words.ends_with("index") => format!("{words} {q}"),
+        Some(q) => format!("{words}, {}", describe_qualifier(&q)),
+        None => words,
+    }
+}
+
+/// Splits a trailing value such as `12p5nm`, `256um`, `1p5rad` or `-2`.
+fn split_qualifier(name: &str) -> (String, Option<String>) {
+    match name.rsplit_once('_') {
+        Some((head, tail))
+            if tail
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_digit() || c == '-') =>
+        {
+            (head.to_owned(), Some(tail.replace('p', ".")))
+        }
+        _ => (name.to_owned(), None),
+    }
+}
+
+fn describe_qualifier(q: &str) -> String {
+    let split = q.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(q.len());
+    let (value, unit) = q.split_at(split);
+    match unit {
+        "nm" => format!("bandwidth {value} nm"),
+        "um" => format!("scan {value} µm"),
+        "rad" => format!("dispersion {value} rad"),
+        "" => value.to_owned(),
+        u => format!("{value} {u}"),
+    }
+}
+
+/// The figure's scalar parameters on one line, `name = value`, for the
+/// subtitle.
+fn parameter_line(parameters: &serde_json::Value) -> String {
+    let Some(map) = parameters.as_object() else {
+        return String::new();
+    };
+    let items: Vec<String> = map
+        .iter()
+        .filter_map(|(k, v)| {
+            let v = match v {
+                serde_json::Value::Number(n) => n.to_string(),
+                serde_json::Value::String(s) if s.len() <= 24 => s.clone(),
+                serde_json::Value::Bool(b) => b.to_string(),
+                serde_json::Value::Array(a) if a.len() <= 6 && a.iter().all(|x| x.is_number()) => a
+                    .iter()
+                    .map(|x| x.to_string())
+                    .collect::<Vec<_>>()
+                    .join("/"),
+                _ => return None,
+            };
+            let units = [
+                ("_um", "µm"),
+                ("_nm", "nm"),
+                ("_mas", "mas"),
+                ("_cpas", "cycles/arcsec"),
+                ("_hz", "Hz"),
+                ("_rad", "rad"),
+                ("_m", "m"),
+                ("_s", "s"),
+            ];
+            let (key, unit) = units
+                .iter()
+                .find_map(|(sfx, u)| k.strip_suffix(sfx).map(|h| (h, *u)))
+                .unwrap_or((k.as_str(), ""));
+            let key = key.replace('_', " ");
+            Some(if unit.is_empty() {
+                format!("{key} = {v}")
+            } else {
+                format!("{key} = {v} {unit}")
+            })
+        })
+        .collect();
+    let mut line = String::new();
+    for item in items {
+        if line.len() + item.len() > 125 {
+            line.push_str(", …");
+            break;
+        }
+        if !line.is_empty() {
+            line.push_str(", ");
+        }
+        line.push_str(&item);
+    }
+    line
 }
