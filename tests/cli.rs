@@ -303,3 +303,71 @@ fn json_answers_have_no_duplicate_keys() {
         assert_no_duplicate_keys(args, &stdout);
     }
 }
+
+/// Every JSON answer of bias, snr and piston states its inputs with units,
+/// including the baseline and σ_eff actually used: S = B σ_eff in
+/// cycles/arcsec, 1 m·µm⁻¹ = 10⁶ rad⁻¹ = 10⁶ π/648000 cycles/arcsec.
+#[test]
+fn json_answers_echo_their_inputs() {
+    let cpas_per_m_per_inv_um = 1e6 * std::f64::consts::PI / 648_000.0;
+    for args in [
+        vec!["bias", "--json", "--baseline-m", "100", "--stroke-um", "40"],
+        vec!["snr", "--json", "--baseline-m", "100"],
+        vec![
+            "piston",
+            "--json",
+            "--quiet",
+            "--baseline-m",
+            "100",
+            "--scans",
+            "4",
+            "--fringe-hz",
+            "300",
+            "--outer-scale-m",
+            "25",
+        ],
+    ] {
+        let (code, out, err) = v2ref(&args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let obs = &json["inputs"]["observation"];
+        assert_eq!(obs["baseline_m"].as_f64(), Some(100.0), "{args:?}");
+        assert_eq!(obs["spectrum"]["kind"], "flat");
+        assert_eq!(obs["spectrum"]["wavelength_um"].as_f64(), Some(2.2));
+        assert_eq!(obs["source"]["diameter_mas"].as_f64(), Some(43.0));
+        // σ_eff of the flat K band (2.0–2.4 µm) is the mean wavenumber.
+        let sigma = obs["sigma_eff_per_um"].as_f64().unwrap();
+        assert_rel_eq!(sigma, 0.5 * (1.0 / 2.0 + 1.0 / 2.4), ROUNDING_REL);
+        assert_rel_eq!(
+            obs["spatial_freq_cpas"].as_f64().unwrap(),
+            100.0 * sigma * cpas_per_m_per_inv_um,
+            ROUNDING_REL
+        );
+        if args[0] != "bias" || args.contains(&"--stroke-um") {
+            assert_eq!(json["inputs"]["sampling"]["dx_um"].as_f64(), Some(0.5));
+        }
+        if args[0] == "piston" {
+            let atm = &json["inputs"]["atmosphere"];
+            assert_eq!(atm["outer_scale_m"].as_f64(), Some(25.0));
+            assert_eq!(atm["seeing_wavelength_um"].as_f64(), Some(2.2));
+            assert_eq!(atm["seeing_at_observing_arcsec"].as_f64(), Some(1.0));
+        }
+    }
+    // An infinite outer scale is said in words, and warned about on a long
+    // baseline.
+    let (code, out, err) = v2ref(&[
+        "piston",
+        "--json",
+        "--quiet",
+        "--baseline-m",
+        "100",
+        "--scans",
+        "4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["inputs"]["atmosphere"]["outer_scale_m"], "infinite");
+    assert!(err.contains("warning: infinite outer scale"), "{err}");
+    let (_, _, err) = v2ref(&["piston", "--quiet", "--baseline-m", "10", "--scans", "4"]);
+    assert!(!err.contains("warning"), "no warning on 10 m: {err}");
+}

@@ -241,3 +241,142 @@ fn cli_plan_writes_json_and_svg() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--photon-rate-per-s"));
 }
+
+// --- The magnitude helper (`v2ref::plan::photometry`) --------------------
+
+use v2ref::plan::photometry::{Band2Mass, Magnitude};
+use v2ref::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
+
+fn ks_zero(aperture_m: f64, throughput: f64) -> Magnitude {
+    Magnitude {
+        magnitude: 0.0,
+        band: Band2Mass::Ks,
+        aperture_m,
+        throughput,
+    }
+}
+
+#[test]
+fn magnitude_gives_the_hand_computed_photon_rate() {
+    // Ks = 0 (666.7 Jy), K band 2.0–2.4 µm, two 1 m telescopes, T = 1:
+    // 666.7e-26 / 6.62607015e-34 × ln(2.4/2.0) × 2π/4, worked out by hand
+    // (Python, float64) as 2.881590895e9 photons/s.
+    let rate = ks_zero(1.0, 1.0).photon_rate_per_s(2.2, 0.4).unwrap();
+    v2ref::assert_rel_eq!(rate, 2.881_590_895e9, HAND_10_DIGITS_REL);
+    // The narrow-band limit: F_ν Δλ/(h λ) per m², 4.660384867e9 photons
+    // s⁻¹ m⁻² µm⁻¹ at 2.159 µm (by hand as above; ln(λmax/λmin) differs
+    // from Δλ/λ by (Δλ/λ)²/12 = 2e-10 here).
+    let area = ks_zero(1.0, 1.0).collecting_area_m2();
+    let narrow = ks_zero(1.0, 1.0).photon_rate_per_s(2.159, 1e-4).unwrap() / area / 1e-4;
+    v2ref::assert_rel_eq!(narrow, 4.660_384_867e9, HAND_10_DIGITS_REL);
+}
+
+#[test]
+fn magnitude_scaling_laws() {
+    let base = ks_zero(1.8, 0.02).photon_rate_per_s(2.2, 0.4).unwrap();
+    // Five magnitudes are a factor 100 exactly; the rate is linear in T and D².
+    let faint = Magnitude {
+        magnitude: 5.0,
+        ..ks_zero(1.8, 0.02)
+    };
+    v2ref::assert_rel_eq!(
+        faint.photon_rate_per_s(2.2, 0.4).unwrap(),
+        base / 100.0,
+        ROUNDING_REL
+    );
+    v2ref::assert_rel_eq!(
+        ks_zero(1.8, 0.04).photon_rate_per_s(2.2, 0.4).unwrap(),
+        2.0 * base,
+        ROUNDING_REL
+    );
+    v2ref::assert_rel_eq!(
+        ks_zero(3.6, 0.02).photon_rate_per_s(2.2, 0.4).unwrap(),
+        4.0 * base,
+        ROUNDING_REL
+    );
+    // The zero points in Jy order as published: J > H > Ks.
+    assert!(Band2Mass::J.zero_point_jy() > Band2Mass::H.zero_point_jy());
+    assert!(Band2Mass::H.zero_point_jy() > Band2Mass::Ks.zero_point_jy());
+}
+
+#[test]
+fn magnitude_refuses_bad_input() {
+    for (m, what) in [
+        (
+            Magnitude {
+                magnitude: 31.0,
+                ..ks_zero(1.0, 0.1)
+            },
+            "magnitude",
+        ),
+        (ks_zero(1.0, 0.0), "throughput"),
+        (ks_zero(1.0, 1.5), "throughput"),
+        (ks_zero(-1.0, 0.5), "aperture_m"),
+    ] {
+        let e = m.photon_rate_per_s(2.2, 0.4).unwrap_err();
+        assert_eq!(e.param(), Some(what), "{e}");
+    }
+    let e = ks_zero(1.0, 0.1).photon_rate_per_s(2.2, 4.4).unwrap_err();
+    assert_eq!(e.param(), Some("bandwidth_nm"), "{e}");
+}
+
+#[test]
+fn cli_plan_from_a_magnitude_echoes_the_photometry() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "plan",
+            "--wavelength-um",
+            "1.65",
+            "--bandwidth-nm",
+            "300",
+            "--fringe-hz",
+            "500",
+            "--stroke-um",
+            "32",
+            "--scans",
+            "50",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[
+        "--magnitude",
+        "5",
+        "--magnitude-band",
+        "h",
+        "--throughput",
+        "0.01",
+        "--aperture-m",
+        "1.8",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rate = json["photometry"]["photon_rate_per_s"].as_f64().unwrap();
+    // 1024 Jy × 10^-2 / h × ln(1.8/1.5) × 2π 1.8²/4 × 0.01, by hand.
+    v2ref::assert_rel_eq!(rate, 1.433_992_352e6, HAND_10_DIGITS_REL);
+    assert_eq!(json["inputs"]["photon_rate_per_s"].as_f64(), Some(rate));
+    assert_eq!(json["photometry"]["band"], "H");
+    // Without the band or the throughput: refused, exit 2.
+    let out = run(&["--magnitude", "5"]);
+    assert_eq!(out.status.code(), Some(2));
+    // With a rate as well: refused.
+    let out = run(&[
+        "--magnitude",
+        "5",
+        "--magnitude-band",
+        "h",
+        "--throughput",
+        "0.01",
+        "--photon-rate-per-s",
+        "1e6",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -313,3 +313,66 @@ fn von_karman_outer_scale_reduces_and_saturates_the_piston() {
     assert!(rms(vk, 100.0) / rms(vk, 50.0) < 1.01);
     assert!(rms(k, 100.0) / rms(k, 50.0) > 1.7);
 }
+
+#[test]
+fn seeing_quoted_at_another_wavelength_scales_r0_as_lambda_6_5() {
+    use v2ref::piston::turbulence::seeing_at_wavelength_arcsec;
+    use v2ref::tolerance::HAND_10_DIGITS_REL;
+    // 1″ at 0.5 µm: r0 = 0.5 µm / 1″ = 0.1031324031 m there, and
+    // 0.1031324031 × 4.4^1.2 = 0.6102929447 m at 2.2 µm (by hand).
+    let k = seeing_at_wavelength_arcsec(1.0, 0.5, 2.2).unwrap();
+    let t = Turbulence::from_seeing(k, 2.2, 10.0, None).unwrap();
+    v2ref::assert_rel_eq!(t.r0_m(), 0.610_292_944_7, HAND_10_DIGITS_REL);
+    // Identities: the same wavelength changes nothing; conversions compose;
+    // zero seeing stays zero.
+    assert_eq!(seeing_at_wavelength_arcsec(0.8, 1.65, 1.65).unwrap(), 0.8);
+    let via_h = seeing_at_wavelength_arcsec(
+        seeing_at_wavelength_arcsec(0.8, 0.5, 1.65).unwrap(),
+        1.65,
+        2.2,
+    )
+    .unwrap();
+    v2ref::assert_rel_eq!(
+        via_h,
+        seeing_at_wavelength_arcsec(0.8, 0.5, 2.2).unwrap(),
+        ROUNDING_REL
+    );
+    assert_eq!(seeing_at_wavelength_arcsec(0.0, 0.5, 2.2).unwrap(), 0.0);
+    let e = seeing_at_wavelength_arcsec(1.0, 0.0, 2.2).unwrap_err();
+    assert_eq!(e.param(), Some("seeing_wavelength_um"));
+}
+
+#[test]
+fn cli_seeing_wavelength_flag_converts_before_the_piston() {
+    let r0 = |extra: &[&str]| -> f64 {
+        let mut args = vec![
+            "piston",
+            "--json",
+            "--quiet",
+            "--scans",
+            "10",
+            "--fringe-hz",
+            "100",
+        ];
+        args.extend_from_slice(extra);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        json["r0_m"].as_f64().unwrap()
+    };
+    // Quoted at the observing wavelength (the default), nothing changes.
+    assert_eq!(r0(&["--seeing-wavelength-um", "2.2"]), r0(&[]));
+    // 1″ at 0.5 µm is r0 = 0.6102929447 m in K (by hand, above).
+    v2ref::assert_rel_eq!(
+        r0(&["--seeing-wavelength-um", "0.5"]),
+        0.610_292_944_7,
+        v2ref::tolerance::HAND_10_DIGITS_REL
+    );
+}

@@ -77,6 +77,7 @@ _DEFAULTS: Dict[str, Any] = {
     "fringe_hz": None,
     "wind_mps": 10.0,
     "seeing_arcsec": 1.0,
+    "seeing_wavelength_um": None,
     "aperture_m": 0.45,
     "outer_scale_m": None,
     "sub_samples": 6,
@@ -193,7 +194,7 @@ _OBS = (
 )
 _SCAN = ("stroke_um", "dx_um", "samples", "integrating")
 _LIGHT = ("visibility", "photons", "read_noise", "photon_noise")
-_TURB = ("wind_mps", "seeing_arcsec", "aperture_m", "outer_scale_m", "sub_samples", "reference")
+_TURB = ("wind_mps", "seeing_arcsec", "seeing_wavelength_um", "aperture_m", "outer_scale_m", "sub_samples", "reference")
 _ALL = _OBS + _SCAN + _LIGHT + ("fringe_hz",) + _TURB
 _ESTIMATE = _OBS + ("dx_um", "integrating") + _LIGHT + ("fringe_hz",) + _TURB
 
@@ -224,6 +225,7 @@ def estimate(
     fringe_hz: Optional[float] = None,
     wind_mps: float = 10.0,
     seeing_arcsec: float = 1.0,
+    seeing_wavelength_um: Optional[float] = None,
     aperture_m: float = 0.45,
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
@@ -294,7 +296,11 @@ def estimate(
     wind_mps : float
         Wind speed, m/s (frozen flow along the baseline).
     seeing_arcsec : float
-        Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+        Seeing λ/r0, arcsec, at ``seeing_wavelength_um`` (0: no turbulence).
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm (site monitors
+        quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5).
+        Default: the observing wavelength.
     aperture_m : float
         Telescope aperture diameter, m.
     outer_scale_m : float, optional
@@ -371,6 +377,7 @@ def synthesize(
     fringe_hz: Optional[float] = None,
     wind_mps: float = 10.0,
     seeing_arcsec: float = 1.0,
+    seeing_wavelength_um: Optional[float] = None,
     aperture_m: float = 0.45,
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
@@ -413,9 +420,10 @@ def synthesize(
     visibility, photons, read_noise, photon_noise
         V (0 to 1), continuum photons per sample, detector noise σ_det
         (photons per sample), Poisson photon noise on/off.
-    fringe_hz, wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
+    fringe_hz, wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
         The differential piston (on when ``fringe_hz``, Hz, is given): wind
-        (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+        (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
+        observing wavelength), aperture (m), outer scale (m, default
         infinite), sub-samples, packet reference.
 
     Returns
@@ -576,6 +584,7 @@ def simulate(
     fringe_hz: Optional[float] = None,
     wind_mps: float = 10.0,
     seeing_arcsec: float = 1.0,
+    seeing_wavelength_um: Optional[float] = None,
     aperture_m: float = 0.45,
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
@@ -742,6 +751,7 @@ def piston(
     integrating: bool = False,
     wind_mps: float = 10.0,
     seeing_arcsec: float = 1.0,
+    seeing_wavelength_um: Optional[float] = None,
     aperture_m: float = 0.45,
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
@@ -763,8 +773,9 @@ def piston(
         Fourier bins the estimators sum.
     wavelength_um, ..., integrating
         The observation and scan, as for :func:`bias`.
-    wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
-        Wind (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+    wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
+        Wind (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
+        observing wavelength), aperture (m), outer scale (m, default
         infinite), integrating sub-samples, packet reference
         ("mean", "centre", "absolute").
 
@@ -820,6 +831,7 @@ def plan(
     photon_noise: bool = True,
     wind_mps: float = 10.0,
     seeing_arcsec: float = 1.0,
+    seeing_wavelength_um: Optional[float] = None,
     aperture_m: float = 0.45,
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
@@ -849,7 +861,7 @@ def plan(
         answer does not depend on it).
     wavelength_um, ..., reference
         The instrument, source, noise and atmosphere, as for :func:`simulate`
-        (seeing λ0/r0 in arcsec at ``wavelength_um``, wind m/s, aperture m,
+        (seeing λ/r0 in arcsec at ``seeing_wavelength_um``, default ``wavelength_um``, wind m/s, aperture m,
         outer scale m).
 
     Returns

@@ -10,7 +10,7 @@ _PathLike = Union[str, "os.PathLike[str]"]
 __version__: str
 ESTIMATE_COLUMNS: Tuple[str, ...]
 
-def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, NDArray[np.float64]]:
+def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, NDArray[np.float64]]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
     Parameters
@@ -76,7 +76,11 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
     wind_mps : float
         Wind speed, m/s (frozen flow along the baseline).
     seeing_arcsec : float
-        Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+        Seeing λ/r0, arcsec, at ``seeing_wavelength_um`` (0: no turbulence).
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm (site monitors
+        quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5).
+        Default: the observing wavelength.
     aperture_m : float
         Telescope aperture diameter, m.
     outer_scale_m : float, optional
@@ -95,7 +99,7 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
     """
     ...
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: int=32, keep_continuum: bool=False, out: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: int=32, keep_continuum: bool=False, out: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -133,9 +137,10 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
     visibility, photons, read_noise, photon_noise
         V (0 to 1), continuum photons per sample, detector noise σ_det
         (photons per sample), Poisson photon noise on/off.
-    fringe_hz, wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
+    fringe_hz, wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
         The differential piston (on when ``fringe_hz``, Hz, is given): wind
-        (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+        (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
+        observing wavelength), aperture (m), outer scale (m, default
         infinite), sub-samples, packet reference.
 
     Returns
@@ -182,7 +187,7 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
     """
     ...
 
-def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
     Parameters
@@ -261,7 +266,7 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
     """
     ...
 
-def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
 
     Parameters
@@ -278,8 +283,9 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         Fourier bins the estimators sum.
     wavelength_um, ..., integrating
         The observation and scan, as for :func:`bias`.
-    wind_mps, seeing_arcsec, aperture_m, outer_scale_m, sub_samples, reference
-        Wind (m/s), seeing (arcsec), aperture (m), outer scale (m, default
+    wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
+        Wind (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
+        observing wavelength), aperture (m), outer scale (m, default
         infinite), integrating sub-samples, packet reference
         ("mean", "centre", "absolute").
 
@@ -292,7 +298,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
     """
     ...
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=1000, seed: int=1, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=1000, seed: int=1, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     target_sigma_v2: σ of the averaged V² (default 1e-3); time_budget_s: instead, the time to

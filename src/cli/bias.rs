@@ -5,6 +5,7 @@ use super::{print_json, print_rows};
 use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::formalism::estimator::{sampled_wide_band, wide_band, Pair, WideBand};
+use v2ref::simulator::record::{InputsRecord, SamplingRecord};
 use v2ref::Result;
 
 /// Flags of `bias`.
@@ -38,6 +39,7 @@ struct FiniteScan {
 
 #[derive(Serialize)]
 struct Answer {
+    inputs: InputsRecord,
     #[serde(flatten)]
     infinite_scan: WideBand,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -66,7 +68,21 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         None
     };
+    let sampling = finite_scan
+        .as_ref()
+        .map(|_| -> Result<SamplingRecord> {
+            Ok(SamplingRecord::new(
+                &args.sampling.sampling()?,
+                args.sampling.bins,
+            ))
+        })
+        .transpose()?;
     let answer = Answer {
+        inputs: InputsRecord {
+            observation: args.obs.record(&obs),
+            sampling,
+            atmosphere: None,
+        },
         infinite_scan: wb,
         finite_scan,
     };

@@ -11,6 +11,9 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
+use v2ref::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
+use v2ref::simulator::record::{AtmosphereRecord, ObservationRecord};
+use v2ref::simulator::SourceInput;
 use v2ref::Result;
 
 /// Source model.
@@ -93,6 +96,26 @@ impl ObservationArgs {
         }
     }
 
+    /// The source as the simulator's inputs and the records state it.
+    pub fn source_input(&self) -> SourceInput {
+        match self.source {
+            SourceKind::Point => SourceInput::Point,
+            SourceKind::Ud => SourceInput::Ud {
+                diameter_mas: self.diameter_mas,
+            },
+        }
+    }
+
+    /// The record of `obs` (made from these flags) for a JSON answer.
+    pub fn record(&self, obs: &Observation) -> ObservationRecord {
+        ObservationRecord::new(
+            obs,
+            self.source_input(),
+            (self.wavelength_um, self.bandwidth_nm),
+            self.dispersion_pp_rad,
+        )
+    }
+
     /// The observation these flags describe.
     pub fn observation(&self) -> Result<Observation> {
         let spectrum = self.spectrum()?;
@@ -156,9 +179,14 @@ pub struct TurbulenceArgs {
     /// Wind speed, m/s (frozen flow along the baseline).
     #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
     pub wind_mps: f64,
-    /// Seeing λ0/r0 at the observing wavelength, arcsec (0: no turbulence).
+    /// Seeing λ/r0, arcsec, at --seeing-wavelength-um (0: no turbulence).
     #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
+    /// Wavelength at which --seeing-arcsec is quoted, µm (site monitors
+    /// quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5)
+    /// [default: the observing wavelength --wavelength-um].
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    pub seeing_wavelength_um: Option<f64>,
     /// Telescope aperture diameter, m.
     #[arg(long, default_value = "0.45", value_parser = finite_f64, allow_negative_numbers = true)]
     pub aperture_m: f64,
@@ -171,6 +199,62 @@ pub struct TurbulenceArgs {
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
     pub reference: v2ref::piston::PistonReference,
+}
+
+/// Baselines beyond which an infinite outer scale overstates the piston
+/// badly, m: with 1″ seeing in K and 0.45 m apertures, the Kolmogorov piston
+/// rms on 20 m is 21.5 µm, five times its 4.1 µm for a 25 m outer scale,
+/// and the ratio grows as B^(5/6) beyond (82 µm against 4.1 µm on 100 m).
+pub const INFINITE_OUTER_SCALE_WARN_BASELINE_M: f64 = 20.0;
+
+impl TurbulenceArgs {
+    /// The seeing at the observing wavelength `wavelength_um`, arcsec: the
+    /// flag's value converted from --seeing-wavelength-um.
+    pub fn seeing_at_arcsec(&self, wavelength_um: f64) -> Result<f64> {
+        let quoted_at_um = self.seeing_wavelength_um.unwrap_or(wavelength_um);
+        seeing_at_wavelength_arcsec(self.seeing_arcsec, quoted_at_um, wavelength_um)
+    }
+
+    /// The turbulence these flags describe at the observing wavelength.
+    pub fn turbulence(&self, wavelength_um: f64) -> Result<Turbulence> {
+        Turbulence::from_seeing(
+            self.seeing_at_arcsec(wavelength_um)?,
+            wavelength_um,
+            self.wind_mps,
+            self.outer_scale_m,
+        )
+    }
+
+    /// The record of these flags at the observing wavelength
+    /// `wavelength_um` for a JSON answer.
+    pub fn record(&self, wavelength_um: f64) -> Result<AtmosphereRecord> {
+        Ok(AtmosphereRecord {
+            seeing_arcsec: self.seeing_arcsec,
+            seeing_wavelength_um: self.seeing_wavelength_um.unwrap_or(wavelength_um),
+            seeing_at_observing_arcsec: self.seeing_at_arcsec(wavelength_um)?,
+            wavelength_um,
+            wind_mps: self.wind_mps,
+            aperture_m: self.aperture_m,
+            outer_scale_m: self.outer_scale_m.into(),
+            reference: self.reference,
+            sub_samples: self.sub_samples,
+        })
+    }
+
+    /// Warns on stderr when the outer scale is left infinite on a long
+    /// baseline: the Kolmogorov piston is then the pessimistic extreme.
+    pub fn warn_if_outer_scale_infinite(&self, baseline_m: f64, piston_rms_um: f64) {
+        if self.outer_scale_m.is_none()
+            && self.seeing_arcsec > 0.0
+            && baseline_m > INFINITE_OUTER_SCALE_WARN_BASELINE_M
+        {
+            eprintln!(
+                "warning: infinite outer scale on a {baseline_m:.1} m baseline: piston rms \
+                 {piston_rms_um:.1} um is the pessimistic extreme (measured outer scales \
+                 are 10-100 m; set --outer-scale-m)"
+            );
+        }
+    }
 }
 
 /// Output flags of the subcommands that draw progress on stderr.

@@ -3,7 +3,7 @@
 
 use super::common::{LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
 use super::finite_f64;
-use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use v2ref::simulator::{Inputs, Model, PistonInputs, SpectrumInput};
 use v2ref::Result;
 
 /// The differential piston: on when `--fringe-hz` is given.
@@ -38,23 +38,29 @@ impl InputsArgs {
         Ok(inputs)
     }
 
+    /// Warns on stderr about the model's piston (see
+    /// [`TurbulenceArgs::warn_if_outer_scale_infinite`]).
+    pub fn warn_about(&self, model: &Model) {
+        if let Some(s) = &model.piston_spectrum {
+            self.piston
+                .turbulence
+                .warn_if_outer_scale_infinite(s.baseline_m(), s.rms_um());
+        }
+    }
+
     /// The inputs, before the checks that involve N (a file's width may
     /// still set it).
     pub fn inputs_unchecked(&self) -> Result<Inputs> {
         let obs = self.obs.observation()?;
         let sampling = self.scan.sampling()?;
         let t = &self.piston.turbulence;
+        let seeing_arcsec = t.seeing_at_arcsec(self.obs.wavelength_um)?;
         let inputs = Inputs {
             spectrum: SpectrumInput::from_spectrum(
                 &obs.spectrum,
                 (self.obs.wavelength_um, self.obs.bandwidth_nm),
             ),
-            source: match self.obs.source {
-                super::common::SourceKind::Point => SourceInput::Point,
-                super::common::SourceKind::Ud => SourceInput::Ud {
-                    diameter_mas: self.obs.diameter_mas,
-                },
-            },
+            source: self.obs.source_input(),
             baseline_m: obs.baseline_m,
             dispersion_pp_rad: self.obs.dispersion_pp_rad,
             samples: sampling.samples(),
@@ -67,7 +73,7 @@ impl InputsArgs {
             piston: self.piston.fringe_hz.map(|f| PistonInputs {
                 fringe_hz: f,
                 wavelength_um: self.obs.wavelength_um,
-                seeing_arcsec: t.seeing_arcsec,
+                seeing_arcsec,
                 wind_mps: t.wind_mps,
                 aperture_m: t.aperture_m,
                 outer_scale_m: t.outer_scale_m,

@@ -9,8 +9,9 @@ use v2ref::error::{Error, Result};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
-use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
+use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
+use v2ref::simulator::record::{InputsRecord, SamplingRecord};
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
@@ -54,6 +55,7 @@ struct Row {
 
 #[derive(Serialize)]
 struct Answer {
+    inputs: InputsRecord,
     detector: &'static str,
     bins: &'static str,
     reference: &'static str,
@@ -97,13 +99,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let freqs = fringe_frequencies(&args.fringe_hz)?;
     check_scans(args.scans)?;
     v2ref::error::positive("aperture_m", args.turbulence.aperture_m)?;
-    let turb = Turbulence::from_seeing(
-        args.turbulence.seeing_arcsec,
-        args.obs.wavelength_um,
-        args.turbulence.wind_mps,
-        args.turbulence.outer_scale_m,
-    )?;
+    let turb = args.turbulence.turbulence(args.obs.wavelength_um)?;
     let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?;
+    args.turbulence
+        .warn_if_outer_scale_infinite(obs.baseline_m, spectrum.rms_um());
     let detector = if sampling.integrating() {
         Detector::Integrating {
             sub_samples: args.turbulence.sub_samples,
@@ -114,6 +113,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let runs = simulate_each(&args, &obs, &spectrum, &sampling, detector, &freqs)?;
     let window = args.sampling.bins;
     let answer = Answer {
+        inputs: InputsRecord {
+            observation: args.obs.record(&obs),
+            sampling: Some(SamplingRecord::new(&sampling, window)),
+            atmosphere: Some(args.turbulence.record(args.obs.wavelength_um)?),
+        },
         detector: detector.name(),
         bins: window.name(),
         reference: args.turbulence.reference.name(),

@@ -6,8 +6,9 @@ use super::common::{ObservationArgs, TurbulenceArgs};
 use super::{finite_f64, print_json, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
+use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{default_grid, plan, Estimator, Plan, PlanInputs, PlanPoint, Target};
-use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use v2ref::simulator::{Inputs, PistonInputs, SpectrumInput};
 use v2ref::{Error, Result};
 
 /// Flags of `plan`.
@@ -28,6 +29,23 @@ pub struct Args {
     /// Continuum photons per second at the detector in the band.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
     photon_rate_per_s: f64,
+    /// Instead of --photon-rate-per-s: the source's 2MASS magnitude in
+    /// --magnitude-band (zero points of Cohen, Wheaton & Megeath 2003,
+    /// AJ 126, 1090), converted over the flat band --wavelength-um,
+    /// --bandwidth-nm, collected by two apertures --aperture-m, times
+    /// --throughput. From -10 to 30.
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true,
+          conflicts_with_all = ["photon_rate_per_s", "spectrum_csv"],
+          requires_all = ["magnitude_band", "throughput"])]
+    magnitude: Option<f64>,
+    /// The 2MASS band of --magnitude.
+    #[arg(long, value_enum, requires = "magnitude")]
+    magnitude_band: Option<MagnitudeBand>,
+    /// Fraction of the source's photons counted in the sampled
+    /// interferogram (atmosphere, optics, combiner outputs sampled, detector
+    /// QE), 0 < T <= 1; with --magnitude.
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
+    throughput: Option<f64>,
     /// Detector noise standard deviation per sample, photons.
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     read_noise: f64,
@@ -72,15 +90,77 @@ pub struct Args {
     svg: Option<std::path::PathBuf>,
 }
 
+/// A 2MASS band (`--magnitude-band`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum MagnitudeBand {
+    /// J, 1.235 µm, 1594 Jy.
+    J,
+    /// H, 1.662 µm, 1024 Jy.
+    H,
+    /// Ks, 2.159 µm, 666.7 Jy.
+    Ks,
+}
+
+impl From<MagnitudeBand> for Band2Mass {
+    fn from(b: MagnitudeBand) -> Band2Mass {
+        match b {
+            MagnitudeBand::J => Band2Mass::J,
+            MagnitudeBand::H => Band2Mass::H,
+            MagnitudeBand::Ks => Band2Mass::Ks,
+        }
+    }
+}
+
+/// How the photon rate was obtained from a magnitude (echoed in the JSON).
+#[derive(Serialize)]
+struct Photometry {
+    #[serde(flatten)]
+    magnitude: Magnitude,
+    zero_point_jy: f64,
+    isophotal_wavelength_um: f64,
+    collecting_area_m2: f64,
+    photon_rate_per_s: f64,
+    reference: &'static str,
+}
+
+/// The magnitude flags as a [`Magnitude`], when given.
+fn magnitude(args: &Args) -> Option<Magnitude> {
+    Some(Magnitude {
+        magnitude: args.magnitude?,
+        band: args.magnitude_band?.into(),
+        aperture_m: args.turbulence.aperture_m,
+        throughput: args.throughput?,
+    })
+}
+
+/// The photon rate at the detector: --photon-rate-per-s, or the one a
+/// magnitude gives over the band.
+fn photometry(args: &Args) -> Result<Option<Photometry>> {
+    let Some(m) = magnitude(args) else {
+        return Ok(None);
+    };
+    let rate = m.photon_rate_per_s(args.obs.wavelength_um, args.obs.bandwidth_nm * 1e-3)?;
+    Ok(Some(Photometry {
+        magnitude: m,
+        zero_point_jy: m.band.zero_point_jy(),
+        isophotal_wavelength_um: m.band.isophotal_wavelength_um(),
+        collecting_area_m2: m.collecting_area_m2(),
+        photon_rate_per_s: rate,
+        reference: "Cohen, Wheaton & Megeath (2003), AJ 126, 1090, Table 2",
+    }))
+}
+
 #[derive(Serialize)]
 struct Answer<'a> {
     inputs: &'a PlanInputs,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    photometry: Option<Photometry>,
     #[serde(flatten)]
     plan: &'a Plan,
 }
 
 /// The plan's inputs from the flags.
-fn plan_inputs(args: &Args) -> Result<PlanInputs> {
+fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
     let obs = args.obs.observation()?;
     let t = &args.turbulence;
     let (fringe_hz, stroke_um) = default_grid();
@@ -95,12 +175,7 @@ fn plan_inputs(args: &Args) -> Result<PlanInputs> {
                 &obs.spectrum,
                 (args.obs.wavelength_um, args.obs.bandwidth_nm),
             ),
-            source: match args.obs.source {
-                super::common::SourceKind::Point => SourceInput::Point,
-                super::common::SourceKind::Ud => SourceInput::Ud {
-                    diameter_mas: args.obs.diameter_mas,
-                },
-            },
+            source: args.obs.source_input(),
             baseline_m: obs.baseline_m,
             dispersion_pp_rad: args.obs.dispersion_pp_rad,
             integrating: args.integrating,
@@ -112,7 +187,7 @@ fn plan_inputs(args: &Args) -> Result<PlanInputs> {
         atmosphere: PistonInputs {
             fringe_hz: 1.0,
             wavelength_um: args.obs.wavelength_um,
-            seeing_arcsec: t.seeing_arcsec,
+            seeing_arcsec: t.seeing_at_arcsec(args.obs.wavelength_um)?,
             wind_mps: t.wind_mps,
             aperture_m: t.aperture_m,
             outer_scale_m: t.outer_scale_m,
@@ -120,7 +195,7 @@ fn plan_inputs(args: &Args) -> Result<PlanInputs> {
             sub_samples: t.sub_samples,
         },
         samples_per_fringe: args.samples_per_fringe,
-        photon_rate_per_s: args.photon_rate_per_s,
+        photon_rate_per_s,
         dead_time_s: args.dead_time_s,
         fringe_hz: if args.fringe_hz.is_empty() {
             fringe_hz
@@ -140,7 +215,14 @@ fn plan_inputs(args: &Args) -> Result<PlanInputs> {
 
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let inputs = plan_inputs(&args)?;
+    let photometry = photometry(&args)?;
+    let rate = photometry
+        .as_ref()
+        .map_or(args.photon_rate_per_s, |p| p.photon_rate_per_s);
+    let inputs = plan_inputs(&args, rate)?;
+    let piston = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
+    args.turbulence
+        .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());
     let points = (inputs.fringe_hz.len() * inputs.stroke_um.len()) as u64;
     let bar = progress_bar(points, args.quiet || args.json, "plan");
     let result = plan(&inputs, args.threads, &|k| bar.inc(k))?;
@@ -151,6 +233,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if args.json {
         print_json(&Answer {
             inputs: &inputs,
+            photometry,
             plan: &result,
         });
     } else {

@@ -82,6 +82,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
     let inputs = args.inputs.inputs()?;
     let model = Model::new(&inputs)?;
+    args.inputs.warn_about(&model);
     let bar = progress_bar(args.trials, args.output.quiet, "simulate");
     let size = Trials {
         trials: args.trials,

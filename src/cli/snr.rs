@@ -13,6 +13,7 @@ use v2ref::formalism::observation::Observation;
 use v2ref::noise::calibrated::{CalibratedSetup, MAX_WINDOW_SAMPLES};
 use v2ref::noise::window_variance::{window_stats, WindowStats};
 use v2ref::noise::{appendix_stats, paper_window_factor, Formula, NoiseModel};
+use v2ref::simulator::record::{InputsRecord, SamplingRecord};
 use v2ref::Result;
 
 /// Signal and noise flags shared by `snr` and `simulate`.
@@ -67,6 +68,7 @@ struct Window {
 
 #[derive(Serialize)]
 struct Answer {
+    inputs: InputsRecord,
     formula: Formula,
     samples: usize,
     photons: f64,
@@ -107,6 +109,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         None
     };
     let answer = Answer {
+        inputs: InputsRecord {
+            observation: args.obs.record(&obs),
+            sampling: Some(SamplingRecord::new(&sampling, args.sampling.bins)),
+            atmosphere: None,
+        },
         formula,
         samples: st.samples,
         photons: args.noise.light.photons,

@@ -56,6 +56,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
     check_size(args.rows, inputs.samples, args.reference_blocks)?;
     let model = Model::new(&inputs)?;
+    args.inputs.warn_about(&model);
     let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,

@@ -92,6 +92,35 @@ pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
     Ok(wavelength_um * M_PER_UM / (seeing_arcsec * RAD_PER_ARCSEC))
 }
 
+/// The seeing λ/r0 (arcsec) at wavelength `to_um` (µm) of turbulence whose
+/// seeing is `seeing_arcsec` at `from_um` (µm): seeing is usually quoted at
+/// 0.5 µm, while the piston depends on r0 at the observing wavelength.
+///
+/// In Kolmogorov turbulence r0 = [0.423 k² ∫C_n²(h) dh]^(−3/5) with
+/// k = 2π/λ, so r0 ∝ λ^(6/5) and the seeing λ/r0 ∝ λ^(−1/5):
+///
+/// `seeing(to) = seeing(from) · (to / from)^(−1/5)`.
+///
+/// Domain: seeing ≥ 0 (0 stays 0: no turbulence), both wavelengths > 0.
+/// Reference: Fried (1966), JOSA 56, 1372; Roddier (1981), Progress in
+/// Optics 19, 281, eq. (3.18).
+///
+/// # Example
+///
+/// ```
+/// use v2ref::piston::turbulence::seeing_at_wavelength_arcsec;
+/// // 1″ at 0.5 µm is 0.74″ in K: r0 grows from 10.3 cm to 61 cm.
+/// let k = seeing_at_wavelength_arcsec(1.0, 0.5, 2.2)?;
+/// assert!((k - 4.4f64.powf(-0.2)).abs() < 1e-15);
+/// # Ok::<(), v2ref::Error>(())
+/// ```
+pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64) -> Result<f64> {
+    error::non_negative("seeing_arcsec", seeing_arcsec)?;
+    error::positive("seeing_wavelength_um", from_um)?;
+    error::positive("wavelength_um", to_um)?;
+    Ok(seeing_arcsec * (to_um / from_um).powf(-0.2))
+}
+
 /// The turbulent atmosphere above the interferometer, at the observing
 /// wavelength.
 ///

@@ -30,6 +30,8 @@
 //! (`model` convention, positive bins); the piston packet is centred on the
 //! scan-mean piston.
 
+pub mod photometry;
+
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{self, Error, Result};
 use crate::formalism::estimator::{wide_band, BinWindow};

@@ -16,6 +16,7 @@ use crate::noise::{appendix_stats, paper_window_factor, Formula};
 use crate::piston::turbulence::{PistonSpectrum, Turbulence};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::Effort;
+use crate::simulator::record::{InputsRecord, SamplingRecord};
 use crate::simulator::run::PistonEffect;
 use crate::simulator::{simulate as run_simulation, Inputs, Model, PistonFacts};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -484,6 +485,7 @@ struct FiniteScan {
 
 #[derive(Serialize)]
 struct BiasAnswer {
+    inputs: InputsRecord,
     #[serde(flatten)]
     infinite_scan: WideBand,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -515,7 +517,16 @@ fn bias(physical: &Bound<'_, PyDict>, bins: &str, finite_scan: bool) -> PyResult
     } else {
         None
     };
+    let sampling = match finite_scan {
+        Some(_) => Some(SamplingRecord::new(&ok(p.sampling())?, window)),
+        None => None,
+    };
     json(&BiasAnswer {
+        inputs: InputsRecord {
+            observation: ok(p.record(&obs))?,
+            sampling,
+            atmosphere: None,
+        },
         infinite_scan: wb,
         finite_scan,
     })
@@ -530,6 +541,7 @@ struct Window {
 
 #[derive(Serialize)]
 struct SnrAnswer {
+    inputs: InputsRecord,
     formula: Formula,
     samples: usize,
     photons: f64,
@@ -589,6 +601,11 @@ fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<Stri
         None
     };
     json(&SnrAnswer {
+        inputs: InputsRecord {
+            observation: ok(p.record(&obs))?,
+            sampling: Some(SamplingRecord::new(&sampling, window)),
+            atmosphere: None,
+        },
         formula,
         samples: st.samples,
         photons: p.photons,
@@ -631,6 +648,7 @@ struct PistonRow {
 
 #[derive(Serialize)]
 struct PistonAnswer {
+    inputs: InputsRecord,
     detector: &'static str,
     bins: &'static str,
     reference: &'static str,
@@ -702,7 +720,7 @@ fn piston(
     }
     ok(crate::error::positive("aperture_m", p.aperture_m))?;
     let turb = ok(Turbulence::from_seeing(
-        p.seeing_arcsec,
+        ok(p.seeing_at_observing_arcsec())?,
         p.wavelength_um,
         p.wind_mps,
         p.outer_scale_m,
@@ -740,6 +758,11 @@ fn piston(
     })?;
     let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
     json(&PistonAnswer {
+        inputs: InputsRecord {
+            observation: ok(p.record(&obs))?,
+            sampling: Some(SamplingRecord::new(&sampling, window)),
+            atmosphere: Some(ok(p.atmosphere_record())?),
+        },
         detector: detector.name(),
         bins: window.name(),
         reference: reference.name(),
@@ -893,7 +916,7 @@ fn plan(
         atmosphere: crate::simulator::PistonInputs {
             fringe_hz: 1.0,
             wavelength_um: p.wavelength_um,
-            seeing_arcsec: p.seeing_arcsec,
+            seeing_arcsec: ok(p.seeing_at_observing_arcsec())?,
             wind_mps: p.wind_mps,
             aperture_m: p.aperture_m,
             outer_scale_m: p.outer_scale_m,

@@ -10,6 +10,7 @@ use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::piston::PistonReference;
+use crate::simulator::record::{AtmosphereRecord, ObservationRecord};
 use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -37,6 +38,7 @@ pub struct Physical {
     pub fringe_hz: Option<f64>,
     pub wind_mps: f64,
     pub seeing_arcsec: f64,
+    pub seeing_wavelength_um: Option<f64>,
     pub aperture_m: f64,
     pub outer_scale_m: Option<f64>,
     pub sub_samples: usize,
@@ -64,6 +66,7 @@ pub const NAMES: &[&str] = &[
     "fringe_hz",
     "wind_mps",
     "seeing_arcsec",
+    "seeing_wavelength_um",
     "aperture_m",
     "outer_scale_m",
     "sub_samples",
@@ -129,6 +132,7 @@ impl Physical {
             fringe_hz: item(d, "fringe_hz", None)?,
             wind_mps: item(d, "wind_mps", 10.0)?,
             seeing_arcsec: item(d, "seeing_arcsec", 1.0)?,
+            seeing_wavelength_um: item(d, "seeing_wavelength_um", None)?,
             aperture_m: item(d, "aperture_m", 0.45)?,
             outer_scale_m: item(d, "outer_scale_m", None)?,
             sub_samples: item(d, "sub_samples", crate::piston::DEFAULT_SUB_SAMPLES)?,
@@ -143,6 +147,16 @@ impl Physical {
             .into_py_err());
         }
         Ok(p)
+    }
+
+    /// The seeing at the observing wavelength, arcsec (converted from
+    /// `seeing_wavelength_um` when given).
+    pub fn seeing_at_observing_arcsec(&self) -> Result<f64> {
+        crate::piston::turbulence::seeing_at_wavelength_arcsec(
+            self.seeing_arcsec,
+            self.seeing_wavelength_um.unwrap_or(self.wavelength_um),
+            self.wavelength_um,
+        )
     }
 
     fn check_finite(&self) -> Result<()> {
@@ -161,6 +175,7 @@ impl Physical {
             ("fringe_hz", self.fringe_hz),
             ("wind_mps", Some(self.wind_mps)),
             ("seeing_arcsec", Some(self.seeing_arcsec)),
+            ("seeing_wavelength_um", self.seeing_wavelength_um),
             ("aperture_m", Some(self.aperture_m)),
             ("outer_scale_m", self.outer_scale_m),
         ] {
@@ -242,6 +257,42 @@ impl Physical {
     }
 
     /// The sampling (as `ScanArgs::sampling`).
+    /// The source as the simulator's inputs and the records state it.
+    pub fn source_input(&self) -> Result<SourceInput> {
+        Ok(if self.source_kind()? {
+            SourceInput::Ud {
+                diameter_mas: self.diameter_mas,
+            }
+        } else {
+            SourceInput::Point
+        })
+    }
+
+    /// The record of `obs` (made from this dictionary) for a JSON answer.
+    pub fn record(&self, obs: &Observation) -> Result<ObservationRecord> {
+        Ok(ObservationRecord::new(
+            obs,
+            self.source_input()?,
+            (self.wavelength_um, self.bandwidth_nm),
+            self.dispersion_pp_rad,
+        ))
+    }
+
+    /// The atmosphere's record for a JSON answer.
+    pub fn atmosphere_record(&self) -> Result<AtmosphereRecord> {
+        Ok(AtmosphereRecord {
+            seeing_arcsec: self.seeing_arcsec,
+            seeing_wavelength_um: self.seeing_wavelength_um.unwrap_or(self.wavelength_um),
+            seeing_at_observing_arcsec: self.seeing_at_observing_arcsec()?,
+            wavelength_um: self.wavelength_um,
+            wind_mps: self.wind_mps,
+            aperture_m: self.aperture_m,
+            outer_scale_m: self.outer_scale_m.into(),
+            reference: self.reference()?,
+            sub_samples: self.sub_samples,
+        })
+    }
+
     pub fn sampling(&self) -> Result<Sampling> {
         match self.stroke_um {
             Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
@@ -267,18 +318,13 @@ impl Physical {
         let obs = self.observation()?;
         let sampling = self.sampling()?;
         let reference = self.reference()?;
+        let seeing_arcsec = self.seeing_at_observing_arcsec()?;
         Ok(Inputs {
             spectrum: SpectrumInput::from_spectrum(
                 &obs.spectrum,
                 (self.wavelength_um, self.bandwidth_nm),
             ),
-            source: if self.source_kind()? {
-                SourceInput::Ud {
-                    diameter_mas: self.diameter_mas,
-                }
-            } else {
-                SourceInput::Point
-            },
+            source: self.source_input()?,
             baseline_m: obs.baseline_m,
             dispersion_pp_rad: self.dispersion_pp_rad,
             samples: sampling.samples(),
@@ -291,7 +337,7 @@ impl Physical {
             piston: self.fringe_hz.map(|f| PistonInputs {
                 fringe_hz: f,
                 wavelength_um: self.wavelength_um,
-                seeing_arcsec: self.seeing_arcsec,
+                seeing_arcsec,
                 wind_mps: self.wind_mps,
                 aperture_m: self.aperture_m,
                 outer_scale_m: self.outer_scale_m,

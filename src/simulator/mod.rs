@@ -12,6 +12,7 @@
 
 pub mod inputs;
 pub mod model;
+pub mod record;
 pub mod rows;
 pub mod run;
 

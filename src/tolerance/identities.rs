@@ -20,6 +20,11 @@ pub const ULPS: f64 = 1e-15;
 /// order one.
 pub const ROUNDING_REL: f64 = 1e-14;
 
+/// A value worked out by hand (Python float64) and written in the test with
+/// ten significant digits: its last digit is rounded, 5e-10 relative, so
+/// 1e-9 (the computation itself is good to [`ROUNDING_REL`]).
+pub const HAND_10_DIGITS_REL: f64 = 1e-9;
+
 /// Scale floor of relative comparisons of V² (a relative tolerance is
 /// applied to max(V², 1e-3)): near a null V² is a difference of O(1)
 /// spectral integrals, so its absolute rounding does not fall with it;
