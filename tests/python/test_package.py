@@ -315,6 +315,22 @@ def test_piston_equals_cli():
 
 
 @needs_cli
+def test_seeing_at_a_stated_wavelength_and_the_inputs_echo():
+    # 1 arcsec quoted at 0.5 um is r0 = 0.5 um / 1 arcsec * 4.4**1.2 = 0.6102929447 m in K (by hand).
+    got = v2ref.piston(scans=4, fringe_hz=300, seeing_wavelength_um=0.5, baseline_m=30.0)
+    assert abs(got["r0_m"] / 0.6102929447 - 1) < 1e-9
+    atm = got["inputs"]["atmosphere"]
+    assert atm["seeing_wavelength_um"] == 0.5 and atm["outer_scale_m"] == "infinite"
+    assert got["inputs"]["observation"]["baseline_m"] == 30.0
+    want = json.loads(cli("piston", "--json", "--quiet", "--scans", "4", "--fringe-hz", "300",
+                          "--seeing-wavelength-um", "0.5", "--baseline-m", "30"))
+    assert got == want
+    assert v2ref.bias(baseline_m=30.0)["inputs"]["observation"]["baseline_m"] == 30.0
+    with pytest.raises(ValueError, match="seeing_wavelength_um"):
+        v2ref.piston(scans=4, seeing_wavelength_um=-1.0)
+
+
+@needs_cli
 def test_claims_equal_cli():
     want = json.loads(cli("claims", "--quick", "--json", "--quiet"))
     assert v2ref.claims(quick=True) == want
