@@ -13,14 +13,22 @@ fi
 .venv/bin/pip install --quiet --upgrade pip
 .venv/bin/pip install --quiet -r tests/python/requirements.txt
 
-cargo test --release
-cargo build --release
+# Each step's wall time is printed (`timing:` lines) so that the README's
+# timings can be measured on a cold checkout.
+t=$SECONDS; cargo build --release
+echo "timing: release build of the binary $((SECONDS - t)) s"
+t=$SECONDS; cargo test --release --no-run
+echo "timing: release build of the tests $((SECONDS - t)) s"
+t=$SECONDS; cargo test --release
+echo "timing: Rust tests run $((SECONDS - t)) s"
 
 # The package, built by maturin from this checkout into the venv.
+t=$SECONDS
 .venv/bin/pip install --quiet --no-build-isolation .
 
 status=0
 V2REF_BIN="${CARGO_TARGET_DIR:-target}/release/v2ref" .venv/bin/python -m pytest -q tests/python || status=$?
+echo "timing: Python package build and tests $((SECONDS - t)) s"
 if [ "$status" -eq 5 ]; then
     echo "scripts/test.sh: pytest collected no tests in tests/python; there must be tests" >&2
     exit 1
