@@ -6,6 +6,7 @@ use super::common::{ObservationArgs, TurbulenceArgs};
 use super::{finite_f64, print_json, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
+use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{default_grid, plan, Estimator, Plan, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{Inputs, PistonInputs, SpectrumInput};
@@ -237,7 +238,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             plan: &result,
         });
     } else {
-        print_table(&inputs, &result)?;
+        print_table(&inputs, &result, &piston)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -272,7 +273,7 @@ fn describe(p: &PlanPoint) -> String {
     )
 }
 
-fn print_table(inputs: &PlanInputs, plan: &Plan) -> Result<()> {
+fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum) -> Result<()> {
     let target = match inputs.target {
         Target::SigmaV2(s) => format!("target sigma(V^2) = {s:e}"),
         Target::TimeBudgetS(t) => format!("time budget {t} s"),
@@ -290,6 +291,21 @@ fn print_table(inputs: &PlanInputs, plan: &Plan) -> Result<()> {
             p.bias_bandwidth_dispersion, p.bias_scan_detector, p.v_sq_sampled
         );
     }
+    let turb = piston.turbulence();
+    outln!(
+        "site: baseline {:.1} m, seeing {:.3} arcsec at {} um (r0 {:.1} cm), wind {} m/s, outer scale {}, piston rms {:.1} um; {:.3e} photons/s",
+        piston.baseline_m(),
+        inputs.atmosphere.seeing_arcsec,
+        inputs.atmosphere.wavelength_um,
+        turb.r0_m() * 100.0,
+        inputs.atmosphere.wind_mps,
+        inputs
+            .atmosphere
+            .outer_scale_m
+            .map_or("infinite".into(), |l0| format!("{l0} m")),
+        piston.rms_um(),
+        inputs.photon_rate_per_s
+    );
     outln!("");
     outln!(
         "{:>5} {:>8} {:>7} {:>8} {:>10} {:>10} {:>10} {:>11} {:>10} {:>10}",

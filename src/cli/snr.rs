@@ -142,7 +142,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
 }
 
 fn print_table(a: &Answer) {
+    let obs = &a.inputs.observation;
     let mut rows = vec![
+        (
+            "baseline [m]",
+            format!(
+                "{:.3} ({:.2} cycles/arcsec)",
+                obs.baseline_m, obs.spatial_freq_cpas
+            ),
+        ),
         ("formula", format!("{:?}", a.formula).to_lowercase()),
         ("samples N", a.samples.to_string()),
         ("sum m_i^2 [photons^2]", format!("{:.6}", a.sum_m2)),
