@@ -28,7 +28,9 @@ pub enum SourceKind {
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ObservationArgs {
-    /// Centre wavelength λ0, µm.
+    /// Centre wavelength λ0, µm. With --spectrum-csv it still sets λ0 of
+    /// the fringe frequency f = v/λ0, of the samples per fringe and of the
+    /// seeing: give the spectrum's centre.
     #[arg(long, default_value = "2.2", value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
     /// Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
