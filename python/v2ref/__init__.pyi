@@ -310,6 +310,32 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
     """
     ...
 
+def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: float=0.45, wavelength_um: float=2.2, bandwidth_nm: float=400.0) -> float:
+    """Photons per second at the detector in the band from a 2MASS magnitude, as ``v2ref plan --magnitude``.
+
+    ``F_ν = F_ν0 10^(-m/2.5)`` with the zero points of Cohen, Wheaton &
+    Megeath (2003, AJ 126, 1090, Table 2: J 1594, H 1024, Ks 666.7 Jy),
+    taken flat over [λ0 − Δλ/2, λ0 + Δλ/2]: ``F_ν ln(λmax/λmin)/h`` photons
+    s⁻¹ m⁻², times the two apertures' area ``2 π D²/4`` and ``throughput``.
+    Pass the result to :func:`plan` as ``photon_rate_per_s``.
+
+    Parameters
+    ----------
+    magnitude : float
+        The source's magnitude in ``band``, -10 to 30.
+    band : {"J", "H", "Ks"}
+        The 2MASS band of ``magnitude``.
+    throughput : float
+        Fraction of the source's photons counted in the sampled
+        interferogram (atmosphere, optics, combiner outputs sampled,
+        detector QE), 0 < T <= 1.
+    aperture_m : float
+        Telescope aperture diameter D, m (two telescopes).
+    wavelength_um, bandwidth_nm : float
+        The observing band: centre λ0 (µm) and full width Δλ (nm).
+    """
+    ...
+
 def claims(*, quick: bool=False) -> list:
     """Every claim of the paper: printed value, computed value, status, as ``v2ref claims --json``.
 

@@ -33,7 +33,7 @@ pub const PLANCK_J_S: f64 = 6.626_070_15e-34;
 pub const JANSKY_W_PER_M2_HZ: f64 = 1e-26;
 
 /// A 2MASS photometric band.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 pub enum Band2Mass {
     /// J, 1.235 µm.
     J,

@@ -954,7 +954,31 @@ fn plan(
     })
 }
 
+/// `photon_rate`: the photon rate at the detector from a 2MASS magnitude
+/// (`v2ref plan --magnitude`).
+#[pyfunction]
+#[pyo3(signature = (magnitude, band, aperture_m, throughput, wavelength_um, bandwidth_nm))]
+fn photon_rate(
+    magnitude: f64,
+    band: &str,
+    aperture_m: f64,
+    throughput: f64,
+    wavelength_um: f64,
+    bandwidth_nm: f64,
+) -> PyResult<f64> {
+    use crate::plan::photometry::{Band2Mass, Magnitude};
+    let band: Band2Mass = ok(parse_enum("band", band, &["J", "H", "Ks"]))?;
+    let m = Magnitude {
+        magnitude,
+        band,
+        aperture_m,
+        throughput,
+    };
+    ok(m.photon_rate_per_s(wavelength_um, bandwidth_nm * 1e-3))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(photon_rate, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(synthesize, m)?)?;

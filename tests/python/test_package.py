@@ -331,6 +331,22 @@ def test_seeing_at_a_stated_wavelength_and_the_inputs_echo():
 
 
 @needs_cli
+def test_photon_rate_equals_the_cli_plan_and_the_hand_value():
+    rate = v2ref.photon_rate(5.0, band="H", throughput=0.01, aperture_m=1.8,
+                             wavelength_um=1.65, bandwidth_nm=300.0)
+    # 1024 Jy * 10**-2 / h * ln(1.8/1.5) * 2 pi 1.8**2/4 * 0.01, by hand.
+    assert abs(rate / 1.433992352e6 - 1) < 1e-9
+    out = json.loads(cli("plan", "--json", "--quiet", "--wavelength-um", "1.65", "--bandwidth-nm", "300",
+                         "--fringe-hz", "500", "--stroke-um", "32", "--scans", "20", "--magnitude", "5",
+                         "--magnitude-band", "h", "--throughput", "0.01", "--aperture-m", "1.8"))
+    assert out["photometry"]["photon_rate_per_s"] == rate
+    with pytest.raises(ValueError, match="throughput"):
+        v2ref.photon_rate(5.0, band="H", throughput=2.0)
+    with pytest.raises(ValueError, match="band"):
+        v2ref.photon_rate(5.0, band="K", throughput=0.1)
+
+
+@needs_cli
 def test_claims_equal_cli():
     want = json.loads(cli("claims", "--quick", "--json", "--quiet"))
     assert v2ref.claims(quick=True) == want
