@@ -37,7 +37,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "exact")]
     formula: Formula,
     /// Number of noisy interferograms (rows).
-    #[arg(long, default_value = "100000", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
     #[command(flatten)]
     run: RunArgs,
