@@ -70,7 +70,7 @@ impl ObservationArgs {
     /// the rule is the library's (`0 < Δλ < 2 λ0`), checked again there.
     fn bandwidth_um(&self) -> Result<f64> {
         // The centre first, as Band::new does.
-        let centre_um = v2ref::error::positive("wavelength_um", self.wavelength_um)?;
+        let centre_um = v2ref::bounds::check_wavelength_um(self.wavelength_um)?;
         let nm = v2ref::error::positive("bandwidth_nm", self.bandwidth_nm)?;
         let max_nm = 2e3 * centre_um;
         if nm >= max_nm {

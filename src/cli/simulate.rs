@@ -177,11 +177,11 @@ fn print_table(a: &Answer) {
         ),
         (
             "SNR1 (Monte Carlo)",
-            format!("{:.4}", a.mean_v1_sq / a.var_v1_sq.sqrt()),
+            v2ref::noise::snr_value::snr_text(a.mean_v1_sq / a.var_v1_sq.sqrt(), 4),
         ),
         (
             "SNR2 (Monte Carlo)",
-            format!("{:.4}", a.mean_v2_sq / a.var_v2_sq.sqrt()),
+            v2ref::noise::snr_value::snr_text(a.mean_v2_sq / a.var_v2_sq.sqrt(), 4),
         ),
     ];
     if let Some(p) = &a.piston {
