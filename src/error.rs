@@ -143,9 +143,11 @@ impl Error {
             Error::NotFinite { value, .. } => format!("{value} is not a finite number"),
             Error::OutOfRange {
                 value, accepted, ..
-            } => format!("{value} is out of range; accepted: {accepted}"),
+            } => format!("{} is out of range; accepted: {accepted}", number(*value)),
             Error::Aliasing { dx_um, max_dx_um } => format!(
-                "{dx_um} um aliases the band; accepted: 0 < spacing < {max_dx_um} um (half the shortest wavelength)"
+                "{} um aliases the band; accepted: 0 < spacing < {} um (half the shortest wavelength)",
+                number(*dx_um),
+                number(*max_dx_um)
             ),
             Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
             Error::Output { path, reason } => format!("{path}: {reason}"),
@@ -258,6 +260,18 @@ impl PartialEq for Error {
     }
 }
 
+/// `value` as a user reads it in a one-line message: plain digits for
+/// ordinary magnitudes, scientific notation (`1e308`) for very large or
+/// very small ones, so that a refusal never spells out hundreds of digits.
+pub fn number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value != 0.0 && value.is_finite() && !(1e-4..1e7).contains(&magnitude) {
+        format!("{value:e}")
+    } else {
+        format!("{value}")
+    }
+}
+
 /// Checks that `value` is finite.
 pub fn finite(param: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() {
@@ -304,7 +318,7 @@ pub fn in_range(param: &'static str, value: f64, lo: f64, hi: f64) -> Result<f64
         Err(Error::OutOfRange {
             param,
             value,
-            accepted: format!("{lo} to {hi}"),
+            accepted: format!("{} to {}", number(lo), number(hi)),
         })
     }
 }

@@ -105,6 +105,7 @@
 #![warn(missing_docs)]
 
 pub mod bias;
+pub mod bounds;
 pub mod conformance;
 pub mod error;
 pub mod formalism;

@@ -60,8 +60,10 @@ fn main() -> ExitCode {
         Command::Estimate(a) => cli::estimate::run(a),
         Command::Score(a) => cli::score::run(a),
     };
-    match result {
+    let code = match result {
         Ok(code) => code,
         Err(e) => cli::fail(&e),
-    }
+    };
+    cli::output::flush_stdout();
+    code
 }

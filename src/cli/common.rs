@@ -75,7 +75,7 @@ impl ObservationArgs {
     /// the rule is the library's (`0 < Δλ < 2 λ0`), checked again there.
     fn bandwidth_um(&self) -> Result<f64> {
         // The centre first, as Band::new does.
-        let centre_um = v2ref::error::positive("wavelength_um", self.wavelength_um)?;
+        let centre_um = v2ref::bounds::check_wavelength_um(self.wavelength_um)?;
         let nm = v2ref::error::positive("bandwidth_nm", self.bandwidth_nm)?;
         let max_nm = 2e3 * centre_um;
         if nm >= max_nm {
@@ -141,7 +141,7 @@ pub struct ScanArgs {
     #[arg(long, default_value = "0.5", value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
     /// Number of samples N (ignored when --stroke-um is given).
-    #[arg(long, default_value = "128", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_usize, default_value = "128", allow_negative_numbers = true)]
     pub samples: usize,
     /// Integrating detector (each sample averages the fringe over δx).
     #[arg(long)]
@@ -196,7 +196,7 @@ pub struct TurbulenceArgs {
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub outer_scale_m: Option<f64>,
     /// Sub-samples per sample of the integrating detector.
-    #[arg(long, default_value_t = v2ref::piston::DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_usize, default_value_t = v2ref::piston::DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
     pub sub_samples: usize,
     /// Where the fringe packet sits in each scan.
     #[arg(long, value_enum, default_value = "mean")]
@@ -274,10 +274,10 @@ pub struct OutputArgs {
 #[derive(Debug, Clone, clap::Args)]
 pub struct RunArgs {
     /// Seed of the generators.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     pub seed: u64,
     /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     pub threads: usize,
 }
 

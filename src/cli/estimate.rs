@@ -54,7 +54,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
     /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
 }
 

@@ -94,11 +94,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    if !args.dir.is_dir() {
+    if !holds_golden_data(&args.dir) {
         return Err(Error::Invalid {
             param: "dir",
             reason: format!(
-                "{}: no golden folder here (run from the repository root, or give --dir)",
+                "{}: no golden data here (no .csv or .json files; run from the repository root, or give --dir)",
                 args.dir.display()
             ),
         });
@@ -141,11 +141,24 @@ pub fn run(args: Args) -> Result<ExitCode> {
         );
     }
     for m in &report.mismatches {
-        eprintln!("mismatch: {}: {}", m.table, m.detail);
+        errln!("mismatch: {}: {}", m.table, m.detail);
     }
     Ok(if report.mismatches.is_empty() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(EXIT_MISMATCH)
+    })
+}
+
+/// Whether `dir` is a folder holding at least one `.csv` or `.json` file
+/// (checked before minutes of computing, so that a wrong folder is not
+/// reported as every table missing).
+fn holds_golden_data(dir: &std::path::Path) -> bool {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return false;
+    };
+    entries.flatten().any(|e| {
+        let path = e.path();
+        path.extension().is_some_and(|x| x == "csv" || x == "json")
     })
 }

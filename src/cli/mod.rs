@@ -1,14 +1,22 @@
 //! Subcommands of the `v2ref` binary, one file each, and what they share.
 
-/// `println!` that ends the process quietly (status 0) when stdout is
-/// closed early (`v2ref claims | head`), instead of panicking.
+/// `println!` whose failure is checked ([`output::write_stdout_line`]):
+/// quiet status 0 when the reader closed the pipe early
+/// (`v2ref claims | head`), one line and a non-zero status otherwise.
 macro_rules! outln {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        if writeln!(std::io::stdout().lock(), $($arg)*).is_err() {
-            std::process::exit(0);
-        }
-    }};
+    () => {
+        $crate::cli::output::write_stdout_line(format_args!(""))
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::output::write_stdout_line(format_args!($($arg)*))
+    };
+}
+
+/// `eprintln!` that does not panic when stderr cannot be written.
+macro_rules! errln {
+    ($($arg:tt)*) => {
+        $crate::cli::output::write_stderr_line(format_args!($($arg)*))
+    };
 }
 
 pub mod bias;
@@ -18,6 +26,7 @@ pub mod estimate;
 pub mod files;
 pub mod golden;
 pub mod inputs;
+pub mod output;
 pub mod piston;
 pub mod plan;
 pub mod plan_svg;
@@ -64,7 +73,7 @@ pub fn fail(e: &Error) -> ExitCode {
         Some(p) => format!("{}: {}", flag_of(p), e.detail()),
         None => e.detail(),
     };
-    eprintln!("error: {}", line.replace('\n', " "));
+    errln!("error: {}", line.replace('\n', " "));
     ExitCode::from(EXIT_BAD_INPUT)
 }
 
@@ -74,13 +83,14 @@ pub fn clap_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     match e.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
-            let _ = e.print();
+            // Help goes to stdout, checked like every other output.
+            outln!("{}", e.render().to_string().trim_end());
             ExitCode::SUCCESS
         }
         _ => {
             let text = e.to_string();
             let first = text.lines().next().unwrap_or("error: bad arguments");
-            eprintln!("{first}");
+            errln!("{first}");
             ExitCode::from(EXIT_BAD_INPUT)
         }
     }
@@ -94,11 +104,57 @@ pub fn finite_f64(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Parses a count (clap value parser): a whole number such as `1000000`,
+/// also written `1e6` or `1_000_000`; a refusal says what is accepted.
+pub fn count_u64(s: &str) -> Result<u64, String> {
+    let t = s.trim().replace('_', "");
+    if let Ok(n) = t.parse::<u64>() {
+        return Ok(n);
+    }
+    // Scientific notation of an exact whole number up to 2^53 (where every
+    // whole f64 is exact).
+    match t.parse::<f64>() {
+        Ok(x) if x >= 0.0 && x.fract() == 0.0 && x <= 2f64.powi(53) => Ok(x as u64),
+        Ok(x) if x.is_finite() && x > 2f64.powi(53) => Err(format!(
+            "{x:e} is too large; a whole number up to 9007199254740992 (2^53)"
+        )),
+        _ => Err("expected a whole number >= 0, for example 1000000 (or 1e6)".into()),
+    }
+}
+
+/// [`count_u64`] as a `usize`.
+pub fn count_usize(s: &str) -> Result<usize, String> {
+    let n = count_u64(s)?;
+    usize::try_from(n).map_err(|_| format!("{n} is too large for this machine"))
+}
+
+/// Most worker threads per core accepted by `--threads`.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Fewest worker threads the cap allows, however few the cores (so that
+/// the same command runs on a small machine).
+pub const MAX_THREADS_FLOOR: usize = 16;
+
+/// Parses `--threads` (clap value parser): 0 (all cores) up to
+/// [`MAX_THREADS_PER_CORE`] × the cores (at least [`MAX_THREADS_FLOOR`]);
+/// more threads only add overhead, and the answer does not depend on them.
+pub fn thread_count(s: &str) -> Result<usize, String> {
+    let n = count_usize(s)?;
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    let max = (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR);
+    if n > max {
+        return Err(format!(
+            "{n} threads is too many; accepted: 0 (all cores) to {max} ({MAX_THREADS_PER_CORE} x the {cores} cores here, at least {MAX_THREADS_FLOOR})"
+        ));
+    }
+    Ok(n)
+}
+
 /// Prints `value` as one pretty JSON document on stdout.
 pub fn print_json<T: serde::Serialize>(value: &T) {
     match serde_json::to_string_pretty(value) {
         Ok(s) => outln!("{s}"),
-        Err(e) => eprintln!("error: cannot serialize the answer: {e}"),
+        Err(e) => errln!("error: cannot serialize the answer: {e}"),
     }
 }
 

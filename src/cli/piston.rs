@@ -26,7 +26,7 @@ pub struct Args {
     #[command(flatten)]
     turbulence: TurbulenceArgs,
     /// Number of consecutive scans per fringe frequency.
-    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_usize, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
     #[command(flatten)]
     run: RunArgs,

@@ -72,13 +72,13 @@ pub struct Args {
     stroke_um: Vec<f64>,
     /// Scans of each piston Monte Carlo (the piston scatter's standard
     /// error is printed; more scans for a tighter estimate).
-    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "1000", allow_negative_numbers = true)]
     scans: u64,
     /// Seed of the piston Monte Carlo.
-    #[arg(long, default_value = "1", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
     /// Worker threads (0 = all cores); the answer does not depend on it.
-    #[arg(long, default_value = "0", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
     /// One JSON document (every term of every grid point) instead of the table.
     #[arg(long)]

@@ -15,9 +15,15 @@ use v2ref::{Error, Result};
 /// Flags of `reproduce`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Output directory (replaced as a whole when the run succeeds).
+    /// Output directory: a new one, or one an earlier `reproduce` wrote
+    /// (it holds a `.v2ref-output` marker), replaced as a whole when the
+    /// run succeeds. Any other existing folder is refused unless --force.
     #[arg(long, default_value = "reproduction")]
     out: PathBuf,
+    /// Replace --out even if it is a folder v2ref did not write (its files
+    /// are lost).
+    #[arg(long)]
+    force: bool,
     /// Fewer Monte Carlo scans and coarser grids, same code paths.
     #[arg(long)]
     quick: bool,
@@ -59,6 +65,7 @@ fn refuse_golden(out: &Path) -> Result<()> {
 /// Runs `reproduce`.
 pub fn run(args: Args) -> Result<ExitCode> {
     refuse_golden(&args.out)?;
+    super::output::check_out_dir(&args.out, args.force)?;
     let effort = if args.quick {
         Effort::Quick
     } else {
@@ -88,6 +95,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 /// Computes and writes everything into `dir`; returns the claims and the
 /// files written (relative names).
 fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, Vec<String>)> {
+    super::output::write_out_marker(dir)?;
     let bar = progress_bar(3, quiet, "figures");
     let figures = v2ref::reproduction::figures::all(effort)?;
     bar.inc(1);

@@ -37,7 +37,7 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "exact")]
     formula: Formula,
     /// Number of noisy interferograms (rows).
-    #[arg(long, default_value = "100000", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "100000", allow_negative_numbers = true)]
     trials: u64,
     #[command(flatten)]
     run: RunArgs,
@@ -178,11 +178,11 @@ fn print_table(a: &Answer) {
         ),
         (
             "SNR1 (Monte Carlo)",
-            format!("{:.4}", a.mean_v1_sq / a.var_v1_sq.sqrt()),
+            v2ref::noise::snr_value::snr_text(a.mean_v1_sq / a.var_v1_sq.sqrt(), 4),
         ),
         (
             "SNR2 (Monte Carlo)",
-            format!("{:.4}", a.mean_v2_sq / a.var_v2_sq.sqrt()),
+            v2ref::noise::snr_value::snr_text(a.mean_v2_sq / a.var_v2_sq.sqrt(), 4),
         ),
     ];
     if let Some(p) = &a.piston {

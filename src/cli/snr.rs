@@ -11,6 +11,7 @@ use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
 use v2ref::noise::calibrated::{CalibratedSetup, MAX_WINDOW_SAMPLES};
+use v2ref::noise::snr_value::{serialize_snr, snr_text};
 use v2ref::noise::window_variance::{window_stats, WindowStats};
 use v2ref::noise::{appendix_stats, paper_window_factor, Formula, NoiseModel};
 use v2ref::simulator::record::{InputsRecord, SamplingRecord};
@@ -81,10 +82,14 @@ struct Answer {
     bias_v2_sq: f64,
     var_v1_sq: f64,
     var_v2_sq: f64,
+    #[serde(serialize_with = "serialize_snr")]
     snr1: f64,
+    #[serde(serialize_with = "serialize_snr")]
     snr2: f64,
     window_factor: f64,
+    #[serde(serialize_with = "serialize_snr")]
     snr1_with_window_factor: f64,
+    #[serde(serialize_with = "serialize_snr")]
     snr2_with_window_factor: f64,
     /// Exact statistics of the --bins window (null above MAX_WINDOW_SAMPLES).
     window_exact: Option<Window>,
@@ -159,8 +164,8 @@ fn print_table(a: &Answer) {
         ("bias V2^2 (all bins)", format!("{:.6e}", a.bias_v2_sq)),
         ("var V1^2 (all bins)", format!("{:.6e}", a.var_v1_sq)),
         ("var V2^2 (all bins)", format!("{:.6e}", a.var_v2_sq)),
-        ("SNR1 (all bins)", format!("{:.4}", a.snr1)),
-        ("SNR2 (all bins)", format!("{:.4}", a.snr2)),
+        ("SNR1 (all bins)", snr_text(a.snr1, 4)),
+        ("SNR2 (all bins)", snr_text(a.snr2, 4)),
         (
             "paper window factor sqrt(dsigma/dsigma0)",
             format!("{:.4}", a.window_factor),
@@ -171,8 +176,8 @@ fn print_table(a: &Answer) {
             "window (exact)",
             format!("{} ({} bins)", w.window, w.stats.bins),
         ));
-        rows.push(("SNR1 (window, exact)", format!("{:.4}", w.stats.snr1)));
-        rows.push(("SNR2 (window, exact)", format!("{:.4}", w.stats.snr2)));
+        rows.push(("SNR1 (window, exact)", snr_text(w.stats.snr1, 4)));
+        rows.push(("SNR2 (window, exact)", snr_text(w.stats.snr2, 4)));
     }
     print_rows(&rows);
 }

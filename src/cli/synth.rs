@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long, value_name = "PATH")]
     out: PathBuf,
     /// Number of rows (scans).
-    #[arg(long, default_value = "1000", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "1000", allow_negative_numbers = true)]
     rows: u64,
     /// Also write the rows as CSV (one row per line, no header).
     #[arg(long)]
@@ -42,7 +42,7 @@ pub struct Args {
     #[arg(long)]
     keep_continuum: bool,
     /// Replicates of the set in the truth's reference run (0: closed forms only).
-    #[arg(long, default_value = "32", allow_negative_numbers = true)]
+    #[arg(long, value_parser = super::count_u64, default_value = "32", allow_negative_numbers = true)]
     reference_blocks: u64,
     #[command(flatten)]
     run: RunArgs,

@@ -30,7 +30,7 @@
 //! [`sampled_wide_band`] normalizes by the same estimator on an unresolved,
 //! phase-free calibrator, so that a source of visibility V reads V².
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::formalism::spectrum::Spectrum;
@@ -334,6 +334,18 @@ pub fn sampled_wide_band(
         Ok(raw_estimates(&dft(&ifg.modulated), &bins))
     };
     let (src, cal) = (raw(obs)?, raw(&obs.calibrator())?);
+    if !(cal.v1_sq > 0.0 && cal.v2_sq > 0.0) {
+        // No bin of the window holds the calibrator's fringe (N = 2 has no
+        // positive-frequency bin): the normalized estimate is 0/0.
+        return Err(Error::Invalid {
+            param: "samples",
+            reason: format!(
+                "{} samples leave the {} bins no fringe to normalize by; accepted: at least 3 samples, a window that holds the band",
+                sampling.samples(),
+                window.name()
+            ),
+        });
+    }
     Ok(Pair {
         v1_sq: src.v1_sq / cal.v1_sq,
         v2_sq: src.v2_sq / cal.v2_sq,

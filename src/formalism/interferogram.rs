@@ -288,7 +288,11 @@ impl Interferogram {
         photons_per_sample: f64,
         opd_perturbation_um: Option<&[f64]>,
     ) -> Result<Interferogram> {
-        error::non_negative("photons_per_sample", photons_per_sample)?;
+        crate::bounds::non_negative_at_most(
+            "photons_per_sample",
+            photons_per_sample,
+            crate::bounds::PHOTONS_MAX,
+        )?;
         sampling.check_aliasing(obs)?;
         let n = sampling.samples();
         if let Some(p) = opd_perturbation_um {

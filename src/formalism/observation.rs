@@ -4,7 +4,7 @@
 //! (`docs/conventions.md`): a user may give either S (cycles/arcsec) or B (m);
 //! the other follows from the spectrum's effective wavenumber.
 
-use crate::error::{self, Result};
+use crate::error::Result;
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Spectrum, CPAS_PER_M_PER_INV_UM};
@@ -55,12 +55,13 @@ impl Observation {
         frequency: Frequency,
         phase: SpectralPhase,
     ) -> Result<Observation> {
+        use crate::bounds::{non_negative_at_most, BASELINE_MAX_M, SPATIAL_FREQ_MAX_CPAS};
         let baseline_m = match frequency {
             Frequency::SpatialFreqCpas(s) => {
-                error::non_negative("spatial_freq_cpas", s)?;
+                non_negative_at_most("spatial_freq_cpas", s, SPATIAL_FREQ_MAX_CPAS)?;
                 s / (spectrum.sigma_eff_per_um() * CPAS_PER_M_PER_INV_UM)
             }
-            Frequency::BaselineM(b) => error::non_negative("baseline_m", b)?,
+            Frequency::BaselineM(b) => non_negative_at_most("baseline_m", b, BASELINE_MAX_M)?,
         };
         Ok(Observation {
             spectrum,

@@ -7,7 +7,7 @@
 //! `P = ½ D (Δσ/2)²` (`docs/conventions.md`), so that φ runs from 0 at the band
 //! centre to P at both edges.
 
-use crate::error::{self, Result};
+use crate::error::Result;
 use crate::formalism::spectrum::Spectrum;
 
 /// `φ(σ) = Σ_k a_k (σ − σ0)^k`, radians, σ in µm⁻¹.
@@ -44,7 +44,8 @@ impl SpectralPhase {
     /// value over the band of `spectrum` is `peak_to_peak_rad`:
     /// `D = 8 P / Δσ²`, σ0 and Δσ the centre and width of the band.
     pub fn dispersion_peak_to_peak(spectrum: &Spectrum, peak_to_peak_rad: f64) -> Result<Self> {
-        error::finite("peak_to_peak_rad", peak_to_peak_rad)?;
+        let max = crate::bounds::DISPERSION_PP_MAX_RAD;
+        crate::bounds::check("peak_to_peak_rad", peak_to_peak_rad, -max, max)?;
         let width = spectrum.width_per_um();
         let d = if width > 0.0 {
             8.0 * peak_to_peak_rad / (width * width)

@@ -123,9 +123,11 @@ pub enum Source {
 }
 
 impl Source {
-    /// A uniform disk of diameter `diameter_mas` (> 0).
+    /// A uniform disk of diameter `diameter_mas` (> 0, at most
+    /// [`crate::bounds::DIAMETER_MAX_MAS`]).
     pub fn uniform_disk(diameter_mas: f64) -> Result<Source> {
-        error::positive("diameter_mas", diameter_mas)?;
+        use crate::bounds::{positive_at_most, DIAMETER_MAX_MAS};
+        positive_at_most("diameter_mas", diameter_mas, DIAMETER_MAX_MAS)?;
         Ok(Source::UniformDisk { diameter_mas })
     }
 

@@ -48,12 +48,22 @@ pub struct Band {
     width_um: f64,
 }
 
+/// Most data rows of a tabulated spectrum: far more than a filter curve
+/// or a measured spectrum needs for the bias integrals (the cost of the
+/// table grows with its rows), few enough to read in a second.
+pub const MAX_SPECTRUM_ROWS: usize = 100_000;
+
+/// Largest spectrum CSV file read, bytes (room for [`MAX_SPECTRUM_ROWS`]
+/// rows with comments).
+pub const MAX_SPECTRUM_CSV_BYTES: u64 = 16 << 20;
+
 impl Band {
     /// Band of centre `wavelength_um` (λ0, µm) and full width `bandwidth_um`
-    /// (Δλ, µm). Requires λ0 > 0 and 0 < Δλ < 2 λ0 (the band must not reach
-    /// zero wavelength).
+    /// (Δλ, µm). Requires λ0 within [`crate::bounds::WAVELENGTH_MIN_UM`] …
+    /// [`crate::bounds::WAVELENGTH_MAX_UM`] and 0 < Δλ < 2 λ0 (the band must
+    /// not reach zero wavelength).
     pub fn new(wavelength_um: f64, bandwidth_um: f64) -> Result<Band> {
-        error::positive("wavelength_um", wavelength_um)?;
+        crate::bounds::check_wavelength_um(wavelength_um)?;
         error::positive("bandwidth_um", bandwidth_um)?;
         if bandwidth_um >= 2.0 * wavelength_um {
             return Err(Error::OutOfRange {
@@ -151,7 +161,7 @@ impl Spectrum {
 
     /// A monochromatic spectrum at `wavelength_um`: the zero-bandwidth limit.
     pub fn monochromatic(wavelength_um: f64) -> Result<Spectrum> {
-        error::positive("wavelength_um", wavelength_um)?;
+        crate::bounds::check_wavelength_um(wavelength_um)?;
         Ok(Self::build(Shape::Line {
             sigma: 1.0 / wavelength_um,
         }))
@@ -245,6 +255,8 @@ impl Spectrum {
 
     /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
+        // Spreadsheets start their CSV with a UTF-8 byte-order mark.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let mut axis: Option<bool> = None; // Some(true): wavelength
         let (mut xs, mut ws) = (Vec::new(), Vec::new());
         for (n, raw) in text.lines().enumerate() {
@@ -261,6 +273,10 @@ impl Spectrum {
             }
             if axis.is_none() {
                 axis = Some(csv_header(&cells).map_err(at)?);
+            } else if xs.len() == MAX_SPECTRUM_ROWS {
+                return Err(at(format!(
+                    "more than {MAX_SPECTRUM_ROWS} rows; resample the spectrum (the bias integrals need far fewer)"
+                )));
             } else {
                 let (x, w) = csv_row(&cells, xs.last().copied()).map_err(at)?;
                 xs.push(x);
@@ -285,11 +301,31 @@ impl Spectrum {
     /// header `wavelength_um,weight` or `wavenumber_per_um,weight`, then rows
     /// with the axis strictly increasing. `weight` is S(σ)F(σ) at that point
     /// (the photon spectrum per unit wavenumber times the transmission, any
-    /// scale); it is interpolated linearly in wavenumber.
+    /// scale); it is interpolated linearly in wavenumber. A leading UTF-8
+    /// byte-order mark is skipped. At most [`MAX_SPECTRUM_CSV_BYTES`] bytes
+    /// and [`MAX_SPECTRUM_ROWS`] rows; a refusal names the file.
     pub fn from_csv_path(path: &Path) -> Result<Spectrum> {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| Error::file(Some("spectrum"), path, e))?;
-        Self::from_csv_str(&text)
+        use std::io::Read;
+        let io = |e| Error::file(Some("spectrum"), path, e);
+        let file = std::fs::File::open(path).map_err(io)?;
+        let mut text = String::new();
+        // One byte more than the limit tells a file at the limit from a
+        // longer one (or an endless one such as /dev/zero).
+        file.take(MAX_SPECTRUM_CSV_BYTES + 1)
+            .read_to_string(&mut text)
+            .map_err(io)?;
+        let in_file = |reason: String| Error::SpectrumTable {
+            reason: format!("{}: {reason}", path.display()),
+        };
+        if text.len() as u64 > MAX_SPECTRUM_CSV_BYTES {
+            return Err(in_file(format!(
+                "larger than {MAX_SPECTRUM_CSV_BYTES} bytes; accepted: a CSV of at most {MAX_SPECTRUM_ROWS} rows"
+            )));
+        }
+        Self::from_csv_str(&text).map_err(|e| match e {
+            Error::SpectrumTable { reason } => in_file(reason),
+            other => other,
+        })
     }
 
     fn build(shape: Shape) -> Spectrum {

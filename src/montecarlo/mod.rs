@@ -76,6 +76,44 @@ where
     })
 }
 
+/// Units computed together by [`fold_units`] before their results are
+/// merged: enough to keep every core busy, few enough that the results of
+/// one batch are small (memory does not grow with the number of units).
+pub const FOLD_BATCH_UNITS: u64 = 1024;
+
+/// Runs `work(unit_index, rng)` for the units of `range` as
+/// [`run_unit_range`] does, and hands each result to `merge` in unit order,
+/// [`FOLD_BATCH_UNITS`] units at a time. Memory is that of one batch of
+/// results however many units there are; the answer is the fold of
+/// [`run_unit_range`]'s results in unit order, bit for bit, whatever the
+/// thread count.
+pub fn fold_units<T, F, M>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+    merge: M,
+) where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> T + Sync + Send,
+    M: FnMut(T) + Send,
+{
+    let mut merge = merge;
+    in_pool(threads, || {
+        let mut first = range.start;
+        while first < range.end {
+            let last = first.saturating_add(FOLD_BATCH_UNITS).min(range.end);
+            let batch: Vec<T> = (first..last)
+                .into_par_iter()
+                .panic_fuse()
+                .map(|u| work(u, &mut unit_rng(seed, u)))
+                .collect();
+            batch.into_iter().for_each(&mut merge);
+            first = last;
+        }
+    })
+}
+
 /// Runs `job` on a pool of `threads` threads (0 = rayon's default pool).
 pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
     if threads == 0 {

@@ -16,7 +16,7 @@
 //! [`calibrated_run`] adds the Monte Carlo and normalizes its accumulated
 //! moments exactly (an affine map of each trial).
 
-use crate::error::{self, Error, Result};
+use crate::error::{Error, Result};
 use crate::formalism::estimator::{dft, raw_estimates, BinWindow, Pair};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
@@ -53,7 +53,7 @@ impl CalibratedSetup {
         visibility: f64,
         window: BinWindow,
     ) -> Result<CalibratedSetup> {
-        error::non_negative("photons", photons)?;
+        crate::bounds::non_negative_at_most("photons", photons, crate::bounds::PHOTONS_MAX)?;
         let signal = scaled_interferogram(obs, sampling, photons, visibility)?;
         let calibrator = scaled_interferogram(&obs.calibrator(), sampling, photons, 1.0)?;
         let bins = window.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum);

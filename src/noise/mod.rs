@@ -13,6 +13,7 @@ pub mod calibrated;
 pub mod example;
 pub mod model;
 pub mod simulation;
+pub mod snr_value;
 pub mod window_variance;
 
 pub use appendix::*;

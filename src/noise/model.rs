@@ -21,7 +21,7 @@
 //! The estimators' closed forms built on these moments are in
 //! [`crate::noise::appendix`].
 
-use crate::error::{self, Result};
+use crate::error::Result;
 use serde::Serialize;
 
 /// The noise on the modulated samples (`docs/conventions.md`, noise).
@@ -52,7 +52,7 @@ impl NoiseModel {
     /// Read noise `read_noise` (photons, ≥ 0) and, if `photon`, Poisson
     /// photon noise.
     pub fn new(read_noise: f64, photon: bool) -> Result<NoiseModel> {
-        error::non_negative("read_noise", read_noise)?;
+        crate::bounds::non_negative_at_most("read_noise", read_noise, crate::bounds::PHOTONS_MAX)?;
         Ok(NoiseModel { read_noise, photon })
     }
 

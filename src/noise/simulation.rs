@@ -4,7 +4,7 @@
 //! [`crate::montecarlo`].
 
 use crate::formalism::estimator::dft_phase;
-use crate::montecarlo::{run_units, Rng, RunningStats};
+use crate::montecarlo::{fold_units, run_units, Rng, RunningStats};
 
 /// Both raw estimators over a fixed window of Fourier bins, evaluated
 /// without a full FFT where possible:
@@ -434,7 +434,8 @@ pub fn simulate_noisy(
     let est = WindowedEstimators::new(spec.modulated.len(), &spec.bins);
     let units = trials.div_ceil(TRIALS_PER_UNIT);
     let n = spec.modulated.len();
-    let parts = run_units(seed, units, threads, |u, rng| {
+    let mut total = NoisyRun::default();
+    let work = |u, rng: &mut Rng| {
         let mut run = NoisyRun::default();
         let mut buf = vec![0.0; n];
         let mut scratch = Vec::new();
@@ -447,12 +448,11 @@ pub fn simulate_noisy(
         }
         progress(t);
         run
-    });
-    let mut total = NoisyRun::default();
-    for p in &parts {
+    };
+    fold_units(seed, 0..units, threads, work, |p: NoisyRun| {
         total.v1_sq.merge(&p.v1_sq);
         total.v2_sq.merge(&p.v2_sq);
-    }
+    });
     Ok(total)
 }
 
@@ -501,7 +501,8 @@ pub fn sample_moments(
     };
     let sn = SampleNoise::new(&spec)?;
     let units = trials.div_ceil(TRIALS_PER_UNIT);
-    let parts = run_units(seed, units, threads, |u, rng| {
+    let mut total = [RunningStats::default(); 4];
+    let work = |u, rng: &mut Rng| {
         let mut acc = [RunningStats::default(); 4];
         let mut buf = [0.0; 2];
         for _ in 0..unit_trials(trials, u) {
@@ -514,12 +515,11 @@ pub fn sample_moments(
             }
         }
         acc
-    });
-    let mut total = [RunningStats::default(); 4];
-    for p in &parts {
-        for (t, a) in total.iter_mut().zip(p) {
+    };
+    fold_units(seed, 0..units, threads, work, |p: [RunningStats; 4]| {
+        for (t, a) in total.iter_mut().zip(&p) {
             t.merge(a);
         }
-    }
+    });
     Ok(total)
 }

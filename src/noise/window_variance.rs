@@ -106,9 +106,12 @@ pub struct WindowStats {
     pub var_v1_sq: f64,
     /// var V2²_K.
     pub var_v2_sq: f64,
-    /// signal / √var for V1².
+    /// signal / √var for V1² (`"infinite"`/`"undefined"` in JSON without
+    /// noise, [`crate::noise::snr_value`]).
+    #[serde(serialize_with = "crate::noise::snr_value::serialize_snr")]
     pub snr1: f64,
-    /// signal / √var for V2².
+    /// signal / √var for V2² (same).
+    #[serde(serialize_with = "crate::noise::snr_value::serialize_snr")]
     pub snr2: f64,
 }
 

@@ -250,7 +250,7 @@ impl PistonSpectrum {
     /// The same spectrum at another wind speed (> 0), sharing the table (G
     /// does not depend on the wind).
     pub fn with_wind(&self, wind_mps: f64) -> Result<PistonSpectrum> {
-        error::positive("wind_mps", wind_mps)?;
+        crate::bounds::check_wind_mps(wind_mps)?;
         Ok(PistonSpectrum {
             table: self.table.clone(),
             baseline_m: self.baseline_m,

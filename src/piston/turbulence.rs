@@ -154,8 +154,8 @@ impl Turbulence {
         wind_mps: f64,
         outer_scale_m: Option<f64>,
     ) -> Result<Turbulence> {
-        error::positive("wavelength_um", wavelength_um)?;
-        error::positive("wind_mps", wind_mps)?;
+        crate::bounds::check_wavelength_um(wavelength_um)?;
+        crate::bounds::check_wind_mps(wind_mps)?;
         if r0_m.is_nan() || r0_m <= 0.0 {
             return Err(Error::OutOfRange {
                 param: "r0",

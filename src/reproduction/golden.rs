@@ -233,16 +233,13 @@ pub fn write_figure_files(dir: &Path, figures: &[Figure], generator: &str) -> Re
 /// temporary sibling, which then takes `dir`'s place by rename. If `fill`
 /// fails, or the rename does, the old `dir` is left as it was and nothing
 /// half-written remains.
+///
+/// Temporary siblings left by an earlier run that was killed (`.NAME.tmp-PID`,
+/// `.NAME.old-PID` of a process that no longer runs) are removed first.
 pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let stem = dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| output(dir, "not a directory name"))?;
+    let (parent, stem) = parent_and_name(dir)?;
     std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
+    remove_stale_siblings(&parent, &stem);
     let pid = std::process::id();
     let tmp = parent.join(format!(".{stem}.tmp-{pid}"));
     let old = parent.join(format!(".{stem}.old-{pid}"));
@@ -270,6 +267,55 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
     Ok(value)
 }
 
+/// The folder that holds `dir` (`.` for a bare name) and `dir`'s own name.
+fn parent_and_name(dir: &Path) -> Result<(PathBuf, String)> {
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let stem = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .ok_or_else(|| output(dir, "not a directory name"))?;
+    Ok((parent, stem))
+}
+
+/// Checks, before any work, that [`replace_dir_atomically`] can write next
+/// to `dir`: creates its parent and a probe file there, then removes it.
+pub fn check_parent_writable(dir: &Path) -> Result<()> {
+    let (parent, stem) = parent_and_name(dir)?;
+    std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
+    let probe = parent.join(format!(".{stem}.probe-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| io(&parent, e))?;
+    std::fs::remove_file(&probe).map_err(|e| io(&probe, e))
+}
+
+/// Removes `.{stem}.tmp-PID` and `.{stem}.old-PID` folders in `parent`
+/// whose process is gone (on systems with `/proc`; elsewhere a process
+/// cannot be told alive, and nothing is removed). Failures are ignored: the
+/// run goes on with its own fresh names.
+fn remove_stale_siblings(parent: &Path, stem: &str) {
+    let proc_fs = Path::new("/proc/self");
+    if !proc_fs.exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    let prefixes = [format!(".{stem}.tmp-"), format!(".{stem}.old-")];
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let pid = prefixes
+            .iter()
+            .find_map(|p| name.strip_prefix(p.as_str()))
+            .and_then(|rest| rest.parse::<u32>().ok());
+        let gone = pid.is_some_and(|pid| !Path::new("/proc").join(pid.to_string()).exists());
+        if gone {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
 /// Writes `figures` into `dir` atomically ([`replace_dir_atomically`]).
 /// Returns the files written (paths inside `dir`).
 pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
@@ -279,6 +325,7 @@ pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
 
 /// Recomputes every figure at full effort and rewrites `dir`.
 pub fn update(dir: &Path) -> Result<Vec<PathBuf>> {
+    check_parent_writable(dir)?;
     let figures = crate::reproduction::figures::all(Effort::Full)?;
     write_figures(dir, &figures)
 }

@@ -263,7 +263,7 @@ impl Inputs {
         let obs = self.observation()?;
         self.sampling()?.check_aliasing(&obs)?;
         self.noise()?;
-        error::positive("photons", self.photons)?;
+        crate::bounds::positive_at_most("photons", self.photons, crate::bounds::PHOTONS_MAX)?;
         error::in_range("visibility", self.visibility, 0.0, 1.0)?;
         if let Some(p) = &self.piston {
             p.spectrum(obs.baseline_m)?;

@@ -20,7 +20,7 @@
 //! the rows are those of `v2ref piston` at the same seed.
 
 use crate::error::{Error, Result};
-use crate::montecarlo::{run_unit_range, Rng};
+use crate::montecarlo::{fold_units, run_unit_range, Rng};
 use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
 use crate::piston::fringe_table::FringeTable;
 use crate::piston::scan::{fill_scan, ScanSetup};
@@ -248,6 +248,23 @@ impl Rows<'_> {
             self.fill_unit(u, rng, &mut rows);
             work(u, &rows)
         })
+    }
+
+    /// `work(rows of unit u)` for every unit, in parallel on `threads`
+    /// threads, each result handed to `merge` in unit order; memory stays
+    /// at one batch of units ([`fold_units`]) however many rows there are.
+    pub fn fold_units<T: Send>(
+        &self,
+        threads: usize,
+        work: impl Fn(&[f64]) -> T + Sync + Send,
+        merge: impl FnMut(T) + Send,
+    ) {
+        let unit = |u, rng: &mut Rng| {
+            let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
+            self.fill_unit(u, rng, &mut rows);
+            work(&rows)
+        };
+        fold_units(self.seed, 0..self.units(), threads, unit, merge);
     }
 
     /// Hands every row to `sink` in row order, `batch` units at a time

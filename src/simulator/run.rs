@@ -138,7 +138,8 @@ fn reduce_rows(
     let piston_free = est.estimate(&rows.piston_free_row());
     let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
     let n = rows.samples();
-    let parts = rows.map_units(0..rows.units(), threads, |_, block| {
+    let mut total = UnitStats::default();
+    let work = |block: &[f64]| {
         let mut s = UnitStats::default();
         for row in block.chunks_exact(n) {
             let e = est.estimate(row);
@@ -149,14 +150,13 @@ fn reduce_rows(
         }
         progress((block.len() / n) as u64);
         s
-    });
-    let mut total = UnitStats::default();
-    for p in &parts {
+    };
+    rows.fold_units(threads, work, |p: UnitStats| {
         total.v1_sq.merge(&p.v1_sq);
         total.v2_sq.merge(&p.v2_sq);
         total.v1.merge(&p.v1);
         total.v2.merge(&p.v2);
-    }
+    });
     let effect = (noiseless && rows.piston_facts().is_some()).then(|| PistonEffect {
         v1_no_piston: v0.0,
         v2_no_piston: v0.1,

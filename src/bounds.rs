@@ -1,0 +1,88 @@
+//! The ranges of the physical inputs, in one place.
+//!
+//! Each bound is where the model stops describing an observation, or where
+//! the computation would leave the floating-point range or its own
+//! accuracy, whichever comes first; the reason is given with each. The
+//! constructors that take these inputs check them and return
+//! [`Error::OutOfRange`](crate::Error::OutOfRange) naming the parameter, so
+//! that no input inside the ranges gives a non-finite answer and none
+//! outside them gives a silent one. The CLI's `--help` states them.
+
+use crate::error::{self, Result};
+
+/// Shortest centre wavelength λ0, µm (1 nm): below it the band is X-rays,
+/// where no fringe-scanning interferometer works.
+pub const WAVELENGTH_MIN_UM: f64 = 1e-3;
+
+/// Longest centre wavelength λ0, µm (10 cm, radio).
+pub const WAVELENGTH_MAX_UM: f64 = 1e5;
+
+/// Largest peak-to-peak quadratic dispersion phase over the band, rad.
+/// Up to it the V2 quadrature resolves the phase's oscillation across the
+/// band (V2 follows the Fresnel law 1/√P of a flat band); at 3e4 rad it is
+/// already 20 % off. V2 there is below 1e-3 of V.
+pub const DISPERSION_PP_MAX_RAD: f64 = 1e4;
+
+/// Largest uniform-disk diameter, mas (1°): the visibility formula is that
+/// of a small source (a plane sky); a source of a degree is no longer one.
+pub const DIAMETER_MAX_MAS: f64 = 3.6e6;
+
+/// Longest projected baseline, m (a million km, beyond any planned space
+/// interferometer).
+pub const BASELINE_MAX_M: f64 = 1e9;
+
+/// Highest spatial frequency, cycles/arcsec: that of [`BASELINE_MAX_M`] at
+/// [`WAVELENGTH_MIN_UM`] (B/λ = 1e18 rad⁻¹ ≈ 4.8e12 cycles/arcsec), rounded
+/// up.
+pub const SPATIAL_FREQ_MAX_CPAS: f64 = 1e13;
+
+/// Most photons per sample (continuum), and the largest detector noise in
+/// photons per sample: beyond the full well of any detector. The
+/// variances hold fourth powers of the counts times N²; 1e12 keeps them
+/// below 1e70, far inside the floating-point range.
+pub const PHOTONS_MAX: f64 = 1e12;
+
+/// Fastest wind of the frozen-flow turbulence, m/s (the speed of sound at
+/// ground level: no layer of the atmosphere moves faster).
+pub const WIND_MAX_MPS: f64 = 343.0;
+
+/// Checks a centre wavelength λ0 (µm) against [`WAVELENGTH_MIN_UM`] …
+/// [`WAVELENGTH_MAX_UM`].
+pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {
+    error::finite("wavelength_um", wavelength_um)?;
+    check(
+        "wavelength_um",
+        wavelength_um,
+        WAVELENGTH_MIN_UM,
+        WAVELENGTH_MAX_UM,
+    )
+}
+
+/// Checks a wind speed (m/s): `0 < v <=` [`WIND_MAX_MPS`].
+pub fn check_wind_mps(wind_mps: f64) -> Result<f64> {
+    positive_at_most("wind_mps", wind_mps, WIND_MAX_MPS)
+}
+
+/// Checks that `value` lies in `lo ..= hi`, naming `param` otherwise.
+pub fn check(param: &'static str, value: f64, lo: f64, hi: f64) -> Result<f64> {
+    error::in_range(param, value, lo, hi)
+}
+
+/// Checks that `0 < value <= hi`.
+pub fn positive_at_most(param: &'static str, value: f64, hi: f64) -> Result<f64> {
+    error::positive(param, value)?;
+    if value <= hi {
+        Ok(value)
+    } else {
+        Err(crate::Error::OutOfRange {
+            param,
+            value,
+            accepted: format!("> 0 and <= {}", error::number(hi)),
+        })
+    }
+}
+
+/// Checks that `0 <= value <= hi`.
+pub fn non_negative_at_most(param: &'static str, value: f64, hi: f64) -> Result<f64> {
+    error::in_range(param, value, 0.0, hi)
+}
