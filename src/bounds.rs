@@ -63,6 +63,41 @@ pub fn check_wind_mps(wind_mps: f64) -> Result<f64> {
     positive_at_most("wind_mps", wind_mps, WIND_MAX_MPS)
 }
 
+/// Narrowest band relative to its centre, Δλ/λ0: a narrower width is lost
+/// in the rounding of λ0 (f64 keeps 16 digits) and the band's moments
+/// become 0/0; such a band is monochromatic (`Spectrum::monochromatic`).
+pub const BANDWIDTH_MIN_FRACTION: f64 = 1e-12;
+
+/// Checks a band's full width Δλ against its centre λ0 (µm):
+/// `BANDWIDTH_MIN_FRACTION · λ0 <= Δλ < 2 λ0` (the band must not reach zero
+/// wavelength). `param` and `unit_per_um` say how the width `bandwidth` was
+/// given (`bandwidth_um` and 1, or `bandwidth_nm` and 1000), so that a
+/// refusal quotes the user's number in the user's unit.
+pub fn check_bandwidth(
+    param: &'static str,
+    unit_per_um: f64,
+    wavelength_um: f64,
+    bandwidth: f64,
+) -> Result<()> {
+    check_wavelength_um(wavelength_um)?;
+    error::positive(param, bandwidth)?;
+    let min = BANDWIDTH_MIN_FRACTION * wavelength_um * unit_per_um;
+    let max = 2.0 * wavelength_um * unit_per_um;
+    if (min..max).contains(&bandwidth) {
+        return Ok(());
+    }
+    let unit = if unit_per_um == 1.0 { "um" } else { "nm" };
+    Err(crate::Error::OutOfRange {
+        param,
+        value: bandwidth,
+        accepted: format!(
+            "{} <= bandwidth < {} {unit} (from 1e-12 of the centre wavelength, below which the band is a line, to twice it, where the band would reach zero wavelength)",
+            error::number(min),
+            error::number(max)
+        ),
+    })
+}
+
 /// Checks that `value` lies in `lo ..= hi`, naming `param` otherwise.
 pub fn check(param: &'static str, value: f64, lo: f64, hi: f64) -> Result<f64> {
     error::in_range(param, value, lo, hi)

@@ -67,22 +67,10 @@ impl ObservationArgs {
 
     /// `--bandwidth-nm` in µm, for [`Band::new`]. The flag is checked here in
     /// its own unit (nm) so that a refusal quotes the number the user typed;
-    /// the rule is the library's (`0 < Δλ < 2 λ0`), checked again there.
+    /// the rule is the library's ([`v2ref::bounds::check_bandwidth`]).
     fn bandwidth_um(&self) -> Result<f64> {
-        // The centre first, as Band::new does.
-        let centre_um = v2ref::bounds::check_wavelength_um(self.wavelength_um)?;
-        let nm = v2ref::error::positive("bandwidth_nm", self.bandwidth_nm)?;
-        let max_nm = 2e3 * centre_um;
-        if nm >= max_nm {
-            return Err(v2ref::Error::OutOfRange {
-                param: "bandwidth_nm",
-                value: nm,
-                accepted: format!(
-                    "0 < bandwidth < {max_nm} nm (twice the centre wavelength: the band must not reach zero wavelength)"
-                ),
-            });
-        }
-        Ok(nm * 1e-3)
+        v2ref::bounds::check_bandwidth("bandwidth_nm", 1e3, self.wavelength_um, self.bandwidth_nm)?;
+        Ok(self.bandwidth_nm * 1e-3)
     }
 
     /// The source these flags describe.
