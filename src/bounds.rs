@@ -46,6 +46,24 @@ pub const PHOTONS_MAX: f64 = 1e12;
 /// ground level: no layer of the atmosphere moves faster).
 pub const WIND_MAX_MPS: f64 = 343.0;
 
+/// Most samples per fringe of the planner: a finer sampling only adds
+/// samples (N grows with it, and the finite scan costs N²). The fewest is
+/// 2, Nyquist at the centre wavelength (fewer aliases any band).
+pub const PLAN_SAMPLES_PER_FRINGE_MAX: f64 = 1e3;
+
+/// Highest photon rate at the detector, photons/s (a zeroth-magnitude star
+/// through a 100 m² aperture gives about 1e12 in K; 1e15 leaves room, and
+/// keeps photons per sample within [`PHOTONS_MAX`] at any fringe frequency
+/// the planner scans).
+pub const PHOTON_RATE_MAX_PER_S: f64 = 1e15;
+
+/// Longest dead time or time budget of the planner, s (a year).
+pub const PLAN_TIME_MAX_S: f64 = 3.2e7;
+
+/// Smallest target σ(V²) of the planner: far below any calibration error
+/// (the scans needed grow as 1/σ², and overflow a count below 1e-150).
+pub const PLAN_SIGMA_V2_MIN: f64 = 1e-9;
+
 /// Checks a centre wavelength λ0 (µm) against [`WAVELENGTH_MIN_UM`] …
 /// [`WAVELENGTH_MAX_UM`].
 pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {

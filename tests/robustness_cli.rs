@@ -73,6 +73,11 @@ const CASES: &[Case] = &[
     case("overflow", &["simulate", "--read-noise", "1e300", "--trials", "10"], Refused("--read-noise")),
     case("overflow", &["synth", "--photons", "1e308", "--out", "new/set"], Refused("--photons")),
     case("overflow", &["plan", "--wavelength-um", "1e308"], Refused("--wavelength-um")),
+    case("overflow", &["plan", "--photon-rate-per-s", "1e308"], Refused("--photon-rate-per-s")),
+    case("overflow", &["plan", "--samples-per-fringe", "1e308"], Refused("--samples-per-fringe")),
+    case("overflow", &["plan", "--dead-time-s", "1e308"], Refused("--dead-time-s")),
+    case("overflow", &["plan", "--time-budget-s", "1e308"], Refused("--time-budget-s")),
+    case("overflow", &["plan", "--target-sigma-v2", "1e-300"], Refused("--target-sigma-v2")),
     case("overflow", &["bias", "--bandwidth-nm", "1e308"], Refused("--bandwidth-nm")),
     case("overflow", &["bias", "--dx-um", "1e308", "--finite-scan"], Refused("--dx-um")),
     case("overflow", &["bias", "--stroke-um", "1e308"], Refused("--stroke-um")),
@@ -111,6 +116,8 @@ const CASES: &[Case] = &[
     case("range", &["piston", "--fringe-hz", "0", "--scans", "4"], Refused("--fringe-hz")),
     case("range", &["piston", "--fringe-hz", "-300", "--scans", "4"], Refused("--fringe-hz")),
     case("range", &["simulate", "--photons", "0", "--trials", "10"], Refused("--photons")),
+    case("range", &["plan", "--samples-per-fringe", "1.5"], Refused("--samples-per-fringe")),
+    case("range", &["plan", "--target-sigma-v2", "2"], Refused("--target-sigma-v2")),
     case("range", &["simulate", "--visibility", "2", "--trials", "10"], Refused("--visibility")),
     case("range", &["simulate", "--fringe-hz", "0", "--trials", "10"], Refused("--fringe-hz")),
     case("range", &["score", "--sidecar", "no.json", "--estimates", "no.csv", "--alpha", "2"], Refused("--")),
@@ -174,6 +181,9 @@ const CASES: &[Case] = &[
     case("file", &["estimate", "--input", "file.txt", "--samples", "16"], Refused("--input")),
     case("file", &["score", "--sidecar", "missing.json", "--estimates", "file.txt"], Refused("--sidecar")),
     case("file", &["score", "--sidecar", "file.txt", "--estimates", "file.txt"], Refused("--sidecar")),
+    case("file", &["score", "--sidecar", "zeros.json", "--estimates", "file.txt"], Refused("--sidecar")),
+    case("file", &["estimate", "--input", "zeros.csv", "--samples", "16"], Refused("--input")),
+    case("file", &["bias", "--spectrum-csv", "zeros.csv"], Refused("--spectrum-csv")),
     // --- output: folders and files that must not be lost.
     case("output", &["reproduce", "--quick", "--out", "keep"], Refused("--out")),
     case("output", &["reproduce", "--quick", "--out", "file.txt"], Refused("--out")),
@@ -231,10 +241,16 @@ fn workspace() -> tempfile::TempDir {
     .unwrap();
     std::fs::write(p.join("ragged.csv"), "wavelength_um,weight\n2.0,1,3\n").unwrap();
     std::fs::write(p.join("binary.csv"), [0xff_u8, 0xfe, 0x00, 0x41]).unwrap();
+    // Endless inputs behind ordinary names.
+    #[cfg(unix)]
+    for name in ["zeros.csv", "zeros.json"] {
+        std::os::unix::fs::symlink("/dev/zero", p.join(name)).unwrap();
+    }
     dir
 }
 
-/// Every file under `root` with its bytes (folders as empty entries).
+/// Every file under `root` with its bytes (folders as empty entries, links
+/// as their targets).
 fn snapshot(root: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut out = BTreeMap::new();
     let mut stack = vec![root.to_path_buf()];
@@ -242,7 +258,12 @@ fn snapshot(root: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
         for entry in std::fs::read_dir(&dir).unwrap().flatten() {
             let path = entry.path();
             let rel = path.strip_prefix(root).unwrap().to_path_buf();
-            if path.is_dir() {
+            let kind = entry.file_type().unwrap();
+            if kind.is_symlink() {
+                // A link's target, not what it points to (/dev/zero).
+                let target = std::fs::read_link(&path).unwrap();
+                out.insert(rel, target.to_string_lossy().as_bytes().to_vec());
+            } else if kind.is_dir() {
                 out.insert(rel, Vec::new());
                 stack.push(path);
             } else {
