@@ -46,6 +46,24 @@ pub const PHOTONS_MAX: f64 = 1e12;
 /// ground level: no layer of the atmosphere moves faster).
 pub const WIND_MAX_MPS: f64 = 343.0;
 
+/// Most samples per fringe of the planner: a finer sampling only adds
+/// samples (N grows with it, and the finite scan costs N²). The fewest is
+/// 2, Nyquist at the centre wavelength (fewer aliases any band).
+pub const PLAN_SAMPLES_PER_FRINGE_MAX: f64 = 1e3;
+
+/// Highest photon rate at the detector, photons/s (a zeroth-magnitude star
+/// through a 100 m² aperture gives about 1e12 in K; 1e15 leaves room, and
+/// keeps photons per sample within [`PHOTONS_MAX`] at any fringe frequency
+/// the planner scans).
+pub const PHOTON_RATE_MAX_PER_S: f64 = 1e15;
+
+/// Longest dead time or time budget of the planner, s (a year).
+pub const PLAN_TIME_MAX_S: f64 = 3.2e7;
+
+/// Smallest target σ(V²) of the planner: far below any calibration error
+/// (the scans needed grow as 1/σ², and overflow a count below 1e-150).
+pub const PLAN_SIGMA_V2_MIN: f64 = 1e-9;
+
 /// Checks a centre wavelength λ0 (µm) against [`WAVELENGTH_MIN_UM`] …
 /// [`WAVELENGTH_MAX_UM`].
 pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {
@@ -61,6 +79,41 @@ pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {
 /// Checks a wind speed (m/s): `0 < v <=` [`WIND_MAX_MPS`].
 pub fn check_wind_mps(wind_mps: f64) -> Result<f64> {
     positive_at_most("wind_mps", wind_mps, WIND_MAX_MPS)
+}
+
+/// Narrowest band relative to its centre, Δλ/λ0: a narrower width is lost
+/// in the rounding of λ0 (f64 keeps 16 digits) and the band's moments
+/// become 0/0; such a band is monochromatic (`Spectrum::monochromatic`).
+pub const BANDWIDTH_MIN_FRACTION: f64 = 1e-12;
+
+/// Checks a band's full width Δλ against its centre λ0 (µm):
+/// `BANDWIDTH_MIN_FRACTION · λ0 <= Δλ < 2 λ0` (the band must not reach zero
+/// wavelength). `param` and `unit_per_um` say how the width `bandwidth` was
+/// given (`bandwidth_um` and 1, or `bandwidth_nm` and 1000), so that a
+/// refusal quotes the user's number in the user's unit.
+pub fn check_bandwidth(
+    param: &'static str,
+    unit_per_um: f64,
+    wavelength_um: f64,
+    bandwidth: f64,
+) -> Result<()> {
+    check_wavelength_um(wavelength_um)?;
+    error::positive(param, bandwidth)?;
+    let min = BANDWIDTH_MIN_FRACTION * wavelength_um * unit_per_um;
+    let max = 2.0 * wavelength_um * unit_per_um;
+    if (min..max).contains(&bandwidth) {
+        return Ok(());
+    }
+    let unit = if unit_per_um == 1.0 { "um" } else { "nm" };
+    Err(crate::Error::OutOfRange {
+        param,
+        value: bandwidth,
+        accepted: format!(
+            "{} <= bandwidth < {} {unit} (from 1e-12 of the centre wavelength, below which the band is a line, to twice it, where the band would reach zero wavelength)",
+            error::number(min),
+            error::number(max)
+        ),
+    })
 }
 
 /// Checks that `value` lies in `lo ..= hi`, naming `param` otherwise.

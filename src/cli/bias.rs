@@ -8,6 +8,11 @@ use v2ref::formalism::estimator::{sampled_wide_band, wide_band, Pair, WideBand};
 use v2ref::simulator::record::{InputsRecord, SamplingRecord};
 use v2ref::Result;
 
+/// N from which the finite scan takes seconds or more and shows a spinner
+/// on a terminal: its cost grows as N² (synthesis of N samples, each a sum
+/// over a spectral grid as fine as the scan resolves; docs/conventions.md).
+const SLOW_SAMPLES: usize = 4096;
+
 /// Flags of `bias`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -53,7 +58,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let finite_scan = if args.finite_scan || args.sampling.scan.stroke_um.is_some() {
         let sampling = args.sampling.sampling()?;
         let window = args.sampling.bins;
+        let n = sampling.samples();
+        let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
         let Pair { v1_sq, v2_sq } = sampled_wide_band(&obs, &sampling, window)?;
+        bar.finish_and_clear();
         Some(FiniteScan {
             stroke_um: sampling.stroke_um(),
             samples: sampling.samples(),

@@ -14,7 +14,7 @@
 
 use npyz::{Endianness, NpyHeader, Order, TypeChar, WriterBuilder};
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, BufWriter, Seek, Write};
+use std::io::{self, BufRead, BufReader, BufWriter, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 use v2ref::{Error, Result};
 
@@ -366,22 +366,50 @@ impl NpyRows {
     }
 }
 
+/// Longest line of a CSV file read, bytes: room for a row of 100000
+/// numbers at full precision.
+pub const MAX_CSV_LINE_BYTES: u64 = 4 << 20;
+
 /// The content lines of a CSV file: (1-based line number, fields), comments
 /// and blank lines skipped.
 fn csv_records(path: &Path, param: &'static str) -> Result<Vec<(usize, Vec<String>)>> {
-    let reader = BufReader::new(open(path, param)?);
+    let mut reader = BufReader::new(open(path, param)?);
     let mut out = Vec::new();
-    for (i, line) in reader.lines().enumerate() {
-        let line = line.map_err(|e| match e.kind() {
-            io::ErrorKind::InvalidData => Error::data(
+    let mut line = String::new();
+    for i in 0.. {
+        line.clear();
+        // One byte more than the limit tells a long line from one at it
+        // (and stops an endless one, such as /dev/zero, at once).
+        let read = (&mut reader)
+            .take(MAX_CSV_LINE_BYTES + 1)
+            .read_line(&mut line)
+            .map_err(|e| match e.kind() {
+                io::ErrorKind::InvalidData => Error::data(
+                    param,
+                    path,
+                    format!("line {}", i + 1),
+                    "not UTF-8 text; a comma-separated text file is needed",
+                ),
+                _ => Error::file(Some(param), path, e),
+            })?;
+        if read == 0 {
+            break;
+        }
+        if read as u64 > MAX_CSV_LINE_BYTES {
+            return Err(Error::data(
                 param,
                 path,
                 format!("line {}", i + 1),
-                "not UTF-8 text; a comma-separated text file is needed",
-            ),
-            _ => Error::file(Some(param), path, e),
-        })?;
-        let t = line.trim();
+                format!("longer than {MAX_CSV_LINE_BYTES} bytes; rows of comma-separated numbers are needed"),
+            ));
+        }
+        // Spreadsheets start their CSV with a UTF-8 byte-order mark.
+        let text = if i == 0 {
+            line.strip_prefix('\u{feff}').unwrap_or(&line)
+        } else {
+            &line
+        };
+        let t = text.trim();
         if t.is_empty() || t.starts_with('#') {
             continue;
         }

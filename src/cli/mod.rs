@@ -88,12 +88,25 @@ pub fn clap_error(e: clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         _ => {
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("error: bad arguments");
-            errln!("{first}");
+            errln!("{}", first_paragraph(&e.to_string()));
             ExitCode::from(EXIT_BAD_INPUT)
         }
     }
+}
+
+/// The first paragraph of a clap message on one line: the line itself, and
+/// when it ends with `:` the indented lines that follow (the missing
+/// flags), so that the line names them.
+fn first_paragraph(text: &str) -> String {
+    let mut lines = text.lines();
+    let mut line = lines.next().unwrap_or("error: bad arguments").to_owned();
+    if line.ends_with(':') {
+        for more in lines.take_while(|l| l.starts_with(' ')) {
+            line.push(' ');
+            line.push_str(more.trim());
+        }
+    }
+    line
 }
 
 /// Parses a finite f64 (clap value parser).

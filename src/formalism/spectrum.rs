@@ -60,21 +60,11 @@ pub const MAX_SPECTRUM_CSV_BYTES: u64 = 16 << 20;
 impl Band {
     /// Band of centre `wavelength_um` (λ0, µm) and full width `bandwidth_um`
     /// (Δλ, µm). Requires λ0 within [`crate::bounds::WAVELENGTH_MIN_UM`] …
-    /// [`crate::bounds::WAVELENGTH_MAX_UM`] and 0 < Δλ < 2 λ0 (the band must
-    /// not reach zero wavelength).
+    /// [`crate::bounds::WAVELENGTH_MAX_UM`] and Δλ within
+    /// [`crate::bounds::check_bandwidth`]'s range (up to 2 λ0, where the band
+    /// would reach zero wavelength).
     pub fn new(wavelength_um: f64, bandwidth_um: f64) -> Result<Band> {
-        crate::bounds::check_wavelength_um(wavelength_um)?;
-        error::positive("bandwidth_um", bandwidth_um)?;
-        if bandwidth_um >= 2.0 * wavelength_um {
-            return Err(Error::OutOfRange {
-                param: "bandwidth_um",
-                value: bandwidth_um,
-                accepted: format!(
-                    "0 < bandwidth_um < {} (twice the centre wavelength: the band must not reach zero wavelength)",
-                    2.0 * wavelength_um
-                ),
-            });
-        }
+        crate::bounds::check_bandwidth("bandwidth_um", 1.0, wavelength_um, bandwidth_um)?;
         Ok(Band {
             centre_um: wavelength_um,
             width_um: bandwidth_um,

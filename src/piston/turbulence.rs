@@ -85,7 +85,7 @@ pub fn profile_integral(a: f64) -> f64 {
 /// `r0 = λ / seeing`. Zero seeing means no turbulence (r0 = ∞).
 pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
     error::non_negative("seeing_arcsec", seeing_arcsec)?;
-    error::positive("wavelength_um", wavelength_um)?;
+    crate::bounds::check_wavelength_um(wavelength_um)?;
     if seeing_arcsec == 0.0 {
         return Ok(f64::INFINITY);
     }

@@ -168,12 +168,18 @@ pub struct Plan {
 
 impl PlanInputs {
     fn validate(&self) -> Result<()> {
-        error::positive("samples_per_fringe", self.samples_per_fringe)?;
-        error::positive("photon_rate_per_s", self.photon_rate_per_s)?;
-        error::non_negative("dead_time_s", self.dead_time_s)?;
+        use crate::bounds::{positive_at_most, PLAN_SAMPLES_PER_FRINGE_MAX as SPF};
+        use crate::bounds::{PHOTON_RATE_MAX_PER_S, PLAN_SIGMA_V2_MIN, PLAN_TIME_MAX_S};
+        error::in_range("samples_per_fringe", self.samples_per_fringe, 2.0, SPF)?;
+        positive_at_most(
+            "photon_rate_per_s",
+            self.photon_rate_per_s,
+            PHOTON_RATE_MAX_PER_S,
+        )?;
+        error::in_range("dead_time_s", self.dead_time_s, 0.0, PLAN_TIME_MAX_S)?;
         match self.target {
-            Target::SigmaV2(s) => error::positive("target_sigma_v2", s)?,
-            Target::TimeBudgetS(t) => error::positive("time_budget_s", t)?,
+            Target::SigmaV2(s) => error::in_range("target_sigma_v2", s, PLAN_SIGMA_V2_MIN, 1.0)?,
+            Target::TimeBudgetS(t) => positive_at_most("time_budget_s", t, PLAN_TIME_MAX_S)?,
         };
         if self.fringe_hz.is_empty() || self.stroke_um.is_empty() {
             return Err(Error::Invalid {

@@ -3,7 +3,7 @@
 //! are (`src/cli/common.rs`, `src/cli/inputs.rs`).
 
 use super::{parse_enum, Fail};
-use crate::error::{self, Error, Result};
+use crate::error::{Error, Result};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
@@ -220,19 +220,8 @@ impl Physical {
 
     /// `bandwidth_nm` in µm, checked in nm (as the CLI).
     fn bandwidth_um(&self) -> Result<f64> {
-        let centre_um = error::positive("wavelength_um", self.wavelength_um)?;
-        let nm = error::positive("bandwidth_nm", self.bandwidth_nm)?;
-        let max_nm = 2e3 * centre_um;
-        if nm >= max_nm {
-            return Err(Error::OutOfRange {
-                param: "bandwidth_nm",
-                value: nm,
-                accepted: format!(
-                    "0 < bandwidth < {max_nm} nm (twice the centre wavelength: the band must not reach zero wavelength)"
-                ),
-            });
-        }
-        Ok(nm * 1e-3)
+        crate::bounds::check_bandwidth("bandwidth_nm", 1e3, self.wavelength_um, self.bandwidth_nm)?;
+        Ok(self.bandwidth_nm * 1e-3)
     }
 
     /// The source.
