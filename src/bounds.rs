@@ -64,6 +64,18 @@ pub const PLAN_TIME_MAX_S: f64 = 3.2e7;
 /// (the scans needed grow as 1/σ², and overflow a count below 1e-150).
 pub const PLAN_SIGMA_V2_MIN: f64 = 1e-9;
 
+/// Worst seeing λ/r0, arcsec: r0 of 4.5 mm in K. Beyond, no fringe can be
+/// tracked (ground-level seeing at the worst sites stays below 5″), and the
+/// piston variance ∝ r0^(−5/3) heads for the floating-point limit.
+pub const SEEING_MAX_ARCSEC: f64 = 100.0;
+
+/// Checks a seeing (arcsec): `0 <= seeing <=` [`SEEING_MAX_ARCSEC`]
+/// (0: no turbulence).
+pub fn check_seeing_arcsec(seeing_arcsec: f64) -> Result<f64> {
+    error::non_negative("seeing_arcsec", seeing_arcsec)?;
+    check("seeing_arcsec", seeing_arcsec, 0.0, SEEING_MAX_ARCSEC)
+}
+
 /// Checks a centre wavelength λ0 (µm) against [`WAVELENGTH_MIN_UM`] …
 /// [`WAVELENGTH_MAX_UM`].
 pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {

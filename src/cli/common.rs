@@ -173,12 +173,13 @@ pub struct TurbulenceArgs {
     /// Wind speed, m/s (frozen flow along the baseline): > 0 to 343.
     #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
     pub wind_mps: f64,
-    /// Seeing λ/r0, arcsec, at --seeing-wavelength-um (0: no turbulence).
+    /// Seeing λ/r0, arcsec, at --seeing-wavelength-um: 0 (no turbulence)
+    /// to 100.
     #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
     /// Wavelength at which --seeing-arcsec is quoted, µm (site monitors
-    /// quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5)
-    /// [default: the observing wavelength --wavelength-um].
+    /// quote 0.5), 0.001 to 100000; converted to the observing wavelength
+    /// by r0 ∝ λ^(6/5) [default: the observing wavelength --wavelength-um].
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_wavelength_um: Option<f64>,
     /// Telescope aperture diameter, m.

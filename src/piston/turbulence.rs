@@ -84,7 +84,7 @@ pub fn profile_integral(a: f64) -> f64 {
 /// Fried parameter r0 (m) from the seeing λ/r0 (arcsec) at wavelength λ (µm):
 /// `r0 = λ / seeing`. Zero seeing means no turbulence (r0 = ∞).
 pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
-    error::non_negative("seeing_arcsec", seeing_arcsec)?;
+    crate::bounds::check_seeing_arcsec(seeing_arcsec)?;
     crate::bounds::check_wavelength_um(wavelength_um)?;
     if seeing_arcsec == 0.0 {
         return Ok(f64::INFINITY);
@@ -115,9 +115,14 @@ pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
 /// # Ok::<(), v2ref::Error>(())
 /// ```
 pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64) -> Result<f64> {
-    error::non_negative("seeing_arcsec", seeing_arcsec)?;
-    error::positive("seeing_wavelength_um", from_um)?;
-    error::positive("wavelength_um", to_um)?;
+    crate::bounds::check_seeing_arcsec(seeing_arcsec)?;
+    crate::bounds::check_wavelength_um(to_um)?;
+    crate::bounds::check(
+        "seeing_wavelength_um",
+        from_um,
+        crate::bounds::WAVELENGTH_MIN_UM,
+        crate::bounds::WAVELENGTH_MAX_UM,
+    )?;
     Ok(seeing_arcsec * (to_um / from_um).powf(-0.2))
 }
 
