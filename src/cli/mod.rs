@@ -17,6 +17,7 @@ pub mod common;
 pub mod estimate;
 pub mod files;
 pub mod golden;
+pub mod grid;
 pub mod inputs;
 pub mod piston;
 pub mod plan;

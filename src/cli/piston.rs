@@ -2,6 +2,7 @@
 //! frequencies (paper, Section "Effect of differential piston").
 
 use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs, TurbulenceArgs};
+use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use serde::Serialize;
 use std::process::ExitCode;
@@ -9,7 +10,7 @@ use v2ref::error::{Error, Result};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
-use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
+use v2ref::piston::turbulence::{PistonPsdModel, PistonSpectrum, Turbulence};
 use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 
 /// Flags of `piston`.
@@ -19,11 +20,20 @@ pub struct Args {
     obs: ObservationArgs,
     #[command(flatten)]
     sampling: SamplingArgs,
-    /// Fringe frequency f = v/λ0, Hz (repeatable) [default: 300 and 1000].
-    #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
-    fringe_hz: Vec<f64>,
+    /// Fringe frequency f = v/λ0, Hz: a value, A:B:N (N values from A to B)
+    /// or A:B:N:log (log-spaced); repeatable [default: 300 and 1000].
+    #[arg(long = "fringe-hz", value_parser = parse_fringe_hz, allow_negative_numbers = true)]
+    fringe_hz: Vec<Grid>,
     #[command(flatten)]
     turbulence: TurbulenceArgs,
+    /// The differential-piston spectrum: the two-aperture integral, or the
+    /// three-slope model (Conan et al. 1995 asymptotes) of the same variance.
+    #[arg(long, value_enum, default_value = "two-aperture")]
+    psd: PistonPsdModel,
+    /// Wind direction from the baseline, degrees (two-aperture spectrum only;
+    /// 0 = along the baseline).
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    wind_angle_deg: f64,
     /// Number of consecutive scans per fringe frequency.
     #[arg(long, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
@@ -54,6 +64,12 @@ struct Row {
 
 #[derive(Serialize)]
 struct Answer {
+    /// |V| of the source at σ_eff on this baseline.
+    visibility: f64,
+    psd: &'static str,
+    wind_angle_deg: f64,
+    /// The three-slope corners (ν1, ν2), Hz, when that model is used.
+    psd_corners_hz: Option<[f64; 2]>,
     detector: &'static str,
     bins: &'static str,
     reference: &'static str,
@@ -94,7 +110,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let obs = args.obs.observation()?;
     let sampling = args.sampling.sampling()?;
     sampling.check_aliasing(&obs)?;
-    let freqs = fringe_frequencies(&args.fringe_hz)?;
+    let freqs = fringe_frequencies(&flatten(&args.fringe_hz))?;
     check_scans(args.scans)?;
     v2ref::error::positive("aperture_m", args.turbulence.aperture_m)?;
     let turb = Turbulence::from_seeing(
@@ -103,7 +119,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         args.turbulence.wind_mps,
         args.turbulence.outer_scale_m,
     )?;
-    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?;
+    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?
+        .with_wind_angle_deg(args.wind_angle_deg)?
+        .with_model(args.psd)?;
     let detector = if sampling.integrating() {
         Detector::Integrating {
             sub_samples: args.turbulence.sub_samples,
@@ -114,6 +132,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let runs = simulate_each(&args, &obs, &spectrum, &sampling, detector, &freqs)?;
     let window = args.sampling.bins;
     let answer = Answer {
+        visibility: obs
+            .source
+            .visibility(obs.spectrum.sigma_eff_per_um(), obs.baseline_m)
+            .norm(),
+        psd: args.psd.name(),
+        wind_angle_deg: spectrum.wind_angle_deg(),
+        psd_corners_hz: spectrum
+            .three_slope()
+            .map(|m| [m.corner_low_hz(), m.corner_high_hz()]),
         detector: detector.name(),
         bins: window.name(),
         reference: args.turbulence.reference.name(),
@@ -218,10 +245,20 @@ fn print_table(answer: &Answer) {
         answer.samples,
         answer.dx_um
     );
+    let corners = answer.psd_corners_hz.map_or(String::new(), |[lo, hi]| {
+        format!(" (corners {lo:.3} and {hi:.2} Hz)")
+    });
+    outln!(
+        "{} piston spectrum{corners}, wind {} deg from the baseline; source V = {:.6}",
+        answer.psd,
+        answer.wind_angle_deg,
+        answer.visibility
+    );
     outln!("bias and scatter over scans of V (not V^2): V1 and V2 with piston minus without, then their standard deviation");
     outln!(
-        "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
+        "{:>10}  {:>9}  {:>22}  {:>22}  {:>22}  {:>22}",
         "f [Hz]",
+        "V",
         "bias V1 (of V)",
         "bias V2 (of V)",
         "scatter V1 (of V)",
@@ -229,8 +266,9 @@ fn print_table(answer: &Answer) {
     );
     for r in &answer.results {
         outln!(
-            "{:>10.2}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
+            "{:>10.2}  {:>9.6}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
             r.fringe_hz,
+            answer.visibility,
             r.bias_v1,
             r.bias_v1_stderr,
             r.bias_v2,
