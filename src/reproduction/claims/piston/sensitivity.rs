@@ -99,7 +99,7 @@ pub struct Sensitivity {
 /// Sizes: (frequencies, scans per frequency).
 pub fn sensitivity_size(effort: Effort) -> (usize, usize) {
     match effort {
-        Effort::Full => (17, 3_000),
+        Effort::Full => (17, 10_000),
         Effort::Quick => (9, 300),
     }
 }
