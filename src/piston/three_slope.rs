@@ -17,7 +17,7 @@
 //! with `ν1 = 0.2 v/B` and `ν2 = 0.3 v/D` (ν1 is lowered to ν2 when
 //! B < 2D/3, leaving two slopes). The same piecewise form — continuity
 //! factors at the corners, total power set to a given variance — is written
-//! out in the public simulator cophaSIM (Pannetier et al., function
+//! out in the public simulator cophaSIM (github.com/cpannet/cophaSIM, function
 //! `MakeAtmosphereCoherence`, which puts its low corner at 0.2 v/L0); here it
 //! is derived and coded from the asymptotes above.
 //!
