@@ -73,6 +73,26 @@ fn quick_reproduction_writes_every_expected_file() {
     }
     assert_eq!(answer["claims"].as_array().unwrap().len(), claims.len());
     assert!(answer["files"].as_array().unwrap().len() >= 30);
+    // The Fig. 5 sensitivity table: 2 spectra x 2 references x 3 windows x
+    // 2 samplings, each with the four thresholds inside the simulated range
+    // (or NaN for "V1 unbiased from" when V1 is biased at every frequency).
+    let csv = std::fs::read_to_string(out.join("fig5_sensitivity.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 13, "{header:?}");
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 24);
+    for r in &rows {
+        for t in [5, 7, 9, 11] {
+            let v: f64 = r[t].parse().unwrap();
+            assert!(
+                v.is_nan() || (50.0 - 1e-9..=2000.0 + 1e-9).contains(&v),
+                "{r:?}"
+            );
+        }
+    }
+    let md = std::fs::read_to_string(out.join("fig5_sensitivity.md")).unwrap();
+    assert_eq!(md.matches("| three-slope |").count(), 12);
     // No staging directory is left behind.
     let leftovers: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()

@@ -5,7 +5,8 @@
 use std::f64::consts::PI;
 use v2ref::piston::turbulence::{
     differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
-    r0_from_seeing_m, structure_coefficient, transverse_integral, PistonSpectrum, Turbulence,
+    r0_from_seeing_m, structure_coefficient, transverse_integral, PistonPsdModel, PistonSpectrum,
+    Turbulence,
 };
 use v2ref::tolerance::{
     ASYMPTOTIC_LIMIT_REL, CORNER_REL, DECADE_SLOPE_ABS, GAMMA_REL, LOW_FREQ_SLOPE_COEFF,
@@ -375,4 +376,140 @@ fn cli_seeing_wavelength_flag_converts_before_the_piston() {
         0.610_292_944_7,
         v2ref::tolerance::HAND_10_DIGITS_REL
     );
+}
+
+/// `2 ∫_lo^hi P dν` in ln ν, plus the ν^{−2/3} tail below `lo` from
+/// `low_coeff · ν^{−2/3}`.
+fn two_sided_integral(psd: &dyn Fn(f64) -> f64, lo: f64, hi: f64, low_coeff: f64) -> f64 {
+    let integrand = |u: f64| {
+        let nu = u.exp();
+        nu * psd(nu)
+    };
+    let mut breaks = vec![lo.ln()];
+    while *breaks.last().unwrap() < hi.ln() {
+        breaks.push(breaks.last().unwrap() + 0.01);
+    }
+    let body = v2ref::math::quadrature::integrate_pieces(
+        &integrand,
+        &breaks,
+        v2ref::math::quadrature::Tolerance {
+            abs: 0.0,
+            rel: TURBULENCE_CHECK_REL,
+        },
+    );
+    2.0 * (body + 3.0 * low_coeff * lo.cbrt())
+}
+
+#[test]
+fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
+    let two = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let s = two.with_model(PistonPsdModel::ThreeSlope).unwrap();
+    assert_eq!(s.model(), PistonPsdModel::ThreeSlope);
+    let m = *s.three_slope().unwrap();
+    // Corners 0.2 v/B and 0.3 v/D (Conan et al. 1995), near the exact
+    // asymptote crossings of the two-aperture integral (0.225 v/B, 0.299 v/D).
+    assert!(rel(m.corner_low_hz(), 0.2 * 10.0 / 18.0) < ULPS);
+    assert!(rel(m.corner_high_hz(), 0.3 * 10.0 / D) < ULPS);
+    assert!(rel(m.corner_low_hz(), two.corner_low_hz()) < 0.15);
+    assert!(rel(m.corner_high_hz(), two.corner_high_hz()) < 0.01);
+    // Log-slopes inside each segment, and continuity at the corners.
+    let p = |nu: f64| s.psd_um2_per_hz(nu);
+    let slope = |a: f64, b: f64| (p(b) / p(a)).ln() / (b / a).ln();
+    let (n1, n2) = (m.corner_low_hz(), m.corner_high_hz());
+    for (a, b, want) in [
+        (1e-3 * n1, 0.5 * n1, -2.0 / 3.0),
+        (1.01 * n1, 0.99 * n2, -8.0 / 3.0),
+        (1.01 * n2, 1e3 * n2, -17.0 / 3.0),
+    ] {
+        assert_abs_eq!(slope(a, b), want, 1e-12);
+    }
+    for c in [n1, n2] {
+        assert!(rel(p(c * (1.0 - 1e-12)), p(c)) < 1e-10, "jump at {c}");
+    }
+    // ∫P dν = the two-aperture variance, by quadrature and by the closed form.
+    let total = two_sided_integral(&p, 1e-6, 1e4, p(1e-6) * 1e-4);
+    assert!(rel(total, two.variance_um2()) < PSD_TABLE_REL, "{total}");
+    assert!(rel(m.variance_um2(), two.variance_um2()) < ROUNDING_REL);
+    // A finite outer scale lowers the variance, not the corners.
+    let l0 = PistonSpectrum::new(
+        Turbulence::from_seeing(1.0, 2.2, 10.0, Some(25.0)).unwrap(),
+        D,
+        18.0,
+    )
+    .unwrap()
+    .with_model(PistonPsdModel::ThreeSlope)
+    .unwrap();
+    assert!(l0.three_slope().unwrap().variance_um2() < 0.9 * m.variance_um2());
+    assert_eq!(l0.three_slope().unwrap().corner_low_hz(), n1);
+    // The wind speed moves the corners with v.
+    let fast = s.with_wind(20.0).unwrap();
+    assert!(rel(fast.three_slope().unwrap().corner_low_hz(), 2.0 * n1) < ULPS);
+}
+
+#[test]
+fn three_slope_model_refuses_a_wind_across_the_baseline() {
+    let two = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let three = two.with_model(PistonPsdModel::ThreeSlope).unwrap();
+    assert!(matches!(
+        three.with_wind_angle_deg(30.0),
+        Err(Error::Invalid {
+            param: "wind_angle_deg",
+            ..
+        })
+    ));
+    assert!(three.with_wind_angle_deg(180.0).is_ok());
+    let nan = two.with_wind_angle_deg(f64::NAN).unwrap_err();
+    assert_eq!(nan.param(), Some("wind_angle_deg"));
+}
+
+#[test]
+fn wind_angle_zero_is_the_along_baseline_spectrum_bit_for_bit() {
+    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let z = s.with_wind_angle_deg(0.0).unwrap();
+    for k in 0..200 {
+        let nu = 1e-3 * 1.07f64.powi(k);
+        assert_eq!(
+            s.psd_um2_per_hz(nu).to_bits(),
+            z.psd_um2_per_hz(nu).to_bits()
+        );
+    }
+}
+
+#[test]
+fn wind_across_the_baseline_keeps_the_variance_and_raises_the_low_asymptote() {
+    let along = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    for angle in [90.0, 45.0] {
+        let s = along.with_wind_angle_deg(angle).unwrap();
+        let p = |nu: f64| s.psd_um2_per_hz(nu);
+        // The variance does not depend on the direction.
+        let lo = 1e-6;
+        let total = two_sided_integral(&p, lo, 200.0, s.asymptote_low(lo) * lo.powf(2.0 / 3.0));
+        assert!(
+            rel(total, along.variance_um2()) < PSD_TABLE_CORNER_REL,
+            "{angle} deg: ∫P = {total}, variance {}",
+            along.variance_um2()
+        );
+        // Far below v/B the slope is −2/3 and the level (cos²θ + 3/2 sin²θ)
+        // times the along-baseline one; far above, the middle asymptote.
+        let (sin, cos) = angle.to_radians().sin_cos();
+        for r in [1e-4, 1e-3] {
+            let nu = r * along.corner_low_hz();
+            let ratio = p(nu) / along.asymptote_low(nu);
+            assert!(
+                rel(ratio, cos * cos + 1.5 * sin * sin) < LOW_FREQ_VALUE_COEFF * 10.0 * r,
+                "{angle} deg, {r}: ratio {ratio}"
+            );
+            assert!(rel(p(nu), s.asymptote_low(nu)) < LOW_FREQ_VALUE_COEFF * 10.0 * r);
+        }
+        let nu = (along.corner_low_hz() * along.corner_high_hz()).sqrt();
+        assert!(
+            rel(p(nu), along.asymptote_mid(nu)) < 0.05,
+            "{angle} deg mid"
+        );
+    }
+    // θ = 90° lifts the lowest frequencies by exactly 3/2, which the test
+    // above could not mistake for the along-wind spectrum.
+    let across = along.with_wind_angle_deg(90.0).unwrap();
+    let nu = 1e-4 * along.corner_low_hz();
+    assert!(across.psd_um2_per_hz(nu) > 1.4 * along.psd_um2_per_hz(nu));
 }

@@ -25,6 +25,7 @@ pub mod common;
 pub mod estimate;
 pub mod files;
 pub mod golden;
+pub mod grid;
 pub mod inputs;
 pub mod output;
 pub mod piston;

@@ -2,14 +2,14 @@
 //! frequencies (paper, Section "Effect of differential piston").
 
 use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs, TurbulenceArgs};
+use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
-use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::error::{Error, Result};
-use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
-use v2ref::piston::turbulence::PistonSpectrum;
+use v2ref::piston::report::{PistonReport, PistonSetting};
+use v2ref::piston::turbulence::{PistonPsdModel, PistonSpectrum};
 use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use v2ref::simulator::record::{InputsRecord, SamplingRecord};
 
@@ -20,11 +20,20 @@ pub struct Args {
     obs: ObservationArgs,
     #[command(flatten)]
     sampling: SamplingArgs,
-    /// Fringe frequency f = v/λ0, Hz (repeatable) [default: 300 and 1000].
-    #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
-    fringe_hz: Vec<f64>,
+    /// Fringe frequency f = v/λ0, Hz: a value, A:B:N (N values from A to B)
+    /// or A:B:N:log (log-spaced); repeatable [default: 300 and 1000].
+    #[arg(long = "fringe-hz", value_parser = parse_fringe_hz, allow_negative_numbers = true)]
+    fringe_hz: Vec<Grid>,
     #[command(flatten)]
     turbulence: TurbulenceArgs,
+    /// The differential-piston spectrum: the two-aperture integral, or the
+    /// three-slope model (Conan et al. 1995 asymptotes) of the same variance.
+    #[arg(long, value_enum, default_value = "two-aperture")]
+    psd: PistonPsdModel,
+    /// Wind direction from the baseline, degrees (two-aperture spectrum only;
+    /// 0 = along the baseline).
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    wind_angle_deg: f64,
     /// Number of consecutive scans per fringe frequency.
     #[arg(long, value_parser = super::count_usize, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
@@ -34,73 +43,18 @@ pub struct Args {
     output: OutputArgs,
 }
 
-#[derive(Serialize)]
-struct Row {
-    fringe_hz: f64,
-    bias_v1: f64,
-    bias_v2: f64,
-    scatter_v1: f64,
-    scatter_v2: f64,
-    bias_v1_stderr: f64,
-    bias_v2_stderr: f64,
-    scatter_v1_stderr: f64,
-    scatter_v2_stderr: f64,
-    v1_no_piston: f64,
-    v2_no_piston: f64,
-    scan_time_s: f64,
-    residual_rms_um: f64,
-    scans: usize,
-    seed: u64,
-}
-
-#[derive(Serialize)]
-struct Answer {
-    inputs: InputsRecord,
-    detector: &'static str,
-    bins: &'static str,
-    reference: &'static str,
-    baseline_m: f64,
-    spatial_freq_cpas: f64,
-    r0_m: f64,
-    coherence_time_s: f64,
-    piston_rms_um: f64,
-    samples: usize,
-    dx_um: f64,
-    stroke_um: f64,
-    results: Vec<Row>,
-}
-
-fn row(run: &PistonRun, window: BinWindow) -> Row {
-    let w = run.window(window);
-    Row {
-        fringe_hz: run.fringe_hz,
-        bias_v1: w.v1.mean,
-        bias_v2: w.v2.mean,
-        scatter_v1: w.v1.std,
-        scatter_v2: w.v2.std,
-        bias_v1_stderr: w.v1.stderr_mean,
-        bias_v2_stderr: w.v2.stderr_mean,
-        scatter_v1_stderr: w.v1.stderr_std,
-        scatter_v2_stderr: w.v2.stderr_std,
-        v1_no_piston: w.v1_no_piston,
-        v2_no_piston: w.v2_no_piston,
-        scan_time_s: run.scan_time_s,
-        residual_rms_um: run.residual_rms_um,
-        scans: run.scans,
-        seed: run.seed,
-    }
-}
-
 /// Runs `piston`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let obs = args.obs.observation()?;
     let sampling = args.sampling.sampling()?;
     sampling.check_aliasing(&obs)?;
-    let freqs = fringe_frequencies(&args.fringe_hz)?;
+    let freqs = fringe_frequencies(&flatten(&args.fringe_hz))?;
     check_scans(args.scans)?;
     v2ref::error::positive("aperture_m", args.turbulence.aperture_m)?;
     let turb = args.turbulence.turbulence(args.obs.wavelength_um)?;
-    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?;
+    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?
+        .with_wind_angle_deg(args.wind_angle_deg)?
+        .with_model(args.psd)?;
     args.turbulence
         .warn_if_outer_scale_infinite(obs.baseline_m, spectrum.rms_um());
     let detector = if sampling.integrating() {
@@ -112,25 +66,20 @@ pub fn run(args: Args) -> Result<ExitCode> {
     };
     let runs = simulate_each(&args, &obs, &spectrum, &sampling, detector, &freqs)?;
     let window = args.sampling.bins;
-    let answer = Answer {
-        inputs: InputsRecord {
-            observation: args.obs.record(&obs),
-            sampling: Some(SamplingRecord::new(&sampling, window)),
-            atmosphere: Some(args.turbulence.record(args.obs.wavelength_um)?),
-        },
-        detector: detector.name(),
-        bins: window.name(),
-        reference: args.turbulence.reference.name(),
-        baseline_m: obs.baseline_m,
-        spatial_freq_cpas: obs.spatial_freq_cpas(),
-        r0_m: turb.r0_m(),
-        coherence_time_s: turb.coherence_time_s(),
-        piston_rms_um: spectrum.rms_um(),
-        samples: sampling.samples(),
-        dx_um: sampling.dx_um(),
-        stroke_um: sampling.stroke_um(),
-        results: runs.iter().map(|r| row(r, window)).collect(),
+    let inputs = InputsRecord {
+        observation: args.obs.record(&obs),
+        sampling: Some(SamplingRecord::new(&sampling, window)),
+        atmosphere: Some(args.turbulence.record(args.obs.wavelength_um)?),
     };
+    let setting = PistonSetting {
+        obs: &obs,
+        spectrum: &spectrum,
+        sampling: &sampling,
+        detector,
+        window,
+        reference: args.turbulence.reference,
+    };
+    let answer = PistonReport::new(inputs, setting, &runs);
     if args.output.json {
         print_json(&answer);
     } else {
@@ -208,7 +157,7 @@ fn simulate_each(
     Ok(results)
 }
 
-fn print_table(answer: &Answer) {
+fn print_table(answer: &PistonReport) {
     outln!(
         "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms, piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
         answer.baseline_m,
@@ -222,10 +171,20 @@ fn print_table(answer: &Answer) {
         answer.samples,
         answer.dx_um
     );
+    let corners = answer.psd_corners_hz.map_or(String::new(), |[lo, hi]| {
+        format!(" (corners {lo:.3} and {hi:.2} Hz)")
+    });
+    outln!(
+        "{} piston spectrum{corners}, wind {} deg from the baseline; source V = {:.6}",
+        answer.psd,
+        answer.wind_angle_deg,
+        answer.visibility
+    );
     outln!("bias and scatter over scans of V (not V^2): V1 and V2 with piston minus without, then their standard deviation");
     outln!(
-        "{:>10}  {:>22}  {:>22}  {:>22}  {:>22}",
+        "{:>10}  {:>9}  {:>22}  {:>22}  {:>22}  {:>22}",
         "f [Hz]",
+        "V",
         "bias V1 (of V)",
         "bias V2 (of V)",
         "scatter V1 (of V)",
@@ -233,8 +192,9 @@ fn print_table(answer: &Answer) {
     );
     for r in &answer.results {
         outln!(
-            "{:>10.2}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
+            "{:>10.2}  {:>9.6}  {:>+11.3e} ±{:>9.1e}  {:>+11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}  {:>11.3e} ±{:>9.1e}",
             r.fringe_hz,
+            answer.visibility,
             r.bias_v1,
             r.bias_v1_stderr,
             r.bias_v2,

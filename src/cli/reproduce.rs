@@ -96,7 +96,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 /// files written (relative names).
 fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, Vec<String>)> {
     super::output::write_out_marker(dir)?;
-    let bar = progress_bar(3, quiet, "figures");
+    let bar = progress_bar(4, quiet, "figures");
     let figures = v2ref::reproduction::figures::all(effort)?;
     bar.inc(1);
     bar.set_message("plots");
@@ -115,6 +115,21 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
             write(dir, &format!("{}.svg", table.name), &svg, &mut files)?;
         }
     }
+    bar.inc(1);
+    bar.set_message("Fig. 5 sensitivity");
+    let sensitivity = v2ref::reproduction::claims::sensitivity::fig5_sensitivity(effort)?;
+    write(
+        dir,
+        "fig5_sensitivity.csv",
+        &sensitivity.to_csv(),
+        &mut files,
+    )?;
+    write(
+        dir,
+        "fig5_sensitivity.md",
+        &sensitivity.to_markdown(),
+        &mut files,
+    )?;
     bar.inc(1);
     bar.set_message("claims");
     let claims = evaluate(effort);

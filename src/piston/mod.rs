@@ -5,20 +5,25 @@
 //! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing.
 //! - [`spectrum`]: the temporal spectrum of the differential piston
 //!   ([`spectrum::PistonSpectrum`], also at `piston::turbulence::PistonSpectrum`).
+//! - [`three_slope`]: the three-slope model of that spectrum (Conan et al.
+//!   1995 asymptotes, as in Perrin 1997), [`spectrum::PistonPsdModel`].
 //! - [`series`]: piston sequences synthesised from that spectrum.
 //! - [`fringe_table`]: the fringe tabulated against OPD.
 //! - [`scan`]: the detectors, the packet reference and one scan's samples.
 //! - [`calibration`]: the piston-free calibration of each detector.
 //! - [`simulation`]: the Monte Carlo over consecutive scans (Figs. 4, 5).
+//! - [`report`]: a run's answer (the CLI's JSON, the Python dict).
 //!
 //! Everything is re-exported here: `v2ref::piston::simulate` etc.
 
 pub mod calibration;
 pub mod fringe_table;
+pub mod report;
 pub mod scan;
 pub mod series;
 pub mod simulation;
 pub mod spectrum;
+pub mod three_slope;
 pub mod turbulence;
 
 pub use calibration::Calibration;

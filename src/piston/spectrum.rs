@@ -31,13 +31,32 @@
 //! The low/middle asymptotes cross at `ν = v/(√2 π B) ≈ 0.225 v/B`, the
 //! middle/high ones at `ν = [4 I(10/3)/(π⁴ I(11/6))]^{1/3} v/D ≈ 0.299 v/D`.
 //!
-//! The wind is taken along the baseline, the case where the −2/3 regime
-//! exists (a wind across the baseline flattens the lowest frequencies);
-//! other directions are not implemented.
+//! # Wind direction
+//!
+//! With the wind at angle θ to the baseline, the baseline term reads
+//! `2[1 − cos 2π(f_x B cos θ + f_y B sin θ)]` (f_x = ν/v along the wind).
+//! The part odd in f_y integrates to zero, so with `a = 2πνB cos θ / v`,
+//!
+//! `P(ν) = (1/v) [4 sin²(a/2) G(f_x) + 2 cos a · S(f_x)]`,
+//! `S(f_x) = ∫ Φ_opd A · 2 sin²(π f_y B sin θ) df_y`,
+//!
+//! which is the along-baseline form when θ = 0 (S = 0, computed by the same
+//! code as before, bit for bit) and `2S/v` across it (θ = 90°). For
+//! f_x ≪ 1/B both terms go as ν^{−2/3}: the low asymptote becomes
+//! `(cos²θ + 3/2 sin²θ)` times the along-baseline one, since
+//! `∫u²(1+u²)^{−11/6}du = I(5/6) − I(11/6) = (3/2) I(11/6)`. Above v/B,
+//! S → G and the middle and high asymptotes do not depend on θ; neither
+//! does the variance (the two-dimensional integral over **f**).
+//!
+//! # Models
+//!
+//! [`PistonPsdModel`] selects this two-aperture integral or the three-slope
+//! model of [`crate::piston::three_slope`] normalized to the same variance.
 
 use crate::error::{self, Result};
 use crate::math::quadrature::{integrate_pieces, Tolerance};
 use crate::math::special::{bessel_j0, jinc};
+use crate::piston::three_slope::ThreeSlope;
 use crate::piston::turbulence::{profile_integral, Turbulence};
 use std::f64::consts::PI;
 
@@ -102,6 +121,57 @@ pub fn transverse_integral(turb: &Turbulence, aperture_m: f64, fx_per_m: f64) ->
     2.0 * (body + tail)
 }
 
+/// Beyond `f_x B sin θ` = this, `S(f_x) = G(f_x)` to double precision: the
+/// cosine transform `G − S` of the smooth profile of width f_x decays as
+/// `exp(−2π f_x B sin θ)` (< 1e-16 here).
+const CROSSWIND_EQUALS_G_BEYOND: f64 = 6.0;
+
+/// Half periods of `sin²(π f_y b)` integrated piece by piece; beyond them
+/// the factor `2 sin²` is replaced by its mean 1 (the neglected cosine
+/// integral is ~1/(2π · this) of the part beyond, which is below ~1e-4 of
+/// S: ~1e-6 relative).
+const CROSSWIND_HALF_PERIODS: usize = 64;
+
+/// `S(f_x) = ∫_{−∞}^{∞} Φ_opd(f) A(f) 2 sin²(π f_y b) df_y`, µm² m, with
+/// `b = B sin θ` > 0 the baseline across the wind (see the module doc).
+pub fn crosswind_integral(turb: &Turbulence, aperture_m: f64, fx_per_m: f64, b_m: f64) -> f64 {
+    if fx_per_m * b_m > CROSSWIND_EQUALS_G_BEYOND {
+        return transverse_integral(turb, aperture_m, fx_per_m);
+    }
+    let f_max = (F_MAX_TIMES_D / aperture_m).max(F_MAX_TIMES_D * fx_per_m);
+    let profile = |fy: f64| {
+        let f = (fx_per_m * fx_per_m + fy * fy).sqrt();
+        turb.opd_psd(f) * aperture_filter(f, aperture_m)
+    };
+    let half_period = 0.5 / b_m;
+    let y_cut = (CROSSWIND_HALF_PERIODS as f64 * half_period).min(f_max);
+    let mut br = breaks_from_zero(fx_per_m.min(y_cut), y_cut);
+    br.extend((1..CROSSWIND_HALF_PERIODS).map(|k| k as f64 * half_period));
+    br.retain(|&x| x <= y_cut);
+    br.sort_by(f64::total_cmp);
+    br.dedup();
+    let oscillating = |fy: f64| {
+        let s = (PI * fy * b_m).sin();
+        profile(fy) * 2.0 * s * s
+    };
+    let body = integrate_pieces(&oscillating, &br, tol());
+    let beyond = if y_cut < f_max {
+        integrate_pieces(&profile, &breaks_between(y_cut, f_max), tol())
+    } else {
+        0.0
+    };
+    let k = turb.opd_psd_scale();
+    let tail = k * 4.0 / (PI.powi(4) * aperture_m.powi(3)) * (3.0 / 17.0) * f_max.powf(-17.0 / 3.0);
+    2.0 * (body + beyond + tail)
+}
+
+/// Geometric breaks from `a` > 0 to `b` (ratio 2).
+fn breaks_between(a: f64, b: f64) -> Vec<f64> {
+    let mut out = breaks_from_zero(a, b);
+    out.remove(0);
+    out
+}
+
 /// Points per decade of the G table.
 const TABLE_PER_DECADE: usize = 80;
 /// Table range in log10(f_x D).
@@ -115,6 +185,8 @@ const TABLE_LOG10_MAX: f64 = 2.0;
 pub struct TransverseTable {
     turb: Turbulence,
     aperture_m: f64,
+    /// 0 for G; `B sin θ` (m) for the crosswind integral S.
+    crosswind_m: f64,
     ln_g: std::sync::OnceLock<Vec<f64>>,
     s0: f64,
     h: f64,
@@ -130,10 +202,33 @@ impl TransverseTable {
         Ok(TransverseTable {
             turb,
             aperture_m,
+            crosswind_m: 0.0,
             ln_g: std::sync::OnceLock::new(),
             s0: TABLE_LOG10_MIN * std::f64::consts::LN_10,
             h: std::f64::consts::LN_10 / TABLE_PER_DECADE as f64,
         })
+    }
+
+    /// The table of the crosswind integral S ([`crosswind_integral`]) for
+    /// the baseline `crosswind_m` (> 0, m) across the wind, on the same grid.
+    pub fn crosswind(
+        turb: Turbulence,
+        aperture_m: f64,
+        crosswind_m: f64,
+    ) -> Result<TransverseTable> {
+        error::positive("crosswind_m", crosswind_m)?;
+        let mut t = TransverseTable::new(turb, aperture_m)?;
+        t.crosswind_m = crosswind_m;
+        Ok(t)
+    }
+
+    /// The integral tabulated at `fx` (G, or S when `crosswind_m` > 0).
+    fn integral(&self, fx_per_m: f64) -> f64 {
+        if self.crosswind_m > 0.0 {
+            crosswind_integral(&self.turb, self.aperture_m, fx_per_m, self.crosswind_m)
+        } else {
+            transverse_integral(&self.turb, self.aperture_m, fx_per_m)
+        }
     }
 
     /// ln G on the grid, computed on first use.
@@ -150,7 +245,7 @@ impl TransverseTable {
                 .into_par_iter()
                 .map(|i| {
                     let fx = (self.s0 + i as f64 * self.h).exp() / self.aperture_m;
-                    transverse_integral(&self.turb, self.aperture_m, fx).ln()
+                    self.integral(fx).ln()
                 })
                 .collect()
         })
@@ -222,6 +317,36 @@ pub struct PistonSpectrum {
     table: std::sync::Arc<TransverseTable>,
     baseline_m: f64,
     wind_mps: f64,
+    /// θ, the wind direction from the baseline, rad.
+    wind_angle_rad: f64,
+    /// The table of S for `B sin θ` (None when sin θ = 0).
+    crosswind: Option<std::sync::Arc<TransverseTable>>,
+    /// The three-slope model, when it is the one selected.
+    three_slope: Option<ThreeSlope>,
+}
+
+/// Which differential-piston spectrum the sequences are drawn from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum PistonPsdModel {
+    /// The two-aperture spectral integral of this module (Kolmogorov, or von
+    /// Kármán with an outer scale; any wind direction).
+    TwoAperture,
+    /// The three-slope model of [`crate::piston::three_slope`] (Conan et al.
+    /// 1995 asymptotes, as in Perrin 1997), normalized to the same variance;
+    /// wind along the baseline only.
+    ThreeSlope,
+}
+
+impl PistonPsdModel {
+    /// Kebab-case name, as `--psd` takes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            PistonPsdModel::TwoAperture => "two-aperture",
+            PistonPsdModel::ThreeSlope => "three-slope",
+        }
+    }
 }
 
 impl PistonSpectrum {
@@ -244,18 +369,94 @@ impl PistonSpectrum {
             table,
             baseline_m,
             wind_mps,
+            wind_angle_rad: 0.0,
+            crosswind: None,
+            three_slope: None,
         })
     }
 
-    /// The same spectrum at another wind speed (> 0), sharing the table (G
-    /// does not depend on the wind).
+    /// The same spectrum at another wind speed (> 0), sharing the tables (G
+    /// and S do not depend on the wind).
     pub fn with_wind(&self, wind_mps: f64) -> Result<PistonSpectrum> {
         crate::bounds::check_wind_mps(wind_mps)?;
-        Ok(PistonSpectrum {
-            table: self.table.clone(),
-            baseline_m: self.baseline_m,
-            wind_mps,
-        })
+        let mut out = self.clone();
+        out.wind_mps = wind_mps;
+        if out.three_slope.is_some() {
+            out.three_slope = Some(out.three_slope_model()?);
+        }
+        Ok(out)
+    }
+
+    /// The same turbulence and geometry with the wind at `angle_deg` (finite,
+    /// degrees) from the baseline; 0 is the along-baseline spectrum. Only
+    /// the two-aperture model has a wind direction: the three-slope model
+    /// refuses any angle whose sine is not 0.
+    pub fn with_wind_angle_deg(&self, angle_deg: f64) -> Result<PistonSpectrum> {
+        error::in_range("wind_angle_deg", angle_deg, -360.0, 360.0)?;
+        let theta = angle_deg.to_radians();
+        let across = self.baseline_m * theta.sin().abs();
+        // sin θ of 180° is 1.2e-16, not 0: treat |sin θ| below 1e-12 as along.
+        let along = theta.sin().abs() < 1e-12;
+        if !along && self.three_slope.is_some() {
+            return Err(three_slope_angle_error(angle_deg));
+        }
+        let crosswind = if along || across == 0.0 {
+            None
+        } else {
+            Some(std::sync::Arc::new(TransverseTable::crosswind(
+                self.table.turb,
+                self.table.aperture_m,
+                across,
+            )?))
+        };
+        let mut out = self.clone();
+        out.wind_angle_rad = theta;
+        out.crosswind = crosswind;
+        Ok(out)
+    }
+
+    /// The same turbulence and geometry with the spectrum of `model`.
+    pub fn with_model(&self, model: PistonPsdModel) -> Result<PistonSpectrum> {
+        let mut out = self.clone();
+        out.three_slope = match model {
+            PistonPsdModel::TwoAperture => None,
+            PistonPsdModel::ThreeSlope => {
+                if self.crosswind.is_some() {
+                    return Err(three_slope_angle_error(self.wind_angle_rad.to_degrees()));
+                }
+                Some(self.three_slope_model()?)
+            }
+        };
+        Ok(out)
+    }
+
+    /// The model selected.
+    pub fn model(&self) -> PistonPsdModel {
+        if self.three_slope.is_some() {
+            PistonPsdModel::ThreeSlope
+        } else {
+            PistonPsdModel::TwoAperture
+        }
+    }
+
+    /// The three-slope model of this spectrum's variance, wind and geometry.
+    fn three_slope_model(&self) -> Result<ThreeSlope> {
+        ThreeSlope::new(
+            self.variance_um2(),
+            self.wind_mps,
+            self.baseline_m,
+            self.table.aperture_m,
+        )
+    }
+
+    /// The three-slope model, when selected (its corners and scale).
+    pub fn three_slope(&self) -> Option<&ThreeSlope> {
+        self.three_slope.as_ref()
+    }
+
+    /// θ, the wind direction from the baseline, degrees.
+    pub fn wind_angle_deg(&self) -> f64 {
+        self.wind_angle_rad.to_degrees()
     }
 
     /// Wind speed, m/s.
@@ -287,19 +488,32 @@ impl PistonSpectrum {
         4.0 * s * s
     }
 
-    /// Two-sided temporal PSD P(ν), µm²/Hz, from the table.
+    /// Two-sided temporal PSD P(ν), µm²/Hz, of the model selected (the
+    /// two-aperture integral from its tables, or the three-slope model):
+    /// the one spectrum the piston sequences are synthesised from.
     pub fn psd_um2_per_hz(&self, nu_hz: f64) -> f64 {
+        if let Some(m) = &self.three_slope {
+            return m.psd_um2_per_hz(nu_hz);
+        }
         let nu = nu_hz.abs();
         let v = self.wind_mps;
-        let bf = self.baseline_factor(nu);
-        if bf == 0.0 {
-            return 0.0;
-        }
-        bf * self.table.g(nu / v) / v
+        let Some(s_table) = &self.crosswind else {
+            let bf = self.baseline_factor(nu);
+            if bf == 0.0 {
+                return 0.0;
+            }
+            return bf * self.table.g(nu / v) / v;
+        };
+        // P v = 4 sin²(a/2) G + 2 cos(a) S, a = 2πνB cos θ / v.
+        let half_a = PI * self.baseline_m * self.wind_angle_rad.cos() * nu / v;
+        let s = half_a.sin();
+        let fx = nu / v;
+        (4.0 * s * s * self.table.g(fx) + 2.0 * (2.0 * half_a).cos() * s_table.g(fx)) / v
     }
 
-    /// Two-sided temporal PSD P(ν), µm²/Hz, by direct quadrature (slow;
-    /// the reference for the table).
+    /// Two-sided temporal PSD P(ν), µm²/Hz, of the two-aperture integral
+    /// with the wind along the baseline, by direct quadrature (slow; the
+    /// reference for the table).
     pub fn psd_direct_um2_per_hz(&self, nu_hz: f64) -> f64 {
         let nu = nu_hz.abs();
         let v = self.wind_mps;
@@ -363,11 +577,14 @@ impl PistonSpectrum {
         self.variance_um2().sqrt()
     }
 
-    /// Low-frequency Kolmogorov asymptote `(2πB)² K I(11/6) v^{−1/3} ν^{−2/3}`.
+    /// Low-frequency Kolmogorov asymptote of the two-aperture integral,
+    /// `(cos²θ + 3/2 sin²θ) (2πB)² K I(11/6) v^{−1/3} ν^{−2/3}`.
     pub fn asymptote_low(&self, nu_hz: f64) -> f64 {
         let t = &self.table.turb;
         let v = self.wind_mps;
-        (2.0 * PI * self.baseline_m).powi(2)
+        let (sin, cos) = self.wind_angle_rad.sin_cos();
+        (cos * cos + 1.5 * sin * sin)
+            * (2.0 * PI * self.baseline_m).powi(2)
             * t.opd_psd_scale()
             * profile_integral(11.0 / 6.0)
             * v.powf(-1.0 / 3.0)
@@ -440,4 +657,14 @@ pub fn differential_piston_variance_from_structure_um2(
         rho * t_of(rho) * ring
     };
     integrate_pieces(&outer, &[0.0, 0.25 * d, 0.5 * d, 0.75 * d, d], tol())
+}
+
+/// The refusal of a wind direction for the three-slope model.
+fn three_slope_angle_error(angle_deg: f64) -> crate::error::Error {
+    crate::error::Error::Invalid {
+        param: "wind_angle_deg",
+        reason: format!(
+            "the three-slope piston spectrum is defined for a wind along the baseline (0 or 180 deg), not {angle_deg} deg: use the two-aperture spectrum for other directions"
+        ),
+    }
 }

@@ -23,8 +23,8 @@ use crate::error::{self, Error, Result};
 use std::f64::consts::PI;
 
 pub use super::spectrum::{
-    aperture_filter, differential_piston_variance_from_structure_um2, transverse_integral,
-    PistonSpectrum, TransverseTable,
+    aperture_filter, crosswind_integral, differential_piston_variance_from_structure_um2,
+    transverse_integral, PistonPsdModel, PistonSpectrum, TransverseTable,
 };
 
 /// Radians per arcsecond.

@@ -13,6 +13,7 @@ use crate::formalism::estimator::{sampled_wide_band, wide_band, BinWindow, Pair,
 use crate::noise::calibrated::{CalibratedSetup, Trials, MAX_WINDOW_SAMPLES};
 use crate::noise::window_variance::{window_stats, WindowStats};
 use crate::noise::{appendix_stats, paper_window_factor, Formula};
+use crate::piston::report::{PistonReport, PistonSetting};
 use crate::piston::turbulence::{PistonSpectrum, Turbulence};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::Effort;
@@ -627,63 +628,6 @@ fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<Stri
     })
 }
 
-#[derive(Serialize)]
-struct PistonRow {
-    fringe_hz: f64,
-    bias_v1: f64,
-    bias_v2: f64,
-    scatter_v1: f64,
-    scatter_v2: f64,
-    bias_v1_stderr: f64,
-    bias_v2_stderr: f64,
-    scatter_v1_stderr: f64,
-    scatter_v2_stderr: f64,
-    v1_no_piston: f64,
-    v2_no_piston: f64,
-    scan_time_s: f64,
-    residual_rms_um: f64,
-    scans: usize,
-    seed: u64,
-}
-
-#[derive(Serialize)]
-struct PistonAnswer {
-    inputs: InputsRecord,
-    detector: &'static str,
-    bins: &'static str,
-    reference: &'static str,
-    baseline_m: f64,
-    spatial_freq_cpas: f64,
-    r0_m: f64,
-    coherence_time_s: f64,
-    piston_rms_um: f64,
-    samples: usize,
-    dx_um: f64,
-    stroke_um: f64,
-    results: Vec<PistonRow>,
-}
-
-fn piston_row(run: &PistonRun, window: BinWindow) -> PistonRow {
-    let w = run.window(window);
-    PistonRow {
-        fringe_hz: run.fringe_hz,
-        bias_v1: w.v1.mean,
-        bias_v2: w.v2.mean,
-        scatter_v1: w.v1.std,
-        scatter_v2: w.v2.std,
-        bias_v1_stderr: w.v1.stderr_mean,
-        bias_v2_stderr: w.v2.stderr_mean,
-        scatter_v1_stderr: w.v1.stderr_std,
-        scatter_v2_stderr: w.v2.stderr_std,
-        v1_no_piston: w.v1_no_piston,
-        v2_no_piston: w.v2_no_piston,
-        scan_time_s: run.scan_time_s,
-        residual_rms_um: run.residual_rms_um,
-        scans: run.scans,
-        seed: run.seed,
-    }
-}
-
 /// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`).
 #[pyfunction]
 #[pyo3(signature = (physical, fringe_hz, bins, scans, seed, threads))]
@@ -757,25 +701,20 @@ fn piston(
         )
     })?;
     let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
-    json(&PistonAnswer {
-        inputs: InputsRecord {
-            observation: ok(p.record(&obs))?,
-            sampling: Some(SamplingRecord::new(&sampling, window)),
-            atmosphere: Some(ok(p.atmosphere_record())?),
-        },
-        detector: detector.name(),
-        bins: window.name(),
-        reference: reference.name(),
-        baseline_m: obs.baseline_m,
-        spatial_freq_cpas: obs.spatial_freq_cpas(),
-        r0_m: turb.r0_m(),
-        coherence_time_s: turb.coherence_time_s(),
-        piston_rms_um: spectrum.rms_um(),
-        samples: sampling.samples(),
-        dx_um: sampling.dx_um(),
-        stroke_um: sampling.stroke_um(),
-        results: runs.iter().map(|r| piston_row(r, window)).collect(),
-    })
+    let inputs = InputsRecord {
+        observation: ok(p.record(&obs))?,
+        sampling: Some(SamplingRecord::new(&sampling, window)),
+        atmosphere: Some(ok(p.atmosphere_record())?),
+    };
+    let setting = PistonSetting {
+        obs: &obs,
+        spectrum: &spectrum,
+        sampling: &sampling,
+        detector,
+        window,
+        reference,
+    };
+    json(&PistonReport::new(inputs, setting, &runs))
 }
 
 /// `claims`: `v2ref claims --json` (`quick`: `--quick`).

@@ -14,6 +14,8 @@ mod foundation;
 mod noise;
 mod piston;
 
+pub use piston::sensitivity;
+
 /// The ledger as shipped in the crate.
 pub const LEDGER_TOML: &str = include_str!("../../../paper/claims.toml");
 

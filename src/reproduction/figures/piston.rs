@@ -267,7 +267,7 @@ fn fig5_columns() -> Vec<Column> {
 }
 
 /// One Fig. 5 panel: a row per frequency of one detector's runs.
-fn fig5_table<'a>(name: &str, runs: impl Iterator<Item = &'a PistonRun>) -> Table {
+pub(crate) fn fig5_table<'a>(name: &str, runs: impl Iterator<Item = &'a PistonRun>) -> Table {
     let rows = runs
         .map(|r| {
             let mut row = vec![r.fringe_hz, r.scan_time_s, r.residual_rms_um];

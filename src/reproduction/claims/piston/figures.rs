@@ -1,6 +1,7 @@
 //! Claims read from the Fig. 4 and Fig. 5 tables (the cached figures of
 //! [`crate::reproduction::figures::piston`]).
 
+use super::sensitivity::{self, Sensitivity};
 use super::*;
 
 /// The claims read from the Fig. 4 tables.
@@ -142,7 +143,38 @@ pub(super) const FIG5_IDS: [&str; 6] = [
     "piston.scatter_1000_scans",
 ];
 
-const MODEL_NOTE: &str = "Model: Kolmogorov piston PSD with wind along the baseline, packet centred on the scan-mean piston, positive-frequency bins; the paper's Perrin (1997) sequences, its packet centring and bin window are not described, and the V2 thresholds move by large factors with the window (columns _band, _all).";
+const MODEL_NOTE: &str = "Model: two-aperture Kolmogorov piston PSD with wind along the baseline, packet centred on the scan-mean piston, positive-frequency bins, 128 x 0.5 um; the paper's Perrin (1997) sequences, its packet centring and bin window are not described.";
+
+/// The evidence of the sensitivity table for threshold `i` (in
+/// [`sensitivity::THRESHOLD_NAMES`] order), or why it is missing.
+fn sensitivity_note(sens: &Result<Sensitivity>, i: usize) -> String {
+    let s = match sens {
+        Ok(s) => s,
+        Err(e) => return format!("Sensitivity table not computed: {e}"),
+    };
+    let values = s.rows.iter().map(|r| r.thresholds_hz[i]);
+    let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(a, b), t| (a.min(t), b.max(t)));
+    let (within, best) = s.closest(i);
+    let best_txt = best.map_or(String::new(), |b| {
+        format!("; closest: {} at {:.0} Hz", b.label(), b.thresholds_hz[i])
+    });
+    let all = s.reproducing_all();
+    let all_txt = if all.is_empty() {
+        "no combination gives all four paper thresholds within a grid step".to_owned()
+    } else {
+        format!(
+            "all four within a grid step: {}",
+            all.iter().map(|r| r.label()).collect::<Vec<_>>().join("; ")
+        )
+    };
+    format!(
+        "Sensitivity (fig5_sensitivity, {} combinations of spectrum model x packet reference x bin window x sampling, {} scans per point): this threshold spans {lo:.0}-{hi:.0} Hz; {} combinations within one grid step of the paper's {:.0} Hz{best_txt}; {all_txt}.",
+        s.rows.len(),
+        s.scans,
+        within.len(),
+        sensitivity::PAPER_THRESHOLDS_HZ[i]
+    )
+}
 
 /// The Fig. 5 columns the claims read (sampled detector unless `_i`).
 struct Fig5Columns {
@@ -184,20 +216,24 @@ impl Fig5Columns {
     }
 }
 
-pub(super) fn fig5_claims<'a>(spec: &Spec<'a>, f5: &Figure) -> Result<Vec<Computed>> {
+pub(super) fn fig5_claims<'a>(
+    spec: &Spec<'a>,
+    f5: &Figure,
+    sens: &Result<Sensitivity>,
+) -> Result<Vec<Computed>> {
     let samp = table(f5, "fig5_sampled")?;
     let c = Fig5Columns::read(samp, table(f5, "fig5_integrating")?)?;
     Ok(vec![
-        fig5_v1_biased_below(spec, samp)?,
-        fig5_v2_biased_below(spec, samp)?,
-        fig5_v1_unbiased_above(spec, samp, &c)?,
-        fig5_v2_1e5_above(spec, samp, &c)?,
+        fig5_v1_biased_below(spec, samp, &sensitivity_note(sens, 0))?,
+        fig5_v2_biased_below(spec, samp, &sensitivity_note(sens, 1))?,
+        fig5_v1_unbiased_above(spec, samp, &c, &sensitivity_note(sens, 2))?,
+        fig5_v2_1e5_above(spec, samp, &c, &sensitivity_note(sens, 3))?,
         fig5_integration_low_freq(&c),
         scatter_1000_scans(&c),
     ])
 }
 
-fn fig5_v1_biased_below<'a>(spec: &Spec<'a>, samp: &Table) -> Result<Computed> {
+fn fig5_v1_biased_below<'a>(spec: &Spec<'a>, samp: &Table, evidence: &str) -> Result<Computed> {
     let id = "piston.fig5_v1_biased_below_hz";
     let l = locate(samp, "bias_v1", 0.01)?;
     Ok(threshold_claim(
@@ -205,11 +241,11 @@ fn fig5_v1_biased_below<'a>(spec: &Spec<'a>, samp: &Table) -> Result<Computed> {
         spec(id).paper,
         &l,
         "|bias V1| > 1% below",
-        MODEL_NOTE,
+        &format!("{MODEL_NOTE} {evidence}"),
     ))
 }
 
-fn fig5_v2_biased_below<'a>(spec: &Spec<'a>, samp: &Table) -> Result<Computed> {
+fn fig5_v2_biased_below<'a>(spec: &Spec<'a>, samp: &Table, evidence: &str) -> Result<Computed> {
     let id = "piston.fig5_v2_biased_below_hz";
     let l2 = locate(samp, "bias_v2", 0.01)?;
     let band = locate(samp, "bias_v2_band", 0.01)?;
@@ -220,7 +256,7 @@ fn fig5_v2_biased_below<'a>(spec: &Spec<'a>, samp: &Table) -> Result<Computed> {
         &l2,
         "|bias V2| > 1% below",
         &format!(
-            "With the in-band window the same crossing is {}, with all bins {}. {MODEL_NOTE}",
+            "With the in-band window the same crossing is {}, with all bins {}. {MODEL_NOTE} {evidence}",
             crossing_text(band.crossing),
             crossing_text(all.crossing)
         ),
@@ -228,18 +264,15 @@ fn fig5_v2_biased_below<'a>(spec: &Spec<'a>, samp: &Table) -> Result<Computed> {
 }
 
 /// V1 unbiased: lowest frequency above which every |bias| < 3 standard errors.
-fn fig5_v1_unbiased_above<'a>(spec: &Spec<'a>, samp: &Table, c: &Fig5Columns) -> Result<Computed> {
+fn fig5_v1_unbiased_above<'a>(
+    spec: &Spec<'a>,
+    samp: &Table,
+    c: &Fig5Columns,
+    evidence: &str,
+) -> Result<Computed> {
     let id = "piston.fig5_v1_unbiased_above_hz";
     let freqs = &c.freqs;
-    let last_sig = (0..c.b1.len())
-        .rev()
-        .find(|&i| c.b1[i].abs() > SIGNIFICANCE_SIGMAS * c.se1[i]);
-    let unb = match last_sig {
-        None => freqs[0],
-        Some(i) if i + 1 < freqs.len() => freqs[i + 1],
-        Some(_) => f64::NAN,
-    };
-    let unb_lo = last_sig.map_or(freqs[0], |i| freqs[i]);
+    let (unb, unb_lo) = unbiased_from(freqs, &c.b1, &c.se1);
     let l_1e3 = locate(samp, "bias_v1", 1e-3)?;
     let status = match spec(id).paper {
         Some(p) if unb.is_finite() && p >= unb_lo && p <= unb => Status::Reproduced,
@@ -253,13 +286,18 @@ fn fig5_v1_unbiased_above<'a>(spec: &Spec<'a>, samp: &Table, c: &Fig5Columns) ->
         Some(unb),
         status,
         format!(
-            "every |bias V1| is within 3 standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < 0.1% above {} ; paper 300 Hz. {MODEL_NOTE}",
+            "every |bias V1| is within 3 standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < 0.1% above {} ; paper 300 Hz. {MODEL_NOTE} {evidence}",
             crossing_text(l_1e3.crossing)
         ),
     ))
 }
 
-fn fig5_v2_1e5_above<'a>(spec: &Spec<'a>, samp: &Table, c: &Fig5Columns) -> Result<Computed> {
+fn fig5_v2_1e5_above<'a>(
+    spec: &Spec<'a>,
+    samp: &Table,
+    c: &Fig5Columns,
+    evidence: &str,
+) -> Result<Computed> {
     let id = "piston.fig5_v2_1e-5_above_hz";
     let l5 = locate(samp, "bias_v2", 1e-5)?;
     let top = c.freqs.len() - 1;
@@ -274,11 +312,26 @@ fn fig5_v2_1e5_above<'a>(spec: &Spec<'a>, samp: &Table, c: &Fig5Columns) -> Resu
         &l5,
         "|bias V2| < 1e-5 above",
         &format!(
-            "At {:.0} Hz: bias V2 {:.2e}, bias V1 {:.2e}, scatter V2 {:.2e} vs scatter V1 {:.2e}; V2 is more accurate than V1 (smaller |bias| and scatter) at {better} of {} frequencies. {MODEL_NOTE}",
+            "At {:.0} Hz: bias V2 {:.2e}, bias V1 {:.2e}, scatter V2 {:.2e} vs scatter V1 {:.2e}; V2 is more accurate than V1 (smaller |bias| and scatter) at {better} of {} frequencies. {MODEL_NOTE} {evidence}",
             c.freqs[top], c.b2[top], c.b1[top], c.s2[top], c.s1[top],
             c.freqs.len()
         ),
     ))
+}
+
+/// The lowest frequency from which every |bias| is within 3 standard errors
+/// of zero (NaN when the last point is significant; the lowest frequency
+/// when none is), and the last significant frequency (the lowest when none).
+pub(super) fn unbiased_from(freqs: &[f64], bias: &[f64], se: &[f64]) -> (f64, f64) {
+    let last_sig = (0..bias.len())
+        .rev()
+        .find(|&i| bias[i].abs() > SIGNIFICANCE_SIGMAS * se[i]);
+    let unb = match last_sig {
+        None => freqs[0],
+        Some(i) if i + 1 < freqs.len() => freqs[i + 1],
+        Some(_) => f64::NAN,
+    };
+    (unb, last_sig.map_or(freqs[0], |i| freqs[i]))
 }
 
 /// Integration: below 200 Hz, compare |bias| integrating vs sampled.

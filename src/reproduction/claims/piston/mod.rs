@@ -23,8 +23,9 @@ use num_complex::Complex64;
 
 mod figures;
 mod scaling;
+pub mod sensitivity;
 
-use figures::{fig4_claims, fig5_claims, Fig4Columns, FIG4_IDS, FIG5_IDS};
+use figures::{fig4_claims, fig5_claims, unbiased_from, Fig4Columns, FIG4_IDS, FIG5_IDS};
 use scaling::scaling_claims;
 
 /// Where a curve |y(f)| falls below a level for good (f increasing).
@@ -195,7 +196,8 @@ pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
         Err(e) => failed_all(&FIG4_IDS, &e),
     });
     out.extend(match fig5(effort) {
-        Ok(f5) => fig5_claims(&spec, &f5).unwrap_or_else(|e| failed_all(&FIG5_IDS, &e)),
+        Ok(f5) => fig5_claims(&spec, &f5, &sensitivity::fig5_sensitivity(effort))
+            .unwrap_or_else(|e| failed_all(&FIG5_IDS, &e)),
         Err(e) => failed_all(&FIG5_IDS, &e),
     });
     out.extend(scaling_claims(effort));

@@ -1,0 +1,309 @@
+//! Why the Fig. 5 thresholds differ from the paper's: the four thresholds
+//! recomputed for every combination of the choices the paper leaves open —
+//! the piston spectrum model ([`PistonPsdModel`]), where the packet sits in
+//! each scan ([`PistonReference`]: centre, mean), the window of Fourier bins
+//! ([`BinWindow`]: positive, band, all) and the reading of "64 µm at 4
+//! samples per fringe" (128 samples of 0.5 µm, four per 2.0 µm fringe, or
+//! 116 of 0.55 µm, four per 2.2 µm fringe).
+//!
+//! Each combination is a Fig. 5 sweep (unresolved source, 18 m, sampled
+//! detector, log-spaced 50–2000 Hz) with the figure's seed, so that every
+//! combination sees the same random numbers where the sequences have the
+//! same length; the bin windows share one run.
+
+use super::{column, locate, unbiased_from};
+use crate::error::Result;
+use crate::formalism::estimator::{BinWindow, BIN_WINDOWS};
+use crate::formalism::observation::{Frequency, Observation};
+use crate::formalism::phase::SpectralPhase;
+use crate::formalism::source::Source;
+use crate::formalism::spectrum::{Band, Spectrum};
+use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::{sweep, Detector, PistonReference, RunSize, ScanSetup};
+use crate::reproduction::cases::{
+    fig5_frequencies, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
+};
+use crate::reproduction::figures::piston::fig5_table;
+use crate::reproduction::table::Table;
+use serde::Serialize;
+use std::sync::Mutex;
+
+/// The paper's thresholds, Hz: V1 biased by > 1 % below, V2 biased by
+/// > 1 % below, V1 unbiased from, V2 below 1e-5 from.
+pub const PAPER_THRESHOLDS_HZ: [f64; 4] = [100.0, 300.0, 300.0, 800.0];
+
+/// The names of the four thresholds, in [`PAPER_THRESHOLDS_HZ`] order.
+pub const THRESHOLD_NAMES: [&str; 4] = [
+    "v1_biased_1pct_below_hz",
+    "v2_biased_1pct_below_hz",
+    "v1_unbiased_from_hz",
+    "v2_below_1e-5_from_hz",
+];
+
+/// The two readings of a 64 µm stroke at 4 samples per fringe: (N, δx µm).
+pub const SAMPLINGS: [(usize, f64); 2] = [(128, 0.5), (116, 0.55)];
+
+/// One combination of choices and its four thresholds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SensitivityRow {
+    /// The spectrum model.
+    pub psd: PistonPsdModel,
+    /// Where the packet sits.
+    pub reference: PistonReference,
+    /// The bins summed.
+    pub window: BinWindow,
+    /// N.
+    pub samples: usize,
+    /// δx, µm.
+    pub dx_um: f64,
+    /// The thresholds, Hz, in [`THRESHOLD_NAMES`] order (the lowest or
+    /// highest frequency simulated when the crossing is outside the range;
+    /// NaN for "V1 unbiased from" when V1 is still biased at the highest).
+    pub thresholds_hz: [f64; 4],
+}
+
+impl SensitivityRow {
+    /// How far each threshold is from the paper's, as |ln(computed/paper)|.
+    pub fn log_distance(&self) -> [f64; 4] {
+        let mut d = [0.0; 4];
+        for (i, x) in d.iter_mut().enumerate() {
+            *x = (self.thresholds_hz[i] / PAPER_THRESHOLDS_HZ[i]).ln().abs();
+        }
+        d
+    }
+
+    /// The combination in words.
+    pub fn label(&self) -> String {
+        format!(
+            "{} spectrum, {} reference, {} bins, {} x {} um",
+            self.psd.name(),
+            self.reference.name(),
+            self.window.name(),
+            self.samples,
+            self.dx_um
+        )
+    }
+}
+
+/// The sensitivity table: every combination, and the grid it used.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sensitivity {
+    /// Frequencies of each sweep, Hz.
+    pub frequencies: Vec<f64>,
+    /// Scans per frequency.
+    pub scans: usize,
+    /// One row per combination.
+    pub rows: Vec<SensitivityRow>,
+}
+
+/// Sizes: (frequencies, scans per frequency).
+pub fn sensitivity_size(effort: Effort) -> (usize, usize) {
+    match effort {
+        Effort::Full => (17, 10_000),
+        Effort::Quick => (9, 300),
+    }
+}
+
+static CACHE: Mutex<Vec<(bool, Sensitivity)>> = Mutex::new(Vec::new());
+
+/// The sensitivity table at `effort` (computed once per process).
+pub fn fig5_sensitivity(effort: Effort) -> Result<Sensitivity> {
+    let key = effort == Effort::Full;
+    if let Some((_, s)) = CACHE.lock().ok().and_then(|c| {
+        c.iter()
+            .find(|(k, _)| *k == key)
+            .map(|(k, s)| (*k, s.clone()))
+    }) {
+        return Ok(s);
+    }
+    let s = compute(effort)?;
+    if let Ok(mut c) = CACHE.lock() {
+        c.push((key, s.clone()));
+    }
+    Ok(s)
+}
+
+fn compute(effort: Effort) -> Result<Sensitivity> {
+    let (count, scans) = sensitivity_size(effort);
+    let frequencies = fig5_frequencies(count);
+    let base = PistonSpectrum::new(paper_turbulence(), APERTURE_M, FIG5_BASELINE_M)?;
+    let mut rows = Vec::new();
+    for psd in [PistonPsdModel::TwoAperture, PistonPsdModel::ThreeSlope] {
+        let spectrum = base.with_model(psd)?;
+        for reference in [PistonReference::Centre, PistonReference::Mean] {
+            for (samples, dx_um) in SAMPLINGS {
+                let setup = ScanSetup {
+                    samples,
+                    dx_um,
+                    wavelength_um: 2.2,
+                    fringe_hz: frequencies[0],
+                    reference,
+                };
+                let table = sampled_sweep(&spectrum, &frequencies, &setup, scans)?;
+                for window in BIN_WINDOWS {
+                    rows.push(SensitivityRow {
+                        psd,
+                        reference,
+                        window,
+                        samples,
+                        dx_um,
+                        thresholds_hz: thresholds(&table, window)?,
+                    });
+                }
+            }
+        }
+    }
+    Ok(Sensitivity {
+        frequencies,
+        scans,
+        rows,
+    })
+}
+
+/// The Fig. 5 sweep of the sampled detector for one combination, as a
+/// Fig. 5 table.
+fn sampled_sweep(
+    spectrum: &PistonSpectrum,
+    frequencies: &[f64],
+    setup: &ScanSetup,
+    scans: usize,
+) -> Result<Table> {
+    let obs = Observation::new(
+        Spectrum::flat(Band::k()),
+        Source::Point,
+        Frequency::BaselineM(FIG5_BASELINE_M),
+        SpectralPhase::zero(),
+    )?;
+    let size = RunSize {
+        scans,
+        seed: FIGURE_SEED,
+        threads: 0,
+    };
+    let runs = sweep(
+        &obs,
+        spectrum,
+        frequencies,
+        setup,
+        &[Detector::Sampled],
+        &size,
+        None,
+    )?;
+    Ok(fig5_table("sensitivity", runs.iter().map(|r| &r[0])))
+}
+
+/// The four thresholds of one window, read as the claims read them.
+fn thresholds(table: &Table, window: BinWindow) -> Result<[f64; 4]> {
+    let suffix = match window {
+        BinWindow::Positive => String::new(),
+        other => format!("_{}", other.name()),
+    };
+    let v1 = format!("bias_v1{suffix}");
+    let v2 = format!("bias_v2{suffix}");
+    let freqs = column(table, "fringe_hz")?;
+    let (unbiased, _) = unbiased_from(
+        &freqs,
+        &column(table, &v1)?,
+        &column(table, &format!("{v1}_stderr"))?,
+    );
+    Ok([
+        locate(table, &v1, 0.01)?.value,
+        locate(table, &v2, 0.01)?.value,
+        unbiased,
+        locate(table, &v2, 1e-5)?.value,
+    ])
+}
+
+impl Sensitivity {
+    /// The table as CSV: the choices, then the four thresholds and the
+    /// paper's.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("psd,reference,window,samples,dx_um");
+        for name in THRESHOLD_NAMES {
+            out.push_str(&format!(",{name},paper_{name}"));
+        }
+        out.push('\n');
+        for r in &self.rows {
+            out.push_str(&format!(
+                "{},{},{},{},{}",
+                r.psd.name(),
+                r.reference.name(),
+                r.window.name(),
+                r.samples,
+                r.dx_um
+            ));
+            for (t, p) in r.thresholds_hz.iter().zip(PAPER_THRESHOLDS_HZ) {
+                out.push_str(&format!(",{t:.1},{p}"));
+            }
+            out.push('\n');
+        }
+        out
+    }
+
+    /// The table as Markdown, with the closest combination per threshold.
+    pub fn to_markdown(&self) -> String {
+        let (lo, hi) = (
+            self.frequencies[0],
+            self.frequencies[self.frequencies.len() - 1],
+        );
+        let shown = |t: f64| {
+            if t.is_nan() {
+                format!("none ≤ {hi:.0}")
+            } else if t <= lo {
+                format!("≤ {lo:.0}")
+            } else if t >= hi {
+                format!("≥ {hi:.0}")
+            } else {
+                format!("{t:.0}")
+            }
+        };
+        let mut out = format!(
+            "Fig. 5 thresholds (Hz) for each combination: {} log-spaced frequencies {lo:.0}–{hi:.0} Hz, {} scans each, sampled detector, seed {FIGURE_SEED}. Paper: 100 / 300 / 300 / 800.\n\n| spectrum | reference | bins | N x δx | V1 > 1% below | V2 > 1% below | V1 unbiased from | V2 < 1e-5 from |\n|---|---|---|---|---:|---:|---:|---:|\n",
+            self.frequencies.len(),
+            self.scans
+        );
+        for r in &self.rows {
+            let t: Vec<String> = r.thresholds_hz.iter().map(|&t| shown(t)).collect();
+            out.push_str(&format!(
+                "| {} | {} | {} | {} x {} | {} |\n",
+                r.psd.name(),
+                r.reference.name(),
+                r.window.name(),
+                r.samples,
+                r.dx_um,
+                t.join(" | ")
+            ));
+        }
+        out
+    }
+
+    /// For threshold `i`: the rows within one grid step of the paper's
+    /// value, and the closest row.
+    pub fn closest(&self, i: usize) -> (Vec<&SensitivityRow>, Option<&SensitivityRow>) {
+        let step = self.grid_step_ln();
+        let within = self
+            .rows
+            .iter()
+            .filter(|r| r.log_distance()[i] <= step)
+            .collect();
+        let best = self
+            .rows
+            .iter()
+            .min_by(|a, b| a.log_distance()[i].total_cmp(&b.log_distance()[i]));
+        (within, best)
+    }
+
+    /// The combinations within one grid step of all four paper values.
+    pub fn reproducing_all(&self) -> Vec<&SensitivityRow> {
+        let step = self.grid_step_ln();
+        self.rows
+            .iter()
+            .filter(|r| r.log_distance().iter().all(|d| *d <= step))
+            .collect()
+    }
+
+    /// One step of the log-spaced grid, ln units.
+    fn grid_step_ln(&self) -> f64 {
+        let n = self.frequencies.len();
+        (self.frequencies[n - 1] / self.frequencies[0]).ln() / (n - 1) as f64
+    }
+}
