@@ -131,6 +131,9 @@ pub fn hint(table: &str) -> PlotHint {
             h.title =
                 Some("Fig. 0: effect of normalizing V2 by the mean flux, against scan stroke");
             h.lines = vec![(ACCURACY_0P2, "0.2%")];
+            // The Riemann-sum curve runs along the top: the legend goes below.
+            h.legend_at = LegendAt::LowerLeft;
+            h.log_y_room_below = 1.0;
         }
         "fig1_v1" => {
             h.note = Some(FIG1_NOTE);
@@ -146,6 +149,7 @@ pub fn hint(table: &str) -> PlotHint {
         "fig2_disk" => {
             h.y_label = Some("V2 - V mono");
             h.title = Some("Fig. 2: V2 minus monochromatic V under dispersion, uniform disk");
+            h.legend_at = LegendAt::LowerRight;
         }
         "fig2_point" => {
             h.y_label = Some("V2 of a point source");
@@ -447,7 +451,8 @@ fn reference_lines(hint: &PlotHint, (y0, y1): (f64, f64)) -> Vec<(f64, &'static 
 
 /// The abscissa label (first column with its unit) and the ordinate label.
 fn axis_labels(table: &Table, hint: &PlotHint) -> (String, String) {
-    let x_desc = table.columns[0].header();
+    // Units as printed: micrometres as µm.
+    let x_desc = table.columns[0].header().replace("[um]", "[µm]");
     let y_unit = table
         .columns
         .get(1)
