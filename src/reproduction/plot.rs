@@ -133,7 +133,7 @@ pub fn hint(table: &str) -> PlotHint {
             h.lines = vec![(ACCURACY_0P2, "0.2%")];
             // The Riemann-sum curve runs along the top: the legend goes below.
             h.legend_at = LegendAt::LowerLeft;
-            h.log_y_room_below = 1.0;
+            h.log_y_room_below = 1.5;
         }
         "fig1_v1" => {
             h.note = Some(FIG1_NOTE);
@@ -449,10 +449,22 @@ fn reference_lines(hint: &PlotHint, (y0, y1): (f64, f64)) -> Vec<(f64, &'static 
         .collect()
 }
 
-/// The abscissa label (first column with its unit) and the ordinate label.
+/// The abscissa label (the first column in words, with its unit) and the
+/// ordinate label.
 fn axis_labels(table: &Table, hint: &PlotHint) -> (String, String) {
-    // Units as printed: micrometres as µm.
-    let x_desc = table.columns[0].header().replace("[um]", "[µm]");
+    let x = &table.columns[0];
+    let x_words = match x.name.as_str() {
+        "s" | "spatial_freq_cpas" => "spatial frequency S".to_owned(),
+        "fringe_hz" => "fringe frequency".to_owned(),
+        "stroke" => "scan stroke".to_owned(),
+        "dispersion_pp" => "dispersion, peak to peak".to_owned(),
+        other => other.replace('_', " "),
+    };
+    let x_desc = match x.unit.as_str() {
+        "" => x_words,
+        "um" => format!("{x_words} [µm]"),
+        unit => format!("{x_words} [{unit}]"),
+    };
     let y_unit = table
         .columns
         .get(1)
