@@ -62,7 +62,45 @@ pub struct PlotHint {
     pub dashed: Vec<&'static str>,
     /// A caveat printed under the parameters.
     pub note: Option<&'static str>,
+    /// Where the legend goes (where it hides no curve).
+    pub legend_at: LegendAt,
+    /// A zoom drawn inside the chart, on linear axes.
+    pub inset: Option<Inset>,
+    /// Decades of room below the data on a logarithmic ordinate (for the
+    /// inset and the legend).
+    pub log_y_room_below: f64,
+    /// Panel height, pixels (default: that of [`SIZE`]).
+    pub height_px: Option<u32>,
 }
+
+/// A corner of the chart for the legend.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum LegendAt {
+    /// Upper right (plotters' usual place).
+    #[default]
+    UpperRight,
+    /// Lower right.
+    LowerRight,
+    /// Lower left.
+    LowerLeft,
+}
+
+/// A zoom on part of the abscissa, drawn in the lower left corner of the
+/// chart on linear axes, with the panel's curves and reference lines and
+/// no legend (the panel's applies).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Inset {
+    /// The abscissa shown, in the panel's unit.
+    pub x_range: (f64, f64),
+    /// The columns whose values over `x_range` set the ordinate's top
+    /// (the others may leave it).
+    pub fit: Vec<&'static str>,
+    /// What the inset shows, printed above it.
+    pub caption: &'static str,
+}
+
+/// The inset's share of the chart's width and height.
+const INSET_SHARE: f64 = 0.45;
 
 /// Columns that give context to a panel rather than being its subject.
 const CONTEXT_COLUMNS: [&str; 6] = [
@@ -77,8 +115,9 @@ const CONTEXT_COLUMNS: [&str; 6] = [
 /// The paper's "current best accuracy" of single-mode interferometers (0.2%).
 const ACCURACY_0P2: f64 = 2e-3;
 
-/// Why Fig. 1's curves drop steeply at the nulls of the disk.
-const FIG1_NOTE: &str = "Steep drops at the nulls: |V mono| and the wide-band |V| vanish at slightly different S; the grid step is 0.1 cycles/arcsec.";
+/// Why Fig. 1's curves turn sharply at the nulls of the disk, and how they
+/// are drawn there.
+const FIG1_NOTE: &str = "At the nulls |V mono| and the wide-band V vanish at slightly different S: the sharp turns are real, drawn from extra points there (the CSV keeps the grid).";
 
 /// The presentation of the panel called `table`.
 pub fn hint(table: &str) -> PlotHint {
@@ -92,6 +131,9 @@ pub fn hint(table: &str) -> PlotHint {
             h.title =
                 Some("Fig. 0: effect of normalizing V2 by the mean flux, against scan stroke");
             h.lines = vec![(ACCURACY_0P2, "0.2%")];
+            // The Riemann-sum curve runs along the top: the legend goes below.
+            h.legend_at = LegendAt::LowerLeft;
+            h.log_y_room_below = 1.5;
         }
         "fig1_v1" => {
             h.note = Some(FIG1_NOTE);
@@ -100,12 +142,14 @@ pub fn hint(table: &str) -> PlotHint {
         }
         "fig1_v2" => {
             h.note = Some(FIG1_NOTE);
+            h.legend_at = LegendAt::LowerLeft;
             h.y_label = Some("V2 - V mono");
             h.title = Some("Fig. 1: wide-band V2 minus monochromatic V, uniform disk");
         }
         "fig2_disk" => {
             h.y_label = Some("V2 - V mono");
             h.title = Some("Fig. 2: V2 minus monochromatic V under dispersion, uniform disk");
+            h.legend_at = LegendAt::LowerRight;
         }
         "fig2_point" => {
             h.y_label = Some("V2 of a point source");
@@ -122,6 +166,11 @@ pub fn hint(table: &str) -> PlotHint {
                 _ => "Fig. 3: finite-scan bias of V1 and V2 (convolution estimator)",
             });
             h.lines = vec![(ACCURACY_0P2, "+0.2%"), (-ACCURACY_0P2, "-0.2%")];
+            // The biases dip at the nulls, the last one under the upper
+            // right corner; the lower left is empty.
+            if table != "fig3_v2" {
+                h.legend_at = LegendAt::LowerLeft;
+            }
         }
         t if t.starts_with("fig4_") => {
             h.y_label = Some("V(piston) - V(no piston); bars: scatter over scans");
@@ -149,13 +198,34 @@ pub fn hint(table: &str) -> PlotHint {
             h.abs_log_y = true;
             h.log_x = true;
             h.lines = vec![(1e-2, "1%"), (1e-5, "1e-5")];
+            // The biases near 1e-5 at high fringe frequency, on linear axes.
+            h.inset = Some(Inset {
+                x_range: (500.0, 2000.0),
+                fit: vec!["bias_v1", "bias_v2"],
+                caption: "zoom: |bias| at 500-2000 Hz, linear axes",
+            });
+            h.log_y_room_below = 2.0;
+            h.legend_at = LegendAt::LowerRight;
+            h.height_px = Some(700);
         }
         _ => {}
     }
     h
 }
 
+/// The rows drawn for `table`: Fig. 1's panels gain rows near the nulls of
+/// the disk, where the grid is too coarse for the sharp turns; other
+/// panels are drawn from their rows.
+fn drawn_rows(table: &Table) -> Result<Table> {
+    match table.name.as_str() {
+        "fig1_v1" | "fig1_v2" => crate::reproduction::figures::bias::fig1_refined_near_nulls(table),
+        _ => Ok(table.clone()),
+    }
+}
+
 struct Series {
+    /// The column drawn.
+    name: String,
     label: String,
     dashed: bool,
     points: Vec<(f64, f64)>,
@@ -200,6 +270,7 @@ fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
                 .filter(|&i| !hint.log_x || x[i] > 0.0)
                 .collect();
             Series {
+                name: c.name.clone(),
                 label: legend_label(&c.name),
                 dashed: hint.dashed.contains(&c.name.as_str()),
                 points: keep.iter().map(|&i| (x[i], y[i])).collect(),
@@ -212,6 +283,7 @@ fn series_of(table: &Table, hint: &PlotHint) -> Vec<Series> {
 /// The SVG text of one panel of `figure`.
 pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
     let hint = hint(&table.name);
+    let table = &drawn_rows(table)?;
     let series = series_of(table, &hint);
     let frame = Frame::new(table, &hint, &series)?;
     let mut title = match hint.title {
@@ -228,7 +300,8 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
     let subtitle = parameter_line(&figure.parameters);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let size = (SIZE.0, hint.height_px.unwrap_or(SIZE.1));
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(plot_error)?;
         let (head, root) = root.split_vertically(if hint.note.is_some() { 72 } else { 52 });
         if let Some(note) = hint.note {
@@ -258,23 +331,30 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
             .x_label_area_size(45)
             .y_label_area_size(80);
         let (x, y) = (frame.x.0..frame.x.1, frame.y.0..frame.y.1);
-        match (frame.log_x, frame.log_y) {
+        let legend_at = hint.legend_at;
+        let chart_px = match (frame.log_x, frame.log_y) {
             (false, true) => draw(
                 builder.build_cartesian_2d(x, y.log_scale()),
                 &frame,
                 &series,
+                legend_at,
             )?,
-            (false, false) => draw(builder.build_cartesian_2d(x, y), &frame, &series)?,
+            (false, false) => draw(builder.build_cartesian_2d(x, y), &frame, &series, legend_at)?,
             (true, true) => draw(
                 builder.build_cartesian_2d(x.log_scale(), y.log_scale()),
                 &frame,
                 &series,
+                legend_at,
             )?,
             (true, false) => draw(
                 builder.build_cartesian_2d(x.log_scale(), y),
                 &frame,
                 &series,
+                legend_at,
             )?,
+        };
+        if let Some(inset) = &hint.inset {
+            draw_inset(&root, chart_px, inset, &frame, &series)?;
         }
         root.present().map_err(plot_error)?;
     }
@@ -283,6 +363,7 @@ pub fn table_svg(figure: &Figure, table: &Table) -> Result<String> {
 
 /// The axes of one panel: ranges, scales, labels and the reference lines
 /// that fall within them.
+#[derive(Clone)]
 struct Frame {
     x: (f64, f64),
     y: (f64, f64),
@@ -300,6 +381,11 @@ impl Frame {
         let x = widen_if_flat(x);
         let log_y = hint.abs_log_y || (y.0 > 0.0 && y.1 / y.0 > 1e3);
         let y = pad_ordinate(y, log_y);
+        let y = if log_y {
+            (y.0 / 10f64.powf(hint.log_y_room_below), y.1)
+        } else {
+            y
+        };
         let lines = reference_lines(hint, y);
         // The ordinate also covers the reference lines drawn.
         let y = lines
@@ -368,9 +454,22 @@ fn reference_lines(hint: &PlotHint, (y0, y1): (f64, f64)) -> Vec<(f64, &'static 
         .collect()
 }
 
-/// The abscissa label (first column with its unit) and the ordinate label.
+/// The abscissa label (the first column in words, with its unit) and the
+/// ordinate label.
 fn axis_labels(table: &Table, hint: &PlotHint) -> (String, String) {
-    let x_desc = table.columns[0].header();
+    let x = &table.columns[0];
+    let x_words = match x.name.as_str() {
+        "s" | "spatial_freq_cpas" => "spatial frequency S".to_owned(),
+        "fringe_hz" => "fringe frequency".to_owned(),
+        "stroke" => "scan stroke".to_owned(),
+        "dispersion_pp" => "dispersion, peak to peak".to_owned(),
+        other => other.replace('_', " "),
+    };
+    let x_desc = match x.unit.as_str() {
+        "" => x_words,
+        "um" => format!("{x_words} [µm]"),
+        unit => format!("{x_words} [{unit}]"),
+    };
     let y_unit = table
         .columns
         .get(1)
@@ -387,13 +486,18 @@ fn axis_labels(table: &Table, hint: &PlotHint) -> (String, String) {
 /// A chart of the SVG backend on coordinates `X × Y` (linear or log).
 type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
 
+/// The pixels a chart's plotting area covers (abscissa, ordinate).
+type PixelBox = (std::ops::Range<i32>, std::ops::Range<i32>);
+
 /// Draws mesh and ticks, reference lines, series with their error bars and
-/// the legend, in that order, on a built chart.
+/// the legend, in that order, on a built chart; returns where the plotting
+/// area lies.
 fn draw<'a, 'b: 'a, X, Y, E>(
     chart: std::result::Result<Chart<'a, 'b, X, Y>, E>,
     frame: &Frame,
     series: &[Series],
-) -> Result<()>
+    legend_at: LegendAt,
+) -> Result<PixelBox>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -405,13 +509,148 @@ where
     for (i, s) in series.iter().enumerate() {
         draw_series(&mut chart, s, PALETTE[i % PALETTE.len()])?;
     }
+    let position = match legend_at {
+        LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
+        LegendAt::LowerRight => SeriesLabelPosition::LowerRight,
+        LegendAt::LowerLeft => SeriesLabelPosition::LowerLeft,
+    };
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(position)
         .border_style(BLACK)
         .background_style(WHITE.mix(0.85))
         .draw()
-        .map_err(plot_error)
+        .map_err(plot_error)?;
+    Ok(chart.plotting_area().get_pixel_range())
+}
+
+/// Draws `inset` in the lower left corner of the plotting area `chart_px`
+/// of `root`: a white box with its own linear axes, the curves of `series`
+/// clipped to it in their colours and styles, the reference lines of
+/// `frame` that fall within it, no legend.
+fn draw_inset(
+    root: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    (px, py): PixelBox,
+    inset: &Inset,
+    frame: &Frame,
+    series: &[Series],
+) -> Result<()> {
+    let y_top = inset_top(inset, series);
+    let (root_x, root_y) = root.get_pixel_range();
+    let share = |r: &std::ops::Range<i32>| (f64::from(r.end - r.start) * INSET_SHARE) as i32;
+    let (w, h) = (share(&px), share(&py));
+    let (left, top) = (px.start - root_x.start + 12, py.end - root_y.start - h - 12);
+    let area = root.clone().shrink((left, top), (w, h));
+    area.fill(&WHITE).map_err(plot_error)?;
+    area.draw(&Rectangle::new(
+        [(0, 0), (w - 1, h - 1)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(plot_error)?;
+    let mut chart = ChartBuilder::on(&area)
+        .margin(8)
+        .caption(inset.caption, ("sans-serif", 12))
+        .x_label_area_size(22)
+        .y_label_area_size(50)
+        .build_cartesian_2d(inset.x_range.0..inset.x_range.1, 0.0..y_top)
+        .map_err(plot_error)?;
+    chart
+        .configure_mesh()
+        .label_style(("sans-serif", 11))
+        .x_labels(4)
+        .y_labels(5)
+        .y_label_formatter(&|y: &f64| tick(*y))
+        .x_label_formatter(&|x: &f64| tick(*x))
+        .light_line_style(RGBColor(242, 242, 242))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .draw()
+        .map_err(plot_error)?;
+    let zoom = Frame {
+        x: inset.x_range,
+        y: (0.0, y_top),
+        ..frame.clone()
+    };
+    draw_reference_lines(&mut chart, &zoom)?;
+    for (i, s) in series.iter().enumerate() {
+        for piece in clip_polyline(&s.points, zoom.x, zoom.y) {
+            let piece = Series {
+                points: piece,
+                errors: None,
+                name: s.name.clone(),
+                label: s.label.clone(),
+                dashed: s.dashed,
+            };
+            draw_series(&mut chart, &piece, PALETTE[i % PALETTE.len()])?;
+        }
+    }
+    Ok(())
+}
+
+/// The top of the inset's ordinate: 10% above the largest value of its
+/// `fit` columns over its abscissa.
+fn inset_top(inset: &Inset, series: &[Series]) -> f64 {
+    let (x0, x1) = inset.x_range;
+    let top = series
+        .iter()
+        .filter(|s| inset.fit.contains(&s.name.as_str()))
+        .flat_map(|s| s.points.iter())
+        .filter(|(x, _)| (x0..=x1).contains(x))
+        .fold(0.0_f64, |m, (_, y)| m.max(*y));
+    if top > 0.0 {
+        1.1 * top
+    } else {
+        1.0
+    }
+}
+
+/// The parts of the polyline `points` inside the box `x` × `y` (linear
+/// axes), each a polyline.
+fn clip_polyline(points: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut pieces: Vec<Vec<(f64, f64)>> = Vec::new();
+    for segment in points.windows(2) {
+        let Some((p, q)) = clip_segment(segment[0], segment[1], x, y) else {
+            continue;
+        };
+        match pieces.last_mut() {
+            Some(last) if last.last() == Some(&p) => last.push(q),
+            _ => pieces.push(vec![p, q]),
+        }
+    }
+    pieces
+}
+
+/// The part of the segment `a`–`b` inside the box `x` × `y` (Liang and
+/// Barsky's parametric clipping), its ends exactly `a` or `b` when inside.
+fn clip_segment(
+    a: (f64, f64),
+    b: (f64, f64),
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Option<((f64, f64), (f64, f64))> {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-dx, a.0 - x0),
+        (dx, x1 - a.0),
+        (-dy, a.1 - y0),
+        (dy, y1 - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    let at = |t: f64| match t {
+        0.0 => a,
+        1.0 => b,
+        _ => (a.0 + t * dx, a.1 + t * dy),
+    };
+    (t0 <= t1).then(|| (at(t0), at(t1)))
 }
 
 /// Axes, grid and tick labels.
@@ -433,7 +672,8 @@ where
         .map_err(plot_error)
 }
 
-/// The horizontal reference lines, grey, across the whole abscissa.
+/// The horizontal reference lines within the ordinate, across the whole
+/// abscissa (a line keeps its style when others are out of range).
 fn draw_reference_lines<X, Y>(chart: &mut Chart<'_, '_, X, Y>, frame: &Frame) -> Result<()>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -452,6 +692,9 @@ where
                 levels.len() - 1
             }
         };
+        if *y < frame.y.0 || *y > frame.y.1 {
+            continue;
+        }
         let (colour, dash) = STYLES[level % STYLES.len()];
         let style = colour.stroke_width(2);
         let text = format!("reference: {label}");
@@ -523,7 +766,9 @@ fn tick(y: f64) -> String {
         let s = format!("{y:.4}");
         s.trim_end_matches('0').trim_end_matches('.').to_owned()
     } else {
-        format!("{y:.0e}")
+        // One digit of mantissa when it is not whole (2.5e-4, not 2e-4).
+        let s = format!("{y:.1e}");
+        s.replace(".0e", "e")
     }
 }
 

@@ -25,6 +25,7 @@ use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::{uniform_disk_visibility, Source};
 use crate::formalism::spectrum::{Band, Spectrum};
+use crate::math::special::bessel_j1_zero;
 use crate::math::special::fresnel::point_source_v2_sq;
 use crate::reproduction::cases::Effort;
 use crate::reproduction::cases::{fig1_step, fig3_check_step, fig3_step};
@@ -114,31 +115,52 @@ fn table(name: &str, columns: Vec<Column>, data: Vec<Vec<f64>>) -> Table {
     }
 }
 
+/// The Fig. 1 bands: flat, centred on [`WAVELENGTH_UM`], each of
+/// [`BANDWIDTHS_NM`].
+fn fig1_bands() -> Result<Vec<Spectrum>> {
+    BANDWIDTHS_NM
+        .iter()
+        .map(|bw| {
+            let width_um = bw * crate::formalism::spectrum::UM_PER_NM;
+            Ok(Spectrum::flat(Band::new(WAVELENGTH_UM, width_um)?))
+        })
+        .collect()
+}
+
+/// The two Fig. 1 rows at spatial frequency `s` (cycles/arcsec):
+/// (S, |V mono|, V1 − V mono per band) and (S, |V mono|, V2 − V mono per
+/// band).
+fn fig1_rows_at(bands: &[Spectrum], s: f64) -> Result<[Vec<f64>; 2]> {
+    let v_mono = uniform_disk_visibility(DIAMETER_MAS, s).abs();
+    let mut rows = [vec![s, v_mono], vec![s, v_mono]];
+    for sp in bands {
+        let w = bandwidth::curve(sp, &disk(), &SpectralPhase::zero(), &[s])?[0];
+        rows[0].push(w.v1 - w.v_mono);
+        rows[1].push(w.v2 - w.v_mono);
+    }
+    Ok(rows)
+}
+
 /// Fig. 1.
 pub fn fig1(effort: Effort) -> Result<Figure> {
     let grid = s_grid(fig1_step(effort));
-    let v_mono: Vec<f64> = grid
-        .iter()
-        .map(|&s| uniform_disk_visibility(DIAMETER_MAS, s).abs())
-        .collect();
+    let bands = fig1_bands()?;
     let mut cols1 = vec![Column::new("s", "cycles/arcsec"), Column::new("v_mono", "")];
     let mut cols2 = cols1.clone();
-    let mut d1 = vec![grid.clone(), v_mono.clone()];
-    let mut d2 = d1.clone();
     for bw in BANDWIDTHS_NM {
-        let sp = Spectrum::flat(Band::new(
-            WAVELENGTH_UM,
-            bw * crate::formalism::spectrum::UM_PER_NM,
-        )?);
-        let curve: Vec<_> = grid
-            .par_iter()
-            .map(|&s| bandwidth::curve(&sp, &disk(), &SpectralPhase::zero(), &[s]).map(|v| v[0]))
-            .collect::<Result<_>>()?;
         cols1.push(Column::new(&format!("v1_minus_vmono_{}nm", label(bw)), ""));
         cols2.push(Column::new(&format!("v2_minus_vmono_{}nm", label(bw)), ""));
-        d1.push(curve.iter().map(|w| w.v1 - w.v_mono).collect());
-        d2.push(curve.iter().map(|w| w.v2 - w.v_mono).collect());
     }
+    let rows: Vec<[Vec<f64>; 2]> = grid
+        .par_iter()
+        .map(|&s| fig1_rows_at(&bands, s))
+        .collect::<Result<_>>()?;
+    let (rows1, rows2): (Vec<_>, Vec<_>) = rows.into_iter().map(|[a, b]| (a, b)).unzip();
+    let panel = |name: &str, columns, rows| Table {
+        name: name.into(),
+        columns,
+        rows,
+    };
     Ok(Figure {
         id: "fig1".into(),
         caption: "Fig. 1 (fig:figure_1): wide-band V1 and V2 minus the monochromatic visibility |2J1(pi theta S)/(pi theta S)| of a 43 mas uniform disk, flat bands centred on 2.2 um, 12.5 to 400 nm wide, infinite scan, S = B sigma_eff.".into(),
@@ -152,8 +174,108 @@ pub fn fig1(effort: Effort) -> Result<Figure> {
             "s_max_cpas": S_MAX_CPAS,
             "scan": "infinite",
         }),
-        tables: vec![table("fig1_v1", cols1, d1), table("fig1_v2", cols2, d2)],
+        tables: vec![panel("fig1_v1", cols1, rows1), panel("fig1_v2", cols2, rows2)],
     })
+}
+
+/// A Fig. 1 curve is refined where it departs from the straight line
+/// between two points by more than this fraction of the panel's ordinate
+/// span (a fraction of a pixel on the drawn panel).
+const FIG1_REFINE_TOLERANCE: f64 = 1e-3;
+/// Half-width of the window refined around each null, cycles/arcsec: wider
+/// than the gap between the nulls of |V mono| and of the widest band's V.
+const FIG1_REFINE_HALF_WIDTH_CPAS: f64 = 0.5;
+/// Most halvings of one grid step (0.1 / 2^16 ≈ 2e-6 cycles/arcsec).
+const FIG1_REFINE_DEPTH: u32 = 16;
+/// Below this step (about a pixel of the drawn panel), cycles/arcsec, only
+/// the turning points are kept: more points on a steep stretch, rounded to
+/// whole pixels by the SVG, would draw it as a staircase.
+const FIG1_PIXEL_CPAS: f64 = S_MAX_CPAS / 800.0;
+
+/// The nulls of the disk's monochromatic visibility up to [`S_MAX_CPAS`]:
+/// S_k = j_{1,k} / (π θ), θ the diameter in arcsec, cycles/arcsec.
+pub fn disk_nulls_cpas() -> Vec<f64> {
+    let theta_arcsec = DIAMETER_MAS * crate::formalism::source::ARCSEC_PER_MAS;
+    (1..)
+        .map(|k| bessel_j1_zero(k) / (std::f64::consts::PI * theta_arcsec))
+        .take_while(|&s| s <= S_MAX_CPAS)
+        .collect()
+}
+
+/// `panel` (`fig1_v1` or `fig1_v2`, as [`fig1`] makes it) with rows added
+/// near each null of the disk, for drawing: there |V mono| and the
+/// wide-band V vanish at slightly different S, so the differences turn or
+/// change sign within a fraction of the grid step. Each grid step within
+/// [`FIG1_REFINE_HALF_WIDTH_CPAS`] of a null is halved until the curves
+/// are straight to [`FIG1_REFINE_TOLERANCE`] of the ordinate span. The
+/// rows are exact values at the added S; the CSV keeps the regular grid.
+pub fn fig1_refined_near_nulls(panel: &Table) -> Result<Table> {
+    let estimator = usize::from(panel.name.ends_with("_v2"));
+    let bands = fig1_bands()?;
+    let curves = |r: &Vec<f64>| r[2..].to_vec();
+    let (lo, hi) = panel
+        .rows
+        .iter()
+        .flat_map(curves)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    let refine = Refinement {
+        bands: &bands,
+        estimator,
+        tolerance: FIG1_REFINE_TOLERANCE * (hi - lo),
+    };
+    let nulls = disk_nulls_cpas();
+    let near_null = |a: f64, b: f64| {
+        nulls
+            .iter()
+            .any(|n| b > n - FIG1_REFINE_HALF_WIDTH_CPAS && a < n + FIG1_REFINE_HALF_WIDTH_CPAS)
+    };
+    let mut rows = panel.rows.clone();
+    for step in panel.rows.windows(2) {
+        if near_null(step[0][0], step[1][0]) {
+            refine.bisect(&step[0], &step[1], FIG1_REFINE_DEPTH, &mut rows)?;
+        }
+    }
+    rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    Ok(Table {
+        rows,
+        ..panel.clone()
+    })
+}
+
+/// Adaptive refinement of one Fig. 1 panel (see [`fig1_refined_near_nulls`]).
+struct Refinement<'a> {
+    bands: &'a [Spectrum],
+    /// 0 for V1, 1 for V2.
+    estimator: usize,
+    /// Largest departure from a straight segment left unrefined.
+    tolerance: f64,
+}
+
+impl Refinement<'_> {
+    /// Adds to `out` the row at the middle of rows `a` and `b` when some
+    /// curve bends between them (on a sub-pixel step, only when it is a
+    /// turning point of some curve), and recurses into both halves.
+    fn bisect(&self, a: &[f64], b: &[f64], depth: u32, out: &mut Vec<Vec<f64>>) -> Result<()> {
+        if depth == 0 {
+            return Ok(());
+        }
+        let [v1, v2] = fig1_rows_at(self.bands, 0.5 * (a[0] + b[0]))?;
+        let mid = if self.estimator == 0 { v1 } else { v2 };
+        let bent = (2..mid.len()).any(|j| (mid[j] - 0.5 * (a[j] + b[j])).abs() > self.tolerance);
+        if !bent {
+            // On the straight segment: adds nothing to the drawing.
+            return Ok(());
+        }
+        self.bisect(a, &mid, depth - 1, out)?;
+        self.bisect(&mid, b, depth - 1, out)?;
+        let turning = (2..mid.len()).any(|j| (mid[j] - a[j]) * (mid[j] - b[j]) > 0.0);
+        if turning || b[0] - a[0] > 2.0 * FIG1_PIXEL_CPAS {
+            out.push(mid);
+        }
+        Ok(())
+    }
 }
 
 /// Fig. 2.
