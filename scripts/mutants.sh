@@ -4,6 +4,7 @@
 #
 #   scripts/mutants.sh AREA [AREA ...] [-- extra cargo-mutants options]
 #   scripts/mutants.sh all
+#   scripts/mutants.sh estimators -- --in-place   # reuse the tree's target dir
 #
 # Each area writes its report to mutants.out/AREA/ (git-ignored). The
 # configuration shared by all areas (scope, opt-level, timeouts) is in
@@ -12,8 +13,9 @@ set -euo pipefail
 
 # AREA -> "file globs | test binaries"
 declare -A AREAS=(
-    [estimators]="src/formalism/estimator.rs|spectral_estimators foundation properties"
-    [statistics]="src/montecarlo/*.rs|running_stats montecarlo_noise"
+    [estimators]="src/formalism/estimator.rs|spectral_estimators foundation"
+    [statistics]="src/montecarlo/statistics.rs|running_stats montecarlo_noise"
+    [seeding]="src/montecarlo/mod.rs|montecarlo_noise noise_mc golden"
     [special]="src/math/special/*.rs src/math/quadrature.rs|special foundation bias_dispersion"
     [spectrum]="src/formalism/spectrum.rs src/formalism/source.rs|spectral_estimators foundation spectrum_csv bias_line"
     [interferogram]="src/formalism/interferogram.rs src/formalism/oracle.rs src/formalism/phase.rs|foundation bias_finite_scan properties"
@@ -23,7 +25,7 @@ declare -A AREAS=(
     [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
     [turbulence]="src/piston/turbulence.rs src/piston/spectrum.rs|turbulence piston"
 )
-ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence noise_simulation)
+ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence noise_simulation seeding)
 
 areas=()
 while [[ $# -gt 0 && $1 != "--" ]]; do
@@ -44,7 +46,10 @@ for area in "${areas[@]}"; do
     fi
     files=() tests=()
     for f in ${spec%%|*}; do files+=(--file "$f"); done
-    for t in ${spec##*|}; do tests+=(--test "$t"); done
+    # --cargo-arg, not "-- --test": cargo-mutants passes arguments after
+    # "--" to the test run only, and would build every test binary.
+    for t in ${spec##*|}; do tests+=(--cargo-arg="--test=$t"); done
     echo "== $area: ${spec%%|*} with ${spec##*|}"
-    cargo mutants "${files[@]}" --output "mutants.out/$area" "$@" -- "${tests[@]}" || true
+    mkdir -p "mutants.out/$area"
+    cargo mutants "${files[@]}" "${tests[@]}" --output "mutants.out/$area" "$@" || true
 done
