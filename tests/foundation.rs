@@ -442,3 +442,49 @@ fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
     assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, -1.0]).is_err());
     assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![0.0, 0.0]).is_err());
 }
+
+/// The bins of each window by their definition (`BinWindow`'s table):
+/// positive k = 1 … ⌈N/2⌉ − 1; band the positive k with k/(N δx) in the
+/// support, bounds included; all 0 … N − 1. With N = 64 and δx = 0.5 µm,
+/// δσ = 1/32 µm⁻¹ and every k δσ is exact, so bounds placed on bins 14 and
+/// 16 (0.4375 and 0.5 µm⁻¹) must keep both; the K band (2.0–2.4 µm, so
+/// 0.41667–0.5 µm⁻¹) holds 14, 15 and 16 (13/32 = 0.40625 is below).
+#[test]
+fn bin_windows_hold_the_bins_of_their_definition() {
+    use v2ref::formalism::estimator::{band_bins, positive_bins};
+    assert_eq!(positive_bins(8), vec![1, 2, 3]);
+    assert_eq!(positive_bins(7), vec![1, 2, 3]);
+    assert_eq!(positive_bins(2), Vec::<usize>::new());
+    assert_eq!(all_bins(4), vec![0, 1, 2, 3]);
+    assert_eq!(
+        band_bins(64, 0.5, 14.0 / 32.0, 16.0 / 32.0),
+        vec![14, 15, 16]
+    );
+    assert_eq!(band_bins(64, 0.5, 0.44, 0.49), vec![15]);
+    // Only positive bins: 32/32 (Nyquist) and above are never kept.
+    assert_eq!(band_bins(64, 0.5, 0.98, 2.0), Vec::<usize>::new());
+    let k_band = Spectrum::flat(Band::k());
+    assert_eq!(BinWindow::Band.bins(64, 0.5, &k_band), vec![14, 15, 16]);
+    assert_eq!(
+        BinWindow::Positive.bins(64, 0.5, &k_band),
+        (1..32).collect::<Vec<_>>()
+    );
+    assert_eq!(BinWindow::All.bins(5, 0.5, &k_band), vec![0, 1, 2, 3, 4]);
+}
+
+/// `dft_phase(i, k, N)` is the angle −2π (i k mod N)/N itself, reduced to
+/// (−2π, 0] (its doc): 3 · 5 = 15 ≡ 7 (mod 8) gives −7π/4, and with
+/// N = 2²⁰, (N − 1)² ≡ 1 gives −2π/N, not a multiple of turns away (the
+/// reduction is what keeps the phase exact for large i k; an unreduced
+/// angle is off by whole turns and gives the same cos and sin only to
+/// rounding, which no DFT comparison can see).
+#[test]
+fn dft_phase_is_the_reduced_angle() {
+    use std::f64::consts::PI;
+    use v2ref::formalism::estimator::dft_phase;
+    assert_rel_eq!(dft_phase(3, 5, 8), -7.0 * PI / 4.0, ULPS);
+    assert_eq!(dft_phase(0, 5, 8), 0.0);
+    assert_eq!(dft_phase(4, 2, 8), 0.0);
+    let n = 1usize << 20;
+    assert_rel_eq!(dft_phase(n - 1, n - 1, n), -2.0 * PI / n as f64, ULPS);
+}

@@ -193,3 +193,24 @@ fn merge_matches_two_pass_at_a_large_mean() {
         );
     }
 }
+
+/// `affine(a, b)` is the statistics of a·x + b: on the skewed sample
+/// [1, 1, 1, 5] (mean 2, deviations −1, −1, −1, 3) with a = −2, b = 3 the
+/// values are [1, 1, 1, −7], mean −1 (a mean of 1 would not tell a·x̄ from
+/// a/x̄), deviations 2, 2, 2, −6: Σd² = 12 + 36 = 48, Σd³ = 24 − 216 = −192,
+/// Σd⁴ = 48 + 1296 = 1344 (a², a³ and a⁴ times 12, 24, 84; an odd power
+/// of a negative a is what tells a³ from |a|³ or a²).
+#[test]
+fn affine_map_of_a_skewed_sample() {
+    let t = RunningStats::from_values(&[1.0, 1.0, 1.0, 5.0]).affine(-2.0, 3.0);
+    assert_eq!(
+        (t.count, t.mean, t.m2, t.m3, t.m4),
+        (4, -1.0, 48.0, -192.0, 1344.0)
+    );
+    // The same numbers pushed directly.
+    let direct = RunningStats::from_values(&[1.0, 1.0, 1.0, -7.0]);
+    assert_eq!(
+        (direct.mean, direct.m2, direct.m3, direct.m4),
+        (-1.0, 48.0, -192.0, 1344.0)
+    );
+}
