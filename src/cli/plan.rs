@@ -64,9 +64,10 @@ pub struct Args {
     /// Instead of a target σ, the time to spend, s: report the σ reached.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     time_budget_s: Option<f64>,
-    /// Fringe frequencies of the grid, Hz (repeatable) [default: 20 from 20 to 2000, log].
-    #[arg(long = "fringe-hz", value_parser = finite_f64, allow_negative_numbers = true)]
-    fringe_hz: Vec<f64>,
+    /// Fringe frequencies of the grid, Hz: a value, A:B:N or A:B:N:log;
+    /// repeatable [default: 20:2000:20:log].
+    #[arg(long = "fringe-hz", value_parser = super::grid::parse_fringe_hz, allow_negative_numbers = true)]
+    fringe_hz: Vec<super::grid::Grid>,
     /// Strokes of the grid, µm (repeatable) [default: 16, 32, 64, 128].
     #[arg(long = "stroke-um", value_parser = finite_f64, allow_negative_numbers = true)]
     stroke_um: Vec<f64>,
@@ -201,7 +202,7 @@ fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
         fringe_hz: if args.fringe_hz.is_empty() {
             fringe_hz
         } else {
-            args.fringe_hz.clone()
+            super::grid::flatten(&args.fringe_hz)
         },
         stroke_um: if args.stroke_um.is_empty() {
             stroke_um
