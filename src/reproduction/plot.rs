@@ -507,7 +507,7 @@ where
     draw_mesh(&mut chart, frame)?;
     draw_reference_lines(&mut chart, frame)?;
     for (i, s) in series.iter().enumerate() {
-        draw_series(&mut chart, s, PALETTE[i % PALETTE.len()])?;
+        draw_series(&mut chart, s, style_of(i))?;
     }
     let position = match legend_at {
         LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
@@ -580,7 +580,7 @@ fn draw_inset(
                 label: s.label.clone(),
                 dashed: s.dashed,
             };
-            draw_series(&mut chart, &piece, PALETTE[i % PALETTE.len()])?;
+            draw_series(&mut chart, &piece, style_of(i))?;
         }
     }
     Ok(())
@@ -709,13 +709,39 @@ where
     Ok(())
 }
 
-/// One curve in `colour`, with its error bars if any.
-fn draw_series<X, Y>(chart: &mut Chart<'_, '_, X, Y>, s: &Series, colour: RGBColor) -> Result<()>
+/// The colour of the `i`-th curve, and whether it is drawn dashed: past the
+/// palette's eight colours the curves repeat them dashed, so that no two
+/// curves of a panel look alike.
+fn style_of(i: usize) -> (RGBColor, bool) {
+    (PALETTE[i % PALETTE.len()], i >= PALETTE.len())
+}
+
+/// One curve in `colour` (dashed on the palette's second round), with its
+/// error bars if any.
+fn draw_series<X, Y>(
+    chart: &mut Chart<'_, '_, X, Y>,
+    s: &Series,
+    (colour, second_round): (RGBColor, bool),
+) -> Result<()>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    if s.dashed {
+    if second_round && !s.dashed {
+        chart
+            .draw_series(DashedLineSeries::new(
+                s.points.iter().copied(),
+                7,
+                4,
+                colour.stroke_width(2),
+            ))
+            .map_err(plot_error)?
+            .label(s.label.as_str())
+            .legend(move |(x, y)| {
+                // One dash of the line's pattern, against a solid line's 20 px.
+                PathElement::new(vec![(x, y), (x + 7, y)], colour.stroke_width(2))
+            });
+    } else if s.dashed {
         chart
             .draw_series(DashedLineSeries::new(
                 s.points.iter().copied(),
