@@ -322,7 +322,7 @@ def estimate(
     data = _matrix("interferograms", interferograms)
     bins = _word("bins", bins)
     bias = _word("bias", bias)
-    threads = _uint("threads", threads)
+    threads = _v2ref.check_threads(_uint("threads", threads))
     cal = None if calibrator is None else _matrix("calibrator", calibrator)
     if continuum_subtracted is not None and not isinstance(continuum_subtracted, (bool, _np.bool_)):
         raise TypeError(f"continuum_subtracted: {continuum_subtracted!r} is not a bool")
@@ -445,7 +445,7 @@ def synthesize(
         physical,
         _uint("rows", rows),
         _uint("seed", seed),
-        _uint("threads", threads),
+        _v2ref.check_threads(_uint("threads", threads)),
         _uint("reference_blocks", reference_blocks),
         bool(keep_continuum),
         npy,
@@ -627,7 +627,7 @@ def simulate(
             _word("formula", formula),
             _uint("trials", trials),
             _uint("seed", seed),
-            _uint("threads", threads),
+            _v2ref.check_threads(_uint("threads", threads)),
         )
     )
 
@@ -801,7 +801,7 @@ def piston(
             _word("bins", bins),
             _uint("scans", scans),
             _uint("seed", seed),
-            _uint("threads", threads),
+            _v2ref.check_threads(_uint("threads", threads)),
         )
     )
 
@@ -889,7 +889,7 @@ def plan(
             opt("time_budget_s", time_budget_s),
             _uint("scans", scans),
             _uint("seed", seed),
-            _uint("threads", threads),
+            _v2ref.check_threads(_uint("threads", threads)),
         )
     )
 

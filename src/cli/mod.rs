@@ -142,26 +142,11 @@ pub fn count_usize(s: &str) -> Result<usize, String> {
     usize::try_from(n).map_err(|_| format!("{n} is too large for this machine"))
 }
 
-/// Most worker threads per core accepted by `--threads`.
-pub const MAX_THREADS_PER_CORE: usize = 4;
-
-/// Fewest worker threads the cap allows, however few the cores (so that
-/// the same command runs on a small machine).
-pub const MAX_THREADS_FLOOR: usize = 16;
-
 /// Parses `--threads` (clap value parser): 0 (all cores) up to
-/// [`MAX_THREADS_PER_CORE`] × the cores (at least [`MAX_THREADS_FLOOR`]);
-/// more threads only add overhead, and the answer does not depend on them.
+/// [`v2ref::montecarlo::max_threads`]; the answer does not depend on it.
 pub fn thread_count(s: &str) -> Result<usize, String> {
     let n = count_usize(s)?;
-    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
-    let max = (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR);
-    if n > max {
-        return Err(format!(
-            "{n} threads is too many; accepted: 0 (all cores) to {max} ({MAX_THREADS_PER_CORE} x the {cores} cores here, at least {MAX_THREADS_FLOOR})"
-        ));
-    }
-    Ok(n)
+    v2ref::montecarlo::check_threads(n).map_err(|e| e.detail())
 }
 
 /// Prints `value` as one pretty JSON document on stdout.

@@ -17,7 +17,7 @@ use v2ref::{Error, Result};
 pub struct Args {
     #[command(flatten)]
     obs: ObservationArgs,
-    /// Samples per fringe at λ0 (δx = λ0 / this).
+    /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
     #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
     samples_per_fringe: f64,
     /// Integrating detector (each sample averages the fringe over δx).
@@ -27,7 +27,7 @@ pub struct Args {
     /// --visibility V), 0 to 1.
     #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
     visibility: f64,
-    /// Continuum photons per second at the detector in the band.
+    /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
     photon_rate_per_s: f64,
     /// Instead of --photon-rate-per-s: the source's 2MASS magnitude in
@@ -53,15 +53,17 @@ pub struct Args {
     /// No Poisson photon noise (detector noise only).
     #[arg(long)]
     no_photon_noise: bool,
-    /// Dead time between scans, s.
+    /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     dead_time_s: f64,
     #[command(flatten)]
     turbulence: TurbulenceArgs,
-    /// Target σ of the averaged V² [default: 1e-3 when no --time-budget-s].
+    /// Target σ of the averaged V², 1e-9 to 1 [default: 1e-3 when no
+    /// --time-budget-s].
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "time_budget_s")]
     target_sigma_v2: Option<f64>,
-    /// Instead of a target σ, the time to spend, s: report the σ reached.
+    /// Instead of a target σ, the time to spend, s (> 0 to 3.2e7): report
+    /// the σ reached.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     time_budget_s: Option<f64>,
     /// Fringe frequencies of the grid, Hz: a value, A:B:N or A:B:N:log;

@@ -114,6 +114,35 @@ pub fn fold_units<T, F, M>(
     })
 }
 
+/// Most worker threads per core a run accepts.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Fewest worker threads the cap allows, however few the cores (so that
+/// the same command runs on a small machine).
+pub const MAX_THREADS_FLOOR: usize = 16;
+
+/// The most worker threads a run accepts here: [`MAX_THREADS_PER_CORE`] ×
+/// the cores, at least [`MAX_THREADS_FLOOR`]. More only add overhead (the
+/// answer never depends on the thread count), and an unbounded request
+/// would spawn until the system refuses.
+pub fn max_threads() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR)
+}
+
+/// Checks a thread count: 0 (all cores) to [`max_threads`].
+pub fn check_threads(threads: usize) -> crate::Result<usize> {
+    let max = max_threads();
+    if threads > max {
+        return Err(crate::Error::OutOfRange {
+            param: "threads",
+            value: threads as f64,
+            accepted: format!("0 (all cores) to {max} ({MAX_THREADS_PER_CORE} per core, at least {MAX_THREADS_FLOOR})"),
+        });
+    }
+    Ok(threads)
+}
+
 /// Runs `job` on a pool of `threads` threads (0 = rayon's default pool).
 pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
     if threads == 0 {

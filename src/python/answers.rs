@@ -916,7 +916,15 @@ fn photon_rate(
     ok(m.photon_rate_per_s(wavelength_um, bandwidth_nm * 1e-3))
 }
 
+/// `check_threads`: a thread count checked as `--threads` is (0 to
+/// `montecarlo::max_threads()`).
+#[pyfunction]
+fn check_threads(threads: usize) -> PyResult<usize> {
+    ok(crate::montecarlo::check_threads(threads))
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(check_threads, m)?)?;
     m.add_function(wrap_pyfunction!(photon_rate, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
     m.add_function(wrap_pyfunction!(estimate, m)?)?;

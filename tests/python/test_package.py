@@ -346,6 +346,13 @@ def test_photon_rate_equals_the_cli_plan_and_the_hand_value():
         v2ref.photon_rate(5.0, band="K", throughput=0.1)
 
 
+def test_threads_are_capped_as_the_cli_caps_them():
+    with pytest.raises(ValueError, match="threads"):
+        v2ref.simulate(trials=10, threads=10**6)
+    with pytest.raises(ValueError, match="threads"):
+        v2ref.piston(scans=4, threads=10**6)
+
+
 @needs_cli
 def test_claims_equal_cli():
     want = json.loads(cli("claims", "--quick", "--json", "--quiet"))
