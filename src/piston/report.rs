@@ -82,7 +82,9 @@ pub struct PistonReport {
     pub psd: &'static str,
     /// Wind direction from the baseline, degrees.
     pub wind_angle_deg: f64,
-    /// The three-slope corners (ν1, ν2), Hz, when that model is used.
+    /// The three-slope corners (ν1, ν2), Hz, when that model is used
+    /// (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub psd_corners_hz: Option<[f64; 2]>,
     /// `sampled` or `integrating`.
     pub detector: &'static str,
