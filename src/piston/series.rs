@@ -15,10 +15,10 @@
 //! one sequence, as in an observation.
 
 use crate::error::{self, Error, Result};
-use crate::montecarlo::run_units;
+use crate::math::fft::inverse_dft;
+use crate::montecarlo::{in_pool, run_units};
 use num_complex::Complex64;
 use rand_distr::{Distribution, StandardNormal};
-use rustfft::FftPlanner;
 
 /// Largest piston sequence accepted (scans × samples), 2^24 samples.
 pub const MAX_SERIES: usize = 1 << 24;
@@ -51,7 +51,10 @@ pub fn sequence_length(len: usize) -> usize {
 /// Synthesises `len` samples at step `dt_s` of a zero-mean Gaussian sequence
 /// with two-sided spectrum `psd(ν)` (µm²/Hz), by FFT over
 /// M = [`sequence_length`]`(len)` (the sequence is M long and periodic).
-/// Deterministic in `seed` whatever the thread count.
+/// Deterministic in `seed` whatever the thread count: the coefficients are
+/// drawn in fixed blocks, one generator each, and the transform is split
+/// into rows ([`crate::math::fft::inverse_dft`]), all spread over
+/// `threads` threads (0 = the current pool).
 pub fn synthesize_series(
     psd: &(dyn Fn(f64) -> f64 + Sync),
     dt_s: f64,
@@ -87,9 +90,11 @@ pub fn synthesize_series(
     for (dst, src) in buf[1..half].iter_mut().zip(blocks.into_iter().flatten()) {
         *dst = src;
     }
-    FftPlanner::new().plan_fft_inverse(m).process(&mut buf);
+    // The M-point transform split into rows over the threads
+    // (crate::math::fft): same bits for any thread count.
+    let series = in_pool(threads, || inverse_dft(&buf));
     let root2 = std::f64::consts::SQRT_2;
-    Ok(buf.iter().map(|z| root2 * z.re).collect())
+    Ok(series.iter().map(|z| root2 * z.re).collect())
 }
 
 /// The expected sample variance of [`synthesize_series`] output,

@@ -373,6 +373,7 @@ pub fn simulate(
         d.sub_samples()?;
     }
     Sampling::new(setup.samples, setup.dx_um, false)?.check_aliasing(obs)?;
+    crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
     let sequence = PistonSequence::synthesize(spectrum, setup, size)?;
     let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
     let ctx = ScanContext::new(obs, setup, table_range_um(setup, excursion)?)?;
@@ -428,6 +429,9 @@ pub fn sweep(
     };
     crate::montecarlo::in_pool(size.threads, || {
         use rayon::prelude::*;
+        // Tables first, on every thread, not by the first frequency while
+        // the others wait.
+        spectrum.tabulate();
         frequencies.par_iter().map(|&f| run(f)).collect()
     })
 }

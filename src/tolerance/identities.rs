@@ -63,6 +63,15 @@ pub const DIRECT_SUM_REL: f64 = 1e-12;
 /// margin, while a wrong twiddle factor moves a bin by O(1).
 pub const NAIVE_DFT_ABS: f64 = 1e-11;
 
+/// The four-step inverse DFT (`math::fft::inverse_dft`) against a single
+/// rustfft transform or the naive DFT, as the largest difference relative
+/// to the largest output magnitude, for M ≤ 1.3·10⁶: each route carries
+/// ~ε log2 M ≈ 5e-15 of relative rounding per output, and the two-table
+/// twiddles add ~2ε; the error of an output relative to the largest is at
+/// most a few ×1e-14 even when errors add coherently; 1e-12 leaves a margin
+/// of ~30, while a wrong twiddle or index moves outputs by O(1).
+pub const FOUR_STEP_REL: f64 = 1e-12;
+
 /// A sum over all N bins of an FFT against its closed form (Parseval:
 /// Σ|B_k|² = N Σ m_j²), relative, for N ≤ 10³: each bin carries ~ε log2 N
 /// of relative error and the N-term sum of positive terms adds ≲ N ε of

@@ -16,7 +16,7 @@
 //! * deterministic identities (rounding only): [`EPS`], [`ULPS`],
 //!   [`ROUNDING_REL`], [`VISIBILITY_SQ_FLOOR`], [`DEFAULT_REL`],
 //!   [`DEFAULT_ABS`], [`DFT_REL_PER_LOG2N`], [`DIRECT_SUM_REL`],
-//!   [`NAIVE_DFT_ABS`], [`FFT_SUM_REL`], [`BIN_SUM_REL`],
+//!   [`NAIVE_DFT_ABS`], [`FOUR_STEP_REL`], [`FFT_SUM_REL`], [`BIN_SUM_REL`],
 //!   [`PATHS_AGREE_ABS`], [`BIN_ORACLE_ABS`], [`GAMMA_REL`],
 //!   [`IDENTITY_REL`], [`IDENTITY_ABS`], [`CANCELLATION_ABS`],
 //!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`STREAMING_LARGE_MEAN_REL`],

@@ -1,0 +1,106 @@
+//! The four-step inverse DFT of long piston sequences (`math::fft`) against
+//! its slow oracle (the DFT by definition), against rustfft's single
+//! transform, Parseval, and the same bits on any number of threads.
+
+use num_complex::Complex64;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use rustfft::FftPlanner;
+use v2ref::math::fft::{inverse_dft, naive_inverse_dft, split_length};
+use v2ref::montecarlo::in_pool;
+use v2ref::tolerance::{FFT_SUM_REL, FOUR_STEP_REL};
+
+fn random_spectrum(m: usize, seed: u64) -> Vec<Complex64> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    (0..m)
+        .map(|_| Complex64::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)))
+        .collect()
+}
+
+/// max |a − b| / max |b|.
+fn relative_difference(a: &[Complex64], b: &[Complex64]) -> f64 {
+    let scale = b.iter().map(|z| z.norm()).fold(0.0, f64::max);
+    let worst = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).norm())
+        .fold(0.0, f64::max);
+    worst / scale
+}
+
+#[test]
+fn split_is_the_largest_divisor_not_above_the_square_root() {
+    for m in 1..3000usize {
+        let (m1, m2) = split_length(m);
+        assert_eq!(m1 * m2, m, "m = {m}");
+        assert!(m1 <= m2, "m = {m}");
+        // No divisor of m lies strictly between m1 and √m.
+        let bigger = (m1 + 1..=m).take_while(|d| d * d <= m).find(|d| m % d == 0);
+        assert_eq!(bigger, None, "m = {m}: {m1} is not the largest");
+    }
+    // The Fig. 5 sequence length: two near-equal factors.
+    assert_eq!(split_length(1_296_000), (1125, 1152));
+}
+
+#[test]
+fn four_step_equals_the_dft_by_definition() {
+    // Even and odd, prime (no split), squares, 2·3·5-smooth lengths and
+    // lengths with a large prime factor (2 · 97).
+    for (i, m) in [2usize, 4, 6, 9, 12, 30, 97, 120, 194, 360, 1000]
+        .into_iter()
+        .enumerate()
+    {
+        let x = random_spectrum(m, 10 + i as u64);
+        let fast = inverse_dft(&x);
+        let slow = naive_inverse_dft(&x);
+        let d = relative_difference(&fast, &slow);
+        assert!(d <= FOUR_STEP_REL, "M = {m}: {d:e}");
+    }
+}
+
+#[test]
+fn four_step_equals_one_rustfft_transform_at_the_fig5_length() {
+    let m = 1_296_000;
+    let x = random_spectrum(m, 3);
+    let fast = inverse_dft(&x);
+    let mut single = x.clone();
+    FftPlanner::new().plan_fft_inverse(m).process(&mut single);
+    let d = relative_difference(&fast, &single);
+    assert!(d <= FOUR_STEP_REL, "{d:e}");
+    // Power: reading the input one index off (a wrong gather k2 + M2 k1)
+    // is an O(1) error, far above the tolerance.
+    let mut wrong = x.clone();
+    wrong.rotate_left(1);
+    assert!(relative_difference(&inverse_dft(&wrong), &single) > 1e3 * FOUR_STEP_REL);
+}
+
+#[test]
+fn parseval_holds() {
+    // Σ|x_n|² = M Σ|X_k|² for the unnormalized inverse transform.
+    for m in [1152usize, 38_880] {
+        let x = random_spectrum(m, m as u64);
+        let y = inverse_dft(&x);
+        let lhs: f64 = y.iter().map(|z| z.norm_sqr()).sum();
+        let rhs = m as f64 * x.iter().map(|z| z.norm_sqr()).sum::<f64>();
+        let rel = (lhs - rhs).abs() / rhs;
+        // FFT_SUM_REL is stated for N ≤ 10³ bins; the error of the sum
+        // grows like √M: scaled here by √(M/10³).
+        let tol = FFT_SUM_REL * (m as f64 / 1e3).sqrt();
+        assert!(rel <= tol, "M = {m}: {rel:e} > {tol:e}");
+    }
+}
+
+#[test]
+fn same_bits_on_any_number_of_threads() {
+    let x = random_spectrum(1_296_000, 5);
+    let one = in_pool(1, || inverse_dft(&x));
+    for threads in [2, 3, 7] {
+        let many = in_pool(threads, || inverse_dft(&x));
+        assert!(
+            one.iter()
+                .zip(&many)
+                .all(|(a, b)| a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits()),
+            "{threads} threads"
+        );
+    }
+}
