@@ -757,6 +757,8 @@ def piston(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    psd: str = "two-aperture",
+    wind_angle_deg: float = 0.0,
 ) -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
 
@@ -779,6 +781,15 @@ def piston(
         observing wavelength), aperture (m), outer scale (m, default
         infinite), integrating sub-samples, packet reference
         ("mean", "centre", "absolute").
+    psd : {"two-aperture", "three-slope"}
+        The differential-piston spectrum the sequences are drawn from: the
+        two-aperture integral, or the three-slope model (power laws -2/3,
+        -8/3, -17/3 joined at 0.2 v/B and 0.3 v/D, normalized to the same
+        variance), as ``--psd``.
+    wind_angle_deg : float
+        Wind direction from the baseline, degrees, -360 to 360 (0: along
+        the baseline; the three-slope model accepts only 0 and 180), as
+        ``--wind-angle-deg``.
 
     Returns
     -------
@@ -802,6 +813,8 @@ def piston(
             _uint("scans", scans),
             _uint("seed", seed),
             _v2ref.check_threads(_uint("threads", threads)),
+            _word("psd", psd),
+            _float("wind_angle_deg", wind_angle_deg),
         )
     )
 

@@ -266,7 +266,7 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
     """
     ...
 
-def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
 
     Parameters
@@ -288,6 +288,15 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         observing wavelength), aperture (m), outer scale (m, default
         infinite), integrating sub-samples, packet reference
         ("mean", "centre", "absolute").
+    psd : {"two-aperture", "three-slope"}
+        The differential-piston spectrum the sequences are drawn from: the
+        two-aperture integral, or the three-slope model (power laws -2/3,
+        -8/3, -17/3 joined at 0.2 v/B and 0.3 v/D, normalized to the same
+        variance), as ``--psd``.
+    wind_angle_deg : float
+        Wind direction from the baseline, degrees, -360 to 360 (0: along
+        the baseline; the three-slope model accepts only 0 and 180), as
+        ``--wind-angle-deg``.
 
     Returns
     -------

@@ -14,6 +14,7 @@ use crate::noise::calibrated::{CalibratedSetup, Trials, MAX_WINDOW_SAMPLES};
 use crate::noise::window_variance::{window_stats, WindowStats};
 use crate::noise::{appendix_stats, paper_window_factor, Formula};
 use crate::piston::report::{PistonReport, PistonSetting};
+use crate::piston::spectrum::PistonPsdModel;
 use crate::piston::turbulence::{PistonSpectrum, Turbulence};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::Effort;
@@ -628,9 +629,11 @@ fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<Stri
     })
 }
 
-/// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`).
+/// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`; `psd`
+/// and `wind_angle_deg` as `--psd`, `--wind-angle-deg`).
 #[pyfunction]
-#[pyo3(signature = (physical, fringe_hz, bins, scans, seed, threads))]
+#[pyo3(signature = (physical, fringe_hz, bins, scans, seed, threads, psd, wind_angle_deg))]
+#[allow(clippy::too_many_arguments)]
 fn piston(
     py: Python<'_>,
     physical: &Bound<'_, PyDict>,
@@ -639,7 +642,10 @@ fn piston(
     scans: usize,
     seed: u64,
     threads: usize,
+    psd: &str,
+    wind_angle_deg: f64,
 ) -> PyResult<String> {
+    let psd: PistonPsdModel = ok(parse_enum("psd", psd, &["two-aperture", "three-slope"]))?;
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let reference = ok(p.reference())?;
@@ -669,7 +675,9 @@ fn piston(
         p.wind_mps,
         p.outer_scale_m,
     ))?;
-    let spectrum = ok(PistonSpectrum::new(turb, p.aperture_m, obs.baseline_m))?;
+    let spectrum = ok(PistonSpectrum::new(turb, p.aperture_m, obs.baseline_m)
+        .and_then(|s| s.with_wind_angle_deg(wind_angle_deg))
+        .and_then(|s| s.with_model(psd)))?;
     let detector = if sampling.integrating() {
         Detector::Integrating {
             sub_samples: p.sub_samples,

@@ -315,6 +315,26 @@ def test_piston_equals_cli():
 
 
 @needs_cli
+def test_piston_spectrum_models_and_wind_direction_equal_cli():
+    for flags, kw in [
+        (["--psd", "three-slope"], dict(psd="three-slope")),
+        (["--wind-angle-deg", "30"], dict(wind_angle_deg=30.0)),
+    ]:
+        want = json.loads(cli("piston", "--json", "--quiet", "--scans", "20", "--samples", "32",
+                              "--fringe-hz", "300", *flags))
+        got = v2ref.piston(scans=20, samples=32, fringe_hz=300, **kw)
+        assert got == want
+    plain = v2ref.piston(scans=20, samples=32, fringe_hz=300)
+    assert v2ref.piston(scans=20, samples=32, fringe_hz=300, psd="three-slope") != plain
+    with pytest.raises(ValueError, match="psd"):
+        v2ref.piston(scans=4, psd="kolmogorov")
+    with pytest.raises(ValueError, match="wind_angle_deg"):
+        v2ref.piston(scans=4, wind_angle_deg=400.0)
+    with pytest.raises(TypeError, match="wind_angle_deg"):
+        v2ref.piston(scans=4, wind_angle_deg="north")
+
+
+@needs_cli
 def test_seeing_at_a_stated_wavelength_and_the_inputs_echo():
     # 1 arcsec quoted at 0.5 um is r0 = 0.5 um / 1 arcsec * 4.4**1.2 = 0.6102929447 m in K (by hand).
     got = v2ref.piston(scans=4, fringe_hz=300, seeing_wavelength_um=0.5, baseline_m=30.0)

@@ -22,6 +22,7 @@ use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::montecarlo::{derive_seed, Summary};
+use crate::piston::spectrum::PistonPsdModel;
 use crate::piston::turbulence::{PistonSpectrum, TransverseTable, Turbulence};
 use crate::piston::{
     simulate, sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
@@ -195,6 +196,8 @@ fn with_paper_setup(mut own: serde_json::Value) -> serde_json::Value {
             "bandwidth_um": 0.4,
             "wind_mps": WIND_MPS,
             "wind_direction": "along the baseline",
+            "wind_angle_deg": 0.0,
+            "piston_psd": PistonPsdModel::TwoAperture.name(),
             "outer_scale_m": null,
             "aperture_m": APERTURE_M,
             "samples": 128,
