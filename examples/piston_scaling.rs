@@ -1,7 +1,7 @@
 //! Scaling of the piston Monte Carlo with the thread count: the full Fig. 5
 //! (both panels: 32 fringe frequencies × 10 000 scans, sampled and
 //! integrating detectors on the same sequences), timed on 1, 2, 4, … threads,
-//! with a digest of the figure's tables to show the bits do not move.
+//! with a digest of the runs to show the bits do not move.
 //!
 //! ```sh
 //! cargo run --release --example piston_scaling -- [quick|full] [--repeats R] [THREADS ...]
@@ -13,50 +13,11 @@
 //! are in `docs/performance.md`.
 
 use std::time::Instant;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::piston::turbulence::PistonSpectrum;
-use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES};
+use v2ref::montecarlo::in_pool;
 use v2ref::reproduction::cases::{
-    fig5_frequencies, fig5_size, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
+    fig5_frequencies, fig5_size, paper_turbulence, Effort, FIGURE_SEED,
 };
-
-/// The runs of Fig. 5 at `effort` on `threads` threads, as
-/// `v2ref reproduce` computes them (uncached).
-fn fig5_runs(effort: Effort, threads: usize) -> v2ref::Result<Vec<Vec<PistonRun>>> {
-    let (count, scans) = fig5_size(effort);
-    let frequencies = fig5_frequencies(count);
-    let obs = Observation::new(
-        Spectrum::flat(Band::k()),
-        Source::Point,
-        Frequency::BaselineM(FIG5_BASELINE_M),
-        SpectralPhase::zero(),
-    )?;
-    let spectrum = PistonSpectrum::new(paper_turbulence(), APERTURE_M, FIG5_BASELINE_M)?;
-    let detectors = [
-        Detector::Sampled,
-        Detector::Integrating {
-            sub_samples: DEFAULT_SUB_SAMPLES,
-        },
-    ];
-    let size = RunSize {
-        scans,
-        seed: FIGURE_SEED,
-        threads,
-    };
-    let template = ScanSetup::paper(frequencies[0]);
-    sweep(
-        &obs,
-        &spectrum,
-        &frequencies,
-        &template,
-        &detectors,
-        &size,
-        None,
-    )
-}
+use v2ref::reproduction::figures::fig5_runs;
 
 /// FNV-1a over the JSON of the runs (every number's shortest
 /// round-trip decimal, so equal digests mean equal bits).
@@ -86,7 +47,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut hash = 0;
         for _ in 0..repeats.max(1) {
             let start = Instant::now();
-            let runs = fig5_runs(effort, t)?;
+            let (count, scans) = fig5_size(effort);
+            let freqs = fig5_frequencies(count);
+            let runs = in_pool(t, || {
+                fig5_runs(paper_turbulence(), &freqs, scans, FIGURE_SEED)
+            })?;
             best = best.min(start.elapsed().as_secs_f64());
             hash = digest(&serde_json::to_string(&runs)?);
         }

@@ -8,6 +8,8 @@ use crate::reproduction::table::Figure;
 pub(crate) mod bias;
 pub(crate) mod piston;
 
+pub use piston::fig5_runs;
+
 /// Every figure (0 to 5), in order, at the given effort.
 pub fn all(effort: Effort) -> Result<Vec<Figure>> {
     let mut out = bias::figures(effort)?;

@@ -221,7 +221,10 @@ pub fn fig5(effort: Effort) -> Result<Figure> {
 /// 18 m for an unresolved source with turbulence `turb`, through
 /// [`crate::piston::sweep`]: the run at f has seed
 /// [`crate::piston::sweep_seed`]`(seed, f)`, whatever the other frequencies.
-fn fig5_runs(
+/// The piston runs behind Fig. 5 (uncached): per frequency of `freqs`, the
+/// sampled and the integrating detector on the same sequence of `scans`
+/// scans, on the current rayon pool (`examples/piston_scaling.rs` times it).
+pub fn fig5_runs(
     turb: Turbulence,
     freqs: &[f64],
     scans: usize,
