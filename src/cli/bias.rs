@@ -2,10 +2,8 @@
 
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
-use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::formalism::estimator::{sampled_wide_band, wide_band, Pair, WideBand};
-use v2ref::simulator::record::{InputsRecord, SamplingRecord};
+use v2ref::bias::report::BiasReport;
 use v2ref::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
@@ -29,71 +27,23 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct FiniteScan {
-    stroke_um: f64,
-    samples: usize,
-    dx_um: f64,
-    integrating: bool,
-    bins: String,
-    v1_sq: f64,
-    v2_sq: f64,
-    v1: f64,
-    v2: f64,
-}
-
-#[derive(Serialize)]
-struct Answer {
-    inputs: InputsRecord,
-    #[serde(flatten)]
-    infinite_scan: WideBand,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    finite_scan: Option<FiniteScan>,
-}
-
 /// Runs `bias`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let obs = args.obs.observation()?;
-    let wb = wide_band(&obs);
-    let finite_scan = if args.finite_scan || args.sampling.scan.stroke_um.is_some() {
-        let sampling = args.sampling.sampling()?;
-        let window = args.sampling.bins;
-        let n = sampling.samples();
-        let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
-        let Pair { v1_sq, v2_sq } = sampled_wide_band(&obs, &sampling, window)?;
-        bar.finish_and_clear();
-        Some(FiniteScan {
-            stroke_um: sampling.stroke_um(),
-            samples: sampling.samples(),
-            dx_um: sampling.dx_um(),
-            integrating: sampling.integrating(),
-            bins: window.name().to_owned(),
-            v1_sq,
-            v2_sq,
-            v1: v1_sq.sqrt(),
-            v2: v2_sq.sqrt(),
-        })
+    let scan = if args.finite_scan || args.sampling.scan.stroke_um.is_some() {
+        Some((args.sampling.sampling()?, args.sampling.bins))
     } else {
         None
     };
-    let sampling = finite_scan
-        .as_ref()
-        .map(|_| -> Result<SamplingRecord> {
-            Ok(SamplingRecord::new(
-                &args.sampling.sampling()?,
-                args.sampling.bins,
-            ))
-        })
-        .transpose()?;
-    let answer = Answer {
-        inputs: InputsRecord {
-            observation: args.obs.record(&obs),
-            sampling,
-            atmosphere: None,
-        },
-        infinite_scan: wb,
-        finite_scan,
-    };
+    let n = scan.as_ref().map_or(0, |(s, _)| s.samples());
+    let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
+    let answer = BiasReport::new(
+        &obs,
+        args.obs.record(&obs),
+        scan.as_ref().map(|(s, w)| (s, *w)),
+    )?;
+    bar.finish_and_clear();
+    let wb = answer.infinite_scan;
     if args.json {
         print_json(&answer);
     } else {

@@ -5,16 +5,10 @@
 
 use super::common::{LightArgs, ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
-use serde::Serialize;
 use std::process::ExitCode;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::Observation;
-use v2ref::noise::calibrated::{CalibratedSetup, MAX_WINDOW_SAMPLES};
-use v2ref::noise::snr_value::{serialize_snr, snr_text};
-use v2ref::noise::window_variance::{window_stats, WindowStats};
-use v2ref::noise::{appendix_stats, paper_window_factor, Formula, NoiseModel};
-use v2ref::simulator::record::{InputsRecord, SamplingRecord};
+use v2ref::noise::report::{Light, SnrReport};
+use v2ref::noise::snr_value::snr_text;
+use v2ref::noise::{Formula, NoiseModel};
 use v2ref::Result;
 
 /// Signal and noise flags shared by `snr` and `simulate`.
@@ -32,18 +26,6 @@ impl NoiseArgs {
     pub fn noise(&self) -> Result<NoiseModel> {
         self.light.noise()
     }
-
-    /// The noise-free interferograms (source and calibrator) of `obs`
-    /// sampled by `sampling`, and the bins of `window`.
-    pub fn setup(
-        &self,
-        obs: &Observation,
-        sampling: &Sampling,
-        window: BinWindow,
-    ) -> Result<CalibratedSetup> {
-        let l = &self.light;
-        CalibratedSetup::new(obs, sampling, l.photons, l.visibility, window)
-    }
 }
 
 /// Flags of `snr`.
@@ -60,84 +42,24 @@ pub struct Args {
     json: bool,
 }
 
-#[derive(Serialize)]
-struct Window {
-    window: String,
-    #[serde(flatten)]
-    stats: WindowStats,
-}
-
-#[derive(Serialize)]
-struct Answer {
-    inputs: InputsRecord,
-    formula: Formula,
-    samples: usize,
-    photons: f64,
-    visibility: f64,
-    read_noise: f64,
-    photon_noise: bool,
-    sum_m2: f64,
-    m0: f64,
-    bias_v1_sq: f64,
-    bias_v2_sq: f64,
-    var_v1_sq: f64,
-    var_v2_sq: f64,
-    #[serde(serialize_with = "serialize_snr")]
-    snr1: f64,
-    #[serde(serialize_with = "serialize_snr")]
-    snr2: f64,
-    window_factor: f64,
-    #[serde(serialize_with = "serialize_snr")]
-    snr1_with_window_factor: f64,
-    #[serde(serialize_with = "serialize_snr")]
-    snr2_with_window_factor: f64,
-    /// Exact statistics of the --bins window (null above MAX_WINDOW_SAMPLES).
-    window_exact: Option<Window>,
-}
-
 /// Runs `snr`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let noise = args.noise.noise()?;
     let obs = args.obs.observation()?;
     let sampling = args.sampling.sampling()?;
-    let setup = args.noise.setup(&obs, &sampling, args.sampling.bins)?;
-    let ifg = &setup.signal;
-    let formula = args.noise.formula;
-    let st = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, formula)?;
-    let factor = paper_window_factor(sampling.dx_um(), obs.spectrum.width_per_um());
-    let window_exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
-        Some(Window {
-            window: args.sampling.bins.name().to_owned(),
-            stats: window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &setup.bins)?,
-        })
-    } else {
-        None
-    };
-    let answer = Answer {
-        inputs: InputsRecord {
-            observation: args.obs.record(&obs),
-            sampling: Some(SamplingRecord::new(&sampling, args.sampling.bins)),
-            atmosphere: None,
-        },
-        formula,
-        samples: st.samples,
+    let light = Light {
         photons: args.noise.light.photons,
         visibility: args.noise.light.visibility,
-        read_noise: noise.read_noise,
-        photon_noise: noise.photon,
-        sum_m2: st.sum_m2,
-        m0: st.m0,
-        bias_v1_sq: st.bias_v1_sq,
-        bias_v2_sq: st.bias_v2_sq,
-        var_v1_sq: st.var_v1_sq,
-        var_v2_sq: st.var_v2_sq,
-        snr1: st.snr1,
-        snr2: st.snr2,
-        window_factor: factor,
-        snr1_with_window_factor: factor * st.snr1,
-        snr2_with_window_factor: factor * st.snr2,
-        window_exact,
+        noise,
     };
+    let answer = SnrReport::new(
+        &obs,
+        args.obs.record(&obs),
+        &sampling,
+        args.sampling.bins,
+        light,
+        args.noise.formula,
+    )?;
     if args.json {
         print_json(&answer);
     } else {
@@ -146,7 +68,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn print_table(a: &Answer) {
+fn print_table(a: &SnrReport) {
     let obs = &a.inputs.observation;
     let mut rows = vec![
         (

@@ -4,15 +4,16 @@
 
 use super::inputs::Physical;
 use super::{interruptible, ok, parse_enum, Fail};
+use crate::bias::report::BiasReport;
 use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::conformance::score::score_report;
 use crate::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
 use crate::conformance::truth::{truth, TruthSize};
 use crate::error::{Error, Result};
-use crate::formalism::estimator::{sampled_wide_band, wide_band, BinWindow, Pair, WideBand};
-use crate::noise::calibrated::{CalibratedSetup, Trials, MAX_WINDOW_SAMPLES};
-use crate::noise::window_variance::{window_stats, WindowStats};
-use crate::noise::{appendix_stats, paper_window_factor, Formula};
+use crate::formalism::estimator::{BinWindow, Pair};
+use crate::noise::calibrated::Trials;
+use crate::noise::report::{Light, SnrReport};
+use crate::noise::Formula;
 use crate::piston::report::{PistonReport, PistonSetting};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::piston::turbulence::{PistonSpectrum, Turbulence};
@@ -472,28 +473,6 @@ fn simulate(
     })
 }
 
-#[derive(Serialize)]
-struct FiniteScan {
-    stroke_um: f64,
-    samples: usize,
-    dx_um: f64,
-    integrating: bool,
-    bins: String,
-    v1_sq: f64,
-    v2_sq: f64,
-    v1: f64,
-    v2: f64,
-}
-
-#[derive(Serialize)]
-struct BiasAnswer {
-    inputs: InputsRecord,
-    #[serde(flatten)]
-    infinite_scan: WideBand,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    finite_scan: Option<FiniteScan>,
-}
-
 /// `bias`: `v2ref bias --json`.
 #[pyfunction]
 #[pyo3(signature = (physical, bins, finite_scan))]
@@ -501,67 +480,13 @@ fn bias(physical: &Bound<'_, PyDict>, bins: &str, finite_scan: bool) -> PyResult
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let obs = ok(p.observation())?;
-    let wb = wide_band(&obs);
-    let finite_scan = if finite_scan || p.stroke_um.is_some() {
-        let sampling = ok(p.sampling())?;
-        let Pair { v1_sq, v2_sq } = ok(sampled_wide_band(&obs, &sampling, window))?;
-        Some(FiniteScan {
-            stroke_um: sampling.stroke_um(),
-            samples: sampling.samples(),
-            dx_um: sampling.dx_um(),
-            integrating: sampling.integrating(),
-            bins: window.name().to_owned(),
-            v1_sq,
-            v2_sq,
-            v1: v1_sq.sqrt(),
-            v2: v2_sq.sqrt(),
-        })
+    let sampling = if finite_scan || p.stroke_um.is_some() {
+        Some(ok(p.sampling())?)
     } else {
         None
     };
-    let sampling = match finite_scan {
-        Some(_) => Some(SamplingRecord::new(&ok(p.sampling())?, window)),
-        None => None,
-    };
-    json(&BiasAnswer {
-        inputs: InputsRecord {
-            observation: ok(p.record(&obs))?,
-            sampling,
-            atmosphere: None,
-        },
-        infinite_scan: wb,
-        finite_scan,
-    })
-}
-
-#[derive(Serialize)]
-struct Window {
-    window: String,
-    #[serde(flatten)]
-    stats: WindowStats,
-}
-
-#[derive(Serialize)]
-struct SnrAnswer {
-    inputs: InputsRecord,
-    formula: Formula,
-    samples: usize,
-    photons: f64,
-    visibility: f64,
-    read_noise: f64,
-    photon_noise: bool,
-    sum_m2: f64,
-    m0: f64,
-    bias_v1_sq: f64,
-    bias_v2_sq: f64,
-    var_v1_sq: f64,
-    var_v2_sq: f64,
-    snr1: f64,
-    snr2: f64,
-    window_factor: f64,
-    snr1_with_window_factor: f64,
-    snr2_with_window_factor: f64,
-    window_exact: Option<Window>,
+    let scan = sampling.as_ref().map(|s| (s, window));
+    json(&ok(BiasReport::new(&obs, ok(p.record(&obs))?, scan))?)
 }
 
 /// `snr`: `v2ref snr --json`.
@@ -574,59 +499,19 @@ fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<Stri
     let noise = ok(p.noise())?;
     let obs = ok(p.observation())?;
     let sampling = ok(p.sampling())?;
-    let setup = ok(CalibratedSetup::new(
-        &obs,
-        &sampling,
-        p.photons,
-        p.visibility,
-        window,
-    ))?;
-    let ifg = &setup.signal;
-    let st = ok(appendix_stats(
-        &ifg.modulated,
-        &ifg.continuum,
-        &noise,
-        formula,
-    ))?;
-    let factor = paper_window_factor(sampling.dx_um(), obs.spectrum.width_per_um());
-    let window_exact = if sampling.samples() <= MAX_WINDOW_SAMPLES {
-        Some(Window {
-            window: window.name().to_owned(),
-            stats: ok(window_stats(
-                &ifg.modulated,
-                &ifg.mean_counts(),
-                &noise,
-                &setup.bins,
-            ))?,
-        })
-    } else {
-        None
-    };
-    json(&SnrAnswer {
-        inputs: InputsRecord {
-            observation: ok(p.record(&obs))?,
-            sampling: Some(SamplingRecord::new(&sampling, window)),
-            atmosphere: None,
-        },
-        formula,
-        samples: st.samples,
+    let light = Light {
         photons: p.photons,
         visibility: p.visibility,
-        read_noise: noise.read_noise,
-        photon_noise: noise.photon,
-        sum_m2: st.sum_m2,
-        m0: st.m0,
-        bias_v1_sq: st.bias_v1_sq,
-        bias_v2_sq: st.bias_v2_sq,
-        var_v1_sq: st.var_v1_sq,
-        var_v2_sq: st.var_v2_sq,
-        snr1: st.snr1,
-        snr2: st.snr2,
-        window_factor: factor,
-        snr1_with_window_factor: factor * st.snr1,
-        snr2_with_window_factor: factor * st.snr2,
-        window_exact,
-    })
+        noise,
+    };
+    json(&ok(SnrReport::new(
+        &obs,
+        ok(p.record(&obs))?,
+        &sampling,
+        window,
+        light,
+        formula,
+    ))?)
 }
 
 /// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`; `psd`

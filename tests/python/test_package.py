@@ -300,6 +300,11 @@ def test_bias_snr_equal_cli():
         assert v2ref.snr(**kw) == want
     want = json.loads(cli("snr", "--json", "--no-photon-noise", "--read-noise", "2", "--integrating"))
     assert v2ref.snr(photon_noise=False, read_noise=2.0, integrating=True) == want
+    # Without noise the SNR is infinite, in words, as the CLI writes it (the
+    # Python answer used to have its own copy of the struct and wrote null).
+    want = json.loads(cli("snr", "--json", "--no-photon-noise"))
+    got = v2ref.snr(photon_noise=False)
+    assert got == want and got["snr1"] == "infinite"
 
 
 @needs_cli
