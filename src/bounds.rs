@@ -151,3 +151,32 @@ pub fn positive_at_most(param: &'static str, value: f64, hi: f64) -> Result<f64>
 pub fn non_negative_at_most(param: &'static str, value: f64, hi: f64) -> Result<f64> {
     error::in_range(param, value, 0.0, hi)
 }
+
+/// Most rows of a synthesized test set (`v2ref synth`, Python `synthesize`).
+pub const SET_MAX_ROWS: u64 = 1 << 32;
+/// Most values (rows × samples) of a set: 2^31 float64, 16 GiB.
+pub const SET_MAX_VALUES: u64 = 1 << 31;
+/// Most replicates in a set's reference run.
+pub const SET_MAX_REFERENCE_BLOCKS: u64 = 1000;
+
+/// Refuses an empty or oversized test set: `rows` of `samples` (≥ 1)
+/// samples, and `blocks` reference replicates (0 for none, else at least 2
+/// for a spread).
+pub fn check_set_size(rows: u64, samples: usize, blocks: u64) -> crate::Result<()> {
+    let max_rows = SET_MAX_ROWS.min(SET_MAX_VALUES / samples.max(1) as u64);
+    if !(2..=max_rows).contains(&rows) {
+        return Err(crate::Error::OutOfRange {
+            param: "rows",
+            value: rows as f64,
+            accepted: format!("2 to {max_rows} with {samples} samples per row"),
+        });
+    }
+    if blocks > SET_MAX_REFERENCE_BLOCKS || blocks == 1 {
+        return Err(crate::Error::OutOfRange {
+            param: "reference_blocks",
+            value: blocks as f64,
+            accepted: format!("0 (none) or 2 to {SET_MAX_REFERENCE_BLOCKS}"),
+        });
+    }
+    Ok(())
+}

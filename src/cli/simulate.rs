@@ -8,18 +8,14 @@
 use super::common::{OutputArgs, RunArgs};
 use super::inputs::InputsArgs;
 use super::{print_json, print_rows, progress_bar};
-use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
-use v2ref::simulator::run::PistonEffect;
-use v2ref::simulator::{simulate, Inputs, Model, PistonFacts, SimulationRun};
-use v2ref::{Error, Result};
-
-/// Largest number of trials accepted.
-pub const MAX_TRIALS: u64 = 1 << 40;
+use v2ref::simulator::report::{check_trials, Estimation, SimulateReport};
+use v2ref::simulator::{simulate, Model};
+use v2ref::Result;
 
 /// Flags of `simulate`.
 #[derive(Debug, clap::Args)]
@@ -45,38 +41,6 @@ pub struct Args {
     output: OutputArgs,
 }
 
-#[derive(Serialize)]
-struct Answer {
-    formula: Formula,
-    bins: String,
-    bias: BiasConvention,
-    samples: usize,
-    mean_v1_sq: f64,
-    mean_v2_sq: f64,
-    var_v1_sq: f64,
-    var_v2_sq: f64,
-    stderr_mean_v1_sq: f64,
-    stderr_mean_v2_sq: f64,
-    stderr_var_v1_sq: f64,
-    stderr_var_v2_sq: f64,
-    /// Closed-form expectation of the normalized V1² (null with piston).
-    expected_mean_v1_sq: Option<f64>,
-    /// Same for V2².
-    expected_mean_v2_sq: Option<f64>,
-    /// Exact closed-form variance of the normalized V1² over the window.
-    expected_var_v1_sq: Option<f64>,
-    /// Same for V2².
-    expected_var_v2_sq: Option<f64>,
-    trials: u64,
-    seed: u64,
-    /// The piston sequence (null without --fringe-hz).
-    piston: Option<PistonFacts>,
-    /// With piston and no noise: V − V(no piston) (what `piston` reports).
-    piston_effect: Option<PistonEffect>,
-    /// Every physical input.
-    inputs: Inputs,
-}
-
 /// Runs `simulate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
@@ -93,7 +57,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
         bar.inc(t)
     })?;
     bar.finish_and_clear();
-    let answer = answer(&args, inputs, &run);
+    let estimation = Estimation {
+        window: args.bins,
+        bias: args.bias,
+        formula: args.formula,
+    };
+    let answer = SimulateReport::new(inputs, estimation, size, &run);
     if args.output.json {
         print_json(&answer);
     } else {
@@ -102,47 +71,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Refuses fewer than 2 or more than [`MAX_TRIALS`] trials.
-fn check_trials(trials: u64) -> Result<()> {
-    if (2..=MAX_TRIALS).contains(&trials) {
-        Ok(())
-    } else {
-        Err(Error::OutOfRange {
-            param: "trials",
-            value: trials as f64,
-            accepted: format!("2 to {MAX_TRIALS}"),
-        })
-    }
-}
-
-fn answer(args: &Args, inputs: Inputs, run: &SimulationRun) -> Answer {
-    let (v1, v2, e) = (&run.v1_sq, &run.v2_sq, run.expected.as_ref());
-    Answer {
-        formula: args.formula,
-        bins: args.bins.name().to_owned(),
-        bias: args.bias,
-        samples: inputs.samples,
-        mean_v1_sq: v1.mean,
-        mean_v2_sq: v2.mean,
-        var_v1_sq: v1.var,
-        var_v2_sq: v2.var,
-        stderr_mean_v1_sq: v1.stderr_mean,
-        stderr_mean_v2_sq: v2.stderr_mean,
-        stderr_var_v1_sq: v1.stderr_var,
-        stderr_var_v2_sq: v2.stderr_var,
-        expected_mean_v1_sq: e.map(|e| e.mean_v1_sq),
-        expected_mean_v2_sq: e.map(|e| e.mean_v2_sq),
-        expected_var_v1_sq: e.and_then(|e| e.var_v1_sq),
-        expected_var_v2_sq: e.and_then(|e| e.var_v2_sq),
-        trials: args.trials,
-        seed: args.run.seed,
-        piston: run.piston,
-        piston_effect: run.piston_effect,
-        inputs,
-    }
-}
-
-fn print_table(a: &Answer) {
+fn print_table(a: &SimulateReport) {
     let opt = |v: Option<f64>, p: usize| v.map_or("-".to_owned(), |x| format!("{x:.p$e}"));
     let mean = |m: f64, se: f64, e: Option<f64>| {
         let e = e.map_or("-".to_owned(), |x| format!("{x:.6}"));

@@ -14,12 +14,6 @@ use v2ref::conformance::truth::{truth, TruthSize};
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
 
-/// Most rows of a set.
-pub const MAX_ROWS: u64 = 1 << 32;
-/// Most values (rows × samples) of a set: 2^31 float64, 16 GiB.
-pub const MAX_VALUES: u64 = 1 << 31;
-/// Most replicates in the reference run.
-pub const MAX_REFERENCE_BLOCKS: u64 = 1000;
 /// Units generated at once while streaming (memory ≈ this × 8192 rows).
 const STREAM_BATCH_UNITS: u64 = 8;
 
@@ -54,7 +48,7 @@ pub struct Args {
 /// Runs `synth`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
-    check_size(args.rows, inputs.samples, args.reference_blocks)?;
+    v2ref::bounds::check_set_size(args.rows, inputs.samples, args.reference_blocks)?;
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
     let spec = SetSpec {
@@ -168,26 +162,6 @@ pub fn write_set(
     }
     write_text_atomic(&stem.json, &(json + "\n"))?;
     Ok(sidecar)
-}
-
-/// Refuses empty or oversized sets.
-pub fn check_size(rows: u64, samples: usize, blocks: u64) -> Result<()> {
-    let max_rows = MAX_ROWS.min(MAX_VALUES / samples as u64);
-    if !(2..=max_rows).contains(&rows) {
-        return Err(Error::OutOfRange {
-            param: "rows",
-            value: rows as f64,
-            accepted: format!("2 to {max_rows} with {samples} samples per row"),
-        });
-    }
-    if blocks > MAX_REFERENCE_BLOCKS || blocks == 1 {
-        return Err(Error::OutOfRange {
-            param: "reference_blocks",
-            value: blocks as f64,
-            accepted: format!("0 (none) or 2 to {MAX_REFERENCE_BLOCKS}"),
-        });
-    }
-    Ok(())
 }
 
 /// The three paths of a set.

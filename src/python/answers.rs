@@ -20,24 +20,16 @@ use crate::piston::turbulence::{PistonSpectrum, Turbulence};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::Effort;
 use crate::simulator::record::{InputsRecord, SamplingRecord};
-use crate::simulator::run::PistonEffect;
-use crate::simulator::{simulate as run_simulation, Inputs, Model, PistonFacts};
+use crate::simulator::report::{check_trials, Estimation, SimulateReport};
+use crate::simulator::{simulate as run_simulation, Model};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
 
-/// Most rows of a synth set (the CLI's `synth::MAX_ROWS`).
-const MAX_ROWS: u64 = 1 << 32;
-/// Most values of a set (the CLI's `synth::MAX_VALUES`).
-const MAX_VALUES: u64 = 1 << 31;
-/// Most replicates in the reference run.
-const MAX_REFERENCE_BLOCKS: u64 = 1000;
 /// Units generated at once while streaming.
 const STREAM_BATCH_UNITS: u64 = 8;
-/// Most trials of `simulate` (the CLI's `simulate::MAX_TRIALS`).
-const MAX_TRIALS: u64 = 1 << 40;
 
 fn window(s: &str) -> Result<BinWindow> {
     parse_enum("bins", s, &["positive", "band", "all"])
@@ -298,26 +290,6 @@ fn estimate<'py>(
     Ok(out)
 }
 
-/// Refuses empty or oversized sets (the CLI's `synth::check_size`).
-fn check_size(rows: u64, samples: usize, blocks: u64) -> Result<()> {
-    let max_rows = MAX_ROWS.min(MAX_VALUES / samples as u64);
-    if !(2..=max_rows).contains(&rows) {
-        return Err(Error::OutOfRange {
-            param: "rows",
-            value: rows as f64,
-            accepted: format!("2 to {max_rows} with {samples} samples per row"),
-        });
-    }
-    if blocks > MAX_REFERENCE_BLOCKS || blocks == 1 {
-        return Err(Error::OutOfRange {
-            param: "reference_blocks",
-            value: blocks as f64,
-            accepted: format!("0 (none) or 2 to {MAX_REFERENCE_BLOCKS}"),
-        });
-    }
-    Ok(())
-}
-
 /// `synthesize`: a set's rows (2-D array) and its sidecar (JSON text), as
 /// `v2ref synth` writes them; `npy` is the data file name recorded.
 #[pyfunction]
@@ -334,7 +306,11 @@ fn synthesize<'py>(
     npy: String,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
-    ok(check_size(rows, inputs.samples, reference_blocks))?;
+    ok(crate::bounds::check_set_size(
+        rows,
+        inputs.samples,
+        reference_blocks,
+    ))?;
     let model = ok(Model::new(&inputs))?;
     let n = inputs.samples;
     let (data, sidecar) = interruptible(py, |tick| {
@@ -385,31 +361,6 @@ fn synthesize<'py>(
     Ok((array.into_any(), json(&sidecar)?))
 }
 
-#[derive(Serialize)]
-struct SimulateAnswer {
-    formula: Formula,
-    bins: String,
-    bias: BiasConvention,
-    samples: usize,
-    mean_v1_sq: f64,
-    mean_v2_sq: f64,
-    var_v1_sq: f64,
-    var_v2_sq: f64,
-    stderr_mean_v1_sq: f64,
-    stderr_mean_v2_sq: f64,
-    stderr_var_v1_sq: f64,
-    stderr_var_v2_sq: f64,
-    expected_mean_v1_sq: Option<f64>,
-    expected_mean_v2_sq: Option<f64>,
-    expected_var_v1_sq: Option<f64>,
-    expected_var_v2_sq: Option<f64>,
-    trials: u64,
-    seed: u64,
-    piston: Option<PistonFacts>,
-    piston_effect: Option<PistonEffect>,
-    inputs: Inputs,
-}
-
 /// `simulate`: the running statistics of `v2ref simulate --json`.
 #[pyfunction]
 #[pyo3(signature = (physical, bins, bias, formula, trials, seed, threads))]
@@ -429,14 +380,7 @@ fn simulate(
         ok(convention(bias))?,
         ok(self::formula(formula))?,
     );
-    if !(2..=MAX_TRIALS).contains(&trials) {
-        return Err(Error::OutOfRange {
-            param: "trials",
-            value: trials as f64,
-            accepted: format!("2 to {MAX_TRIALS}"),
-        }
-        .into_py_err());
-    }
+    ok(check_trials(trials))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
     let model = ok(Model::new(&inputs))?;
     let size = Trials {
@@ -447,30 +391,12 @@ fn simulate(
     let run = interruptible(py, |tick| {
         run_simulation(&model, window, bias, formula, size, tick)
     })?;
-    let (v1, v2, e) = (&run.v1_sq, &run.v2_sq, run.expected.as_ref());
-    json(&SimulateAnswer {
-        formula,
-        bins: window.name().to_owned(),
+    let estimation = Estimation {
+        window,
         bias,
-        samples: inputs.samples,
-        mean_v1_sq: v1.mean,
-        mean_v2_sq: v2.mean,
-        var_v1_sq: v1.var,
-        var_v2_sq: v2.var,
-        stderr_mean_v1_sq: v1.stderr_mean,
-        stderr_mean_v2_sq: v2.stderr_mean,
-        stderr_var_v1_sq: v1.stderr_var,
-        stderr_var_v2_sq: v2.stderr_var,
-        expected_mean_v1_sq: e.map(|e| e.mean_v1_sq),
-        expected_mean_v2_sq: e.map(|e| e.mean_v2_sq),
-        expected_var_v1_sq: e.and_then(|e| e.var_v1_sq),
-        expected_var_v2_sq: e.and_then(|e| e.var_v2_sq),
-        trials,
-        seed,
-        piston: run.piston,
-        piston_effect: run.piston_effect,
-        inputs,
-    })
+        formula,
+    };
+    json(&SimulateReport::new(inputs, estimation, size, &run))
 }
 
 /// `bias`: `v2ref bias --json`.

@@ -13,6 +13,7 @@
 pub mod inputs;
 pub mod model;
 pub mod record;
+pub mod report;
 pub mod rows;
 pub mod run;
 
