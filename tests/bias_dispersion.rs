@@ -26,6 +26,31 @@ fn reference() -> Vec<Vec<String>> {
 }
 
 #[test]
+fn zblan_index_matches_the_sellmeier_formula_in_mpmath() {
+    // tests/data/zblan_reference.csv: Gan's formula in its wavelength form,
+    // 50 digits (generator beside it). The crate evaluates it from the
+    // wavenumber: a few roundings, far below ROUNDING_REL; a wrong sign or
+    // operator anywhere moves n by ≥ 1e-4.
+    let mut n = 0;
+    for line in include_str!("data/zblan_reference.csv")
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+    {
+        let (lambda, want) = line.split_once(',').unwrap();
+        let (lambda, want): (f64, f64) = (lambda.parse().unwrap(), want.parse().unwrap());
+        assert_rel_eq!(
+            dispersion::zblan_index(1.0 / lambda),
+            want,
+            ROUNDING_REL,
+            "λ = {lambda} µm"
+        );
+        n += 1;
+    }
+    assert_eq!(n, 8);
+}
+
+#[test]
 fn fresnel_matches_mpmath() {
     let mut n = 0;
     for row in reference().iter().filter(|r| r[0] == "value") {
