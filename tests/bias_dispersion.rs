@@ -13,8 +13,9 @@ use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::special::fresnel::{fresnel_cs, point_source_v2_sq};
 use v2ref::tolerance::{
-    CLOSED_FORM_VS_NUMERICAL, FINITE_DIFFERENCE_REL, FRESNEL_ABS, LEADING_TERM_REL, POWER_FACTOR,
-    RESIDUAL_PHASE_REL, ROUNDING_REL, SECOND_DIFFERENCE_ABS, SMALL_P_EXPANSION_ABS, ULPS,
+    CLOSED_FORM_VS_NUMERICAL, FINITE_DIFFERENCE_REL, FRESNEL_ABS, GLASS_DISPERSION_REL,
+    LEADING_TERM_REL, POWER_FACTOR, RESIDUAL_CUBIC_REL, RESIDUAL_PHASE_REL, ROUNDING_REL,
+    SECOND_DIFFERENCE_ABS, SMALL_P_EXPANSION_ABS, ULPS,
 };
 
 fn reference() -> Vec<Vec<String>> {
@@ -25,29 +26,67 @@ fn reference() -> Vec<Vec<String>> {
         .collect()
 }
 
-#[test]
-fn zblan_index_matches_the_sellmeier_formula_in_mpmath() {
-    // tests/data/zblan_reference.csv: Gan's formula in its wavelength form,
-    // 50 digits (generator beside it). The crate evaluates it from the
-    // wavenumber: a few roundings, far below ROUNDING_REL; a wrong sign or
-    // operator anywhere moves n by ≥ 1e-4.
-    let mut n = 0;
-    for line in include_str!("data/zblan_reference.csv")
+/// Rows `(kind, x, value)` of tests/data/zblan_reference.csv.
+fn zblan_reference() -> Vec<(String, f64, f64)> {
+    include_str!("data/zblan_reference.csv")
         .lines()
         .filter(|l| !l.starts_with('#'))
         .skip(1)
-    {
-        let (lambda, want) = line.split_once(',').unwrap();
-        let (lambda, want): (f64, f64) = (lambda.parse().unwrap(), want.parse().unwrap());
-        assert_rel_eq!(
-            dispersion::zblan_index(1.0 / lambda),
-            want,
-            ROUNDING_REL,
-            "λ = {lambda} µm"
-        );
-        n += 1;
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (
+                f[0].to_owned(),
+                f[1].parse().unwrap(),
+                f[2].parse().unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn zblan_index_and_dispersion_match_the_sellmeier_formula_in_mpmath() {
+    // tests/data/zblan_reference.csv: Gan's formula in its wavelength form,
+    // 50 digits, and its second derivative by mpmath (generator beside it).
+    // The crate evaluates n from the wavenumber (a few roundings, far below
+    // ROUNDING_REL) and D by a five-point difference (GLASS_DISPERSION_REL);
+    // a wrong sign or operator moves n by ≥ 1e-4 and P by far more.
+    let rows = zblan_reference();
+    for (_, lambda, want) in rows.iter().filter(|r| r.0 == "n") {
+        let got = dispersion::zblan_index(1.0 / lambda);
+        assert_rel_eq!(got, *want, ROUNDING_REL, "n at {lambda} µm");
     }
-    assert_eq!(n, 8);
+    for (_, length_um, want) in rows.iter().filter(|r| r.0 == "p2p") {
+        let got = dispersion::zblan_peak_to_peak_rad(1.0 / 2.4, 1.0 / 2.0, *length_um).unwrap();
+        assert_rel_eq!(got, *want, GLASS_DISPERSION_REL, "P of {length_um} µm");
+    }
+    assert_eq!(rows.len(), 10);
+}
+
+#[test]
+fn residual_phase_of_polynomial_indices_has_its_closed_form() {
+    // φ = 2πσ n(σ) L less its value and slope at the band centre s0, peak to
+    // peak over [s0 − a, s0 + a]. The slope comes from a central difference
+    // (h = 1e-4 µm⁻¹) of a phase ~4e4 rad: ~1e-7 rad µm of rounding, ~4e-9
+    // rad over the half-band, ~4e-10 of these 10-rad residuals, well inside
+    // FINITE_DIFFERENCE_REL.
+    use std::f64::consts::PI;
+    let (s0, a, l) = (0.45, 0.04, 1e4);
+    let (lo, hi) = (s0 - a, s0 + a);
+    // n = 1.4 + bσ: residual 2πLb u², u = σ − s0, from 0 to 2πLb a².
+    let b = 0.1;
+    let got = dispersion::residual_peak_to_peak(|s| 1.4 + b * s, lo, hi, l);
+    assert_rel_eq!(got, 2.0 * PI * l * b * a * a, FINITE_DIFFERENCE_REL);
+    // n = 1.4 + cσ²: residual 2πLc u²(u + 3 s0), from 0 (u = 0) to
+    // 2πLc a²(a + 3 s0) (u = a): the cubic term makes the ends unequal.
+    let c = 0.1;
+    let got = dispersion::residual_peak_to_peak(|s| 1.4 + c * s * s, lo, hi, l);
+    assert_rel_eq!(
+        got,
+        2.0 * PI * l * c * a * a * (a + 3.0 * s0),
+        RESIDUAL_CUBIC_REL
+    );
+    // A constant index leaves nothing beyond the linear term (rounding only).
+    assert!(dispersion::residual_peak_to_peak(|_| 1.5, lo, hi, l) < 1e-6);
 }
 
 #[test]

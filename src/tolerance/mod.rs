@@ -32,7 +32,7 @@
 //!   [`BESSEL_ZERO_REL`], [`FRESNEL_ABS`], [`CLOSED_FORM_VS_NUMERICAL`],
 //!   [`FINITE_DIFFERENCE_REL`], [`SECOND_DIFFERENCE_ABS`],
 //!   [`RESIDUAL_PHASE_REL`], [`KERNEL_ZERO_REL`], [`MINIMIZE_BRACKET_REL`],
-//!   [`REFERENCE_QUADRATURE_REL`],
+//!   [`REFERENCE_QUADRATURE_REL`], [`RESIDUAL_CUBIC_REL`], [`GLASS_DISPERSION_REL`],
 //!   [`ARGMAX_ABS`];
 //! * convergence studies (truncated series, discretizations, asymptotic
 //!   regimes, printed precision): [`SAMPLED_VS_SPECTRAL_ABS`],

@@ -132,6 +132,25 @@ pub const SECOND_DIFFERENCE_ABS: f64 = 1e-4;
 /// the slope: ~10⁴–10⁵ ε ≈ 2e-11; 1e-9 relative leaves a margin of ~50.
 pub const RESIDUAL_PHASE_REL: f64 = 1e-9;
 
+/// The glass residual phase of an index with a σ² term (a phase cubic in
+/// σ) against its closed form, relative: the slope removed by the central
+/// difference (h = 1e-4 µm⁻¹) is off by its truncation h² φ'''/6, which
+/// tilts the residual by h² φ'''/6 · a over the half-band a. For
+/// n = 1.4 + 0.1σ², L = 1 cm, a = 0.04 µm⁻¹ that is 2.5e-6 rad of 14 rad,
+/// 1.8e-7 (measured); 1e-6 leaves a margin of 5, while a wrong operator in
+/// the residual moves it by O(1).
+pub const RESIDUAL_CUBIC_REL: f64 = 1e-6;
+
+/// The quadratic dispersion of ZBLAN over the K band by the crate's
+/// five-point second difference against mpmath's derivative of the
+/// Sellmeier phase, relative: the rounding of the rule,
+/// (1 + 16 + 30 + 16 + 1)/12 · ε|φ|/h² ≈ 5e-5 rad µm² per cm of glass
+/// (|φ| ≈ 4.3e4 rad, h = 1e-3 µm⁻¹), against |D| ≈ 1.0e3 rad µm² per cm
+/// (both scale with the length): up to 5e-8 when the errors add; 2.1e-8
+/// measured at 2.5 cm. 2e-7 leaves a margin of 4, while the band centre
+/// taken wrongly moves P by tens of percent.
+pub const GLASS_DISPERSION_REL: f64 = 2e-7;
+
 /// Entries of a Dirichlet-type window kernel smaller than this fraction of
 /// the kernel's scale (the number of bins) are rounding residues of exact
 /// zeros: each entry is a sum of up to ~10³ unit phasors with ~ε N of
