@@ -488,3 +488,49 @@ fn dft_phase_is_the_reduced_angle() {
     let n = 1usize << 20;
     assert_rel_eq!(dft_phase(n - 1, n - 1, n), -2.0 * PI / n as f64, ULPS);
 }
+
+#[test]
+fn sampling_holds_the_scan_of_its_definition() {
+    // Values exact in binary: N = 128, δx = 0.5 µm, Δx = N δx = 64 µm,
+    // δσ = 1/Δx = 1/64 µm⁻¹.
+    let s = Sampling::new(128, 0.5, false).unwrap();
+    assert_eq!((s.samples(), s.dx_um(), s.integrating()), (128, 0.5, false));
+    assert_eq!((s.stroke_um(), s.delta_sigma_per_um()), (64.0, 1.0 / 64.0));
+    // A stroke rounds to the nearest number of samples: 10.3/0.5 = 20.6 → 21.
+    let t = Sampling::from_stroke(10.3, 0.5, true).unwrap();
+    assert_eq!(
+        (t.samples(), t.stroke_um(), t.integrating()),
+        (21, 10.5, true)
+    );
+    // DFT order, centred: non-negative OPDs first, then the negative ones.
+    let opd = |n: usize| {
+        let s = Sampling::new(n, 0.5, false).unwrap();
+        (0..n).map(|i| s.opd_um(i)).collect::<Vec<_>>()
+    };
+    assert_eq!(opd(4), [0.0, 0.5, -1.0, -0.5]);
+    assert_eq!(opd(5), [0.0, 0.5, 1.0, -1.0, -0.5]);
+    // Refusals name the parameter.
+    let param = |r: v2ref::Result<Sampling>| r.unwrap_err().param();
+    let param = |r| param(r).unwrap();
+    assert_eq!(param(Sampling::new(1, 0.5, false)), "samples");
+    assert_eq!(param(Sampling::new(4, 0.0, false)), "dx_um");
+    assert_eq!(param(Sampling::from_stroke(0.7, 0.5, false)), "stroke_um");
+    assert!(Sampling::from_stroke(1.0, 0.5, false).is_ok()); // exactly 2 samples
+                                                             // Aliasing: the K band (2.0–2.4 µm) reaches σ_max = 1/2.0 µm⁻¹, so δx
+                                                             // must stay below 0.5/σ_max = 1 µm.
+    let obs = Observation::new(
+        Spectrum::flat(Band::k()),
+        Source::Point,
+        Frequency::BaselineM(10.0),
+        SpectralPhase::zero(),
+    )
+    .unwrap();
+    assert!(Sampling::new(64, 0.999, false)
+        .unwrap()
+        .check_aliasing(&obs)
+        .is_ok());
+    assert!(matches!(
+        Sampling::new(64, 1.0, false).unwrap().check_aliasing(&obs),
+        Err(Error::Aliasing { .. })
+    ));
+}
