@@ -85,6 +85,14 @@ fn residual_phase_of_polynomial_indices_has_its_closed_form() {
         2.0 * PI * l * c * a * a * (a + 3.0 * s0),
         RESIDUAL_CUBIC_REL
     );
+    // With the opposite curvature the residual is ≤ 0: the peak-to-peak is
+    // max − min = 0 − (−P), the same P (a sum max + min would give −P).
+    let got = dispersion::residual_peak_to_peak(|s| 1.4 - c * s * s, lo, hi, l);
+    assert_rel_eq!(
+        got,
+        2.0 * PI * l * c * a * a * (a + 3.0 * s0),
+        RESIDUAL_CUBIC_REL
+    );
     // A constant index leaves nothing beyond the linear term (rounding only).
     assert!(dispersion::residual_peak_to_peak(|_| 1.5, lo, hi, l) < 1e-6);
 }
