@@ -27,9 +27,10 @@ declare -A AREAS=(
     [dispersion]="src/bias/dispersion.rs|bias_dispersion"
     [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
     [turbulence]="src/piston/turbulence.rs src/piston/spectrum.rs|turbulence piston"
+    [fft]="src/math/fft.rs|fft"
 )
 NEEDS_CLI=" seeding turbulence "
-ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence noise_simulation seeding)
+ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence noise_simulation seeding fft)
 
 areas=()
 while [[ $# -gt 0 && $1 != "--" ]]; do

@@ -534,3 +534,24 @@ fn sampling_holds_the_scan_of_its_definition() {
         Err(Error::Aliasing { .. })
     ));
 }
+
+#[test]
+fn sinc_is_one_at_zero_and_its_definition_near_zero() {
+    // sin(πu)/(πu) from mpmath (sinpi, 40 digits), on both sides of the
+    // switch to the Taylor series at |u| = 1e-4.
+    let reference = [
+        (1e-12, "1.0"),
+        (1e-8, "0.99999999999999983551"),
+        (1e-5, "0.99999999983550659332"),
+        (9.9e-5, "0.9999999838780012888"),
+        (1.01e-4, "0.99999998322002766855"),
+        (0.3, "0.85839369133413977501"),
+        (2.5, "0.12732395447351626862"),
+    ];
+    assert_eq!(sinc(0.0), 1.0);
+    for (u, want) in reference {
+        let want: f64 = want.parse().unwrap();
+        assert_rel_eq!(sinc(u), want, ROUNDING_REL, "sinc({u})");
+        assert_eq!(sinc(-u), sinc(u), "sinc is even");
+    }
+}
