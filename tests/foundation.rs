@@ -326,6 +326,8 @@ fn fft_matches_the_naive_dft_and_the_appendix_identities() {
         .collect();
     let fast = dft(&samples);
     let slow = naive_dft(&samples);
+    // Lengths first: a zip over an empty oracle would compare nothing.
+    assert_eq!((fast.len(), slow.len()), (100, 100));
     for (a, b) in fast.iter().zip(&slow) {
         assert!((a - b).norm() < NAIVE_DFT_ABS);
     }
@@ -554,4 +556,14 @@ fn sinc_is_one_at_zero_and_its_definition_near_zero() {
         assert_rel_eq!(sinc(u), want, ROUNDING_REL, "sinc({u})");
         assert_eq!(sinc(-u), sinc(u), "sinc is even");
     }
+}
+
+#[test]
+fn mean_counts_are_continuum_plus_modulation() {
+    // n_i = c_i + m_i, sample by sample (exact in binary).
+    let ifg = Interferogram {
+        continuum: vec![10.0, 10.0, 10.0],
+        modulated: vec![2.5, -4.0, 0.0],
+    };
+    assert_eq!(ifg.mean_counts(), [12.5, 6.0, 10.0]);
 }
