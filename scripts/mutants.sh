@@ -81,8 +81,11 @@ for area in "${areas[@]}"; do
     mkdir -p "$out"
     skips=()
     for t in ${SLOW[$area]:-}; do skips+=(--skip "$t"); done
-    # cargo-mutants passes what follows "--" to the test run only.
-    cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "$@" -- "${skips[@]}" || true
+    # cargo-mutants appends what follows its "--" to `cargo test`, so the
+    # libtest filters need a second "--".
+    harness=()
+    [[ ${#skips[@]} -gt 0 ]] && harness=(-- -- "${skips[@]}")
+    cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "$@" "${harness[@]}" || true
 
     missed="$out/mutants.out/missed.txt"
     if [[ ${#skips[@]} -gt 0 && -s $missed ]]; then
