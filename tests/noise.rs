@@ -23,6 +23,13 @@ fn cumulant_recursion_gives_textbook_moments() {
     // Gaussian N(m, s²): E X⁴ = m⁴ + 6m²s² + 3s⁴; Poisson(λ): Touchard
     // polynomials λ⁴ + 6λ³ + 7λ² + λ (independent textbook forms).
     let g = raw_moments_from_cumulants(&[1.5, 4.0, 0.0, 0.0]);
+    // E X² = m² + s² = 2.25 + 4
+    assert_relative_eq!(g[2], 6.25, max_relative = IDENTITY_REL);
+    assert_relative_eq!(
+        published::gaussian_m2(1.5, 2.0),
+        6.25,
+        max_relative = IDENTITY_REL
+    );
     assert_relative_eq!(
         g[4],
         published::gaussian_m4(1.5, 2.0),
@@ -345,4 +352,199 @@ proptest! {
             prop_assert!(b1 < a1);
         }
     }
+}
+
+#[test]
+fn published_detector_terms_are_exact_for_any_read_noise() {
+    // The printed detector-noise variance 2σ²(2m² + σ²) and bias σ² are the
+    // exact Gaussian ones; checked at σ ≠ 2 (where σ + σ = σ·σ would hide a
+    // slip) and σ < 1.
+    for s in [0.7, 1.3, 3.1] {
+        let d = gauss(s);
+        for m in [0.0, 2.5, -4.0] {
+            assert_relative_eq!(
+                published::detector_var_term(m, s),
+                var_m2(&d, m, 0.0),
+                max_relative = IDENTITY_REL
+            );
+            for formula in [Formula::Exact, Formula::Published] {
+                assert_relative_eq!(
+                    noise::sample_bias(formula, &d, m, 10.0),
+                    s * s,
+                    max_relative = IDENTITY_REL
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn photon_bias_is_the_mean_count_exact_and_the_modulation_published() {
+    // Exact: κ2 = σ² + n (n the mean total count); printed: σ² + m.
+    let both = NoiseModel::new(0.7, true).unwrap();
+    let (m, n) = (3.0, 11.0);
+    assert_relative_eq!(
+        noise::sample_bias(Formula::Exact, &both, m, n),
+        0.49 + 11.0,
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        noise::sample_bias(Formula::Published, &both, m, n),
+        0.49 + 3.0,
+        max_relative = IDENTITY_REL
+    );
+}
+
+#[test]
+fn a_sample_with_zero_mean_count_is_accepted_and_a_negative_one_refused() {
+    // Visibility 1 in a fringe trough: m = −c, no photons expected there.
+    let p = NoiseModel::photon();
+    let ok = appendix_stats(&[5.0, -5.0], &[5.0, 5.0], &p, Formula::Exact).unwrap();
+    assert_relative_eq!(ok.sum_m2, 50.0, max_relative = IDENTITY_REL);
+    assert!(appendix_stats(&[5.0, -5.5], &[5.0, 5.0], &p, Formula::Exact).is_err());
+}
+
+#[test]
+fn expectation_is_the_signal_with_the_exact_bias_and_off_by_the_continuum_with_the_printed_one() {
+    // ⟨V1²_raw⟩ − bias = N Σ m² + N Σ κ2_i − N Σ b_i: the exact bias b = κ2
+    // leaves the signal; the printed photon bias b = σ² + m leaves
+    // N Σ (n_i − m_i) = N Σ c_i over V1² and N² c_0 over V2².
+    let (m, c) = ([5.0, 3.0, -1.0, -4.0], [10.0, 12.0, 9.0, 6.0]);
+    let noise = NoiseModel::new(1.3, true).unwrap();
+    let exact = appendix_stats(&m, &c, &noise, Formula::Exact).unwrap();
+    assert_relative_eq!(
+        exact.expectation_v1_sq,
+        4.0 * 51.0,
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        exact.expectation_v2_sq,
+        16.0 * 25.0,
+        max_relative = IDENTITY_REL
+    );
+    let printed = appendix_stats(&m, &c, &noise, Formula::Published).unwrap();
+    let (sum_c, n) = (37.0, 4.0);
+    assert_relative_eq!(
+        printed.expectation_v1_sq,
+        n * 51.0 + n * sum_c,
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        printed.expectation_v2_sq,
+        n * n * 25.0 + n * n * 10.0,
+        max_relative = IDENTITY_REL
+    );
+}
+
+#[test]
+fn paper_window_factor_is_the_root_of_the_bandwidth_ratio() {
+    // √((1/δx)/Δσ_0): δx = 0.25 µm, Δσ_0 = 1 µm⁻¹ → √4; δx = 0.5, Δσ_0 = 1/8 → √16.
+    assert_relative_eq!(
+        noise::paper_window_factor(0.25, 1.0),
+        2.0,
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        noise::paper_window_factor(0.5, 0.125),
+        4.0,
+        max_relative = IDENTITY_REL
+    );
+}
+
+#[test]
+fn empty_samples_add_their_noise_to_v1_sq_only() {
+    // Extra samples (m = 0, continuum the mean c̄ of the packet's) add
+    // var(M²) = κ4 + 2κ2² = c̄ + 2c̄² (photon noise) each to Σ var(M_i²):
+    // SNR_1 = Σm² / √(Σ var_i + E(c̄ + 2c̄²)); SNR_2 reads sample 0 only.
+    let (m, c) = ([6.0, -2.0, 1.0], [4.0, 8.0, 6.0]);
+    let p = NoiseModel::photon();
+    let extra = 17;
+    let base = appendix_stats(&m, &c, &p, Formula::Exact).unwrap();
+    let (snr1, snr2) = noise::snr_with_extra_samples(&m, &c, &p, Formula::Exact, extra).unwrap();
+    let var_sum: f64 = m
+        .iter()
+        .zip(&c)
+        .map(|(&mi, &ci)| var_m2(&p, mi, mi + ci))
+        .sum();
+    let c_mean: f64 = 6.0;
+    let expected = 41.0 / (var_sum + extra as f64 * (c_mean + 2.0 * c_mean * c_mean)).sqrt();
+    assert_relative_eq!(snr1, expected, max_relative = IDENTITY_REL);
+    assert_relative_eq!(snr2, base.snr2, max_relative = IDENTITY_REL);
+    let (same1, _) = noise::snr_with_extra_samples(&m, &c, &p, Formula::Exact, 0).unwrap();
+    assert_relative_eq!(same1, base.snr1, max_relative = IDENTITY_REL);
+}
+
+/// The smallest total number of samples with SNR_1 ≤ SNR_2, by walking the
+/// number of empty samples one at a time (the slow oracle of the bisection).
+fn crossover_by_walking(m: &[f64], c: &[f64], noise: &NoiseModel) -> usize {
+    (0..)
+        .find(|&extra| {
+            let (a, b) = noise::snr_with_extra_samples(m, c, noise, Formula::Exact, extra).unwrap();
+            a <= b
+        })
+        .map(|extra| m.len() + extra)
+        .unwrap()
+}
+
+#[test]
+fn crossover_bisection_matches_the_walk_and_the_closed_form() {
+    // Detector noise: var(M²) = 4m²σ² + 2σ⁴, so SNR_1 ≤ SNR_2 from
+    // E ≥ ((Σm²)²/SNR_2² − Σ var_i) / 2σ⁴ empty samples on.
+    let c = [10.0; 3];
+    for (m, s) in [
+        ([3.0, 2.0, 1.5], 1.1),
+        ([4.0, -3.5, 2.2], 0.9),
+        ([2.5, 2.0, -1.0], 1.7),
+    ] {
+        let d = gauss(s);
+        let var: Vec<f64> = m.iter().map(|&mi| var_m2(&d, mi, 0.0)).collect();
+        let sum_m2: f64 = m.iter().map(|x| x * x).sum();
+        let snr2 = m[0] * m[0] / var[0].sqrt();
+        let extra = ((sum_m2 * sum_m2 / (snr2 * snr2) - var.iter().sum::<f64>())
+            / (2.0 * s.powi(4)))
+        .ceil()
+        .max(0.0) as usize;
+        let found = noise::crossover_samples(&m, &c, &d, Formula::Exact)
+            .unwrap()
+            .unwrap();
+        assert_eq!(found, 3 + extra, "m = {m:?}, σ = {s}");
+        assert_eq!(
+            found,
+            crossover_by_walking(&m, &c, &d),
+            "m = {m:?}, σ = {s}"
+        );
+    }
+    // Already crossed: the packet alone.
+    let d = gauss(1.0);
+    assert_eq!(
+        noise::crossover_samples(&[5.0, 0.1], &[10.0; 2], &d, Formula::Exact).unwrap(),
+        Some(2)
+    );
+}
+
+#[test]
+fn abcd_variance_is_that_of_two_squared_gaussian_differences() {
+    // A − C and B − D are Gaussian with means (N V/2)(cos φ, sin φ) and
+    // variance 2σ²: var X² = 4μ²s² + 2s⁴ for each, summed.
+    for (photons, v, s, phase) in [(100.0, 0.6, 1.5, 0.3), (40.0, 1.0, 0.4, 2.0)] {
+        let diff = gauss(s * std::f64::consts::SQRT_2);
+        let amp = photons * v / 2.0;
+        let two_squares =
+            var_m2(&diff, amp * f64::cos(phase), 0.0) + var_m2(&diff, amp * f64::sin(phase), 0.0);
+        assert_relative_eq!(
+            noise::abcd_detector_variance(photons, v, s),
+            two_squares,
+            max_relative = IDENTITY_REL
+        );
+    }
+    assert_relative_eq!(
+        noise::colavita_detector_variance(0.5),
+        1.0,
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        noise::abcd_detector_variance(80.0, 0.0, 0.5),
+        noise::colavita_detector_variance(0.5),
+        max_relative = IDENTITY_REL
+    );
 }

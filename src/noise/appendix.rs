@@ -283,8 +283,8 @@ pub fn snr_with_extra_samples(
 
 /// The smallest total number of samples at which SNR_1 ≤ SNR_2 when the
 /// fringe packet of `modulated` is read with more and more empty samples
-/// (bisection on the number of extra samples; None if not reached below
-/// 2^26 samples).
+/// (doubling, then bisection, on the number of extra samples; None if not
+/// reached with 2^26 extra samples).
 pub fn crossover_samples(
     modulated: &[f64],
     continuum: &[f64],
@@ -299,10 +299,17 @@ pub fn crossover_samples(
     if below(0)? {
         return Ok(Some(modulated.len()));
     }
-    if !below(limit)? {
-        return Ok(None);
+    // Doubling to the first power of two past the crossover (each step costs
+    // one evaluation on as many samples), then bisection in that octave:
+    // `below(lo)` is false and `below(hi)` true throughout.
+    let mut hi = 1usize;
+    while !below(hi)? {
+        if hi >= limit {
+            return Ok(None);
+        }
+        hi *= 2;
     }
-    let (mut lo, mut hi) = (0usize, limit);
+    let mut lo = hi / 2;
     while hi - lo > 1 {
         let mid = lo + (hi - lo) / 2;
         if below(mid)? {
