@@ -72,6 +72,76 @@ fn adaptive_quadrature_converges_on_a_peaked_integrand() {
     assert_rel_eq!(got, want, QUADRATURE_CHECK_REL);
 }
 
+#[test]
+fn a_vector_integrand_is_refined_until_every_component_converges() {
+    // √x and x^{1/3} have singular derivatives at 0: one K15 panel is off
+    // by ~1e-4, so the result is right only if the error control of the
+    // array type refines. ∫_0^1 = 2/3 and 3/4.
+    let f = |x: f64| [x.sqrt(), x.cbrt()];
+    let got = integrate(f, 0.0, 1.0, Tolerance::default());
+    assert_rel_eq!(got[0], 2.0 / 3.0, QUADRATURE_CHECK_REL);
+    assert_rel_eq!(got[1], 0.75, QUADRATURE_CHECK_REL);
+}
+
+/// ∫ f over [0, 1] and the number of evaluations of f it took.
+fn integrate_counting(f: impl Fn(f64) -> f64, tol: Tolerance) -> (f64, usize) {
+    let calls = std::cell::Cell::new(0usize);
+    let value = integrate(
+        |x| {
+            calls.set(calls.get() + 1);
+            f(x)
+        },
+        0.0,
+        1.0,
+        tol,
+    );
+    (value, calls.get())
+}
+
+#[test]
+fn relative_and_rounding_targets_scale_with_the_integrand() {
+    // With no absolute target the error control is scale-free: f and 2^20 f
+    // are refined on the same panels, and the result scales bit for bit
+    // (a power of two commutes with every rounding). Both the relative
+    // target and the rounding floor (rel = 0) are checked.
+    let f = |x: f64| (3.0 * x).exp() * x.sqrt();
+    let c = 2f64.powi(20);
+    for rel in [1e-9, 0.0] {
+        let tol = Tolerance { abs: 0.0, rel };
+        let (one, calls_one) = integrate_counting(f, tol);
+        let (scaled, calls_scaled) = integrate_counting(|x| c * f(x), tol);
+        assert_eq!(calls_one, calls_scaled, "rel = {rel}");
+        assert_eq!(scaled.to_bits(), (c * one).to_bits(), "rel = {rel}");
+        assert!(
+            calls_one < 4000 * 15,
+            "rel = {rel}: {calls_one} evaluations"
+        );
+    }
+}
+
+#[test]
+fn an_integrand_that_never_converges_stops_at_4000_panels() {
+    // sin(10⁵ x) over [0, 1]: 16 000 periods, more than 4000 panels can
+    // resolve, so every panel keeps a nonzero error estimate and the loop
+    // ends at the panel limit: 15 + 30 · 3999 evaluations.
+    let (_, calls) = integrate_counting(|x| (1e5 * x).sin(), Tolerance { abs: 0.0, rel: 0.0 });
+    assert_eq!(calls, 15 + 30 * 3999);
+}
+
+#[test]
+fn a_singular_integrand_is_bisected_to_depth_40() {
+    // ∫_0^1 x^{-1/2} = 2: the panel at 0 is bisected down to [0, 2^-40],
+    // where the depth limit stops it, and what is left of the error is the
+    // K15 error on that panel, √(2^-40) times the one on [0, 1] (x^{-1/2}
+    // scales as h^{-1/2} over a panel of width h).
+    let f = |x: f64| 1.0 / x.sqrt();
+    let (got, _) = integrate_counting(f, Tolerance { abs: 0.0, rel: 0.0 });
+    let (k15_unit, _) = gauss_kronrod_15(&f, 0.0, 1.0);
+    let predicted = 2.0 + 2f64.powi(-20) * (k15_unit - 2.0);
+    // The prediction is 4.4e-8 below 2 (depth 41 would leave 3.1e-8).
+    assert_rel_eq!(got, predicted, QUADRATURE_CHECK_REL);
+}
+
 // ---- band and W -------------------------------------------------------------
 
 #[test]

@@ -3,7 +3,7 @@
 //! The band integrals of the paper (W, W², W V e^{iφ}, σ W over the band)
 //! are smooth on each piece of the spectrum, so a G7/K15 rule with
 //! bisection converges geometrically. Node and weight values are those of
-//! QUADPACK's `qk15` (Piessens et al. 1983); `tests/quadrature.rs` checks
+//! QUADPACK's `qk15` (Piessens et al. 1983); `tests/foundation.rs` checks
 //! that K15 integrates polynomials of degree 22 and G7 of degree 13 exactly.
 //!
 //! Integrands may be vector-valued (several integrals share one set of
