@@ -77,6 +77,32 @@ fn closed_moments_match_the_generic_recursion() {
 }
 
 #[test]
+fn central_moments_are_the_textbook_ones() {
+    // Gaussian: E(M − m)² = σ², E(M − m)³ = 0, E(M − m)⁴ = 3σ⁴. Poisson of
+    // mean n (M = I − c): n, n and n + 3n².
+    let mo = moments(&gauss(1.7), 4.0, 9.0);
+    let s2 = 1.7 * 1.7;
+    for (got, want) in mo.central.iter().zip([1.0, 0.0, s2, 0.0, 3.0 * s2 * s2]) {
+        assert_relative_eq!(
+            *got,
+            want,
+            max_relative = IDENTITY_REL,
+            epsilon = IDENTITY_ABS
+        );
+    }
+    let n = 6.5;
+    let mo = moments(&NoiseModel::photon(), 2.0, n);
+    for (got, want) in mo.central.iter().zip([1.0, 0.0, n, n, n + 3.0 * n * n]) {
+        assert_relative_eq!(
+            *got,
+            want,
+            max_relative = IDENTITY_REL,
+            epsilon = IDENTITY_ABS
+        );
+    }
+}
+
+#[test]
 fn published_photon_moments_are_those_of_the_count_not_of_m() {
     // With no continuum (c = 0) M = I and the printed forms are exact ...
     let p = NoiseModel::photon();

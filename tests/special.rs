@@ -1,7 +1,7 @@
 //! Bessel functions against mpmath (tests/data/bessel_reference.csv, 50-digit
 //! reference with its generator beside it).
 
-use v2ref::math::special::{bessel_j0_j1, bessel_j1_zero, jinc};
+use v2ref::math::special::{bessel_j0, bessel_j0_j1, bessel_j1, bessel_j1_zero, jinc};
 use v2ref::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL, FINITE_DIFFERENCE_REL};
 
 fn reference() -> Vec<Vec<String>> {
@@ -24,6 +24,11 @@ fn j0_j1_jinc_match_mpmath_to_1e_14() {
             row[4].parse().unwrap(),
         );
         let (c0, c1) = bessel_j0_j1(x);
+        assert_eq!(
+            (bessel_j0(x), bessel_j1(x)),
+            (c0, c1),
+            "the one-order forms at {x}"
+        );
         for (got, want, what) in [(c0, j0, "J0"), (c1, j1, "J1"), (jinc(x), jc, "jinc")] {
             let err = (got - want).abs();
             worst = worst.max(err);
