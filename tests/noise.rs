@@ -607,3 +607,33 @@ fn gaussian_cumulant4_is_a_sum_of_noncentral_chi_squares() {
         }
     }
 }
+
+#[test]
+fn window_stats_refuses_unmatched_samples_and_gives_signal_over_root_variance() {
+    let noise = NoiseModel::new(0.8, true).unwrap();
+    let param = |e: v2ref::Error| e.param().unwrap_or("none").to_owned();
+    for (m, counts) in [(vec![1.0, 2.0], vec![5.0, 5.0, 5.0]), (vec![], vec![])] {
+        let e = window_stats(&m, &counts, &noise, &[0]).unwrap_err();
+        assert_eq!(
+            param(e),
+            "samples",
+            "{} and {} samples",
+            m.len(),
+            counts.len()
+        );
+    }
+    let m = [3.0, -1.0, 2.5, 0.5];
+    let counts = [8.0, 4.0, 7.5, 5.5];
+    let w = window_stats(&m, &counts, &noise, &[1, 3]).unwrap();
+    assert_relative_eq!(
+        w.snr1,
+        w.signal_v1_sq / w.var_v1_sq.sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    assert_relative_eq!(
+        w.snr2,
+        w.signal_v2_sq / w.var_v2_sq.sqrt(),
+        max_relative = IDENTITY_REL
+    );
+    assert!(w.snr1 > 0.0 && w.snr2 > 0.0);
+}

@@ -7,7 +7,7 @@ values printed with 17 significant digits (exact to the last f64 ulp).
 Grid: x = 0 to 100 in steps of 0.37 (an irrational-looking step, so that
 no grid point sits on a zero or on a method switch), plus points near the
 recurrence/asymptotic switch at 30, the series/ratio switch of jinc at 4
-and tiny arguments.
+and tiny arguments (down to 1e-300, where Miller's recurrence must rescale).
 Zeros: the first 30 positive zeros of J1 (mpmath.besseljzero(1, s)).
 """
 import mpmath
@@ -15,7 +15,7 @@ import mpmath
 mpmath.mp.dps = 50
 
 xs = [k * 0.37 for k in range(0, 271)]
-xs += [1e-8, 1e-4, 0.5, 3.8, 3.999, 4.0, 4.001, 29.999, 30.0, 30.001, 29.5, 30.5, 55.0, 99.99]
+xs += [1e-300, 1e-100, 1e-30, 1e-12, 1e-8, 1e-4, 0.5, 3.8, 3.999, 4.0, 4.001, 29.999, 30.0, 30.001, 29.5, 30.5, 55.0, 99.99]
 xs = sorted(set(xs))
 
 print("# v2ref reference: Bessel J0, J1 and jinc = 2 J1(x)/x")

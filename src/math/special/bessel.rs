@@ -4,6 +4,8 @@
 //! bandwidth", the formula for V(S)) is `2 J1(z)/z` with `z = π θ S`.
 //!
 //! Method (Abramowitz & Stegun 9.12; Numerical Recipes §6.5):
+//! - |x| < [`SERIES_BELOW`]: the first three terms of the power series
+//!   (A&S 9.1.10), whose next term is below 1e-32.
 //! - |x| < [`ASYMPTOTIC_FROM`]: Miller's backward recurrence
 //!   `J_{n-1} = (2n/x) J_n − J_{n+1}` from an order well above x, normalized
 //!   with the identity `J0 + 2 Σ_k J_{2k} = 1` (A&S 9.1.46). Stable, and its
@@ -18,6 +20,12 @@
 /// Where the Hankel expansion takes over from the recurrence.
 pub const ASYMPTOTIC_FROM: f64 = 30.0;
 
+/// Below this |x| the power series is used. Miller's recurrence multiplies
+/// by `2n/x` at each step, so for tiny x a single step overflows (it gave
+/// NaN at x = 1e-300); from 1e-5 on, its largest unnormalized value is the
+/// seed times J_0/J_start ≤ 1e-300 · 1e260, far from overflow.
+pub const SERIES_BELOW: f64 = 1e-5;
+
 /// Cut-off of the power series of `2 J1(z)/z` (|z| < 4, terms alternate and
 /// the sum is ≥ 0.13 there): a term below 1e-18 changes the sum by less
 /// than a hundredth of an ulp.
@@ -28,11 +36,6 @@ const NEWTON_STOP_REL: f64 = 1e-16;
 /// Seed of Miller's backward recurrence (any tiny nonzero value: the
 /// normalization removes it), far above underflow.
 const MILLER_SEED: f64 = 1e-300;
-/// Miller's recurrence rescales all its accumulators by [`MILLER_RESCALE`]
-/// when the current value exceeds this, to stay far from overflow.
-const MILLER_RESCALE_ABOVE: f64 = 1e250;
-/// The rescaling factor (exact ratios are all the normalization uses).
-const MILLER_RESCALE: f64 = 1e-250;
 /// Cut-off of Hankel's P and Q: terms below 1e-17 are under a tenth of an
 /// ulp of P ≈ 1 (the series is asymptotic and also stops at its smallest
 /// term).
@@ -41,7 +44,9 @@ const HANKEL_STOP: f64 = 1e-17;
 /// J0(x) and J1(x) together (one recurrence gives both).
 pub fn bessel_j0_j1(x: f64) -> (f64, f64) {
     let ax = x.abs();
-    let (j0, j1) = if ax < ASYMPTOTIC_FROM {
+    let (j0, j1) = if ax < SERIES_BELOW {
+        small_argument_j0_j1(ax)
+    } else if ax < ASYMPTOTIC_FROM {
         miller_j0_j1(ax)
     } else {
         hankel_j0_j1(ax)
@@ -108,10 +113,17 @@ pub fn bessel_j1_zero(s: u32) -> f64 {
     x
 }
 
+/// J0 and J1 for 0 ≤ x < [`SERIES_BELOW`]: with q = x²/4,
+/// `J0 = 1 − q + q²/4` and `J1 = (x/2)(1 − q/2 + q²/12)`.
+fn small_argument_j0_j1(x: f64) -> (f64, f64) {
+    let q = 0.25 * x * x;
+    (
+        1.0 - q + 0.25 * q * q,
+        0.5 * x * (1.0 - 0.5 * q + q * q / 12.0),
+    )
+}
+
 fn miller_j0_j1(x: f64) -> (f64, f64) {
-    if x == 0.0 {
-        return (1.0, 0.0);
-    }
     // Start order: far enough above x that J_start(x) is negligible
     // (J_n(x) decays like (ex/2n)^n once n > x); even, for the normalization.
     let start = {
@@ -134,13 +146,6 @@ fn miller_j0_j1(x: f64) -> (f64, f64) {
         }
         if n == 1 {
             j1 = j_cur;
-        }
-        if j_cur.abs() > MILLER_RESCALE_ABOVE {
-            // Rescale to avoid overflow; ratios are all that matter.
-            j_cur *= MILLER_RESCALE;
-            j_next *= MILLER_RESCALE;
-            even_sum *= MILLER_RESCALE;
-            j1 *= MILLER_RESCALE;
         }
     }
     let norm = j_cur + 2.0 * even_sum;
