@@ -26,9 +26,10 @@ fn cumulant_recursion_gives_textbook_moments() {
     let g = raw_moments_from_cumulants(&[1.5, 4.0, 0.0, 0.0]);
     // E X² = m² + s² = 2.25 + 4
     assert_relative_eq!(g[2], 6.25, max_relative = IDENTITY_REL);
+    // The printed ⟨M²⟩ = m² + σ², at σ = 1.3 (σ = 2 has σ + σ = σ·σ).
     assert_relative_eq!(
-        published::gaussian_m2(1.5, 2.0),
-        6.25,
+        published::gaussian_m2(1.5, 1.3),
+        raw_moments_from_cumulants(&[1.5, 1.69])[2],
         max_relative = IDENTITY_REL
     );
     assert_relative_eq!(
