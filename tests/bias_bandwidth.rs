@@ -144,3 +144,20 @@ fn bandwidth_scaling_laws() {
     .unwrap()[0];
     assert!((w.v1 - w.v_mono).abs() < ULPS && (w.v2 - w.v_mono).abs() < ULPS);
 }
+
+#[test]
+fn locate_max_finds_known_maxima_inside_and_at_the_ends() {
+    // Closed-form maxima: 2 − 5(x − 0.3137)² at 0.3137 (value 2), x e^{−x}
+    // at 1 (value 1/e), and monotone functions at either end of the interval.
+    let cases: [(&dyn Fn(f64) -> f64, f64, f64, f64, f64); 4] = [
+        (&|x| 2.0 - 5.0 * (x - 0.3137).powi(2), 0.0, 1.0, 0.3137, 2.0),
+        (&|x| x * (-x).exp(), 0.0, 5.0, 1.0, (-1.0f64).exp()),
+        (&|x| x.sqrt(), 0.25, 2.0, 2.0, 2f64.sqrt()),
+        (&|x| -x, 0.5, 3.0, 0.5, -0.5),
+    ];
+    for (f, lo, hi, x_max, f_max) in cases {
+        let (x, fx) = locate_max(f, lo, hi, 11);
+        assert!((x - x_max).abs() < ARGMAX_ABS, "argmax {x} vs {x_max}");
+        assert_rel_eq!(fx, f_max, MINIMIZE_BRACKET_REL);
+    }
+}
