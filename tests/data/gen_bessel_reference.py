@@ -22,7 +22,7 @@ print("# v2ref reference: Bessel J0, J1 and jinc = 2 J1(x)/x")
 print(f"# generator: python3 tests/data/gen_bessel_reference.py; mpmath {mpmath.__version__}; mp.dps = 50")
 print("# columns: kind (value|zero), x or zero index s, J0(x), J1(x), jinc(x) (value rows); zero (zero rows)")
 for x in xs:
-    mx = mpmath.mpf(repr(x))  # the exact binary value the f64 x holds
+    mx = mpmath.mpf(x)  # the exact binary value the f64 x holds (not repr(x), a decimal)
     j0 = mpmath.besselj(0, mx)
     j1 = mpmath.besselj(1, mx)
     jinc = mpmath.mpf(1) if mx == 0 else 2 * j1 / mx
