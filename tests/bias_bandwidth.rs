@@ -149,7 +149,9 @@ fn bandwidth_scaling_laws() {
 fn locate_max_finds_known_maxima_inside_and_at_the_ends() {
     // Closed-form maxima: 2 − 5(x − 0.3137)² at 0.3137 (value 2), x e^{−x}
     // at 1 (value 1/e), and monotone functions at either end of the interval.
-    let cases: [(&dyn Fn(f64) -> f64, f64, f64, f64, f64); 4] = [
+    // (f, lo, hi, argmax, max)
+    type Case<'a> = (&'a dyn Fn(f64) -> f64, f64, f64, f64, f64);
+    let cases: [Case; 4] = [
         (&|x| 2.0 - 5.0 * (x - 0.3137).powi(2), 0.0, 1.0, 0.3137, 2.0),
         (&|x| x * (-x).exp(), 0.0, 5.0, 1.0, (-1.0f64).exp()),
         (&|x| x.sqrt(), 0.25, 2.0, 2.0, 2f64.sqrt()),
