@@ -163,3 +163,13 @@ fn locate_max_finds_known_maxima_inside_and_at_the_ends() {
         assert_rel_eq!(fx, f_max, MINIMIZE_BRACKET_REL);
     }
 }
+
+#[test]
+fn locate_max_keeps_the_best_grid_point_when_refinement_finds_less() {
+    // A spike on one grid point: the golden-section search around it never
+    // lands on it, so the grid point (0.5, 1) must be returned.
+    let spike = |x: f64| if (x - 0.5).abs() < 1e-12 { 1.0 } else { 0.0 };
+    let (x, fx) = locate_max(spike, 0.0, 1.0, 11);
+    assert!((x - 0.5).abs() < ARGMAX_ABS, "argmax {x}");
+    assert_eq!(fx, 1.0);
+}

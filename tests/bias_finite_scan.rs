@@ -30,9 +30,24 @@ fn disk_obs(s: f64) -> Observation {
 
 #[test]
 fn dirichlet_kernel_is_the_sum_over_the_scan() {
-    for n in [2usize, 3, 4, 7, 8, 15, 116] {
+    // u = 9e-8 and 3 − 9e-8 sit just inside the series branch (|r| < 1e-7),
+    // where for N = 4096 its π²r²(N² − 1)/6 term is 2e-7 of the kernel.
+    for n in [2usize, 3, 4, 7, 8, 15, 116, 4096] {
         let sampling = Sampling::new(n, 0.5, false).unwrap();
-        for &u in &[0.0, 1e-9, 0.013, 0.25, 0.5, 0.77, 1.0, -1.3, 2.0, 3.4999] {
+        for &u in &[
+            0.0,
+            1e-9,
+            9e-8,
+            0.013,
+            0.25,
+            0.5,
+            0.77,
+            1.0,
+            -1.3,
+            2.0,
+            3.0 - 9e-8,
+            3.4999,
+        ] {
             let direct: Complex64 = (0..n)
                 .map(|i| {
                     let j = sampling.opd_um(i) / 0.5;
