@@ -276,3 +276,31 @@ fn the_stored_figure_shows_both_paths_agreeing() {
         assert!(a.iter().zip(&b).all(|(p, q)| (p - q).abs() < PATHS_AGREE));
     }
 }
+
+#[test]
+fn disk_biases_are_the_point_biases_against_one_calibrator() {
+    // [sampling][point] of `bias` at each S, each divided by the raw
+    // estimates of a point source at zero baseline through that scan.
+    let band = Spectrum::flat(Band::k());
+    let disk = Source::UniformDisk { diameter_mas: 43.0 };
+    let samplings = [
+        Sampling::from_stroke(16.0, DX_UM, false).unwrap(),
+        Sampling::from_stroke(40.0, DX_UM, false).unwrap(),
+    ];
+    let grid = [5.0, 28.3, 61.0];
+    let all = finite_scan::disk_biases(&band, &disk, &grid, &samplings, Method::Dft).unwrap();
+    assert_eq!(all.len(), samplings.len());
+    for (sampling, row) in samplings.iter().zip(&all) {
+        let cal = finite_scan::calibrator_raw(&disk_obs(0.0), sampling, Method::Dft).unwrap();
+        assert_eq!(
+            cal,
+            finite_scan::dft_estimates(&disk_obs(0.0).calibrator(), sampling).unwrap()
+        );
+        assert!(cal.v1_sq > 0.0 && cal.v2_sq > 0.0);
+        assert_eq!(row.len(), grid.len());
+        for (&s, b) in grid.iter().zip(row) {
+            let one = finite_scan::bias(&disk_obs(s), sampling, Method::Dft, Some(cal)).unwrap();
+            assert_eq!(*b, one, "S = {s}");
+        }
+    }
+}
