@@ -173,3 +173,15 @@ fn locate_max_keeps_the_best_grid_point_when_refinement_finds_less() {
     assert!((x - 0.5).abs() < ARGMAX_ABS, "argmax {x}");
     assert_eq!(fx, 1.0);
 }
+
+#[test]
+fn locate_max_refines_between_the_neighbours_of_the_best_grid_point() {
+    // A tall peak at 0.73 (best grid point 0.7) and a lower one at 0.2: the
+    // refinement must stay within [0.6, 0.8]; a bracket reaching down to 0.2
+    // would converge to the lower peak and fall back to the grid point.
+    let f = |x: f64| 0.8 * (-((x - 0.2) / 0.1).powi(2)).exp() + (-((x - 0.73) / 0.1).powi(2)).exp();
+    let (x, fx) = locate_max(f, 0.0, 1.0, 11);
+    assert!((x - 0.73).abs() < ARGMAX_ABS, "argmax {x}");
+    // The lower peak's tail moves the maximum by ~1e-12: f(0.73) is the max.
+    assert_rel_eq!(fx, f(0.73), MINIMIZE_BRACKET_REL);
+}
