@@ -40,10 +40,12 @@ NEEDS_CLI=" seeding turbulence "
 
 # AREA -> tests (libtest name filters) left out of the first pass: each
 # takes 1–30 s at opt-level 0 where the rest of the area takes about one.
+# (the sampled-versus-spectral comparisons of foundation and spectral_estimators)
+SLOW_SCANS="long_finely_sampled_scans_converge long_sampled_scans_agree spectral_estimators_match_an_independent_quadrature v2_sq_is_bounded_by_the_w_weighted_mean"
 declare -A SLOW=(
-    [estimators]="long_finely_sampled_scans_converge long_sampled_scans_agree spectral_estimators_match_an_independent_quadrature v2_sq_is_bounded_by_the_w_weighted_mean"
+    [estimators]="$SLOW_SCANS"
     [special]="long_finely_sampled_scans_converge"
-    [spectrum]="long_finely_sampled_scans_converge long_sampled_scans_agree spectral_estimators_match_an_independent_quadrature v2_sq_is_bounded_by_the_w_weighted_mean"
+    [spectrum]="$SLOW_SCANS"
     [interferogram]="long_finely_sampled_scans_converge long_sampled_scans_agree long_scans_reproduce the_bias_vanishes_as_the_stroke_grows"
     [noise]="poisson_samplers_follow_the_poisson_law"
     [noise_simulation]="windowed_variance_gaussian_two_windows windowed_variance_photon_third_and_fourth all_bins_expectations_biases_and_variances"

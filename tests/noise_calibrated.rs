@@ -144,20 +144,3 @@ fn the_monte_carlo_mean_and_variance_match_the_expectation() {
         );
     }
 }
-
-#[test]
-fn a_calibrator_without_fringe_is_refused() {
-    // No photons: the calibrator's estimates are 0, nothing to divide by.
-    let obs = Observation::new(
-        Spectrum::flat(Band::k()),
-        Source::Point,
-        Frequency::SpatialFreqCpas(40.0),
-        SpectralPhase::zero(),
-    )
-    .unwrap();
-    let sampling = Sampling::new(32, 0.5, false).unwrap();
-    let s = CalibratedSetup::new(&obs, &sampling, 0.0, VISIBILITY, BinWindow::Positive).unwrap();
-    let e = s.calibration().unwrap_err();
-    assert_eq!(e.param(), Some("bins"));
-    assert!(setup(BinWindow::Positive).calibration().is_ok());
-}
