@@ -7,7 +7,7 @@ use v2ref::formalism::estimator::{
     all_bins, dft, noise_bias, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band,
     BinWindow,
 };
-use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling};
+use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling, SpectralNodes};
 use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::oracle::{interferogram_adaptive, naive_dft};
 use v2ref::formalism::phase::SpectralPhase;
@@ -311,6 +311,118 @@ fn composite_of_identical_components_is_the_component() {
     .unwrap();
     assert_rel_eq!(lined.visibility(0.5, 10.0).re, 0.75, ULPS);
     assert_rel_eq!(lined.visibility(0.4, 10.0).re, 0.5, ULPS);
+}
+
+#[test]
+fn a_velocity_line_has_its_centre_width_and_flux() {
+    // The definition of a Gaussian line, checked from the profile itself:
+    // peak at σ_c = 1/λ, half the peak at σ_c ± fwhm/2 with fwhm = σ_c v/c
+    // (c exact in SI), and the flux as its area, by a trapezoid over ±8
+    // FWHM (4 ln2 · 64 puts the tails below e^-177; on 4000 steps the
+    // trapezoid of a Gaussian is exact to rounding).
+    for (wavelength_um, fwhm_km_s, flux) in
+        [(2.166, 30.0, 1e-4), (1.65, 250.0, 3.0), (0.8, 5.0, 7.5)]
+    {
+        let line = FluxProfile::gaussian_line_velocity(wavelength_um, fwhm_km_s, flux).unwrap();
+        let FluxProfile::GaussianLine {
+            centre_per_um,
+            fwhm_per_um,
+            peak,
+        } = line
+        else {
+            panic!("{line:?} is not a Gaussian line");
+        };
+        assert_rel_eq!(centre_per_um, 1.0 / wavelength_um, ROUNDING_REL);
+        assert_rel_eq!(
+            fwhm_per_um,
+            centre_per_um * fwhm_km_s / 299_792.458,
+            ROUNDING_REL
+        );
+        assert_rel_eq!(line.at(centre_per_um), peak, ROUNDING_REL);
+        // σ_c ± fwhm/2 is rounded to an ulp of σ_c: c/v ulps of the offset.
+        let offset_rel = ROUNDING_REL * centre_per_um / fwhm_per_um;
+        for side in [-0.5, 0.5] {
+            assert_rel_eq!(
+                line.at(centre_per_um + side * fwhm_per_um),
+                0.5 * peak,
+                offset_rel
+            );
+        }
+        let steps = 4000;
+        let (lo, h) = (
+            centre_per_um - 8.0 * fwhm_per_um,
+            16.0 * fwhm_per_um / steps as f64,
+        );
+        let area = h
+            * (0..=steps)
+                .map(|i| {
+                    let end = if i == 0 || i == steps { 0.5 } else { 1.0 };
+                    end * line.at(lo + i as f64 * h)
+                })
+                .sum::<f64>();
+        assert_rel_eq!(area, flux, QUADRATURE_CHECK_REL);
+    }
+}
+
+/// A 50 % continuum with an unresolved 10 km/s emission line at 2.166 µm
+/// (FWHM 1.5e-5 µm⁻¹, 1/5400 of the K band) whose peak equals the
+/// continuum: V = 0.75 at the line centre.
+fn narrow_line_obs() -> Observation {
+    let mut line = FluxProfile::gaussian_line_velocity(2.166, 10.0, 1.0).unwrap();
+    if let FluxProfile::GaussianLine { peak, .. } = &mut line {
+        *peak = 1.0;
+    }
+    let source = Source::composite(vec![
+        Component {
+            source: Source::Constant {
+                visibility: Complex64::new(0.5, 0.0),
+            },
+            flux: FluxProfile::Flat { flux: 1.0 },
+        },
+        Component {
+            source: Source::Point,
+            flux: line,
+        },
+    ])
+    .unwrap();
+    Observation::new(
+        Spectrum::flat(Band::k()),
+        source,
+        Frequency::BaselineM(100.0),
+        SpectralPhase::zero(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_narrow_line_is_not_stepped_over() {
+    // The line moves V2 by ~5e-5 of the continuum's 0.5; a quadrature whose
+    // nodes all fall outside it would read the continuum alone. Truth: a
+    // uniform trapezoid of 2^17 steps over the flat band (34 steps per line
+    // FWHM; the integrand is constant at both band edges, so the trapezoid
+    // is exact to rounding), against the adaptive spectral forms and the
+    // spectral nodes of the sampled path, which both place their panels at
+    // the line's split points.
+    let obs = narrow_line_obs();
+    let (lo, hi) = obs.spectrum.support();
+    let steps = 1usize << 17;
+    let h = (hi - lo) / steps as f64;
+    let (mut mean_v, mut mean_v2) = (Complex64::new(0.0, 0.0), 0.0);
+    for i in 0..=steps {
+        let end = if i == 0 || i == steps { 0.5 } else { 1.0 };
+        let v = obs.source.visibility(lo + i as f64 * h, obs.baseline_m);
+        mean_v += v * (end / steps as f64);
+        mean_v2 += v.norm_sqr() * (end / steps as f64);
+    }
+    assert!(mean_v.re - 0.5 > 4e-5, "the line is in the truth: {mean_v}");
+    assert_rel_eq!(v1_sq(&obs), mean_v2, QUADRATURE_CHECK_REL);
+    assert_rel_eq!(v2_sq(&obs), mean_v.norm_sqr(), QUADRATURE_CHECK_REL);
+    let nodes = SpectralNodes::new(&obs, 100.0, None);
+    let sum: Complex64 = nodes.amplitude.iter().sum();
+    assert!(
+        (sum - mean_v).norm() < QUADRATURE_CHECK_REL,
+        "{sum} vs {mean_v}"
+    );
 }
 
 // ---- sampled interferograms ----------------------------------------------------
