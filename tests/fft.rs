@@ -8,7 +8,7 @@ use rand_pcg::Pcg64;
 use rustfft::FftPlanner;
 use v2ref::math::fft::{inverse_dft, naive_inverse_dft, split_length};
 use v2ref::montecarlo::in_pool;
-use v2ref::tolerance::{FFT_SUM_REL, FOUR_STEP_REL};
+use v2ref::tolerance::{FFT_SUM_REL, FOUR_STEP_REL, ROUNDING_REL};
 
 fn random_spectrum(m: usize, seed: u64) -> Vec<Complex64> {
     let mut rng = Pcg64::seed_from_u64(seed);
@@ -40,6 +40,38 @@ fn split_is_the_largest_divisor_not_above_the_square_root() {
     }
     // The Fig. 5 sequence length: two near-equal factors.
     assert_eq!(split_length(1_296_000), (1125, 1152));
+    // Past 2^52 the floating-point square root can round up to an integer
+    // above √m: k² − 1 reads as k, which is not a divisor, k − 1 is.
+    let k = (1usize << 27) + 1;
+    assert_eq!(
+        ((k * k - 1) as f64).sqrt() as usize,
+        k,
+        "the case is reached"
+    );
+    assert_eq!(split_length(k * k - 1), (k - 1, k + 1));
+    assert_eq!(split_length(k * k), (k, k));
+}
+
+#[test]
+fn the_oracle_takes_each_phase_from_the_exact_residue() {
+    // A single line X[k] = 1 gives x[n] = e^{2πi kn/M}. At M = 3001 the
+    // products kn reach 9e6, so a phase 2π kn/M taken without reducing kn
+    // mod M would be rounded to ~2e-12 rad; reduced, every value is exact
+    // to a few ulps. The truth: the phase of ((kn) mod M)/M computed in
+    // integers here, on exactly representable angles.
+    let m = 3001usize;
+    let k = 2999usize;
+    let mut x = vec![Complex64::new(0.0, 0.0); m];
+    x[k] = Complex64::new(1.0, 0.0);
+    let y = naive_inverse_dft(&x);
+    for (n, yn) in y.iter().enumerate() {
+        let turns = ((k * n) % m) as f64 / m as f64;
+        let exact = Complex64::from_polar(1.0, std::f64::consts::TAU * turns);
+        assert!(
+            (yn - exact).norm() < ROUNDING_REL,
+            "n = {n}: {yn} vs {exact}"
+        );
+    }
 }
 
 #[test]
