@@ -5,6 +5,7 @@
 #   scripts/mutants.sh AREA [AREA ...] [-- extra cargo-mutants options]
 #   scripts/mutants.sh all
 #   scripts/mutants.sh estimators -- --in-place   # reuse the tree's target dir
+#   RECHECK=missed.txt scripts/mutants.sh special  # only the named mutants
 #
 # Two passes per area. The first skips the area's slow tests (SLOW below:
 # long sampled scans and Monte Carlo runs, 3–30 s each at opt-level 0) and
@@ -12,6 +13,10 @@
 # first missed, with every test of the area, into mutants.out/AREA/full/.
 # A mutant is caught by the suite when either pass catches it, and missed
 # only when it survives the second pass.
+#
+# With RECHECK set to a file of mutant names (a missed.txt of an earlier
+# run), only the area's mutants named there are run, in one pass with
+# every test, into mutants.out/AREA-recheck/: the check after adding tests.
 #
 # Each area writes its report to mutants.out/AREA/ (git-ignored). The
 # configuration shared by all areas (scope, opt-level, timeouts) is in
@@ -33,15 +38,19 @@ declare -A AREAS=(
     [noise_simulation]="src/noise/simulation.rs|noise_mc montecarlo_noise"
     [dispersion]="src/bias/dispersion.rs|bias_dispersion"
     [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
-    [turbulence]="src/piston/turbulence.rs src/piston/spectrum.rs|turbulence piston"
+    [turbulence]="src/piston/turbulence.rs|turbulence piston"
+    [piston_spectrum]="src/piston/spectrum.rs|turbulence piston"
     [fft]="src/math/fft.rs|fft"
 )
-NEEDS_CLI=" seeding turbulence "
+NEEDS_CLI=" seeding turbulence piston_spectrum "
 
 # AREA -> tests (libtest name filters) left out of the first pass: each
 # takes 1–30 s at opt-level 0 where the rest of the area takes about one.
 # (the sampled-versus-spectral comparisons of foundation and spectral_estimators)
 SLOW_SCANS="long_finely_sampled_scans_converge long_sampled_scans_agree spectral_estimators_match_an_independent_quadrature v2_sq_is_bounded_by_the_w_weighted_mean"
+# (the tests of turbulence and piston that build the transverse table: 6–28 s
+# each at opt-level 0)
+SLOW_PISTON="asymptotes_slopes_and_corners cli_seeing_wavelength_flag table_matches_direct_quadrature transverse_integral_matches_mpmath variance_is_the_integral_of_the_temporal wind_across_the_baseline wind_angle_zero a_sweep_at_1000_hz a_sweep_frequency_does_not centred_all_bins_v2 lag_structure_function periodogram_matches piston_is_multiplicative piston_monte_carlo_is_deterministic sample_variance_matches series_are_deterministic three_slope_series wind_speed_rescales zero_turbulence_gives"
 declare -A SLOW=(
     [estimators]="$SLOW_SCANS"
     [special]="long_finely_sampled_scans_converge"
@@ -51,9 +60,10 @@ declare -A SLOW=(
     [noise_simulation]="windowed_variance_gaussian_two_windows windowed_variance_photon_third_and_fourth all_bins_expectations_biases_and_variances"
     [finite_scan]="long_scans_reproduce the_bias_vanishes_as_the_stroke_grows the_factor_tends_to_one_with_the_stroke wide_band_loss_matches_synthesized"
     [fft]="four_step_equals_one_rustfft_transform_at_the_fig5_length same_bits_on_any_number_of_threads"
-    [turbulence]="asymptotes_slopes_and_corners cli_seeing_wavelength_flag table_matches_direct_quadrature transverse_integral_matches_mpmath variance_is_the_integral_of_the_temporal wind_across_the_baseline wind_angle_zero a_sweep_at_1000_hz a_sweep_frequency_does_not centred_all_bins_v2 lag_structure_function periodogram_matches piston_is_multiplicative piston_monte_carlo_is_deterministic sample_variance_matches series_are_deterministic three_slope_series wind_speed_rescales zero_turbulence_gives"
+    [piston_spectrum]="$SLOW_PISTON"
+    [turbulence]="$SLOW_PISTON"
 )
-ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence noise_simulation seeding fft)
+ORDER=(estimators statistics special spectrum noise interferogram dispersion finite_scan turbulence piston_spectrum noise_simulation seeding fft)
 
 areas=()
 while [[ $# -gt 0 && $1 != "--" ]]; do
@@ -65,6 +75,12 @@ if [[ ${#areas[@]} -eq 0 ]]; then
     echo "usage: $0 AREA... | all  [-- cargo-mutants options]; areas: ${ORDER[*]}" >&2
     exit 2
 fi
+
+# The mutant names listed in file $1, escaped for cargo-mutants' regex
+# filter, anchored, one alternative each.
+anchored() {
+    sed -e 's/[][\\.*^$(){}+?|]/\\&/g' -e 's/^/^/' -e 's/$/$/' "$1" | paste -sd'|'
+}
 
 for area in "${areas[@]}"; do
     spec=${AREAS[$area]:-}
@@ -79,6 +95,12 @@ for area in "${areas[@]}"; do
     for t in ${spec##*|}; do tests+=(--cargo-arg="--test=$t"); done
     [[ $NEEDS_CLI == *" $area "* ]] || tests+=(--cargo-arg=--no-default-features)
     echo "== $area: ${spec%%|*} with ${spec##*|}"
+    if [[ -n ${RECHECK:-} ]]; then
+        out="mutants.out/$area-recheck"
+        mkdir -p "$out"
+        cargo mutants "${files[@]}" "${tests[@]}" --output "$out" --re "$(anchored "$RECHECK")" "$@" || true
+        continue
+    fi
     out="mutants.out/$area"
     mkdir -p "$out"
     skips=()
@@ -91,8 +113,7 @@ for area in "${areas[@]}"; do
 
     missed="$out/mutants.out/missed.txt"
     if [[ ${#skips[@]} -gt 0 && -s $missed ]]; then
-        # The names, escaped for the regex filter, anchored, one alternative each.
-        re=$(sed -e 's/[][\\.*^$(){}+?|]/\\&/g' -e 's/^/^/' -e 's/$/$/' "$missed" | paste -sd'|')
+        re=$(anchored "$missed")
         echo "== $area, second pass: $(wc -l < "$missed") missed mutants with every test"
         mkdir -p "$out/full"
         cargo mutants "${files[@]}" "${tests[@]}" --output "$out/full" --re "$re" "$@" || true
