@@ -51,13 +51,17 @@ SLOW_SCANS="long_finely_sampled_scans_converge long_sampled_scans_agree spectral
 # (the tests of turbulence and piston that build the transverse table: 6–28 s
 # each at opt-level 0)
 SLOW_PISTON="asymptotes_slopes_and_corners cli_seeing_wavelength_flag table_matches_direct_quadrature transverse_integral_matches_mpmath variance_is_the_integral_of_the_temporal wind_across_the_baseline wind_angle_zero a_sweep_at_1000_hz a_sweep_frequency_does_not centred_all_bins_v2 lag_structure_function periodogram_matches piston_is_multiplicative piston_monte_carlo_is_deterministic sample_variance_matches series_are_deterministic three_slope_series wind_speed_rescales zero_turbulence_gives"
+# (the Monte Carlo runs of noise_mc: 8–26 s each at opt-level 0; golden's
+# regeneration of every figure: minutes)
+SLOW_MC="windowed_variance_gaussian_two_windows windowed_variance_photon_third_and_fourth all_bins_expectations_biases_and_variances"
 declare -A SLOW=(
     [estimators]="$SLOW_SCANS"
     [special]="long_finely_sampled_scans_converge"
     [spectrum]="$SLOW_SCANS"
     [interferogram]="long_finely_sampled_scans_converge long_sampled_scans_agree long_scans_reproduce the_bias_vanishes_as_the_stroke_grows"
     [noise]="poisson_samplers_follow_the_poisson_law"
-    [noise_simulation]="windowed_variance_gaussian_two_windows windowed_variance_photon_third_and_fourth all_bins_expectations_biases_and_variances"
+    [noise_simulation]="$SLOW_MC"
+    [seeding]="$SLOW_MC golden_data_matches_the_code cli_check_names_each_mismatch"
     [finite_scan]="long_scans_reproduce the_bias_vanishes_as_the_stroke_grows the_factor_tends_to_one_with_the_stroke wide_band_loss_matches_synthesized"
     [fft]="four_step_equals_one_rustfft_transform_at_the_fig5_length same_bits_on_any_number_of_threads"
     [piston_spectrum]="$SLOW_PISTON"
