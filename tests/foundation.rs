@@ -311,6 +311,19 @@ fn composite_of_identical_components_is_the_component() {
     .unwrap();
     assert_rel_eq!(lined.visibility(0.5, 10.0).re, 0.75, ULPS);
     assert_rel_eq!(lined.visibility(0.4, 10.0).re, 0.5, ULPS);
+    // Where no component has flux (a line alone, 200 FWHM away, where its
+    // Gaussian underflows to 0) there is no fringe: V = 0, not 0/0.
+    let alone = Source::composite(vec![Component {
+        source: Source::Point,
+        flux: FluxProfile::GaussianLine {
+            centre_per_um: 0.5,
+            fwhm_per_um: 1e-5,
+            peak: 1.0,
+        },
+    }])
+    .unwrap();
+    assert_eq!(alone.visibility(0.5, 10.0), Complex64::new(1.0, 0.0));
+    assert_eq!(alone.visibility(0.498, 10.0), Complex64::new(0.0, 0.0));
 }
 
 #[test]
@@ -605,6 +618,9 @@ fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
     );
     assert_eq!(smooth.weight(lo - 0.011), 0.0);
     assert!(Spectrum::smooth_top_hat(band, 0.5).is_err());
+    // The widest edge accepted is the band's width itself, bound included.
+    assert!(Spectrum::smooth_top_hat(band, hi - lo).is_ok());
+    assert!(Spectrum::smooth_top_hat(band, (hi - lo) * (1.0 + 4.0 * EPS)).is_err());
     // Power law σ^p: σ_eff = (p+1)/(p+2) (hi^{p+2} − lo^{p+2}) / (hi^{p+1} − lo^{p+1}).
     for p in [-4.0f64, -1.5, 2.0, 3.0] {
         let sp = Spectrum::power_law(band, p).unwrap();
@@ -628,6 +644,29 @@ fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
     assert!(Spectrum::tabulated(vec![0.4, 0.4], vec![1.0, 1.0]).is_err());
     assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, -1.0]).is_err());
     assert!(Spectrum::tabulated(vec![0.4, 0.5], vec![0.0, 0.0]).is_err());
+    // Wavenumbers must be finite and > 0, even in increasing order.
+    for bad in [-0.1, 0.0, f64::NAN, f64::NEG_INFINITY] {
+        let refused = Spectrum::tabulated(vec![bad, 0.5], vec![1.0, 1.0]);
+        assert!(
+            matches!(refused, Err(Error::SpectrumTable { .. })),
+            "{bad}: {refused:?}"
+        );
+    }
+}
+
+#[test]
+fn a_band_is_its_centre_and_width() {
+    // λ0 = (1/σ_min + 1/σ_max)/2 and Δλ = 1/σ_min − 1/σ_max, the edges
+    // computed from the accessors' values.
+    for (centre, width) in [(2.2, 0.4), (1.65, 0.3), (0.8, 1.5)] {
+        let band = Band::new(centre, width).unwrap();
+        assert_eq!((band.centre_um(), band.width_um()), (centre, width));
+        let (long, short) = (1.0 / band.sigma_min_per_um(), 1.0 / band.sigma_max_per_um());
+        assert_rel_eq!(0.5 * (long + short), band.centre_um(), ROUNDING_REL);
+        assert_rel_eq!(long - short, band.width_um(), ROUNDING_REL);
+    }
+    let k = Band::k();
+    assert_eq!((k.centre_um(), k.width_um()), (2.2, 0.4));
 }
 
 /// The bins of each window by their definition (`BinWindow`'s table):

@@ -136,3 +136,38 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_file_is_read_up_to_its_size_limit() {
+    use v2ref::formalism::spectrum::MAX_SPECTRUM_CSV_BYTES;
+    let table = "wavelength_um,weight\n2.0,1\n2.2,1.5\n2.4,1\n";
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("band.csv");
+    // Padded with comment lines to exactly the limit: read, the same
+    // spectrum as the text.
+    let limit = MAX_SPECTRUM_CSV_BYTES as usize;
+    assert!(
+        limit >= 1 << 20,
+        "a limit of {limit} bytes refuses real filter curves"
+    );
+    let line = format!("#{}\n", "x".repeat(99));
+    let mut text = line.repeat((limit - table.len()) / line.len());
+    text.push_str(&"\n".repeat(limit - table.len() - text.len()));
+    text.push_str(table);
+    assert_eq!(text.len(), limit);
+    std::fs::write(&path, &text).unwrap();
+    let read = Spectrum::from_csv_path(&path).unwrap();
+    assert_eq!(read, Spectrum::from_csv_str(table).unwrap());
+    // One byte more is refused, naming the file and the limit.
+    text.insert(0, '#');
+    std::fs::write(&path, &text).unwrap();
+    match Spectrum::from_csv_path(&path) {
+        Err(Error::SpectrumTable { reason }) => {
+            assert!(
+                reason.contains("band.csv") && reason.contains(&limit.to_string()),
+                "{reason}"
+            )
+        }
+        other => panic!("a file over the limit was not refused: {other:?}"),
+    }
+}
