@@ -652,6 +652,14 @@ fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
             "{bad}: {refused:?}"
         );
     }
+    // Weights must be finite and ≥ 0, even where the area stays positive.
+    for bad in [-0.5, f64::NAN, f64::INFINITY] {
+        let refused = Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, bad]);
+        assert!(
+            matches!(refused, Err(Error::SpectrumTable { .. })),
+            "{bad}: {refused:?}"
+        );
+    }
 }
 
 #[test]
