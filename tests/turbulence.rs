@@ -3,10 +3,11 @@
 //! variance two independent ways, and the spectrum's asymptotes and corners.
 
 use std::f64::consts::PI;
+use std::sync::{Arc, OnceLock};
 use v2ref::piston::turbulence::{
     differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
     r0_from_seeing_m, structure_coefficient, transverse_integral, PistonPsdModel, PistonSpectrum,
-    Turbulence,
+    TransverseTable, Turbulence,
 };
 use v2ref::tolerance::{
     ASYMPTOTIC_LIMIT_REL, CORNER_REL, DECADE_SLOPE_ABS, GAMMA_REL, LOW_FREQ_SLOPE_COEFF,
@@ -20,6 +21,15 @@ const D: f64 = 0.45;
 
 fn paper() -> Turbulence {
     Turbulence::from_seeing(1.0, 2.2, 10.0, None).unwrap()
+}
+
+/// The piston spectrum of [`paper`] for apertures of D on `baseline_m`,
+/// every call sharing one table of G (G depends on the turbulence and D
+/// only; at opt-level 0, as in the mutation runs, each table costs ~6 s).
+fn paper_spectrum(baseline_m: f64) -> PistonSpectrum {
+    static TABLE: OnceLock<Arc<TransverseTable>> = OnceLock::new();
+    let table = TABLE.get_or_init(|| Arc::new(TransverseTable::new(paper(), D).unwrap()));
+    PistonSpectrum::from_table(Arc::clone(table), baseline_m).unwrap()
 }
 
 fn reference(name: &str) -> Vec<(f64, f64)> {
@@ -116,7 +126,7 @@ fn bad_parameters_are_typed_errors() {
 #[test]
 fn transverse_integral_matches_mpmath_and_the_table() {
     let t = paper();
-    let s = PistonSpectrum::new(t, D, 18.0).unwrap();
+    let s = paper_spectrum(18.0);
     for (fx, want) in reference("G") {
         let direct = transverse_integral(&t, D, fx);
         // 1e-8: the tail beyond 100/D is added with the Bessel oscillation
@@ -142,7 +152,7 @@ fn transverse_integral_matches_mpmath_and_the_table() {
 
 #[test]
 fn table_matches_direct_quadrature_over_the_range_that_carries_power() {
-    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let s = paper_spectrum(18.0);
     let mut worst: f64 = 0.0;
     // ν up to 3 v/D (beyond, P is below 1e-8 of its low-frequency value).
     for i in 0..60 {
@@ -163,7 +173,7 @@ fn table_matches_direct_quadrature_over_the_range_that_carries_power() {
 fn variance_from_the_spectrum_equals_the_structure_function_and_mpmath() {
     let t = paper();
     let want = reference("var_sf")[0].1;
-    let spectral = PistonSpectrum::new(t, D, 18.0).unwrap().variance_um2();
+    let spectral = paper_spectrum(18.0).variance_um2();
     let pupil = differential_piston_variance_from_structure_um2(&t, D, 18.0);
     assert!(
         rel(pupil, want) < TURBULENCE_CHECK_REL,
@@ -186,7 +196,7 @@ fn variance_from_the_spectrum_equals_the_structure_function_and_mpmath() {
 
 #[test]
 fn variance_is_the_integral_of_the_temporal_spectrum() {
-    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let s = paper_spectrum(18.0);
     // ∫_{−∞}^{∞} P dν = 2 ∫_0^∞ P dν, in ln ν with tails from the asymptotes.
     let (lo, hi) = (1e-6_f64, 200.0_f64);
     let integrand = |u: f64| {
@@ -217,7 +227,7 @@ fn variance_is_the_integral_of_the_temporal_spectrum() {
 #[test]
 fn asymptotes_slopes_and_corners() {
     let t = paper();
-    let s = PistonSpectrum::new(t, D, 18.0).unwrap();
+    let s = paper_spectrum(18.0);
     let v = 10.0;
     let slope = |f: &dyn Fn(f64) -> f64, x: f64| {
         let h = 1e-3;
@@ -252,7 +262,7 @@ fn asymptotes_slopes_and_corners() {
     // The middle asymptote is the cosine's average: average P over one
     // period of 2(1 − cos(2πBν/v)) on a long baseline.
     // (20 km: 0.5 mHz periods, 40 of them at 0.02 Hz, where f D = 9e-4.)
-    let long = PistonSpectrum::new(t, D, 20_000.0).unwrap();
+    let long = paper_spectrum(20_000.0);
     let period = v / 20_000.0;
     let nu0 = 0.02;
     let n = 40 * 64;
@@ -402,7 +412,7 @@ fn two_sided_integral(psd: &dyn Fn(f64) -> f64, lo: f64, hi: f64, low_coeff: f64
 
 #[test]
 fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
-    let two = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let two = paper_spectrum(18.0);
     let s = two.with_model(PistonPsdModel::ThreeSlope).unwrap();
     assert_eq!(s.model(), PistonPsdModel::ThreeSlope);
     let m = *s.three_slope().unwrap();
@@ -448,7 +458,7 @@ fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
 
 #[test]
 fn three_slope_model_refuses_a_wind_across_the_baseline() {
-    let two = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let two = paper_spectrum(18.0);
     let three = two.with_model(PistonPsdModel::ThreeSlope).unwrap();
     assert!(matches!(
         three.with_wind_angle_deg(30.0),
@@ -464,7 +474,7 @@ fn three_slope_model_refuses_a_wind_across_the_baseline() {
 
 #[test]
 fn wind_angle_zero_is_the_along_baseline_spectrum_bit_for_bit() {
-    let s = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let s = paper_spectrum(18.0);
     let z = s.with_wind_angle_deg(0.0).unwrap();
     for k in 0..200 {
         let nu = 1e-3 * 1.07f64.powi(k);
@@ -477,7 +487,7 @@ fn wind_angle_zero_is_the_along_baseline_spectrum_bit_for_bit() {
 
 #[test]
 fn wind_across_the_baseline_keeps_the_variance_and_raises_the_low_asymptote() {
-    let along = PistonSpectrum::new(paper(), D, 18.0).unwrap();
+    let along = paper_spectrum(18.0);
     for angle in [90.0, 45.0] {
         let s = along.with_wind_angle_deg(angle).unwrap();
         let p = |nu: f64| s.psd_um2_per_hz(nu);
