@@ -652,6 +652,13 @@ fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
             "{bad}: {refused:?}"
         );
     }
+    // Weights whose squares underflow leave ∫W² = 0: no V1² weighting.
+    let tiny = Spectrum::tabulated(vec![0.4, 0.5], vec![1e-200, 1e-200]);
+    assert!(matches!(tiny, Err(Error::SpectrumTable { .. })), "{tiny:?}");
+    // The nodes are kept as given; the analytic shapes have none.
+    let (nodes, weights) = (vec![0.40, 0.45, 0.50], vec![0.0, 2.0, 0.0]);
+    assert_eq!(sp.table(), Some((&nodes[..], &weights[..])));
+    assert_eq!(Spectrum::flat(Band::k()).table(), None);
     // Weights must be finite and ≥ 0, even where the area stays positive.
     for bad in [-0.5, f64::NAN, f64::INFINITY] {
         let refused = Spectrum::tabulated(vec![0.4, 0.5], vec![1.0, bad]);
