@@ -15,8 +15,8 @@
 # only when it survives the second pass.
 #
 # With RECHECK set to a file of mutant names (a missed.txt of an earlier
-# run), only the area's mutants named there are run, in one pass with
-# every test, into mutants.out/AREA-recheck/: the check after adding tests.
+# run), only the area's mutants named there are run, in the same two
+# passes, into mutants.out/AREA-recheck/: the check after adding tests.
 #
 # Each area writes its report to mutants.out/AREA/ (git-ignored). The
 # configuration shared by all areas (scope, opt-level, timeouts) is in
@@ -99,13 +99,12 @@ for area in "${areas[@]}"; do
     for t in ${spec##*|}; do tests+=(--cargo-arg="--test=$t"); done
     [[ $NEEDS_CLI == *" $area "* ]] || tests+=(--cargo-arg=--no-default-features)
     echo "== $area: ${spec%%|*} with ${spec##*|}"
+    out="mutants.out/$area"
+    only=()
     if [[ -n ${RECHECK:-} ]]; then
         out="mutants.out/$area-recheck"
-        mkdir -p "$out"
-        cargo mutants "${files[@]}" "${tests[@]}" --output "$out" --re "$(anchored "$RECHECK")" "$@" || true
-        continue
+        only=(--re "$(anchored "$RECHECK")")
     fi
-    out="mutants.out/$area"
     mkdir -p "$out"
     skips=()
     for t in ${SLOW[$area]:-}; do skips+=(--skip "$t"); done
@@ -113,7 +112,7 @@ for area in "${areas[@]}"; do
     # libtest filters need a second "--".
     harness=()
     [[ ${#skips[@]} -gt 0 ]] && harness=(-- -- "${skips[@]}")
-    cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "$@" "${harness[@]}" || true
+    cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "${only[@]}" "$@" "${harness[@]}" || true
 
     missed="$out/mutants.out/missed.txt"
     if [[ ${#skips[@]} -gt 0 && -s $missed ]]; then
