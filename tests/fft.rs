@@ -50,6 +50,9 @@ fn split_is_the_largest_divisor_not_above_the_square_root() {
     );
     assert_eq!(split_length(k * k - 1), (k - 1, k + 1));
     assert_eq!(split_length(k * k), (k, k));
+    // An empty spectrum is an empty series, not a division by zero.
+    assert_eq!(split_length(0), (1, 0));
+    assert!(inverse_dft(&[]).is_empty());
 }
 
 #[test]
