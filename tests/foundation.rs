@@ -449,6 +449,7 @@ fn fast_synthesis_matches_the_adaptive_oracle() {
             .unwrap()
             .modulated;
         let slow = interferogram_adaptive(&obs, &sampling);
+        assert_eq!((fast.len(), slow.len()), (256, 256));
         let worst = fast
             .iter()
             .zip(&slow)
@@ -631,6 +632,90 @@ fn smooth_and_sloped_spectra_have_their_closed_form_moments() {
     // A steep slope moves the effective wavenumber, hence S at fixed B.
     let blue = Spectrum::power_law(band, 4.0).unwrap();
     assert!(blue.sigma_eff_per_um() > Spectrum::flat(band).sigma_eff_per_um());
+}
+
+#[test]
+fn each_shape_has_its_support_centre_and_width() {
+    // The support bounds W (zero outside, positive just inside); the
+    // centre and width are those of the nominal band (the expansion point
+    // and scale of the dispersion phase), of the table's ends for a table.
+    let band = Band::k();
+    let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
+    let edge = 0.02;
+    let (t_lo, t_hi) = (0.41, 0.52);
+    let shapes = [
+        (Spectrum::flat(band), (lo, hi), (lo, hi)),
+        (Spectrum::power_law(band, 2.0).unwrap(), (lo, hi), (lo, hi)),
+        (
+            Spectrum::smooth_top_hat(band, edge).unwrap(),
+            (lo - 0.5 * edge, hi + 0.5 * edge),
+            (lo, hi),
+        ),
+        (
+            Spectrum::tabulated(vec![t_lo, 0.45, t_hi], vec![1.0, 2.0, 0.5]).unwrap(),
+            (t_lo, t_hi),
+            (t_lo, t_hi),
+        ),
+    ];
+    for (sp, (a, b), (nominal_lo, nominal_hi)) in shapes {
+        assert_eq!(sp.support(), (a, b), "{sp:?}");
+        let step = 1e-9;
+        for outside in [0.1, a - step, b + step, 2.0] {
+            assert_eq!(sp.weight(outside), 0.0, "{sp:?} at {outside}");
+        }
+        for inside in [a + step, b - step] {
+            assert!(sp.weight(inside) > 0.0, "{sp:?} at {inside}");
+        }
+        assert_rel_eq!(
+            sp.sigma_centre_per_um(),
+            0.5 * (nominal_lo + nominal_hi),
+            ROUNDING_REL
+        );
+        assert_rel_eq!(sp.width_per_um(), nominal_hi - nominal_lo, ROUNDING_REL);
+    }
+    let line = Spectrum::monochromatic(2.2).unwrap();
+    assert_eq!(line.width_per_um(), 0.0);
+    assert_eq!(line.sigma_centre_per_um(), 1.0 / 2.2);
+}
+
+#[test]
+fn dispersion_phase_has_its_peak_to_peak_over_the_nominal_band() {
+    // φ = ½ D (σ − σ0)²: 0 at the centre, P at both nominal band edges,
+    // P/4 half way, whatever the shape's edges; no phase on a line.
+    let band = Band::k();
+    let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
+    for sp in [
+        Spectrum::flat(band),
+        Spectrum::smooth_top_hat(band, 0.03).unwrap(),
+    ] {
+        for p in [1.0, -2.5, 0.3] {
+            let phi = SpectralPhase::dispersion_peak_to_peak(&sp, p).unwrap();
+            let centre = 0.5 * (lo + hi);
+            assert_eq!(phi.sigma0_per_um, sp.sigma_centre_per_um());
+            assert_abs_eq!(phi.at(centre), 0.0, ROUNDING_REL);
+            for edge in [lo, hi] {
+                assert_rel_eq!(phi.at(edge), p, ROUNDING_REL);
+                assert_rel_eq!(phi.at(0.5 * (centre + edge)), 0.25 * p, ROUNDING_REL);
+            }
+            assert!(!phi.is_zero());
+        }
+    }
+    let d = 7.0;
+    let phi = SpectralPhase::dispersion(0.45, d);
+    assert_rel_eq!(phi.at(0.45 + 0.02), 0.5 * d * 0.02 * 0.02, ROUNDING_REL);
+    let line = Spectrum::monochromatic(2.2).unwrap();
+    assert!(SpectralPhase::dispersion_peak_to_peak(&line, 1.0)
+        .unwrap()
+        .is_zero());
+    let none = SpectralPhase::zero();
+    assert!(none.is_zero() && none.at(0.3) == 0.0 && none.at(0.5) == 0.0);
+    let max = v2ref::bounds::DISPERSION_PP_MAX_RAD;
+    for bad in [1.5 * max, -1.5 * max, f64::NAN] {
+        assert!(
+            SpectralPhase::dispersion_peak_to_peak(&Spectrum::flat(band), bad).is_err(),
+            "{bad}"
+        );
+    }
 }
 
 #[test]
