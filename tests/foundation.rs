@@ -673,6 +673,24 @@ fn each_shape_has_its_support_centre_and_width() {
         );
         assert_rel_eq!(sp.width_per_um(), nominal_hi - nominal_lo, ROUNDING_REL);
     }
+    // A table's weight at its end nodes is the nodes' own weight.
+    let table = Spectrum::tabulated(vec![t_lo, 0.45, t_hi], vec![1.0, 2.0, 0.5]).unwrap();
+    let apex = table.weight(0.45);
+    assert_rel_eq!(table.weight(t_lo) / apex, 0.5, ROUNDING_REL);
+    assert_rel_eq!(table.weight(t_hi) / apex, 0.25, ROUNDING_REL);
+    // The raised-cosine edge: ½(1 + sin(π d/e)) of the plateau at a distance
+    // d inside the band edge, so W(lo + d) + W(lo − d) is the plateau.
+    let smooth = Spectrum::smooth_top_hat(band, edge).unwrap();
+    let plateau = smooth.weight(0.5 * (lo + hi));
+    // lo ± d is rounded to an ulp of lo: π lo/e ulps of the sine's argument.
+    let position_abs = ROUNDING_REL * std::f64::consts::PI * hi / edge;
+    for d in [0.25 * edge, 0.1 * edge, 0.4 * edge] {
+        let inner = 0.5 * (1.0 + (std::f64::consts::PI * d / edge).sin());
+        for (at, side) in [(lo + d, 1.0), (hi - d, 1.0), (lo - d, -1.0), (hi + d, -1.0)] {
+            let want = if side > 0.0 { inner } else { 1.0 - inner };
+            assert_abs_eq!(smooth.weight(at) / plateau, want, position_abs);
+        }
+    }
     let line = Spectrum::monochromatic(2.2).unwrap();
     assert_eq!(line.width_per_um(), 0.0);
     assert_eq!(line.sigma_centre_per_um(), 1.0 / 2.2);
