@@ -89,6 +89,26 @@ fn the_riemann_reading_errs_by_the_grid_step() {
 }
 
 #[test]
+fn the_riemann_reading_is_the_sum_on_the_scans_grid() {
+    // By its definition: Σ_k W(k δσ) δσ over every k ≥ 0, δσ = 1/(N δx)
+    // the grid of an N-sample scan of step δx, for scans of every length.
+    let sp = Spectrum::power_law(Band::k(), 2.0).unwrap();
+    for dx in [0.55, 0.4] {
+        let samples = [64usize, 116, 301, 1000];
+        let dev = riemann_deviation(&sp, dx, &samples).unwrap();
+        for (&n, d) in samples.iter().zip(dev) {
+            let step = 1.0 / (n as f64 * dx);
+            let top = (2.0 * sp.support().1 / step) as usize;
+            let sum: f64 = (0..=top).map(|k| sp.weight(k as f64 * step) * step).sum();
+            assert!(
+                ((1.0 - sum).abs() - d).abs() < ROUNDING_REL,
+                "N={n} dx={dx}: {d} vs {sum}"
+            );
+        }
+    }
+}
+
+#[test]
 fn threshold_stroke_finds_the_last_crossing() {
     let strokes = [1.0, 2.0, 3.0, 4.0, 5.0];
     assert_eq!(
