@@ -62,9 +62,13 @@ fn fast_windowed_estimators_match_the_fft() {
             vec![3],
             (2..n - 2).collect(),
             (0..n).step_by(3).collect(),
+            // A comb offset from 0: u = Σ_K e^{2πi ik/N} is sparse (nonzero
+            // at multiples of N/4) and complex, the sparse path's other half.
+            (1..n).step_by(4).collect(),
         ];
         for bins in windows {
             let fast = WindowedEstimators::new(n, &bins);
+            assert_eq!(fast.samples(), n);
             let mut scratch = Vec::new();
             let got = fast.raw(&x, &mut scratch);
             let want = raw_estimates(&spec, &bins);
