@@ -159,3 +159,42 @@ fn noisy_spec_rejects_bad_input() {
     };
     assert!(simulate_noisy(&spec, 10, 1, 1, &|_| {}).is_err());
 }
+
+#[test]
+fn the_alias_table_leaves_out_less_than_1e_minus_30_of_the_poisson_mass() {
+    // The Poisson mass outside lo ..= hi, summed term by term from the pmf
+    // in log space (ln p(k) = k ln λ − λ − ln k!, statrs's ln Γ) until the
+    // terms fall below 1e-40 of it: the documented bound is 1e-32.
+    use statrs::function::gamma::ln_gamma;
+    let pmf = |k: f64, lambda: f64| (k * lambda.ln() - lambda - ln_gamma(k + 1.0)).exp();
+    for lambda in [1e-4, 0.05, 0.5, 3.0, 20.0, 1e3, 1e6] {
+        let (lo, hi) = PoissonSampler::support(lambda);
+        assert!(
+            lo >= 0.0 && lo <= lambda.floor() && hi >= lambda.ceil(),
+            "λ = {lambda}"
+        );
+        let mut out = 0.0;
+        let mut k = hi + 1.0;
+        loop {
+            let p = pmf(k, lambda);
+            out += p;
+            if p < 1e-45 {
+                break;
+            }
+            k += 1.0;
+        }
+        let mut k = lo - 1.0;
+        while k >= 0.0 {
+            let p = pmf(k, lambda);
+            out += p;
+            if p < 1e-45 {
+                break;
+            }
+            k -= 1.0;
+        }
+        assert!(
+            out < 1e-30,
+            "λ = {lambda}: {out:e} of the mass outside {lo} ..= {hi}"
+        );
+    }
+}

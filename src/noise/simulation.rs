@@ -263,7 +263,11 @@ impl PoissonSampler {
         (hi - lo + 1.0) as usize
     }
 
-    fn support(lambda: f64) -> (f64, f64) {
+    /// The counts `lo ..= hi` an alias table of mean `lambda` covers:
+    /// `λ ± (12√λ + 20)`, clipped at 0 (public for the test of the mass it
+    /// leaves out, `tests/montecarlo_noise.rs`).
+    #[doc(hidden)]
+    pub fn support(lambda: f64) -> (f64, f64) {
         let w = 12.0 * lambda.sqrt() + 20.0;
         ((lambda - w).floor().max(0.0), (lambda + w).ceil())
     }
