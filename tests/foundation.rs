@@ -763,9 +763,13 @@ fn tabulated_spectrum_interpolates_linearly_in_wavenumber() {
             "{bad}: {refused:?}"
         );
     }
-    // Weights whose squares underflow leave ∫W² = 0: no V1² weighting.
-    let tiny = Spectrum::tabulated(vec![0.4, 0.5], vec![1e-200, 1e-200]);
-    assert!(matches!(tiny, Err(Error::SpectrumTable { .. })), "{tiny:?}");
+    // Weights whose squares underflow leave ∫W² = 0: no V1² weighting. On
+    // a narrow axis ∫w and its square underflow too (0/0); on an axis 1e9
+    // wide (∫w)² = 1e-322 survives and ∫W² is exactly 0.
+    for (axis, w) in [(vec![0.4, 0.5], 1e-200), (vec![1.0, 1e9], 1e-170)] {
+        let tiny = Spectrum::tabulated(axis, vec![w, w]);
+        assert!(matches!(tiny, Err(Error::SpectrumTable { .. })), "{tiny:?}");
+    }
     // The nodes are kept as given; the analytic shapes have none.
     let (nodes, weights) = (vec![0.40, 0.45, 0.50], vec![0.0, 2.0, 0.0]);
     assert_eq!(sp.table(), Some((&nodes[..], &weights[..])));

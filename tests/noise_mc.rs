@@ -318,6 +318,8 @@ fn simulation_is_bit_identical_across_thread_counts() {
     let a = simulate_noisy(&spec, 20_000, 7, 1, &|_| {}).unwrap();
     let b = simulate_noisy(&spec, 20_000, 7, 2, &|_| {}).unwrap();
     let c = simulate_noisy(&spec, 20_000, 8, 2, &|_| {}).unwrap();
+    // Exactly the trials asked for: two full units of 8192 and a part.
+    assert_eq!((a.v1_sq.count, a.v2_sq.count), (20_000, 20_000));
     assert_eq!(a, b);
     assert_ne!(a, c);
 }
