@@ -327,12 +327,12 @@ fn the_single_sinc_is_the_dirichlet_kernel_near_its_peak() {
 
 #[test]
 fn convolution_bins_resolve_a_long_scan() {
-    // A point source on a 1126 µm scan: the kernel oscillates at up to
-    // Δx/2 = 563 cycles per µm⁻¹, 47 cycles across the K band, which the
-    // spectral nodes must resolve (their density follows the stroke). Every
-    // bin of the band and a few beyond against the FFT of the synthesized
+    // A point source on long scans: the kernel oscillates at up to Δx/2
+    // cycles per µm⁻¹ (Δx = N δx), which the spectral nodes must resolve
+    // (their density follows the stroke): 47 cycles across the K band for
+    // 2048 steps of 0.55 µm, 8.5 for 4096 fine steps of 0.05 µm. Every bin
+    // of the band and a few beyond against the FFT of the synthesized
     // interferogram.
-    let sampling = Sampling::new(2048, DX_UM, false).unwrap();
     let obs = Observation::new(
         Spectrum::flat(Band::k()),
         Source::Point,
@@ -340,20 +340,23 @@ fn convolution_bins_resolve_a_long_scan() {
         SpectralPhase::zero(),
     )
     .unwrap();
-    let ifg = Interferogram::synthesize(&obs, &sampling, 1.0, None).unwrap();
-    let fft = dft(&ifg.modulated);
-    let bins: Vec<usize> = (440..600).collect();
-    let c = finite_scan::convolution_bins(&obs, &sampling, &bins, Kernel::Dirichlet).unwrap();
-    let scale = fft.iter().map(|b| b.norm()).fold(0.0, f64::max);
-    let mut worst = 0.0f64;
-    for (&k, ck) in bins.iter().zip(&c) {
-        worst = worst.max((fft[k] - ck).norm() / scale);
+    for (n, dx, bins) in [(2048, DX_UM, 440..600), (4096, 0.05, 80..110)] {
+        let sampling = Sampling::new(n, dx, false).unwrap();
+        let ifg = Interferogram::synthesize(&obs, &sampling, 1.0, None).unwrap();
+        let fft = dft(&ifg.modulated);
+        let bins: Vec<usize> = bins.collect();
+        let c = finite_scan::convolution_bins(&obs, &sampling, &bins, Kernel::Dirichlet).unwrap();
+        let scale = fft.iter().map(|b| b.norm()).fold(0.0, f64::max);
+        let mut worst = 0.0f64;
+        for (&k, ck) in bins.iter().zip(&c) {
+            worst = worst.max((fft[k] - ck).norm() / scale);
+        }
+        // Normalized by the largest bin, the bins are O(1) numbers: the
+        // paths agree to PATHS_AGREE (2.5e-14 measured), while nodes spaced
+        // for a short scan miss by far more.
+        assert!(
+            worst < PATHS_AGREE,
+            "N={n} dx={dx}: worst bin off by {worst:e} of the largest"
+        );
     }
-    // Normalized by the largest bin, the bins are O(1) numbers: the paths
-    // agree to PATHS_AGREE (2.5e-14 measured), while nodes spaced for a
-    // short scan miss by O(1).
-    assert!(
-        worst < PATHS_AGREE,
-        "worst bin off by {worst:e} of the largest"
-    );
 }
