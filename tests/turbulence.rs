@@ -73,6 +73,19 @@ fn r0_and_coherence_time_follow_the_conventions() {
     assert!(rel(r0, 2.2e-6 * 648_000.0 / PI) < ULPS);
     let t = paper();
     assert!(rel(t.coherence_time_s(), r0 / 10.0) < ULPS);
+    // The parameters read back as given; the wind changes only the wind.
+    let l0 = Turbulence::from_seeing(0.8, 1.65, 7.5, Some(25.0)).unwrap();
+    assert_eq!(
+        (l0.wavelength_um(), l0.wind_mps(), l0.outer_scale_m()),
+        (1.65, 7.5, Some(25.0))
+    );
+    assert_eq!(l0.r0_m(), r0_from_seeing_m(0.8, 1.65).unwrap());
+    let gusty = l0.with_wind(20.0).unwrap();
+    assert_eq!(
+        (gusty.r0_m(), gusty.wavelength_um(), gusty.outer_scale_m()),
+        (l0.r0_m(), 1.65, Some(25.0))
+    );
+    assert_eq!((t.outer_scale_m(), t.wavelength_um()), (None, 2.2));
     // The OPD spectrum does not depend on the wavelength when r0 ∝ λ^{6/5}.
     let t2 = Turbulence::new(r0 * (1.65f64 / 2.2).powf(1.2), 1.65, 10.0, None).unwrap();
     assert!(rel(t2.opd_psd(0.37), t.opd_psd(0.37)) < GAMMA_REL);
