@@ -119,6 +119,18 @@ for area in "${areas[@]}"; do
         re=$(anchored "$missed")
         echo "== $area, second pass: $(wc -l < "$missed") missed mutants with every test"
         mkdir -p "$out/full"
-        cargo mutants "${files[@]}" "${tests[@]}" --output "$out/full" --re "$re" "$@" || true
+        # A shard of the first pass is already a subset: the second runs
+        # all of its misses.
+        rest=()
+        skip_next=0
+        for a in "$@"; do
+            if [[ $skip_next == 1 ]]; then skip_next=0; continue; fi
+            case $a in
+                --shard) skip_next=1 ;;
+                --shard=*) ;;
+                *) rest+=("$a") ;;
+            esac
+        done
+        cargo mutants "${files[@]}" "${tests[@]}" --output "$out/full" --re "$re" "${rest[@]}" || true
     fi
 done
