@@ -73,8 +73,8 @@ print(f"C_D,0,{s(CD)}")
 print(f"C_Phi,0,{s(CPHI)}")
 print(f"I,{s(mp.mpf(11)/6)},{s(I(mp.mpf(11)/6))}")
 print(f"I,{s(mp.mpf(10)/3)},{s(I(mp.mpf(10)/3))}")
-# a < 1: Gamma(a - 1/2) with a - 1/2 < 1/2, the reflection branch of the
-# crate's Gamma (exact binary arguments; the quadrature of the slow
+# a < 1: Gamma(a - 1/2) with a - 1/2 < 1/2, near the pole of the crate's
+# Gamma at 0 (exact binary arguments; the quadrature of the slow
 # u^(-2a) tail agrees with the Gamma formula to 1e-17 here, to 2e-9 only
 # at a = 0.625, which is therefore not used)
 for a in ['0.75', '0.875']:
