@@ -198,3 +198,84 @@ fn the_alias_table_leaves_out_less_than_1e_minus_30_of_the_poisson_mass() {
         );
     }
 }
+
+// ---- seeding (src/montecarlo/mod.rs) ----------------------------------------
+
+#[test]
+fn the_seed_mixer_is_splitmix64() {
+    // derive_seed with no label and no key is SplitMix64's output function
+    // of its argument: the state after k steps from seed 0 is k times the
+    // golden gamma, and the published outputs for seed 0 (Vigna,
+    // https://prng.di.unimi.it/splitmix64.c) are these three.
+    use v2ref::montecarlo::derive_seed;
+    let gamma = 0x9E37_79B9_7F4A_7C15u64;
+    let published = [
+        0xE220_A839_7B1D_CDAF,
+        0x6E78_9E6A_A1B9_65F4,
+        0x06C4_5D18_8009_454F,
+    ];
+    for (k, want) in published.into_iter().enumerate() {
+        assert_eq!(
+            derive_seed(gamma.wrapping_mul(k as u64), "", &[]),
+            want,
+            "output {k}"
+        );
+    }
+}
+
+#[test]
+fn every_unit_has_its_own_stream() {
+    // Distinct units of one seed, and one unit of distinct seeds, start
+    // their streams differently (extreme seeds included, where a weak mix
+    // of seed and unit would give every unit the same state); the same
+    // (seed, unit) gives the same stream.
+    use rand::RngCore;
+    let first = |seed: u64, unit: u64| unit_rng(seed, unit).next_u64();
+    for seed in [0, 1, 7, u64::MAX] {
+        let mut draws: Vec<u64> = (0..256).map(|u| first(seed, u)).collect();
+        draws.sort_unstable();
+        draws.dedup();
+        assert_eq!(draws.len(), 256, "seed {seed}: units share a stream");
+    }
+    let mut by_seed: Vec<u64> = (0..256).map(|s| first(s, 3)).collect();
+    by_seed.sort_unstable();
+    by_seed.dedup();
+    assert_eq!(by_seed.len(), 256);
+    assert_eq!(first(42, 9), first(42, 9));
+}
+
+#[test]
+fn units_run_in_unit_order_with_their_own_generators() {
+    // run_units and run_unit_range return one result per unit, in unit
+    // order, each from unit_rng(seed, unit), whatever the thread count.
+    use rand::RngCore;
+    use v2ref::montecarlo::{run_unit_range, run_units};
+    let draw = |u: u64, rng: &mut v2ref::montecarlo::Rng| (u, rng.next_u64());
+    for threads in [1, 3] {
+        let all = run_units(11, 5, threads, draw);
+        let want: Vec<(u64, u64)> = (0..5).map(|u| (u, unit_rng(11, u).next_u64())).collect();
+        assert_eq!(all, want);
+        let part = run_unit_range(11, 3..7, threads, draw);
+        let want: Vec<(u64, u64)> = (3..7).map(|u| (u, unit_rng(11, u).next_u64())).collect();
+        assert_eq!(part, want);
+    }
+}
+
+#[test]
+fn thread_counts_are_checked_against_four_per_core_at_least_sixteen() {
+    use v2ref::montecarlo::{check_threads, max_threads, MAX_THREADS_FLOOR, MAX_THREADS_PER_CORE};
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let max = max_threads();
+    assert_eq!(max, (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR));
+    assert_eq!((MAX_THREADS_PER_CORE, MAX_THREADS_FLOOR), (4, 16));
+    for ok in [0, 1, max] {
+        assert_eq!(check_threads(ok).unwrap(), ok);
+    }
+    assert!(matches!(
+        check_threads(max + 1),
+        Err(v2ref::Error::OutOfRange {
+            param: "threads",
+            ..
+        })
+    ));
+}
