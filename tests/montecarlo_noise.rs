@@ -221,6 +221,18 @@ fn the_seed_mixer_is_splitmix64() {
             "output {k}"
         );
     }
+    // Keyed by label and key, each seed distinct: neighbouring keys, labels
+    // one letter apart, and the order of the words.
+    let mut seeds: Vec<u64> = (0..512)
+        .map(|i| derive_seed(7, "fig5", &[i as f64]))
+        .collect();
+    seeds.extend(["fig4", "fig6", "gig5", "fig"].map(|l| derive_seed(7, l, &[300.0])));
+    seeds.push(derive_seed(7, "fig5", &[300.0, 1.0]));
+    seeds.push(derive_seed(7, "fig5", &[1.0, 300.0]));
+    let n = seeds.len();
+    seeds.sort_unstable();
+    seeds.dedup();
+    assert_eq!(seeds.len(), n, "two keys share a seed");
 }
 
 #[test]
