@@ -292,23 +292,11 @@ fn composite_of_identical_components_is_the_component() {
     }
     // And a continuum of visibility 0.5 with an unresolved line of equal peak
     // flux density reads 0.75 at the line centre, 0.5 far from it.
-    let lined = Source::composite(vec![
-        Component {
-            source: Source::Constant {
-                visibility: Complex64::new(0.5, 0.0),
-            },
-            flux: FluxProfile::Flat { flux: 1.0 },
-        },
-        Component {
-            source: Source::Point,
-            flux: FluxProfile::GaussianLine {
-                centre_per_um: 0.5,
-                fwhm_per_um: 1e-5,
-                peak: 1.0,
-            },
-        },
-    ])
-    .unwrap();
+    let lined = continuum_with_line(FluxProfile::GaussianLine {
+        centre_per_um: 0.5,
+        fwhm_per_um: 1e-5,
+        peak: 1.0,
+    });
     assert_rel_eq!(lined.visibility(0.5, 10.0).re, 0.75, ULPS);
     assert_rel_eq!(lined.visibility(0.4, 10.0).re, 0.5, ULPS);
     // Where no component has flux (a line alone, 200 FWHM away, where its
@@ -377,15 +365,10 @@ fn a_velocity_line_has_its_centre_width_and_flux() {
     }
 }
 
-/// A 50 % continuum with an unresolved 10 km/s emission line at 2.166 µm
-/// (FWHM 1.5e-5 µm⁻¹, 1/5400 of the K band) whose peak equals the
-/// continuum: V = 0.75 at the line centre.
-fn narrow_line_obs() -> Observation {
-    let mut line = FluxProfile::gaussian_line_velocity(2.166, 10.0, 1.0).unwrap();
-    if let FluxProfile::GaussianLine { peak, .. } = &mut line {
-        *peak = 1.0;
-    }
-    let source = Source::composite(vec![
+/// A continuum of visibility 0.5 and unit flux, with an unresolved
+/// emission line of flux profile `line`.
+fn continuum_with_line(line: FluxProfile) -> Source {
+    Source::composite(vec![
         Component {
             source: Source::Constant {
                 visibility: Complex64::new(0.5, 0.0),
@@ -397,10 +380,20 @@ fn narrow_line_obs() -> Observation {
             flux: line,
         },
     ])
-    .unwrap();
+    .unwrap()
+}
+
+/// A 50 % continuum with an unresolved 10 km/s emission line at 2.166 µm
+/// (FWHM 1.5e-5 µm⁻¹, 1/5400 of the K band) whose peak equals the
+/// continuum: V = 0.75 at the line centre.
+fn narrow_line_obs() -> Observation {
+    let mut line = FluxProfile::gaussian_line_velocity(2.166, 10.0, 1.0).unwrap();
+    if let FluxProfile::GaussianLine { peak, .. } = &mut line {
+        *peak = 1.0;
+    }
     Observation::new(
         Spectrum::flat(Band::k()),
-        source,
+        continuum_with_line(line),
         Frequency::BaselineM(100.0),
         SpectralPhase::zero(),
     )
