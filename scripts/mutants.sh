@@ -39,7 +39,7 @@ declare -A AREAS=(
     [dispersion]="src/bias/dispersion.rs|bias_dispersion"
     [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
     [turbulence]="src/piston/turbulence.rs|turbulence piston"
-    [piston_spectrum]="src/piston/spectrum.rs|turbulence piston"
+    [piston_spectrum]="src/piston/spectrum.rs|piston_spectrum turbulence piston"
     [fft]="src/math/fft.rs|fft"
 )
 NEEDS_CLI=" seeding turbulence piston_spectrum "
@@ -50,7 +50,7 @@ NEEDS_CLI=" seeding turbulence piston_spectrum "
 SLOW_SCANS="long_finely_sampled_scans_converge long_sampled_scans_agree spectral_estimators_match_an_independent_quadrature v2_sq_is_bounded_by_the_w_weighted_mean"
 # (the tests of turbulence and piston that build the transverse table: 6–28 s
 # each at opt-level 0)
-SLOW_PISTON="asymptotes_slopes_and_corners cli_seeing_wavelength_flag table_matches_direct_quadrature transverse_integral_matches_mpmath variance_is_the_integral_of_the_temporal wind_across_the_baseline wind_angle_zero a_sweep_at_1000_hz a_sweep_frequency_does_not centred_all_bins_v2 lag_structure_function periodogram_matches piston_is_multiplicative piston_monte_carlo_is_deterministic sample_variance_matches series_are_deterministic three_slope_series wind_speed_rescales zero_turbulence_gives"
+SLOW_PISTON="middle_asymptote_is_the_period_average real_tables_hold cli_seeing_wavelength_flag table_matches_direct_quadrature the_table_of_g_matches_mpmath variance_is_the_integral_of_the_temporal wind_across_the_baseline wind_angle_zero a_sweep_at_1000_hz a_sweep_frequency_does_not centred_all_bins_v2 lag_structure_function periodogram_matches piston_is_multiplicative piston_monte_carlo_is_deterministic sample_variance_matches series_are_deterministic three_slope_series wind_speed_rescales zero_turbulence_gives"
 # (the Monte Carlo runs of noise_mc: 8–26 s each at opt-level 0; golden's
 # regeneration of every figure: minutes)
 SLOW_MC="windowed_variance_gaussian_two_windows windowed_variance_photon_third_and_fourth all_bins_expectations_biases_and_variances"

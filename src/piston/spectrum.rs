@@ -177,6 +177,8 @@ const TABLE_PER_DECADE: usize = 80;
 /// Table range in log10(f_x D).
 const TABLE_LOG10_MIN: f64 = -7.0;
 const TABLE_LOG10_MAX: f64 = 2.0;
+/// Grid points of a computed table, both ends included (721).
+const TABLE_POINTS: usize = (TABLE_LOG10_MAX - TABLE_LOG10_MIN) as usize * TABLE_PER_DECADE + 1;
 
 /// The transverse integral G(f_x) tabulated for one (turbulence, aperture):
 /// ln G on a uniform grid of ln(f_x D), cubic (Catmull–Rom) interpolation,
@@ -222,6 +224,34 @@ impl TransverseTable {
         Ok(t)
     }
 
+    /// A table holding the given values of ln G (or ln S) on the grid of
+    /// [`TransverseTable::grid_fx_per_m`] instead of computed ones: at least
+    /// two values (none gives the table of zero turbulence). For tests of
+    /// the interpolation and of the spectrum built on it without the 721
+    /// quadratures of a real table (seconds at opt-level 0).
+    #[doc(hidden)]
+    pub fn from_ln_values(
+        turb: Turbulence,
+        aperture_m: f64,
+        ln_values: Vec<f64>,
+    ) -> Result<TransverseTable> {
+        if ln_values.len() == 1 {
+            return Err(crate::error::Error::Invalid {
+                param: "ln_values",
+                reason: "a table needs no value or at least two".into(),
+            });
+        }
+        let table = TransverseTable::new(turb, aperture_m)?;
+        table.ln_g.get_or_init(|| ln_values);
+        Ok(table)
+    }
+
+    /// The grid point `i`: f_x (m⁻¹) with `ln(f_x D) = ln(10⁻⁷) + i ln(10)/80`,
+    /// 80 points per decade of f_x D from 10⁻⁷ to 10² (the last at i = 720).
+    pub fn grid_fx_per_m(&self, i: usize) -> f64 {
+        (self.s0 + i as f64 * self.h).exp() / self.aperture_m
+    }
+
     /// The integral tabulated at `fx` (G, or S when `crosswind_m` > 0).
     fn integral(&self, fx_per_m: f64) -> f64 {
         if self.crosswind_m > 0.0 {
@@ -237,16 +267,10 @@ impl TransverseTable {
             if self.turb.opd_psd_scale() == 0.0 {
                 return Vec::new();
             }
-            let n = ((TABLE_LOG10_MAX - TABLE_LOG10_MIN) * TABLE_PER_DECADE as f64).round()
-                as usize
-                + 1;
             use rayon::prelude::*;
-            (0..n)
+            (0..TABLE_POINTS)
                 .into_par_iter()
-                .map(|i| {
-                    let fx = (self.s0 + i as f64 * self.h).exp() / self.aperture_m;
-                    self.integral(fx).ln()
-                })
+                .map(|i| self.integral(self.grid_fx_per_m(i)).ln())
                 .collect()
         })
     }
@@ -398,6 +422,20 @@ impl PistonSpectrum {
     /// the two-aperture model has a wind direction: the three-slope model
     /// refuses any angle whose sine is not 0.
     pub fn with_wind_angle_deg(&self, angle_deg: f64) -> Result<PistonSpectrum> {
+        self.with_wind_angle_deg_from(angle_deg, |across_m| {
+            TransverseTable::crosswind(self.table.turb, self.table.aperture_m, across_m)
+        })
+    }
+
+    /// [`PistonSpectrum::with_wind_angle_deg`] with the table of S made by
+    /// `crosswind_table(B |sin θ|)` (tests give one of known values,
+    /// [`TransverseTable::from_ln_values`]).
+    #[doc(hidden)]
+    pub fn with_wind_angle_deg_from(
+        &self,
+        angle_deg: f64,
+        crosswind_table: impl FnOnce(f64) -> Result<TransverseTable>,
+    ) -> Result<PistonSpectrum> {
         error::in_range("wind_angle_deg", angle_deg, -360.0, 360.0)?;
         let theta = angle_deg.to_radians();
         let across = self.baseline_m * theta.sin().abs();
@@ -409,11 +447,7 @@ impl PistonSpectrum {
         let crosswind = if along || across == 0.0 {
             None
         } else {
-            Some(std::sync::Arc::new(TransverseTable::crosswind(
-                self.table.turb,
-                self.table.aperture_m,
-                across,
-            )?))
+            Some(std::sync::Arc::new(crosswind_table(across)?))
         };
         let mut out = self.clone();
         out.wind_angle_rad = theta;
@@ -555,14 +589,6 @@ impl PistonSpectrum {
         if k == 0.0 || b == 0.0 {
             return 0.0;
         }
-        let two_one_minus_j0 = |z: f64| {
-            if z < SMALL_Z_SERIES_BELOW {
-                let z2 = z * z;
-                2.0 * (z2 / 4.0 - z2 * z2 / 64.0 + z2 * z2 * z2 / 2304.0)
-            } else {
-                2.0 * (1.0 - bessel_j0(z))
-            }
-        };
         let radial = |f: f64| {
             2.0 * PI
                 * f
@@ -643,6 +669,25 @@ impl PistonSpectrum {
         let c = (4.0 * profile_integral(10.0 / 3.0) / (PI.powi(4) * profile_integral(11.0 / 6.0)))
             .cbrt();
         c * self.wind_mps / self.table.aperture_m
+    }
+}
+
+/// `2[1 − J0(z)]`, the two-aperture factor `2[1 − cos(2π **B**·**f**)]`
+/// averaged over the direction of **f**, at `z = 2πBf` (≥ 0): from its
+/// series `z²/2 − z⁴/32 + z⁶/1152` below z = 10⁻², where `1 − J0(z)` would
+/// lose ~log10(4/z²) digits to cancellation.
+///
+/// ```
+/// use v2ref::piston::turbulence::two_one_minus_j0;
+/// assert!((two_one_minus_j0(1e-3) / 5e-7 - 1.0).abs() < 1e-6);
+/// assert!((two_one_minus_j0(1.0) - 2.0 * (1.0 - 0.765_197_686_557_966_6)).abs() < 1e-15);
+/// ```
+pub fn two_one_minus_j0(z: f64) -> f64 {
+    if z < SMALL_Z_SERIES_BELOW {
+        let z2 = z * z;
+        2.0 * (z2 / 4.0 - z2 * z2 / 64.0 + z2 * z2 * z2 / 2304.0)
+    } else {
+        2.0 * (1.0 - bessel_j0(z))
     }
 }
 

@@ -24,7 +24,7 @@ use std::f64::consts::PI;
 
 pub use super::spectrum::{
     aperture_filter, crosswind_integral, differential_piston_variance_from_structure_um2,
-    transverse_integral, PistonPsdModel, PistonSpectrum, TransverseTable,
+    transverse_integral, two_one_minus_j0, PistonPsdModel, PistonSpectrum, TransverseTable,
 };
 
 /// Radians per arcsecond.
