@@ -6,6 +6,7 @@
 #   scripts/mutants.sh all
 #   scripts/mutants.sh estimators -- --in-place   # reuse the tree's target dir
 #   RECHECK=missed.txt scripts/mutants.sh special  # only the named mutants
+#   FIRST_PASS_ONLY=1 scripts/mutants.sh piston_spectrum  # no second pass
 #
 # Two passes per area. The first skips the area's slow tests (SLOW below:
 # long sampled scans and Monte Carlo runs, 3–30 s each at opt-level 0) and
@@ -13,6 +14,9 @@
 # first missed, with every test of the area, into mutants.out/AREA/full/.
 # A mutant is caught by the suite when either pass catches it, and missed
 # only when it survives the second pass.
+#
+# With FIRST_PASS_ONLY set, the second pass is left out: the first pass's
+# misses are then the list to write tests for (and to RECHECK after).
 #
 # With RECHECK set to a file of mutant names (a missed.txt of an earlier
 # run), only the area's mutants named there are run, in the same two
@@ -115,7 +119,7 @@ for area in "${areas[@]}"; do
     cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "${only[@]}" "$@" "${harness[@]}" || true
 
     missed="$out/mutants.out/missed.txt"
-    if [[ ${#skips[@]} -gt 0 && -s $missed ]]; then
+    if [[ -z ${FIRST_PASS_ONLY:-} && ${#skips[@]} -gt 0 && -s $missed ]]; then
         re=$(anchored "$missed")
         echo "== $area, second pass: $(wc -l < "$missed") missed mutants with every test"
         mkdir -p "$out/full"
