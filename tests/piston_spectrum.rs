@@ -24,12 +24,13 @@ use std::sync::Arc;
 use v2ref::math::quadrature::{integrate_pieces, Tolerance};
 use v2ref::piston::three_slope::ThreeSlope;
 use v2ref::piston::turbulence::{
-    aperture_filter, crosswind_integral, transverse_integral, two_one_minus_j0, PistonPsdModel,
-    PistonSpectrum, TransverseTable, Turbulence,
+    aperture_filter, crosswind_integral, differential_piston_variance_from_structure_um2,
+    transverse_integral, two_one_minus_j0, PistonPsdModel, PistonSpectrum, TransverseTable,
+    Turbulence,
 };
 use v2ref::tolerance::{
-    BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, ROUNDING_REL, TABLE_LN_ABS, TURBULENCE_QUADRATURE_REL,
-    ULPS,
+    BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, ROUNDING_REL, TABLE_LN_ABS, TURBULENCE_CHECK_REL,
+    TURBULENCE_QUADRATURE_REL, ULPS,
 };
 use v2ref::{assert_abs_eq, assert_rel_eq, Error};
 
@@ -601,5 +602,40 @@ fn real_tables_hold_the_direct_quadratures_at_their_nodes() {
             hermite_oracle(&ln_nodes, pos),
             TABLE_LN_ABS
         );
+    }
+}
+
+#[test]
+fn kolmogorov_integrals_scale_with_the_aperture() {
+    // Without an outer scale the only lengths are D, 1/f_x and b:
+    // G(f_x; D) = D^{8/3} g(f_x D), S(f_x; D, b) = D^{8/3} s(f_x D, b/D)
+    // and σ_p²(B, D) = D^{5/3} v(B/D). Every cut-off of the quadratures
+    // (100/D, the low split, the half periods) scales the same way, so
+    // each pair agrees to the quadratures' convergence.
+    let t = paper();
+    let d0 = D;
+    for d in [0.05, 8.0] {
+        let k = (d / d0).powf(8.0 / 3.0);
+        for fxd in [1e-3, 0.1, 1.0] {
+            let g = transverse_integral(&t, d, fxd / d);
+            let g0 = transverse_integral(&t, d0, fxd / d0);
+            assert_rel_eq!(g, k * g0, TURBULENCE_CHECK_REL);
+            let b_over_d = 7.0;
+            let s = crosswind_integral(&t, d, fxd / d, b_over_d * d);
+            let s0 = crosswind_integral(&t, d0, fxd / d0, b_over_d * d0);
+            assert_rel_eq!(s, k * s0, TURBULENCE_CHECK_REL);
+        }
+        for b_over_d in [0.6, 40.0] {
+            let var = |d: f64| {
+                PistonSpectrum::new(t, d, b_over_d * d)
+                    .unwrap()
+                    .variance_um2()
+            };
+            let pupil =
+                |d: f64| differential_piston_variance_from_structure_um2(&t, d, b_over_d * d);
+            let k = (d / d0).powf(5.0 / 3.0);
+            assert_rel_eq!(var(d), k * var(d0), TURBULENCE_CHECK_REL);
+            assert_rel_eq!(pupil(d), k * pupil(d0), TURBULENCE_CHECK_REL);
+        }
     }
 }
