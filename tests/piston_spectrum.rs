@@ -29,8 +29,8 @@ use v2ref::piston::turbulence::{
     Turbulence,
 };
 use v2ref::tolerance::{
-    BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, ROUNDING_REL, TABLE_LN_ABS, TURBULENCE_CHECK_REL,
-    TURBULENCE_QUADRATURE_REL, ULPS,
+    BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, LOW_FREQ_VALUE_COEFF, ROUNDING_REL, TABLE_LN_ABS,
+    TURBULENCE_CHECK_REL, TURBULENCE_QUADRATURE_REL, ULPS,
 };
 use v2ref::{assert_abs_eq, assert_rel_eq, Error};
 
@@ -638,4 +638,29 @@ fn kolmogorov_integrals_scale_with_the_aperture() {
             assert_rel_eq!(pupil(d), k * pupil(d0), TURBULENCE_CHECK_REL);
         }
     }
+}
+
+#[test]
+fn across_the_wind_the_low_asymptote_is_raised_by_cos2_plus_three_halves_sin2() {
+    let t = paper();
+    let along = PistonSpectrum::new(t, D, 18.0).unwrap();
+    for angle in [30.0, 45.0, 90.0, 120.0, -60.0] {
+        let s = along.with_wind_angle_deg(angle).unwrap();
+        let (sin, cos) = f64::to_radians(angle).sin_cos();
+        for nu in [1e-3, 0.2] {
+            let ratio = s.asymptote_low(nu) / along.asymptote_low(nu);
+            assert_rel_eq!(ratio, cos * cos + 1.5 * sin * sin, ROUNDING_REL);
+            // The middle and high asymptotes do not depend on θ.
+            assert_eq!(s.asymptote_mid(nu), along.asymptote_mid(nu));
+            assert_eq!(s.asymptote_high(nu), along.asymptote_high(nu));
+        }
+    }
+    // Square across, P = 2 S / v: far below v/B, S from its quadrature
+    // meets the raised asymptote (the relative error falls as ν/corner).
+    let across = along.with_wind_angle_deg(90.0).unwrap();
+    let r = 1e-4;
+    let nu = r * along.corner_low_hz();
+    let v = t.wind_mps();
+    let p = 2.0 * crosswind_integral(&t, D, nu / v, 18.0) / v;
+    assert_rel_eq!(p, across.asymptote_low(nu), LOW_FREQ_VALUE_COEFF * 10.0 * r);
 }
