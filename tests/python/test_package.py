@@ -435,12 +435,19 @@ def test_ctrl_c_stops_long_calls(call):
     import threading
     import time
 
+    # A process started in the background by a non-interactive shell (a CI
+    # runner's `cmd &`) inherits SIGINT ignored, and Python then installs no
+    # KeyboardInterrupt handler: install it for the test, restore after.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
     start = time.perf_counter()
     timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        call()
-    timer.join()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            call()
+    finally:
+        timer.join()
+        signal.signal(signal.SIGINT, previous)
     # Uninterrupted, each call runs for minutes (10^9 trials; 8 x 250 000
     # piston scans; 1000 reference replicates): returning within 30 s shows
     # the interrupt worked, with room for a loaded machine (the piston call
