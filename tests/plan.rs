@@ -41,6 +41,7 @@ fn inputs(instrument: Inputs, seeing: f64, rate: f64, fringe_hz: Vec<f64>) -> Pl
         target: Target::SigmaV2(1e-3),
         scans: 2000,
         seed: 3,
+        diameter_err_mas: 0.0,
     }
 }
 

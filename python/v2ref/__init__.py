@@ -795,7 +795,7 @@ def piston(
     -------
     dict
         ``detector``, ``bins``, ``reference``, ``baseline_m``, ``r0_m``,
-        ``coherence_time_s``, ``piston_rms_um``, …, and ``results``: per
+        ``r0_over_v_s``, ``tau0_s``, ``piston_rms_um``, …, and ``results``: per
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
     values = dict(locals())
@@ -828,9 +828,10 @@ def plan(
     dead_time_s: float = 0.0,
     fringe_hz: Optional[Sequence[float]] = None,
     stroke_um: Optional[Sequence[float]] = None,
-    scans: int = 1000,
+    scans: int = 16000,
     seed: int = 1,
     threads: int = 0,
+    diameter_err_mas: float = 0.0,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -869,10 +870,14 @@ def plan(
         The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
         and strokes (µm; default 16, 32, 64, 128).
     scans : int
-        Scans of each piston Monte Carlo.
+        Scans of each piston Monte Carlo (32 and more; cut into up to 16
+        independent piston sequences, whose spread gives the errors).
     seed, threads : int
         Seed of the piston Monte Carlo; worker threads (0: all cores; the
         answer does not depend on it).
+    diameter_err_mas : float
+        1σ uncertainty of the uniform disk's diameter, mas (>= 0): its
+        effect on V² is reported beside the corrections.
     wavelength_um, ..., reference
         The instrument, source, noise and atmosphere, as for :func:`simulate`
         (seeing λ/r0 in arcsec at ``seeing_wavelength_um``, default ``wavelength_um``, wind m/s, aperture m,
@@ -903,6 +908,7 @@ def plan(
             _uint("scans", scans),
             _uint("seed", seed),
             _v2ref.check_threads(_uint("threads", threads)),
+            _float("diameter_err_mas", diameter_err_mas),
         )
     )
 

@@ -302,12 +302,12 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
     -------
     dict
         ``detector``, ``bins``, ``reference``, ``baseline_m``, ``r0_m``,
-        ``coherence_time_s``, ``piston_rms_um``, …, and ``results``: per
+        ``r0_over_v_s``, ``tau0_s``, ``piston_rms_um``, …, and ``results``: per
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
     ...
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=1000, seed: int=1, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     target_sigma_v2: σ of the averaged V² (default 1e-3); time_budget_s: instead, the time to

@@ -159,11 +159,12 @@ fn simulate_each(
 
 fn print_table(answer: &PistonReport) {
     outln!(
-        "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms, piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
+        "baseline {:.3} m ({:.2} cycles/arcsec), r0 {:.1} cm, tau0 {:.1} ms (0.314 r0/v; r0/v {:.1} ms), piston rms {:.2} um; {} detector, {} bins, packet reference {}; {} x {} um scans",
         answer.baseline_m,
         answer.spatial_freq_cpas,
         100.0 * answer.r0_m,
-        1e3 * answer.coherence_time_s,
+        1e3 * answer.tau0_s,
+        1e3 * answer.r0_over_v_s,
         answer.piston_rms_um,
         answer.detector,
         answer.bins,

@@ -8,7 +8,9 @@ use serde::Serialize;
 use std::process::ExitCode;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
-use v2ref::plan::{default_grid, plan, Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref::plan::{
+    default_grid, human_duration, plan, Estimator, Plan, PlanInputs, PlanPoint, Target,
+};
 use v2ref::simulator::{Inputs, PistonInputs, SpectrumInput};
 use v2ref::{Error, Result};
 
@@ -73,10 +75,18 @@ pub struct Args {
     /// Strokes of the grid, µm (repeatable) [default: 16, 32, 64, 128].
     #[arg(long = "stroke-um", value_parser = finite_f64, allow_negative_numbers = true)]
     stroke_um: Vec<f64>,
-    /// Scans of each piston Monte Carlo (the piston scatter's standard
-    /// error is printed; more scans for a tighter estimate).
-    #[arg(long, value_parser = super::count_u64, default_value = "1000", allow_negative_numbers = true)]
+    /// Scans of each piston Monte Carlo, 32 to about 1e6 (the limit at the
+    /// grid's longest stroke is checked first): cut into up to 16
+    /// independent piston sequences spanning two correlation times B/v
+    /// each, whose spread gives the standard errors. The cost is mostly the
+    /// sequences (fixed), so many scans cost little and pin down the piston
+    /// bias.
+    #[arg(long, value_parser = super::count_u64, default_value = "16000", allow_negative_numbers = true)]
     scans: u64,
+    /// 1σ uncertainty of the uniform disk's diameter, mas (>= 0): the V²
+    /// error it gives is printed beside the corrections.
+    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    diameter_err_mas: f64,
     /// Seed of the piston Monte Carlo.
     #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
@@ -92,6 +102,9 @@ pub struct Args {
     /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
+    /// Print every grid point (default: the five fastest of each estimator).
+    #[arg(long)]
+    all: bool,
 }
 
 /// A 2MASS band (`--magnitude-band`).
@@ -214,6 +227,7 @@ fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
         target,
         scans: args.scans,
         seed: args.seed,
+        diameter_err_mas: args.diameter_err_mas,
     })
 }
 
@@ -241,9 +255,28 @@ pub fn run(args: Args) -> Result<ExitCode> {
             plan: &result,
         });
     } else {
-        print_table(&inputs, &result, &piston)?;
+        print_table(&inputs, &result, &piston, args.all)?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Rows of the table without `--all`, per estimator.
+const ROWS_PER_ESTIMATOR: usize = 5;
+
+/// The rows to print: every point with `all`, else each estimator's
+/// fastest (least time, or least σ with a budget), in grid order.
+fn table_rows(plan: &Plan, all: bool) -> Vec<&PlanPoint> {
+    if all {
+        return plan.points.iter().collect();
+    }
+    let merit = |p: &PlanPoint| p.sigma_reached.or(p.time_s).unwrap_or(f64::INFINITY);
+    let mut rows = Vec::new();
+    for e in [Estimator::V1, Estimator::V2] {
+        let mut ours: Vec<&PlanPoint> = plan.points.iter().filter(|p| p.estimator == e).collect();
+        ours.sort_by(|a, b| merit(a).total_cmp(&merit(b)));
+        rows.extend(ours.into_iter().take(ROWS_PER_ESTIMATOR));
+    }
+    rows
 }
 
 fn name(e: Estimator) -> &'static str {
@@ -256,43 +289,106 @@ fn name(e: Estimator) -> &'static str {
 fn describe(p: &PlanPoint) -> String {
     let reach = match (p.sigma_reached, p.time_s) {
         (Some(s), Some(t)) => format!(
-            "sigma(V^2) {s:.2e} in {t:.1} s ({:.0} scans)",
+            "sigma(V^2) {s:.2e} in {} ({:.0} scans)",
+            human_duration(t),
             p.scans_needed.unwrap_or(0.0)
         ),
-        (None, Some(t)) => format!("{:.0} scans, {t:.1} s", p.scans_needed.unwrap_or(0.0)),
+        (None, Some(t)) => format!(
+            "{:.0} scans, {}{}",
+            p.scans_needed.unwrap_or(0.0),
+            human_duration(t),
+            if p.exceeds_one_night {
+                " (WARNING: longer than one night, 10 h)"
+            } else {
+                ""
+            }
+        ),
         _ => "unreachable (piston bias above the target)".into(),
     };
     format!(
-        "{} at {:.0} Hz, {:.0} um stroke ({} samples, {:.1} photons/sample): {reach}; per scan sigma {:.2e} = noise {:.2e} (+) piston {:.2e}, piston bias {:+.1e}",
+        "{} at {:.1} Hz, {:.0} um stroke ({} samples, {:.3} photons/sample): {reach}",
         name(p.estimator),
         p.fringe_hz,
         p.stroke_um,
         p.samples,
         p.photons_per_sample,
-        p.sigma_per_scan,
-        p.sigma_noise_per_scan,
-        p.sigma_piston_per_scan,
-        p.bias_piston
     )
 }
 
-fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum) -> Result<()> {
+/// The terms of a point, one per line, on V².
+fn terms(p: &PlanPoint, confidence: f64) {
+    outln!(
+        "  per scan sigma(V^2) {:.2e} = noise {:.2e} (+) piston {:.2e} +/- {:.1e}; piston bias on V^2 {:+.2e} +/- {:.1e} ({} independent piston sequences; the plan uses the upper ends of the {:.0}% intervals: scatter {:.2e}, |bias| {:.2e})",
+        p.sigma_per_scan,
+        p.sigma_noise_per_scan,
+        p.sigma_piston_per_scan,
+        p.sigma_piston_stderr,
+        p.bias_piston,
+        p.bias_piston_stderr,
+        p.piston_sequences,
+        confidence * 100.0,
+        p.sigma_piston_upper,
+        p.bias_piston_upper,
+    );
+}
+
+/// The deterministic biases the user must correct, against the target.
+fn corrections(inputs: &PlanInputs, p: &PlanPoint) {
+    let verdict = |ratio: f64| {
+        if ratio >= 1.0 {
+            format!("{ratio:.1}x the target: correct it")
+        } else {
+            format!("{ratio:.2}x the target")
+        }
+    };
+    outln!(
+        "  V^2: true (monochromatic) {:.5}; noise-free, piston-free estimate {:.5}",
+        p.v_mono_sq,
+        p.v_sq_sampled
+    );
+    outln!(
+        "  correct (computed, deterministic): bandwidth+dispersion {:+.2e} on V^2 ({}); scan+detector {:+.2e} ({})",
+        p.bias_bandwidth_dispersion,
+        verdict(p.bandwidth_bias_over_target),
+        p.bias_scan_detector,
+        verdict(p.scan_bias_over_target)
+    );
+    if inputs.diameter_err_mas > 0.0 {
+        let target = match inputs.target {
+            Target::SigmaV2(t) => t,
+            Target::TimeBudgetS(_) => f64::NAN,
+        };
+        outln!(
+            "  the diameter's uncertainty ({} mas) moves V^2 by {:.2e} ({:.2}x the target): calibration, not noise, limits the accuracy where this is above 1",
+            inputs.diameter_err_mas,
+            p.v_sq_error_from_diameter,
+            p.v_sq_error_from_diameter / target
+        );
+    }
+}
+
+fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: bool) -> Result<()> {
     let target = match inputs.target {
         Target::SigmaV2(s) => format!("target sigma(V^2) = {s:e}"),
-        Target::TimeBudgetS(t) => format!("time budget {t} s"),
+        Target::TimeBudgetS(t) => format!("time budget {}", human_duration(t)),
     };
     match &plan.recommended {
-        Some(p) => outln!("recommended ({target}): {}", describe(p)),
+        Some(p) => {
+            outln!("recommended ({target}): {}", describe(p));
+            terms(p, plan.confidence);
+            corrections(inputs, p);
+        }
         None => outln!("no setting of the grid reaches the {target}: the piston bias exceeds it everywhere; see the rows below"),
     }
-    for p in [&plan.best_v1, &plan.best_v2].into_iter().flatten() {
-        outln!("best {}", describe(p));
-    }
-    if let Some(p) = plan.recommended {
-        outln!(
-            "deterministic (computed, correctable): bandwidth+dispersion {:+.2e}, scan+detector {:+.2e} on V^2 = {:.4}",
-            p.bias_bandwidth_dispersion, p.bias_scan_detector, p.v_sq_sampled
-        );
+    for (e, best, reason) in [
+        (Estimator::V1, &plan.best_v1, &plan.no_v1_reason),
+        (Estimator::V2, &plan.best_v2, &plan.no_v2_reason),
+    ] {
+        match (best, reason) {
+            (Some(p), _) => outln!("best {}", describe(p)),
+            (None, Some(r)) => outln!("best {}: none: {r}", name(e)),
+            (None, None) => {}
+        }
     }
     let turb = piston.turbulence();
     outln!(
@@ -310,24 +406,33 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum) -> Res
         inputs.photon_rate_per_s
     );
     outln!("");
+    let rows = table_rows(plan, all);
+    if !all {
+        outln!(
+            "the {} fastest settings of each estimator ({} in all: --all or --json for every one); V^2 throughout",
+            ROWS_PER_ESTIMATOR,
+            plan.points.len()
+        );
+    }
     outln!(
-        "{:>5} {:>8} {:>7} {:>8} {:>10} {:>10} {:>10} {:>11} {:>10} {:>10}",
+        "{:>5} {:>9} {:>11} {:>14} {:>12} {:>13} {:>13} {:>11} {:>9} {:>10}",
         "est",
         "f [Hz]",
-        "stroke",
-        "ph/samp",
-        "sig_noise",
-        "sig_pist",
-        "bias_pist",
+        "stroke [um]",
+        "photons/sample",
+        "sigma_noise",
+        "sigma_piston",
+        "bias_piston",
         "scans",
-        "time [s]",
-        "sig_reach"
+        "time",
+        "sigma_reach"
     );
-    for p in &plan.points {
-        let opt =
-            |v: Option<f64>, w: usize| v.map_or(format!("{:>w$}", "-"), |x| format!("{x:>w$.3e}"));
+    for p in rows {
+        let count = p.scans_needed.map_or("-".into(), |n| format!("{n:.0}"));
+        let time = p.time_s.map_or("-".into(), human_duration);
+        let reach = p.sigma_reached.map_or("-".into(), |s| format!("{s:.2e}"));
         outln!(
-            "{:>5} {:>8.1} {:>7.0} {:>8.2} {:>10.2e} {:>10.2e} {:>+10.1e} {} {} {}",
+            "{:>5} {:>9.1} {:>11.0} {:>14.3} {:>12.2e} {:>13.2e} {:>+13.2e} {:>11} {:>9} {:>10}",
             name(p.estimator),
             p.fringe_hz,
             p.stroke_um,
@@ -335,9 +440,9 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum) -> Res
             p.sigma_noise_per_scan,
             p.sigma_piston_per_scan,
             p.bias_piston,
-            opt(p.scans_needed, 11),
-            opt(p.time_s, 10),
-            opt(p.sigma_reached, 10)
+            count,
+            time,
+            reach
         );
     }
     if plan.points.is_empty() {

@@ -9,7 +9,9 @@
 
 pub mod statistics;
 
-pub use statistics::{RunningStats, Summary};
+pub use statistics::{
+    effective_count, replicated_summary, replicated_t_quantile, RunningStats, Summary,
+};
 
 use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;

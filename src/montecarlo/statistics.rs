@@ -167,3 +167,81 @@ pub struct Summary {
     /// Standard error of the standard deviation, se(var)/(2 std).
     pub stderr_std: f64,
 }
+
+/// The [`Summary`] of values that come in `groups`, independent of each
+/// other but correlated within (the scans cut from one piston sequence):
+/// the mean, variance and standard deviation of all the values pooled, with
+/// standard errors from the spread between the groups (independent
+/// replications; the cluster-robust estimator of a ratio of sums), valid
+/// whatever the correlation inside a group.
+///
+/// With group sizes n_j, N = Σ n_j, weights w_j = n_j/N, group means m_j and
+/// the pooled mean m̄, the mean's squared error is
+/// `K/(K−1) Σ w_j² (m_j − m̄)²`; the variance's is the same form applied to
+/// q_j, the mean square deviation of group j about m̄; the standard
+/// deviation's is the variance's over 2s (delta method).
+///
+/// Fewer than two groups give NaN errors (there is no spread to measure);
+/// `count` is N. The error has K − 1 degrees of freedom: see
+/// [`replicated_t_quantile`] for intervals.
+pub fn replicated_summary(groups: &[RunningStats]) -> Summary {
+    let mut pooled = RunningStats::default();
+    for g in groups {
+        pooled.merge(g);
+    }
+    let mut summary = pooled.summary();
+    let k = groups.iter().filter(|g| g.count > 0).count();
+    let total = pooled.count as f64;
+    let (mut se2_mean, mut se2_var) = (f64::NAN, f64::NAN);
+    if k >= 2 {
+        let weight = |g: &RunningStats| g.count as f64 / total;
+        let square_dev = |g: &RunningStats| {
+            let d = g.mean - pooled.mean;
+            if g.count == 0 {
+                0.0
+            } else {
+                g.m2 / g.count as f64 + d * d
+            }
+        };
+        let q_bar: f64 = groups.iter().map(|g| weight(g) * square_dev(g)).sum();
+        let spread = |f: &dyn Fn(&RunningStats) -> f64| {
+            groups
+                .iter()
+                .map(|g| (weight(g) * f(g)).powi(2))
+                .sum::<f64>()
+                * k as f64
+                / (k as f64 - 1.0)
+        };
+        se2_mean = spread(&|g| g.mean - pooled.mean);
+        se2_var = spread(&|g| square_dev(g) - q_bar) * (total / (total - 1.0)).powi(2);
+    }
+    summary.stderr_mean = se2_mean.sqrt();
+    summary.stderr_var = se2_var.sqrt();
+    summary.stderr_std = if summary.std > 0.0 {
+        summary.stderr_var / (2.0 * summary.std)
+    } else {
+        0.0
+    };
+    summary
+}
+
+/// The effective number of independent values behind a mean: var/se², the
+/// count that independent values of the same spread would need for the
+/// same standard error (NaN when the error is unknown, +∞ when it is 0).
+pub fn effective_count(summary: &Summary) -> f64 {
+    summary.var / (summary.stderr_mean * summary.stderr_mean)
+}
+
+/// The two-sided Student-t quantile for a confidence `level` (0.5 to
+/// 0.999 999) with `groups − 1` degrees of freedom: the factor that turns a
+/// [`replicated_summary`] error into a confidence half-width. NaN below two
+/// groups.
+pub fn replicated_t_quantile(level: f64, groups: usize) -> f64 {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    if groups < 2 || !(0.5..1.0).contains(&level) {
+        return f64::NAN;
+    }
+    StudentsT::new(0.0, 1.0, (groups - 1) as f64)
+        .map(|t| t.inverse_cdf(0.5 + level / 2.0))
+        .unwrap_or(f64::NAN)
+}

@@ -42,6 +42,16 @@ pub struct PistonRow {
     pub residual_rms_um: f64,
     /// Scans simulated.
     pub scans: usize,
+    /// Independent piston sequences the scans are cut from; the standard
+    /// errors come from the spread between them (`sequences − 1` degrees of
+    /// freedom), valid however correlated consecutive scans are.
+    pub sequences: usize,
+    /// Independent scans worth the bias of V1 (variance / stderr²).
+    pub effective_scans_v1: f64,
+    /// Independent scans worth the bias of V2.
+    pub effective_scans_v2: f64,
+    /// Time spanned by each sequence in piston correlation times B/v.
+    pub span_correlation_times: f64,
     /// Seed of this frequency's stream.
     pub seed: u64,
 }
@@ -65,6 +75,10 @@ impl PistonRow {
             scan_time_s: run.scan_time_s,
             residual_rms_um: run.residual_rms_um,
             scans: run.scans,
+            sequences: run.sequences,
+            effective_scans_v1: w.v1_effective_scans,
+            effective_scans_v2: w.v2_effective_scans,
+            span_correlation_times: run.span_correlation_times,
             seed: run.seed,
         }
     }
@@ -98,8 +112,10 @@ pub struct PistonReport {
     pub spatial_freq_cpas: f64,
     /// r0 at λ0, m.
     pub r0_m: f64,
-    /// r0/v, s.
-    pub coherence_time_s: f64,
+    /// r0/v, s (the paper's coherence time).
+    pub r0_over_v_s: f64,
+    /// The usual coherence time τ0 = 0.314 r0/v, s.
+    pub tau0_s: f64,
     /// RMS differential piston, µm.
     pub piston_rms_um: f64,
     /// N.
@@ -158,7 +174,8 @@ impl PistonReport {
             baseline_m: obs.baseline_m,
             spatial_freq_cpas: obs.spatial_freq_cpas(),
             r0_m: turb.r0_m(),
-            coherence_time_s: turb.coherence_time_s(),
+            r0_over_v_s: turb.coherence_time_s(),
+            tau0_s: turb.tau0_s(),
             piston_rms_um: spectrum.rms_um(),
             samples: sampling.samples(),
             dx_um: sampling.dx_um(),

@@ -19,7 +19,9 @@ use crate::error::{Error, Result};
 use crate::formalism::estimator::{BinWindow, Pair, BIN_WINDOWS};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
-use crate::montecarlo::{derive_seed, run_units, RunningStats, Summary};
+use crate::montecarlo::{
+    derive_seed, effective_count, replicated_summary, run_units, RunningStats, Summary,
+};
 use crate::piston::calibration::{Calibration, ScanContext, Workspace};
 use crate::piston::fringe_table::MAX_OPD_UM;
 use crate::piston::scan::{fill_scan, interp, Detector, PistonReference, ScanSetup};
@@ -27,8 +29,8 @@ use crate::piston::series::{synthesize_series, MAX_SERIES};
 use crate::piston::turbulence::PistonSpectrum;
 use serde::Serialize;
 
-/// Scans per work unit in [`simulate`].
-const SCAN_BLOCK: usize = 100;
+/// Scans between two calls of the progress callback (and chances to stop).
+const PROGRESS_SCANS: usize = 100;
 
 /// Piston statistics for one window of bins.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -44,6 +46,12 @@ pub struct WindowResult {
     pub v1: Summary,
     /// V2(piston) − V2(no piston) over scans.
     pub v2: Summary,
+    /// The number of independent scans worth the bias of V1 (its variance
+    /// over its squared standard error): fewer than `scans` when
+    /// consecutive scans are correlated.
+    pub v1_effective_scans: f64,
+    /// The same for V2.
+    pub v2_effective_scans: f64,
 }
 
 /// The result of one piston Monte Carlo at one fringe frequency.
@@ -55,6 +63,10 @@ pub struct PistonRun {
     pub detector: Detector,
     /// Number of scans.
     pub scans: usize,
+    /// Number of independent piston sequences they are cut from
+    /// ([`sequence_split`]); the standard errors have one degree of freedom
+    /// fewer.
+    pub sequences: usize,
     /// Seed.
     pub seed: u64,
     /// Duration of one scan, s.
@@ -64,6 +76,10 @@ pub struct PistonRun {
     /// RMS over scans and samples of the piston left after the reference is
     /// removed, µm.
     pub residual_rms_um: f64,
+    /// The time spanned by each sequence, in piston correlation times B/v
+    /// ([`correlation_time_s`]; at least [`SPAN_CORRELATION_TIMES`] unless
+    /// the memory limit binds).
+    pub span_correlation_times: f64,
     /// One entry per window of [`BIN_WINDOWS`].
     pub windows: Vec<WindowResult>,
 }
@@ -92,22 +108,105 @@ pub struct RunSize {
 /// Checks the scan setup and that `size.scans` scans fit in one sequence.
 pub(crate) fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
     setup.validate()?;
-    let n = setup.samples;
-    if size.scans < 2 || size.scans.saturating_mul(n) > MAX_SERIES - 4 {
+    let most = max_scans(setup.samples);
+    if size.scans < 2 || size.scans > most {
         return Err(Error::OutOfRange {
             param: "scans",
             value: size.scans as f64,
-            accepted: format!("2 to {} with {n} samples per scan", (MAX_SERIES - 4) / n),
+            accepted: format!("2 to {most} with {} samples per scan", setup.samples),
         });
     }
     Ok(())
 }
 
-/// The piston sequence read by consecutive scans, and where the fringe
-/// packet sits in each.
+/// The most scans of `samples` samples one run can hold: all its
+/// sequences together have at most [`MAX_SERIES`] samples (the memory
+/// limit), each with 4 samples of margin and a scan's worth of slack.
+pub fn max_scans(samples: usize) -> usize {
+    let n = samples.max(1);
+    MAX_SERIES.saturating_sub(MAX_SEQUENCES * (n + 4)) / n
+}
+
+/// Fewest consecutive scans cut from one piston sequence.
+pub const MIN_SCANS_PER_SEQUENCE: usize = 16;
+
+/// Most independent piston sequences of one run.
+pub const MAX_SEQUENCES: usize = 16;
+
+/// How a run of `scans` scans is cut into independent piston sequences:
+/// `(sequences, scans of the longest)`. Consecutive scans through one
+/// sequence are correlated (the piston moves little from one scan to the
+/// next when the scans are short against its correlation time), so the
+/// standard errors come from the spread between independent sequences
+/// ([`crate::montecarlo::replicated_summary`]), never from the scans as if
+/// they were independent. As many sequences as there are
+/// [`MIN_SCANS_PER_SEQUENCE`] scans, at least 2 (the fewest that give an
+/// error, with one degree of freedom) and at most [`MAX_SEQUENCES`]; the scans are
+/// shared out as evenly as possible (sequence j has `scans / K` scans, one
+/// more for the first `scans % K`).
+///
+/// ```
+/// use v2ref::piston::simulation::sequence_split;
+/// assert_eq!(sequence_split(1000), (16, 63));
+/// assert_eq!(sequence_split(20), (2, 10));
+/// assert_eq!(sequence_split(100_000), (16, 6250));
+/// ```
+pub fn sequence_split(scans: usize) -> (usize, usize) {
+    let k = (scans / MIN_SCANS_PER_SEQUENCE).clamp(2.min(scans.max(1)), MAX_SEQUENCES);
+    (k, scans.div_ceil(k))
+}
+
+/// How many piston correlation times (B/v, [`correlation_time_s`]) one
+/// sequence spans at least: a sequence shorter than the piston's
+/// correlation time lacks its slow wander, and its scans see less piston
+/// than the night's (the scatter comes out low, the same for every seed).
+/// Measured on a 330 m baseline in H at 10 m/s (B/v = 33 s, 1569.5 Hz):
+/// the V1 scatter is 1.92e-3 from consecutive scans spanning 0.3 B/v,
+/// 2.28e-3 at 1 B/v, 2.44e-3 at 3 B/v and the same at 10 (±0.04e-3); 2 is
+/// the cost's compromise (the plan's piston runs grow with the span).
+pub const SPAN_CORRELATION_TIMES: f64 = 2.0;
+
+/// The differential piston's correlation time, B/v, s: below the
+/// frequency v/B the two apertures see the same slow wander and the
+/// spectrum flattens.
+pub fn correlation_time_s(spectrum: &PistonSpectrum) -> f64 {
+    spectrum.baseline_m() / spectrum.wind_mps()
+}
+
+/// Samples from one scan's start to the next within a sequence of
+/// `scans` scans: N (consecutive scans) unless that would span less than
+/// [`SPAN_CORRELATION_TIMES`] correlation times, in which case the scans are
+/// spread out over that span (the piston between them is synthesized but
+/// not scanned); within [`MAX_SERIES`] samples.
+pub fn scan_stride(spectrum: &PistonSpectrum, setup: &ScanSetup, total_scans: usize) -> usize {
+    let n = setup.samples;
+    let (sequences, scans) = sequence_split(total_scans);
+    let span_samples =
+        SPAN_CORRELATION_TIMES * correlation_time_s(spectrum) / setup.sample_time_s();
+    // L scans start L − 1 strides apart.
+    let wanted = (span_samples / scans.saturating_sub(1).max(1) as f64).ceil();
+    let most = ((MAX_SERIES / sequences).saturating_sub(n + 4) / scans.max(1)) as f64;
+    wanted.min(most).max(n as f64) as usize
+}
+
+/// The seed of independent sequence `j` of a run from `seed` (keyed by
+/// its index: sequence j is the same whatever the number of scans).
+pub fn sequence_seed(seed: u64, j: usize) -> u64 {
+    derive_seed(seed, "piston-sequence", &[j as f64])
+}
+
+/// The piston read by the scans of a run: independent sequences, each read
+/// by consecutive scans ([`sequence_split`]), and where the fringe packet
+/// sits in each scan.
 pub(crate) struct PistonSequence {
-    /// p at each sample time, µm (periodic, at least scans × N + 4 long).
-    series: Vec<f64>,
+    /// p at each sample time, µm, per sequence (each periodic, at least
+    /// its scans × N + 4 long).
+    segments: Vec<Vec<f64>>,
+    /// First scan of each sequence, and one past the last scan.
+    first_scan: Vec<usize>,
+    /// Samples from the start of one scan to the start of the next in a
+    /// sequence (≥ N: the scans are spread over the sequence's span).
+    stride: usize,
     /// N.
     samples: usize,
     /// How each scan's reference is taken.
@@ -115,66 +214,124 @@ pub(crate) struct PistonSequence {
 }
 
 impl PistonSequence {
-    /// Synthesises the sequence of `size.scans` scans of `setup` from the
+    /// Synthesises the sequences of `size.scans` scans of `setup` from the
     /// differential-piston spectrum, from `size.seed` (all its randomness).
     pub(crate) fn synthesize(
         spectrum: &PistonSpectrum,
         setup: &ScanSetup,
         size: &RunSize,
     ) -> Result<Self> {
+        let k = sequence_split(size.scans).0;
+        Self::synthesize_layout(
+            spectrum,
+            setup,
+            size,
+            (k, scan_stride(spectrum, setup, size.scans)),
+        )
+    }
+
+    /// [`synthesize`](Self::synthesize) with `k` sequences whose scans start
+    /// `stride` samples apart.
+    fn synthesize_layout(
+        spectrum: &PistonSpectrum,
+        setup: &ScanSetup,
+        size: &RunSize,
+        (k, stride): (usize, usize),
+    ) -> Result<Self> {
         let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
         let n = setup.samples;
-        let series = synthesize_series(
-            &psd,
-            setup.sample_time_s(),
-            size.scans * n + 4,
-            size.seed,
-            size.threads,
-        )?;
+        let mut first_scan = vec![0];
+        let mut segments = Vec::with_capacity(k);
+        for j in 0..k {
+            let scans = size.scans / k + usize::from(j < size.scans % k);
+            first_scan.push(first_scan[j] + scans);
+            segments.push(synthesize_series(
+                &psd,
+                setup.sample_time_s(),
+                (scans - 1) * stride + n + 4,
+                sequence_seed(size.seed, j),
+                size.threads,
+            )?);
+        }
         Ok(PistonSequence {
-            series,
+            segments,
+            first_scan,
+            stride,
             samples: n,
             reference: setup.reference,
         })
     }
 
-    /// RMS of the whole sequence, µm.
+    /// Number of independent sequences.
+    pub(crate) fn sequences(&self) -> usize {
+        self.segments.len()
+    }
+
+    /// The scans of sequence `j`.
+    pub(crate) fn scans_of(&self, j: usize) -> std::ops::Range<usize> {
+        self.first_scan[j]..self.first_scan[j + 1]
+    }
+
+    /// The index of the sequence read by scan `s`.
+    pub(crate) fn sequence_of(&self, s: usize) -> usize {
+        self.first_scan.partition_point(|&f| f <= s) - 1
+    }
+
+    /// The sequence read by scan `s`, and the scan's index in it.
+    fn locate(&self, s: usize) -> (&[f64], usize) {
+        let j = self.sequence_of(s);
+        (&self.segments[j], s - self.first_scan[j])
+    }
+
+    /// Samples spanned by the scans of the longest sequence.
+    pub(crate) fn span_samples(&self) -> usize {
+        let longest = self.scans_of(0).len();
+        (longest - 1) * self.stride + self.samples
+    }
+
+    /// RMS of all the sequences, µm.
     pub(crate) fn rms_um(&self) -> f64 {
-        let m = self.series.len() as f64;
-        (self.series.iter().map(|p| p * p).sum::<f64>() / m).sqrt()
+        let m: usize = self.segments.iter().map(Vec::len).sum();
+        let sum2: f64 = self.segments.iter().flatten().map(|p| p * p).sum();
+        (sum2 / m as f64).sqrt()
     }
 
     /// The piston removed from scan `s`, µm.
     pub(crate) fn reference_um(&self, s: usize) -> f64 {
-        let (n, base) = (self.samples, s * self.samples);
+        let (series, local) = self.locate(s);
+        let (n, base) = (self.samples, local * self.stride);
         match self.reference {
-            PistonReference::Centre => self.series[base + n / 2],
-            PistonReference::Mean => self.series[base..base + n].iter().sum::<f64>() / n as f64,
+            PistonReference::Centre => series[base + n / 2],
+            PistonReference::Mean => series[base..base + n].iter().sum::<f64>() / n as f64,
             PistonReference::Absolute => 0.0,
         }
     }
 
     /// The piston of scan `s` at τ sample intervals from its start, µm.
     pub(crate) fn at(&self, s: usize, tau: f64) -> f64 {
-        interp(&self.series, (s * self.samples) as f64 + tau)
+        let (series, local) = self.locate(s);
+        interp(series, (local * self.stride) as f64 + tau)
     }
 
-    /// Over `scans` scans: the largest |p − reference| any sub-sample can
+    /// Over all the scans: the largest |p − reference| any sub-sample can
     /// reach (the cubic reads one sample either side of the scan), and the
     /// RMS of p − reference over the samples.
-    pub(crate) fn excursion_and_residual(&self, scans: usize) -> (f64, f64) {
-        let (n, m) = (self.samples, self.series.len());
+    pub(crate) fn excursion_and_residual(&self) -> (f64, f64) {
+        let n = self.samples;
         let (mut excursion, mut resid2) = (0.0_f64, 0.0);
+        let scans = self.first_scan[self.sequences()];
         for s in 0..scans {
+            let (series, local) = self.locate(s);
+            let m = series.len();
             let r = self.reference_um(s);
             for j in 0..=n + 1 {
-                let d = self.series[(s * n + j) % m] - r;
+                let d = series[(local * self.stride + j) % m] - r;
                 excursion = excursion.max(d.abs());
                 if j < n {
                     resid2 += d * d;
                 }
             }
-            let prev = self.series[(s * n + m - 1) % m] - r;
+            let prev = series[(local * self.stride + m - 1) % m] - r;
             excursion = excursion.max(prev.abs());
         }
         (excursion, (resid2 / (scans * n) as f64).sqrt())
@@ -227,15 +384,6 @@ impl DifferenceStats {
             }
         }
     }
-
-    fn merge(&mut self, other: &DifferenceStats) {
-        for (acc, o) in self.per_detector.iter_mut().zip(&other.per_detector) {
-            for ((v1, v2), (o1, o2)) in acc.iter_mut().zip(o) {
-                v1.merge(o1);
-                v2.merge(o2);
-            }
-        }
-    }
 }
 
 /// Scan `s` of the sequence seen by every calibrated detector.
@@ -259,41 +407,44 @@ fn scan(
     ScanResult { per_detector }
 }
 
-/// All scans, in units of [`SCAN_BLOCK`] consecutive scans run in parallel
-/// and merged in unit order (deterministic whatever the thread count).
+/// All scans, one work unit per independent sequence (its consecutive
+/// scans in order), run in parallel; returns each sequence's statistics in
+/// sequence order (deterministic whatever the thread count).
 fn scan_all(
     ctx: &ScanContext,
     sequence: &PistonSequence,
     calibrations: &[Calibration],
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> DifferenceStats {
-    let units = size.scans.div_ceil(SCAN_BLOCK) as u64;
+) -> Vec<DifferenceStats> {
     // The scans draw no random numbers (all the randomness is in the
-    // sequence): the units' generators are unused, their seed is a label.
+    // sequences): the units' generators are unused, their seed is a label.
     let unit_seed = derive_seed(size.seed, "piston-scans", &[]);
-    let per_unit = run_units(unit_seed, units, size.threads, |unit, _rng| {
-        let first = unit as usize * SCAN_BLOCK;
-        let last = (first + SCAN_BLOCK).min(size.scans);
+    let units = sequence.sequences() as u64;
+    run_units(unit_seed, units, size.threads, |unit, _rng| {
         let mut ws = Workspace::new(ctx.setup.samples);
         let mut stats = DifferenceStats::new(calibrations.len());
-        for s in first..last {
+        let mut done = 0;
+        for s in sequence.scans_of(unit as usize) {
             stats.push(&scan(ctx, sequence, calibrations, s, &mut ws));
+            done += 1;
+            if done % PROGRESS_SCANS == 0 {
+                if let Some(cb) = progress {
+                    cb(PROGRESS_SCANS as u64);
+                }
+            }
         }
         if let Some(cb) = progress {
-            cb((last - first) as u64);
+            cb((done % PROGRESS_SCANS) as u64);
         }
         stats
-    });
-    let mut total = DifferenceStats::new(calibrations.len());
-    for u in &per_unit {
-        total.merge(u);
-    }
-    total
+    })
 }
 
 /// What a run reports of the sequence besides the differences.
 struct SequenceFacts {
+    sequences: usize,
+    span_correlation_times: f64,
     piston_rms_um: f64,
     residual_rms_um: f64,
 }
@@ -304,28 +455,43 @@ fn reduce(
     size: &RunSize,
     facts: &SequenceFacts,
     calibrations: &[Calibration],
-    stats: &DifferenceStats,
+    stats: &[DifferenceStats],
 ) -> Vec<PistonRun> {
     calibrations
         .iter()
-        .zip(&stats.per_detector)
-        .map(|(cal, acc)| PistonRun {
+        .enumerate()
+        .map(|(d, cal)| PistonRun {
             fringe_hz: setup.fringe_hz,
             detector: cal.detector,
             scans: size.scans,
+            sequences: facts.sequences,
             seed: size.seed,
             scan_time_s: setup.scan_time_s(),
             piston_rms_um: facts.piston_rms_um,
             residual_rms_um: facts.residual_rms_um,
+            span_correlation_times: facts.span_correlation_times,
             windows: BIN_WINDOWS
                 .iter()
-                .zip(cal.no_piston.iter().zip(acc))
-                .map(|(&window, (v0, (v1, v2)))| WindowResult {
-                    window,
-                    v1_no_piston: v0.v1_sq,
-                    v2_no_piston: v0.v2_sq,
-                    v1: v1.summary(),
-                    v2: v2.summary(),
+                .zip(&cal.no_piston)
+                .enumerate()
+                .map(|(w, (&window, v0))| {
+                    let per_sequence = |pick: fn(&(RunningStats, RunningStats)) -> RunningStats| {
+                        stats
+                            .iter()
+                            .map(|s| pick(&s.per_detector[d][w]))
+                            .collect::<Vec<_>>()
+                    };
+                    let v1 = replicated_summary(&per_sequence(|p| p.0));
+                    let v2 = replicated_summary(&per_sequence(|p| p.1));
+                    WindowResult {
+                        window,
+                        v1_no_piston: v0.v1_sq,
+                        v2_no_piston: v0.v2_sq,
+                        v1,
+                        v2,
+                        v1_effective_scans: effective_count(&v1),
+                        v2_effective_scans: effective_count(&v2),
+                    }
                 })
                 .collect(),
         })
@@ -368,14 +534,48 @@ pub fn simulate(
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Vec<PistonRun>> {
+    let sequence = |size: &RunSize| PistonSequence::synthesize(spectrum, setup, size);
+    simulate_through(obs, spectrum, setup, detectors, size, progress, &sequence)
+}
+
+/// The former method, kept as the named alternative the tests reject:
+/// `size.scans` consecutive scans of one piston sequence. Its statistics
+/// are those of the scans as if they were independent (the standard errors
+/// are NaN: one sequence has no spread to measure); where the scans are
+/// short against the piston's correlation time, those naive errors are
+/// wrong (`tests/piston_errors.rs`).
+#[doc(hidden)]
+pub fn simulate_consecutive(
+    obs: &Observation,
+    spectrum: &PistonSpectrum,
+    setup: &ScanSetup,
+    detectors: &[Detector],
+    size: &RunSize,
+) -> Result<Vec<PistonRun>> {
+    let sequence = |size: &RunSize| {
+        PistonSequence::synthesize_layout(spectrum, setup, size, (1, setup.samples))
+    };
+    simulate_through(obs, spectrum, setup, detectors, size, None, &sequence)
+}
+
+/// [`simulate`] through the sequences `make_sequence` synthesizes.
+fn simulate_through(
+    obs: &Observation,
+    spectrum: &PistonSpectrum,
+    setup: &ScanSetup,
+    detectors: &[Detector],
+    size: &RunSize,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+    make_sequence: &dyn Fn(&RunSize) -> Result<PistonSequence>,
+) -> Result<Vec<PistonRun>> {
     validate_size(setup, size)?;
     for d in detectors {
         d.sub_samples()?;
     }
     Sampling::new(setup.samples, setup.dx_um, false)?.check_aliasing(obs)?;
     crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
-    let sequence = PistonSequence::synthesize(spectrum, setup, size)?;
-    let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
+    let sequence = make_sequence(size)?;
+    let (excursion, residual_rms_um) = sequence.excursion_and_residual();
     let ctx = ScanContext::new(obs, setup, table_range_um(setup, excursion)?)?;
     let mut ws = Workspace::new(setup.samples);
     let calibrations = detectors
@@ -384,6 +584,9 @@ pub fn simulate(
         .collect::<Result<Vec<_>>>()?;
     let stats = scan_all(&ctx, &sequence, &calibrations, size, progress);
     let facts = SequenceFacts {
+        sequences: sequence.sequences(),
+        span_correlation_times: sequence.span_samples() as f64 * setup.sample_time_s()
+            / correlation_time_s(spectrum),
         piston_rms_um: sequence.rms_um(),
         residual_rms_um,
     };

@@ -139,6 +139,9 @@ pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64)
 /// let h = Turbulence::from_seeing(1.0, 1.65, 10.0, None)?;
 /// assert!((h.r0_m() / t.r0_m() - 1.65 / 2.2).abs() < 1e-12);
 /// # Ok::<(), v2ref::Error>(())
+/// τ0 / (r0/v): 0.314 = (6.88)^(-3/5) (Roddier 1981).
+pub const TAU0_PER_R0_OVER_V: f64 = 0.314;
+
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turbulence {
@@ -206,9 +209,16 @@ impl Turbulence {
     pub fn outer_scale_m(&self) -> Option<f64> {
         self.outer_scale_m
     }
-    /// Coherence time r0/v, s.
+    /// The paper's coherence time r0/v, s (the field's usual τ0 is
+    /// [`tau0_s`](Self::tau0_s)).
     pub fn coherence_time_s(&self) -> f64 {
         self.r0_m / self.wind_mps
+    }
+    /// The adaptive-optics coherence time τ0 = 0.314 r0/v, s (Roddier 1981,
+    /// Progress in Optics 19, 281: the time over which the phase structure
+    /// function stays below 1 rad² for a frozen screen moving at v).
+    pub fn tau0_s(&self) -> f64 {
+        TAU0_PER_R0_OVER_V * self.r0_m / self.wind_mps
     }
     /// The same turbulence with another wind speed.
     pub fn with_wind(&self, wind_mps: f64) -> Result<Turbulence> {

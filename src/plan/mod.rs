@@ -24,9 +24,18 @@
 //!   with a time budget T instead, `n = T/(N t_s + dead)` and the σ reached
 //!   is `sqrt(σ²_scan/n)`.
 //!
-//! Model choices, stated: scans are treated as independent (consecutive
-//! piston scans are correlated at low fringe frequency, so the time is a
-//! lower bound there); the bias is subtracted with the exact model
+//! - **honest piston terms**: the piston Monte Carlo cuts its scans from up
+//!   to 16 independent sequences, each spanning two piston correlation
+//!   times B/v ([`crate::piston::simulation::sequence_split`]); its
+//!   standard errors come from the spread between sequences, and a point
+//!   reaches the target only with the piston scatter and bias at the upper
+//!   ends of their [`CONFIDENCE`] intervals;
+//! - **a seed-stable choice**: points whose optimistic time is within the
+//!   best's stated time are equally good to the Monte Carlo's precision;
+//!   among them the plan recommends the least noise-only time
+//!   (deterministic), so the recommendation does not flip with the seed.
+//!
+//! Model choices, stated: the bias is subtracted with the exact model
 //! (`model` convention, positive bins); the piston packet is centred on the
 //! scan-mean piston.
 
@@ -35,13 +44,22 @@ pub mod photometry;
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{self, Error, Result};
 use crate::formalism::estimator::{wide_band, BinWindow};
-use crate::montecarlo::derive_seed;
+use crate::montecarlo::{derive_seed, replicated_t_quantile};
 use crate::noise::calibrated::{expectation, Trials};
 use crate::noise::Formula;
 use crate::piston::turbulence::PistonSpectrum;
 use crate::simulator::{simulate, Inputs, Model, PistonInputs};
 use rayon::prelude::*;
 use serde::Serialize;
+
+/// The confidence level of the piston terms' intervals: a point reaches
+/// the target only when it does with the piston scatter and bias at the
+/// upper ends of their two-sided 90% intervals (one-sided 95%), with the
+/// Student-t factor of the Monte Carlo's independent sequences.
+pub const CONFIDENCE: f64 = 0.90;
+
+/// One night, s (10 h): a plan longer than this is flagged.
+pub const ONE_NIGHT_S: f64 = 36_000.0;
 
 /// Fewest samples per scan a grid point may have (two fringes at four
 /// samples per fringe: fewer leave the positive window nearly empty).
@@ -92,6 +110,9 @@ pub struct PlanInputs {
     pub scans: u64,
     /// Seed of the piston Monte Carlo.
     pub seed: u64,
+    /// The 1σ uncertainty of the source's angular diameter, mas (0: known
+    /// exactly): its effect on V² is reported beside each correction.
+    pub diameter_err_mas: f64,
 }
 
 /// `count` frequencies from `lo` to `hi` Hz, evenly spaced in log.
@@ -145,10 +166,37 @@ pub struct PlanPoint {
     pub bias_piston_stderr: f64,
     /// sqrt(σ²_noise + σ²_piston).
     pub sigma_per_scan: f64,
-    /// Scans needed for the target σ (None: unreachable, |bias| ≥ target).
+    /// Independent piston sequences of the Monte Carlo (its errors have
+    /// one degree of freedom fewer).
+    pub piston_sequences: usize,
+    /// The upper end of the piston scatter's confidence interval
+    /// ([`CONFIDENCE`]): σ_piston + t·se.
+    pub sigma_piston_upper: f64,
+    /// The upper end of |piston bias|'s confidence interval.
+    pub bias_piston_upper: f64,
+    /// Scans needed for the target σ, with the piston terms at the upper
+    /// ends of their confidence intervals (None: unreachable, the bias's
+    /// upper end ≥ target).
     pub scans_needed: Option<f64>,
     /// Time for them, s.
     pub time_s: Option<f64>,
+    /// The time with the piston terms at the lower ends of their intervals,
+    /// s: the point is indistinguishable from another whose `time_s` is
+    /// above this.
+    pub time_lower_s: Option<f64>,
+    /// The time with the detector and photon noise alone, s (deterministic:
+    /// the tie-breaker between indistinguishable points).
+    pub time_noise_only_s: Option<f64>,
+    /// Whether `time_s` exceeds one night ([`ONE_NIGHT_S`]).
+    pub exceeds_one_night: bool,
+    /// |bandwidth and dispersion bias| / target σ: above 1, the user must
+    /// correct it (it is deterministic) to reach the target.
+    pub bandwidth_bias_over_target: f64,
+    /// |finite scan and detector bias| / target σ.
+    pub scan_bias_over_target: f64,
+    /// The V² error from the uncertainty of the source diameter
+    /// (`diameter_err_mas`), |dV²/dθ|·δθ at the monochromatic visibility.
+    pub v_sq_error_from_diameter: f64,
     /// σ(V²) reached in the time budget (budget mode).
     pub sigma_reached: Option<f64>,
 }
@@ -164,6 +212,12 @@ pub struct Plan {
     pub best_v2: Option<PlanPoint>,
     /// The better of the two, if any reaches the target.
     pub recommended: Option<PlanPoint>,
+    /// Why V1² has no best point (None when it has one).
+    pub no_v1_reason: Option<String>,
+    /// Why V2² has no best point.
+    pub no_v2_reason: Option<String>,
+    /// The confidence level of the piston terms' intervals ([`CONFIDENCE`]).
+    pub confidence: f64,
 }
 
 impl PlanInputs {
@@ -187,11 +241,28 @@ impl PlanInputs {
                 reason: "the grid needs at least one fringe frequency and one stroke".into(),
             });
         }
-        if self.scans < 2 {
+        self.validate_scans()?;
+        error::non_negative("diameter_err_mas", self.diameter_err_mas)?;
+        Ok(())
+    }
+
+    /// `scans` from 32 (two independent piston sequences: the fewest that
+    /// give the piston terms an error) to what the memory limit allows at
+    /// the grid's longest stroke; checked before any computation, and the
+    /// same whatever the thread count.
+    fn validate_scans(&self) -> Result<()> {
+        let dx_um = self.wavelength_um() / self.samples_per_fringe;
+        let longest = self.stroke_um.iter().fold(0.0_f64, |a, &b| a.max(b));
+        let samples = ((longest / dx_um).round() as usize).max(MIN_SAMPLES);
+        let most = crate::piston::simulation::max_scans(samples) as u64;
+        let least = 2 * crate::piston::simulation::MIN_SCANS_PER_SEQUENCE as u64;
+        if !(least..=most).contains(&self.scans) {
             return Err(Error::OutOfRange {
                 param: "scans",
                 value: self.scans as f64,
-                accepted: ">= 2".into(),
+                accepted: format!(
+                    "{least} to {most} (at the grid's longest stroke, {samples} samples per scan)"
+                ),
             });
         }
         Ok(())
@@ -277,6 +348,12 @@ fn grid_point(
         &|_| {},
     )?;
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
+    let t_factor = replicated_t_quantile(CONFIDENCE, mc_sequences(inputs.scans));
+    let target = match inputs.target {
+        Target::SigmaV2(t) => t,
+        Target::TimeBudgetS(_) => f64::NAN,
+    };
+    let diameter_error = v_sq_error_from_diameter(inputs, &noisy)?;
     let point = |estimator: Estimator| {
         let (spectral, sampled, var_noise, piston) = match estimator {
             Estimator::V1 => (wb.v1_sq, closed.mean_v1_sq, closed.var_v1_sq, &mc.v1_sq),
@@ -284,6 +361,8 @@ fn grid_point(
         };
         let var_noise = var_noise.unwrap_or(f64::NAN);
         let sigma = (var_noise + piston.var).sqrt();
+        let bias_bandwidth_dispersion = vis2 * (spectral - wb.v_mono * wb.v_mono);
+        let bias_scan_detector = sampled - vis2 * spectral;
         let mut p = PlanPoint {
             estimator,
             fringe_hz,
@@ -293,8 +372,8 @@ fn grid_point(
             photons_per_sample: noisy.inputs.photons,
             scan_time_s: noisy.samples() as f64 * t_s,
             v_mono_sq: vis2 * wb.v_mono * wb.v_mono,
-            bias_bandwidth_dispersion: vis2 * (spectral - wb.v_mono * wb.v_mono),
-            bias_scan_detector: sampled - vis2 * spectral,
+            bias_bandwidth_dispersion,
+            bias_scan_detector,
             v_sq_sampled: sampled,
             sigma_noise_per_scan: var_noise.sqrt(),
             sigma_piston_per_scan: piston.std,
@@ -302,36 +381,97 @@ fn grid_point(
             bias_piston: piston.mean - sampled,
             bias_piston_stderr: piston.stderr_mean,
             sigma_per_scan: sigma,
+            piston_sequences: mc_sequences(inputs.scans),
+            sigma_piston_upper: piston.std + t_factor * piston.stderr_std,
+            bias_piston_upper: (piston.mean - sampled).abs() + t_factor * piston.stderr_mean,
             scans_needed: None,
             time_s: None,
+            time_lower_s: None,
+            time_noise_only_s: None,
+            exceeds_one_night: false,
+            bandwidth_bias_over_target: bias_bandwidth_dispersion.abs() / target,
+            scan_bias_over_target: bias_scan_detector.abs() / target,
+            v_sq_error_from_diameter: diameter_error,
             sigma_reached: None,
         };
-        reach(&mut p, inputs);
+        let lower = Bounds {
+            sigma_piston: (piston.std - t_factor * piston.stderr_std).max(0.0),
+            bias: ((piston.mean - sampled).abs() - t_factor * piston.stderr_mean).max(0.0),
+        };
+        reach(&mut p, inputs, lower);
         p
     };
     Ok([point(Estimator::V1), point(Estimator::V2)])
 }
 
-/// Fills the scans and time (or the σ reached) of `p`.
-fn reach(p: &mut PlanPoint, inputs: &PlanInputs) {
+/// The independent piston sequences of a Monte Carlo of `scans` scans.
+fn mc_sequences(scans: u64) -> usize {
+    crate::piston::simulation::sequence_split(usize::try_from(scans).unwrap_or(usize::MAX)).0
+}
+
+/// |dV²/dθ|·δθ for a uniform disk with `diameter_err_mas` (0 otherwise),
+/// by central difference at the model's spatial frequency.
+fn v_sq_error_from_diameter(inputs: &PlanInputs, model: &Model) -> Result<f64> {
+    let err = inputs.diameter_err_mas;
+    let crate::simulator::SourceInput::Ud { diameter_mas } = inputs.instrument.source else {
+        return Ok(0.0);
+    };
+    if err == 0.0 {
+        return Ok(0.0);
+    }
+    let s_cpas = model.observation.spatial_freq_cpas();
+    let v_sq = |theta: f64| {
+        let v = crate::formalism::source::uniform_disk_visibility(theta.max(0.0), s_cpas);
+        v * v
+    };
+    let h = (err * 1e-3).min(diameter_mas * 1e-3).max(1e-9);
+    let slope = (v_sq(diameter_mas + h) - v_sq(diameter_mas - h)) / (2.0 * h);
+    let vis2 = model.inputs.visibility * model.inputs.visibility;
+    Ok((vis2 * slope * err).abs())
+}
+
+/// The lower ends of the piston terms' intervals.
+struct Bounds {
+    sigma_piston: f64,
+    bias: f64,
+}
+
+/// Scans for σ(V²) = target with per-scan σ `sigma` and bias `bias` (None:
+/// unreachable).
+fn scans_for(target: f64, sigma: f64, bias: f64) -> Option<f64> {
+    let room = target * target - bias * bias;
+    (bias < target && sigma.is_finite() && room > 0.0)
+        .then(|| (sigma * sigma / room).ceil().max(1.0))
+        .filter(|n| n.is_finite())
+}
+
+/// Fills the scans and time (or the σ reached) of `p`: with the piston
+/// terms at the upper ends of their intervals (the stated plan), at the
+/// lower ends (`time_lower_s`) and without piston (`time_noise_only_s`).
+fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
     let per_scan_s = p.scan_time_s + inputs.dead_time_s;
+    let var_noise = p.sigma_noise_per_scan * p.sigma_noise_per_scan;
+    let sigma_at = |sp: f64| (var_noise + sp * sp).sqrt();
     match inputs.target {
         Target::SigmaV2(target) => {
-            if p.bias_piston.abs() < target && p.sigma_per_scan.is_finite() {
-                // σ² of the mean plus the bias² within the target.
-                let room = target * target - p.bias_piston * p.bias_piston;
-                let n = (p.sigma_per_scan * p.sigma_per_scan / room).ceil().max(1.0);
-                p.scans_needed = Some(n);
-                p.time_s = Some(n * per_scan_s);
-            }
+            let upper = scans_for(target, sigma_at(p.sigma_piston_upper), p.bias_piston_upper);
+            p.scans_needed = upper;
+            p.time_s = upper.map(|n| n * per_scan_s);
+            p.time_lower_s =
+                scans_for(target, sigma_at(lower.sigma_piston), lower.bias).map(|n| n * per_scan_s);
+            p.time_noise_only_s =
+                scans_for(target, p.sigma_noise_per_scan, 0.0).map(|n| n * per_scan_s);
+            p.exceeds_one_night = p.time_s.is_some_and(|t| t > ONE_NIGHT_S);
         }
         Target::TimeBudgetS(budget) => {
             let n = (budget / per_scan_s).floor();
             if n >= 1.0 {
-                let s2 = p.sigma_per_scan * p.sigma_per_scan / n;
-                p.sigma_reached = Some((s2 + p.bias_piston * p.bias_piston).sqrt());
+                let sigma = sigma_at(p.sigma_piston_upper);
+                let s2 = sigma * sigma / n;
+                p.sigma_reached = Some((s2 + p.bias_piston_upper * p.bias_piston_upper).sqrt());
                 p.scans_needed = Some(n);
                 p.time_s = Some(n * per_scan_s);
+                p.exceeds_one_night = n * per_scan_s > ONE_NIGHT_S;
             }
         }
     }
@@ -343,13 +483,41 @@ fn merit(p: &PlanPoint) -> Option<f64> {
     p.sigma_reached.or(p.time_s).filter(|v| v.is_finite())
 }
 
-fn best(points: &[PlanPoint], e: Estimator) -> Option<PlanPoint> {
+/// The point's merit at the lower ends of the piston intervals (the best
+/// it could be): the lower time, or the σ reached (budget mode, where the
+/// plan's own value is used).
+fn merit_lower(p: &PlanPoint) -> Option<f64> {
+    p.sigma_reached.or(p.time_lower_s).filter(|v| v.is_finite())
+}
+
+/// The recommended point among `points`: the least merit is known only to
+/// the Monte Carlo's precision, so every point whose optimistic merit
+/// ([`merit_lower`]) is within the best's stated merit is equally good;
+/// among those the one with the least noise-only time (deterministic),
+/// then the lowest fringe frequency and stroke. The choice then does not
+/// flip with the seed where two settings are within the noise.
+fn choose<'a>(points: impl Iterator<Item = &'a PlanPoint> + Clone) -> Option<PlanPoint> {
+    let best = points.clone().filter_map(merit).min_by(f64::total_cmp)?;
     points
-        .iter()
-        .filter(|p| p.estimator == e)
-        .filter_map(|p| merit(p).map(|m| (m, *p)))
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, p)| p)
+        .filter(|p| merit(p).is_some() && merit_lower(p).is_some_and(|m| m <= best))
+        .min_by(|a, b| {
+            let key = |p: &PlanPoint| {
+                (
+                    p.time_noise_only_s.unwrap_or(f64::INFINITY),
+                    p.fringe_hz,
+                    p.stroke_um,
+                )
+            };
+            let (ka, kb) = (key(a), key(b));
+            ka.0.total_cmp(&kb.0)
+                .then(ka.1.total_cmp(&kb.1))
+                .then(ka.2.total_cmp(&kb.2))
+        })
+        .copied()
+}
+
+fn best(points: &[PlanPoint], e: Estimator) -> Option<PlanPoint> {
+    choose(points.iter().filter(|p| p.estimator == e))
 }
 
 /// Plans over the grid of `inputs`, on `threads` threads (0: all); the
@@ -374,16 +542,70 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     })?;
     let points: Vec<PlanPoint> = points.into_iter().flatten().collect();
     let (best_v1, best_v2) = (best(&points, Estimator::V1), best(&points, Estimator::V2));
-    let recommended = [best_v1, best_v2]
-        .into_iter()
-        .flatten()
-        .filter_map(|p| merit(&p).map(|m| (m, p)))
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, p)| p);
-    Ok(Plan {
+    let bests: Vec<PlanPoint> = [best_v1, best_v2].into_iter().flatten().collect();
+    let recommended = choose(bests.iter());
+    let mut plan = Plan {
         points,
         best_v1,
         best_v2,
         recommended,
-    })
+        no_v1_reason: None,
+        no_v2_reason: None,
+        confidence: CONFIDENCE,
+    };
+    plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);
+    plan.no_v2_reason = no_recommendation_reason(&plan, Estimator::V2);
+    Ok(plan)
+}
+
+/// A duration in the unit a person reads it in: seconds below two minutes,
+/// minutes below two hours, hours below two days, days beyond, with three
+/// significant figures.
+///
+/// ```
+/// use v2ref::plan::human_duration;
+/// assert_eq!(human_duration(42.0), "42.0 s");
+/// assert_eq!(human_duration(1_168_782.9), "13.5 d");
+/// assert_eq!(human_duration(5400.0), "90.0 min");
+/// ```
+pub fn human_duration(seconds: f64) -> String {
+    let (value, unit) = match seconds {
+        s if s < 120.0 => (s, "s"),
+        s if s < 7200.0 => (s / 60.0, "min"),
+        s if s < 172_800.0 => (s / 3600.0, "h"),
+        s => (s / 86_400.0, "d"),
+    };
+    let decimals = if value >= 100.0 {
+        0
+    } else if value >= 10.0 {
+        1
+    } else {
+        2
+    };
+    let decimals = if unit == "s" && value < 100.0 {
+        1
+    } else {
+        decimals
+    };
+    format!("{value:.decimals$} {unit}")
+}
+
+/// Why an estimator has no recommended point, in one line (None when it
+/// has one).
+pub fn no_recommendation_reason(plan: &Plan, e: Estimator) -> Option<String> {
+    let best = match e {
+        Estimator::V1 => plan.best_v1,
+        Estimator::V2 => plan.best_v2,
+    };
+    if best.is_some() {
+        return None;
+    }
+    let ours = || plan.points.iter().filter(|p| p.estimator == e);
+    let least_bias = ours()
+        .map(|p| p.bias_piston_upper)
+        .fold(f64::INFINITY, f64::min);
+    Some(format!(
+        "no setting of the grid reaches the target: the piston bias (upper end of its {:.0}% interval) is at least {least_bias:.2e} everywhere",
+        CONFIDENCE * 100.0
+    ))
 }

@@ -638,7 +638,7 @@ fn score(
 /// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
 /// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0))]
 #[allow(clippy::too_many_arguments)]
 fn plan(
     py: Python<'_>,
@@ -653,6 +653,7 @@ fn plan(
     scans: u64,
     seed: u64,
     threads: usize,
+    diameter_err_mas: f64,
 ) -> PyResult<String> {
     use crate::plan::{default_grid, PlanInputs, Target};
     let p = Physical::from_dict(physical)?;
@@ -698,6 +699,7 @@ fn plan(
         target,
         scans,
         seed,
+        diameter_err_mas,
     };
     let result = interruptible(py, |tick| crate::plan::plan(&inputs, threads, tick))?;
     #[derive(serde::Serialize)]

@@ -130,7 +130,7 @@ impl Model {
         };
         validate_size(&setup, &size)?;
         let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
-        let (excursion, residual_rms_um) = sequence.excursion_and_residual(size.scans);
+        let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
             sequence,
@@ -172,6 +172,19 @@ impl Rows<'_> {
     /// Rows in unit `u`.
     pub fn unit_rows(&self, u: u64) -> u64 {
         (self.rows - u * ROWS_PER_UNIT).min(ROWS_PER_UNIT)
+    }
+
+    /// Independent piston sequences the rows are cut from (1 without
+    /// piston: the rows are then independent of each other).
+    pub fn sequences(&self) -> usize {
+        self.piston.as_ref().map_or(1, |p| p.sequence.sequences())
+    }
+
+    /// The piston sequence row `s` reads (0 without piston).
+    pub fn sequence_of(&self, s: u64) -> usize {
+        self.piston
+            .as_ref()
+            .map_or(0, |p| p.sequence.sequence_of(s as usize))
     }
 
     /// The piston of the set, if any.
@@ -256,13 +269,13 @@ impl Rows<'_> {
     pub fn fold_units<T: Send>(
         &self,
         threads: usize,
-        work: impl Fn(&[f64]) -> T + Sync + Send,
+        work: impl Fn(u64, &[f64]) -> T + Sync + Send,
         merge: impl FnMut(T) + Send,
     ) {
         let unit = |u, rng: &mut Rng| {
             let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
             self.fill_unit(u, rng, &mut rows);
-            work(&rows)
+            work(u * ROWS_PER_UNIT, &rows)
         };
         fold_units(self.seed, 0..self.units(), threads, unit, merge);
     }

@@ -10,7 +10,7 @@
 use crate::conformance::estimate::{BiasConvention, RowEstimator};
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
-use crate::montecarlo::{RunningStats, Summary};
+use crate::montecarlo::{replicated_summary, RunningStats, Summary};
 use crate::noise::calibrated::{calibrated_run, expectation, CalibratedExpectation, Trials};
 use crate::noise::Formula;
 use crate::simulator::rows::{PistonFacts, Rows};
@@ -138,32 +138,45 @@ fn reduce_rows(
     let piston_free = est.estimate(&rows.piston_free_row());
     let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
     let n = rows.samples();
-    let mut total = UnitStats::default();
-    let work = |block: &[f64]| {
-        let mut s = UnitStats::default();
-        for row in block.chunks_exact(n) {
+    // One accumulator per piston sequence: the rows of one sequence are
+    // correlated, so the errors come from the spread between sequences.
+    let mut total = vec![UnitStats::default(); rows.sequences()];
+    let work = |first_row: u64, block: &[f64]| {
+        let mut s = vec![UnitStats::default(); rows.sequences()];
+        for (i, row) in block.chunks_exact(n).enumerate() {
+            let acc = &mut s[rows.sequence_of(first_row + i as u64)];
             let e = est.estimate(row);
-            s.v1_sq.push(e.v1_sq);
-            s.v2_sq.push(e.v2_sq);
-            s.v1.push(e.v1_sq.sqrt() - v0.0);
-            s.v2.push(e.v2_sq.sqrt() - v0.1);
+            acc.v1_sq.push(e.v1_sq);
+            acc.v2_sq.push(e.v2_sq);
+            acc.v1.push(e.v1_sq.sqrt() - v0.0);
+            acc.v2.push(e.v2_sq.sqrt() - v0.1);
         }
         progress((block.len() / n) as u64);
         s
     };
-    rows.fold_units(threads, work, |p: UnitStats| {
-        total.v1_sq.merge(&p.v1_sq);
-        total.v2_sq.merge(&p.v2_sq);
-        total.v1.merge(&p.v1);
-        total.v2.merge(&p.v2);
+    rows.fold_units(threads, work, |p: Vec<UnitStats>| {
+        for (t, p) in total.iter_mut().zip(&p) {
+            t.v1_sq.merge(&p.v1_sq);
+            t.v2_sq.merge(&p.v2_sq);
+            t.v1.merge(&p.v1);
+            t.v2.merge(&p.v2);
+        }
     });
+    let summary = |pick: fn(&UnitStats) -> RunningStats| {
+        let groups: Vec<RunningStats> = total.iter().map(pick).collect();
+        if groups.len() > 1 {
+            replicated_summary(&groups)
+        } else {
+            groups[0].summary()
+        }
+    };
     let effect = (noiseless && rows.piston_facts().is_some()).then(|| PistonEffect {
         v1_no_piston: v0.0,
         v2_no_piston: v0.1,
-        v1: total.v1.summary(),
-        v2: total.v2.summary(),
+        v1: summary(|s| s.v1),
+        v2: summary(|s| s.v2),
     });
-    (total.v1_sq.summary(), total.v2_sq.summary(), effect)
+    (summary(|s| s.v1_sq), summary(|s| s.v2_sq), effect)
 }
 
 fn rows_noisy(rows: &Rows) -> bool {
