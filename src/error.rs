@@ -147,7 +147,7 @@ impl Error {
             Error::Aliasing { dx_um, max_dx_um } => format!(
                 "{} um aliases the band; accepted: 0 < spacing < {} um (half the shortest wavelength)",
                 number(*dx_um),
-                number(*max_dx_um)
+                significant(*max_dx_um)
             ),
             Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
             Error::Output { path, reason } => format!("{path}: {reason}"),
@@ -269,6 +269,21 @@ pub fn number(value: f64) -> String {
         format!("{value:e}")
     } else {
         format!("{value}")
+    }
+}
+
+/// A computed bound at the precision a reader needs: six significant
+/// figures, trailing zeros dropped (`0.3375`, not `0.33749999999999997`).
+pub fn significant(value: f64) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return number(value);
+    }
+    let digits = (5 - value.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{value:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
     }
 }
 

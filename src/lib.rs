@@ -106,6 +106,7 @@
 
 pub mod bias;
 pub mod bounds;
+pub mod cleanup;
 pub mod conformance;
 pub mod error;
 pub mod formalism;

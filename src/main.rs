@@ -10,7 +10,7 @@ use std::process::ExitCode;
 /// Squared-visibility estimators V1² and V2² of Perrin & Ridgway: biases,
 /// variances, SNR and Monte Carlo.
 #[derive(Parser)]
-#[command(name = "v2ref", version, about, long_about = None)]
+#[command(name = "v2ref", version, about, long_about = None, arg_required_else_help = true)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -42,7 +42,17 @@ enum Command {
     Score(cli::score::Args),
 }
 
+/// Exit status after an interrupt (128 + SIGINT).
+const EXIT_INTERRUPTED: i32 = 130;
+
 fn main() -> ExitCode {
+    // Ctrl-C stops any computation at once: the temporaries of the atomic
+    // writers are removed (what was there before stays), status 130.
+    let _ = ctrlc::set_handler(|| {
+        v2ref::cleanup::remove_all();
+        cli::output::write_stderr_line(format_args!("interrupted"));
+        std::process::exit(EXIT_INTERRUPTED);
+    });
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => return cli::clap_error(e),

@@ -371,3 +371,70 @@ fn json_answers_echo_their_inputs() {
     let (_, _, err) = v2ref(&["piston", "--quiet", "--baseline-m", "10", "--scans", "4"]);
     assert!(!err.contains("warning"), "no warning on 10 m: {err}");
 }
+
+/// A bare `v2ref` prints the usage and the list of commands, status 2.
+#[test]
+fn bare_command_prints_usage_and_commands() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("Usage:"), "{err}");
+    for command in ["bias", "plan", "synth", "estimate", "score"] {
+        assert!(err.contains(command), "{command} missing from: {err}");
+    }
+    assert!(err.contains("help"), "{err}");
+}
+
+/// Ctrl-C stops a long run at once with status 130 and leaves no
+/// temporary behind (a synth set of 6.4e8 values being written).
+#[test]
+fn ctrl_c_stops_at_once_and_leaves_nothing() {
+    use std::process::{Command, Stdio};
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("set");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args([
+            "synth",
+            "--rows",
+            "10000000",
+            "--samples",
+            "64",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(800));
+    let sent = Instant::now();
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            sent.elapsed() < Duration::from_secs(5),
+            "still running 5 s after Ctrl-C"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert_eq!(status.code(), Some(130));
+    // The promise is one second; 3 s leaves room for a loaded machine's
+    // scheduler (measured: under 50 ms).
+    assert!(
+        sent.elapsed() < Duration::from_secs(3),
+        "{:?}",
+        sent.elapsed()
+    );
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}

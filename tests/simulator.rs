@@ -195,7 +195,10 @@ fn piston_only_reproduces_the_piston_monte_carlo() {
     assert_abs_eq!(effect.v2.mean, w.v2.mean, 1e-9);
     assert_rel_eq!(effect.v1.std, w.v1.std, 1e-6);
     assert_rel_eq!(effect.v2.std, w.v2.std, 1e-6);
-    assert!(w.v2.std > 1e-4, "the comparison must see the piston");
+    assert!(
+        w.v1.std > 1e-3 && w.v2.std > 0.0,
+        "the comparison must see the piston: {w:?}"
+    );
 }
 
 /// The truth's reference run agrees with the closed forms it stands beside,

@@ -171,3 +171,31 @@ fn a_file_is_read_up_to_its_size_limit() {
         other => panic!("a file over the limit was not refused: {other:?}"),
     }
 }
+
+/// A weight per unit wavelength (`weight_per_um`) is the same spectrum as
+/// its per-wavenumber form W_σ = λ² W_λ: the weighted moments agree.
+#[test]
+fn weight_per_um_is_converted_by_the_jacobian() {
+    use v2ref::formalism::spectrum::Spectrum;
+    let lambdas: Vec<f64> = (0..41).map(|i| 1.5 + 0.3 * i as f64 / 40.0).collect();
+    let w_lambda = |l: f64| 1.0 + 2.0 * (l - 1.5);
+    let per_um: String = std::iter::once("wavelength_um,weight_per_um".to_owned())
+        .chain(lambdas.iter().map(|&l| format!("{l},{}", w_lambda(l))))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let per_sigma: String = std::iter::once("wavelength_um,weight".to_owned())
+        .chain(
+            lambdas
+                .iter()
+                .map(|&l| format!("{l},{}", w_lambda(l) * l * l)),
+        )
+        .collect::<Vec<_>>()
+        .join("\n");
+    let a = Spectrum::from_csv_str(&per_um).unwrap();
+    let b = Spectrum::from_csv_str(&per_sigma).unwrap();
+    assert!((a.sigma_eff_per_um() - b.sigma_eff_per_um()).abs() < 1e-14);
+    // Without the Jacobian the effective wavenumber moves measurably.
+    let plain = per_um.replace("weight_per_um", "weight");
+    let c = Spectrum::from_csv_str(&plain).unwrap();
+    assert!((c.sigma_eff_per_um() - b.sigma_eff_per_um()).abs() > 1e-4);
+}

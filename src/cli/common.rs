@@ -33,13 +33,16 @@ pub struct ObservationArgs {
     /// fringe and of the seeing: give the spectrum's centre.
     #[arg(long, default_value = "2.2", value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
-    /// Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]): 1e-12 λ0
-    /// to under 2 λ0.
+    /// Full bandwidth Δλ, nm: the band [λ0 − Δλ/2, λ0 + Δλ/2], flat per
+    /// unit wavenumber σ = 1/λ (not per unit wavelength: W(σ) is constant
+    /// between 1/(λ0 + Δλ/2) and 1/(λ0 − Δλ/2)); 1e-12 λ0 to under 2 λ0.
     #[arg(long, default_value = "400", value_parser = finite_f64, allow_negative_numbers = true)]
     pub bandwidth_nm: f64,
     /// A tabulated S(σ)F(σ) instead of the flat band: CSV with header
-    /// `wavelength_um,weight` or `wavenumber_per_um,weight` (a leading
-    /// byte-order mark is fine; at most 100000 rows, 16 MiB).
+    /// `wavelength_um,weight` or `wavenumber_per_um,weight`, the weight per
+    /// unit wavenumber (`weight_per_wavenumber` says so explicitly;
+    /// `weight_per_um` is per unit wavelength and is converted by λ²); a
+    /// leading byte-order mark is fine; at most 100000 rows, 16 MiB.
     #[arg(long, value_name = "FILE")]
     pub spectrum_csv: Option<PathBuf>,
     /// Source model.

@@ -648,6 +648,7 @@ impl TempTarget {
                 .open(&temp)
             {
                 Ok(f) => {
+                    v2ref::cleanup::register(&temp);
                     return Ok((
                         TempTarget {
                             target: target.to_path_buf(),
@@ -656,7 +657,7 @@ impl TempTarget {
                             done: false,
                         },
                         f,
-                    ))
+                    ));
                 }
                 Err(e) if e.kind() == io::ErrorKind::AlreadyExists && k < 1000 => k += 1,
                 Err(e) => return Err(Error::file(param, target, e)),
@@ -671,6 +672,7 @@ impl TempTarget {
     /// Renames the temporary file onto the target.
     fn persist(mut self) -> Result<()> {
         std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
+        v2ref::cleanup::unregister(&self.temp);
         self.done = true;
         Ok(())
     }
@@ -680,6 +682,7 @@ impl Drop for TempTarget {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.temp);
+            v2ref::cleanup::unregister(&self.temp);
         }
     }
 }

@@ -88,6 +88,12 @@ pub fn clap_error(e: clap::Error) -> ExitCode {
             outln!("{}", e.render().to_string().trim_end());
             ExitCode::SUCCESS
         }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // A bare `v2ref`: the usage and the list of commands, on stderr
+            // (it is not the answer to a request), status 2.
+            errln!("{}", e.render().to_string().trim_end());
+            ExitCode::from(EXIT_BAD_INPUT)
+        }
         _ => {
             errln!("{}", first_paragraph(&e.to_string()));
             ExitCode::from(EXIT_BAD_INPUT)

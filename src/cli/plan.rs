@@ -32,9 +32,10 @@ pub struct Args {
     /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
     photon_rate_per_s: f64,
-    /// Instead of --photon-rate-per-s: the source's 2MASS magnitude in
-    /// --magnitude-band (zero points of Cohen, Wheaton & Megeath 2003,
-    /// AJ 126, 1090), converted over the flat band --wavelength-um,
+    /// Instead of --photon-rate-per-s: the source's magnitude in
+    /// --magnitude-band (2MASS J, H, Ks: zero points of Cohen, Wheaton &
+    /// Megeath 2003, AJ 126, 1090; Johnson–Cousins V, R, I: Bessell,
+    /// Castelli & Plez 1998, A&A 333, 231), converted over the flat band --wavelength-um,
     /// --bandwidth-nm, collected by two apertures --aperture-m, times
     /// --throughput. From -10 to 30.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true,
@@ -107,7 +108,8 @@ pub struct Args {
     all: bool,
 }
 
-/// A 2MASS band (`--magnitude-band`).
+/// The band of `--magnitude`: 2MASS (Cohen et al. 2003) or Johnson–Cousins
+/// (Bessell et al. 1998). It must cover the observing band.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 enum MagnitudeBand {
     /// J, 1.235 µm, 1594 Jy.
@@ -116,6 +118,12 @@ enum MagnitudeBand {
     H,
     /// Ks, 2.159 µm, 666.7 Jy.
     Ks,
+    /// Johnson V, 0.545 µm, 3640 Jy.
+    V,
+    /// Cousins R, 0.641 µm, 3080 Jy.
+    R,
+    /// Cousins I, 0.798 µm, 2550 Jy.
+    I,
 }
 
 impl From<MagnitudeBand> for Band2Mass {
@@ -124,6 +132,9 @@ impl From<MagnitudeBand> for Band2Mass {
             MagnitudeBand::J => Band2Mass::J,
             MagnitudeBand::H => Band2Mass::H,
             MagnitudeBand::Ks => Band2Mass::Ks,
+            MagnitudeBand::V => Band2Mass::V,
+            MagnitudeBand::R => Band2Mass::R,
+            MagnitudeBand::I => Band2Mass::I,
         }
     }
 }
@@ -163,7 +174,14 @@ fn photometry(args: &Args) -> Result<Option<Photometry>> {
         isophotal_wavelength_um: m.band.isophotal_wavelength_um(),
         collecting_area_m2: m.collecting_area_m2(),
         photon_rate_per_s: rate,
-        reference: "Cohen, Wheaton & Megeath (2003), AJ 126, 1090, Table 2",
+        reference: match m.band {
+            Band2Mass::J | Band2Mass::H | Band2Mass::Ks => {
+                "Cohen, Wheaton & Megeath (2003), AJ 126, 1090, Table 2"
+            }
+            Band2Mass::V | Band2Mass::R | Band2Mass::I => {
+                "Bessell, Castelli & Plez (1998), A&A 333, 231, Table A2"
+            }
+        },
     }))
 }
 

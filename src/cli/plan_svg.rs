@@ -89,6 +89,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .x_desc("fringe frequency [Hz]")
             .x_label_formatter(&|f| format!("{f:.0}"))
             .y_desc("σ(V²) of the averaged measurement")
+            .y_label_formatter(&|v| tick_label(*v))
             .light_line_style(WHITE)
             .draw()
             .map_err(|e| fail(path, e))?;
@@ -132,4 +133,17 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
         root.present().map_err(|e| fail(path, e))?;
     }
     super::files::write_text_atomic(path, &svg)
+}
+
+/// A log-axis tick at the precision it carries: three significant figures
+/// at most, trailing zeros dropped (`9e-3`, not `0.009000000000000001`).
+fn tick_label(v: f64) -> String {
+    let s = format!("{v:.2e}");
+    match s.split_once('e') {
+        Some((mantissa, exp)) => {
+            let m = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{m}e{exp}")
+        }
+        None => s,
+    }
 }

@@ -247,7 +247,8 @@ impl Spectrum {
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
         // Spreadsheets start their CSV with a UTF-8 byte-order mark.
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let mut axis: Option<bool> = None; // Some(true): wavelength
+        // Some((wavelength axis, weight per unit wavelength)).
+        let mut axis: Option<(bool, bool)> = None;
         let (mut xs, mut ws) = (Vec::new(), Vec::new());
         for (n, raw) in text.lines().enumerate() {
             let line = raw.trim();
@@ -273,12 +274,18 @@ impl Spectrum {
                 ws.push(w);
             }
         }
-        let Some(is_wavelength) = axis else {
+        let Some((is_wavelength, per_wavelength)) = axis else {
             return Err(Error::SpectrumTable {
                 reason: "no header: expected 'wavelength_um,weight' or 'wavenumber_per_um,weight'"
                     .into(),
             });
         };
+        if per_wavelength {
+            // W_σ dσ = W_λ dλ with |dλ/dσ| = λ² = 1/σ².
+            for (w, &x) in ws.iter_mut().zip(&xs) {
+                *w *= if is_wavelength { x * x } else { 1.0 / (x * x) };
+            }
+        }
         if is_wavelength {
             // Increasing wavelength is decreasing wavenumber.
             xs = xs.iter().rev().map(|l| 1.0 / l).collect();
@@ -289,9 +296,12 @@ impl Spectrum {
 
     /// Reads a tabulated spectrum from a CSV file: `#` comments, then the
     /// header `wavelength_um,weight` or `wavenumber_per_um,weight`, then rows
-    /// with the axis strictly increasing. `weight` is S(σ)F(σ) at that point
-    /// (the photon spectrum per unit wavenumber times the transmission, any
-    /// scale); it is interpolated linearly in wavenumber. A leading UTF-8
+    /// with the axis strictly increasing. `weight` (also spelled
+    /// `weight_per_wavenumber`) is S(σ)F(σ) at that point (the photon
+    /// spectrum per unit wavenumber times the transmission, any scale);
+    /// `weight_per_um` is the same per unit wavelength, converted by the
+    /// Jacobian λ² (W_σ = λ² W_λ). It is interpolated linearly in
+    /// wavenumber. A leading UTF-8
     /// byte-order mark is skipped. At most [`MAX_SPECTRUM_CSV_BYTES`] bytes
     /// and [`MAX_SPECTRUM_ROWS`] rows; a refusal names the file.
     pub fn from_csv_path(path: &Path) -> Result<Spectrum> {
@@ -539,9 +549,11 @@ impl Spectrum {
     }
 }
 
-/// The CSV header's two cells: `true` for `wavelength_um,weight`, `false`
-/// for `wavenumber_per_um,weight`.
-fn csv_header(cells: &[&str]) -> std::result::Result<bool, String> {
+/// The CSV header's two cells: (wavelength axis, weight per unit
+/// wavelength): `wavelength_um` or `wavenumber_per_um`, then `weight` or
+/// `weight_per_wavenumber` (per unit wavenumber) or `weight_per_um` (per
+/// unit wavelength).
+fn csv_header(cells: &[&str]) -> std::result::Result<(bool, bool), String> {
     let is_wavelength = match cells[0] {
         "wavelength_um" => true,
         "wavenumber_per_um" => false,
@@ -551,13 +563,16 @@ fn csv_header(cells: &[&str]) -> std::result::Result<bool, String> {
             ))
         }
     };
-    if cells[1] != "weight" {
-        return Err(format!(
-            "header '{}': the second column must be weight",
-            cells[1]
-        ));
-    }
-    Ok(is_wavelength)
+    let per_wavelength = match cells[1] {
+        "weight" | "weight_per_wavenumber" => false,
+        "weight_per_um" => true,
+        other => {
+            return Err(format!(
+                "header '{other}': the second column must be weight (per unit wavenumber), weight_per_wavenumber or weight_per_um (per unit wavelength)"
+            ))
+        }
+    };
+    Ok((is_wavelength, per_wavelength))
 }
 
 /// One CSV data row: the axis value (> 0, above `prev`) and the weight (≥ 0).

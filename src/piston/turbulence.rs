@@ -125,6 +125,9 @@ pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64)
     Ok(seeing_arcsec * (to_um / from_um).powf(-0.2))
 }
 
+/// τ0 / (r0/v): 0.314 = (6.88)^(-3/5) (Roddier 1981).
+pub const TAU0_PER_R0_OVER_V: f64 = 0.314;
+
 /// The turbulent atmosphere above the interferometer, at the observing
 /// wavelength.
 ///
@@ -139,9 +142,6 @@ pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64)
 /// let h = Turbulence::from_seeing(1.0, 1.65, 10.0, None)?;
 /// assert!((h.r0_m() / t.r0_m() - 1.65 / 2.2).abs() < 1e-12);
 /// # Ok::<(), v2ref::Error>(())
-/// τ0 / (r0/v): 0.314 = (6.88)^(-3/5) (Roddier 1981).
-pub const TAU0_PER_R0_OVER_V: f64 = 0.314;
-
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turbulence {

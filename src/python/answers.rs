@@ -727,7 +727,7 @@ fn photon_rate(
     bandwidth_nm: f64,
 ) -> PyResult<f64> {
     use crate::plan::photometry::{Band2Mass, Magnitude};
-    let band: Band2Mass = ok(parse_enum("band", band, &["J", "H", "Ks"]))?;
+    let band: Band2Mass = ok(parse_enum("band", band, &["J", "H", "Ks", "V", "R", "I"]))?;
     let m = Magnitude {
         magnitude,
         band,

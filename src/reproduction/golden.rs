@@ -244,6 +244,7 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
     let tmp = parent.join(format!(".{stem}.tmp-{pid}"));
     let old = parent.join(format!(".{stem}.old-{pid}"));
     let _ = std::fs::remove_dir_all(&tmp);
+    crate::cleanup::register(&tmp);
     let filled = std::fs::create_dir_all(&tmp)
         .map_err(|e| io(&tmp, e))
         .and_then(|()| fill(&tmp));
@@ -251,6 +252,7 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
         Ok(v) => v,
         Err(e) => {
             let _ = std::fs::remove_dir_all(&tmp);
+            crate::cleanup::unregister(&tmp);
             return Err(e);
         }
     };
@@ -261,8 +263,10 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
         // Put the old data back.
         let _ = std::fs::rename(&old, dir);
         let _ = std::fs::remove_dir_all(&tmp);
+        crate::cleanup::unregister(&tmp);
         return Err(io(dir, e));
     }
+    crate::cleanup::unregister(&tmp);
     let _ = std::fs::remove_dir_all(&old);
     Ok(value)
 }

@@ -1,0 +1,58 @@
+//! Temporaries in flight: the files and folders an atomic writer has made
+//! and not yet renamed onto their target. An interrupt handler (the CLI's
+//! Ctrl-C) removes them before the process exits, so that an interrupted
+//! run leaves no partial output behind, only what was there before.
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+static IN_FLIGHT: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Records `path` as a temporary in flight.
+pub fn register(path: &Path) {
+    if let Ok(mut v) = IN_FLIGHT.lock() {
+        v.push(path.to_path_buf());
+    }
+}
+
+/// Forgets `path` (renamed onto its target, or removed).
+pub fn unregister(path: &Path) {
+    if let Ok(mut v) = IN_FLIGHT.lock() {
+        v.retain(|p| p != path);
+    }
+}
+
+/// Removes every temporary in flight (files and folders); returns how many.
+pub fn remove_all() -> usize {
+    let Ok(mut v) = IN_FLIGHT.lock() else {
+        return 0;
+    };
+    let n = v.len();
+    for p in v.drain(..) {
+        if p.is_dir() {
+            let _ = std::fs::remove_dir_all(&p);
+        } else {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn removes_what_is_registered_and_only_that() {
+        let dir = std::env::temp_dir().join(format!("v2ref-cleanup-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (a, b, kept) = (dir.join("a.tmp"), dir.join("b.tmp"), dir.join("kept"));
+        for p in [&a, &b, &kept] {
+            std::fs::write(p, "x").unwrap();
+        }
+        super::register(&a);
+        super::register(&b);
+        super::unregister(&b);
+        assert_eq!(super::remove_all(), 1);
+        assert!(!a.exists() && b.exists() && kept.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
