@@ -76,8 +76,8 @@ pub struct Args {
     /// Strokes of the grid, µm (repeatable) [default: 16, 32, 64, 128].
     #[arg(long = "stroke-um", value_parser = finite_f64, allow_negative_numbers = true)]
     stroke_um: Vec<f64>,
-    /// Scans of each piston Monte Carlo, 32 to about 1e6 (the limit at the
-    /// grid's longest stroke is checked first): cut into up to 16
+    /// Scans of each piston Monte Carlo, 32 to 2^24 / (samples per scan at
+    /// the grid's longest stroke), checked before computing: cut into up to 16
     /// independent piston sequences spanning two correlation times B/v
     /// each, whose spread gives the standard errors. The cost is mostly the
     /// sequences (fixed), so many scans cost little and pin down the piston

@@ -69,7 +69,7 @@ pub struct PlotHint {
     /// Decades of room below the data on a logarithmic ordinate (for the
     /// inset and the legend).
     pub log_y_room_below: f64,
-    /// Panel height, pixels (default: that of [`SIZE`]).
+    /// Panel height, pixels (default: 560, the figures' standard height).
     pub height_px: Option<u32>,
 }
 

@@ -362,7 +362,7 @@ def test_photon_rate_equals_the_cli_plan_and_the_hand_value():
     # 1024 Jy * 10**-2 / h * ln(1.8/1.5) * 2 pi 1.8**2/4 * 0.01, by hand.
     assert abs(rate / 1.433992352e6 - 1) < 1e-9
     out = json.loads(cli("plan", "--json", "--quiet", "--wavelength-um", "1.65", "--bandwidth-nm", "300",
-                         "--fringe-hz", "500", "--stroke-um", "32", "--scans", "20", "--magnitude", "5",
+                         "--fringe-hz", "500", "--stroke-um", "32", "--scans", "32", "--magnitude", "5",
                          "--magnitude-band", "h", "--throughput", "0.01", "--aperture-m", "1.8"))
     assert out["photometry"]["photon_rate_per_s"] == rate
     with pytest.raises(ValueError, match="throughput"):
@@ -594,3 +594,26 @@ def test_plan_matches_the_cli():
     assert mine == json.loads(out)
     with pytest.raises(ValueError, match="photon_rate_per_s"):
         v2ref.plan(photon_rate_per_s=-1.0, fringe_hz=[100.0], stroke_um=[32.0])
+
+
+def test_visible_magnitudes_and_band_coverage():
+    # V = 0 over 0.5-0.6 um on two 1 m telescopes, all photons counted:
+    # 3640 Jy / h * ln(0.6/0.5) * 2 pi 1**2/4 (Bessell et al. 1998), by hand.
+    rate = v2ref.photon_rate(0.0, band="V", throughput=1.0, aperture_m=1.0,
+                             wavelength_um=0.55, bandwidth_nm=100.0)
+    want = 3640e-26 / 6.62607015e-34 * __import__("math").log(0.6 / 0.5) * 2 * __import__("math").pi / 4
+    assert abs(rate / want - 1) < 1e-12
+    # An H magnitude does not describe a 0.7 um band: refused, naming the band.
+    with pytest.raises(ValueError, match="magnitude_band"):
+        v2ref.photon_rate(6.0, band="H", throughput=0.05, wavelength_um=0.7, bandwidth_nm=50.0)
+
+
+def test_plan_answer_states_corrections_and_durations():
+    out = v2ref.plan(wavelength_um=1.65, bandwidth_nm=300.0, diameter_mas=2.0, baseline_m=183.7,
+                     fringe_hz=[300.0], stroke_um=[32.0], scans=64, target_sigma_v2=1e-4,
+                     diameter_err_mas=0.02)
+    p = out["recommended"] or out["points"][0]
+    assert p["bandwidth_bias_over_target"] > 1.0
+    assert p["v_sq_error_from_diameter"] > 0.0
+    assert p["piston_sequences"] == 4
+    assert out["confidence"] == 0.9
