@@ -438,3 +438,49 @@ fn ctrl_c_stops_at_once_and_leaves_nothing() {
     let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
+
+/// `plan --json` echoes what it used: no per-grid-point placeholders
+/// (samples, δx, photons per sample, fringe frequency), the seeing as given
+/// beside the converted one, an infinite outer scale in words.
+#[test]
+fn plan_json_echoes_what_it_used() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args([
+            "plan",
+            "--json",
+            "--quiet",
+            "--fringe-hz",
+            "300",
+            "--stroke-um",
+            "32",
+        ])
+        .args([
+            "--scans",
+            "64",
+            "--seeing-arcsec",
+            "0.8",
+            "--seeing-wavelength-um",
+            "0.5",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let inputs = &json["inputs"];
+    for placeholder in ["samples", "dx_um", "photons", "piston"] {
+        assert!(
+            inputs["instrument"].get(placeholder).is_none(),
+            "{placeholder}"
+        );
+    }
+    assert!(inputs["atmosphere"].get("fringe_hz").is_none());
+    assert_eq!(inputs["atmosphere"]["outer_scale_m"], "infinite");
+    assert_eq!(json["seeing_as_given"]["arcsec"].as_f64(), Some(0.8));
+    assert_eq!(json["seeing_as_given"]["wavelength_um"].as_f64(), Some(0.5));
+    // Converted by r0 ∝ λ^(6/5): seeing ∝ λ^(-1/5), to 2.2 µm.
+    let converted = inputs["atmosphere"]["seeing_at_observing_arcsec"]
+        .as_f64()
+        .unwrap();
+    assert!((converted - 0.8 * (2.2f64 / 0.5).powf(-0.2)).abs() < 1e-12);
+    assert_eq!(json["confidence"].as_f64(), Some(0.9));
+}

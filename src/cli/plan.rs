@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{
-    default_grid, human_duration, plan, Estimator, Plan, PlanInputs, PlanPoint, Target,
+    default_grid, human_duration, plan, Estimator, Plan, PlanInputs, PlanPoint, SeeingGiven, Target,
 };
 use v2ref::simulator::{Inputs, PistonInputs, SpectrumInput};
 use v2ref::{Error, Result};
@@ -188,6 +188,7 @@ fn photometry(args: &Args) -> Result<Option<Photometry>> {
 #[derive(Serialize)]
 struct Answer<'a> {
     inputs: &'a PlanInputs,
+    seeing_as_given: SeeingGiven,
     #[serde(skip_serializing_if = "Option::is_none")]
     photometry: Option<Photometry>,
     #[serde(flatten)]
@@ -269,6 +270,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if args.json {
         print_json(&Answer {
             inputs: &inputs,
+            seeing_as_given: SeeingGiven {
+                arcsec: args.turbulence.seeing_arcsec,
+                wavelength_um: args
+                    .turbulence
+                    .seeing_wavelength_um
+                    .unwrap_or(args.obs.wavelength_um),
+            },
             photometry,
             plan: &result,
         });

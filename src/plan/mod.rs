@@ -92,9 +92,13 @@ pub enum Target {
 pub struct PlanInputs {
     /// The instrument, source and noise: spectrum, source, baseline,
     /// dispersion, detector, read noise, visibility (`samples`, `dx_um`,
-    /// `photons` and `piston.fringe_hz` are set per grid point).
+    /// `photons` and `piston.fringe_hz` are set per grid point, and the
+    /// answer's echo leaves them out).
+    #[serde(serialize_with = "echo_instrument")]
     pub instrument: Inputs,
-    /// The atmosphere and telescopes (`fringe_hz` is set per grid point).
+    /// The atmosphere and telescopes (`fringe_hz` is set per grid point:
+    /// left out of the echo; the seeing is at the observing wavelength).
+    #[serde(serialize_with = "echo_atmosphere")]
     pub atmosphere: PistonInputs,
     /// Samples per fringe at λ0 (δx = λ0/this).
     pub samples_per_fringe: f64,
@@ -115,6 +119,71 @@ pub struct PlanInputs {
     /// The 1σ uncertainty of the source's angular diameter, mas (0: known
     /// exactly): its effect on V² is reported beside each correction.
     pub diameter_err_mas: f64,
+}
+
+/// The seeing as the user gave it (the plan's inputs hold it converted to
+/// the observing wavelength by r0 ∝ λ^(6/5)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SeeingGiven {
+    /// λ/r0, arcsec, at `wavelength_um`.
+    pub arcsec: f64,
+    /// Where it was quoted, µm.
+    pub wavelength_um: f64,
+}
+
+/// The instrument as the plan used it: without the per-grid-point
+/// placeholders (samples, δx, photons per sample, piston).
+fn echo_instrument<S: serde::Serializer>(i: &Inputs, s: S) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Used<'a> {
+        spectrum: &'a crate::simulator::SpectrumInput,
+        source: &'a crate::simulator::SourceInput,
+        baseline_m: f64,
+        dispersion_pp_rad: f64,
+        integrating: bool,
+        visibility: f64,
+        read_noise: f64,
+        photon_noise: bool,
+    }
+    Used {
+        spectrum: &i.spectrum,
+        source: &i.source,
+        baseline_m: i.baseline_m,
+        dispersion_pp_rad: i.dispersion_pp_rad,
+        integrating: i.integrating,
+        visibility: i.visibility,
+        read_noise: i.read_noise,
+        photon_noise: i.photon_noise,
+    }
+    .serialize(s)
+}
+
+/// The atmosphere as the plan used it, without the per-point fringe
+/// frequency; the seeing is the one at `wavelength_um`.
+fn echo_atmosphere<S: serde::Serializer>(
+    a: &PistonInputs,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Used {
+        wavelength_um: f64,
+        seeing_at_observing_arcsec: f64,
+        wind_mps: f64,
+        aperture_m: f64,
+        outer_scale_m: crate::simulator::record::OuterScale,
+        reference: crate::piston::PistonReference,
+        sub_samples: usize,
+    }
+    Used {
+        wavelength_um: a.wavelength_um,
+        seeing_at_observing_arcsec: a.seeing_arcsec,
+        wind_mps: a.wind_mps,
+        aperture_m: a.aperture_m,
+        outer_scale_m: a.outer_scale_m.into(),
+        reference: a.reference,
+        sub_samples: a.sub_samples,
+    }
+    .serialize(s)
 }
 
 /// `count` frequencies from `lo` to `hi` Hz, evenly spaced in log.

@@ -705,11 +705,16 @@ fn plan(
     #[derive(serde::Serialize)]
     struct Answer<'a> {
         inputs: &'a PlanInputs,
+        seeing_as_given: crate::plan::SeeingGiven,
         #[serde(flatten)]
         plan: &'a crate::plan::Plan,
     }
     json(&Answer {
         inputs: &inputs,
+        seeing_as_given: crate::plan::SeeingGiven {
+            arcsec: p.seeing_arcsec,
+            wavelength_um: p.seeing_wavelength_um.unwrap_or(p.wavelength_um),
+        },
         plan: &result,
     })
 }
