@@ -27,6 +27,8 @@ pub struct Args {
     bins: BinWindow,
     /// Where the photon bias takes the mean counts from: the model's
     /// noise-free counts, or each row's own counts.
+    /// With piston (--fringe-hz) use counts: model subtracts the bias of
+    /// the piston-free counts and is biased on V2² (tests/simulator.rs).
     #[arg(long, value_enum, default_value = "model")]
     bias: BiasConvention,
     /// Formula of the subtracted bias: as printed in the paper, or exact.
