@@ -272,6 +272,26 @@ pub fn number(value: f64) -> String {
     }
 }
 
+impl Error {
+    /// The same error naming `to` where it named `from` (a library check
+    /// reached through a caller whose parameter has another name: the
+    /// piston runs' `scans` are a set's `rows` and `simulate`'s `trials`).
+    pub fn renamed(self, from: &str, to: &'static str) -> Error {
+        match self {
+            Error::OutOfRange {
+                param,
+                value,
+                accepted,
+            } if param == from => Error::OutOfRange {
+                param: to,
+                value,
+                accepted,
+            },
+            e => e,
+        }
+    }
+}
+
 /// A computed bound at the precision a reader needs: six significant
 /// figures, trailing zeros dropped (`0.3375`, not `0.33749999999999997`).
 pub fn significant(value: f64) -> String {

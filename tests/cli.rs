@@ -484,3 +484,31 @@ fn plan_json_echoes_what_it_used() {
     assert!((converted - 0.8 * (2.2f64 / 0.5).powf(-0.2)).abs() < 1e-12);
     assert_eq!(json["confidence"].as_f64(), Some(0.9));
 }
+
+/// A piston run too long for memory names the flag the user typed:
+/// `--trials` for `simulate`, `--rows` for `synth` (not the library's
+/// `scans`), with the limit, before any computation.
+#[test]
+fn piston_length_limit_names_the_users_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let set = dir.path().join("set");
+    let set = set.to_str().unwrap();
+    let common = ["--fringe-hz", "300", "--samples", "128"];
+    for (args, flag) in [
+        (vec!["simulate", "--trials", "400000"], "--trials"),
+        (vec!["synth", "--rows", "400000", "--out", set], "--rows"),
+    ] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args(&args)
+            .args(common)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.starts_with(&format!("error: {flag}: 400000 is out of range")),
+            "{err}"
+        );
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}

@@ -128,7 +128,7 @@ impl Model {
             seed: piston::sweep_seed(seed, setup.fringe_hz),
             threads,
         };
-        validate_size(&setup, &size)?;
+        validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
         let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;

@@ -83,7 +83,9 @@ pub fn simulate(
     size: Trials,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<SimulationRun> {
-    let rows = model.rows(size.trials, size.seed, size.threads)?;
+    let rows = model
+        .rows(size.trials, size.seed, size.threads)
+        .map_err(|e| e.renamed("rows", "trials"))?;
     let setup = model.calibrated_setup(window);
     let expected = match rows.piston_facts() {
         None => Some(expectation(&setup, &model.noise, formula)?),
