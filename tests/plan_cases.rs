@@ -146,23 +146,6 @@ fn recommendations(inputs: &PlanInputs) -> Vec<Option<(Estimator, u64, u64)>> {
         .collect()
 }
 
-/// The grid reduced to the default grid's frequencies next to `f` and two
-/// strokes (the default tier's cost).
-fn near(inputs: &PlanInputs, p: &PlanPoint) -> PlanInputs {
-    let (grid, _) = default_grid();
-    let k = grid
-        .iter()
-        .position(|&g| (g - p.fringe_hz).abs() < 1e-9)
-        .unwrap_or(0);
-    let lo = k.saturating_sub(1);
-    let hi = (k + 2).min(grid.len());
-    PlanInputs {
-        fringe_hz: grid[lo..hi].to_vec(),
-        stroke_um: vec![16.0, 32.0],
-        ..inputs.clone()
-    }
-}
-
 #[test]
 fn recommendation_is_seed_stable_near_the_optimum() {
     // The optimum's neighbourhood (found on the full grid with seed 1 in
@@ -187,9 +170,7 @@ fn recommendation_is_seed_stable_on_the_full_grid() {
         let recs = recommendations(&c.inputs);
         assert!(recs[0].is_some(), "{}: no recommendation", c.name);
         assert!(recs.iter().all(|r| *r == recs[0]), "{}: {recs:?}", c.name);
-        let first = plan(&c.inputs, 0, &|_| {}).unwrap();
-        let near = near(&c.inputs, first.recommended.as_ref().unwrap());
-        assert!(near.fringe_hz.len() >= 2);
+        println!("{}: {:?}", c.name, recs[0]);
     }
 }
 
