@@ -11,7 +11,8 @@
 //! and the visibility is its square root. The bias is the mean over scans
 //! of `V(with piston) − V(without)`, the scatter their standard deviation.
 //!
-//! The sequence ([`crate::piston::series`]), the scans
+//! The independent sequences ([`crate::piston::sequences`]), their
+//! synthesis ([`crate::piston::series`]), the scans
 //! ([`crate::piston::scan`]) and the tabulated fringe
 //! ([`crate::piston::fringe_table`]) are in their own modules.
 
@@ -24,8 +25,8 @@ use crate::montecarlo::{
 };
 use crate::piston::calibration::{Calibration, ScanContext, Workspace};
 use crate::piston::fringe_table::MAX_OPD_UM;
-use crate::piston::scan::{fill_scan, interp, Detector, PistonReference, ScanSetup};
-use crate::piston::series::{synthesize_series, MAX_SERIES};
+use crate::piston::scan::{fill_scan, Detector, ScanSetup};
+use crate::piston::sequences::{correlation_time_s, max_scans, PistonSequence};
 use crate::piston::turbulence::PistonSpectrum;
 use serde::Serialize;
 
@@ -64,7 +65,7 @@ pub struct PistonRun {
     /// Number of scans.
     pub scans: usize,
     /// Number of independent piston sequences they are cut from
-    /// ([`sequence_split`]); the standard errors have one degree of freedom
+    /// ([`crate::piston::sequences::sequence_split`]); the standard errors have one degree of freedom
     /// fewer.
     pub sequences: usize,
     /// Seed.
@@ -77,7 +78,7 @@ pub struct PistonRun {
     /// removed, µm.
     pub residual_rms_um: f64,
     /// The time spanned by each sequence, in piston correlation times B/v
-    /// ([`correlation_time_s`]; at least [`SPAN_CORRELATION_TIMES`] unless
+    /// ([`crate::piston::sequences::correlation_time_s`]; at least [`crate::piston::sequences::SPAN_CORRELATION_TIMES`] unless
     /// the memory limit binds).
     pub span_correlation_times: f64,
     /// One entry per window of [`BIN_WINDOWS`].
@@ -117,225 +118,6 @@ pub(crate) fn validate_size(setup: &ScanSetup, size: &RunSize) -> Result<()> {
         });
     }
     Ok(())
-}
-
-/// The most scans of `samples` samples one run can hold: all its
-/// sequences together have at most [`MAX_SERIES`] samples (the memory
-/// limit), each with 4 samples of margin and a scan's worth of slack.
-pub fn max_scans(samples: usize) -> usize {
-    let n = samples.max(1);
-    MAX_SERIES.saturating_sub(MAX_SEQUENCES * (n + 4)) / n
-}
-
-/// Fewest consecutive scans cut from one piston sequence.
-pub const MIN_SCANS_PER_SEQUENCE: usize = 16;
-
-/// Most independent piston sequences of one run.
-pub const MAX_SEQUENCES: usize = 16;
-
-/// How a run of `scans` scans is cut into independent piston sequences:
-/// `(sequences, scans of the longest)`. Consecutive scans through one
-/// sequence are correlated (the piston moves little from one scan to the
-/// next when the scans are short against its correlation time), so the
-/// standard errors come from the spread between independent sequences
-/// ([`crate::montecarlo::replicated_summary`]), never from the scans as if
-/// they were independent. As many sequences as there are
-/// [`MIN_SCANS_PER_SEQUENCE`] scans, at least 2 (the fewest that give an
-/// error, with one degree of freedom) and at most [`MAX_SEQUENCES`]; the scans are
-/// shared out as evenly as possible (sequence j has `scans / K` scans, one
-/// more for the first `scans % K`).
-///
-/// ```
-/// use v2ref::piston::simulation::sequence_split;
-/// assert_eq!(sequence_split(1000), (16, 63));
-/// assert_eq!(sequence_split(20), (2, 10));
-/// assert_eq!(sequence_split(100_000), (16, 6250));
-/// ```
-pub fn sequence_split(scans: usize) -> (usize, usize) {
-    let k = (scans / MIN_SCANS_PER_SEQUENCE).clamp(2.min(scans.max(1)), MAX_SEQUENCES);
-    (k, scans.div_ceil(k))
-}
-
-/// How many piston correlation times (B/v, [`correlation_time_s`]) one
-/// sequence spans at least: a sequence shorter than the piston's
-/// correlation time lacks its slow wander, and its scans see less piston
-/// than the night's (the scatter comes out low, the same for every seed).
-/// Measured on a 330 m baseline in H at 10 m/s (B/v = 33 s, 1569.5 Hz):
-/// the V1 scatter is 1.92e-3 from consecutive scans spanning 0.3 B/v,
-/// 2.28e-3 at 1 B/v, 2.44e-3 at 3 B/v and the same at 10 (±0.04e-3); 2 is
-/// the cost's compromise (the plan's piston runs grow with the span).
-pub const SPAN_CORRELATION_TIMES: f64 = 2.0;
-
-/// The differential piston's correlation time, B/v, s: below the
-/// frequency v/B the two apertures see the same slow wander and the
-/// spectrum flattens.
-pub fn correlation_time_s(spectrum: &PistonSpectrum) -> f64 {
-    spectrum.baseline_m() / spectrum.wind_mps()
-}
-
-/// Samples from one scan's start to the next within a sequence of
-/// `scans` scans: N (consecutive scans) unless that would span less than
-/// [`SPAN_CORRELATION_TIMES`] correlation times, in which case the scans are
-/// spread out over that span (the piston between them is synthesized but
-/// not scanned); within [`MAX_SERIES`] samples.
-pub fn scan_stride(spectrum: &PistonSpectrum, setup: &ScanSetup, total_scans: usize) -> usize {
-    let n = setup.samples;
-    let (sequences, scans) = sequence_split(total_scans);
-    let span_samples =
-        SPAN_CORRELATION_TIMES * correlation_time_s(spectrum) / setup.sample_time_s();
-    // L scans start L − 1 strides apart.
-    let wanted = (span_samples / scans.saturating_sub(1).max(1) as f64).ceil();
-    let most = ((MAX_SERIES / sequences).saturating_sub(n + 4) / scans.max(1)) as f64;
-    wanted.min(most).max(n as f64) as usize
-}
-
-/// The seed of independent sequence `j` of a run from `seed` (keyed by
-/// its index: sequence j is the same whatever the number of scans).
-pub fn sequence_seed(seed: u64, j: usize) -> u64 {
-    derive_seed(seed, "piston-sequence", &[j as f64])
-}
-
-/// The piston read by the scans of a run: independent sequences, each read
-/// by consecutive scans ([`sequence_split`]), and where the fringe packet
-/// sits in each scan.
-pub(crate) struct PistonSequence {
-    /// p at each sample time, µm, per sequence (each periodic, at least
-    /// its scans × N + 4 long).
-    segments: Vec<Vec<f64>>,
-    /// First scan of each sequence, and one past the last scan.
-    first_scan: Vec<usize>,
-    /// Samples from the start of one scan to the start of the next in a
-    /// sequence (≥ N: the scans are spread over the sequence's span).
-    stride: usize,
-    /// N.
-    samples: usize,
-    /// How each scan's reference is taken.
-    reference: PistonReference,
-}
-
-impl PistonSequence {
-    /// Synthesises the sequences of `size.scans` scans of `setup` from the
-    /// differential-piston spectrum, from `size.seed` (all its randomness).
-    pub(crate) fn synthesize(
-        spectrum: &PistonSpectrum,
-        setup: &ScanSetup,
-        size: &RunSize,
-    ) -> Result<Self> {
-        let k = sequence_split(size.scans).0;
-        Self::synthesize_layout(
-            spectrum,
-            setup,
-            size,
-            (k, scan_stride(spectrum, setup, size.scans)),
-        )
-    }
-
-    /// [`synthesize`](Self::synthesize) with `k` sequences whose scans start
-    /// `stride` samples apart.
-    fn synthesize_layout(
-        spectrum: &PistonSpectrum,
-        setup: &ScanSetup,
-        size: &RunSize,
-        (k, stride): (usize, usize),
-    ) -> Result<Self> {
-        let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
-        let n = setup.samples;
-        let mut first_scan = vec![0];
-        let mut segments = Vec::with_capacity(k);
-        for j in 0..k {
-            let scans = size.scans / k + usize::from(j < size.scans % k);
-            first_scan.push(first_scan[j] + scans);
-            segments.push(synthesize_series(
-                &psd,
-                setup.sample_time_s(),
-                (scans - 1) * stride + n + 4,
-                sequence_seed(size.seed, j),
-                size.threads,
-            )?);
-        }
-        Ok(PistonSequence {
-            segments,
-            first_scan,
-            stride,
-            samples: n,
-            reference: setup.reference,
-        })
-    }
-
-    /// Number of independent sequences.
-    pub(crate) fn sequences(&self) -> usize {
-        self.segments.len()
-    }
-
-    /// The scans of sequence `j`.
-    pub(crate) fn scans_of(&self, j: usize) -> std::ops::Range<usize> {
-        self.first_scan[j]..self.first_scan[j + 1]
-    }
-
-    /// The index of the sequence read by scan `s`.
-    pub(crate) fn sequence_of(&self, s: usize) -> usize {
-        self.first_scan.partition_point(|&f| f <= s) - 1
-    }
-
-    /// The sequence read by scan `s`, and the scan's index in it.
-    fn locate(&self, s: usize) -> (&[f64], usize) {
-        let j = self.sequence_of(s);
-        (&self.segments[j], s - self.first_scan[j])
-    }
-
-    /// Samples spanned by the scans of the longest sequence.
-    pub(crate) fn span_samples(&self) -> usize {
-        let longest = self.scans_of(0).len();
-        (longest - 1) * self.stride + self.samples
-    }
-
-    /// RMS of all the sequences, µm.
-    pub(crate) fn rms_um(&self) -> f64 {
-        let m: usize = self.segments.iter().map(Vec::len).sum();
-        let sum2: f64 = self.segments.iter().flatten().map(|p| p * p).sum();
-        (sum2 / m as f64).sqrt()
-    }
-
-    /// The piston removed from scan `s`, µm.
-    pub(crate) fn reference_um(&self, s: usize) -> f64 {
-        let (series, local) = self.locate(s);
-        let (n, base) = (self.samples, local * self.stride);
-        match self.reference {
-            PistonReference::Centre => series[base + n / 2],
-            PistonReference::Mean => series[base..base + n].iter().sum::<f64>() / n as f64,
-            PistonReference::Absolute => 0.0,
-        }
-    }
-
-    /// The piston of scan `s` at τ sample intervals from its start, µm.
-    pub(crate) fn at(&self, s: usize, tau: f64) -> f64 {
-        let (series, local) = self.locate(s);
-        interp(series, (local * self.stride) as f64 + tau)
-    }
-
-    /// Over all the scans: the largest |p − reference| any sub-sample can
-    /// reach (the cubic reads one sample either side of the scan), and the
-    /// RMS of p − reference over the samples.
-    pub(crate) fn excursion_and_residual(&self) -> (f64, f64) {
-        let n = self.samples;
-        let (mut excursion, mut resid2) = (0.0_f64, 0.0);
-        let scans = self.first_scan[self.sequences()];
-        for s in 0..scans {
-            let (series, local) = self.locate(s);
-            let m = series.len();
-            let r = self.reference_um(s);
-            for j in 0..=n + 1 {
-                let d = series[(local * self.stride + j) % m] - r;
-                excursion = excursion.max(d.abs());
-                if j < n {
-                    resid2 += d * d;
-                }
-            }
-            let prev = series[(local * self.stride + m - 1) % m] - r;
-            excursion = excursion.max(prev.abs());
-        }
-        (excursion, (resid2 / (scans * n) as f64).sqrt())
-    }
 }
 
 /// The OPD range (µm) the fringe table must cover for scans of `setup`

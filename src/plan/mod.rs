@@ -26,7 +26,7 @@
 //!
 //! - **honest piston terms**: the piston Monte Carlo cuts its scans from up
 //!   to 16 independent sequences, each spanning two piston correlation
-//!   times B/v ([`crate::piston::simulation::sequence_split`]); its
+//!   times B/v ([`crate::piston::sequences::sequence_split`]); its
 //!   standard errors come from the spread between sequences, and a point
 //!   reaches the target only with the piston scatter and bias at the upper
 //!   ends of their [`CONFIDENCE`] intervals;
@@ -41,7 +41,12 @@
 //! (`model` convention, positive bins); the piston packet is centred on the
 //! scan-mean piston.
 
+pub mod answer;
 pub mod photometry;
+mod reach;
+
+pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
+use reach::{best, choose, reach, Bounds};
 
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{self, Error, Result};
@@ -94,11 +99,11 @@ pub struct PlanInputs {
     /// dispersion, detector, read noise, visibility (`samples`, `dx_um`,
     /// `photons` and `piston.fringe_hz` are set per grid point, and the
     /// answer's echo leaves them out).
-    #[serde(serialize_with = "echo_instrument")]
+    #[serde(serialize_with = "answer::echo_instrument")]
     pub instrument: Inputs,
     /// The atmosphere and telescopes (`fringe_hz` is set per grid point:
     /// left out of the echo; the seeing is at the observing wavelength).
-    #[serde(serialize_with = "echo_atmosphere")]
+    #[serde(serialize_with = "answer::echo_atmosphere")]
     pub atmosphere: PistonInputs,
     /// Samples per fringe at λ0 (δx = λ0/this).
     pub samples_per_fringe: f64,
@@ -119,71 +124,6 @@ pub struct PlanInputs {
     /// The 1σ uncertainty of the source's angular diameter, mas (0: known
     /// exactly): its effect on V² is reported beside each correction.
     pub diameter_err_mas: f64,
-}
-
-/// The seeing as the user gave it (the plan's inputs hold it converted to
-/// the observing wavelength by r0 ∝ λ^(6/5)).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct SeeingGiven {
-    /// λ/r0, arcsec, at `wavelength_um`.
-    pub arcsec: f64,
-    /// Where it was quoted, µm.
-    pub wavelength_um: f64,
-}
-
-/// The instrument as the plan used it: without the per-grid-point
-/// placeholders (samples, δx, photons per sample, piston).
-fn echo_instrument<S: serde::Serializer>(i: &Inputs, s: S) -> std::result::Result<S::Ok, S::Error> {
-    #[derive(Serialize)]
-    struct Used<'a> {
-        spectrum: &'a crate::simulator::SpectrumInput,
-        source: &'a crate::simulator::SourceInput,
-        baseline_m: f64,
-        dispersion_pp_rad: f64,
-        integrating: bool,
-        visibility: f64,
-        read_noise: f64,
-        photon_noise: bool,
-    }
-    Used {
-        spectrum: &i.spectrum,
-        source: &i.source,
-        baseline_m: i.baseline_m,
-        dispersion_pp_rad: i.dispersion_pp_rad,
-        integrating: i.integrating,
-        visibility: i.visibility,
-        read_noise: i.read_noise,
-        photon_noise: i.photon_noise,
-    }
-    .serialize(s)
-}
-
-/// The atmosphere as the plan used it, without the per-point fringe
-/// frequency; the seeing is the one at `wavelength_um`.
-fn echo_atmosphere<S: serde::Serializer>(
-    a: &PistonInputs,
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    #[derive(Serialize)]
-    struct Used {
-        wavelength_um: f64,
-        seeing_at_observing_arcsec: f64,
-        wind_mps: f64,
-        aperture_m: f64,
-        outer_scale_m: crate::simulator::record::OuterScale,
-        reference: crate::piston::PistonReference,
-        sub_samples: usize,
-    }
-    Used {
-        wavelength_um: a.wavelength_um,
-        seeing_at_observing_arcsec: a.seeing_arcsec,
-        wind_mps: a.wind_mps,
-        aperture_m: a.aperture_m,
-        outer_scale_m: a.outer_scale_m.into(),
-        reference: a.reference,
-        sub_samples: a.sub_samples,
-    }
-    .serialize(s)
 }
 
 /// `count` frequencies from `lo` to `hi` Hz, evenly spaced in log.
@@ -325,8 +265,8 @@ impl PlanInputs {
         let dx_um = self.wavelength_um() / self.samples_per_fringe;
         let longest = self.stroke_um.iter().fold(0.0_f64, |a, &b| a.max(b));
         let samples = ((longest / dx_um).round() as usize).max(MIN_SAMPLES);
-        let most = crate::piston::simulation::max_scans(samples) as u64;
-        let least = 2 * crate::piston::simulation::MIN_SCANS_PER_SEQUENCE as u64;
+        let most = crate::piston::sequences::max_scans(samples) as u64;
+        let least = 2 * crate::piston::sequences::MIN_SCANS_PER_SEQUENCE as u64;
         if !(least..=most).contains(&self.scans) {
             return Err(Error::OutOfRange {
                 param: "scans",
@@ -477,7 +417,7 @@ fn grid_point(
 
 /// The independent piston sequences of a Monte Carlo of `scans` scans.
 fn mc_sequences(scans: u64) -> usize {
-    crate::piston::simulation::sequence_split(usize::try_from(scans).unwrap_or(usize::MAX)).0
+    crate::piston::sequences::sequence_split(usize::try_from(scans).unwrap_or(usize::MAX)).0
 }
 
 /// |dV²/dθ|·δθ for a uniform disk with `diameter_err_mas` (0 otherwise),
@@ -499,93 +439,6 @@ fn v_sq_error_from_diameter(inputs: &PlanInputs, model: &Model) -> Result<f64> {
     let slope = (v_sq(diameter_mas + h) - v_sq(diameter_mas - h)) / (2.0 * h);
     let vis2 = model.inputs.visibility * model.inputs.visibility;
     Ok((vis2 * slope * err).abs())
-}
-
-/// The lower ends of the piston terms' intervals.
-struct Bounds {
-    sigma_piston: f64,
-    bias: f64,
-}
-
-/// Scans for σ(V²) = target with per-scan σ `sigma` and bias `bias` (None:
-/// unreachable).
-fn scans_for(target: f64, sigma: f64, bias: f64) -> Option<f64> {
-    let room = target * target - bias * bias;
-    (bias < target && sigma.is_finite() && room > 0.0)
-        .then(|| (sigma * sigma / room).ceil().max(1.0))
-        .filter(|n| n.is_finite())
-}
-
-/// Fills the scans and time (or the σ reached) of `p`: with the piston
-/// terms at the upper ends of their intervals (the stated plan), at the
-/// lower ends (`time_lower_s`) and without piston (`time_noise_only_s`).
-fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
-    let per_scan_s = p.scan_time_s + inputs.dead_time_s;
-    let var_noise = p.sigma_noise_per_scan * p.sigma_noise_per_scan;
-    let sigma_at = |sp: f64| (var_noise + sp * sp).sqrt();
-    match inputs.target {
-        Target::SigmaV2(target) => {
-            let upper = scans_for(target, sigma_at(p.sigma_piston_upper), p.bias_piston_upper);
-            p.scans_needed = upper;
-            p.time_s = upper.map(|n| n * per_scan_s);
-            p.time_lower_s =
-                scans_for(target, sigma_at(lower.sigma_piston), lower.bias).map(|n| n * per_scan_s);
-            p.time_noise_only_s =
-                scans_for(target, p.sigma_noise_per_scan, 0.0).map(|n| n * per_scan_s);
-            p.exceeds_one_night = p.time_s.is_some_and(|t| t > ONE_NIGHT_S);
-        }
-        Target::TimeBudgetS(budget) => {
-            let n = (budget / per_scan_s).floor();
-            if n >= 1.0 {
-                let sigma = sigma_at(p.sigma_piston_upper);
-                let s2 = sigma * sigma / n;
-                p.sigma_reached = Some((s2 + p.bias_piston_upper * p.bias_piston_upper).sqrt());
-                p.scans_needed = Some(n);
-                p.time_s = Some(n * per_scan_s);
-                p.exceeds_one_night = n * per_scan_s > ONE_NIGHT_S;
-            }
-        }
-    }
-}
-
-/// The figure of merit of a point: the time for the target, or the σ
-/// reached in the budget (lower is better).
-fn merit(p: &PlanPoint) -> Option<f64> {
-    p.sigma_reached.or(p.time_s).filter(|v| v.is_finite())
-}
-
-/// The point's merit at the lower ends of the piston intervals (the best
-/// it could be): the lower time, or the σ reached (budget mode, where the
-/// plan's own value is used).
-fn merit_lower(p: &PlanPoint) -> Option<f64> {
-    p.sigma_reached.or(p.time_lower_s).filter(|v| v.is_finite())
-}
-
-/// The recommended point among `points`. The least merit (time, or σ
-/// reached, with the piston terms at the upper ends of their intervals) is
-/// known only to the Monte Carlo's precision: every point whose optimistic
-/// merit ([`merit_lower`]) is within the best's is as good. Among those the
-/// plan takes the highest fringe frequency (the least piston, whose terms
-/// are known best), then the shortest stroke, then the least merit: the
-/// points at the edge of that set are the slow-fringe ones whose piston
-/// terms are uncertain, so the choice does not hang on them and does not
-/// flip with the seed.
-fn choose<'a>(points: impl Iterator<Item = &'a PlanPoint> + Clone) -> Option<PlanPoint> {
-    let best = points.clone().filter_map(merit).min_by(f64::total_cmp)?;
-    points
-        .filter_map(|p| merit(p).map(|m| (m, p)))
-        .filter(|(_, p)| merit_lower(p).is_some_and(|m| m <= best))
-        .min_by(|(ma, a), (mb, b)| {
-            b.fringe_hz
-                .total_cmp(&a.fringe_hz)
-                .then(a.stroke_um.total_cmp(&b.stroke_um))
-                .then(ma.total_cmp(mb))
-        })
-        .map(|(_, p)| *p)
-}
-
-fn best(points: &[PlanPoint], e: Estimator) -> Option<PlanPoint> {
-    choose(points.iter().filter(|p| p.estimator == e))
 }
 
 /// Plans over the grid of `inputs`, on `threads` threads (0: all); the
@@ -624,56 +477,4 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);
     plan.no_v2_reason = no_recommendation_reason(&plan, Estimator::V2);
     Ok(plan)
-}
-
-/// A duration in the unit a person reads it in: seconds below two minutes,
-/// minutes below two hours, hours below two days, days beyond, with three
-/// significant figures.
-///
-/// ```
-/// use v2ref::plan::human_duration;
-/// assert_eq!(human_duration(42.0), "42.0 s");
-/// assert_eq!(human_duration(1_168_782.9), "13.5 d");
-/// assert_eq!(human_duration(5400.0), "90.0 min");
-/// ```
-pub fn human_duration(seconds: f64) -> String {
-    let (value, unit) = match seconds {
-        s if s < 120.0 => (s, "s"),
-        s if s < 7200.0 => (s / 60.0, "min"),
-        s if s < 172_800.0 => (s / 3600.0, "h"),
-        s => (s / 86_400.0, "d"),
-    };
-    let decimals = if value >= 100.0 {
-        0
-    } else if value >= 10.0 {
-        1
-    } else {
-        2
-    };
-    let decimals = if unit == "s" && value < 100.0 {
-        1
-    } else {
-        decimals
-    };
-    format!("{value:.decimals$} {unit}")
-}
-
-/// Why an estimator has no recommended point, in one line (None when it
-/// has one).
-pub fn no_recommendation_reason(plan: &Plan, e: Estimator) -> Option<String> {
-    let best = match e {
-        Estimator::V1 => plan.best_v1,
-        Estimator::V2 => plan.best_v2,
-    };
-    if best.is_some() {
-        return None;
-    }
-    let ours = || plan.points.iter().filter(|p| p.estimator == e);
-    let least_bias = ours()
-        .map(|p| p.bias_piston_upper)
-        .fold(f64::INFINITY, f64::min);
-    Some(format!(
-        "no setting of the grid reaches the target: the piston bias (upper end of its {:.0}% interval) is at least {least_bias:.2e} everywhere",
-        CONFIDENCE * 100.0
-    ))
 }

@@ -24,7 +24,8 @@ use crate::montecarlo::{fold_units, run_unit_range, Rng};
 use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
 use crate::piston::fringe_table::FringeTable;
 use crate::piston::scan::{fill_scan, ScanSetup};
-use crate::piston::simulation::{table_range_um, validate_size, PistonSequence};
+use crate::piston::sequences::PistonSequence;
+use crate::piston::simulation::{table_range_um, validate_size};
 use crate::piston::{self, RunSize};
 use crate::simulator::Model;
 

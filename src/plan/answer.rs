@@ -1,0 +1,127 @@
+//! What the plan's answer says beside the numbers: the inputs as they were
+//! used, the seeing as given, durations a person reads, and why an
+//! estimator has no recommendation.
+
+use super::{Estimator, Plan, CONFIDENCE};
+use crate::simulator::{Inputs, PistonInputs};
+use serde::Serialize;
+
+/// The seeing as the user gave it (the plan's inputs hold it converted to
+/// the observing wavelength by r0 ∝ λ^(6/5)).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SeeingGiven {
+    /// λ/r0, arcsec, at `wavelength_um`.
+    pub arcsec: f64,
+    /// Where it was quoted, µm.
+    pub wavelength_um: f64,
+}
+
+/// The instrument as the plan used it: without the per-grid-point
+/// placeholders (samples, δx, photons per sample, piston).
+pub(super) fn echo_instrument<S: serde::Serializer>(
+    i: &Inputs,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Used<'a> {
+        spectrum: &'a crate::simulator::SpectrumInput,
+        source: &'a crate::simulator::SourceInput,
+        baseline_m: f64,
+        dispersion_pp_rad: f64,
+        integrating: bool,
+        visibility: f64,
+        read_noise: f64,
+        photon_noise: bool,
+    }
+    Used {
+        spectrum: &i.spectrum,
+        source: &i.source,
+        baseline_m: i.baseline_m,
+        dispersion_pp_rad: i.dispersion_pp_rad,
+        integrating: i.integrating,
+        visibility: i.visibility,
+        read_noise: i.read_noise,
+        photon_noise: i.photon_noise,
+    }
+    .serialize(s)
+}
+
+/// The atmosphere as the plan used it, without the per-point fringe
+/// frequency; the seeing is the one at `wavelength_um`.
+pub(super) fn echo_atmosphere<S: serde::Serializer>(
+    a: &PistonInputs,
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Used {
+        wavelength_um: f64,
+        seeing_at_observing_arcsec: f64,
+        wind_mps: f64,
+        aperture_m: f64,
+        outer_scale_m: crate::simulator::record::OuterScale,
+        reference: crate::piston::PistonReference,
+        sub_samples: usize,
+    }
+    Used {
+        wavelength_um: a.wavelength_um,
+        seeing_at_observing_arcsec: a.seeing_arcsec,
+        wind_mps: a.wind_mps,
+        aperture_m: a.aperture_m,
+        outer_scale_m: a.outer_scale_m.into(),
+        reference: a.reference,
+        sub_samples: a.sub_samples,
+    }
+    .serialize(s)
+}
+
+/// A duration in the unit a person reads it in: seconds below two minutes,
+/// minutes below two hours, hours below two days, days beyond, with three
+/// significant figures.
+///
+/// ```
+/// use v2ref::plan::human_duration;
+/// assert_eq!(human_duration(42.0), "42.0 s");
+/// assert_eq!(human_duration(1_168_782.9), "13.5 d");
+/// assert_eq!(human_duration(5400.0), "90.0 min");
+/// ```
+pub fn human_duration(seconds: f64) -> String {
+    let (value, unit) = match seconds {
+        s if s < 120.0 => (s, "s"),
+        s if s < 7200.0 => (s / 60.0, "min"),
+        s if s < 172_800.0 => (s / 3600.0, "h"),
+        s => (s / 86_400.0, "d"),
+    };
+    let decimals = if value >= 100.0 {
+        0
+    } else if value >= 10.0 {
+        1
+    } else {
+        2
+    };
+    let decimals = if unit == "s" && value < 100.0 {
+        1
+    } else {
+        decimals
+    };
+    format!("{value:.decimals$} {unit}")
+}
+
+/// Why an estimator has no recommended point, in one line (None when it
+/// has one).
+pub fn no_recommendation_reason(plan: &Plan, e: Estimator) -> Option<String> {
+    let best = match e {
+        Estimator::V1 => plan.best_v1,
+        Estimator::V2 => plan.best_v2,
+    };
+    if best.is_some() {
+        return None;
+    }
+    let ours = || plan.points.iter().filter(|p| p.estimator == e);
+    let least_bias = ours()
+        .map(|p| p.bias_piston_upper)
+        .fold(f64::INFINITY, f64::min);
+    Some(format!(
+        "no setting of the grid reaches the target: the piston bias (upper end of its {:.0}% interval) is at least {least_bias:.2e} everywhere",
+        CONFIDENCE * 100.0
+    ))
+}

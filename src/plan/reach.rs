@@ -1,0 +1,92 @@
+//! How a grid point reaches the target, and which point the plan
+//! recommends: the piston terms at the ends of their confidence intervals,
+//! and a choice that does not flip with the seed.
+
+use super::{Estimator, PlanInputs, PlanPoint, Target, ONE_NIGHT_S};
+
+/// The lower ends of the piston terms' intervals.
+pub(super) struct Bounds {
+    pub(super) sigma_piston: f64,
+    pub(super) bias: f64,
+}
+
+/// Scans for σ(V²) = target with per-scan σ `sigma` and bias `bias` (None:
+/// unreachable).
+pub(super) fn scans_for(target: f64, sigma: f64, bias: f64) -> Option<f64> {
+    let room = target * target - bias * bias;
+    (bias < target && sigma.is_finite() && room > 0.0)
+        .then(|| (sigma * sigma / room).ceil().max(1.0))
+        .filter(|n| n.is_finite())
+}
+
+/// Fills the scans and time (or the σ reached) of `p`: with the piston
+/// terms at the upper ends of their intervals (the stated plan), at the
+/// lower ends (`time_lower_s`) and without piston (`time_noise_only_s`).
+pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
+    let per_scan_s = p.scan_time_s + inputs.dead_time_s;
+    let var_noise = p.sigma_noise_per_scan * p.sigma_noise_per_scan;
+    let sigma_at = |sp: f64| (var_noise + sp * sp).sqrt();
+    match inputs.target {
+        Target::SigmaV2(target) => {
+            let upper = scans_for(target, sigma_at(p.sigma_piston_upper), p.bias_piston_upper);
+            p.scans_needed = upper;
+            p.time_s = upper.map(|n| n * per_scan_s);
+            p.time_lower_s =
+                scans_for(target, sigma_at(lower.sigma_piston), lower.bias).map(|n| n * per_scan_s);
+            p.time_noise_only_s =
+                scans_for(target, p.sigma_noise_per_scan, 0.0).map(|n| n * per_scan_s);
+            p.exceeds_one_night = p.time_s.is_some_and(|t| t > ONE_NIGHT_S);
+        }
+        Target::TimeBudgetS(budget) => {
+            let n = (budget / per_scan_s).floor();
+            if n >= 1.0 {
+                let sigma = sigma_at(p.sigma_piston_upper);
+                let s2 = sigma * sigma / n;
+                p.sigma_reached = Some((s2 + p.bias_piston_upper * p.bias_piston_upper).sqrt());
+                p.scans_needed = Some(n);
+                p.time_s = Some(n * per_scan_s);
+                p.exceeds_one_night = n * per_scan_s > ONE_NIGHT_S;
+            }
+        }
+    }
+}
+
+/// The figure of merit of a point: the time for the target, or the σ
+/// reached in the budget (lower is better).
+pub(super) fn merit(p: &PlanPoint) -> Option<f64> {
+    p.sigma_reached.or(p.time_s).filter(|v| v.is_finite())
+}
+
+/// The point's merit at the lower ends of the piston intervals (the best
+/// it could be): the lower time, or the σ reached (budget mode, where the
+/// plan's own value is used).
+pub(super) fn merit_lower(p: &PlanPoint) -> Option<f64> {
+    p.sigma_reached.or(p.time_lower_s).filter(|v| v.is_finite())
+}
+
+/// The recommended point among `points`. The least merit (time, or σ
+/// reached, with the piston terms at the upper ends of their intervals) is
+/// known only to the Monte Carlo's precision: every point whose optimistic
+/// merit ([`merit_lower`]) is within the best's is as good. Among those the
+/// plan takes the highest fringe frequency (the least piston, whose terms
+/// are known best), then the shortest stroke, then the least merit: the
+/// points at the edge of that set are the slow-fringe ones whose piston
+/// terms are uncertain, so the choice does not hang on them and does not
+/// flip with the seed.
+pub(super) fn choose<'a>(points: impl Iterator<Item = &'a PlanPoint> + Clone) -> Option<PlanPoint> {
+    let best = points.clone().filter_map(merit).min_by(f64::total_cmp)?;
+    points
+        .filter_map(|p| merit(p).map(|m| (m, p)))
+        .filter(|(_, p)| merit_lower(p).is_some_and(|m| m <= best))
+        .min_by(|(ma, a), (mb, b)| {
+            b.fringe_hz
+                .total_cmp(&a.fringe_hz)
+                .then(a.stroke_um.total_cmp(&b.stroke_um))
+                .then(ma.total_cmp(mb))
+        })
+        .map(|(_, p)| *p)
+}
+
+pub(super) fn best(points: &[PlanPoint], e: Estimator) -> Option<PlanPoint> {
+    choose(points.iter().filter(|p| p.estimator == e))
+}
