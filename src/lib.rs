@@ -112,6 +112,8 @@ pub mod cleanup;
 pub mod conformance;
 pub mod error;
 pub mod formalism;
+#[cfg(feature = "files")]
+pub mod formats;
 pub mod math;
 pub mod montecarlo;
 pub mod noise;

@@ -1,10 +1,9 @@
-//! The CLI's file edge (`src/cli/files.rs`, included here by path) and
+//! The file formats (`v2ref::formats`: .npy, CSV, atomic writers) and
 //! `v2ref score` on good and bad files: every bad input exits 2 with one
 //! line naming the file and where in it; the writers round-trip bits and
 //! are atomic.
 
-#[path = "../src/cli/files.rs"]
-mod files;
+use v2ref::formats as files;
 
 use files::{read_estimates, read_matrix, write_text_atomic, CsvRowWriter, NpyRowWriter};
 use npyz::WriterBuilder;

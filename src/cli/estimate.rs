@@ -2,13 +2,13 @@
 //! bias-subtracted and normalized (`v2ref::conformance::estimate`), for a
 //! window of bins, a bias convention and a calibrator.
 
-use super::files::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows};
 use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
+use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
 

@@ -23,7 +23,6 @@ pub mod bias;
 pub mod claims;
 pub mod common;
 pub mod estimate;
-pub mod files;
 pub mod golden;
 pub mod grid;
 pub mod inputs;

@@ -132,7 +132,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .map_err(|e| fail(path, e))?;
         root.present().map_err(|e| fail(path, e))?;
     }
-    super::files::write_text_atomic(path, &svg)
+    v2ref::formats::write_text_atomic(path, &svg)
 }
 
 /// A log-axis tick at the precision it carries: three significant figures

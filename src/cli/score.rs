@@ -2,7 +2,6 @@
 //! against the set's truth (formulas in `v2ref::conformance::score`).
 //! Exit status 0 on pass, 1 on fail, 2 on bad input.
 
-use super::files::read_estimates;
 use super::{print_json, print_rows};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -11,6 +10,7 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
 use v2ref::conformance::sidecar::{self, Sidecar};
 use v2ref::formalism::estimator::BinWindow;
+use v2ref::formats::read_estimates;
 use v2ref::{Error, Result};
 
 /// Exit status of a failed verdict.

@@ -4,13 +4,13 @@
 //! and the truth (`v2ref::conformance::sidecar`).
 
 use super::common::RunArgs;
-use super::files::{write_text_atomic, CsvRowWriter, NpyRowWriter};
 use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use v2ref::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
 use v2ref::conformance::truth::{truth, TruthSize};
+use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
 

@@ -1,0 +1,190 @@
+//! File formats of the conformance kit and the command line: matrices and
+//! estimates read from `.npy` or `.csv` ([`npy`], [`csv`]), and atomic,
+//! streaming writers ([`atomic`]: a temporary file renamed onto the target
+//! only when complete, so that a failed or interrupted write leaves the
+//! target as it was).
+//!
+//! Every refusal is an [`Error::Data`] naming the file, where in it (`row i,
+//! column j` counted from 1, or `header`) and what is accepted; a file that
+//! cannot be opened is an [`Error::Io`].
+//!
+//! `.npy` files are read and written with the `npyz` crate: float64
+//! little-endian (`<f8`), C order (Fortran order is read and transposed).
+//! CSV: comma-separated, lines starting with `#` and blank lines skipped.
+//!
+//! This module is the edge's (feature `files`, on with `cli`): the
+//! numerical core reads and writes no file.
+
+pub mod atomic;
+pub mod csv;
+pub mod npy;
+
+pub use atomic::write_text_atomic;
+pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
+pub use npy::{NpyRowWriter, NpyRows};
+
+use crate::{Error, Result};
+use std::fs::File;
+use std::path::Path;
+
+/// A matrix of float64, row-major.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Matrix {
+    /// Rows.
+    pub rows: usize,
+    /// Columns.
+    pub cols: usize,
+    /// `rows × cols` values, row after row.
+    pub data: Vec<f64>,
+}
+
+impl Matrix {
+    /// Row `r` (0-based).
+    pub fn row(&self, r: usize) -> &[f64] {
+        &self.data[r * self.cols..(r + 1) * self.cols]
+    }
+}
+
+/// The per-row estimates of a pipeline: either column may be absent, not both.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Estimates {
+    /// Normalized V1², one per row.
+    pub v1_sq: Option<Vec<f64>>,
+    /// Normalized V2², one per row.
+    pub v2_sq: Option<Vec<f64>>,
+}
+
+/// The columns of an estimates `.npy` file when `--columns` is not given.
+pub const DEFAULT_COLUMNS: [&str; 2] = ["v1_sq", "v2_sq"];
+
+const ACCEPTED_EXT: &str = "accepted: .npy (float64) or .csv";
+
+pub(crate) enum Kind {
+    Npy,
+    Csv,
+}
+
+pub(crate) fn kind_of(path: &Path, param: &'static str) -> Result<Kind> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("npy") => Ok(Kind::Npy),
+        Some("csv") => Ok(Kind::Csv),
+        Some(other) => Err(Error::data(
+            param,
+            path,
+            "",
+            format!("unknown extension .{other}; {ACCEPTED_EXT}"),
+        )),
+        None => Err(Error::data(
+            param,
+            path,
+            "",
+            format!("no extension; {ACCEPTED_EXT}"),
+        )),
+    }
+}
+
+pub(crate) fn open(path: &Path, param: &'static str) -> Result<File> {
+    File::open(path).map_err(|e| Error::file(Some(param), path, e))
+}
+
+pub(crate) fn at(row: usize, col: usize) -> String {
+    format!("row {row}, column {col} (1-based)")
+}
+
+pub(crate) fn not_finite(param: &'static str, path: &Path, location: String, v: f64) -> Error {
+    Error::data(
+        param,
+        path,
+        location,
+        format!("{v} is not a finite number; every value must be finite"),
+    )
+}
+
+/// Reads a matrix of float64 from a `.npy` (2-D, `<f8`) or `.csv` file.
+pub fn read_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
+    let m = match kind_of(path, param)? {
+        Kind::Npy => {
+            let (shape, data) = npy::read_npy(path, param)?;
+            if shape.len() != 2 {
+                return Err(Error::data(
+                    param,
+                    path,
+                    "header",
+                    format!(
+                        "{}-D array of shape {shape:?}; a 2-D array (rows, samples) is needed",
+                        shape.len()
+                    ),
+                ));
+            }
+            Matrix {
+                rows: shape[0],
+                cols: shape[1],
+                data,
+            }
+        }
+        Kind::Csv => csv::read_csv_matrix(path, param)?,
+    };
+    if m.rows == 0 || m.cols == 0 {
+        return Err(Error::data(
+            param,
+            path,
+            "",
+            format!(
+                "empty ({} rows, {} columns); at least one row and one column are needed",
+                m.rows, m.cols
+            ),
+        ));
+    }
+    if let Some(i) = m.data.iter().position(|v| !v.is_finite()) {
+        return Err(not_finite(
+            param,
+            path,
+            at(i / m.cols + 1, i % m.cols + 1),
+            m.data[i],
+        ));
+    }
+    Ok(m)
+}
+
+/// Reads a pipeline's per-row estimates.
+///
+/// - `.csv`: a header row naming the columns; `v1_sq` and/or `v2_sq` are
+///   read, any other column (`row`, `v1_sq_raw`, …) is ignored.
+/// - `.npy`: float64, 2-D with one column per name in `columns`
+///   (default [`DEFAULT_COLUMNS`]), or 1-D with exactly one name; names
+///   other than `v1_sq` and `v2_sq` are ignored.
+///
+/// A non-finite estimate is refused with its row.
+pub fn read_estimates(path: &Path, columns: Option<&[String]>) -> Result<Estimates> {
+    const P: &str = "estimates";
+    let est = match kind_of(path, P)? {
+        Kind::Csv => csv::read_estimates_csv(path)?,
+        Kind::Npy => npy::read_estimates_npy(path, columns)?,
+    };
+    for (name, col) in [("v1_sq", &est.v1_sq), ("v2_sq", &est.v2_sq)] {
+        if let Some(x) = col {
+            if x.is_empty() {
+                return Err(Error::data(
+                    P,
+                    path,
+                    "",
+                    "no rows; one estimate per row is needed",
+                ));
+            }
+            if let Some(r) = x.iter().position(|v| !v.is_finite()) {
+                return Err(not_finite(
+                    P,
+                    path,
+                    format!("row {} (1-based), column {name}", r + 1),
+                    x[r],
+                ));
+            }
+        }
+    }
+    Ok(est)
+}

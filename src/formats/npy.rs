@@ -1,0 +1,365 @@
+//! NumPy `.npy` files of float64: read whole, streamed a block of rows at
+//! a time, or written row after row (atomically).
+
+use super::atomic::{finish_file, too_many, whole_rows, TempTarget, WRITE_BUFFER};
+use super::{at, kind_of, not_finite, open, Estimates, Kind, DEFAULT_COLUMNS};
+use crate::{Error, Result};
+use npyz::{Endianness, NpyHeader, Order, TypeChar, WriterBuilder};
+use std::fs::File;
+use std::io::{BufRead, BufReader, BufWriter, Seek, Write};
+use std::path::{Path, PathBuf};
+
+const NPY_MAGIC: &[u8] = b"\x93NUMPY";
+
+/// The numpy name of a plain dtype (`int64`, `float32`, …).
+fn dtype_name(dtype: &npyz::DType) -> String {
+    match dtype {
+        npyz::DType::Plain(t) => {
+            let bits = t.size_field() * 8;
+            let base = match t.type_char() {
+                TypeChar::Bool => return format!("bool ('{t}')"),
+                TypeChar::Int => format!("int{bits}"),
+                TypeChar::Uint => format!("uint{bits}"),
+                TypeChar::Float => format!("float{bits}"),
+                TypeChar::Complex => format!("complex{bits}"),
+                _ => return format!("'{t}'"),
+            };
+            let order = match t.endianness() {
+                Endianness::Big => " big-endian",
+                _ => "",
+            };
+            format!("{base}{order} ('{t}')")
+        }
+        other => format!("a structured dtype {}", other.descr()),
+    }
+}
+
+/// Reads a `.npy` file of `<f8` values: its shape (any number of
+/// dimensions) and its values in C order (a Fortran-order file is
+/// transposed). Values are not checked for finiteness.
+fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
+    let file = open(path, param)?;
+    let file_len = file
+        .metadata()
+        .map_err(|e| Error::file(Some(param), path, e))?
+        .len();
+    let mut reader = BufReader::with_capacity(1 << 20, file);
+    let head = reader
+        .fill_buf()
+        .map_err(|e| Error::file(Some(param), path, e))?;
+    if file_len == 0 {
+        return Err(Error::data(
+            param,
+            path,
+            "",
+            "empty file; a NumPy .npy file (float64) is needed",
+        ));
+    }
+    if !head.starts_with(NPY_MAGIC) {
+        return Err(Error::data(
+            param,
+            path,
+            "header",
+            "not a NumPy .npy file (no \\x93NUMPY magic); a .npy file (float64) is needed",
+        ));
+    }
+    let header = NpyHeader::from_reader(&mut reader).map_err(|e| {
+        Error::data(
+            param,
+            path,
+            "header",
+            format!("unreadable .npy header ({e}); a .npy file written by numpy.save is needed"),
+        )
+    })?;
+    let is_f8 = matches!(header.dtype(), npyz::DType::Plain(ref t)
+        if t.type_char() == TypeChar::Float
+            && t.size_field() == 8
+            && t.endianness() == Endianness::Little);
+    if !is_f8 {
+        return Err(Error::data(
+            param,
+            path,
+            "header",
+            format!(
+                "dtype {}; float64 little-endian ('<f8') is needed (numpy: a.astype('<f8'))",
+                dtype_name(&header.dtype())
+            ),
+        ));
+    }
+    let shape: Vec<usize> = header.shape().iter().map(|&d| d as usize).collect();
+    let count = header.len();
+    let data_start = reader
+        .stream_position()
+        .map_err(|e| Error::file(Some(param), path, e))?;
+    let need = count.saturating_mul(8);
+    let have = file_len.saturating_sub(data_start);
+    if have != need {
+        let what = if have < need { "truncated" } else { "too long" };
+        return Err(Error::data(
+            param,
+            path,
+            "",
+            format!(
+                "{what}: the header's shape {shape:?} needs {need} bytes of data, the file has {have}"
+            ),
+        ));
+    }
+    Ok(NpyData {
+        reader,
+        shape,
+        order: header.order(),
+        bytes: need,
+    })
+}
+
+/// The data section of a checked `<f8` `.npy` file, its reader positioned
+/// at the first value.
+struct NpyData {
+    reader: BufReader<File>,
+    shape: Vec<usize>,
+    order: Order,
+    bytes: u64,
+}
+
+/// Appends the little-endian float64 values of `bytes` (a multiple of 8) to
+/// `out`.
+fn push_le_f64(bytes: &[u8], out: &mut Vec<f64>) {
+    out.extend(
+        bytes
+            .chunks_exact(8)
+            .map(|b| f64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])),
+    );
+}
+
+pub(crate) fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> {
+    let NpyData {
+        mut reader,
+        shape,
+        order,
+        bytes: need,
+    } = open_npy(path, param)?;
+    let count = need / 8;
+    use std::io::Read as _;
+    // npyz has parsed and checked the header; the data section of a '<f8'
+    // array is `count` little-endian 8-byte values, read here in bulk
+    // (npyz's element iterator costs ~4 ns a value, 4 s on a 1 GB file).
+    let mut data = Vec::with_capacity(count as usize);
+    let mut chunk = vec![0u8; 1 << 23];
+    let mut left = need as usize;
+    while left > 0 {
+        let take = left.min(chunk.len());
+        reader
+            .read_exact(&mut chunk[..take])
+            .map_err(|e| Error::file(Some(param), path, e))?;
+        push_le_f64(&chunk[..take], &mut data);
+        left -= take;
+    }
+    if order == Order::Fortran && shape.len() == 2 {
+        let (r, c) = (shape[0], shape[1]);
+        let mut t = vec![0.0; data.len()];
+        for j in 0..c {
+            for i in 0..r {
+                t[i * c + j] = data[j * r + i];
+            }
+        }
+        data = t;
+    } else if order == Order::Fortran && shape.len() > 2 {
+        return Err(Error::data(
+            param,
+            path,
+            "header",
+            "Fortran-order array of more than 2 dimensions; C order is needed",
+        ));
+    }
+    Ok((shape, data))
+}
+
+/// A 2-D C-order `<f8` `.npy` file read a block of rows at a time, each
+/// value checked finite (memory stays at one block however large the file).
+pub struct NpyRows {
+    data: NpyData,
+    path: PathBuf,
+    param: &'static str,
+    /// Rows in the file.
+    pub rows: usize,
+    /// Values per row.
+    pub cols: usize,
+    done: usize,
+    buf: Vec<u8>,
+}
+
+impl NpyRows {
+    /// Opens `path` when it is a `.npy` file whose rows can be streamed (2-D,
+    /// C order); None for any other file, which [`super::read_matrix`] reads whole
+    /// (and refuses with its own message when it must).
+    pub fn open(path: &Path, param: &'static str) -> Result<Option<NpyRows>> {
+        if !matches!(kind_of(path, param)?, Kind::Npy) {
+            return Ok(None);
+        }
+        let data = open_npy(path, param)?;
+        if data.shape.len() != 2 || data.order != Order::C || data.shape.contains(&0) {
+            return Ok(None);
+        }
+        let (rows, cols) = (data.shape[0], data.shape[1]);
+        Ok(Some(NpyRows {
+            data,
+            path: path.to_path_buf(),
+            param,
+            rows,
+            cols,
+            done: 0,
+            buf: Vec::new(),
+        }))
+    }
+
+    /// Replaces `out` with the next block of at most `max_rows` rows
+    /// (row-major); returns the number of rows, 0 at the end.
+    pub fn next_block(&mut self, max_rows: usize, out: &mut Vec<f64>) -> Result<usize> {
+        use std::io::Read as _;
+        let take = max_rows.max(1).min(self.rows - self.done);
+        out.clear();
+        self.buf.resize(take * self.cols * 8, 0);
+        self.data
+            .reader
+            .read_exact(&mut self.buf)
+            .map_err(|e| Error::file(Some(self.param), &self.path, e))?;
+        push_le_f64(&self.buf, out);
+        if let Some(i) = out.iter().position(|v| !v.is_finite()) {
+            let location = at(self.done + i / self.cols + 1, i % self.cols + 1);
+            return Err(not_finite(self.param, &self.path, location, out[i]));
+        }
+        self.done += take;
+        Ok(take)
+    }
+}
+
+pub(crate) fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Result<Estimates> {
+    const P: &str = "estimates";
+    let names: Vec<String> = match columns {
+        Some(c) => c.to_vec(),
+        None => DEFAULT_COLUMNS.iter().map(|s| (*s).to_owned()).collect(),
+    };
+    let find = |n: &str| names.iter().position(|f| f == n);
+    let (i1, i2) = (find("v1_sq"), find("v2_sq"));
+    if i1.is_none() && i2.is_none() {
+        return Err(Error::Invalid {
+            param: "columns",
+            reason: format!(
+                "{} names neither v1_sq nor v2_sq; name the file's columns, e.g. v1_sq,v2_sq",
+                names.join(",")
+            ),
+        });
+    }
+    for (k, n) in names.iter().enumerate() {
+        if names[..k].contains(n) {
+            return Err(Error::Invalid {
+                param: "columns",
+                reason: format!("{n} is named twice"),
+            });
+        }
+    }
+    let (shape, data) = read_npy(path, P)?;
+    let cols = match shape.len() {
+        1 => 1,
+        2 => shape[1],
+        d => {
+            return Err(Error::data(
+                P,
+                path,
+                "header",
+                format!(
+                    "{d}-D array of shape {shape:?}; a 2-D array (rows, columns) or a 1-D array is needed"
+                ),
+            ))
+        }
+    };
+    if cols != names.len() {
+        return Err(Error::data(
+            P,
+            path,
+            "header",
+            format!(
+                "shape {shape:?} has {cols} column(s) but {} are named ({}); name every column with --columns",
+                names.len(),
+                names.join(",")
+            ),
+        ));
+    }
+    let rows = data.len().checked_div(cols).unwrap_or(0);
+    let column = |c: usize| (0..rows).map(|r| data[r * cols + c]).collect::<Vec<f64>>();
+    Ok(Estimates {
+        v1_sq: i1.map(column),
+        v2_sq: i2.map(column),
+    })
+}
+
+/// A `.npy` writer of `rows × cols` float64 (`<f8`, C order), streamed row
+/// after row into a temporary file that replaces the target only at
+/// [`finish`](Self::finish); dropped unfinished, it leaves the target as
+/// it was.
+///
+/// npyz writes the header; the values follow it as the little-endian
+/// bytes of each f64 in row order (the `<f8` C-order data section), in
+/// blocks, at disk speed.
+pub struct NpyRowWriter {
+    // Declared before `temp` so that it is closed before the temp file is
+    // removed on drop.
+    out: BufWriter<File>,
+    temp: TempTarget,
+    cols: usize,
+    rows: u64,
+    written: u64,
+    bytes: Vec<u8>,
+}
+
+impl NpyRowWriter {
+    /// Starts `path` as a (`rows`, `cols`) float64 array; `param` names the
+    /// file in errors.
+    pub fn create(path: &Path, rows: u64, cols: usize, param: &'static str) -> Result<Self> {
+        let (temp, file) = TempTarget::create(path, Some(param))?;
+        let out = npyz::WriteOptions::new_header_only()
+            .dtype(npyz::DType::Plain("<f8".parse().expect("a valid dtype")))
+            .shape(&[rows, cols as u64])
+            .writer(BufWriter::with_capacity(WRITE_BUFFER, file))
+            .write_header_only()
+            .map_err(|e| temp.io(e))?;
+        Ok(NpyRowWriter {
+            out,
+            temp,
+            cols,
+            rows,
+            written: 0,
+            bytes: Vec::new(),
+        })
+    }
+
+    /// Appends whole rows (`values.len()` a multiple of the columns).
+    pub fn write_rows(&mut self, values: &[f64]) -> Result<()> {
+        let n = whole_rows(values.len(), self.cols, &self.temp)?;
+        if self.written + n > self.rows {
+            return Err(too_many(&self.temp, self.rows));
+        }
+        for block in values.chunks(WRITE_BUFFER / 8) {
+            self.bytes.clear();
+            self.bytes
+                .extend(block.iter().flat_map(|v| v.to_le_bytes()));
+            self.out
+                .write_all(&self.bytes)
+                .map_err(|e| self.temp.io(e))?;
+        }
+        self.written += n;
+        Ok(())
+    }
+
+    /// Checks the row count, flushes, syncs and renames onto the target.
+    pub fn finish(self) -> Result<()> {
+        let NpyRowWriter {
+            out,
+            temp,
+            rows,
+            written,
+            ..
+        } = self;
+        finish_file(out, temp, rows, written)
+    }
+}
