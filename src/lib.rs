@@ -117,6 +117,7 @@ pub mod formats;
 pub mod math;
 pub mod montecarlo;
 pub mod noise;
+pub mod parameters;
 pub mod piston;
 pub mod plan;
 pub mod prelude;

@@ -57,33 +57,9 @@ ESTIMATE_COLUMNS = (
     "v2_sq",
 )
 
-#: The CLI's defaults of the physical inputs.
-_DEFAULTS: Dict[str, Any] = {
-    "wavelength_um": 2.2,
-    "bandwidth_nm": 400.0,
-    "spectrum_csv": None,
-    "source": "ud",
-    "diameter_mas": 43.0,
-    "spatial_freq_cpas": None,
-    "baseline_m": None,
-    "dispersion_pp_rad": 0.0,
-    "stroke_um": None,
-    "dx_um": 0.5,
-    "samples": 128,
-    "integrating": False,
-    "visibility": 1.0,
-    "photons": 10.0,
-    "read_noise": 0.0,
-    "photon_noise": True,
-    "fringe_hz": None,
-    "wind_mps": 10.0,
-    "seeing_arcsec": 1.0,
-    "seeing_wavelength_um": None,
-    "aperture_m": 0.45,
-    "outer_scale_m": None,
-    "sub_samples": 6,
-    "reference": "mean",
-}
+#: The defaults of the physical inputs, from the library's one declaration
+#: (``v2ref::parameters::Physical::default``, also the CLI's defaults).
+_DEFAULTS: Dict[str, Any] = _json.loads(_v2ref.PHYSICAL_DEFAULTS)
 
 _PathLike = Union[str, "_os.PathLike[str]"]
 

@@ -3,27 +3,17 @@
 //! and the Monte Carlo runs (`--seed`, `--threads`).
 
 use super::finite_f64;
-use clap::ValueEnum;
 use std::path::PathBuf;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
+use v2ref::formalism::observation::Observation;
+use v2ref::parameters::Physical;
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::simulator::record::{AtmosphereRecord, ObservationRecord};
 use v2ref::simulator::SourceInput;
 use v2ref::Result;
 
-/// Source model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum SourceKind {
-    /// Unresolved (V = 1).
-    Point,
-    /// Uniform disk of diameter --diameter-mas.
-    Ud,
-}
+pub use v2ref::parameters::SourceKind;
 
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, clap::Args)]
@@ -65,63 +55,38 @@ pub struct ObservationArgs {
 }
 
 impl ObservationArgs {
-    /// The spectrum these flags describe.
-    pub fn spectrum(&self) -> Result<Spectrum> {
-        match &self.spectrum_csv {
-            Some(path) => Spectrum::from_csv_path(path),
-            None => Ok(Spectrum::flat(Band::new(
-                self.wavelength_um,
-                self.bandwidth_um()?,
-            )?)),
-        }
+    /// Sets the inputs these flags hold in `p`.
+    pub fn apply_to(&self, p: &mut Physical) {
+        p.wavelength_um = self.wavelength_um;
+        p.bandwidth_nm = self.bandwidth_nm;
+        p.spectrum_csv = self.spectrum_csv.clone();
+        p.source = self.source;
+        p.diameter_mas = self.diameter_mas;
+        p.spatial_freq_cpas = self.spatial_freq_cpas;
+        p.baseline_m = self.baseline_m;
+        p.dispersion_pp_rad = self.dispersion_pp_rad;
     }
 
-    /// `--bandwidth-nm` in µm, for [`Band::new`]. The flag is checked here in
-    /// its own unit (nm) so that a refusal quotes the number the user typed;
-    /// the rule is the library's ([`v2ref::bounds::check_bandwidth`]).
-    fn bandwidth_um(&self) -> Result<f64> {
-        v2ref::bounds::check_bandwidth("bandwidth_nm", 1e3, self.wavelength_um, self.bandwidth_nm)?;
-        Ok(self.bandwidth_nm * 1e-3)
-    }
-
-    /// The source these flags describe.
-    pub fn source(&self) -> Result<Source> {
-        match self.source {
-            SourceKind::Point => Ok(Source::Point),
-            SourceKind::Ud => Source::uniform_disk(self.diameter_mas),
-        }
+    /// The physical inputs: these flags, the defaults for the rest.
+    pub fn physical(&self) -> Physical {
+        let mut p = Physical::default();
+        self.apply_to(&mut p);
+        p
     }
 
     /// The source as the simulator's inputs and the records state it.
     pub fn source_input(&self) -> SourceInput {
-        match self.source {
-            SourceKind::Point => SourceInput::Point,
-            SourceKind::Ud => SourceInput::Ud {
-                diameter_mas: self.diameter_mas,
-            },
-        }
+        self.physical().source_input()
     }
 
     /// The record of `obs` (made from these flags) for a JSON answer.
     pub fn record(&self, obs: &Observation) -> ObservationRecord {
-        ObservationRecord::new(
-            obs,
-            self.source_input(),
-            (self.wavelength_um, self.bandwidth_nm),
-            self.dispersion_pp_rad,
-        )
+        self.physical().record(obs)
     }
 
     /// The observation these flags describe.
     pub fn observation(&self) -> Result<Observation> {
-        let spectrum = self.spectrum()?;
-        let frequency = match (self.spatial_freq_cpas, self.baseline_m) {
-            (_, Some(b)) => Frequency::BaselineM(b),
-            (Some(s), None) => Frequency::SpatialFreqCpas(s),
-            (None, None) => Frequency::SpatialFreqCpas(40.0),
-        };
-        let phase = SpectralPhase::dispersion_peak_to_peak(&spectrum, self.dispersion_pp_rad)?;
-        Observation::new(spectrum, self.source()?, frequency, phase)
+        self.physical().observation()
     }
 }
 
@@ -144,12 +109,19 @@ pub struct ScanArgs {
 }
 
 impl ScanArgs {
+    /// Sets the inputs these flags hold in `p`.
+    pub fn apply_to(&self, p: &mut Physical) {
+        p.stroke_um = self.stroke_um;
+        p.dx_um = self.dx_um;
+        p.samples = self.samples;
+        p.integrating = self.integrating;
+    }
+
     /// The sampling these flags describe.
     pub fn sampling(&self) -> Result<Sampling> {
-        match self.stroke_um {
-            Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
-            None => Sampling::new(self.samples, self.dx_um, self.integrating),
-        }
+        let mut p = Physical::default();
+        self.apply_to(&mut p);
+        p.sampling()
     }
 }
 
@@ -206,37 +178,42 @@ pub struct TurbulenceArgs {
 pub const INFINITE_OUTER_SCALE_WARN_BASELINE_M: f64 = 20.0;
 
 impl TurbulenceArgs {
+    /// Sets the inputs these flags hold in `p`.
+    pub fn apply_to(&self, p: &mut Physical) {
+        p.wind_mps = self.wind_mps;
+        p.seeing_arcsec = self.seeing_arcsec;
+        p.seeing_wavelength_um = self.seeing_wavelength_um;
+        p.aperture_m = self.aperture_m;
+        p.outer_scale_m = self.outer_scale_m;
+        p.sub_samples = self.sub_samples;
+        p.reference = self.reference;
+    }
+
+    /// These flags at the observing wavelength `wavelength_um`.
+    fn physical(&self, wavelength_um: f64) -> Physical {
+        let mut p = Physical {
+            wavelength_um,
+            ..Physical::default()
+        };
+        self.apply_to(&mut p);
+        p
+    }
+
     /// The seeing at the observing wavelength `wavelength_um`, arcsec: the
     /// flag's value converted from --seeing-wavelength-um.
     pub fn seeing_at_arcsec(&self, wavelength_um: f64) -> Result<f64> {
-        let quoted_at_um = self.seeing_wavelength_um.unwrap_or(wavelength_um);
-        seeing_at_wavelength_arcsec(self.seeing_arcsec, quoted_at_um, wavelength_um)
+        self.physical(wavelength_um).seeing_at_observing_arcsec()
     }
 
     /// The turbulence these flags describe at the observing wavelength.
     pub fn turbulence(&self, wavelength_um: f64) -> Result<Turbulence> {
-        Turbulence::from_seeing(
-            self.seeing_at_arcsec(wavelength_um)?,
-            wavelength_um,
-            self.wind_mps,
-            self.outer_scale_m,
-        )
+        self.physical(wavelength_um).turbulence()
     }
 
     /// The record of these flags at the observing wavelength
     /// `wavelength_um` for a JSON answer.
     pub fn record(&self, wavelength_um: f64) -> Result<AtmosphereRecord> {
-        Ok(AtmosphereRecord {
-            seeing_arcsec: self.seeing_arcsec,
-            seeing_wavelength_um: self.seeing_wavelength_um.unwrap_or(wavelength_um),
-            seeing_at_observing_arcsec: self.seeing_at_arcsec(wavelength_um)?,
-            wavelength_um,
-            wind_mps: self.wind_mps,
-            aperture_m: self.aperture_m,
-            outer_scale_m: self.outer_scale_m.into(),
-            reference: self.reference,
-            sub_samples: self.sub_samples,
-        })
+        self.physical(wavelength_um).atmosphere_record()
     }
 
     /// Warns on stderr when the outer scale is left infinite on a long
@@ -297,8 +274,18 @@ pub struct LightArgs {
 }
 
 impl LightArgs {
+    /// Sets the inputs these flags hold in `p`.
+    pub fn apply_to(&self, p: &mut Physical) {
+        p.visibility = self.visibility;
+        p.photons = self.photons;
+        p.read_noise = self.read_noise;
+        p.photon_noise = !self.no_photon_noise;
+    }
+
     /// The noise model these flags describe.
     pub fn noise(&self) -> Result<v2ref::noise::NoiseModel> {
-        v2ref::noise::NoiseModel::new(self.read_noise, !self.no_photon_noise)
+        let mut p = Physical::default();
+        self.apply_to(&mut p);
+        p.noise()
     }
 }

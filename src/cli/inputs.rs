@@ -3,7 +3,8 @@
 
 use super::common::{LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
 use super::finite_f64;
-use v2ref::simulator::{Inputs, Model, PistonInputs, SpectrumInput};
+use v2ref::parameters::Physical;
+use v2ref::simulator::{Inputs, Model};
 use v2ref::Result;
 
 /// The differential piston: on when `--fringe-hz` is given.
@@ -48,39 +49,67 @@ impl InputsArgs {
         }
     }
 
+    /// Every physical input these flags hold.
+    pub fn physical(&self) -> Physical {
+        let mut p = self.obs.physical();
+        self.scan.apply_to(&mut p);
+        self.light.apply_to(&mut p);
+        p.fringe_hz = self.piston.fringe_hz;
+        self.piston.turbulence.apply_to(&mut p);
+        p
+    }
+
     /// The inputs, before the checks that involve N (a file's width may
     /// still set it).
     pub fn inputs_unchecked(&self) -> Result<Inputs> {
-        let obs = self.obs.observation()?;
-        let sampling = self.scan.sampling()?;
-        let t = &self.piston.turbulence;
-        let seeing_arcsec = t.seeing_at_arcsec(self.obs.wavelength_um)?;
-        let inputs = Inputs {
-            spectrum: SpectrumInput::from_spectrum(
-                &obs.spectrum,
-                (self.obs.wavelength_um, self.obs.bandwidth_nm),
-            ),
-            source: self.obs.source_input(),
-            baseline_m: obs.baseline_m,
-            dispersion_pp_rad: self.obs.dispersion_pp_rad,
-            samples: sampling.samples(),
-            dx_um: sampling.dx_um(),
-            integrating: sampling.integrating(),
-            photons: self.light.photons,
-            visibility: self.light.visibility,
-            read_noise: self.light.read_noise,
-            photon_noise: !self.light.no_photon_noise,
-            piston: self.piston.fringe_hz.map(|f| PistonInputs {
-                fringe_hz: f,
-                wavelength_um: self.obs.wavelength_um,
-                seeing_arcsec,
-                wind_mps: t.wind_mps,
-                aperture_m: t.aperture_m,
-                outer_scale_m: t.outer_scale_m,
-                reference: t.reference,
-                sub_samples: t.sub_samples,
-            }),
-        };
-        Ok(inputs)
+        self.physical().inputs_unchecked()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::InputsArgs;
+    use clap::Parser;
+    use v2ref::parameters::Physical;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        inputs: InputsArgs,
+    }
+
+    /// The flags' defaults are the library's one declaration of them.
+    #[test]
+    fn flag_defaults_are_the_declared_defaults() {
+        let cli = Cli::try_parse_from(["v2ref"]).unwrap();
+        assert_eq!(cli.inputs.physical(), Physical::default());
+    }
+
+    /// Each flag reaches its own field: a non-default value of every flag
+    /// moves exactly that field (a flag copied into the wrong field, or not
+    /// at all, fails).
+    #[test]
+    fn each_flag_sets_its_field() {
+        let cases: [(&[&str], fn(&mut Physical)); 12] = [
+            (&["--wavelength-um", "1.6"], |p| p.wavelength_um = 1.6),
+            (&["--bandwidth-nm", "300"], |p| p.bandwidth_nm = 300.0),
+            (&["--diameter-mas", "2"], |p| p.diameter_mas = 2.0),
+            (&["--baseline-m", "100"], |p| p.baseline_m = Some(100.0)),
+            (&["--dispersion-pp-rad", "1"], |p| p.dispersion_pp_rad = 1.0),
+            (&["--dx-um", "0.25"], |p| p.dx_um = 0.25),
+            (&["--samples", "64"], |p| p.samples = 64),
+            (&["--photons", "5"], |p| p.photons = 5.0),
+            (&["--read-noise", "2"], |p| p.read_noise = 2.0),
+            (&["--no-photon-noise"], |p| p.photon_noise = false),
+            (&["--fringe-hz", "300"], |p| p.fringe_hz = Some(300.0)),
+            (&["--aperture-m", "1.8"], |p| p.aperture_m = 1.8),
+        ];
+        for (flags, set) in cases {
+            let args = std::iter::once("v2ref").chain(flags.iter().copied());
+            let cli = Cli::try_parse_from(args).unwrap();
+            let mut want = Physical::default();
+            set(&mut want);
+            assert_eq!(cli.inputs.physical(), want, "{flags:?}");
+        }
     }
 }

@@ -412,7 +412,7 @@ fn bias(physical: &Bound<'_, PyDict>, bins: &str, finite_scan: bool) -> PyResult
         None
     };
     let scan = sampling.as_ref().map(|s| (s, window));
-    json(&ok(BiasReport::new(&obs, ok(p.record(&obs))?, scan))?)
+    json(&ok(BiasReport::new(&obs, p.record(&obs), scan))?)
 }
 
 /// `snr`: `v2ref snr --json`.
@@ -432,7 +432,7 @@ fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<Stri
     };
     json(&ok(SnrReport::new(
         &obs,
-        ok(p.record(&obs))?,
+        p.record(&obs),
         &sampling,
         window,
         light,
@@ -459,7 +459,7 @@ fn piston(
     let psd: PistonPsdModel = ok(parse_enum("psd", psd, &["two-aperture", "three-slope"]))?;
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
-    let reference = ok(p.reference())?;
+    let reference = p.reference;
     let obs = ok(p.observation())?;
     let sampling = ok(p.sampling())?;
     ok(sampling.check_aliasing(&obs))?;
@@ -521,7 +521,7 @@ fn piston(
     })?;
     let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
     let inputs = InputsRecord {
-        observation: ok(p.record(&obs))?,
+        observation: p.record(&obs),
         sampling: Some(SamplingRecord::new(&sampling, window)),
         atmosphere: Some(ok(p.atmosphere_record())?),
     };
@@ -679,7 +679,7 @@ fn plan(
             wind_mps: p.wind_mps,
             aperture_m: p.aperture_m,
             outer_scale_m: p.outer_scale_m,
-            reference: ok(p.reference())?,
+            reference: p.reference,
             sub_samples: p.sub_samples,
         },
         instrument,

@@ -1,0 +1,383 @@
+//! The physical inputs of one configuration, declared once.
+//!
+//! [`Physical`] holds every physical input that the commands share (the
+//! band or spectrum, the source, where in the (u, v) plane, dispersion, the
+//! scan and detector, the light and noise, the fringe frequency and the
+//! atmosphere), with its default in [`Physical::default`]. Both edges fill
+//! it — the CLI from its flags, Python from its keyword arguments (the same
+//! names, `-` as `_`) — and hand it to the builders below, which make the
+//! library's objects ([`Observation`], [`Sampling`], [`Inputs`], …). So a
+//! default, a conversion or a check lives in one place; tests check that
+//! the CLI's flag defaults and the Python signatures agree with it.
+//!
+//! [`PARAMETERS`] states each one's unit and accepted range in words (the
+//! library's checks in [`crate::bounds`] enforce them).
+
+use crate::error::{Error, Result};
+use crate::formalism::interferogram::Sampling;
+use crate::formalism::observation::{Frequency, Observation};
+use crate::formalism::phase::SpectralPhase;
+use crate::formalism::source::Source;
+use crate::formalism::spectrum::{Band, Spectrum};
+use crate::noise::NoiseModel;
+use crate::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
+use crate::piston::PistonReference;
+use crate::simulator::record::{AtmosphereRecord, ObservationRecord};
+use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// The source model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum SourceKind {
+    /// Unresolved (V = 1).
+    Point,
+    /// Uniform disk of diameter --diameter-mas.
+    Ud,
+}
+
+/// The spatial frequency when neither it nor the baseline is given,
+/// cycles/arcsec: the paper's 18 m baseline in K.
+pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
+
+/// Every physical input of one configuration (see the module doc). Field
+/// names are the Python keyword arguments and, with `_` as `-`, the CLI's
+/// flags (but `photon_noise`, which the CLI turns off with
+/// `--no-photon-noise`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Physical {
+    /// Centre wavelength λ0, µm.
+    pub wavelength_um: f64,
+    /// Full bandwidth Δλ, nm (flat per unit wavenumber).
+    pub bandwidth_nm: f64,
+    /// A tabulated S(σ)F(σ) instead of the flat band (CSV).
+    pub spectrum_csv: Option<PathBuf>,
+    /// Source model.
+    pub source: SourceKind,
+    /// Uniform-disk diameter θ, mas.
+    pub diameter_mas: f64,
+    /// Spatial frequency S = B σ_eff, cycles/arcsec (default
+    /// [`DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
+    pub spatial_freq_cpas: Option<f64>,
+    /// Projected baseline B, m (instead of the spatial frequency).
+    pub baseline_m: Option<f64>,
+    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
+    pub dispersion_pp_rad: f64,
+    /// OPD stroke Δx, µm (sets N = Δx/δx; else N = `samples`).
+    pub stroke_um: Option<f64>,
+    /// Sample spacing δx, µm.
+    pub dx_um: f64,
+    /// Number of samples N (ignored when `stroke_um` is given).
+    pub samples: usize,
+    /// Integrating detector (each sample averages the fringe over δx).
+    pub integrating: bool,
+    /// Visibility V scaling the fringe.
+    pub visibility: f64,
+    /// Continuum photons per sample n.
+    pub photons: f64,
+    /// Detector noise standard deviation σ_det, photons per sample.
+    pub read_noise: f64,
+    /// Poisson photon noise on (else detector noise only).
+    pub photon_noise: bool,
+    /// Fringe frequency f = v/λ0, Hz: the differential piston is on when
+    /// given.
+    pub fringe_hz: Option<f64>,
+    /// Wind speed, m/s (frozen flow along the baseline).
+    pub wind_mps: f64,
+    /// Seeing λ/r0, arcsec, at `seeing_wavelength_um`.
+    pub seeing_arcsec: f64,
+    /// Where the seeing is quoted, µm (default: the observing wavelength).
+    pub seeing_wavelength_um: Option<f64>,
+    /// Telescope aperture diameter, m.
+    pub aperture_m: f64,
+    /// von Kármán outer scale, m (None: infinite).
+    pub outer_scale_m: Option<f64>,
+    /// Sub-samples per sample of the integrating detector under piston.
+    pub sub_samples: usize,
+    /// Where the fringe packet sits in each scan.
+    pub reference: PistonReference,
+}
+
+impl Default for Physical {
+    /// The paper's K-band case: a 43 mas disk at 40 cycles/arcsec, 400 nm
+    /// at 2.2 µm, 128 samples of 0.5 µm, 10 photons per sample.
+    fn default() -> Self {
+        Physical {
+            wavelength_um: 2.2,
+            bandwidth_nm: 400.0,
+            spectrum_csv: None,
+            source: SourceKind::Ud,
+            diameter_mas: 43.0,
+            spatial_freq_cpas: None,
+            baseline_m: None,
+            dispersion_pp_rad: 0.0,
+            stroke_um: None,
+            dx_um: 0.5,
+            samples: 128,
+            integrating: false,
+            visibility: 1.0,
+            photons: 10.0,
+            read_noise: 0.0,
+            photon_noise: true,
+            fringe_hz: None,
+            wind_mps: 10.0,
+            seeing_arcsec: 1.0,
+            seeing_wavelength_um: None,
+            aperture_m: 0.45,
+            outer_scale_m: None,
+            sub_samples: crate::piston::DEFAULT_SUB_SAMPLES,
+            reference: PistonReference::Mean,
+        }
+    }
+}
+
+/// One physical input's name, unit and accepted range, in words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Parameter {
+    /// The field of [`Physical`] (the Python keyword argument).
+    pub name: &'static str,
+    /// Its unit (empty for a count, a flag or a choice).
+    pub unit: &'static str,
+    /// The values accepted.
+    pub accepted: &'static str,
+}
+
+/// Every field of [`Physical`], in declaration order.
+pub const PARAMETERS: [Parameter; 24] = [
+    p("wavelength_um", "um", "0.001 to 100000"),
+    p("bandwidth_nm", "nm", "1e-12 λ0 to under 2 λ0"),
+    p("spectrum_csv", "", "a CSV file"),
+    p("source", "", "point or ud"),
+    p("diameter_mas", "mas", "> 0 to 3.6e6"),
+    p("spatial_freq_cpas", "cycles/arcsec", "0 to 1e13"),
+    p("baseline_m", "m", "0 to 1e9"),
+    p("dispersion_pp_rad", "rad", "-1e4 to 1e4"),
+    p("stroke_um", "um", "> 0"),
+    p("dx_um", "um", "> 0"),
+    p("samples", "", "2 to 2^24"),
+    p("integrating", "", "true or false"),
+    p("visibility", "", "0 to 1"),
+    p("photons", "photons/sample", "> 0 to 1e12"),
+    p("read_noise", "photons/sample", "0 to 1e12"),
+    p("photon_noise", "", "true or false"),
+    p("fringe_hz", "Hz", "1e-3 to 1e7"),
+    p("wind_mps", "m/s", "> 0 to 343"),
+    p("seeing_arcsec", "arcsec", "0 to 100"),
+    p("seeing_wavelength_um", "um", "0.001 to 100000"),
+    p("aperture_m", "m", "> 0"),
+    p("outer_scale_m", "m", "> 0"),
+    p("sub_samples", "", "1 to 64"),
+    p("reference", "", "centre, mean or absolute"),
+];
+
+const fn p(name: &'static str, unit: &'static str, accepted: &'static str) -> Parameter {
+    Parameter {
+        name,
+        unit,
+        accepted,
+    }
+}
+
+impl Physical {
+    /// Refuses a non-finite number and the spatial frequency given with the
+    /// baseline (each edge calls it once, after filling the inputs).
+    pub fn check(&self) -> Result<()> {
+        for (param, v) in [
+            ("wavelength_um", Some(self.wavelength_um)),
+            ("bandwidth_nm", Some(self.bandwidth_nm)),
+            ("diameter_mas", Some(self.diameter_mas)),
+            ("spatial_freq_cpas", self.spatial_freq_cpas),
+            ("baseline_m", self.baseline_m),
+            ("dispersion_pp_rad", Some(self.dispersion_pp_rad)),
+            ("stroke_um", self.stroke_um),
+            ("dx_um", Some(self.dx_um)),
+            ("visibility", Some(self.visibility)),
+            ("photons", Some(self.photons)),
+            ("read_noise", Some(self.read_noise)),
+            ("fringe_hz", self.fringe_hz),
+            ("wind_mps", Some(self.wind_mps)),
+            ("seeing_arcsec", Some(self.seeing_arcsec)),
+            ("seeing_wavelength_um", self.seeing_wavelength_um),
+            ("aperture_m", Some(self.aperture_m)),
+            ("outer_scale_m", self.outer_scale_m),
+        ] {
+            match v {
+                Some(v) if !v.is_finite() => {
+                    return Err(Error::Invalid {
+                        param,
+                        reason: format!("{v} is not a finite number"),
+                    })
+                }
+                _ => {}
+            }
+        }
+        if self.spatial_freq_cpas.is_some() && self.baseline_m.is_some() {
+            return Err(Error::Invalid {
+                param: "baseline_m",
+                reason: "cannot be used with spatial_freq_cpas (give one of them)".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The spectrum: the CSV table, else the band flat per unit wavenumber.
+    pub fn spectrum(&self) -> Result<Spectrum> {
+        match &self.spectrum_csv {
+            Some(path) => Spectrum::from_csv_path(path),
+            None => Ok(Spectrum::flat(Band::new(
+                self.wavelength_um,
+                self.bandwidth_um()?,
+            )?)),
+        }
+    }
+
+    /// `bandwidth_nm` in µm, for [`Band::new`]: checked here in nm so that
+    /// a refusal quotes the number the user typed; the rule is
+    /// [`crate::bounds::check_bandwidth`].
+    fn bandwidth_um(&self) -> Result<f64> {
+        crate::bounds::check_bandwidth("bandwidth_nm", 1e3, self.wavelength_um, self.bandwidth_nm)?;
+        Ok(self.bandwidth_nm * 1e-3)
+    }
+
+    /// The source.
+    pub fn source(&self) -> Result<Source> {
+        match self.source {
+            SourceKind::Point => Ok(Source::Point),
+            SourceKind::Ud => Source::uniform_disk(self.diameter_mas),
+        }
+    }
+
+    /// The source as the simulator's inputs and the records state it.
+    pub fn source_input(&self) -> SourceInput {
+        match self.source {
+            SourceKind::Point => SourceInput::Point,
+            SourceKind::Ud => SourceInput::Ud {
+                diameter_mas: self.diameter_mas,
+            },
+        }
+    }
+
+    /// Where in the (u, v) plane: the baseline when given, else the spatial
+    /// frequency (default [`DEFAULT_SPATIAL_FREQ_CPAS`]).
+    pub fn frequency(&self) -> Frequency {
+        match (self.spatial_freq_cpas, self.baseline_m) {
+            (_, Some(b)) => Frequency::BaselineM(b),
+            (Some(s), None) => Frequency::SpatialFreqCpas(s),
+            (None, None) => Frequency::SpatialFreqCpas(DEFAULT_SPATIAL_FREQ_CPAS),
+        }
+    }
+
+    /// The observation: spectrum, source, frequency and dispersion phase.
+    pub fn observation(&self) -> Result<Observation> {
+        let spectrum = self.spectrum()?;
+        let phase = SpectralPhase::dispersion_peak_to_peak(&spectrum, self.dispersion_pp_rad)?;
+        Observation::new(spectrum, self.source()?, self.frequency(), phase)
+    }
+
+    /// The record of `obs` (made from these inputs) for a JSON answer.
+    pub fn record(&self, obs: &Observation) -> ObservationRecord {
+        ObservationRecord::new(
+            obs,
+            self.source_input(),
+            (self.wavelength_um, self.bandwidth_nm),
+            self.dispersion_pp_rad,
+        )
+    }
+
+    /// The sampling: from the stroke when given, else N samples.
+    pub fn sampling(&self) -> Result<Sampling> {
+        match self.stroke_um {
+            Some(stroke) => Sampling::from_stroke(stroke, self.dx_um, self.integrating),
+            None => Sampling::new(self.samples, self.dx_um, self.integrating),
+        }
+    }
+
+    /// The noise model.
+    pub fn noise(&self) -> Result<NoiseModel> {
+        NoiseModel::new(self.read_noise, self.photon_noise)
+    }
+
+    /// The seeing at the observing wavelength, arcsec (r0 ∝ λ^(6/5) from
+    /// where it was quoted).
+    pub fn seeing_at_observing_arcsec(&self) -> Result<f64> {
+        seeing_at_wavelength_arcsec(
+            self.seeing_arcsec,
+            self.seeing_wavelength_um.unwrap_or(self.wavelength_um),
+            self.wavelength_um,
+        )
+    }
+
+    /// The turbulence at the observing wavelength.
+    pub fn turbulence(&self) -> Result<Turbulence> {
+        Turbulence::from_seeing(
+            self.seeing_at_observing_arcsec()?,
+            self.wavelength_um,
+            self.wind_mps,
+            self.outer_scale_m,
+        )
+    }
+
+    /// The atmosphere's record for a JSON answer.
+    pub fn atmosphere_record(&self) -> Result<AtmosphereRecord> {
+        Ok(AtmosphereRecord {
+            seeing_arcsec: self.seeing_arcsec,
+            seeing_wavelength_um: self.seeing_wavelength_um.unwrap_or(self.wavelength_um),
+            seeing_at_observing_arcsec: self.seeing_at_observing_arcsec()?,
+            wavelength_um: self.wavelength_um,
+            wind_mps: self.wind_mps,
+            aperture_m: self.aperture_m,
+            outer_scale_m: self.outer_scale_m.into(),
+            reference: self.reference,
+            sub_samples: self.sub_samples,
+        })
+    }
+
+    /// The atmosphere and telescopes of the piston at `fringe_hz`.
+    pub fn piston_inputs(&self, fringe_hz: f64) -> Result<PistonInputs> {
+        Ok(PistonInputs {
+            fringe_hz,
+            wavelength_um: self.wavelength_um,
+            seeing_arcsec: self.seeing_at_observing_arcsec()?,
+            wind_mps: self.wind_mps,
+            aperture_m: self.aperture_m,
+            outer_scale_m: self.outer_scale_m,
+            reference: self.reference,
+            sub_samples: self.sub_samples,
+        })
+    }
+
+    /// The simulator's inputs, checked ([`Inputs::validate`]).
+    pub fn inputs(&self) -> Result<Inputs> {
+        let inputs = self.inputs_unchecked()?;
+        inputs.validate()?;
+        Ok(inputs)
+    }
+
+    /// The simulator's inputs before the checks that involve N (a file's
+    /// width may still set it).
+    pub fn inputs_unchecked(&self) -> Result<Inputs> {
+        let obs = self.observation()?;
+        let sampling = self.sampling()?;
+        // Checked with or without the piston, as the seeing is always given.
+        self.seeing_at_observing_arcsec()?;
+        Ok(Inputs {
+            spectrum: SpectrumInput::from_spectrum(
+                &obs.spectrum,
+                (self.wavelength_um, self.bandwidth_nm),
+            ),
+            source: self.source_input(),
+            baseline_m: obs.baseline_m,
+            dispersion_pp_rad: self.dispersion_pp_rad,
+            samples: sampling.samples(),
+            dx_um: sampling.dx_um(),
+            integrating: sampling.integrating(),
+            photons: self.photons,
+            visibility: self.visibility,
+            read_noise: self.read_noise,
+            photon_noise: self.photon_noise,
+            piston: self.fringe_hz.map(|f| self.piston_inputs(f)).transpose()?,
+        })
+    }
+}
