@@ -537,8 +537,9 @@ def score(
     dict
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
-        ``estimators`` (per estimator: mean, expected_mean, z_mean, var,
-        expected_var, z_var, minimum detectable biases, pass), ``pass``.
+        ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
+        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        minimum detectable biases, pass), ``pass``.
     """
     v1, v2 = _estimate_columns(estimates, columns)
     text, name = _sidecar_text(sidecar)
