@@ -21,10 +21,13 @@ mas for diameters, m for baselines and apertures, Hz for fringe frequencies,
 photons per sample for fluxes and noise.
 """
 
-from __future__ import annotations
-
+import collections.abc as _abc
 import json as _json
 import os as _os
+
+# The names of typing used in the signatures below; deleted at the end of the
+# module so that the namespace holds the API only (the signatures keep the
+# types themselves: help() shows them).
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
@@ -85,7 +88,7 @@ _DEFAULTS: Dict[str, Any] = {
     "reference": "mean",
 }
 
-_PathLike = Union[str, "_os.PathLike[str]"]
+_PathLike = Union[str, _os.PathLike[str]]
 
 
 # --------------------------------------------------------------------------
@@ -166,7 +169,7 @@ def _vector(name: str, x: Any) -> "_np.ndarray":
 
 def _sidecar_text(sidecar: Any) -> Tuple[str, str]:
     """(JSON text, name for messages) of a sidecar given as a dict or a path."""
-    if isinstance(sidecar, Mapping):
+    if isinstance(sidecar, _abc.Mapping):
         return _json.dumps(sidecar), "<dict>"
     if isinstance(sidecar, (str, bytes, _os.PathLike)):
         path = _os.fsdecode(sidecar)
@@ -285,9 +288,10 @@ def estimate(
     visibility : float
         Visibility V scaling the fringe, 0 to 1.
     photons : float
-        Continuum photons per sample n (c = n), >= 0.
+        Continuum photons per sample n (c = n), > 0 and at most 1e12
+        (0 is refused).
     read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, >= 0.
+        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
     photon_noise : bool
         Poisson photon noise (False: detector noise only; the CLI's
         ``--no-photon-noise``).
@@ -461,7 +465,7 @@ def synthesize(
 
 def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     """(v1_sq, v2_sq) of the estimates, either None when absent."""
-    if isinstance(estimates, Mapping):
+    if isinstance(estimates, _abc.Mapping):
         found = {k: estimates[k] for k in ("v1_sq", "v2_sq") if k in estimates}
         if not found:
             raise ValueError(
@@ -971,3 +975,15 @@ def claims(*, quick: bool = False) -> list:
         ``note``, …
     """
     return _json.loads(_v2ref.claims(bool(quick)))
+
+
+# --------------------------------------------------------------------------
+# The namespace: the API of ``__all__`` only.
+
+del Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+
+
+def __dir__():
+    """The public names: ``__all__``, the extension module and the dunders."""
+    dunders = {n for n in globals() if n.startswith("__") and n.endswith("__")}
+    return sorted(set(__all__) | {"_v2ref"} | dunders)

@@ -64,9 +64,10 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
     visibility : float
         Visibility V scaling the fringe, 0 to 1.
     photons : float
-        Continuum photons per sample n (c = n), >= 0.
+        Continuum photons per sample n (c = n), > 0 and at most 1e12
+        (0 is refused).
     read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, >= 0.
+        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
     photon_noise : bool
         Poisson photon noise (False: detector noise only; the CLI's
         ``--no-photon-noise``).
