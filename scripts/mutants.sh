@@ -43,7 +43,7 @@ declare -A AREAS=(
     [dispersion]="src/bias/dispersion.rs|bias_dispersion"
     [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
     [turbulence]="src/piston/turbulence.rs|turbulence piston"
-    [piston_spectrum]="src/piston/spectrum.rs|piston_spectrum turbulence piston"
+    [piston_spectrum]="src/piston/spectrum.rs src/piston/transverse.rs|piston_spectrum turbulence piston"
     [fft]="src/math/fft.rs|fft"
 )
 NEEDS_CLI=" seeding turbulence piston_spectrum "

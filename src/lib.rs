@@ -47,6 +47,24 @@
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
 //! | tolerances (one home), errors | [`tolerance`], [`error`] |
+//! | what a computation was asked, as plain values, and its record in the answers | [`record`] |
+//!
+//! ## Levels
+//!
+//! The modules form levels, and a module uses only modules of its own
+//! level or below (`tests/architecture.rs` checks every `use` of `src/`),
+//! so that each can be read, tested and changed with only what is under it
+//! in mind:
+//!
+//! 1. foundation: [`error`], [`tolerance`], [`bounds`], [`cleanup`], [`math`], [`montecarlo`];
+//! 2. [`formalism`];
+//! 3. [`record`] (the inputs of a computation as plain values, and the record of them an answer carries);
+//! 4. [`bias`];
+//! 5. [`noise`], [`piston`];
+//! 6. [`simulator`], [`parameters`] (the physical inputs declared once, and the objects they build);
+//! 7. [`conformance`];
+//! 8. [`plan`], [`reproduction`];
+//! 9. the edges: [`prelude`], the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
 //!
 //! ## Units and conventions
 //!
@@ -123,6 +141,7 @@ pub mod plan;
 pub mod prelude;
 #[cfg(feature = "python")]
 pub mod python;
+pub mod record;
 pub mod reproduction;
 pub mod simulator;
 pub mod tolerance;

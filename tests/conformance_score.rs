@@ -67,7 +67,7 @@ fn exact_scores_of_a_four_row_set() {
     assert_eq!(s.rows, 4);
     assert_rel_eq!(s.mean, 2.5, 1e-15);
     assert_rel_eq!(s.var, 5.0 / 3.0, 1e-15);
-    assert_rel_eq!(s.stderr_mean, 0.5, 1e-15);
+    assert_rel_eq!(s.stderr_mean_combined, 0.5, 1e-15);
     assert_rel_eq!(s.stderr_var, 1.0, 1e-15);
     assert_eq!(s.stderr_var_source, VarStderrSource::Truth);
     assert_rel_eq!(s.z_mean, 1.0, 1e-14);
@@ -172,7 +172,7 @@ fn verdict_flips_beyond_the_stated_power() {
     let biased = score(&alternating(n, 1.0 + 1.01 * mdb, d), &t, n as u64, 1e-3).unwrap();
     assert!(!biased.pass_mean && !biased.pass, "{biased:?}");
     // A bias just inside the threshold (z = 0.99 z_crit): passes.
-    let inside = 0.99 * unbiased.z_crit * unbiased.stderr_mean;
+    let inside = 0.99 * unbiased.z_crit * unbiased.stderr_mean_combined;
     let small = score(&alternating(n, 1.0 - inside, d), &t, n as u64, 1e-3).unwrap();
     assert!(small.pass, "{small:?}");
     // The same for the variance: scale the spread.

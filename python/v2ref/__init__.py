@@ -21,10 +21,13 @@ mas for diameters, m for baselines and apertures, Hz for fringe frequencies,
 photons per sample for fluxes and noise.
 """
 
-from __future__ import annotations
-
+import collections.abc as _abc
 import json as _json
 import os as _os
+
+# The names of typing used in the signatures below; deleted at the end of the
+# module so that the namespace holds the API only (the signatures keep the
+# types themselves: help() shows them).
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
@@ -61,7 +64,7 @@ ESTIMATE_COLUMNS = (
 #: (``v2ref::parameters::Physical::default``, also the CLI's defaults).
 _DEFAULTS: Dict[str, Any] = _json.loads(_v2ref.PHYSICAL_DEFAULTS)
 
-_PathLike = Union[str, "_os.PathLike[str]"]
+_PathLike = Union[str, _os.PathLike[str]]
 
 
 # --------------------------------------------------------------------------
@@ -142,7 +145,7 @@ def _vector(name: str, x: Any) -> "_np.ndarray":
 
 def _sidecar_text(sidecar: Any) -> Tuple[str, str]:
     """(JSON text, name for messages) of a sidecar given as a dict or a path."""
-    if isinstance(sidecar, Mapping):
+    if isinstance(sidecar, _abc.Mapping):
         return _json.dumps(sidecar), "<dict>"
     if isinstance(sidecar, (str, bytes, _os.PathLike)):
         path = _os.fsdecode(sidecar)
@@ -261,9 +264,10 @@ def estimate(
     visibility : float
         Visibility V scaling the fringe, 0 to 1.
     photons : float
-        Continuum photons per sample n (c = n), >= 0.
+        Continuum photons per sample n (c = n), > 0 and at most 1e12
+        (0 is refused).
     read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, >= 0.
+        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
     photon_noise : bool
         Poisson photon noise (False: detector noise only; the CLI's
         ``--no-photon-noise``).
@@ -437,7 +441,7 @@ def synthesize(
 
 def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     """(v1_sq, v2_sq) of the estimates, either None when absent."""
-    if isinstance(estimates, Mapping):
+    if isinstance(estimates, _abc.Mapping):
         found = {k: estimates[k] for k in ("v1_sq", "v2_sq") if k in estimates}
         if not found:
             raise ValueError(
@@ -513,8 +517,9 @@ def score(
     dict
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
-        ``estimators`` (per estimator: mean, expected_mean, z_mean, var,
-        expected_var, z_var, minimum detectable biases, pass), ``pass``.
+        ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
+        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        minimum detectable biases, pass), ``pass``.
     """
     v1, v2 = _estimate_columns(estimates, columns)
     text, name = _sidecar_text(sidecar)
@@ -946,3 +951,15 @@ def claims(*, quick: bool = False) -> list:
         ``note``, …
     """
     return _json.loads(_v2ref.claims(bool(quick)))
+
+
+# --------------------------------------------------------------------------
+# The namespace: the API of ``__all__`` only.
+
+del Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+
+
+def __dir__():
+    """The public names: ``__all__``, the extension module and the dunders."""
+    dunders = {n for n in globals() if n.startswith("__") and n.endswith("__")}
+    return sorted(set(__all__) | {"_v2ref"} | dunders)

@@ -64,9 +64,10 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
     visibility : float
         Visibility V scaling the fringe, 0 to 1.
     photons : float
-        Continuum photons per sample n (c = n), >= 0.
+        Continuum photons per sample n (c = n), > 0 and at most 1e12
+        (0 is refused).
     read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, >= 0.
+        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
     photon_noise : bool
         Poisson photon noise (False: detector noise only; the CLI's
         ``--no-photon-noise``).
@@ -182,8 +183,9 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
     dict
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
-        ``estimators`` (per estimator: mean, expected_mean, z_mean, var,
-        expected_var, z_var, minimum detectable biases, pass), ``pass``.
+        ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
+        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        minimum detectable biases, pass), ``pass``.
     """
     ...
 

@@ -6,7 +6,7 @@ use crate::error::Result;
 use crate::formalism::estimator::{sampled_wide_band, wide_band, BinWindow, Pair, WideBand};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
-use crate::simulator::record::{InputsRecord, ObservationRecord, SamplingRecord};
+use crate::record::{InputsRecord, ObservationRecord, SamplingRecord};
 use serde::Serialize;
 
 /// The estimators of a finite, sampled scan.

@@ -90,7 +90,8 @@ mod tests {
     /// at all, fails).
     #[test]
     fn each_flag_sets_its_field() {
-        let cases: [(&[&str], fn(&mut Physical)); 12] = [
+        type Case = (&'static [&'static str], fn(&mut Physical));
+        let cases: [Case; 12] = [
             (&["--wavelength-um", "1.6"], |p| p.wavelength_um = 1.6),
             (&["--bandwidth-nm", "300"], |p| p.bandwidth_nm = 300.0),
             (&["--diameter-mas", "2"], |p| p.diameter_mas = 2.0),

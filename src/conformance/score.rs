@@ -92,8 +92,10 @@ pub struct EstimatorScore {
     /// T.mean, the expected mean.
     pub expected_mean: f64,
     /// `se_mean = √(T.set_stderr_mean² + T.stderr_mean²)`, the denominator
-    /// of `z_mean`.
-    pub stderr_mean: f64,
+    /// of `z_mean`: the scatter of a set's mean and the truth's own
+    /// uncertainty combined (not the truth's `stderr_mean`, which is only
+    /// the second).
+    pub stderr_mean_combined: f64,
     /// `(x̄ − T.mean)/se_mean`.
     pub z_mean: f64,
     /// s², the unbiased sample variance of the estimates.
@@ -223,7 +225,7 @@ pub fn score_with_threshold(
         rows: stats.count,
         mean,
         expected_mean: truth.mean,
-        stderr_mean: se_mean,
+        stderr_mean_combined: se_mean,
         z_mean,
         var,
         expected_var: truth.var,

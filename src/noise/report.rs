@@ -10,7 +10,7 @@ use crate::noise::calibrated::{CalibratedSetup, MAX_WINDOW_SAMPLES};
 use crate::noise::snr_value::serialize_snr;
 use crate::noise::window_variance::{window_stats, WindowStats};
 use crate::noise::{appendix_stats, paper_window_factor, Formula, NoiseModel};
-use crate::simulator::record::{InputsRecord, ObservationRecord, SamplingRecord};
+use crate::record::{InputsRecord, ObservationRecord, SamplingRecord};
 use serde::Serialize;
 
 /// The exact statistics of one window of bins.

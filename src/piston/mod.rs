@@ -5,6 +5,8 @@
 //! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing.
 //! - [`spectrum`]: the temporal spectrum of the differential piston
 //!   ([`spectrum::PistonSpectrum`], also at `piston::turbulence::PistonSpectrum`).
+//! - [`transverse`]: the transverse integrals G and S under that spectrum,
+//!   by quadrature and tabulated ([`transverse::TransverseTable`]).
 //! - [`three_slope`]: the three-slope model of that spectrum (Conan et al.
 //!   1995 asymptotes, as in Perrin 1997), [`spectrum::PistonPsdModel`].
 //! - [`series`]: piston sequences synthesised from that spectrum.
@@ -25,6 +27,7 @@ pub mod series;
 pub mod simulation;
 pub mod spectrum;
 pub mod three_slope;
+pub mod transverse;
 pub mod turbulence;
 
 pub use calibration::Calibration;

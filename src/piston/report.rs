@@ -8,7 +8,7 @@ use super::spectrum::PistonSpectrum;
 use crate::formalism::estimator::BinWindow;
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
-use crate::simulator::record::InputsRecord;
+use crate::record::InputsRecord;
 use serde::Serialize;
 
 /// One fringe frequency's bias and scatter of V1 and V2 (of V, not V²).

@@ -28,6 +28,8 @@ use crate::math::quadrature::gauss_legendre;
 use crate::piston::fringe_table::FringeTable;
 use serde::Serialize;
 
+pub use crate::record::PistonReference;
+
 /// Most Gauss–Legendre sub-samples per integrating sample.
 pub const MAX_SUB_SAMPLES: usize = 64;
 /// Default sub-samples of the integrating detector: at 4 samples per 2 µm
@@ -78,31 +80,6 @@ impl Detector {
         match self {
             Detector::Sampled => "sampled",
             Detector::Integrating { .. } => "integrating",
-        }
-    }
-}
-
-/// Where the fringe packet sits in each scan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-pub enum PistonReference {
-    /// The piston at the time of the middle (zero-OPD) sample is removed:
-    /// the scan is centred on the white-light fringe at that instant.
-    Centre,
-    /// The piston averaged over the scan is removed.
-    Mean,
-    /// Nothing is removed: the packet wanders with the absolute piston.
-    Absolute,
-}
-
-impl PistonReference {
-    /// Lowercase name.
-    pub fn name(&self) -> &'static str {
-        match self {
-            PistonReference::Centre => "centre",
-            PistonReference::Mean => "mean",
-            PistonReference::Absolute => "absolute",
         }
     }
 }

@@ -7,91 +7,14 @@ use crate::error::{self, Result};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
-use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::NoiseModel;
-use crate::piston::scan::{Detector, PistonReference, ScanSetup, DEFAULT_SUB_SAMPLES};
+use crate::piston::scan::{Detector, ScanSetup, DEFAULT_SUB_SAMPLES};
 use crate::piston::turbulence::{PistonSpectrum, Turbulence};
+use crate::record::PistonReference;
 use serde::{Deserialize, Serialize};
 
-/// S(σ)F(σ): a flat band or a table.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum SpectrumInput {
-    /// Flat in wavenumber over [λ0 − Δλ/2, λ0 + Δλ/2].
-    Flat {
-        /// λ0, µm.
-        wavelength_um: f64,
-        /// Δλ, nm.
-        bandwidth_nm: f64,
-    },
-    /// Piecewise linear through (σ_j, w_j), zero outside.
-    Table {
-        /// σ_j, µm⁻¹, strictly increasing.
-        wavenumber_per_um: Vec<f64>,
-        /// w_j ≥ 0 (any scale).
-        weight: Vec<f64>,
-    },
-}
-
-impl SpectrumInput {
-    /// The spectrum.
-    pub fn spectrum(&self) -> Result<Spectrum> {
-        match self {
-            SpectrumInput::Flat {
-                wavelength_um,
-                bandwidth_nm,
-            } => {
-                error::positive("bandwidth_nm", *bandwidth_nm)?;
-                Ok(Spectrum::flat(Band::new(
-                    *wavelength_um,
-                    bandwidth_nm * 1e-3,
-                )?))
-            }
-            SpectrumInput::Table {
-                wavenumber_per_um,
-                weight,
-            } => Spectrum::tabulated(wavenumber_per_um.clone(), weight.clone()),
-        }
-    }
-
-    /// The table of a tabulated spectrum, else the flat band.
-    pub fn from_spectrum(spectrum: &Spectrum, flat: (f64, f64)) -> SpectrumInput {
-        match spectrum.table() {
-            Some((s, w)) => SpectrumInput::Table {
-                wavenumber_per_um: s.to_vec(),
-                weight: w.to_vec(),
-            },
-            None => SpectrumInput::Flat {
-                wavelength_um: flat.0,
-                bandwidth_nm: flat.1,
-            },
-        }
-    }
-}
-
-/// The source.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum SourceInput {
-    /// Unresolved.
-    Point,
-    /// Uniform disk.
-    Ud {
-        /// θ, mas.
-        diameter_mas: f64,
-    },
-}
-
-impl SourceInput {
-    /// The source.
-    pub fn source(&self) -> Result<Source> {
-        match *self {
-            SourceInput::Point => Ok(Source::Point),
-            SourceInput::Ud { diameter_mas } => Source::uniform_disk(diameter_mas),
-        }
-    }
-}
+pub use crate::record::{SourceInput, SpectrumInput};
 
 /// The differential piston of §6: turbulence, telescopes and the scan speed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

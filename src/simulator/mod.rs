@@ -7,9 +7,13 @@
 //! [`Inputs`] holds every physical input as plain numbers; [`Model`] is
 //! the configuration built from them (the noise-free, piston-free source
 //! and calibrator); [`Model::rows`] draws a set of noisy rows
-//! ([`rows`]); [`run::simulate`] reduces them to the running statistics of
-//! the normalized estimators, beside their closed forms.
+//! ([`rows`]); [`estimate`] computes each row's V1² and V2² (raw,
+//! bias-subtracted, normalized: the conformance kit's reference,
+//! re-exported at [`crate::conformance::estimate`]); [`run::simulate`]
+//! reduces them to the running statistics of the normalized estimators,
+//! beside their closed forms.
 
+pub mod estimate;
 pub mod inputs;
 pub mod model;
 pub mod record;

@@ -2,11 +2,11 @@
 //! `v2ref.simulate`: built here, once, so that the command line and the
 //! Python package cannot drift apart.
 
-use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::Trials;
 use crate::noise::Formula;
+use crate::simulator::estimate::BiasConvention;
 use crate::simulator::rows::PistonFacts;
 use crate::simulator::run::{PistonEffect, SimulationRun};
 use crate::simulator::Inputs;

@@ -7,12 +7,12 @@
 //! estimated ([`RowEstimator`]) and its normalized values accumulated. The
 //! tests hold the two paths to each other.
 
-use crate::conformance::estimate::{BiasConvention, RowEstimator};
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
 use crate::montecarlo::{replicated_summary, RunningStats, Summary};
 use crate::noise::calibrated::{calibrated_run, expectation, CalibratedExpectation, Trials};
 use crate::noise::Formula;
+use crate::simulator::estimate::{BiasConvention, RowEstimator};
 use crate::simulator::rows::{PistonFacts, Rows};
 use crate::simulator::Model;
 use serde::Serialize;

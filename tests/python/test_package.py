@@ -617,3 +617,30 @@ def test_plan_answer_states_corrections_and_durations():
     assert p["v_sq_error_from_diameter"] > 0.0
     assert p["piston_sequences"] == 4
     assert out["confidence"] == 0.9
+
+
+def test_the_namespace_is_the_api():
+    """``dir(v2ref)`` shows ``__all__``, the extension module and dunders only:
+    no typing names (``Optional``…), no ``annotations``, no helpers."""
+    extra = set(dir(v2ref)) - set(v2ref.__all__)
+    assert all(n == "_v2ref" or (n.startswith("__") and n.endswith("__")) for n in extra), sorted(extra)
+    for name in v2ref.__all__:
+        assert hasattr(v2ref, name), name
+    for name in ("Any", "Dict", "Mapping", "Optional", "Sequence", "Tuple", "Union", "annotations"):
+        assert not hasattr(v2ref, name), name
+
+
+def test_signatures_carry_types_not_strings():
+    """The annotations are the types themselves (no ``from __future__ import
+    annotations``), so ``help()`` shows them."""
+    import inspect
+    import typing
+
+    for name in v2ref.__all__:
+        f = getattr(v2ref, name)
+        if not callable(f):
+            continue
+        for p in inspect.signature(f).parameters.values():
+            assert not isinstance(p.annotation, str), (name, p.name, p.annotation)
+    hints = typing.get_type_hints(v2ref.estimate)
+    assert hints["continuum_subtracted"] == typing.Optional[bool]

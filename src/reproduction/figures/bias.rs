@@ -25,7 +25,6 @@ use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::{uniform_disk_visibility, Source};
 use crate::formalism::spectrum::{Band, Spectrum};
-use crate::math::special::bessel_j1_zero;
 use crate::math::special::fresnel::point_source_v2_sq;
 use crate::reproduction::cases::Effort;
 use crate::reproduction::cases::{fig1_step, fig3_check_step, fig3_step};
@@ -181,23 +180,28 @@ pub fn fig1(effort: Effort) -> Result<Figure> {
 /// A Fig. 1 curve is refined where it departs from the straight line
 /// between two points by more than this fraction of the panel's ordinate
 /// span (a fraction of a pixel on the drawn panel).
+#[cfg(feature = "cli")]
 const FIG1_REFINE_TOLERANCE: f64 = 1e-3;
 /// Half-width of the window refined around each null, cycles/arcsec: wider
 /// than the gap between the nulls of |V mono| and of the widest band's V.
+#[cfg(feature = "cli")]
 const FIG1_REFINE_HALF_WIDTH_CPAS: f64 = 0.5;
 /// Most halvings of one grid step (0.1 / 2^16 ≈ 2e-6 cycles/arcsec).
+#[cfg(feature = "cli")]
 const FIG1_REFINE_DEPTH: u32 = 16;
 /// Below this step (about a pixel of the drawn panel), cycles/arcsec, only
 /// the turning points are kept: more points on a steep stretch, rounded to
 /// whole pixels by the SVG, would draw it as a staircase.
+#[cfg(feature = "cli")]
 const FIG1_PIXEL_CPAS: f64 = S_MAX_CPAS / 800.0;
 
 /// The nulls of the disk's monochromatic visibility up to [`S_MAX_CPAS`]:
 /// S_k = j_{1,k} / (π θ), θ the diameter in arcsec, cycles/arcsec.
+#[cfg(feature = "cli")]
 pub fn disk_nulls_cpas() -> Vec<f64> {
     let theta_arcsec = DIAMETER_MAS * crate::formalism::source::ARCSEC_PER_MAS;
     (1..)
-        .map(|k| bessel_j1_zero(k) / (std::f64::consts::PI * theta_arcsec))
+        .map(|k| crate::math::special::bessel_j1_zero(k) / (std::f64::consts::PI * theta_arcsec))
         .take_while(|&s| s <= S_MAX_CPAS)
         .collect()
 }
@@ -209,6 +213,7 @@ pub fn disk_nulls_cpas() -> Vec<f64> {
 /// [`FIG1_REFINE_HALF_WIDTH_CPAS`] of a null is halved until the curves
 /// are straight to [`FIG1_REFINE_TOLERANCE`] of the ordinate span. The
 /// rows are exact values at the added S; the CSV keeps the regular grid.
+#[cfg(feature = "cli")]
 pub fn fig1_refined_near_nulls(panel: &Table) -> Result<Table> {
     let estimator = usize::from(panel.name.ends_with("_v2"));
     let bands = fig1_bands()?;
@@ -245,6 +250,7 @@ pub fn fig1_refined_near_nulls(panel: &Table) -> Result<Table> {
 }
 
 /// Adaptive refinement of one Fig. 1 panel (see [`fig1_refined_near_nulls`]).
+#[cfg(feature = "cli")]
 struct Refinement<'a> {
     bands: &'a [Spectrum],
     /// 0 for V1, 1 for V2.
@@ -253,6 +259,7 @@ struct Refinement<'a> {
     tolerance: f64,
 }
 
+#[cfg(feature = "cli")]
 impl Refinement<'_> {
     /// Adds to `out` the row at the middle of rows `a` and `b` when some
     /// curve bends between them (on a sub-pixel step, only when it is a

@@ -1,0 +1,75 @@
+//! The functions of `v2ref._v2ref`: one per CLI command, each building the
+//! same answer as the command (`src/cli/<command>.rs`) from the same
+//! library calls.
+//!
+//! By concern: `paper.rs` answers the paper's effects one at a time
+//! (`bias`, `snr`, `piston`, `claims`); `simulator.rs` the end-to-end
+//! simulator and the conformance kit (`simulate`, `synthesize`, `estimate`,
+//! `score`); `plan.rs` the planner (`plan`, `photon_rate`); `data.rs`
+//! checks the arrays and sidecars they are given. The enum arguments and
+//! the JSON text of the answers are parsed and built here.
+
+mod data;
+mod paper;
+mod plan;
+mod simulator;
+
+use super::{ok, parse_enum};
+use crate::conformance::estimate::BiasConvention;
+use crate::error::{Error, Result};
+use crate::formalism::estimator::BinWindow;
+use crate::noise::Formula;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use serde::Serialize;
+
+/// The `bins` argument.
+fn window(s: &str) -> Result<BinWindow> {
+    parse_enum("bins", s, &["positive", "band", "all"])
+}
+
+/// The `bias` argument.
+fn convention(s: &str) -> Result<BiasConvention> {
+    parse_enum("bias", s, &["model", "counts"])
+}
+
+/// The `formula` argument.
+fn formula(s: &str) -> Result<Formula> {
+    match s {
+        "published" => Ok(Formula::Published),
+        "exact" => Ok(Formula::Exact),
+        _ => Err(Error::Invalid {
+            param: "formula",
+            reason: format!("'{s}' is not one of: published, exact"),
+        }),
+    }
+}
+
+/// An answer as JSON text (the Python side parses it).
+fn json<T: Serialize>(value: &T) -> PyResult<String> {
+    serde_json::to_string(value)
+        .map_err(|e| PyValueError::new_err(format!("cannot serialize the answer: {e}")))
+}
+
+/// `check_threads`: a thread count checked as `--threads` is (0 to
+/// `montecarlo::max_threads()`).
+#[pyfunction]
+fn check_threads(threads: usize) -> PyResult<usize> {
+    ok(crate::montecarlo::check_threads(threads))
+}
+
+/// Adds the functions to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(check_threads, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::photon_rate, m)?)?;
+    m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
+    m.add_function(wrap_pyfunction!(simulator::estimate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulator::synthesize, m)?)?;
+    m.add_function(wrap_pyfunction!(simulator::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::bias, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::snr, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::piston, m)?)?;
+    m.add_function(wrap_pyfunction!(paper::claims, m)?)?;
+    m.add_function(wrap_pyfunction!(simulator::score, m)?)?;
+    Ok(())
+}

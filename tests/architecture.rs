@@ -1,0 +1,156 @@
+//! The crate's levels (the crate docs, "Levels"): a module of `src/` uses
+//! only modules of its own level or below. Every path `crate::<module>` in
+//! the code of `src/` (comments and doc comments aside: a doc link to a
+//! higher module is a pointer for the reader, not a dependency) is checked
+//! against the table below, which must place every module of `src/`.
+
+use std::path::{Path, PathBuf};
+
+/// The levels, lowest first; the edges (the last) may use anything.
+const LEVELS: &[&[&str]] = &[
+    &[
+        "error",
+        "tolerance",
+        "bounds",
+        "cleanup",
+        "math",
+        "montecarlo",
+    ],
+    &["formalism"],
+    &["record"],
+    &["bias"],
+    &["noise", "piston"],
+    &["simulator", "parameters"],
+    &["conformance"],
+    &["plan", "reproduction"],
+    &["prelude", "formats", "python", "cli", "main", "lib"],
+];
+
+/// The level of the top module `name`.
+fn level(name: &str) -> Option<usize> {
+    LEVELS.iter().position(|l| l.contains(&name))
+}
+
+/// Every `.rs` file under `dir`.
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).expect("src/ is readable") {
+        let path = entry.expect("a directory entry").path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The top module a file of `src/` belongs to: `src/noise/report.rs` is
+/// in `noise`, `src/record.rs` in `record`.
+fn top_module(src: &Path, file: &Path) -> String {
+    let first = file
+        .strip_prefix(src)
+        .expect("a file under src/")
+        .components()
+        .next()
+        .expect("a path component");
+    let name = first.as_os_str().to_string_lossy();
+    name.trim_end_matches(".rs").to_owned()
+}
+
+/// `text` without its comments (line, doc and block comments).
+fn code_of(text: &str) -> String {
+    let mut code = String::new();
+    let mut rest = text;
+    while !rest.is_empty() {
+        let line = rest.find("//").unwrap_or(usize::MAX);
+        let block = rest.find("/*").unwrap_or(usize::MAX);
+        if line == usize::MAX && block == usize::MAX {
+            code.push_str(rest);
+            break;
+        }
+        let at = line.min(block);
+        code.push_str(&rest[..at]);
+        let (end, skip) = if line < block { ("\n", 0) } else { ("*/", 2) };
+        rest = rest[at..].find(end).map_or("", |e| &rest[at + e + skip..]);
+    }
+    code
+}
+
+/// The top modules that `code` names as `crate::<module>` (and in
+/// `crate::{a, b::c}` groups); `$crate` of macros aside.
+fn modules_used(code: &str) -> Vec<String> {
+    let ident = |s: &str| -> String {
+        s.trim_start()
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut used = Vec::new();
+    for (at, _) in code.match_indices("crate::") {
+        let before = code[..at].chars().next_back();
+        if before.is_some_and(|c| c == '$' || c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let after = &code[at + "crate::".len()..];
+        if let Some(group) = after.strip_prefix('{') {
+            let group = &group[..group.find('}').unwrap_or(group.len())];
+            used.extend(group.split(',').map(ident));
+        } else {
+            used.push(ident(after));
+        }
+    }
+    used.retain(|m| !m.is_empty());
+    used
+}
+
+#[test]
+fn every_module_uses_only_its_level_and_below() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    files.sort();
+    let mut breaches = Vec::new();
+    for file in &files {
+        let module = top_module(&src, file);
+        let own = level(&module).unwrap_or_else(|| {
+            panic!("src/{module}: place the module in a level (tests/architecture.rs and the crate docs)")
+        });
+        let text = std::fs::read_to_string(file).expect("a source file");
+        for used in modules_used(&code_of(&text)) {
+            // Names at the crate's root that are not modules: re-exports
+            // (`crate::Result`) and exported macros (`crate::assert_rel_eq`).
+            let Some(theirs) = level(&used) else { continue };
+            if theirs > own {
+                let shown = file.strip_prefix(&src).unwrap_or(file).display();
+                breaches.push(format!("src/{shown} ({module}) uses crate::{used}"));
+            }
+        }
+    }
+    assert!(
+        breaches.is_empty(),
+        "modules using a higher level:\n{}",
+        breaches.join("\n")
+    );
+}
+
+#[test]
+fn the_checker_sees_what_it_should() {
+    let code = code_of(
+        "use crate::noise::Formula; // crate::plan\n/* crate::conformance */\n\
+         /// [`crate::reproduction`]\nlet x = crate::simulator::Model::new();\n\
+         use crate::{bias::report, piston};\n$crate::tolerance::x!();",
+    );
+    assert_eq!(
+        modules_used(&code),
+        ["noise", "simulator", "bias", "piston"]
+    );
+}
+
+#[test]
+fn every_top_module_has_a_level() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    for entry in std::fs::read_dir(&src).expect("src/ is readable") {
+        let path = entry.expect("a directory entry").path();
+        let module = top_module(&src, &path);
+        assert!(level(&module).is_some(), "src/{module} has no level");
+    }
+}
