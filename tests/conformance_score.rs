@@ -42,6 +42,7 @@ fn truth(
         stderr_var: se_var,
         set_stderr_mean: set_se_mean,
         set_stderr_var: set_se_var,
+        stderr_dof: None,
     }
 }
 
