@@ -161,8 +161,8 @@ pub const SET_MAX_REFERENCE_BLOCKS: u64 = 1000;
 /// Fewest blocks in a set's reference run (other than 0, none). With
 /// piston the set's spread is measured over the blocks, and the score's
 /// ratio is Student-t with `blocks − 1` degrees of freedom: valid at any
-/// count, but its threshold at the default alpha (10⁻³, 4 tests) is 22
-/// with 4 blocks and 2546 with 2 (the test sees nothing), 7.1 with 8.
+/// count, but its threshold at the default alpha (10⁻³, 4 tests) is 20.6
+/// with 4 blocks and 2546 with 2 (the test sees nothing), 6.8 with 8.
 /// 8 is the least that still tells a pipeline something
 /// (`conformance::truth`).
 pub const SET_MIN_REFERENCE_BLOCKS: u64 = 8;

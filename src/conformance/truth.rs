@@ -72,8 +72,8 @@ pub const POOLED_MIN_ROWS: u64 = 1 << 16;
 
 /// Default blocks with piston: 16 replicates of the set. The score's ratio
 /// is then t with 15 degrees of freedom: at the default alpha and 4 tests
-/// its threshold is about 5.0 instead of the normal 3.66, and the smallest
-/// bias caught is about 1.3 times what an exact spread would allow (1.15
+/// its threshold is 4.77 instead of the normal 3.66, and the smallest
+/// bias caught is about 1.3 times what an exact spread would allow (1.12
 /// times with 32 blocks, at twice the cost: the reference run is nearly
 /// all of a piston `synth`).
 pub const REFERENCE_BLOCKS_PISTON: u64 = 16;
