@@ -12,7 +12,7 @@
 //! same length; the bin windows share one run.
 //!
 //! Each threshold carries its Monte Carlo interval: for the three level
-//! crossings that of [`locate`] (the frequencies where |bias| is within
+//! crossings that of the claims (the frequencies where |bias| is within
 //! [`SIGNIFICANCE_SIGMAS`](crate::tolerance::SIGNIFICANCE_SIGMAS) standard
 //! errors of the level, plus half a grid step each side); for "V1
 //! unbiased from", from the last frequency where |bias V1| is significant
@@ -210,9 +210,12 @@ fn sampled_sweep(
     Ok(fig5_table("sensitivity", runs.iter().map(|r| &r[0])))
 }
 
+/// Four thresholds, Hz, and their intervals (lo, hi).
+type Thresholds = ([f64; 4], [(f64, f64); 4]);
+
 /// The four thresholds of one window, read as the claims read them, and
 /// their intervals.
-fn thresholds(table: &Table, window: BinWindow) -> Result<([f64; 4], [(f64, f64); 4])> {
+fn thresholds(table: &Table, window: BinWindow) -> Result<Thresholds> {
     let suffix = match window {
         BinWindow::Positive => String::new(),
         other => format!("_{}", other.name()),
