@@ -44,6 +44,7 @@ fn est_truth(mean: f64, var: f64) -> EstimatorTruth {
         stderr_var: 0.8,
         set_stderr_mean: 0.4,
         set_stderr_var: Some(0.6),
+        stderr_dof: None,
     }
 }
 

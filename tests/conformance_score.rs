@@ -42,6 +42,7 @@ fn truth(
         stderr_var: se_var,
         set_stderr_mean: set_se_mean,
         set_stderr_var: set_se_var,
+        stderr_dof: None,
     }
 }
 
@@ -230,4 +231,58 @@ fn refusals_name_the_parameter() {
     assert_eq!(score(&x, &neg, 4, 1e-3).unwrap_err().param(), Some("truth"));
     // Alpha.
     assert_eq!(score(&x, &t, 4, 0.0).unwrap_err().param(), Some("alpha"));
+}
+
+/// Student-t thresholds t_ν(1 − 10⁻³/8) for ν = 1, 3, 7, 15 (blocks 2, 4,
+/// 8, 16): ν = 1 in closed form, 1/tan(π·1.25e-4); the others by
+/// numerical integration of the t density (Python, 2·10⁵-point midpoint
+/// rule in tan-substitution, bisection), independent of statrs.
+const T_4_TESTS: [(u64, f64); 4] = [
+    (1, 2546.47895857063),
+    (3, 20.604087145083604),
+    (7, 6.8140354792789335),
+    (15, 4.766061725339178),
+];
+
+/// A ratio that is t_ν is reported as the normal deviate of the same tail:
+/// at the t threshold it equals the normal threshold; t₁ at 1 (tail 1/4
+/// exactly) gives Φ⁻¹(3/4); without ν the ratio is unchanged.
+#[test]
+fn t_ratios_are_reported_as_their_normal_equivalents() {
+    use v2ref::conformance::score::normal_equivalent;
+    const PHI_INV_3_4: f64 = 0.6744897501960817;
+    assert_rel_eq!(normal_equivalent(1.0, Some(1)), PHI_INV_3_4, 1e-12);
+    assert_rel_eq!(normal_equivalent(-1.0, Some(1)), -PHI_INV_3_4, 1e-12);
+    assert_eq!(normal_equivalent(0.0, Some(5)), 0.0);
+    assert_eq!(normal_equivalent(2.5, None), 2.5);
+    for (nu, t) in T_4_TESTS {
+        // The integration is good to about 1e-6 of the quantile.
+        assert_rel_eq!(normal_equivalent(t, Some(nu)), Z_4_TESTS, 1e-5);
+    }
+}
+
+/// With ν given, the score divides by the same errors but tests the t
+/// ratio: a ratio of 4 fails as normal and passes as t₇ (threshold 6.8),
+/// and the power figure uses t quantiles (larger).
+#[test]
+fn a_spread_over_few_blocks_widens_the_threshold() {
+    // x = 1, 2, 3, 4: mean 2.5; se_mean = 0.5, so the ratio is 4 at mean 0.5.
+    let normal = truth(0.5, 5.0 / 3.0, 0.4, 0.3, Some(0.6), 0.8);
+    let t7 = EstimatorTruth {
+        stderr_dof: Some(7),
+        ..normal
+    };
+    let a = score(&[1.0, 2.0, 3.0, 4.0], &normal, 4, 1e-3).unwrap();
+    let b = score(&[1.0, 2.0, 3.0, 4.0], &t7, 4, 1e-3).unwrap();
+    assert_rel_eq!(a.z_mean, 4.0, 1e-14);
+    assert!(!a.pass_mean && b.pass_mean, "{} {}", a.z_mean, b.z_mean);
+    assert!(b.z_mean < 3.0 && b.z_mean > 2.0, "{}", b.z_mean);
+    assert_eq!((a.dof, b.dof), (None, Some(7)));
+    assert!(b.min_detectable_rel_bias_mean > 1.5 * a.min_detectable_rel_bias_mean);
+    let zero = EstimatorTruth {
+        stderr_dof: Some(0),
+        ..normal
+    };
+    let e = score(&[1.0, 2.0, 3.0, 4.0], &zero, 4, 1e-3).unwrap_err();
+    assert_eq!(e.param(), Some("truth"), "{e}");
 }

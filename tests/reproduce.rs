@@ -79,14 +79,23 @@ fn quick_reproduction_writes_every_expected_file() {
     let csv = std::fs::read_to_string(out.join("fig5_sensitivity.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header.len(), 13, "{header:?}");
+    // Per threshold: value, its interval (lo, hi), the paper's.
+    assert_eq!(header.len(), 21, "{header:?}");
+    assert_eq!(header[6], "v1_biased_1pct_below_hz_lo");
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 24);
     for r in &rows {
-        for t in [5, 7, 9, 11] {
+        for t in [5, 9, 13, 17] {
             let v: f64 = r[t].parse().unwrap();
+            let (lo, hi): (f64, f64) = (r[t + 1].parse().unwrap(), r[t + 2].parse().unwrap());
             assert!(
                 v.is_nan() || (50.0 - 1e-9..=2000.0 + 1e-9).contains(&v),
+                "{r:?}"
+            );
+            // The interval holds the value (or both are NaN); the CSV
+            // rounds to 0.1 Hz.
+            assert!(
+                v.is_nan() && lo.is_nan() && hi.is_nan() || (lo <= v + 0.05 && v <= hi + 0.05),
                 "{r:?}"
             );
         }

@@ -336,7 +336,7 @@ def synthesize(
     rows: int = 1000,
     seed: int = 1,
     threads: int = 0,
-    reference_blocks: int = 32,
+    reference_blocks: Optional[int] = None,
     keep_continuum: bool = False,
     out: Optional[_PathLike] = None,
     wavelength_um: float = 2.2,
@@ -377,9 +377,11 @@ def synthesize(
         Seed of the set's random draws.
     threads : int
         Worker threads (0: all cores); the set does not depend on it.
-    reference_blocks : int
-        Replicates of the set in the truth's reference run (0: closed forms
-        only; else 2 to 1000).
+    reference_blocks : int, optional
+        Blocks of the truth's reference run: 0 (closed forms only) or 8 to
+        1000. None (default): 16 with piston (replicates of the set, whose
+        spread the score divides by, as Student-t with blocks - 1 degrees
+        of freedom), 8 without (pooled independent rows).
     keep_continuum : bool
         Rows hold the counts I_i (photons) instead of M_i = I_i − c_i.
     out : path, optional
@@ -426,7 +428,7 @@ def synthesize(
         _uint("rows", rows),
         _uint("seed", seed),
         _v2ref.check_threads(_uint("threads", threads)),
-        _uint("reference_blocks", reference_blocks),
+        None if reference_blocks is None else _uint("reference_blocks", reference_blocks),
         bool(keep_continuum),
         npy,
     )

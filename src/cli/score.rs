@@ -179,6 +179,14 @@ fn verdict(pass: bool) -> &'static str {
     }
 }
 
+/// Says when the z are normal equivalents of Student-t ratios.
+fn dof_note(r: &ScoreReport) -> String {
+    match r.estimators.iter().find_map(|s| s.score.dof) {
+        Some(nu) => format!("; z are the normal equivalents of t with {nu} degrees of freedom"),
+        None => String::new(),
+    }
+}
+
 fn print_table(args: &Args, rows: u64, r: &ScoreReport) {
     print_rows(&[
         ("sidecar", args.sidecar.display().to_string()),
@@ -189,8 +197,11 @@ fn print_table(args: &Args, rows: u64, r: &ScoreReport) {
         (
             "threshold",
             format!(
-                "|z| <= {:.4} (alpha {}, Bonferroni over {} tests)",
-                r.z_crit, r.alpha, r.tests
+                "|z| <= {:.4} (alpha {}, Bonferroni over {} tests){}",
+                r.z_crit,
+                r.alpha,
+                r.tests,
+                dof_note(r)
             ),
         ),
     ]);

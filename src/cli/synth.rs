@@ -9,7 +9,9 @@ use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use v2ref::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
-use v2ref::conformance::truth::{truth, TruthSize};
+use v2ref::conformance::truth::{
+    default_reference_blocks, reference_rows_per_block, truth, TruthSize,
+};
 use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
@@ -35,9 +37,13 @@ pub struct Args {
     /// Write the counts I_i instead of the modulated samples M_i = I_i − c_i.
     #[arg(long)]
     keep_continuum: bool,
-    /// Replicates of the set in the truth's reference run (0: closed forms only).
-    #[arg(long, value_parser = super::count_u64, default_value = "32", allow_negative_numbers = true)]
-    reference_blocks: u64,
+    /// Blocks of the truth's reference run: 0 (closed forms only), or 8 to
+    /// 1000; default 16 with piston (replicates of the set, whose spread the
+    /// score divides by, as Student-t with blocks − 1 degrees of freedom),
+    /// 8 without (pooled independent rows, for the counts convention's
+    /// variance and the spread of a set's variance).
+    #[arg(long, value_parser = super::count_u64, allow_negative_numbers = true)]
+    reference_blocks: Option<u64>,
     #[command(flatten)]
     run: RunArgs,
     /// No progress bar.
@@ -48,18 +54,24 @@ pub struct Args {
 /// Runs `synth`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
-    v2ref::bounds::check_set_size(args.rows, inputs.samples, args.reference_blocks)?;
+    let reference_blocks = args
+        .reference_blocks
+        .unwrap_or_else(|| default_reference_blocks(inputs.piston.is_some()));
+    v2ref::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
     let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,
-        reference_blocks: args.reference_blocks,
+        reference_blocks,
         threads: args.run.threads,
         csv: args.csv,
         keep_continuum: args.keep_continuum,
     };
-    let bar = progress_bar(args.rows * (1 + args.reference_blocks), args.quiet, "synth");
+    let piston = inputs.piston.is_some();
+    let reference_rows =
+        reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
+    let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
     write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
     bar.finish_and_clear();
     Ok(ExitCode::SUCCESS)
@@ -72,7 +84,7 @@ pub struct SetSpec {
     pub rows: u64,
     /// Seed.
     pub seed: u64,
-    /// Replicates in the reference run.
+    /// Blocks of the reference run.
     pub reference_blocks: u64,
     /// Worker threads (0: all); the files do not depend on it.
     pub threads: usize,

@@ -13,6 +13,17 @@
 //!   sample's own standard error of the variance
 //!   `√((μ4 − (n−3)/(n−1) s⁴)/n)` ([`RunningStats::stderr_variance`]).
 //!
+//! **Degrees of freedom.** When the truth's standard errors were measured
+//! as a spread over B reference blocks (`T.stderr_dof = Some(B − 1)`, with
+//! piston), each ratio above is Student-t with `ν = B − 1` degrees of
+//! freedom, not normal: the spread that divides it is itself uncertain
+//! (with B = 2, one degree of freedom, it can be ten times too small). The
+//! ratio `t` is then reported as its normal equivalent
+//! `z = sign(t) · Φ⁻¹(1 − F_ν(−|t|))`, the normal deviate with the same
+//! tail probability, so that one threshold holds for every test and the
+//! false-alarm rate stays `alpha` at every block count. Without
+//! `stderr_dof`, `z = t`.
+//!
 //! **Threshold.** Each z is tested two-sided; with `m` tests made (2 per
 //! estimator scored) the family-wise false-alarm rate is held at `alpha`
 //! by Bonferroni: `z_crit = Φ⁻¹(1 − alpha/(2m))`. The default
@@ -24,7 +35,9 @@
 //! 0.9 when `ε ≥ (z_crit + Φ⁻¹(0.9)) · se_mean / |T.mean|`
 //! ([`EstimatorScore::min_detectable_rel_bias_mean`], with
 //! `se_mean = √(T.set_stderr_mean² + T.stderr_mean²)`); likewise for
-//! the variance with its denominator. A set too small to see the bias one
+//! the variance with its denominator. With ν degrees of freedom the two
+//! quantiles are those of t_ν (`F_ν⁻¹(Φ(z_crit)) + F_ν⁻¹(0.9)`, the
+//! approximate reach of a shifted t). A set too small to see the bias one
 //! cares about must be made larger.
 //!
 //! The truth is stated for a set of a given size (the sidecar's
@@ -34,7 +47,7 @@ use crate::conformance::sidecar::{ConventionTruth, EstimatorTruth};
 use crate::error::{Error, Result};
 use crate::montecarlo::RunningStats;
 use serde::Serialize;
-use statrs::distribution::{ContinuousCDF, Normal};
+use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 
 /// The default family-wise false-alarm rate of the verdict: 10⁻³.
 pub const DEFAULT_ALPHA: f64 = 1e-3;
@@ -49,6 +62,38 @@ pub const TESTS_PER_ESTIMATOR: usize = 2;
 fn normal_quantile(p: f64) -> f64 {
     // Normal::new(0, 1) cannot fail; standard() is the same distribution.
     Normal::standard().inverse_cdf(p)
+}
+
+/// Student t with `dof` degrees of freedom (≥ 1).
+fn students_t(dof: u64) -> StudentsT {
+    // Location 0, scale 1 and a positive dof are always accepted.
+    StudentsT::new(0.0, 1.0, dof.max(1) as f64).expect("t with dof >= 1")
+}
+
+/// The normal equivalent of a ratio `t` that is Student-t with `dof`
+/// degrees of freedom: `sign(t) Φ⁻¹(1 − F(−|t|))`, the same tail
+/// probability; `t` itself when `dof` is None.
+pub fn normal_equivalent(t: f64, dof: Option<u64>) -> f64 {
+    match dof {
+        None => t,
+        // Φ⁻¹ of the lower tail keeps its precision far out (no 1 − p).
+        Some(nu) => -normal_quantile(students_t(nu).cdf(-t.abs())) * t.signum(),
+    }
+}
+
+/// The reach `q(Φ(z_crit)) + q(POWER)` of a test, with q the quantile of
+/// t_dof (normal when `dof` is None): the expected ratio at which a bias
+/// is caught with probability [`POWER`].
+fn reach(z_crit: f64, dof: Option<u64>) -> f64 {
+    match dof {
+        None => z_crit + normal_quantile(POWER),
+        Some(nu) => {
+            let t = students_t(nu);
+            // Φ(z_crit) from its upper tail, for precision.
+            let tail = Normal::standard().sf(z_crit);
+            -t.inverse_cdf(tail) + t.inverse_cdf(POWER)
+        }
+    }
 }
 
 /// The two-sided Bonferroni threshold `z_crit = Φ⁻¹(1 − alpha/(2·tests))`.
@@ -96,7 +141,8 @@ pub struct EstimatorScore {
     /// uncertainty combined (not the truth's `stderr_mean`, which is only
     /// the second).
     pub stderr_mean_combined: f64,
-    /// `(x̄ − T.mean)/se_mean`.
+    /// `(x̄ − T.mean)/se_mean`, as its normal equivalent when
+    /// `dof` is given.
     pub z_mean: f64,
     /// s², the unbiased sample variance of the estimates.
     pub var: f64,
@@ -107,12 +153,17 @@ pub struct EstimatorScore {
     pub stderr_var: f64,
     /// Where `se_set_var` came from.
     pub stderr_var_source: VarStderrSource,
-    /// `(s² − T.var)/se_var`.
+    /// `(s² − T.var)/se_var`, as its normal equivalent when `dof` is
+    /// given.
     pub z_var: f64,
+    /// The degrees of freedom of both ratios (`T.stderr_dof`); None:
+    /// normal.
+    pub dof: Option<u64>,
     /// The threshold both z are held to.
     pub z_crit: f64,
-    /// `(z_crit + Φ⁻¹(0.9)) · se_mean/|T.mean|`: the smallest relative bias
-    /// of the mean caught with probability 0.9 (infinite when T.mean = 0).
+    /// `(z_crit + Φ⁻¹(0.9)) · se_mean/|T.mean|` (t quantiles with `dof`):
+    /// the smallest relative bias of the mean caught with probability 0.9
+    /// (infinite when T.mean = 0).
     pub min_detectable_rel_bias_mean: f64,
     /// `(z_crit + Φ⁻¹(0.9)) · se_var/|T.var|`, the same for the variance.
     pub min_detectable_rel_bias_var: f64,
@@ -133,6 +184,12 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
         if !v.is_finite() {
             return Err(bad(what, v));
         }
+    }
+    if truth.stderr_dof == Some(0) {
+        return Err(Error::Invalid {
+            param: "truth",
+            reason: "stderr_dof is 0; a spread needs at least 1 degree of freedom".into(),
+        });
     }
     let mut errs = vec![
         ("stderr_mean", truth.stderr_mean),
@@ -216,9 +273,11 @@ pub fn score_with_threshold(
             });
         }
     }
-    let z_mean = (mean - truth.mean) / se_mean;
-    let z_var = (var - truth.var) / se_var;
-    let reach = z_crit + normal_quantile(POWER);
+    // The sample's own error of the variance is taken as exact (n rows).
+    let dof = truth.stderr_dof;
+    let var_dof = dof.filter(|_| stderr_var_source == VarStderrSource::Truth);
+    let z_mean = normal_equivalent((mean - truth.mean) / se_mean, dof);
+    let z_var = normal_equivalent((var - truth.var) / se_var, var_dof);
     let pass_mean = z_mean.abs() <= z_crit;
     let pass_var = z_var.abs() <= z_crit;
     Ok(EstimatorScore {
@@ -232,9 +291,10 @@ pub fn score_with_threshold(
         stderr_var: se_var,
         stderr_var_source,
         z_var,
+        dof,
         z_crit,
-        min_detectable_rel_bias_mean: reach * se_mean / truth.mean.abs(),
-        min_detectable_rel_bias_var: reach * se_var / truth.var.abs(),
+        min_detectable_rel_bias_mean: reach(z_crit, dof) * se_mean / truth.mean.abs(),
+        min_detectable_rel_bias_var: reach(z_crit, var_dof) * se_var / truth.var.abs(),
         pass_mean,
         pass_var,
         pass: pass_mean && pass_var,

@@ -140,6 +140,13 @@ pub struct EstimatorTruth {
     /// The standard deviation of the variance of such a set (from the
     /// reference run; None when it was not run).
     pub set_stderr_var: Option<f64>,
+    /// Degrees of freedom of the standard errors above when they were
+    /// measured as a spread over the reference run's B blocks (B − 1, with
+    /// piston): the score's ratios are then Student-t, not normal. None
+    /// when they are exact or come from a pool of independent rows large
+    /// enough to be taken as exact (and in sidecars written before it).
+    #[serde(default)]
+    pub stderr_dof: Option<u64>,
 }
 
 /// The size and seed of the reference run.
@@ -147,10 +154,13 @@ pub struct EstimatorTruth {
 pub struct ReferenceRun {
     /// Its seed (derived from the set's, never equal to it).
     pub seed: u64,
-    /// Blocks of [`DataFiles::rows`] rows each, each an independent
-    /// replicate of the set (0: no reference run).
+    /// Blocks, each with its own seed (0: no reference run). With piston
+    /// each is an independent replicate of the set; without, their rows
+    /// are pooled.
     pub blocks: u64,
-    /// Rows per block (the set's size).
+    /// Rows per block: the set's size with piston, else at least the set's
+    /// size and enough for a pool of
+    /// [`POOLED_MIN_ROWS`](crate::conformance::truth::POOLED_MIN_ROWS) rows.
     pub rows_per_block: u64,
 }
 

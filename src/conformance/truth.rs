@@ -7,13 +7,37 @@
 //!   counts convention subtracts an unbiased estimate of the exact bias, so
 //!   its mean is the same), and the variance of the `model` convention (the
 //!   exact windowed variance, [`crate::noise::window_variance`]).
-//! - Everything else from an independent reference run: `blocks`
-//!   replicates of the set (same configuration and size, seeds
-//!   [`reference_seed`]`(seed, b)`, an independent piston sequence each),
-//!   estimated the same way. The mean of the block means and of the block
-//!   variances are the truth; their spread over blocks is the spread of a
-//!   set of this size — including the correlation of consecutive piston
-//!   scans, which the naive `var/rows` would miss.
+//! - Everything else from an independent reference run of `blocks`
+//!   blocks (seeds [`reference_seed`]`(seed, b)`, an independent piston
+//!   sequence each), estimated the same way. What the run is for, and so
+//!   how it is sized, depends on whether the rows are independent:
+//!   - **Without piston** the rows are independent, so nothing needs
+//!     blocks the size of the set: the run's rows are pooled
+//!     (`blocks × max(rows, ⌈`[`POOLED_MIN_ROWS`]`/blocks⌉)` rows). The
+//!     pool gives the variance where there is no closed form (the `counts`
+//!     convention with photon noise; its own standard error
+//!     `√((μ4 − s⁴)/R)` over R pooled rows is `1/√blocks` of a set's), and
+//!     the fourth central moment μ4, from which a set of n rows' variance
+//!     scatters by `√((μ4 − (n−3)/(n−1) σ⁴)/n)` — a standard error known
+//!     to the precision of the pool, not estimated from a few block
+//!     variances. The score treats these as exact (normal quantiles).
+//!   - **With piston** consecutive scans are correlated (the naive
+//!     `var/rows` would miss it), so the spread of a set must be measured
+//!     on replicates of the set itself: each block is one replicate (same
+//!     size), the mean of the block means and of the block variances are
+//!     the truth, and their spread `s_B` over the B blocks is the spread of
+//!     a set. Then `(x − T)/(s_B √(1 + 1/B))` — the score's ratio — is
+//!     Student-t with `B − 1` degrees of freedom, recorded as
+//!     [`EstimatorTruth::stderr_dof`] for the score to use: with 2 blocks a
+//!     normal quantile would take a one-degree-of-freedom spread at face
+//!     value (the issue-26 set: `z_var = −6.47` from a spread 10 times too
+//!     small).
+//!
+//! The block count is checked against
+//! [`SET_MIN_REFERENCE_BLOCKS`](crate::bounds::SET_MIN_REFERENCE_BLOCKS)
+//! (below it the t quantile at the score's Bonferroni level runs away and
+//! the test sees nothing); [`default_reference_blocks`] sizes the run by
+//! the precision it needs.
 
 use crate::conformance::estimate::{BiasConvention, RowEstimator, BIAS_CONVENTIONS};
 use crate::conformance::sidecar::{
@@ -41,6 +65,46 @@ pub struct TruthSize {
     pub threads: usize,
 }
 
+/// Fewest rows of a pooled (piston-free) reference run: enough for its
+/// fourth moment, and so a set's stated standard error of the variance, to
+/// be known to about 1 % (2^16 rows; a fraction of a second at N = 64).
+pub const POOLED_MIN_ROWS: u64 = 1 << 16;
+
+/// Default blocks with piston: 16 replicates of the set. The score's ratio
+/// is then t with 15 degrees of freedom: at the default alpha and 4 tests
+/// its threshold is 4.77 instead of the normal 3.66, and the smallest
+/// bias caught is about 1.3 times what an exact spread would allow (1.12
+/// times with 32 blocks, at twice the cost: the reference run is nearly
+/// all of a piston `synth`).
+pub const REFERENCE_BLOCKS_PISTON: u64 = 16;
+
+/// Default blocks without piston: 8. The truth's own error of a pooled
+/// variance is then `1/√8` of a set's, widening the variance test's
+/// denominator by `√(1 + 1/8)` = 1.06 (32 blocks: 1.016, at four times
+/// the cost); every other truth is a closed form.
+pub const REFERENCE_BLOCKS_INDEPENDENT: u64 = 8;
+
+/// The reference blocks a set needs by default:
+/// [`REFERENCE_BLOCKS_PISTON`] or [`REFERENCE_BLOCKS_INDEPENDENT`].
+pub fn default_reference_blocks(piston: bool) -> u64 {
+    if piston {
+        REFERENCE_BLOCKS_PISTON
+    } else {
+        REFERENCE_BLOCKS_INDEPENDENT
+    }
+}
+
+/// Rows per block of the reference run of a set of `rows` rows: the set's
+/// size with piston (each block is a replicate), else at least
+/// [`POOLED_MIN_ROWS`] over all `blocks` (0 when there are no blocks).
+pub fn reference_rows_per_block(rows: u64, blocks: u64, piston: bool) -> u64 {
+    match blocks {
+        0 => 0,
+        _ if piston => rows,
+        b => rows.max(POOLED_MIN_ROWS.div_ceil(b)),
+    }
+}
+
 /// The seed of replicate `block` of the reference run of a set of seed
 /// `seed`.
 pub fn reference_seed(seed: u64, block: u64) -> u64 {
@@ -48,11 +112,12 @@ pub fn reference_seed(seed: u64, block: u64) -> u64 {
 }
 
 /// One estimator of one window and convention, over the blocks: the mean
-/// and variance of each block.
+/// and variance of each block, and all rows pooled.
 #[derive(Debug, Clone, Default)]
 struct BlockMoments {
     means: RunningStats,
     vars: RunningStats,
+    pooled: RunningStats,
 }
 
 /// The windows whose calibrator has a fringe (others are left out of the
@@ -72,8 +137,9 @@ pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) ->
     let wb = wide_band(obs);
     let v2 = model.inputs.visibility * model.inputs.visibility;
     let windows = usable_windows(model);
-    let reference = reference_run(model, &windows, size, progress)?;
     let piston = model.inputs.piston.is_some();
+    let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
+    let reference = reference_run(model, &windows, size, rows_per_block, progress)?;
     let mut out = Vec::new();
     for (w, blocks) in windows.iter().zip(&reference) {
         out.push(window_truth(model, *w, blocks, size, piston)?);
@@ -88,7 +154,7 @@ pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) ->
         reference_run: ReferenceRun {
             seed: reference_seed(size.seed, 0),
             blocks: size.reference_blocks,
-            rows_per_block: size.rows,
+            rows_per_block,
         },
     })
 }
@@ -96,11 +162,13 @@ pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) ->
 /// Per window, per convention: the block moments of V1² and V2².
 type Reference = Vec<Vec<[BlockMoments; 2]>>;
 
-/// The reference run: `size.reference_blocks` replicates of the set.
+/// The reference run: `size.reference_blocks` blocks of `rows_per_block`
+/// rows.
 fn reference_run(
     model: &Model,
     windows: &[BinWindow],
     size: TruthSize,
+    rows_per_block: u64,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Reference> {
     let estimators = windows
@@ -115,7 +183,7 @@ fn reference_run(
     let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows.len()];
     let n = model.samples();
     for b in 0..size.reference_blocks {
-        let rows = model.rows(size.rows, reference_seed(size.seed, b), size.threads)?;
+        let rows = model.rows(rows_per_block, reference_seed(size.seed, b), size.threads)?;
         let parts = rows.map_units(0..rows.units(), size.threads, |_, block| {
             let mut s =
                 vec![vec![[RunningStats::default(); 2]; BIAS_CONVENTIONS.len()]; windows.len()];
@@ -140,6 +208,7 @@ fn reference_run(
                     }
                     moments.means.push(total.mean);
                     moments.vars.push(total.variance());
+                    moments.pooled.merge(&total);
                 }
             }
         }
@@ -198,8 +267,9 @@ fn window_truth(
     })
 }
 
-/// Combines the closed forms (where given) with the reference run's block
-/// moments; None when neither gives a value.
+/// Combines the closed forms (where given) with the reference run: pooled
+/// when the rows are independent, block by block otherwise (see the
+/// [module documentation](self)); None when neither gives a value.
 fn estimator_truth(
     mean_closed: Option<f64>,
     var_closed: Option<f64>,
@@ -207,31 +277,89 @@ fn estimator_truth(
     rows: u64,
     independent_rows: bool,
 ) -> Option<EstimatorTruth> {
-    let have_blocks = blocks.means.count >= 2;
-    let sqrt_b = (blocks.means.count as f64).sqrt();
+    if independent_rows {
+        pooled_truth(mean_closed, var_closed, &blocks.pooled, rows)
+    } else {
+        block_truth(mean_closed, var_closed, blocks)
+    }
+}
+
+/// Independent rows: closed forms, else the pooled reference rows `pool`.
+///
+/// A set of n rows scatters by `√(σ²/n)` in its mean and by
+/// `√((μ4 − (n−3)/(n−1) σ⁴)/n)` in its variance (μ4 the fourth central
+/// moment of one row's estimate, from the pool); the truth's own errors
+/// are those of the pool's mean and variance. All are stated as exact
+/// (`stderr_dof` None): the pool is at least [`POOLED_MIN_ROWS`] rows.
+fn pooled_truth(
+    mean_closed: Option<f64>,
+    var_closed: Option<f64>,
+    pool: &RunningStats,
+    rows: u64,
+) -> Option<EstimatorTruth> {
+    let have_pool = pool.count >= 4;
     let (mean, mean_source, stderr_mean) = match mean_closed {
         Some(m) => (m, TruthSource::ClosedForm, 0.0),
-        None if have_blocks => (
-            blocks.means.mean,
-            TruthSource::ReferenceRun,
-            blocks.means.std() / sqrt_b,
-        ),
+        None if have_pool => (pool.mean, TruthSource::ReferenceRun, pool.stderr_mean()),
         None => return None,
     };
     let (var, var_source, stderr_var) = match var_closed {
         Some(v) => (v, TruthSource::ClosedForm, 0.0),
-        None if have_blocks => (
+        None if have_pool => (
+            pool.variance(),
+            TruthSource::ReferenceRun,
+            pool.stderr_variance(),
+        ),
+        None => return None,
+    };
+    let n = rows as f64;
+    let set_stderr_var = have_pool.then(|| {
+        let mu4 = pool.m4 / pool.count as f64;
+        ((mu4 - (n - 3.0) / (n - 1.0) * var * var) / n)
+            .max(0.0)
+            .sqrt()
+    });
+    Some(EstimatorTruth {
+        mean,
+        var,
+        mean_source,
+        var_source,
+        stderr_mean,
+        stderr_var,
+        set_stderr_mean: (var / n).sqrt(),
+        set_stderr_var,
+        stderr_dof: None,
+    })
+}
+
+/// Correlated rows (piston): each block is a replicate of the set; the
+/// truth is the mean over the B blocks, the set's scatter their spread
+/// `s_B`, the truth's own error `s_B/√B`, with `B − 1` degrees of freedom.
+fn block_truth(
+    mean_closed: Option<f64>,
+    var_closed: Option<f64>,
+    blocks: &BlockMoments,
+) -> Option<EstimatorTruth> {
+    let b = blocks.means.count;
+    if b < 2 {
+        return None;
+    }
+    let sqrt_b = (b as f64).sqrt();
+    let (mean, mean_source, stderr_mean) = match mean_closed {
+        Some(m) => (m, TruthSource::ClosedForm, 0.0),
+        None => (
+            blocks.means.mean,
+            TruthSource::ReferenceRun,
+            blocks.means.std() / sqrt_b,
+        ),
+    };
+    let (var, var_source, stderr_var) = match var_closed {
+        Some(v) => (v, TruthSource::ClosedForm, 0.0),
+        None => (
             blocks.vars.mean,
             TruthSource::ReferenceRun,
             blocks.vars.std() / sqrt_b,
         ),
-        None => return None,
-    };
-    // Independent rows: the mean of a set scatters as sqrt(var/rows) exactly.
-    let set_stderr_mean = if independent_rows {
-        (var / rows as f64).sqrt()
-    } else {
-        blocks.means.std()
     };
     Some(EstimatorTruth {
         mean,
@@ -240,7 +368,8 @@ fn estimator_truth(
         var_source,
         stderr_mean,
         stderr_var,
-        set_stderr_mean,
-        set_stderr_var: have_blocks.then(|| blocks.vars.std()),
+        set_stderr_mean: blocks.means.std(),
+        set_stderr_var: Some(blocks.vars.std()),
+        stderr_dof: Some(b - 1),
     })
 }

@@ -216,7 +216,7 @@ def test_estimate_with_calibrator_and_counts_equals_cli(tmp_path):
         np.testing.assert_array_equal(got[k], want[:, i], err_msg=k)
 
 
-SYNTH = dict(rows=300, samples=40, seed=5, reference_blocks=4, read_noise=0.7, visibility=0.9)
+SYNTH = dict(rows=300, samples=40, seed=5, reference_blocks=8, read_noise=0.7, visibility=0.9)
 
 
 @needs_cli
@@ -389,7 +389,7 @@ def test_claims_equal_cli():
 
 
 def test_round_trip_reaches_the_truth_within_its_standard_errors():
-    rows, sc = v2ref.synthesize(rows=20000, samples=64, seed=11, reference_blocks=4, read_noise=0.5)
+    rows, sc = v2ref.synthesize(rows=20000, samples=64, seed=11, reference_blocks=8, read_noise=0.5)
     for window in ("positive", "band", "all"):
         w = next(t for t in sc["truth"]["windows"] if t["bins"] == window)
         for convention in ("model", "counts"):
@@ -408,8 +408,8 @@ def test_round_trip_reaches_the_truth_within_its_standard_errors():
 
 
 def test_results_do_not_depend_on_threads():
-    a, sa = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=2, threads=1)
-    b, sb = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=2, threads=2)
+    a, sa = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=8, threads=1)
+    b, sb = v2ref.synthesize(rows=5000, samples=32, seed=4, reference_blocks=8, threads=2)
     np.testing.assert_array_equal(a, b)
     assert sa == sb
     ea = v2ref.estimate(a, sidecar=sa, threads=1)
@@ -417,7 +417,7 @@ def test_results_do_not_depend_on_threads():
     for k in ea:
         np.testing.assert_array_equal(ea[k], eb[k])
     assert v2ref.simulate(trials=4000, samples=32, threads=1) == v2ref.simulate(trials=4000, samples=32, threads=2)
-    c, _ = v2ref.synthesize(rows=5000, samples=32, seed=5, reference_blocks=2)
+    c, _ = v2ref.synthesize(rows=5000, samples=32, seed=5, reference_blocks=8)
     assert not np.array_equal(a, c)
 
 
@@ -555,7 +555,7 @@ def test_sidecar_errors():
 
 
 def test_score_takes_every_shape_of_estimates():
-    rows, sc = v2ref.synthesize(rows=2000, samples=32, seed=8, reference_blocks=2)
+    rows, sc = v2ref.synthesize(rows=2000, samples=32, seed=8, reference_blocks=8)
     est = v2ref.estimate(rows, sidecar=sc)
     want = v2ref.score(est, sc)
     both = np.column_stack([est["v2_sq"], est["v1_sq"]])

@@ -227,11 +227,15 @@ pub(super) fn synthesize<'py>(
     rows: u64,
     seed: u64,
     threads: usize,
-    reference_blocks: u64,
+    reference_blocks: Option<u64>,
     keep_continuum: bool,
     npy: String,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
+    // None: sized by what the truth needs (`default_reference_blocks`).
+    let reference_blocks = reference_blocks.unwrap_or_else(|| {
+        crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
+    });
     ok(crate::bounds::check_set_size(
         rows,
         inputs.samples,

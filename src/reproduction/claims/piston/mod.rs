@@ -83,8 +83,12 @@ fn crossing_text(c: Crossing) -> String {
 }
 
 /// A threshold located on a Monte Carlo curve with its uncertainty: the
-/// crossing of |bias| with `level`, and of |bias| ∓ 2 standard errors
-/// (widened by half a grid step for the frequency sampling).
+/// crossing of |bias| with `level`, and the interval between the crossings
+/// of |bias| ∓ [`SIGNIFICANCE_SIGMAS`] standard errors — the frequencies at
+/// which the Monte Carlo does not resolve |bias| from the level at the
+/// significance the claims use elsewhere (3σ) — widened by half a grid
+/// step on each side for the frequency sampling. A paper threshold inside
+/// it is consistent with the curve.
 pub struct Located {
     /// Best estimate, Hz.
     pub value: f64,
@@ -106,9 +110,13 @@ pub fn locate(table: &Table, col: &str, level: f64) -> Result<Located> {
     let low: Vec<f64> = y
         .iter()
         .zip(&se)
-        .map(|(v, s)| (v.abs() - 2.0 * s).max(0.0))
+        .map(|(v, s)| (v.abs() - SIGNIFICANCE_SIGMAS * s).max(0.0))
         .collect();
-    let high: Vec<f64> = y.iter().zip(&se).map(|(v, s)| v.abs() + 2.0 * s).collect();
+    let high: Vec<f64> = y
+        .iter()
+        .zip(&se)
+        .map(|(v, s)| v.abs() + SIGNIFICANCE_SIGMAS * s)
+        .collect();
     let half_step = if f.len() > 1 {
         ((f[f.len() - 1] / f[0]).ln() / (f.len() - 1) as f64 * 0.5).exp()
     } else {
@@ -124,6 +132,15 @@ pub fn locate(table: &Table, col: &str, level: f64) -> Result<Located> {
     })
 }
 
+/// Whether the paper's threshold `p` lies inside the interval, in words.
+fn inside_text(p: f64, loc: &Located) -> &'static str {
+    match (loc.lo..=loc.hi).contains(&p) {
+        false => "outside the interval",
+        true if matches!(loc.crossing, Crossing::At(_)) => "inside the interval",
+        true => "inside the interval, but the crossing itself is outside the simulated range",
+    }
+}
+
 fn threshold_claim(
     id: &'static str,
     paper: Option<f64>,
@@ -135,13 +152,15 @@ fn threshold_claim(
         (Some(p), Crossing::At(_)) if p >= loc.lo && p <= loc.hi => Status::Reproduced,
         _ => Status::Differs,
     };
-    let paper_txt = paper.map_or(String::new(), |p| format!("; paper {p} Hz"));
+    let paper_txt = paper.map_or(String::new(), |p| {
+        format!("; paper {p} Hz, {}", inside_text(p, loc))
+    });
     Computed::with_status(
         id,
         Some(loc.value),
         status,
         format!(
-            "{what}: {} (interval {:.0}-{:.0} Hz from |bias| -/+ 2 standard errors and half a frequency step){paper_txt}. {extra}",
+            "{what}: {} (interval {:.0}-{:.0} Hz from |bias| -/+ {SIGNIFICANCE_SIGMAS} standard errors and half a frequency step){paper_txt}. {extra}",
             crossing_text(loc.crossing),
             loc.lo,
             loc.hi

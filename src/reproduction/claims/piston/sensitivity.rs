@@ -10,6 +10,13 @@
 //! detector, log-spaced 50–2000 Hz) with the figure's seed, so that every
 //! combination sees the same random numbers where the sequences have the
 //! same length; the bin windows share one run.
+//!
+//! Each threshold carries its Monte Carlo interval: for the three level
+//! crossings that of the claims (the frequencies where |bias| is within
+//! [`SIGNIFICANCE_SIGMAS`](crate::tolerance::SIGNIFICANCE_SIGMAS) standard
+//! errors of the level, plus half a grid step each side); for "V1
+//! unbiased from", from the last frequency where |bias V1| is significant
+//! to the threshold itself (the grid step that brackets it).
 
 use super::{column, locate, unbiased_from};
 use crate::error::Result;
@@ -25,6 +32,7 @@ use crate::reproduction::cases::{
 };
 use crate::reproduction::figures::piston::fig5_table;
 use crate::reproduction::table::Table;
+use crate::tolerance::SIGNIFICANCE_SIGMAS;
 use serde::Serialize;
 use std::sync::Mutex;
 
@@ -60,9 +68,18 @@ pub struct SensitivityRow {
     /// highest frequency simulated when the crossing is outside the range;
     /// NaN for "V1 unbiased from" when V1 is still biased at the highest).
     pub thresholds_hz: [f64; 4],
+    /// Their intervals (lo, hi), Hz (module documentation; NaN where the
+    /// threshold is).
+    pub intervals_hz: [(f64, f64); 4],
 }
 
 impl SensitivityRow {
+    /// Whether the paper's threshold `i` lies inside the interval.
+    pub fn paper_inside(&self, i: usize) -> bool {
+        let (lo, hi) = self.intervals_hz[i];
+        (lo..=hi).contains(&PAPER_THRESHOLDS_HZ[i])
+    }
+
     /// How far each threshold is from the paper's, as |ln(computed/paper)|.
     pub fn log_distance(&self) -> [f64; 4] {
         let mut d = [0.0; 4];
@@ -141,13 +158,15 @@ fn compute(effort: Effort) -> Result<Sensitivity> {
                 };
                 let table = sampled_sweep(&spectrum, &frequencies, &setup, scans)?;
                 for window in BIN_WINDOWS {
+                    let (thresholds_hz, intervals_hz) = thresholds(&table, window)?;
                     rows.push(SensitivityRow {
                         psd,
                         reference,
                         window,
                         samples,
                         dx_um,
-                        thresholds_hz: thresholds(&table, window)?,
+                        thresholds_hz,
+                        intervals_hz,
                     });
                 }
             }
@@ -191,8 +210,12 @@ fn sampled_sweep(
     Ok(fig5_table("sensitivity", runs.iter().map(|r| &r[0])))
 }
 
-/// The four thresholds of one window, read as the claims read them.
-fn thresholds(table: &Table, window: BinWindow) -> Result<[f64; 4]> {
+/// Four thresholds, Hz, and their intervals (lo, hi).
+type Thresholds = ([f64; 4], [(f64, f64); 4]);
+
+/// The four thresholds of one window, read as the claims read them, and
+/// their intervals.
+fn thresholds(table: &Table, window: BinWindow) -> Result<Thresholds> {
     let suffix = match window {
         BinWindow::Positive => String::new(),
         other => format!("_{}", other.name()),
@@ -200,26 +223,35 @@ fn thresholds(table: &Table, window: BinWindow) -> Result<[f64; 4]> {
     let v1 = format!("bias_v1{suffix}");
     let v2 = format!("bias_v2{suffix}");
     let freqs = column(table, "fringe_hz")?;
-    let (unbiased, _) = unbiased_from(
+    let (unbiased, last_biased) = unbiased_from(
         &freqs,
         &column(table, &v1)?,
         &column(table, &format!("{v1}_stderr"))?,
     );
-    Ok([
-        locate(table, &v1, 0.01)?.value,
-        locate(table, &v2, 0.01)?.value,
-        unbiased,
-        locate(table, &v2, 1e-5)?.value,
-    ])
+    let unbiased_interval = if unbiased.is_nan() {
+        (f64::NAN, f64::NAN)
+    } else {
+        (last_biased.min(unbiased), unbiased)
+    };
+    let located = [
+        locate(table, &v1, 0.01)?,
+        locate(table, &v2, 0.01)?,
+        locate(table, &v2, 1e-5)?,
+    ];
+    let [a, b, c] = located.map(|l| (l.value, (l.lo, l.hi)));
+    Ok((
+        [a.0, b.0, unbiased, c.0],
+        [a.1, b.1, unbiased_interval, c.1],
+    ))
 }
 
 impl Sensitivity {
-    /// The table as CSV: the choices, then the four thresholds and the
-    /// paper's.
+    /// The table as CSV: the choices, then per threshold its value, its
+    /// interval (`_lo`, `_hi`) and the paper's.
     pub fn to_csv(&self) -> String {
         let mut out = String::from("psd,reference,window,samples,dx_um");
         for name in THRESHOLD_NAMES {
-            out.push_str(&format!(",{name},paper_{name}"));
+            out.push_str(&format!(",{name},{name}_lo,{name}_hi,paper_{name}"));
         }
         out.push('\n');
         for r in &self.rows {
@@ -231,38 +263,31 @@ impl Sensitivity {
                 r.samples,
                 r.dx_um
             ));
-            for (t, p) in r.thresholds_hz.iter().zip(PAPER_THRESHOLDS_HZ) {
-                out.push_str(&format!(",{t:.1},{p}"));
+            for ((t, (lo, hi)), p) in r
+                .thresholds_hz
+                .iter()
+                .zip(r.intervals_hz)
+                .zip(PAPER_THRESHOLDS_HZ)
+            {
+                out.push_str(&format!(",{t:.1},{lo:.1},{hi:.1},{p}"));
             }
             out.push('\n');
         }
         out
     }
 
-    /// The table as Markdown, with the closest combination per threshold.
+    /// The table as Markdown: each threshold as `value (lo–hi)`, ✓ when
+    /// the paper's lies inside the interval.
     pub fn to_markdown(&self) -> String {
-        let (lo, hi) = (
+        let mut out = format!(
+            "Fig. 5 thresholds (Hz) for each combination: {} log-spaced frequencies {:.0}–{:.0} Hz, {} scans each, sampled detector, seed {FIGURE_SEED}. Paper: 100 / 300 / 300 / 800. In brackets the Monte Carlo interval of each threshold: for the level crossings, the frequencies where |bias| is within {SIGNIFICANCE_SIGMAS} standard errors of the level, widened by half a grid step; for \"V1 unbiased from\", the last frequency where |bias V1| exceeds {SIGNIFICANCE_SIGMAS} standard errors to the threshold. ✓: the paper's threshold lies inside the interval.\n\n| spectrum | reference | bins | N x δx | V1 > 1% below | V2 > 1% below | V1 unbiased from | V2 < 1e-5 from |\n|---|---|---|---|---:|---:|---:|---:|\n",
+            self.frequencies.len(),
             self.frequencies[0],
             self.frequencies[self.frequencies.len() - 1],
-        );
-        let shown = |t: f64| {
-            if t.is_nan() {
-                format!("none ≤ {hi:.0}")
-            } else if t <= lo {
-                format!("≤ {lo:.0}")
-            } else if t >= hi {
-                format!("≥ {hi:.0}")
-            } else {
-                format!("{t:.0}")
-            }
-        };
-        let mut out = format!(
-            "Fig. 5 thresholds (Hz) for each combination: {} log-spaced frequencies {lo:.0}–{hi:.0} Hz, {} scans each, sampled detector, seed {FIGURE_SEED}. Paper: 100 / 300 / 300 / 800.\n\n| spectrum | reference | bins | N x δx | V1 > 1% below | V2 > 1% below | V1 unbiased from | V2 < 1e-5 from |\n|---|---|---|---|---:|---:|---:|---:|\n",
-            self.frequencies.len(),
             self.scans
         );
         for r in &self.rows {
-            let t: Vec<String> = r.thresholds_hz.iter().map(|&t| shown(t)).collect();
+            let t: Vec<String> = (0..4).map(|i| self.cell(r, i)).collect();
             out.push_str(&format!(
                 "| {} | {} | {} | {} x {} | {} |\n",
                 r.psd.name(),
@@ -274,6 +299,28 @@ impl Sensitivity {
             ));
         }
         out
+    }
+
+    /// Threshold `i` of `r` as a Markdown cell: `622 (571–680)`, with `≤`
+    /// or `≥` at the ends of the range, and ✓ when the paper's is inside.
+    fn cell(&self, r: &SensitivityRow, i: usize) -> String {
+        let (lo, hi) = (
+            self.frequencies[0],
+            self.frequencies[self.frequencies.len() - 1],
+        );
+        let t = r.thresholds_hz[i];
+        let value = if t.is_nan() {
+            return format!("none ≤ {hi:.0}");
+        } else if t <= lo {
+            format!("≤ {lo:.0}")
+        } else if t >= hi {
+            format!("≥ {hi:.0}")
+        } else {
+            format!("{t:.0}")
+        };
+        let (a, b) = r.intervals_hz[i];
+        let mark = if r.paper_inside(i) { " ✓" } else { "" };
+        format!("{value} ({a:.0}–{b:.0}){mark}")
     }
 
     /// For threshold `i`: the rows within one grid step of the paper's
