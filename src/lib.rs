@@ -63,7 +63,7 @@
 //! 5. [`noise`], [`piston`];
 //! 6. [`simulator`], [`parameters`] (the physical inputs declared once, and the objects they build);
 //! 7. [`conformance`];
-//! 8. [`plan`], [`reproduction`];
+//! 8. [`plan`], [`reproduction`], [`commands`] (each command's answer, built once for the CLI and Python);
 //! 9. the edges: [`prelude`], the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
 //!
 //! ## Units and conventions
@@ -127,6 +127,7 @@
 pub mod bias;
 pub mod bounds;
 pub mod cleanup;
+pub mod commands;
 pub mod conformance;
 pub mod error;
 pub mod formalism;

@@ -22,7 +22,7 @@ const LEVELS: &[&[&str]] = &[
     &["noise", "piston"],
     &["simulator", "parameters"],
     &["conformance"],
-    &["plan", "reproduction"],
+    &["plan", "reproduction", "commands"],
     &["prelude", "formats", "python", "cli", "main", "lib"],
 ];
 

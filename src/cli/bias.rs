@@ -3,7 +3,6 @@
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref::bias::report::BiasReport;
 use v2ref::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
@@ -29,19 +28,12 @@ pub struct Args {
 
 /// Runs `bias`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let obs = args.obs.observation()?;
-    let scan = if args.finite_scan || args.sampling.scan.stroke_um.is_some() {
-        Some((args.sampling.sampling()?, args.sampling.bins))
-    } else {
-        None
-    };
-    let n = scan.as_ref().map_or(0, |(s, _)| s.samples());
+    let mut p = args.obs.physical();
+    args.sampling.scan.apply_to(&mut p);
+    let finite = v2ref::commands::bias::wants_finite_scan(&p, args.finite_scan);
+    let n = if finite { p.sampling()?.samples() } else { 0 };
     let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
-    let answer = BiasReport::new(
-        &obs,
-        args.obs.record(&obs),
-        scan.as_ref().map(|(s, w)| (s, *w)),
-    )?;
+    let answer = v2ref::commands::bias::answer(&p, args.sampling.bins, args.finite_scan)?;
     bar.finish_and_clear();
     let wb = answer.infinite_scan;
     if args.json {
@@ -52,7 +44,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 "spatial frequency [cycles/arcsec]",
                 format!("{:.6}", wb.spatial_freq_cpas),
             ),
-            ("baseline [m]", format!("{:.6}", obs.baseline_m)),
+            (
+                "baseline [m]",
+                format!("{:.6}", answer.inputs.observation.baseline_m),
+            ),
             ("sigma_eff [1/um]", format!("{:.9}", wb.sigma_eff_per_um)),
             ("V mono", format!("{:.9}", wb.v_mono)),
             ("V1 (infinite scan)", format!("{:.9}", wb.v1)),

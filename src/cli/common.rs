@@ -5,11 +5,8 @@
 use super::finite_f64;
 use std::path::PathBuf;
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::interferogram::Sampling;
 use v2ref::formalism::observation::Observation;
 use v2ref::parameters::Physical;
-use v2ref::piston::turbulence::Turbulence;
-use v2ref::simulator::record::{AtmosphereRecord, ObservationRecord};
 use v2ref::simulator::SourceInput;
 use v2ref::Result;
 
@@ -79,11 +76,6 @@ impl ObservationArgs {
         self.physical().source_input()
     }
 
-    /// The record of `obs` (made from these flags) for a JSON answer.
-    pub fn record(&self, obs: &Observation) -> ObservationRecord {
-        self.physical().record(obs)
-    }
-
     /// The observation these flags describe.
     pub fn observation(&self) -> Result<Observation> {
         self.physical().observation()
@@ -116,13 +108,6 @@ impl ScanArgs {
         p.samples = self.samples;
         p.integrating = self.integrating;
     }
-
-    /// The sampling these flags describe.
-    pub fn sampling(&self) -> Result<Sampling> {
-        let mut p = Physical::default();
-        self.apply_to(&mut p);
-        p.sampling()
-    }
 }
 
 /// How the interferogram is sampled, and the bins the estimators sum.
@@ -133,13 +118,6 @@ pub struct SamplingArgs {
     /// Fourier bins the estimators sum.
     #[arg(long, value_enum, default_value = "positive")]
     pub bins: BinWindow,
-}
-
-impl SamplingArgs {
-    /// The sampling these flags describe.
-    pub fn sampling(&self) -> Result<Sampling> {
-        self.scan.sampling()
-    }
 }
 
 /// The turbulence, the telescopes and the scans through the piston (§6).
@@ -203,17 +181,6 @@ impl TurbulenceArgs {
     /// flag's value converted from --seeing-wavelength-um.
     pub fn seeing_at_arcsec(&self, wavelength_um: f64) -> Result<f64> {
         self.physical(wavelength_um).seeing_at_observing_arcsec()
-    }
-
-    /// The turbulence these flags describe at the observing wavelength.
-    pub fn turbulence(&self, wavelength_um: f64) -> Result<Turbulence> {
-        self.physical(wavelength_um).turbulence()
-    }
-
-    /// The record of these flags at the observing wavelength
-    /// `wavelength_um` for a JSON answer.
-    pub fn record(&self, wavelength_um: f64) -> Result<AtmosphereRecord> {
-        self.physical(wavelength_um).atmosphere_record()
     }
 
     /// Warns on stderr when the outer scale is left infinite on a long
@@ -280,12 +247,5 @@ impl LightArgs {
         p.photons = self.photons;
         p.read_noise = self.read_noise;
         p.photon_noise = !self.no_photon_noise;
-    }
-
-    /// The noise model these flags describe.
-    pub fn noise(&self) -> Result<v2ref::noise::NoiseModel> {
-        let mut p = Physical::default();
-        self.apply_to(&mut p);
-        p.noise()
     }
 }

@@ -5,13 +5,10 @@ use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs, Turbulen
 use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
-use v2ref::error::{Error, Result};
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::Observation;
-use v2ref::piston::report::{PistonReport, PistonSetting};
-use v2ref::piston::turbulence::{PistonPsdModel, PistonSpectrum};
-use v2ref::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
-use v2ref::simulator::record::{InputsRecord, SamplingRecord};
+use v2ref::commands::piston::{self, PistonRequest};
+use v2ref::error::Result;
+use v2ref::piston::report::PistonReport;
+use v2ref::piston::turbulence::PistonPsdModel;
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]
@@ -45,116 +42,36 @@ pub struct Args {
 
 /// Runs `piston`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let obs = args.obs.observation()?;
-    let sampling = args.sampling.sampling()?;
-    sampling.check_aliasing(&obs)?;
-    let freqs = fringe_frequencies(&flatten(&args.fringe_hz))?;
-    check_scans(args.scans)?;
-    v2ref::error::positive("aperture_m", args.turbulence.aperture_m)?;
-    let turb = args.turbulence.turbulence(args.obs.wavelength_um)?;
-    let spectrum = PistonSpectrum::new(turb, args.turbulence.aperture_m, obs.baseline_m)?
-        .with_wind_angle_deg(args.wind_angle_deg)?
-        .with_model(args.psd)?;
+    let mut p = args.obs.physical();
+    args.sampling.scan.apply_to(&mut p);
+    args.turbulence.apply_to(&mut p);
+    let req = PistonRequest {
+        fringe_hz: flatten(&args.fringe_hz),
+        bins: args.sampling.bins,
+        scans: args.scans,
+        seed: args.run.seed,
+        threads: args.run.threads,
+        psd: args.psd,
+        wind_angle_deg: args.wind_angle_deg,
+    };
+    let prepared = piston::prepare(&p, &req)?;
+    let spectrum = &prepared.spectrum;
     args.turbulence
-        .warn_if_outer_scale_infinite(obs.baseline_m, spectrum.rms_um());
-    let detector = if sampling.integrating() {
-        Detector::Integrating {
-            sub_samples: args.turbulence.sub_samples,
-        }
-    } else {
-        Detector::Sampled
-    };
-    let runs = simulate_each(&args, &obs, &spectrum, &sampling, detector, &freqs)?;
-    let window = args.sampling.bins;
-    let inputs = InputsRecord {
-        observation: args.obs.record(&obs),
-        sampling: Some(SamplingRecord::new(&sampling, window)),
-        atmosphere: Some(args.turbulence.record(args.obs.wavelength_um)?),
-    };
-    let setting = PistonSetting {
-        obs: &obs,
-        spectrum: &spectrum,
-        sampling: &sampling,
-        detector,
-        window,
-        reference: args.turbulence.reference,
-    };
-    let answer = PistonReport::new(inputs, setting, &runs);
+        .warn_if_outer_scale_infinite(spectrum.baseline_m(), spectrum.rms_um());
+    let bar = progress_bar(
+        (prepared.fringe_hz.len() * args.scans) as u64,
+        args.output.quiet || args.output.json,
+        "piston scans",
+    );
+    let tick = |k: u64| bar.inc(k);
+    let answer = piston::run(&prepared, &p, &req, Some(&tick))?;
+    bar.finish_and_clear();
     if args.output.json {
         print_json(&answer);
     } else {
         print_table(&answer);
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The `--fringe-hz` values (300 and 1000 Hz when none), each checked.
-fn fringe_frequencies(given: &[f64]) -> Result<Vec<f64>> {
-    let freqs = if given.is_empty() {
-        vec![300.0, 1000.0]
-    } else {
-        given.to_vec()
-    };
-    for &f in &freqs {
-        v2ref::error::in_range("fringe_hz", f, 1e-3, 1e7)?;
-    }
-    Ok(freqs)
-}
-
-/// Refuses fewer than 2 scans.
-fn check_scans(scans: usize) -> Result<()> {
-    if scans < 2 {
-        return Err(Error::OutOfRange {
-            param: "scans",
-            value: scans as f64,
-            accepted: ">= 2".into(),
-        });
-    }
-    Ok(())
-}
-
-/// One piston Monte Carlo per fringe frequency, with a progress bar over
-/// all scans.
-fn simulate_each(
-    args: &Args,
-    obs: &Observation,
-    spectrum: &PistonSpectrum,
-    sampling: &Sampling,
-    detector: Detector,
-    freqs: &[f64],
-) -> Result<Vec<PistonRun>> {
-    let bar = progress_bar(
-        (freqs.len() * args.scans) as u64,
-        args.output.quiet || args.output.json,
-        "piston scans",
-    );
-    let tick = |k: u64| bar.inc(k);
-    let setup = ScanSetup {
-        samples: sampling.samples(),
-        dx_um: sampling.dx_um(),
-        wavelength_um: args.obs.wavelength_um,
-        fringe_hz: freqs[0],
-        reference: args.turbulence.reference,
-    };
-    let size = RunSize {
-        scans: args.scans,
-        // Each frequency's seed is derived from the user's and the
-        // frequency's value (piston::sweep_seed), not its place in the list.
-        seed: args.run.seed,
-        threads: args.run.threads,
-    };
-    let runs = sweep(
-        obs,
-        spectrum,
-        freqs,
-        &setup,
-        &[detector],
-        &size,
-        Some(&tick),
-    )?;
-    let results: Vec<PistonRun> = runs.into_iter().flatten().collect();
-    bar.finish_and_clear();
-    Ok(results)
 }
 
 fn print_table(answer: &PistonReport) {

@@ -6,9 +6,9 @@
 use super::common::{LightArgs, ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref::noise::report::{Light, SnrReport};
+use v2ref::noise::report::SnrReport;
 use v2ref::noise::snr_value::snr_text;
-use v2ref::noise::{Formula, NoiseModel};
+use v2ref::noise::Formula;
 use v2ref::Result;
 
 /// Signal and noise flags shared by `snr` and `simulate`.
@@ -19,13 +19,6 @@ pub struct NoiseArgs {
     /// Formula: as printed in the paper, or exact.
     #[arg(long, value_enum, default_value = "exact")]
     pub formula: Formula,
-}
-
-impl NoiseArgs {
-    /// The noise model these flags describe.
-    pub fn noise(&self) -> Result<NoiseModel> {
-        self.light.noise()
-    }
 }
 
 /// Flags of `snr`.
@@ -44,22 +37,10 @@ pub struct Args {
 
 /// Runs `snr`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let noise = args.noise.noise()?;
-    let obs = args.obs.observation()?;
-    let sampling = args.sampling.sampling()?;
-    let light = Light {
-        photons: args.noise.light.photons,
-        visibility: args.noise.light.visibility,
-        noise,
-    };
-    let answer = SnrReport::new(
-        &obs,
-        args.obs.record(&obs),
-        &sampling,
-        args.sampling.bins,
-        light,
-        args.noise.formula,
-    )?;
+    let mut p = args.obs.physical();
+    args.sampling.scan.apply_to(&mut p);
+    args.noise.light.apply_to(&mut p);
+    let answer = v2ref::commands::snr::answer(&p, args.sampling.bins, args.noise.formula)?;
     if args.json {
         print_json(&answer);
     } else {

@@ -1,0 +1,149 @@
+//! `piston`: the differential-piston Monte Carlo at one or more fringe
+//! frequencies, in two steps so that an edge can warn and size its
+//! progress before the computation: [`prepare`] checks everything and
+//! builds the spectrum, [`run`] computes the answer.
+
+use crate::error::{Error, Result};
+use crate::formalism::estimator::BinWindow;
+use crate::formalism::interferogram::Sampling;
+use crate::formalism::observation::Observation;
+use crate::parameters::Physical;
+use crate::piston::report::{PistonReport, PistonSetting};
+use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
+use crate::simulator::record::{InputsRecord, SamplingRecord};
+
+/// The fringe frequencies when none is given, Hz.
+pub const DEFAULT_FRINGE_HZ: [f64; 2] = [300.0, 1000.0];
+
+/// The options of `piston` beyond the physical inputs (whose `fringe_hz`
+/// it does not use: the frequencies are these).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PistonRequest {
+    /// Fringe frequencies, Hz ([`DEFAULT_FRINGE_HZ`] when empty).
+    pub fringe_hz: Vec<f64>,
+    /// The bins the estimators sum.
+    pub bins: BinWindow,
+    /// Scans per fringe frequency (≥ 2).
+    pub scans: usize,
+    /// Seed.
+    pub seed: u64,
+    /// Worker threads (0: all); the answer does not depend on it.
+    pub threads: usize,
+    /// The differential-piston spectrum's model.
+    pub psd: PistonPsdModel,
+    /// Wind direction from the baseline, degrees.
+    pub wind_angle_deg: f64,
+}
+
+/// A checked `piston` run, ready to compute.
+pub struct Prepared {
+    obs: Observation,
+    sampling: Sampling,
+    /// The differential-piston spectrum (its rms, for the edge's warning).
+    pub spectrum: PistonSpectrum,
+    detector: Detector,
+    /// The fringe frequencies, Hz, checked.
+    pub fringe_hz: Vec<f64>,
+}
+
+/// Checks the inputs of `piston` and builds its spectrum (the cost of the
+/// run is `fringe_hz.len() × scans` scans).
+pub fn prepare(p: &Physical, req: &PistonRequest) -> Result<Prepared> {
+    let obs = p.observation()?;
+    let sampling = p.sampling()?;
+    sampling.check_aliasing(&obs)?;
+    let fringe_hz = fringe_frequencies(&req.fringe_hz)?;
+    if req.scans < 2 {
+        return Err(Error::OutOfRange {
+            param: "scans",
+            value: req.scans as f64,
+            accepted: ">= 2".into(),
+        });
+    }
+    crate::error::positive("aperture_m", p.aperture_m)?;
+    let spectrum = PistonSpectrum::new(p.turbulence()?, p.aperture_m, obs.baseline_m)?
+        .with_wind_angle_deg(req.wind_angle_deg)?
+        .with_model(req.psd)?;
+    let detector = if sampling.integrating() {
+        Detector::Integrating {
+            sub_samples: p.sub_samples,
+        }
+    } else {
+        Detector::Sampled
+    };
+    Ok(Prepared {
+        obs,
+        sampling,
+        spectrum,
+        detector,
+        fringe_hz,
+    })
+}
+
+/// The frequencies given ([`DEFAULT_FRINGE_HZ`] when none), each checked.
+fn fringe_frequencies(given: &[f64]) -> Result<Vec<f64>> {
+    let freqs = if given.is_empty() {
+        DEFAULT_FRINGE_HZ.to_vec()
+    } else {
+        given.to_vec()
+    };
+    for &f in &freqs {
+        crate::error::in_range("fringe_hz", f, 1e-3, 1e7)?;
+    }
+    Ok(freqs)
+}
+
+/// The answer of a prepared `piston` run; `progress` counts scans.
+pub fn run(
+    prepared: &Prepared,
+    p: &Physical,
+    req: &PistonRequest,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<PistonReport> {
+    let Prepared {
+        obs,
+        sampling,
+        spectrum,
+        detector,
+        fringe_hz,
+    } = prepared;
+    let setup = ScanSetup {
+        samples: sampling.samples(),
+        dx_um: sampling.dx_um(),
+        wavelength_um: p.wavelength_um,
+        fringe_hz: fringe_hz[0],
+        reference: p.reference,
+    };
+    // Each frequency's seed is derived from the user's and the frequency's
+    // value (piston::sweep_seed), not its place in the list.
+    let size = RunSize {
+        scans: req.scans,
+        seed: req.seed,
+        threads: req.threads,
+    };
+    let runs = sweep(
+        obs,
+        spectrum,
+        fringe_hz,
+        &setup,
+        &[*detector],
+        &size,
+        progress,
+    )?;
+    let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
+    let inputs = InputsRecord {
+        observation: p.record(obs),
+        sampling: Some(SamplingRecord::new(sampling, req.bins)),
+        atmosphere: Some(p.atmosphere_record()?),
+    };
+    let setting = PistonSetting {
+        obs,
+        spectrum,
+        sampling,
+        detector: *detector,
+        window: req.bins,
+        reference: p.reference,
+    };
+    Ok(PistonReport::new(inputs, setting, &runs))
+}

@@ -1,0 +1,22 @@
+//! `snr`: the closed-form expectations, variances and SNRs of V1² and V2²
+//! under detector and photon noise.
+
+use crate::error::Result;
+use crate::formalism::estimator::BinWindow;
+use crate::noise::report::{Light, SnrReport};
+use crate::noise::Formula;
+use crate::parameters::Physical;
+
+/// The answer of `snr` for `p`, the exact statistics over `bins`, the
+/// Appendix's by `formula`.
+pub fn answer(p: &Physical, bins: BinWindow, formula: Formula) -> Result<SnrReport> {
+    let noise = p.noise()?;
+    let obs = p.observation()?;
+    let sampling = p.sampling()?;
+    let light = Light {
+        photons: p.photons,
+        visibility: p.visibility,
+        noise,
+    };
+    SnrReport::new(&obs, p.record(&obs), &sampling, bins, light, formula)
+}
