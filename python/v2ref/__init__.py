@@ -51,14 +51,7 @@ __all__ = [
 ]
 
 #: The columns of :func:`estimate`'s answer, in the order of ``v2ref estimate``.
-ESTIMATE_COLUMNS = (
-    "v1_sq_raw",
-    "v2_sq_raw",
-    "v1_sq_bias",
-    "v2_sq_bias",
-    "v1_sq",
-    "v2_sq",
-)
+ESTIMATE_COLUMNS = tuple(_v2ref.ESTIMATE_COLUMNS)
 
 #: The defaults of the physical inputs, from the library's one declaration
 #: (``v2ref::parameters::Physical::default``, also the CLI's defaults).

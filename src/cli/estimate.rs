@@ -13,14 +13,7 @@ use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.
-pub const COLUMNS: [&str; 6] = [
-    "v1_sq_raw",
-    "v2_sq_raw",
-    "v1_sq_bias",
-    "v2_sq_bias",
-    "v1_sq",
-    "v2_sq",
-];
+pub use v2ref::commands::ESTIMATE_COLUMNS as COLUMNS;
 
 /// Flags of `estimate`.
 #[derive(Debug, clap::Args)]

@@ -171,5 +171,9 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let table = serde_json::to_string(&crate::parameters::PARAMETERS)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     m.add("PHYSICAL_PARAMETERS", table)?;
+    m.add(
+        "ESTIMATE_COLUMNS",
+        crate::commands::ESTIMATE_COLUMNS.to_vec(),
+    )?;
     answers::register(m)
 }

@@ -23,15 +23,7 @@ use serde::Serialize;
 /// Units generated at once while streaming.
 const STREAM_BATCH_UNITS: u64 = 8;
 
-/// The columns of `estimate`, in the order of `v2ref estimate`.
-const ESTIMATE_COLUMNS: [&str; 6] = [
-    "v1_sq_raw",
-    "v2_sq_raw",
-    "v1_sq_bias",
-    "v2_sq_bias",
-    "v1_sq",
-    "v2_sq",
-];
+use crate::commands::ESTIMATE_COLUMNS;
 
 /// The first non-finite value of the interferograms, found without a
 /// pass over all of them: a NaN or infinity in a row makes its raw
