@@ -103,6 +103,10 @@ pub struct Args {
     /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
+    /// Also write the predicted observation at the recommended setting as
+    /// OIFITS v2 (V², predicted σ, the biases to correct as keywords).
+    #[arg(long, value_name = "FILE.fits")]
+    oifits: Option<std::path::PathBuf>,
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
@@ -266,6 +270,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     bar.finish_and_clear();
     if let Some(path) = &args.svg {
         super::plan_svg::write(path, &result, &inputs)?;
+    }
+    if let Some(path) = &args.oifits {
+        super::oifits::write_plan(path, &inputs, &result)?;
     }
     if args.json {
         print_json(&Answer {

@@ -25,13 +25,17 @@
 //! estimator, window of bins and bias convention are the keywords
 //! `V2R_EST`, `V2R_BINS`, `V2R_BIAS` of each `OI_VIS2` table.
 
+pub mod docs;
 mod mem;
 pub mod read;
 mod select;
 pub mod setting;
 pub mod write;
 
-pub use read::{read_oifits_estimates, read_vis2_tables, Expected, OifitsEstimates, Vis2Table};
+pub use read::{
+    read_oifits_estimates, read_vis2_tables, truth_for_kept_rows, Expected, OifitsEstimates,
+    Vis2Table,
+};
 pub use setting::Setting;
 pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
 

@@ -142,12 +142,22 @@ impl Reader<'_> {
                 &mut colnum,
                 &mut status,
             );
-            fitsio_sys::ffgtclll(self.mem.fptr, colnum, &mut typ, &mut repeat, &mut width, &mut status);
+            fitsio_sys::ffgtclll(
+                self.mem.fptr,
+                colnum,
+                &mut typ,
+                &mut repeat,
+                &mut width,
+                &mut status,
+            );
         }
         if status != 0 {
             return Err(self.err(
                 format!("{at}, column {name}"),
-                format!("missing or unreadable ({}); the standard requires it", status_text(status)),
+                format!(
+                    "missing or unreadable ({}); the standard requires it",
+                    status_text(status)
+                ),
             ));
         }
         let repeat = usize::try_from(repeat).unwrap_or(0);
@@ -178,8 +188,15 @@ impl Reader<'_> {
             // SAFETY: `out` holds `n` doubles.
             unsafe {
                 fitsio_sys::ffgcvd(
-                    self.mem.fptr, colnum, 1, 1, n as i64, f64::NAN, out.as_mut_ptr(),
-                    &mut anynul, &mut status,
+                    self.mem.fptr,
+                    colnum,
+                    1,
+                    1,
+                    n as i64,
+                    f64::NAN,
+                    out.as_mut_ptr(),
+                    &mut anynul,
+                    &mut status,
                 )
             };
         }
@@ -196,7 +213,14 @@ impl Reader<'_> {
             // SAFETY: `out` holds `n` chars.
             unsafe {
                 fitsio_sys::ffgcvl(
-                    self.mem.fptr, colnum, 1, 1, n as i64, 0, out.as_mut_ptr(), &mut anynul,
+                    self.mem.fptr,
+                    colnum,
+                    1,
+                    1,
+                    n as i64,
+                    0,
+                    out.as_mut_ptr(),
+                    &mut anynul,
                     &mut status,
                 )
             };
@@ -243,7 +267,10 @@ pub fn read_vis2_tables(path: &Path, param: &'static str) -> Result<Vec<Vis2Tabl
     for t in &mut tables {
         let at = format!("HDU {} (OI_VIS2 INSNAME {})", t.hdu, t.insname);
         let Some((_, w)) = waves.iter().find(|(n, _)| *n == t.insname) else {
-            return Err(r.err(at, "no OI_WAVELENGTH table of this INSNAME; the standard requires one"));
+            return Err(r.err(
+                at,
+                "no OI_WAVELENGTH table of this INSNAME; the standard requires one",
+            ));
         };
         if w.len() != t.nwave {
             return Err(r.err(
@@ -295,7 +322,10 @@ fn wavelength_table(r: &Reader, hdu: usize) -> Result<(String, Vec<f64>)> {
     let name = insname(r, &at)?;
     let rows = r.rows(&at)?;
     let (col, _) = r.column("EFF_WAVE", &at)?;
-    Ok((name, r.read_f64(col, rows, &format!("{at}, column EFF_WAVE"))?))
+    Ok((
+        name,
+        r.read_f64(col, rows, &format!("{at}, column EFF_WAVE"))?,
+    ))
 }
 
 fn vis2_table(r: &Reader, hdu: usize) -> Result<Vis2Table> {
@@ -352,4 +382,4 @@ pub struct Expected {
     pub band_m: (f64, f64),
 }
 
-pub use super::select::read_oifits_estimates;
+pub use super::select::{read_oifits_estimates, truth_for_kept_rows};

@@ -50,7 +50,11 @@ pub fn read_oifits_estimates(
     if chosen.is_empty() {
         return Err(Error::Invalid {
             param: "insname",
-            reason: format!("{}: no OI_VIS2 table of this INSNAME; the file has {}", insname.unwrap_or(""), names()),
+            reason: format!(
+                "{}: no OI_VIS2 table of this INSNAME; the file has {}",
+                insname.unwrap_or(""),
+                names()
+            ),
         });
     }
     let mut by_est: [Vec<&Vis2Table>; 2] = [Vec::new(), Vec::new()];
@@ -60,7 +64,13 @@ pub fn read_oifits_estimates(
         }
     }
     if by_est.iter().all(Vec::is_empty) {
-        return Err(err(String::new(), format!("no OI_VIS2 table of the estimator asked for; the file has {}", names())));
+        return Err(err(
+            String::new(),
+            format!(
+                "no OI_VIS2 table of the estimator asked for; the file has {}",
+                names()
+            ),
+        ));
     }
     for group in &by_est {
         let mut n: Vec<&str> = group.iter().map(|t| t.insname.as_str()).collect();
@@ -68,15 +78,26 @@ pub fn read_oifits_estimates(
         if n.len() > 1 {
             return Err(Error::Invalid {
                 param: "insname",
-                reason: format!("several OI_VIS2 tables of one estimator (INSNAME {}); choose one", n.join(", ")),
+                reason: format!(
+                    "several OI_VIS2 tables of one estimator (INSNAME {}); choose one",
+                    n.join(", ")
+                ),
             });
         }
     }
     let columns = by_est
         .iter()
-        .map(|g| (!g.is_empty()).then(|| concat(g, expected, path)).transpose())
+        .map(|g| {
+            (!g.is_empty())
+                .then(|| concat(g, expected, path))
+                .transpose()
+        })
         .collect::<Result<Vec<_>>>()?;
-    unflagged(columns, path, all.iter().map(|t| t.insname.clone()).collect())
+    unflagged(
+        columns,
+        path,
+        all.iter().map(|t| t.insname.clone()).collect(),
+    )
 }
 
 /// The estimator of table `t`: its `V2R_EST`, else `estimator`; None when
@@ -112,7 +133,11 @@ fn assign(t: &Vis2Table, estimator: Option<Estimator>, path: &Path) -> Result<Op
 
 /// The tables' values and flags, one channel per row, checked against
 /// the set.
-fn concat(tables: &[&Vis2Table], expected: &Expected, path: &Path) -> Result<(Vec<f64>, Vec<bool>)> {
+fn concat(
+    tables: &[&Vis2Table],
+    expected: &Expected,
+    path: &Path,
+) -> Result<(Vec<f64>, Vec<bool>)> {
     let (lo, hi) = expected.band_m;
     let mut values = Vec::new();
     let mut flags = Vec::new();
@@ -134,19 +159,33 @@ fn concat(tables: &[&Vis2Table], expected: &Expected, path: &Path) -> Result<(Ve
         flags.extend_from_slice(&t.flag);
     }
     if values.len() as u64 != expected.rows {
-        return Err(Error::data("estimates", path, format!("OI_VIS2 INSNAME {}", tables[0].insname), format!(
-            "{} rows; the set (its sidecar) has {}: one row per interferogram, in order",
-            values.len(),
-            expected.rows
-        )));
+        return Err(Error::data(
+            "estimates",
+            path,
+            format!("OI_VIS2 INSNAME {}", tables[0].insname),
+            format!(
+                "{} rows; the set (its sidecar) has {}: one row per interferogram, in order",
+                values.len(),
+                expected.rows
+            ),
+        ));
     }
     Ok((values, flags))
 }
 
 /// Leaves out every row flagged in any column; refuses a non-finite
 /// unflagged value.
-fn unflagged(columns: Vec<Option<(Vec<f64>, Vec<bool>)>>, path: &Path, insnames: Vec<String>) -> Result<OifitsEstimates> {
-    let rows = columns.iter().flatten().map(|(v, _)| v.len()).next().unwrap_or(0);
+fn unflagged(
+    columns: Vec<Option<(Vec<f64>, Vec<bool>)>>,
+    path: &Path,
+    insnames: Vec<String>,
+) -> Result<OifitsEstimates> {
+    let rows = columns
+        .iter()
+        .flatten()
+        .map(|(v, _)| v.len())
+        .next()
+        .unwrap_or(0);
     let bad: Vec<bool> = (0..rows)
         .map(|r| columns.iter().flatten().any(|(_, f)| f[r]))
         .collect();
@@ -161,9 +200,16 @@ fn unflagged(columns: Vec<Option<(Vec<f64>, Vec<bool>)>>, path: &Path, insnames:
     });
     let (v1_sq, v2_sq) = (out.next().flatten(), out.next().flatten());
     for (name, col) in [("V1SQ", &v1_sq), ("V2SQ", &v2_sq)] {
-        if let Some(r) = col.as_ref().and_then(|x| x.iter().position(|v| !v.is_finite())) {
-            return Err(Error::data("estimates", path, format!("{name}, unflagged value {} (1-based)", r + 1),
-                "not a finite number; flag it (FLAG = T) or give a value"));
+        if let Some(r) = col
+            .as_ref()
+            .and_then(|x| x.iter().position(|v| !v.is_finite()))
+        {
+            return Err(Error::data(
+                "estimates",
+                path,
+                format!("{name}, unflagged value {} (1-based)", r + 1),
+                "not a finite number; flag it (FLAG = T) or give a value",
+            ));
         }
     }
     let mut insnames = insnames;
@@ -174,4 +220,24 @@ fn unflagged(columns: Vec<Option<(Vec<f64>, Vec<bool>)>>, path: &Path, insnames:
         flagged: bad.iter().filter(|&&b| b).count(),
         insnames,
     })
+}
+
+/// The truth of a set of `rows` rows for the `kept` rows left after
+/// flagged ones are left out: the set's scatter (`set_stderr_mean`,
+/// `set_stderr_var`) grows as `sqrt(rows / kept)` (independent rows; the
+/// truth's own uncertainty does not change).
+pub fn truth_for_kept_rows(
+    truth: &crate::conformance::sidecar::ConventionTruth,
+    rows: u64,
+    kept: u64,
+) -> crate::conformance::sidecar::ConventionTruth {
+    let mut t = truth.clone();
+    if kept > 0 && kept < rows {
+        let s = (rows as f64 / kept as f64).sqrt();
+        for e in [&mut t.v1_sq, &mut t.v2_sq] {
+            e.set_stderr_mean *= s;
+            e.set_stderr_var = e.set_stderr_var.map(|v| v * s);
+        }
+    }
+    t
 }

@@ -39,9 +39,10 @@ impl Setting {
         let spectrum = inputs.spectrum.spectrum()?;
         let (eff_wave_m, eff_band_m) = wavelengths(&spectrum);
         // The scan runs N δx of OPD at v = f λ0 (µm/s).
-        let scan_s = inputs.piston.as_ref().map(|p| {
-            inputs.samples as f64 * inputs.dx_um / (p.fringe_hz * p.wavelength_um)
-        });
+        let scan_s = inputs
+            .piston
+            .as_ref()
+            .map(|p| inputs.samples as f64 * inputs.dx_um / (p.fringe_hz * p.wavelength_um));
         Ok(Setting {
             target: target.to_owned(),
             baseline_m: inputs.baseline_m,

@@ -9,8 +9,8 @@ use super::{check_fits_extension, estimator_key, KEY_ESTIMATOR};
 use crate::conformance::score::Estimator;
 use crate::formats::atomic::TempTarget;
 use crate::{Error, Result};
-use fitsio::tables::{ColumnDataType, ColumnDescription};
 use fitsio::hdu::FitsHdu;
+use fitsio::tables::{ColumnDataType, ColumnDescription};
 use fitsio::FitsFile;
 use std::io::Write;
 use std::path::Path;
@@ -168,19 +168,43 @@ fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String>
     let s = &doc.setting;
     let soft = format!("v2ref {}", env!("CARGO_PKG_VERSION"));
     let mut keys = vec![
-        Key::str("CONTENT", "OIFITS2", "OIFITS version 2 (Duvert et al. 2017)"),
-        Key::str("ORIGIN", "v2ref", "institution or software that wrote the file"),
+        Key::str(
+            "CONTENT",
+            "OIFITS2",
+            "OIFITS version 2 (Duvert et al. 2017)",
+        ),
+        Key::str(
+            "ORIGIN",
+            "v2ref",
+            "institution or software that wrote the file",
+        ),
         Key::str("DATE", &today(), "UTC date the file was written"),
-        Key::str("DATE-OBS", DATE_OBS, "nominal: a model's rows, not a night's"),
+        Key::str(
+            "DATE-OBS",
+            DATE_OBS,
+            "nominal: a model's rows, not a night's",
+        ),
         Key::str("TELESCOP", ARRNAME, "a two-station model baseline"),
         Key::str("INSTRUME", &doc.tables[0].insname, "first INSNAME"),
         Key::str("OBSERVER", "v2ref", "no observer: computed"),
         Key::str("OBJECT", &s.target, "target"),
-        Key::str("INSMODE", "BROADBAND", "one channel: the estimators sum the band"),
-        Key::str("OBSTECH", "SCAN", "scanned fringes, Fourier-domain estimators"),
+        Key::str(
+            "INSMODE",
+            "BROADBAND",
+            "one channel: the estimators sum the band",
+        ),
+        Key::str(
+            "OBSTECH",
+            "SCAN",
+            "scanned fringes, Fourier-domain estimators",
+        ),
         Key::str("PROCSOFT", &soft, "software that wrote the file"),
         Key::str("PROG_ID", "N/A", "no observing programme"),
-        Key::str("REFERENC", "Perrin & Ridgway 2005", "estimators V1^2 and V2^2"),
+        Key::str(
+            "REFERENC",
+            "Perrin & Ridgway 2005",
+            "estimators V1^2 and V2^2",
+        ),
     ];
     keys.extend(doc.keywords.iter().cloned());
     put_keys(f, &hdu, &keys)
@@ -235,20 +259,40 @@ fn create(
     Ok(hdu)
 }
 
-fn write_f64(f: &mut FitsFile, hdu: &FitsHdu, name: &str, v: &[f64]) -> std::result::Result<(), String> {
+fn write_f64(
+    f: &mut FitsFile,
+    hdu: &FitsHdu,
+    name: &str,
+    v: &[f64],
+) -> std::result::Result<(), String> {
     hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
 }
 
-fn write_i16(f: &mut FitsFile, hdu: &FitsHdu, name: &str, v: &[i16]) -> std::result::Result<(), String> {
+fn write_i16(
+    f: &mut FitsFile,
+    hdu: &FitsHdu,
+    name: &str,
+    v: &[i16],
+) -> std::result::Result<(), String> {
     hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
 }
 
-fn write_str(f: &mut FitsFile, hdu: &FitsHdu, name: &str, v: &[&str]) -> std::result::Result<(), String> {
+fn write_str(
+    f: &mut FitsFile,
+    hdu: &FitsHdu,
+    name: &str,
+    v: &[&str],
+) -> std::result::Result<(), String> {
     let owned: Vec<String> = v.iter().map(|s| s.to_string()).collect();
     hdu.write_col(f, name, &owned).map(|_| ()).map_err(e(name))
 }
 
-fn write_f32(f: &mut FitsFile, hdu: &FitsHdu, name: &str, v: &[f32]) -> std::result::Result<(), String> {
+fn write_f32(
+    f: &mut FitsFile,
+    hdu: &FitsHdu,
+    name: &str,
+    v: &[f32],
+) -> std::result::Result<(), String> {
     hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
 }
 
@@ -300,7 +344,14 @@ fn target(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
     write_i16(f, &h, "TARGET_ID", &[1])?;
     write_str(f, &h, "TARGET", &[&s.target])?;
     for name in [
-        "RAEP0", "DECEP0", "RA_ERR", "DEC_ERR", "SYSVEL", "PMRA", "PMDEC", "PMRA_ERR",
+        "RAEP0",
+        "DECEP0",
+        "RA_ERR",
+        "DEC_ERR",
+        "SYSVEL",
+        "PMRA",
+        "PMDEC",
+        "PMRA_ERR",
         "PMDEC_ERR",
     ] {
         write_f64(f, &h, name, &[0.0])?;
@@ -372,7 +423,11 @@ fn vis2(f: &mut FitsFile, s: &Setting, t: &Vis2Out) -> std::result::Result<(), S
         Key::str("INSNAME", &t.insname, ""),
     ];
     if let Some(est) = t.estimator {
-        keys.push(Key::str(KEY_ESTIMATOR, estimator_key(est), "v2ref estimator"));
+        keys.push(Key::str(
+            KEY_ESTIMATOR,
+            estimator_key(est),
+            "v2ref estimator",
+        ));
     }
     keys.extend(t.keywords.iter().cloned());
     let h = create(f, "OI_VIS2", &cols, &keys)?;
@@ -398,7 +453,10 @@ fn vis2(f: &mut FitsFile, s: &Setting, t: &Vis2Out) -> std::result::Result<(), S
 /// Sets the comment of the `TTYPEn` card of column `n` (1-based).
 fn note_column(f: &mut FitsFile, n: usize, note: &str) -> std::result::Result<(), String> {
     let key = std::ffi::CString::new(format!("TTYPE{n}")).map_err(|e| e.to_string())?;
-    let text: String = note.chars().filter(|c| c.is_ascii() && !c.is_control()).collect();
+    let text: String = note
+        .chars()
+        .filter(|c| c.is_ascii() && !c.is_control())
+        .collect();
     let com = std::ffi::CString::new(text).map_err(|e| e.to_string())?;
     let mut status = 0;
     // SAFETY: the file is open at the table; both strings are NUL-terminated.
