@@ -256,6 +256,9 @@ fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
 
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if let Some(p) = &args.oifits {
+        v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
+    }
     let photometry = photometry(&args)?;
     let rate = photometry
         .as_ref()

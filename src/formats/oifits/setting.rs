@@ -6,11 +6,11 @@ use crate::formalism::spectrum::Spectrum;
 use crate::simulator::Inputs;
 use crate::Result;
 
-/// MJD of the first row: J2000.0 (2000-01-01T12:00 UTC). The rows are a
+/// MJD at the start of the rows: 2000-01-01T00:00 UTC (TIME counts from it). The rows are a
 /// model's, not a night's: a fixed, recognisable epoch.
-pub const MJD0: f64 = 51_544.5;
+pub const MJD0: f64 = 51_544.0;
 /// `DATE-OBS` of [`MJD0`].
-pub const DATE_OBS: &str = "2000-01-01T12:00:00";
+pub const DATE_OBS: &str = "2000-01-01";
 /// Row spacing, s, where the configuration has no scan speed (no piston).
 pub const NOMINAL_ROW_S: f64 = 1.0;
 
