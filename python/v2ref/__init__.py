@@ -970,3 +970,7 @@ def claims(*, quick: bool = False) -> list:
         ``note``, …
     """
     return _json.loads(_v2ref.claims(bool(quick)))
+
+
+# OIFITS (python/v2ref/oifits.py).
+from .oifits import read_oifits, read_oifits_estimates, write_oifits, write_oifits_truth  # noqa: E402

@@ -76,7 +76,8 @@ pub fn write_estimates(
     which: Which,
 ) -> Result<()> {
     let model = Model::new(inputs)?;
-    let doc = docs::estimates_doc(&model, rows, bins, bias, which.estimators())?;
+    let columns = docs::columns_of(rows, which.estimators());
+    let doc = docs::estimates_doc(&model, &columns, bins, bias)?;
     oifits::write_oifits(path, "out", &doc)
 }
 

@@ -10,6 +10,7 @@
 
 mod answers;
 mod inputs;
+mod oifits;
 
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
@@ -160,5 +161,6 @@ pub fn interruptible<T: Send>(
 fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("PHYSICAL_KEYWORDS", inputs::NAMES.to_vec())?;
+    oifits::register(m)?;
     answers::register(m)
 }

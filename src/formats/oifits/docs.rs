@@ -7,6 +7,23 @@ use super::setting::Setting;
 use super::write::{Key, KeyValue, OifitsDoc, Vis2Out};
 use super::{default_insname, KEY_BIAS, KEY_BINS};
 use crate::conformance::estimate::{BiasConvention, RowEstimate};
+
+/// The columns of `which` estimators from per-row estimates.
+pub fn columns_of(rows: &[RowEstimate], which: &[Estimator]) -> Vec<(Estimator, Vec<f64>)> {
+    which
+        .iter()
+        .map(|&e| {
+            let v = rows
+                .iter()
+                .map(|r| match e {
+                    Estimator::V1Sq => r.v1_sq,
+                    Estimator::V2Sq => r.v2_sq,
+                })
+                .collect();
+            (e, v)
+        })
+        .collect()
+}
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::Sidecar;
 use crate::formalism::estimator::BinWindow;
@@ -30,26 +47,27 @@ fn window_keys(bins: BinWindow, bias: BiasConvention) -> Vec<Key> {
 }
 
 /// Per-row estimates of `model`'s interferograms as OIFITS: one table per
-/// estimator in `which`. `VIS2ERR` is the closed-form standard deviation
+/// entry of `columns` (an estimator and its value for every row). `VIS2ERR` is the closed-form standard deviation
 /// of the calibrated estimator at the configuration's conditions (the
 /// exact variance of the `model` convention, piston-free, with the
 /// model's calibration), the same for every row; NaN where it has no
 /// closed form (more than 4096 samples). Nothing is flagged.
 pub fn estimates_doc(
     model: &Model,
-    rows: &[RowEstimate],
+    columns: &[(Estimator, Vec<f64>)],
     bins: BinWindow,
     bias: BiasConvention,
-    which: &[Estimator],
 ) -> Result<OifitsDoc> {
     let closed = expectation(&model.calibrated_setup(bins), &model.noise, Formula::Exact)?;
     let sd = |v: Option<f64>| v.map_or(f64::NAN, f64::sqrt);
-    let tables = which
+    let tables = columns
         .iter()
-        .map(|&e| {
-            let (vals, err): (Vec<f64>, f64) = match e {
-                Estimator::V1Sq => (rows.iter().map(|r| r.v1_sq).collect(), sd(closed.var_v1_sq)),
-                Estimator::V2Sq => (rows.iter().map(|r| r.v2_sq).collect(), sd(closed.var_v2_sq)),
+        .map(|(e, vals)| {
+            let e = *e;
+            let vals = vals.clone();
+            let err = match e {
+                Estimator::V1Sq => sd(closed.var_v1_sq),
+                Estimator::V2Sq => sd(closed.var_v2_sq),
             };
             let mut keywords = window_keys(bins, bias);
             keywords.push(Key::str(
