@@ -974,3 +974,5 @@ def claims(*, quick: bool = False) -> list:
 
 # OIFITS (python/v2ref/oifits.py).
 from .oifits import read_oifits, read_oifits_estimates, write_oifits, write_oifits_truth  # noqa: E402
+
+__all__ += ["read_oifits", "read_oifits_estimates", "write_oifits", "write_oifits_truth"]
