@@ -35,9 +35,8 @@ fn renamed(e: Error, from: &str, to: &'static str) -> Error {
 }
 
 fn sidecar_of(text: &str, name: &str) -> PyResult<Sidecar> {
-    let sc: Sidecar = serde_json::from_str(text).map_err(|e| {
-        PyValueError::new_err(format!("sidecar: {name}: not a v2ref sidecar: {e}"))
-    })?;
+    let sc: Sidecar = serde_json::from_str(text)
+        .map_err(|e| PyValueError::new_err(format!("sidecar: {name}: not a v2ref sidecar: {e}")))?;
     if sc.format != FORMAT {
         return Err(PyValueError::new_err(format!(
             "sidecar: {name}: format {:?}; \"{FORMAT}\" is needed",
@@ -71,7 +70,10 @@ fn read_oifits<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyList>>
         d.set_item("revn", t.revn)?;
         d.set_item("hdu", t.hdu)?;
         d.set_item("eff_wave_m", PyArray1::from_vec(py, t.eff_wave_m))?;
-        d.set_item("vis2data", PyArray1::from_vec(py, t.vis2data).reshape(shape)?)?;
+        d.set_item(
+            "vis2data",
+            PyArray1::from_vec(py, t.vis2data).reshape(shape)?,
+        )?;
         d.set_item("vis2err", PyArray1::from_vec(py, t.vis2err).reshape(shape)?)?;
         d.set_item("flag", PyArray1::from_vec(py, t.flag).reshape(shape)?)?;
         out.append(d)?;
@@ -98,7 +100,10 @@ fn write_oifits(
     let mut columns = Vec::new();
     for (e, a) in [(Estimator::V1Sq, v1_sq), (Estimator::V2Sq, v2_sq)] {
         if let Some(a) = a {
-            let v = a.as_slice().map(<[f64]>::to_vec).unwrap_or_else(|_| a.as_array().to_vec());
+            let v = a
+                .as_slice()
+                .map(<[f64]>::to_vec)
+                .unwrap_or_else(|_| a.as_array().to_vec());
             if v.len() as u64 != sc.data.rows {
                 return Err(PyValueError::new_err(format!(
                     "{}: {} values; the set has {} rows",
@@ -122,7 +127,11 @@ fn write_oifits(
 #[pyfunction]
 fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult<()> {
     let sc = sidecar_of(sidecar, sidecar_name)?;
-    let doc = ok(docs::truth_doc(&sc, BinWindow::Positive, BiasConvention::Model))?;
+    let doc = ok(docs::truth_doc(
+        &sc,
+        BinWindow::Positive,
+        BiasConvention::Model,
+    ))?;
     ok(oifits::write_oifits(Path::new(path), "path", &doc))
 }
 
@@ -160,8 +169,14 @@ fn read_oifits_estimates<'py>(
             .map_err(|e| renamed(e, "estimates", "path")),
     )?;
     let d = PyDict::new(py);
-    d.set_item("v1_sq", read.estimates.v1_sq.map(|v| PyArray1::from_vec(py, v)))?;
-    d.set_item("v2_sq", read.estimates.v2_sq.map(|v| PyArray1::from_vec(py, v)))?;
+    d.set_item(
+        "v1_sq",
+        read.estimates.v1_sq.map(|v| PyArray1::from_vec(py, v)),
+    )?;
+    d.set_item(
+        "v2_sq",
+        read.estimates.v2_sq.map(|v| PyArray1::from_vec(py, v)),
+    )?;
     d.set_item("rows", read.rows)?;
     d.set_item("flagged", read.flagged)?;
     Ok(d)
