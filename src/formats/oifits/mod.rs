@@ -1,6 +1,6 @@
 //! OIFITS, the exchange format of optical interferometry (Pauls et al.
 //! 2005, PASP 117, 1255; version 2: Duvert, Young & Hummel 2017, A&A 597,
-//! A8): squared visibilities written as OIFITS v2 ([`write`]) and read
+//! A8): squared visibilities written as OIFITS v2 (module [`self::write`]) and read
 //! from OIFITS v1 or v2 ([`read`]).
 //!
 //! **The FITS library is cfitsio** (NASA HEASARC, the reference FITS
