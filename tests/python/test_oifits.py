@@ -274,3 +274,17 @@ def test_bad_files_raise_value_errors_naming_the_argument(set_dir, tmp_path):
         v2ref.read_oifits(3)
     with pytest.raises(ValueError, match="estimator"):
         v2ref.read_oifits_estimates(wrong, sidecar=set_dir / "set.json", estimator="v3")
+
+
+def test_plan_and_estimates_load_in_a_fitting_package(set_dir):
+    """oimodeler (a model-fitting package) loads the files and computes a
+    model's chi² against them. (PMOIRED 26.10 refuses one-channel files:
+    its loader takes a numerical gradient of the wavelengths.)"""
+    oim = pytest.importorskip("oimodeler")
+    for name in ("plan.fits", "est.fits", "set.truth.fits"):
+        d = oim.oimData(str(set_dir / name))
+        d.prepareData()
+        assert int(np.ravel(d.struct_nwl)[0]) == 1, name
+        sim = oim.oimSimulator(data=d, model=oim.oimModel(oim.oimUD(d=1)))
+        sim.compute(computeChi2=True)
+        assert np.isfinite(sim.chi2), name
