@@ -948,6 +948,12 @@ def claims(*, quick: bool = False) -> list:
     return _json.loads(_v2ref.claims(bool(quick)))
 
 
+# OIFITS (python/v2ref/oifits.py).
+from .oifits import read_oifits, read_oifits_estimates, write_oifits, write_oifits_truth  # noqa: E402
+
+__all__ += ["read_oifits", "read_oifits_estimates", "write_oifits", "write_oifits_truth"]
+
+
 # --------------------------------------------------------------------------
 # The namespace: the API of ``__all__`` only.
 

@@ -45,9 +45,14 @@ pub struct Args {
     /// the mean of its bias-subtracted estimates.
     #[arg(long, default_value = "model", value_name = "model|FILE")]
     calibrator: String,
-    /// Output file (.csv or .npy); default: CSV on standard output.
+    /// Output file (.csv, .npy, or .fits for OIFITS v2: V², closed-form
+    /// VIS2ERR, baseline and band); default: CSV on standard output. Any
+    /// other extension is refused.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// With --out FILE.fits: the estimators written, one INSNAME each.
+    #[arg(long, value_enum, default_value = "both")]
+    oifits_estimator: super::oifits::Which,
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
@@ -66,8 +71,9 @@ const STREAM_ROWS: usize = 8192;
 
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    super::oifits::check_estimates_out(args.out.as_deref())?;
     let source = source(&args)?;
-    let rows = match NpyRows::open(&source.input, "input")? {
+    let (rows, cols) = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
             let est = estimator(&args, &source, stream.rows, stream.cols)?;
             let mut out = Vec::with_capacity(stream.rows);
@@ -75,14 +81,30 @@ pub fn run(args: Args) -> Result<ExitCode> {
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
                 out.extend(est.estimate_rows(&block, args.threads)?);
             }
-            out
+            (out, stream.cols)
         }
         None => {
             let data = read_matrix(&source.input, "input")?;
             let est = estimator(&args, &source, data.rows, data.cols)?;
-            est.estimate_rows(&data.data, args.threads)?
+            (est.estimate_rows(&data.data, args.threads)?, data.cols)
         }
     };
+    if let Some(p) = args
+        .out
+        .as_ref()
+        .filter(|p| v2ref::formats::oifits::is_fits_path(p))
+    {
+        let inputs = check_shape(&source, rows.len(), cols)?;
+        super::oifits::write_estimates(
+            p,
+            &inputs,
+            &rows,
+            args.bins,
+            args.bias,
+            args.oifits_estimator,
+        )?;
+        return Ok(ExitCode::SUCCESS);
+    }
     write(&args.out, &rows)?;
     Ok(ExitCode::SUCCESS)
 }

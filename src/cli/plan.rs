@@ -103,6 +103,10 @@ pub struct Args {
     /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
+    /// Also write the predicted observation at the recommended setting as
+    /// OIFITS v2 (V², predicted σ, the biases to correct as keywords).
+    #[arg(long, value_name = "FILE.fits")]
+    oifits: Option<std::path::PathBuf>,
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
@@ -252,6 +256,9 @@ fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
 
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if let Some(p) = &args.oifits {
+        v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
+    }
     let photometry = photometry(&args)?;
     let rate = photometry
         .as_ref()
@@ -266,6 +273,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     bar.finish_and_clear();
     if let Some(path) = &args.svg {
         super::plan_svg::write(path, &result, &inputs)?;
+    }
+    if let Some(path) = &args.oifits {
+        super::oifits::write_plan(path, &inputs, &result)?;
     }
     if args.json {
         print_json(&Answer {

@@ -10,7 +10,6 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
 use v2ref::conformance::sidecar::{self, Sidecar};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::read_estimates;
 use v2ref::{Error, Result};
 
 /// Exit status of a failed verdict.
@@ -23,13 +22,22 @@ pub struct Args {
     #[arg(long)]
     sidecar: PathBuf,
     /// The pipeline's per-row estimates: .csv with a header naming the
-    /// columns (v1_sq and/or v2_sq read, others ignored), or a float64 .npy.
+    /// columns (v1_sq and/or v2_sq read, others ignored), a float64 .npy,
+    /// or OIFITS (.fits, .oifits, .fit; v1 or v2): OI_VIS2, one channel,
+    /// rows in the set's order, FLAGged rows left out and counted.
     #[arg(long)]
     estimates: PathBuf,
     /// Names of the .npy file's columns, in order (v1_sq and v2_sq are
     /// read, other names ignored); default v1_sq,v2_sq.
     #[arg(long, value_delimiter = ',')]
     columns: Option<Vec<String>>,
+    /// OIFITS: read only the OI_VIS2 tables of this INSNAME.
+    #[arg(long, value_name = "NAME")]
+    insname: Option<String>,
+    /// OIFITS: the estimator of tables without a V2R_EST keyword (a
+    /// pipeline's own file); default: as the keyword says.
+    #[arg(long, value_enum)]
+    estimator: Option<super::oifits::Which>,
     /// Window of bins the estimates sum.
     #[arg(long, value_enum, default_value = "positive")]
     bins: BinWindow,
@@ -52,6 +60,9 @@ struct Answer<'a> {
     bins: BinWindow,
     bias: BiasConvention,
     rows: u64,
+    /// OIFITS: rows flagged, left out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    flagged: Option<u64>,
     #[serde(flatten)]
     report: &'a ScoreReport,
 }
@@ -135,12 +146,19 @@ pub fn run(args: Args) -> Result<ExitCode> {
             ),
         )
     })?;
-    let est = read_estimates(&args.estimates, args.columns.as_deref())?;
-    let rows = sc.data.rows;
+    let input = super::oifits::read_for_score(
+        &args.estimates,
+        args.columns.as_deref(),
+        &sc,
+        truth,
+        args.insname.as_deref(),
+        args.estimator,
+    )?;
+    let (est, rows) = (&input.estimates, input.rows);
     let report = score_report(
         est.v1_sq.as_deref(),
         est.v2_sq.as_deref(),
-        truth,
+        &input.truth,
         rows,
         args.alpha,
     )
@@ -159,10 +177,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
             bins: args.bins,
             bias: args.bias,
             rows,
+            flagged: input.flagged,
             report: &report,
         });
     } else {
         print_table(&args, rows, &report);
+        if let Some(k) = input.flagged.filter(|&k| k > 0) {
+            outln!("({k} FLAGged rows left out; {rows} scored)");
+        }
     }
     Ok(if report.pass {
         ExitCode::SUCCESS

@@ -34,6 +34,10 @@ pub struct Args {
     /// Also write the rows as CSV (one row per line, no header).
     #[arg(long)]
     csv: bool,
+    /// Also write the truth (expected V1², V2² of every row, window
+    /// positive, convention model) as OIFITS v2: OUT.truth.fits.
+    #[arg(long)]
+    oifits: bool,
     /// Write the counts I_i instead of the modulated samples M_i = I_i − c_i.
     #[arg(long)]
     keep_continuum: bool,
@@ -72,8 +76,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let reference_rows =
         reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
-    write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
+    let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
     bar.finish_and_clear();
+    if args.oifits {
+        let name = args.out.file_name().unwrap_or_default().to_string_lossy();
+        let path = args.out.with_file_name(format!("{name}.truth.fits"));
+        super::oifits::write_truth(&path, &sidecar)?;
+    }
     Ok(ExitCode::SUCCESS)
 }
 

@@ -18,6 +18,8 @@
 pub mod atomic;
 pub mod csv;
 pub mod npy;
+#[cfg(feature = "oifits")]
+pub mod oifits;
 
 pub use atomic::write_text_atomic;
 pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};

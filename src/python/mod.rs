@@ -10,6 +10,7 @@
 
 mod answers;
 mod inputs;
+mod oifits;
 
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
@@ -175,5 +176,6 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "ESTIMATE_COLUMNS",
         crate::commands::ESTIMATE_COLUMNS.to_vec(),
     )?;
+    oifits::register(m)?;
     answers::register(m)
 }

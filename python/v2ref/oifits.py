@@ -1,0 +1,104 @@
+"""OIFITS (v2 written, v1 and v2 read) from Python, with the Rust library's
+own reader and writers (cfitsio through the ``fitsio`` crate): NumPy arrays
+in and out. The files are those of ``v2ref estimate --out FILE.fits``,
+``v2ref synth --oifits`` and ``v2ref score --estimates FILE.fits``.
+"""
+
+import os as _os
+from typing import Any, Dict, List, Optional
+
+import numpy as _np
+
+from . import _v2ref
+
+
+def _path(name: str, value: Any) -> str:
+    if isinstance(value, (str, bytes, _os.PathLike)):
+        return _os.fsdecode(value)
+    raise TypeError(f"{name}: {type(value).__name__} is not a path")
+
+
+def _column(name: str, x: Any, rows: Optional[int] = None) -> Optional[_np.ndarray]:
+    if x is None:
+        return None
+    try:
+        a = _np.ascontiguousarray(x, dtype=_np.float64)
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"{name}: not an array of numbers ({e})") from None
+    if a.ndim != 1:
+        raise ValueError(f"{name}: {a.ndim}-D array; one value per row (1-D) is needed")
+    return a
+
+
+def _sidecar(sidecar: Any):
+    from . import _sidecar_text
+
+    return _sidecar_text(sidecar)
+
+
+def read_oifits(path: Any) -> List[Dict[str, Any]]:
+    """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
+
+    Each is a dict: ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from
+    v2ref's ``V2R_EST`` keyword, else None), ``revn``, ``hdu``,
+    ``eff_wave_m`` (metres, one per channel) and ``vis2data``, ``vis2err``,
+    ``flag`` of shape (rows, channels). A malformed file raises ValueError.
+    """
+    return _v2ref.read_oifits(_path("path", path))
+
+
+def write_oifits(
+    path: Any,
+    *,
+    sidecar: Any,
+    v1_sq: Any = None,
+    v2_sq: Any = None,
+    bins: str = "positive",
+    bias: str = "model",
+) -> None:
+    """Writes per-row estimates of a synth set as OIFITS v2 (``.fits``).
+
+    One ``OI_VIS2`` table per array given (INSNAME ``V2REF_V1SQ``,
+    ``V2REF_V2SQ``), one row per interferogram; ``VIS2ERR`` is the
+    closed-form standard deviation of the estimator at the set's
+    conditions. The configuration (band, baseline) comes from ``sidecar``
+    (a dict from ``synthesize()`` or a path). Written atomically.
+    """
+    text, name = _sidecar(sidecar)
+    a1 = _column("v1_sq", v1_sq)
+    a2 = _column("v2_sq", v2_sq)
+    if not isinstance(bins, str):
+        raise TypeError(f"bins: {bins!r} is not a string")
+    if not isinstance(bias, str):
+        raise TypeError(f"bias: {bias!r} is not a string")
+    _v2ref.write_oifits(_path("path", path), a1, a2, text, name, bins, bias)
+
+
+def write_oifits_truth(path: Any, *, sidecar: Any) -> None:
+    """Writes a synth set's truth (the expected V1², V2² of every row,
+    window positive, convention model) as OIFITS v2."""
+    text, name = _sidecar(sidecar)
+    _v2ref.write_oifits_truth(_path("path", path), text, name)
+
+
+def read_oifits_estimates(
+    path: Any,
+    *,
+    sidecar: Any,
+    insname: Optional[str] = None,
+    estimator: Optional[str] = None,
+) -> Dict[str, Any]:
+    """A pipeline's estimates from OIFITS, matched to a set's rows in order,
+    as ``v2ref score`` reads them.
+
+    Returns ``v1_sq`` and ``v2_sq`` (arrays of the unflagged rows, or None),
+    ``rows`` (in the file) and ``flagged`` (left out). ``insname`` chooses
+    the tables when there are several; ``estimator`` (``"v1_sq"`` or
+    ``"v2_sq"``) says what tables without v2ref's keyword hold.
+    """
+    text, name = _sidecar(sidecar)
+    if insname is not None and not isinstance(insname, str):
+        raise TypeError(f"insname: {insname!r} is not a string")
+    if estimator is not None and not isinstance(estimator, str):
+        raise TypeError(f"estimator: {estimator!r} is not a string")
+    return _v2ref.read_oifits_estimates(_path("path", path), text, name, insname, estimator)

@@ -1,0 +1,149 @@
+//! The command line's OIFITS edge: which format an `--out` path asks for,
+//! the flags that choose estimators and tables, and the calls into
+//! `v2ref::formats::oifits` (which builds and reads every file).
+
+use std::path::Path;
+use v2ref::conformance::estimate::{BiasConvention, RowEstimate};
+use v2ref::conformance::score::Estimator;
+use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::formats::oifits::{self, docs, Expected};
+use v2ref::formats::{read_estimates, Estimates};
+use v2ref::simulator::{Inputs, Model};
+use v2ref::{Error, Result};
+
+/// Which estimators an OIFITS file holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Which {
+    /// Both, as two INSNAMEs (V2REF_V1SQ, V2REF_V2SQ).
+    Both,
+    /// V1² only.
+    #[value(name = "v1_sq")]
+    V1Sq,
+    /// V2² only.
+    #[value(name = "v2_sq")]
+    V2Sq,
+}
+
+impl Which {
+    fn estimators(self) -> &'static [Estimator] {
+        match self {
+            Which::Both => &docs::BOTH,
+            Which::V1Sq => &docs::BOTH[..1],
+            Which::V2Sq => &docs::BOTH[1..],
+        }
+    }
+
+    /// The one estimator named (None for `both`).
+    pub fn single(self) -> Option<Estimator> {
+        match self {
+            Which::Both => None,
+            Which::V1Sq => Some(Estimator::V1Sq),
+            Which::V2Sq => Some(Estimator::V2Sq),
+        }
+    }
+}
+
+/// Refuses an `--out` of `estimate` whose extension is none of .csv,
+/// .npy and the FITS ones: a file is never written in a format its name
+/// does not say.
+pub fn check_estimates_out(out: Option<&Path>) -> Result<()> {
+    let Some(p) = out else { return Ok(()) };
+    let ext = p
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("csv") | Some("npy") => Ok(()),
+        _ if oifits::is_fits_path(p) => Ok(()),
+        _ => Err(Error::Invalid {
+            param: "out",
+            reason: format!(
+                "{}: the extension names the format written; .csv, .npy or .fits (OIFITS v2; also .oifits, .fit)",
+                p.display()
+            ),
+        }),
+    }
+}
+
+/// Writes `estimate`'s rows as OIFITS v2.
+pub fn write_estimates(
+    path: &Path,
+    inputs: &Inputs,
+    rows: &[RowEstimate],
+    bins: BinWindow,
+    bias: BiasConvention,
+    which: Which,
+) -> Result<()> {
+    let model = Model::new(inputs)?;
+    let columns = docs::columns_of(rows, which.estimators());
+    let doc = docs::estimates_doc(&model, &columns, bins, bias)?;
+    oifits::write_oifits(path, "out", &doc)
+}
+
+/// What `score` scores: the estimates (flagged rows left out), the rows
+/// scored, the truth for them, and the rows flagged (None: not OIFITS).
+pub struct ScoreInput {
+    /// The estimates.
+    pub estimates: Estimates,
+    /// Rows scored.
+    pub rows: u64,
+    /// The truth for those rows.
+    pub truth: ConventionTruth,
+    /// Rows flagged in the OIFITS file (None for .csv and .npy).
+    pub flagged: Option<u64>,
+}
+
+/// Reads `score`'s estimates: OIFITS by extension, else .csv or .npy.
+pub fn read_for_score(
+    path: &Path,
+    columns: Option<&[String]>,
+    sidecar: &Sidecar,
+    truth: &ConventionTruth,
+    insname: Option<&str>,
+    estimator: Option<Which>,
+) -> Result<ScoreInput> {
+    let rows = sidecar.data.rows;
+    if !oifits::is_fits_path(path) {
+        return Ok(ScoreInput {
+            estimates: read_estimates(path, columns)?,
+            rows,
+            truth: truth.clone(),
+            flagged: None,
+        });
+    }
+    let (lo, hi) = sidecar.inputs.spectrum.spectrum()?.support();
+    let expected = Expected {
+        rows,
+        band_m: (1e-6 / hi, 1e-6 / lo),
+    };
+    let single = estimator.and_then(Which::single);
+    let read = oifits::read_oifits_estimates(path, insname, single, &expected)?;
+    let kept = (read.rows - read.flagged) as u64;
+    Ok(ScoreInput {
+        estimates: read.estimates,
+        rows: kept,
+        truth: oifits::truth_for_kept_rows(truth, rows, kept),
+        flagged: Some(read.flagged as u64),
+    })
+}
+
+/// Writes a synth set's truth (window `positive`, convention `model`).
+pub fn write_truth(path: &Path, sidecar: &Sidecar) -> Result<()> {
+    let doc = docs::truth_doc(sidecar, BinWindow::Positive, BiasConvention::Model)?;
+    oifits::write_oifits(path, "oifits", &doc)
+}
+
+/// Writes a plan's predicted observation at its recommended setting.
+pub fn write_plan(
+    path: &Path,
+    inputs: &v2ref::plan::PlanInputs,
+    plan: &v2ref::plan::Plan,
+) -> Result<()> {
+    let point = plan.recommended.as_ref().ok_or_else(|| Error::Invalid {
+        param: "oifits",
+        reason: "no setting reaches the target, so there is no predicted observation to write"
+            .into(),
+    })?;
+    oifits::write_oifits(path, "oifits", &docs::plan_doc(inputs, point)?)
+}

@@ -1,0 +1,108 @@
+//! OIFITS, the exchange format of optical interferometry (Pauls et al.
+//! 2005, PASP 117, 1255; version 2: Duvert, Young & Hummel 2017, A&A 597,
+//! A8): squared visibilities written as OIFITS v2 (module [`self::write`]) and read
+//! from OIFITS v1 or v2 ([`read`]).
+//!
+//! **The FITS library is cfitsio** (NASA HEASARC, the reference FITS
+//! implementation that the field's own tools build on), through the Rust
+//! crate `fitsio` and its `fitsio-src` feature: cfitsio is compiled from the
+//! source bundled in `fitsio-sys`, so a fresh machine needs a C compiler and
+//! no system library. `fitsio` creates the tables and writes the keywords
+//! and numeric columns; `fitsio_sys` (its raw binding) is called where
+//! `fitsio` has no safe equivalent: memory files, logical vector columns
+//! (`FLAG`) and reading columns with sizes checked first.
+//!
+//! Files never go through cfitsio's file-name parser (which reads
+//! `name[ext]` and `!name` as instructions): a file is built in memory and
+//! written with the atomic pattern of [`crate::formats::atomic`], and read
+//! whole (its size bounds every allocation) and opened from memory.
+//!
+//! What is written (one broadband channel: an estimate sums the band):
+//! `OI_TARGET`, `OI_ARRAY` (two stations on the baseline, east–west),
+//! `OI_WAVELENGTH` (effective wavelength `1/σ_eff`, width of the band's
+//! support) and `OI_VIS2` (one row per interferogram), one
+//! `OI_WAVELENGTH`/`OI_VIS2` pair per `INSNAME` (one per estimator). The
+//! estimator, window of bins and bias convention are the keywords
+//! `V2R_EST`, `V2R_BINS`, `V2R_BIAS` of each `OI_VIS2` table.
+
+pub mod docs;
+mod mem;
+pub mod read;
+mod select;
+pub mod setting;
+pub mod write;
+
+pub use read::{
+    read_oifits_estimates, read_vis2_tables, truth_for_kept_rows, Expected, OifitsEstimates,
+    Vis2Table,
+};
+pub use setting::Setting;
+pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
+
+use crate::{Error, Result};
+use std::path::Path;
+
+/// The extensions of a FITS file (lower case, without the dot).
+pub const FITS_EXTENSIONS: [&str; 3] = ["fits", "oifits", "fit"];
+
+/// True when `path` ends in one of [`FITS_EXTENSIONS`] (any case).
+pub fn is_fits_path(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .is_some_and(|e| FITS_EXTENSIONS.contains(&e.as_str()))
+}
+
+/// Keyword naming the estimator of an `OI_VIS2` table (`V1SQ` or `V2SQ`).
+pub const KEY_ESTIMATOR: &str = "V2R_EST";
+/// Keyword naming the window of Fourier bins the estimates sum.
+pub const KEY_BINS: &str = "V2R_BINS";
+/// Keyword naming the bias convention the estimates subtract.
+pub const KEY_BIAS: &str = "V2R_BIAS";
+
+/// The value of [`KEY_ESTIMATOR`] for an estimator.
+pub fn estimator_key(e: crate::conformance::score::Estimator) -> &'static str {
+    match e {
+        crate::conformance::score::Estimator::V1Sq => "V1SQ",
+        crate::conformance::score::Estimator::V2Sq => "V2SQ",
+    }
+}
+
+/// The default `INSNAME` of an estimator's tables.
+pub fn default_insname(e: crate::conformance::score::Estimator) -> &'static str {
+    match e {
+        crate::conformance::score::Estimator::V1Sq => "V2REF_V1SQ",
+        crate::conformance::score::Estimator::V2Sq => "V2REF_V2SQ",
+    }
+}
+
+/// Refuses (parameter `param`) a path whose extension is not a FITS one:
+/// an OIFITS file is never written under a `.csv` or `.npy` name.
+pub fn check_fits_extension(path: &Path, param: &'static str) -> Result<()> {
+    if is_fits_path(path) {
+        return Ok(());
+    }
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_else(|| "no extension".into());
+    Err(Error::data(
+        param,
+        path,
+        "",
+        format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit"),
+    ))
+}
+
+/// A cfitsio status as a sentence (its own text, and the code).
+pub(crate) fn status_text(status: i32) -> String {
+    let mut buf = [0 as std::os::raw::c_char; 31];
+    // SAFETY: ffgerr writes at most 30 characters and a NUL into `buf`.
+    unsafe { fitsio_sys::ffgerr(status, buf.as_mut_ptr()) };
+    let text = buf
+        .iter()
+        .take_while(|&&c| c != 0)
+        .map(|&c| c as u8 as char)
+        .collect::<String>();
+    format!("{text} (cfitsio status {status})")
+}

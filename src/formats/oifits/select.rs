@@ -1,0 +1,243 @@
+//! Which `OI_VIS2` tables hold which estimator, and their rows matched to
+//! a set's: one broadband channel per row, in order, the counts and the
+//! wavelength checked, flagged rows left out and counted.
+
+use super::read::{read_vis2_tables, Expected, OifitsEstimates, Vis2Table};
+use super::{estimator_key, KEY_ESTIMATOR};
+use crate::conformance::score::Estimator;
+use crate::formats::Estimates;
+use crate::{Error, Result};
+use std::path::Path;
+
+/// Relative slack on the band's ends (`EFF_WAVE` is stored as float32).
+const BAND_SLACK: f64 = 1e-4;
+
+/// Reads a pipeline's estimates from the OIFITS file `path` (parameter
+/// `estimates`).
+///
+/// - `insname`: read only the tables of this `INSNAME`; needed when the
+///   tables of one estimator have several (parameter `insname`).
+/// - `estimator`: the estimator of tables without a `V2R_EST` keyword (a
+///   pipeline's own file); tables whose `V2R_EST` says otherwise are left
+///   aside. Needed when a table does not say (parameter `estimator`).
+///
+/// Tables of the same estimator are read one after the other, in file
+/// order. Refused: no table, more than one channel per row, an
+/// `EFF_WAVE` outside the set's band, a row count other than the set's, a
+/// non-finite unflagged value. A row flagged in any table read is left
+/// out of every estimator.
+pub fn read_oifits_estimates(
+    path: &Path,
+    insname: Option<&str>,
+    estimator: Option<Estimator>,
+    expected: &Expected,
+) -> Result<OifitsEstimates> {
+    const P: &str = "estimates";
+    let err = |loc: String, reason: String| Error::data(P, path, loc, reason);
+    let all = read_vis2_tables(path, P)?;
+    if all.is_empty() {
+        return Err(err(String::new(), "no OI_VIS2 table".into()));
+    }
+    let names = || {
+        let mut v: Vec<&str> = all.iter().map(|t| t.insname.as_str()).collect();
+        v.dedup();
+        v.join(", ")
+    };
+    let chosen: Vec<&Vis2Table> = match insname {
+        Some(n) => all.iter().filter(|t| t.insname == n.trim_end()).collect(),
+        None => all.iter().collect(),
+    };
+    if chosen.is_empty() {
+        return Err(Error::Invalid {
+            param: "insname",
+            reason: format!(
+                "{}: no OI_VIS2 table of this INSNAME; the file has {}",
+                insname.unwrap_or(""),
+                names()
+            ),
+        });
+    }
+    let mut by_est: [Vec<&Vis2Table>; 2] = [Vec::new(), Vec::new()];
+    for t in chosen {
+        if let Some(e) = assign(t, estimator, path)? {
+            by_est[(e == Estimator::V2Sq) as usize].push(t);
+        }
+    }
+    if by_est.iter().all(Vec::is_empty) {
+        return Err(err(
+            String::new(),
+            format!(
+                "no OI_VIS2 table of the estimator asked for; the file has {}",
+                names()
+            ),
+        ));
+    }
+    for group in &by_est {
+        let mut n: Vec<&str> = group.iter().map(|t| t.insname.as_str()).collect();
+        n.dedup();
+        if n.len() > 1 {
+            return Err(Error::Invalid {
+                param: "insname",
+                reason: format!(
+                    "several OI_VIS2 tables of one estimator (INSNAME {}); choose one",
+                    n.join(", ")
+                ),
+            });
+        }
+    }
+    let columns = by_est
+        .iter()
+        .map(|g| {
+            (!g.is_empty())
+                .then(|| concat(g, expected, path))
+                .transpose()
+        })
+        .collect::<Result<Vec<_>>>()?;
+    unflagged(
+        columns,
+        path,
+        all.iter().map(|t| t.insname.clone()).collect(),
+    )
+}
+
+/// The estimator of table `t`: its `V2R_EST`, else `estimator`; None when
+/// its `V2R_EST` differs from `estimator`.
+fn assign(t: &Vis2Table, estimator: Option<Estimator>, path: &Path) -> Result<Option<Estimator>> {
+    let own = match t.estimator.as_deref() {
+        None => None,
+        Some(k) if k == estimator_key(Estimator::V1Sq) => Some(Estimator::V1Sq),
+        Some(k) if k == estimator_key(Estimator::V2Sq) => Some(Estimator::V2Sq),
+        Some(k) => {
+            return Err(Error::data(
+                "estimates",
+                path,
+                format!("HDU {} (OI_VIS2), keyword {KEY_ESTIMATOR}", t.hdu),
+                format!("{k:?}; V1SQ or V2SQ is accepted"),
+            ))
+        }
+    };
+    match (own, estimator) {
+        (Some(o), Some(e)) => Ok((o == e).then_some(o)),
+        (Some(o), None) => Ok(Some(o)),
+        (None, Some(e)) => Ok(Some(e)),
+        (None, None) => Err(Error::Invalid {
+            param: "estimator",
+            reason: format!(
+                "OI_VIS2 INSNAME {} does not say which estimator it holds (no {KEY_ESTIMATOR} keyword); \
+                 give v1_sq or v2_sq",
+                t.insname
+            ),
+        }),
+    }
+}
+
+/// The tables' values and flags, one channel per row, checked against
+/// the set.
+fn concat(
+    tables: &[&Vis2Table],
+    expected: &Expected,
+    path: &Path,
+) -> Result<(Vec<f64>, Vec<bool>)> {
+    let (lo, hi) = expected.band_m;
+    let mut values = Vec::new();
+    let mut flags = Vec::new();
+    for t in tables {
+        let at = format!("HDU {} (OI_VIS2 INSNAME {})", t.hdu, t.insname);
+        if t.nwave != 1 {
+            return Err(Error::data("estimates", path, at, format!(
+                "{} channels per row; one broadband estimate per interferogram is needed (NWAVE = 1)",
+                t.nwave
+            )));
+        }
+        let w = t.eff_wave_m[0];
+        if !(w >= lo * (1.0 - BAND_SLACK) && w <= hi * (1.0 + BAND_SLACK)) {
+            return Err(Error::data("estimates", path, at, format!(
+                "EFF_WAVE {w:e} m lies outside the set's band [{lo:e}, {hi:e}] m: not this set's wavelength"
+            )));
+        }
+        values.extend_from_slice(&t.vis2data);
+        flags.extend_from_slice(&t.flag);
+    }
+    if values.len() as u64 != expected.rows {
+        return Err(Error::data(
+            "estimates",
+            path,
+            format!("OI_VIS2 INSNAME {}", tables[0].insname),
+            format!(
+                "{} rows; the set (its sidecar) has {}: one row per interferogram, in order",
+                values.len(),
+                expected.rows
+            ),
+        ));
+    }
+    Ok((values, flags))
+}
+
+/// Leaves out every row flagged in any column; refuses a non-finite
+/// unflagged value.
+fn unflagged(
+    columns: Vec<Option<(Vec<f64>, Vec<bool>)>>,
+    path: &Path,
+    insnames: Vec<String>,
+) -> Result<OifitsEstimates> {
+    let rows = columns
+        .iter()
+        .flatten()
+        .map(|(v, _)| v.len())
+        .next()
+        .unwrap_or(0);
+    let bad: Vec<bool> = (0..rows)
+        .map(|r| columns.iter().flatten().any(|(_, f)| f[r]))
+        .collect();
+    let mut out = columns.into_iter().map(|c| {
+        c.map(|(v, _)| {
+            v.into_iter()
+                .zip(&bad)
+                .filter(|(_, &b)| !b)
+                .map(|(x, _)| x)
+                .collect::<Vec<f64>>()
+        })
+    });
+    let (v1_sq, v2_sq) = (out.next().flatten(), out.next().flatten());
+    for (name, col) in [("V1SQ", &v1_sq), ("V2SQ", &v2_sq)] {
+        if let Some(r) = col
+            .as_ref()
+            .and_then(|x| x.iter().position(|v| !v.is_finite()))
+        {
+            return Err(Error::data(
+                "estimates",
+                path,
+                format!("{name}, unflagged value {} (1-based)", r + 1),
+                "not a finite number; flag it (FLAG = T) or give a value",
+            ));
+        }
+    }
+    let mut insnames = insnames;
+    insnames.dedup();
+    Ok(OifitsEstimates {
+        estimates: Estimates { v1_sq, v2_sq },
+        rows,
+        flagged: bad.iter().filter(|&&b| b).count(),
+        insnames,
+    })
+}
+
+/// The truth of a set of `rows` rows for the `kept` rows left after
+/// flagged ones are left out: the set's scatter (`set_stderr_mean`,
+/// `set_stderr_var`) grows as `sqrt(rows / kept)` (independent rows; the
+/// truth's own uncertainty does not change).
+pub fn truth_for_kept_rows(
+    truth: &crate::conformance::sidecar::ConventionTruth,
+    rows: u64,
+    kept: u64,
+) -> crate::conformance::sidecar::ConventionTruth {
+    let mut t = truth.clone();
+    if kept > 0 && kept < rows {
+        let s = (rows as f64 / kept as f64).sqrt();
+        for e in [&mut t.v1_sq, &mut t.v2_sq] {
+            e.set_stderr_mean *= s;
+            e.set_stderr_var = e.set_stderr_var.map(|v| v * s);
+        }
+    }
+    t
+}

@@ -1,0 +1,192 @@
+//! OIFITS from Python: the library's reader and writers
+//! (`crate::formats::oifits`) with NumPy arrays in and out. The Python
+//! wrappers (`python/v2ref/oifits.py`) check types and read sidecars.
+
+use super::{ok, parse_enum};
+use crate::conformance::estimate::BiasConvention;
+use crate::conformance::score::Estimator;
+use crate::conformance::sidecar::{Sidecar, FORMAT};
+use crate::formalism::estimator::BinWindow;
+use crate::formats::oifits::{self, docs, Expected};
+use crate::simulator::Model;
+use crate::Error;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::Path;
+
+/// The library's parameter `from` renamed `to` (the Python keyword).
+fn renamed(e: Error, from: &str, to: &'static str) -> Error {
+    match e {
+        Error::Data {
+            param,
+            path,
+            location,
+            reason,
+        } if param == from => Error::Data {
+            param: to,
+            path,
+            location,
+            reason,
+        },
+        other => other,
+    }
+}
+
+fn sidecar_of(text: &str, name: &str) -> PyResult<Sidecar> {
+    let sc: Sidecar = serde_json::from_str(text)
+        .map_err(|e| PyValueError::new_err(format!("sidecar: {name}: not a v2ref sidecar: {e}")))?;
+    if sc.format != FORMAT {
+        return Err(PyValueError::new_err(format!(
+            "sidecar: {name}: format {:?}; \"{FORMAT}\" is needed",
+            sc.format
+        )));
+    }
+    Ok(sc)
+}
+
+fn estimator_name(e: Estimator) -> &'static str {
+    e.name()
+}
+
+/// Every `OI_VIS2` table of an OIFITS file: a list of dicts (`insname`,
+/// `estimator`, `revn`, `hdu`, `eff_wave_m`, and `vis2data`, `vis2err`,
+/// `flag` of shape (rows, nwave)).
+#[pyfunction]
+fn read_oifits<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyList>> {
+    let tables = ok(oifits::read_vis2_tables(Path::new(path), "path"))?;
+    let out = PyList::empty(py);
+    for t in tables {
+        let d = PyDict::new(py);
+        let shape = [t.rows, t.nwave];
+        d.set_item("insname", &t.insname)?;
+        let est = match t.estimator.as_deref() {
+            Some("V1SQ") => Some("v1_sq"),
+            Some("V2SQ") => Some("v2_sq"),
+            _ => None,
+        };
+        d.set_item("estimator", est)?;
+        d.set_item("revn", t.revn)?;
+        d.set_item("hdu", t.hdu)?;
+        d.set_item("eff_wave_m", PyArray1::from_vec(py, t.eff_wave_m))?;
+        d.set_item(
+            "vis2data",
+            PyArray1::from_vec(py, t.vis2data).reshape(shape)?,
+        )?;
+        d.set_item("vis2err", PyArray1::from_vec(py, t.vis2err).reshape(shape)?)?;
+        d.set_item("flag", PyArray1::from_vec(py, t.flag).reshape(shape)?)?;
+        out.append(d)?;
+    }
+    Ok(out)
+}
+
+/// Per-row estimates of a synth set written as OIFITS v2 (one table per
+/// array given), the configuration from the sidecar.
+#[pyfunction]
+#[pyo3(signature = (path, v1_sq, v2_sq, sidecar, sidecar_name, bins, bias))]
+fn write_oifits(
+    path: &str,
+    v1_sq: Option<PyReadonlyArray1<'_, f64>>,
+    v2_sq: Option<PyReadonlyArray1<'_, f64>>,
+    sidecar: &str,
+    sidecar_name: &str,
+    bins: &str,
+    bias: &str,
+) -> PyResult<()> {
+    let bins: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
+    let bias: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
+    let sc = sidecar_of(sidecar, sidecar_name)?;
+    let mut columns = Vec::new();
+    for (e, a) in [(Estimator::V1Sq, v1_sq), (Estimator::V2Sq, v2_sq)] {
+        if let Some(a) = a {
+            let v = a
+                .as_slice()
+                .map(<[f64]>::to_vec)
+                .unwrap_or_else(|_| a.as_array().to_vec());
+            if v.len() as u64 != sc.data.rows {
+                return Err(PyValueError::new_err(format!(
+                    "{}: {} values; the set has {} rows",
+                    estimator_name(e),
+                    v.len(),
+                    sc.data.rows
+                )));
+            }
+            columns.push((e, v));
+        }
+    }
+    if columns.is_empty() {
+        return Err(PyValueError::new_err("v1_sq: give v1_sq, v2_sq or both"));
+    }
+    let model = ok(Model::new(&sc.inputs))?;
+    let doc = ok(docs::estimates_doc(&model, &columns, bins, bias))?;
+    ok(oifits::write_oifits(Path::new(path), "path", &doc))
+}
+
+/// A synth set's truth (window positive, convention model) as OIFITS v2.
+#[pyfunction]
+fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult<()> {
+    let sc = sidecar_of(sidecar, sidecar_name)?;
+    let doc = ok(docs::truth_doc(
+        &sc,
+        BinWindow::Positive,
+        BiasConvention::Model,
+    ))?;
+    ok(oifits::write_oifits(Path::new(path), "path", &doc))
+}
+
+/// A pipeline's estimates read from OIFITS against a set's sidecar: a
+/// dict (`v1_sq`, `v2_sq`: arrays of the unflagged rows or None; `rows`,
+/// `flagged`).
+#[pyfunction]
+#[pyo3(signature = (path, sidecar, sidecar_name, insname, estimator))]
+fn read_oifits_estimates<'py>(
+    py: Python<'py>,
+    path: &str,
+    sidecar: &str,
+    sidecar_name: &str,
+    insname: Option<&str>,
+    estimator: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let sc = sidecar_of(sidecar, sidecar_name)?;
+    let est = match estimator {
+        None => None,
+        Some("v1_sq") => Some(Estimator::V1Sq),
+        Some("v2_sq") => Some(Estimator::V2Sq),
+        Some(s) => {
+            return Err(PyValueError::new_err(format!(
+                "estimator: '{s}' is not one of: v1_sq, v2_sq"
+            )))
+        }
+    };
+    let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
+    let expected = Expected {
+        rows: sc.data.rows,
+        band_m: (1e-6 / hi, 1e-6 / lo),
+    };
+    let read = ok(
+        oifits::read_oifits_estimates(Path::new(path), insname, est, &expected)
+            .map_err(|e| renamed(e, "estimates", "path")),
+    )?;
+    let d = PyDict::new(py);
+    d.set_item(
+        "v1_sq",
+        read.estimates.v1_sq.map(|v| PyArray1::from_vec(py, v)),
+    )?;
+    d.set_item(
+        "v2_sq",
+        read.estimates.v2_sq.map(|v| PyArray1::from_vec(py, v)),
+    )?;
+    d.set_item("rows", read.rows)?;
+    d.set_item("flagged", read.flagged)?;
+    Ok(d)
+}
+
+/// Adds the functions to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(read_oifits, m)?)?;
+    m.add_function(wrap_pyfunction!(write_oifits, m)?)?;
+    m.add_function(wrap_pyfunction!(write_oifits_truth, m)?)?;
+    m.add_function(wrap_pyfunction!(read_oifits_estimates, m)?)?;
+    Ok(())
+}
