@@ -808,6 +808,7 @@ def plan(
     seed: int = 1,
     threads: int = 0,
     diameter_err_mas: float = 0.0,
+    oifits: Optional[_PathLike] = None,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -854,6 +855,12 @@ def plan(
     diameter_err_mas : float
         1σ uncertainty of the uniform disk's diameter, mas (>= 0): its
         effect on V² is reported beside the corrections.
+    oifits : path, optional
+        Also write the predicted observation at the recommended setting as
+        OIFITS v2 (as ``v2ref plan --oifits``): V², its predicted σ, and the
+        biases left to correct in header keywords. Refused unless it ends
+        in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
+        the target.
     wavelength_um, ..., reference
         The instrument, source, noise and atmosphere, as for :func:`simulate`
         (seeing λ/r0 in arcsec at ``seeing_wavelength_um``, default ``wavelength_um``, wind m/s, aperture m,
@@ -869,6 +876,9 @@ def plan(
     """
     values = dict(locals())
     values.update(stroke_um=None, dx_um=0.5, samples=128, photons=10.0, fringe_hz=None)
+    out = None if oifits is None else _os.fspath(oifits)
+    if out is not None and not isinstance(out, str):
+        raise TypeError(f"oifits: {oifits!r} is not a path")
     names = _OBS + _SCAN + _LIGHT + _TURB
     opt = lambda name, v: None if v is None else _float(name, v)
     return _json.loads(
@@ -885,6 +895,7 @@ def plan(
             _uint("seed", seed),
             _v2ref.check_threads(_uint("threads", threads)),
             _float("diameter_err_mas", diameter_err_mas),
+            out,
         )
     )
 

@@ -5,10 +5,7 @@
 use super::finite_f64;
 use std::path::PathBuf;
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::observation::Observation;
 use v2ref::parameters::Physical;
-use v2ref::simulator::SourceInput;
-use v2ref::Result;
 
 pub use v2ref::parameters::SourceKind;
 
@@ -69,16 +66,6 @@ impl ObservationArgs {
         let mut p = Physical::default();
         self.apply_to(&mut p);
         p
-    }
-
-    /// The source as the simulator's inputs and the records state it.
-    pub fn source_input(&self) -> SourceInput {
-        self.physical().source_input()
-    }
-
-    /// The observation these flags describe.
-    pub fn observation(&self) -> Result<Observation> {
-        self.physical().observation()
     }
 }
 
@@ -165,22 +152,6 @@ impl TurbulenceArgs {
         p.outer_scale_m = self.outer_scale_m;
         p.sub_samples = self.sub_samples;
         p.reference = self.reference;
-    }
-
-    /// These flags at the observing wavelength `wavelength_um`.
-    fn physical(&self, wavelength_um: f64) -> Physical {
-        let mut p = Physical {
-            wavelength_um,
-            ..Physical::default()
-        };
-        self.apply_to(&mut p);
-        p
-    }
-
-    /// The seeing at the observing wavelength `wavelength_um`, arcsec: the
-    /// flag's value converted from --seeing-wavelength-um.
-    pub fn seeing_at_arcsec(&self, wavelength_um: f64) -> Result<f64> {
-        self.physical(wavelength_um).seeing_at_observing_arcsec()
     }
 
     /// Warns on stderr when the outer scale is left infinite on a long

@@ -133,17 +133,3 @@ pub fn write_truth(path: &Path, sidecar: &Sidecar) -> Result<()> {
     let doc = docs::truth_doc(sidecar, BinWindow::Positive, BiasConvention::Model)?;
     oifits::write_oifits(path, "oifits", &doc)
 }
-
-/// Writes a plan's predicted observation at its recommended setting.
-pub fn write_plan(
-    path: &Path,
-    inputs: &v2ref::plan::PlanInputs,
-    plan: &v2ref::plan::Plan,
-) -> Result<()> {
-    let point = plan.recommended.as_ref().ok_or_else(|| Error::Invalid {
-        param: "oifits",
-        reason: "no setting reaches the target, so there is no predicted observation to write"
-            .into(),
-    })?;
-    oifits::write_oifits(path, "oifits", &docs::plan_doc(inputs, point)?)
-}

@@ -4,14 +4,12 @@
 
 use super::common::{ObservationArgs, TurbulenceArgs};
 use super::{finite_f64, print_json, progress_bar};
-use serde::Serialize;
 use std::process::ExitCode;
+use v2ref::commands::plan::{self, PlanRequest};
+use v2ref::parameters::Physical;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
-use v2ref::plan::{
-    default_grid, human_duration, plan, Estimator, Plan, PlanInputs, PlanPoint, SeeingGiven, Target,
-};
-use v2ref::simulator::{Inputs, PistonInputs, SpectrumInput};
+use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
 use v2ref::{Error, Result};
 
 /// Flags of `plan`.
@@ -143,18 +141,6 @@ impl From<MagnitudeBand> for Band2Mass {
     }
 }
 
-/// How the photon rate was obtained from a magnitude (echoed in the JSON).
-#[derive(Serialize)]
-struct Photometry {
-    #[serde(flatten)]
-    magnitude: Magnitude,
-    zero_point_jy: f64,
-    isophotal_wavelength_um: f64,
-    collecting_area_m2: f64,
-    photon_rate_per_s: f64,
-    reference: &'static str,
-}
-
 /// The magnitude flags as a [`Magnitude`], when given.
 fn magnitude(args: &Args) -> Option<Magnitude> {
     Some(Magnitude {
@@ -165,93 +151,28 @@ fn magnitude(args: &Args) -> Option<Magnitude> {
     })
 }
 
-/// The photon rate at the detector: --photon-rate-per-s, or the one a
-/// magnitude gives over the band.
-fn photometry(args: &Args) -> Result<Option<Photometry>> {
-    let Some(m) = magnitude(args) else {
-        return Ok(None);
-    };
-    let rate = m.photon_rate_per_s(args.obs.wavelength_um, args.obs.bandwidth_nm * 1e-3)?;
-    Ok(Some(Photometry {
-        magnitude: m,
-        zero_point_jy: m.band.zero_point_jy(),
-        isophotal_wavelength_um: m.band.isophotal_wavelength_um(),
-        collecting_area_m2: m.collecting_area_m2(),
-        photon_rate_per_s: rate,
-        reference: match m.band {
-            Band2Mass::J | Band2Mass::H | Band2Mass::Ks => {
-                "Cohen, Wheaton & Megeath (2003), AJ 126, 1090, Table 2"
-            }
-            Band2Mass::V | Band2Mass::R | Band2Mass::I => {
-                "Bessell, Castelli & Plez (1998), A&A 333, 231, Table A2"
-            }
-        },
-    }))
-}
-
-#[derive(Serialize)]
-struct Answer<'a> {
-    inputs: &'a PlanInputs,
-    seeing_as_given: SeeingGiven,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    photometry: Option<Photometry>,
-    #[serde(flatten)]
-    plan: &'a Plan,
-}
-
-/// The plan's inputs from the flags.
-fn plan_inputs(args: &Args, photon_rate_per_s: f64) -> Result<PlanInputs> {
-    let obs = args.obs.observation()?;
-    let t = &args.turbulence;
-    let (fringe_hz, stroke_um) = default_grid();
-    let target = match (args.target_sigma_v2, args.time_budget_s) {
-        (_, Some(b)) => Target::TimeBudgetS(b),
-        (Some(s), None) => Target::SigmaV2(s),
-        (None, None) => Target::SigmaV2(1e-3),
-    };
-    Ok(PlanInputs {
-        instrument: Inputs {
-            spectrum: SpectrumInput::from_spectrum(
-                &obs.spectrum,
-                (args.obs.wavelength_um, args.obs.bandwidth_nm),
-            ),
-            source: args.obs.source_input(),
-            baseline_m: obs.baseline_m,
-            dispersion_pp_rad: args.obs.dispersion_pp_rad,
-            integrating: args.integrating,
-            read_noise: args.read_noise,
-            photon_noise: !args.no_photon_noise,
-            visibility: args.visibility,
-            ..Inputs::default()
-        },
-        atmosphere: PistonInputs {
-            fringe_hz: 1.0,
-            wavelength_um: args.obs.wavelength_um,
-            seeing_arcsec: t.seeing_at_arcsec(args.obs.wavelength_um)?,
-            wind_mps: t.wind_mps,
-            aperture_m: t.aperture_m,
-            outer_scale_m: t.outer_scale_m,
-            reference: t.reference,
-            sub_samples: t.sub_samples,
-        },
+/// The physical inputs and the plan's own options from the flags.
+fn request(args: &Args) -> (Physical, PlanRequest) {
+    let mut p = args.obs.physical();
+    args.turbulence.apply_to(&mut p);
+    p.integrating = args.integrating;
+    p.visibility = args.visibility;
+    p.read_noise = args.read_noise;
+    p.photon_noise = !args.no_photon_noise;
+    let req = PlanRequest {
         samples_per_fringe: args.samples_per_fringe,
-        photon_rate_per_s,
+        photon_rate_per_s: args.photon_rate_per_s,
+        magnitude: magnitude(args),
         dead_time_s: args.dead_time_s,
-        fringe_hz: if args.fringe_hz.is_empty() {
-            fringe_hz
-        } else {
-            super::grid::flatten(&args.fringe_hz)
-        },
-        stroke_um: if args.stroke_um.is_empty() {
-            stroke_um
-        } else {
-            args.stroke_um.clone()
-        },
-        target,
+        fringe_hz: super::grid::flatten(&args.fringe_hz),
+        stroke_um: args.stroke_um.clone(),
+        target_sigma_v2: args.target_sigma_v2,
+        time_budget_s: args.time_budget_s,
         scans: args.scans,
         seed: args.seed,
         diameter_err_mas: args.diameter_err_mas,
-    })
+    };
+    (p, req)
 }
 
 /// Runs `plan`.
@@ -259,39 +180,24 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if let Some(p) = &args.oifits {
         v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
     }
-    let photometry = photometry(&args)?;
-    let rate = photometry
-        .as_ref()
-        .map_or(args.photon_rate_per_s, |p| p.photon_rate_per_s);
-    let inputs = plan_inputs(&args, rate)?;
-    let piston = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
+    let (physical, req) = request(&args);
+    let prepared = plan::prepare(&physical, &req)?;
+    let piston = prepared.piston.clone();
     args.turbulence
         .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());
-    let points = (inputs.fringe_hz.len() * inputs.stroke_um.len()) as u64;
-    let bar = progress_bar(points, args.quiet || args.json, "plan");
-    let result = plan(&inputs, args.threads, &|k| bar.inc(k))?;
+    let bar = progress_bar(prepared.points(), args.quiet || args.json, "plan");
+    let answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
     bar.finish_and_clear();
     if let Some(path) = &args.svg {
-        super::plan_svg::write(path, &result, &inputs)?;
+        super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
     }
     if let Some(path) = &args.oifits {
-        super::oifits::write_plan(path, &inputs, &result)?;
+        v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)?;
     }
     if args.json {
-        print_json(&Answer {
-            inputs: &inputs,
-            seeing_as_given: SeeingGiven {
-                arcsec: args.turbulence.seeing_arcsec,
-                wavelength_um: args
-                    .turbulence
-                    .seeing_wavelength_um
-                    .unwrap_or(args.obs.wavelength_um),
-            },
-            photometry,
-            plan: &result,
-        });
+        print_json(&answer);
     } else {
-        print_table(&inputs, &result, &piston, args.all)?;
+        print_table(&answer.inputs, &answer.plan, &piston, args.all)?;
     }
     Ok(ExitCode::SUCCESS)
 }

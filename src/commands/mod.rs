@@ -6,6 +6,7 @@
 
 pub mod bias;
 pub mod piston;
+pub mod plan;
 pub mod snr;
 
 /// The columns of `estimate`'s answer, in order (the CLI's CSV header,

@@ -288,3 +288,17 @@ def test_plan_and_estimates_load_in_a_fitting_package(set_dir):
         sim = oim.oimSimulator(data=d, model=oim.oimModel(oim.oimUD(d=1)))
         sim.compute(computeChi2=True)
         assert np.isfinite(sim.chi2), name
+
+
+def test_python_plan_writes_the_cli_plan_file(set_dir, tmp_path):
+    """``plan(oifits=...)`` writes, through the same library code, the file
+    ``v2ref plan --oifits`` writes for the same inputs: byte for byte, and
+    it passes the standard's checks."""
+    out = tmp_path / "py_plan.fits"
+    answer = v2ref.plan(fringe_hz=[300], stroke_um=[32], scans=64, seeing_arcsec=0.8, oifits=out)
+    assert answer["recommended"] is not None
+    assert out.read_bytes() == (set_dir / "plan.fits").read_bytes()
+    assert check_oifits2(out) == 1
+    with pytest.raises(ValueError, match="^oifits"):
+        v2ref.plan(fringe_hz=[300], stroke_um=[32], scans=64, oifits=tmp_path / "plan.csv")
+    assert not (tmp_path / "plan.csv").exists()

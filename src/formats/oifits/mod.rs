@@ -106,3 +106,19 @@ pub(crate) fn status_text(status: i32) -> String {
         .collect::<String>();
     format!("{text} (cfitsio status {status})")
 }
+
+/// Writes a plan's predicted observation at its recommended setting
+/// (`plan --oifits`, Python's `plan(oifits=...)`); `param` names the file.
+pub fn write_plan(
+    path: &Path,
+    param: &'static str,
+    inputs: &crate::plan::PlanInputs,
+    plan: &crate::plan::Plan,
+) -> Result<()> {
+    let point = plan.recommended.as_ref().ok_or_else(|| Error::Invalid {
+        param,
+        reason: "no setting reaches the target, so there is no predicted observation to write"
+            .into(),
+    })?;
+    write_oifits(path, param, &docs::plan_doc(inputs, point)?)
+}
