@@ -303,6 +303,28 @@ fn mismatched_files_are_refused_naming_the_flag() {
         &["--estimator", "v2_sq", "--insname", "B"],
     );
     assert_eq!(j["rows"], ROWS as u64);
+    // A flag of the other format is refused, not silently ignored.
+    r(
+        "two.fits",
+        &[
+            "--estimator",
+            "v2_sq",
+            "--insname",
+            "B",
+            "--columns",
+            "v2_sq",
+        ],
+        "--columns",
+        ".npy",
+    );
+    std::fs::write(p("est.csv"), "v1_sq,v2_sq\n").unwrap();
+    r("est.csv", &["--insname", "B"], "--insname", "OIFITS");
+    r(
+        "est.csv",
+        &["--estimator", "v2_sq"],
+        "--estimator",
+        "OIFITS",
+    );
 }
 
 #[test]

@@ -105,11 +105,29 @@ pub fn read_for_score(
 ) -> Result<ScoreInput> {
     let rows = sidecar.data.rows;
     if !oifits::is_fits_path(path) {
+        for (flag, given) in [
+            ("insname", insname.is_some()),
+            ("estimator", estimator.is_some()),
+        ] {
+            if given {
+                return Err(Error::Invalid {
+                    param: flag,
+                    reason: "applies to an OIFITS --estimates file only".into(),
+                });
+            }
+        }
         return Ok(ScoreInput {
             estimates: read_estimates(path, columns)?,
             rows,
             truth: truth.clone(),
             flagged: None,
+        });
+    }
+    if columns.is_some() {
+        // An OIFITS file names its estimator per table (V2R_EST or --estimator).
+        return Err(Error::Invalid {
+            param: "columns",
+            reason: "applies to a .npy --estimates file only; an OIFITS file's tables are chosen with --insname and --estimator".into(),
         });
     }
     let (lo, hi) = sidecar.inputs.spectrum.spectrum()?.support();
