@@ -55,6 +55,9 @@ pub struct Args {
     /// Output file (.csv or .npy); default: CSV on standard output.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
@@ -74,6 +77,9 @@ const STREAM_ROWS: usize = 8192;
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let source = source(&args)?;
+    if let Some(out) = &args.out {
+        v2ref::formats::check_output_file(out, "out", args.force)?;
+    }
     let rows = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
             let est = estimator(&args, &source, stream.rows, stream.cols)?;

@@ -67,14 +67,15 @@ pub fn flag_of(param: &str) -> String {
 
 /// Prints a library error as one line naming the flag
 /// (`error: --flag: detail`, or `error: detail` where the error names no
-/// parameter), and returns status 2.
+/// parameter), and returns its status ([`output::exit_status`]: 2 for bad
+/// input, 74 for an output that cannot be written).
 pub fn fail(e: &Error) -> ExitCode {
     let line = match e.param() {
         Some(p) => format!("{}: {}", flag_of(p), e.detail()),
         None => e.detail(),
     };
     errln!("error: {}", line.replace('\n', " "));
-    ExitCode::from(EXIT_BAD_INPUT)
+    ExitCode::from(output::exit_status(e))
 }
 
 /// Handles a clap parse error: help and version print normally (status 0);

@@ -2,9 +2,11 @@
 //! the folders of `--out`.
 //!
 //! - A write to standard output that fails is an error (one line on
-//!   stderr, status [`EXIT_WRITE_FAILED`]), except a reader that closed the
-//!   pipe early (`v2ref claims | head`), which ends the process quietly
-//!   with status 0.
+//!   stderr, status [`EXIT_WRITE_FAILED`]); a reader that closed the pipe
+//!   early (`v2ref claims | head`) ends the process with the same status
+//!   but no message.
+//! - [`exit_status`] maps every error to its status: 2 for bad input, 74
+//!   for an output that cannot be written.
 //! - Standard error is written without panicking when it cannot be.
 //! - An `--out` folder is only replaced when v2ref wrote it (it holds the
 //!   [`OUT_MARKER`] file) or it is empty; anything else needs `--force`.
@@ -35,12 +37,14 @@ pub fn flush_stdout() {
     }
 }
 
-/// Ends the process after a failed write to standard output: quietly with
-/// status 0 when the reader went away, else with one line and
-/// [`EXIT_WRITE_FAILED`].
+/// Ends the process after a failed write to standard output with
+/// [`EXIT_WRITE_FAILED`]: quietly when the reader went away, else with one
+/// line.
 fn stdout_failed(e: &io::Error) -> ! {
     if e.kind() == io::ErrorKind::BrokenPipe {
-        std::process::exit(0);
+        // The reader went away (`| head`): nothing was lost that it wanted,
+        // so no message, but the output was not all written.
+        std::process::exit(i32::from(EXIT_WRITE_FAILED));
     }
     write_stderr_line(format_args!("error: cannot write to standard output: {e}"));
     std::process::exit(i32::from(EXIT_WRITE_FAILED));
@@ -99,4 +103,39 @@ pub fn write_out_marker(dir: &Path) -> Result<()> {
         "; v2ref replaces this folder when asked to write here again\n"
     );
     std::fs::write(&path, text).map_err(|e| Error::file(Some("out"), path, e))
+}
+
+/// The library parameters that name a file the CLI reads: a failure to
+/// read one is bad input (status 2) whatever the system said.
+const INPUT_FILES: &[&str] = &[
+    "input",
+    "calibrator",
+    "estimates",
+    "sidecar",
+    "spectrum",
+    "truth",
+];
+
+/// The exit status of an error: [`EXIT_WRITE_FAILED`] for an output that
+/// cannot be written (read-only or full file system, no permission, a
+/// closed or failing stream, an answer that cannot be produced), 2 for
+/// everything else (bad input, including an output path whose parent
+/// folder does not exist or is not a folder).
+pub fn exit_status(e: &Error) -> u8 {
+    match e {
+        Error::Output { .. } => EXIT_WRITE_FAILED,
+        Error::Io { param, source, .. } => {
+            let input = param.is_some_and(|p| INPUT_FILES.contains(&p));
+            // ENOENT, ENOTDIR: the path itself is wrong (a missing parent,
+            // a file used as a folder).
+            let bad_path =
+                source.kind() == io::ErrorKind::NotFound || source.raw_os_error() == Some(20);
+            if input || bad_path {
+                super::EXIT_BAD_INPUT
+            } else {
+                EXIT_WRITE_FAILED
+            }
+        }
+        _ => super::EXIT_BAD_INPUT,
+    }
 }

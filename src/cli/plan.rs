@@ -103,6 +103,9 @@ pub struct Args {
     /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
@@ -257,6 +260,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .as_ref()
         .map_or(args.photon_rate_per_s, |p| p.photon_rate_per_s);
     let inputs = plan_inputs(&args, rate)?;
+    if let Some(svg) = &args.svg {
+        v2ref::formats::check_output_file(svg, "svg", args.force)?;
+    }
     let piston = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
     args.turbulence
         .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());

@@ -43,6 +43,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
 }
 
 /// Runs `synth`.
@@ -51,6 +54,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     v2ref::bounds::check_set_size(args.rows, inputs.samples, args.reference_blocks)?;
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
+    check_set_paths(&args.out, args.csv, args.force)?;
     let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,
@@ -202,4 +206,18 @@ impl Stem {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
     }
+}
+
+/// Refuses before any work a set whose files exist (without `--force`) or
+/// cannot be written (see [`v2ref::formats::check_output_file`]).
+fn check_set_paths(out: &Path, csv: bool, force: bool) -> Result<()> {
+    let stem = Stem::new(out)?;
+    let mut paths = vec![&stem.npy, &stem.json];
+    if csv {
+        paths.push(&stem.csv);
+    }
+    for p in paths {
+        v2ref::formats::check_output_file(p, "out", force)?;
+    }
+    Ok(())
 }
