@@ -86,6 +86,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             let mut out = Vec::with_capacity(stream.rows);
             let mut block = Vec::new();
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
+                refuse_dark_rows(&block, stream.cols, out.len(), &source.input, "input")?;
                 out.extend(est.estimate_rows(&block, args.threads)?);
             }
             out
@@ -93,6 +94,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         None => {
             let data = read_matrix(&source.input, "input")?;
             let est = estimator(&args, &source, data.rows, data.cols)?;
+            refuse_dark_rows(&data.data, data.cols, 0, &source.input, "input")?;
             est.estimate_rows(&data.data, args.threads)?
         }
     };
@@ -200,6 +202,7 @@ fn calibration(
             ),
         ));
     }
+    refuse_dark_rows(&data.data, data.cols, 0, path, "calibrator")?;
     let cal_model = model.calibrator_model()?;
     let est = RowEstimator::new(&cal_model, args.bins, args.bias, continuum_subtracted)?;
     est.calibration_from_rows(&data.data, args.threads)
@@ -251,5 +254,24 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
             }
             w.flush().map_err(fail)
         }
+    }
+}
+
+/// Refuses a row of zeros in the file `path` (`first` rows before `rows`).
+fn refuse_dark_rows(
+    rows: &[f64],
+    cols: usize,
+    first: usize,
+    path: &Path,
+    param: &'static str,
+) -> Result<()> {
+    match v2ref::conformance::estimate::first_dark_row(rows, cols) {
+        Some(r) => Err(Error::data(
+            param,
+            path,
+            format!("row {} (1-based)", first + r + 1),
+            v2ref::conformance::estimate::DARK_ROW,
+        )),
+        None => Ok(()),
     }
 }

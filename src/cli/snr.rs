@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use v2ref::noise::report::{Light, SnrReport};
 use v2ref::noise::snr_value::snr_text;
 use v2ref::noise::{Formula, NoiseModel};
-use v2ref::Result;
+use v2ref::{Error, Result};
 
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]
@@ -60,6 +60,16 @@ pub fn run(args: Args) -> Result<ExitCode> {
         light,
         args.noise.formula,
     )?;
+    if let Some(w) = answer.window_exact.as_ref().filter(|w| w.stats.bins == 0) {
+        return Err(Error::OutOfRange {
+            param: "samples",
+            value: sampling.samples() as f64,
+            accepted: format!(
+                "at least 3 samples: {} samples leave the {} window no bin, and its SNR has no meaning",
+                sampling.samples(), w.window
+            ),
+        });
+    }
     if args.json {
         print_json(&answer);
     } else {
