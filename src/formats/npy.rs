@@ -194,7 +194,7 @@ pub(crate) fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, 
     // array is `count` little-endian 8-byte values, read here in bulk
     // (npyz's element iterator costs ~4 ns a value, 4 s on a 1 GB file).
     let mut data = Vec::with_capacity(count as usize);
-    let mut chunk = vec![0u8; 1 << 23];
+    let mut chunk = vec![0u8; (1usize << 23).min(need as usize)];
     let mut left = need as usize;
     while left > 0 {
         let take = left.min(chunk.len());
