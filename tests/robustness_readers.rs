@@ -61,7 +61,13 @@ fn read_all_ways(path: &Path, len: usize) -> Result<(), TestCaseError> {
             // A matrix read is whole: every row can be indexed.
             Ok(m) => {
                 let whole = m.rows.checked_mul(m.cols) == Some(m.data.len());
-                assert!(whole, "{} x {} with {} values", m.rows, m.cols, m.data.len());
+                assert!(
+                    whole,
+                    "{} x {} with {} values",
+                    m.rows,
+                    m.cols,
+                    m.data.len()
+                );
                 let _ = m.row(m.rows - 1);
                 None
             }
@@ -91,7 +97,10 @@ fn read_all_ways(path: &Path, len: usize) -> Result<(), TestCaseError> {
     });
     let largest = LARGEST.load(Ordering::Relaxed);
     let Ok(errors) = outcomes else {
-        return Err(TestCaseError::fail(format!("a reader panicked on {}", path.display())));
+        return Err(TestCaseError::fail(format!(
+            "a reader panicked on {}",
+            path.display()
+        )));
     };
     for e in errors.into_iter().flatten() {
         match &e {
@@ -151,7 +160,13 @@ fn npy_bytes() -> impl Strategy<Value = Vec<u8>> {
     (
         shape(),
         any::<bool>(),
-        prop_oneof![Just("<f8"), Just(">f8"), Just("<i8"), Just("|u1"), Just("<f4")],
+        prop_oneof![
+            Just("<f8"),
+            Just(">f8"),
+            Just("<i8"),
+            Just("|u1"),
+            Just("<f4")
+        ],
         prop_oneof![Just(1u8), Just(2u8), Just(3u8), any::<u8>()],
         prop_oneof![Just(None), any::<u32>().prop_map(Some)],
         prop::collection::vec(any::<u8>(), 0..400),
@@ -241,6 +256,9 @@ fn claimed_shapes_that_overflow_are_refused_with_the_header() {
     bytes.extend_from_slice(b"{'descr'");
     let p = temp_file(dir.path(), "hdr.npy", &bytes);
     let text = read_matrix(&p, "calibrator").unwrap_err().to_string();
-    assert!(text.contains("calibrator") && text.contains("header claims"), "{text}");
+    assert!(
+        text.contains("calibrator") && text.contains("header claims"),
+        "{text}"
+    );
     read_all_ways(&p, bytes.len()).unwrap();
 }

@@ -74,7 +74,10 @@ pub fn fail(e: &Error) -> ExitCode {
         Some(p) => format!("{}: {}", flag_of(p), e.detail()),
         None => e.detail(),
     };
-    errln!("error: {}", line.replace('\n', " "));
+    // A reader that closed the pipe early is told nothing (see output).
+    if !output::is_broken_pipe(e) {
+        errln!("error: {}", line.replace('\n', " "));
+    }
     ExitCode::from(output::exit_status(e))
 }
 

@@ -139,3 +139,44 @@ pub fn exit_status(e: &Error) -> u8 {
         _ => super::EXIT_BAD_INPUT,
     }
 }
+
+/// Whether `e` is a write to a pipe whose reader went away.
+pub fn is_broken_pipe(e: &Error) -> bool {
+    matches!(e, Error::Io { source, .. } if source.kind() == io::ErrorKind::BrokenPipe)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{exit_status, EXIT_WRITE_FAILED};
+    use v2ref::Error;
+
+    fn io(param: Option<&'static str>, errno: i32) -> Error {
+        Error::file(param, "x", std::io::Error::from_raw_os_error(errno))
+    }
+
+    #[test]
+    fn each_system_error_has_its_status() {
+        // EROFS, ENOSPC, EACCES, EPIPE, EIO, EDQUOT on an output: 74.
+        for errno in [30, 28, 13, 32, 5, 122] {
+            assert_eq!(
+                exit_status(&io(Some("out"), errno)),
+                EXIT_WRITE_FAILED,
+                "{errno}"
+            );
+            assert_eq!(exit_status(&io(None, errno)), EXIT_WRITE_FAILED, "{errno}");
+        }
+        // ENOENT, ENOTDIR: the path is wrong, bad input.
+        for errno in [2, 20] {
+            assert_eq!(exit_status(&io(Some("out"), errno)), 2, "{errno}");
+        }
+        // Any failure to read an input file is bad input.
+        for errno in [13, 5, 21] {
+            assert_eq!(exit_status(&io(Some("input"), errno)), 2, "{errno}");
+        }
+        let refused = Error::Invalid {
+            param: "out",
+            reason: "exists".into(),
+        };
+        assert_eq!(exit_status(&refused), 2);
+    }
+}
