@@ -183,7 +183,12 @@ pub fn show_progress(quiet: bool) -> bool {
 /// A progress bar over `len` steps, hidden when not [`show_progress`].
 pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar {
     if !show_progress(quiet) {
-        return indicatif::ProgressBar::hidden();
+        let bar = indicatif::ProgressBar::hidden();
+        bar.set_length(len);
+        if !quiet {
+            output::watch_cost(&bar, what);
+        }
+        return bar;
     }
     let bar = indicatif::ProgressBar::new(len);
     if let Ok(style) =

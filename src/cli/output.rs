@@ -105,6 +105,49 @@ pub fn write_out_marker(dir: &Path) -> Result<()> {
     std::fs::write(&path, text).map_err(|e| Error::file(Some("out"), path, e))
 }
 
+/// How long a run is measured before its cost is predicted.
+const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// Predicted durations beyond this are announced, seconds.
+const COST_NOTICE_S: f64 = 60.0;
+
+/// Where no bar is drawn (stderr not a terminal): after [`COST_PROBE`],
+/// predicts the run's duration from the steps done so far (the cost of
+/// every command is linear in its steps: trials, rows, grid points) and,
+/// when it exceeds [`COST_NOTICE_S`], says so once on stderr, with how to
+/// stop it. Nothing is said of a run that ends sooner.
+pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
+    let (bar, what) = (bar.clone(), what.to_owned());
+    let start = std::time::Instant::now();
+    std::thread::spawn(move || {
+        std::thread::sleep(COST_PROBE);
+        let (done, len) = (bar.position(), bar.length().unwrap_or(0));
+        if bar.is_finished() || len == 0 {
+            return;
+        }
+        let elapsed = start.elapsed().as_secs_f64();
+        // Nothing done yet: at least the probe per step.
+        let per_step = elapsed / done.max(1) as f64;
+        let left = per_step * (len.saturating_sub(done)) as f64;
+        if left > COST_NOTICE_S {
+            write_stderr_line(format_args!(
+                "note: {what}: about {} left at the present rate ({done} of {len} steps in {elapsed:.0} s); Ctrl-C stops it and leaves no partial output",
+                duration_words(left)
+            ));
+        }
+    });
+}
+
+/// A duration in words: seconds, minutes, hours or days.
+fn duration_words(s: f64) -> String {
+    match s {
+        s if s < 120.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
+        s => format!("{:.0} days", s / 86400.0),
+    }
+}
+
 /// The library parameters that name a file the CLI reads: a failure to
 /// read one is bad input (status 2) whatever the system said.
 const INPUT_FILES: &[&str] = &[

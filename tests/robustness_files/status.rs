@@ -233,3 +233,86 @@ fn the_help_documents_every_status() {
         assert!(stdout.contains(word), "{word}: {stdout}");
     }
 }
+
+/// Starts `args` in `dir`, sends SIGINT after `after`, and returns the
+/// status and how long the process took to end after the signal.
+#[cfg(unix)]
+fn interrupt(dir: &Path, args: &[&str], after: std::time::Duration) -> (Option<i32>, f64) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(after);
+    let sent = std::time::Instant::now();
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = child.wait().unwrap();
+    (status.code(), sent.elapsed().as_secs_f64())
+}
+
+#[test]
+#[cfg(unix)]
+fn ctrl_c_stops_long_runs_within_a_second_and_leaves_nothing() {
+    let dir = workspace();
+    let d = dir.path();
+    let before = snapshot(d);
+    let half = std::time::Duration::from_millis(1500);
+    for args in [
+        &["simulate", "--trials", "1e12", "--quiet"][..],
+        &["synth", "--rows", "16777216", "--out", "huge", "--quiet"][..],
+        &[
+            "plan",
+            "--fringe-hz",
+            "1:1e6:10000",
+            "--stroke-um",
+            "10",
+            "--stroke-um",
+            "20",
+            "--stroke-um",
+            "30",
+            "--quiet",
+            "--svg",
+            "plan.svg",
+        ][..],
+        &["piston", "--scans", "1e9", "--quiet"][..],
+        // Last: it may end, and write, before the signal.
+        &["estimate", "--input", "good.npy", "--out", "e.csv"][..],
+    ] {
+        let (code, took) = interrupt(d, args, half);
+        // A run that ended before the signal (estimate of 2 rows) is 0.
+        assert!(matches!(code, Some(130) | Some(0)), "{args:?}: {code:?}");
+        assert!(took < 1.0, "{args:?}: {took} s after Ctrl-C");
+        if args[0] != "estimate" {
+            assert_eq!(code, Some(130), "{args:?}");
+            assert_eq!(before, snapshot(d), "{args:?} left output behind");
+        }
+    }
+}
+
+#[test]
+fn a_long_run_says_how_long_before_it_has_gone_far() {
+    let dir = workspace();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["simulate", "--trials", "1e12"])
+        .current_dir(dir.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(4));
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("note: simulate: about")
+            && stderr.contains("left")
+            && stderr.contains("Ctrl-C"),
+        "{stderr}"
+    );
+}
