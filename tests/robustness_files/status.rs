@@ -280,7 +280,14 @@ fn ctrl_c_stops_long_runs_within_a_second_and_leaves_nothing() {
             "--svg",
             "plan.svg",
         ][..],
-        &["piston", "--scans", "1e9", "--quiet"][..],
+        &[
+            "piston",
+            "--scans",
+            "131055",
+            "--fringe-hz",
+            "1:1e4:2000",
+            "--quiet",
+        ][..],
         // Last: it may end, and write, before the signal.
         &["estimate", "--input", "good.npy", "--out", "e.csv"][..],
     ] {
