@@ -519,16 +519,16 @@ def _check_rows(estimates: Any, text: str) -> None:
 def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     """(v1_sq, v2_sq) of the estimates, either None when absent."""
     if isinstance(estimates, Mapping):
+        found = {k: estimates[k] for k in ("v1_sq", "v2_sq") if k in estimates}
+        if not found:
+            raise ValueError(
+                f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
+            )
         unknown = [k for k in estimates if k not in _ESTIMATE_KEYS]
         if unknown:
             raise ValueError(
                 f"estimates: unknown key(s) {', '.join(map(repr, unknown))}; accepted keys: "
                 f"{', '.join(_ESTIMATE_KEYS)} (v1_sq and v2_sq are scored; keys are case-sensitive)"
-            )
-        found = {k: estimates[k] for k in ("v1_sq", "v2_sq") if k in estimates}
-        if not found:
-            raise ValueError(
-                f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
             )
         return tuple(
             None if k not in found else _vector(f"estimates[{k!r}]", found[k])

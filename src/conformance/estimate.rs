@@ -304,7 +304,8 @@ pub const DARK_ROW: &str =
 /// are all zero: no light reached the detector (or the file holds no data),
 /// and the estimators would return a bias-subtracted number of no meaning.
 pub fn first_dark_row(rows: &[f64], n: usize) -> Option<usize> {
-    if n == 0 {
+    // A non-finite value is refused first, by the caller's own check.
+    if n == 0 || rows.iter().any(|v| !v.is_finite()) {
         return None;
     }
     rows.chunks_exact(n)
