@@ -88,9 +88,28 @@ pub fn check_wavelength_um(wavelength_um: f64) -> Result<f64> {
     )
 }
 
-/// Checks a wind speed (m/s): `0 < v <=` [`WIND_MAX_MPS`].
+/// Slowest wind, m/s: a millimetre a second. Below, the piston's time
+/// scales D/v and B/v leave the range where its spectrum is finite (at
+/// 5e-324 m/s every bias and scatter was undefined).
+pub const WIND_MIN_MPS: f64 = 1e-3;
+
+/// Checks a wind speed (m/s): [`WIND_MIN_MPS`] `<= v <=` [`WIND_MAX_MPS`].
 pub fn check_wind_mps(wind_mps: f64) -> Result<f64> {
-    positive_at_most("wind_mps", wind_mps, WIND_MAX_MPS)
+    positive_at_most("wind_mps", wind_mps, WIND_MAX_MPS)?;
+    check("wind_mps", wind_mps, WIND_MIN_MPS, WIND_MAX_MPS)
+}
+
+/// Smallest telescope aperture D, m (a millimetre).
+pub const APERTURE_MIN_M: f64 = 1e-3;
+
+/// Largest telescope aperture D, m (a kilometre: beyond any telescope;
+/// at 1e300 m the aperture filter of the piston spectrum underflows).
+pub const APERTURE_MAX_M: f64 = 1e3;
+
+/// Checks a telescope aperture (m): [`APERTURE_MIN_M`] to [`APERTURE_MAX_M`].
+pub fn check_aperture_m(aperture_m: f64) -> Result<f64> {
+    error::positive("aperture_m", aperture_m)?;
+    check("aperture_m", aperture_m, APERTURE_MIN_M, APERTURE_MAX_M)
 }
 
 /// Narrowest band relative to its centre, Δλ/λ0: a narrower width is lost

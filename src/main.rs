@@ -10,7 +10,7 @@ use std::process::ExitCode;
 /// Squared-visibility estimators V1² and V2² of Perrin & Ridgway: biases,
 /// variances, SNR and Monte Carlo.
 #[derive(Parser)]
-#[command(name = "v2ref", version, about, long_about = None, arg_required_else_help = true)]
+#[command(name = "v2ref", version, about, long_about = None, arg_required_else_help = true, after_help = EXIT_STATUSES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -41,6 +41,19 @@ enum Command {
     /// Score a pipeline's per-row estimates against a synth set's truth.
     Score(cli::score::Args),
 }
+
+/// The exit statuses, listed at the end of `v2ref --help`.
+const EXIT_STATUSES: &str = "Exit status:
+   0  success
+   1  a failed verdict (score: FAIL; golden --check: a mismatch)
+   2  bad input: a flag out of range, a file that cannot be read or is malformed,
+      an output path whose folder does not exist or that would replace
+      something (use --force for a regular file)
+  74  an output that cannot be written: read-only or full file system,
+      permission denied, standard output closed or failing
+ 130  interrupted (Ctrl-C); no partial output is left
+
+Run 'v2ref <COMMAND> --help' for the flags of a command and their ranges.";
 
 /// Exit status after an interrupt (128 + SIGINT).
 const EXIT_INTERRUPTED: i32 = 130;

@@ -523,9 +523,14 @@ fn text_is_written_atomically() {
     write_text_atomic(&p, "{\"a\": 2}\n").unwrap();
     assert_eq!(std::fs::read_to_string(&p).unwrap(), "{\"a\": 2}\n");
     assert_eq!(entries(dir.path()), vec!["set.json"]);
-    // A folder that does not exist: an I/O error, nothing created.
+    // A folder that does not exist: refused as such (bad input), nothing
+    // created.
     let e = write_text_atomic(&dir.path().join("no/set.json"), "x").unwrap_err();
-    assert!(matches!(e, Error::Io { .. }), "{e}");
+    assert!(
+        matches!(e, Error::Invalid { .. }) && e.to_string().contains("does not exist"),
+        "{e}"
+    );
+    assert_eq!(entries(dir.path()), vec!["set.json"]);
 }
 
 #[test]

@@ -424,7 +424,7 @@ fn an_unwritable_stderr_does_not_panic() {
 }
 
 #[test]
-fn a_reader_that_closes_early_is_not_an_error() {
+fn a_reader_that_closes_early_ends_with_74_and_no_message() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
         .args(["claims"])
         .stdout(Stdio::piped())
@@ -434,7 +434,7 @@ fn a_reader_that_closes_early_is_not_an_error() {
     // Close the pipe without reading.
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(0), "{:?}", out);
+    assert_eq!(out.status.code(), Some(74), "{:?}", out);
     assert!(
         out.stderr.is_empty(),
         "{}",
@@ -453,6 +453,11 @@ fn reproduce_leaves_a_users_folder_alone_and_replaces_its_own() {
     // ...as is an empty one, and the leftovers of a killed run go.
     let stale = dir.path().join(".own.tmp-4000000000");
     std::fs::create_dir(&stale).unwrap();
+    std::fs::write(
+        stale.join(".v2ref-temporary"),
+        "a temporary folder of v2ref; removed when its run is gone\n",
+    )
+    .unwrap();
     let (code, _, stderr) = run_in(
         dir.path(),
         &["reproduce", "--quick", "--out", "own", "--quiet"],

@@ -109,6 +109,34 @@ def _physical(names: Sequence[str], values: Mapping[str, Any]) -> Dict[str, Any]
     return out
 
 
+#: Largest copy a conversion makes, bytes (half the physical memory where
+#: it can be read, else 4 GiB): an array that would need more (a
+#: broadcast view claiming 10^9 rows, a non-float64 array of hundreds of
+#: GiB) is refused by name before NumPy tries. A C-contiguous float64
+#: array is used in place, without a copy, whatever its size.
+def _copy_limit() -> int:
+    try:
+        return _os.sysconf("SC_PHYS_PAGES") * _os.sysconf("SC_PAGE_SIZE") // 2
+    except (AttributeError, ValueError, OSError):
+        return 4 << 30
+
+
+def _contiguous(name: str, a: "_np.ndarray", shape_words: str) -> "_np.ndarray":
+    """``a`` as C-contiguous float64, refusing a copy beyond :func:`_copy_limit`."""
+    if a.dtype == _np.float64 and a.flags.c_contiguous:
+        return a
+    need = int(a.size) * 8
+    limit = _copy_limit()
+    if need > limit:
+        raise ValueError(
+            f"{name}: shape {a.shape} (strides {a.strides}, dtype {a.dtype}) would need a "
+            f"{need / 2**30:.3g} GiB float64 copy, over the {limit / 2**30:.3g} GiB allowed; "
+            f"pass {shape_words} as a C-contiguous float64 array (numpy.ascontiguousarray(x, dtype='<f8')), "
+            "which is used without a copy"
+        )
+    return _np.ascontiguousarray(a, dtype=_np.float64)
+
+
 def _matrix(name: str, x: Any) -> "_np.ndarray":
     """A 2-D C-contiguous float64 view of ``x`` (no copy when it is one)."""
     a = _np.asarray(x)
@@ -122,7 +150,7 @@ def _matrix(name: str, x: Any) -> "_np.ndarray":
         raise TypeError(
             f"{name}: {a.ndim}-D array of shape {a.shape}; a 2-D array (rows, samples) is needed"
         )
-    return _np.ascontiguousarray(a, dtype=_np.float64)
+    return _contiguous(name, a, "a 2-D array (rows, samples)")
 
 
 def _vector(name: str, x: Any) -> "_np.ndarray":
@@ -133,7 +161,7 @@ def _vector(name: str, x: Any) -> "_np.ndarray":
         raise TypeError(f"{name}: dtype {a.dtype} is not a real number type")
     if a.ndim != 1:
         raise TypeError(f"{name}: {a.ndim}-D array of shape {a.shape}; a 1-D array (one value per row) is needed")
-    return _np.ascontiguousarray(a, dtype=_np.float64)
+    return _contiguous(name, a, "a 1-D array (one value per row)")
 
 
 def _sidecar_text(sidecar: Any) -> Tuple[str, str]:
@@ -434,6 +462,35 @@ def synthesize(
     return data, sidecar
 
 
+#: The keys of the mapping :func:`estimate` returns; :func:`score` reads
+#: v1_sq and v2_sq and refuses any other key (a misspelt column would
+#: otherwise be left out of the verdict without a word).
+_ESTIMATE_KEYS = ("v1_sq_raw", "v2_sq_raw", "v1_sq_bias", "v2_sq_bias", "v1_sq", "v2_sq")
+
+
+def _rows_claimed(a: Any) -> Optional[int]:
+    """The rows of an array-like without converting it (None if unknown)."""
+    shape = getattr(a, "shape", None)
+    if shape is not None and len(shape) >= 1:
+        return int(shape[0])
+    return None
+
+
+def _check_rows(estimates: Any, text: str) -> None:
+    """Refuses estimates of another length than the sidecar's rows before any copy."""
+    try:
+        rows = int(_json.loads(text)["data"]["rows"])
+    except (ValueError, KeyError, TypeError):
+        return  # the sidecar's own check says what is wrong with it
+    cols = estimates.values() if isinstance(estimates, Mapping) else [estimates]
+    for c in cols:
+        n = _rows_claimed(c)
+        if n is not None and n != rows:
+            raise ValueError(
+                f"estimates: {n} rows; the sidecar's set has {rows} (one estimate per row of the set is needed)"
+            )
+
+
 def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     """(v1_sq, v2_sq) of the estimates, either None when absent."""
     if isinstance(estimates, _abc.Mapping):
@@ -441,6 +498,12 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
         if not found:
             raise ValueError(
                 f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
+            )
+        unknown = [k for k in estimates if k not in _ESTIMATE_KEYS]
+        if unknown:
+            raise ValueError(
+                f"estimates: unknown key(s) {', '.join(map(repr, unknown))}; accepted keys: "
+                f"{', '.join(_ESTIMATE_KEYS)} (v1_sq and v2_sq are scored; keys are case-sensitive)"
             )
         return tuple(
             None if k not in found else _vector(f"estimates[{k!r}]", found[k])
@@ -516,8 +579,9 @@ def score(
         (the denominator of z_mean), z_mean, var, expected_var, z_var,
         minimum detectable biases, pass), ``pass``.
     """
-    v1, v2 = _estimate_columns(estimates, columns)
     text, name = _sidecar_text(sidecar)
+    _check_rows(estimates, text)
+    v1, v2 = _estimate_columns(estimates, columns)
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
         raise TypeError(f"alpha: {alpha!r} is not a real number")
     return _json.loads(
@@ -572,7 +636,7 @@ def simulate(
     Parameters
     ----------
     trials : int
-        Number of noisy interferograms (rows), 2 to 2^40.
+        Number of noisy interferograms (rows), 4 to 2^40.
     seed : int
         Seed of the generators.
     threads : int

@@ -197,7 +197,7 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
     Parameters
     ----------
     trials : int
-        Number of noisy interferograms (rows), 2 to 2^40.
+        Number of noisy interferograms (rows), 4 to 2^40.
     seed : int
         Seed of the generators.
     threads : int

@@ -53,6 +53,9 @@ pub struct Args {
     /// With --out FILE.fits: the estimators written, one INSNAME each.
     #[arg(long, value_enum, default_value = "both")]
     oifits_estimator: super::oifits::Which,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
@@ -71,14 +74,20 @@ const STREAM_ROWS: usize = 8192;
 
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    super::oifits::check_estimates_out(args.out.as_deref())?;
     let source = source(&args)?;
+    // What is at the path first (a device, a link, a folder, a user's file),
+    // then the format its extension names.
+    if let Some(out) = &args.out {
+        v2ref::formats::check_output_file(out, "out", args.force)?;
+    }
+    super::oifits::check_estimates_out(args.out.as_deref())?;
     let (rows, cols) = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
             let est = estimator(&args, &source, stream.rows, stream.cols)?;
             let mut out = Vec::with_capacity(stream.rows);
             let mut block = Vec::new();
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
+                refuse_dark_rows(&block, stream.cols, out.len(), &source.input, "input")?;
                 out.extend(est.estimate_rows(&block, args.threads)?);
             }
             (out, stream.cols)
@@ -86,6 +95,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         None => {
             let data = read_matrix(&source.input, "input")?;
             let est = estimator(&args, &source, data.rows, data.cols)?;
+            refuse_dark_rows(&data.data, data.cols, 0, &source.input, "input")?;
             (est.estimate_rows(&data.data, args.threads)?, data.cols)
         }
     };
@@ -209,6 +219,7 @@ fn calibration(
             ),
         ));
     }
+    refuse_dark_rows(&data.data, data.cols, 0, path, "calibrator")?;
     let cal_model = model.calibrator_model()?;
     let est = RowEstimator::new(&cal_model, args.bins, args.bias, continuum_subtracted)?;
     est.calibration_from_rows(&data.data, args.threads)
@@ -260,5 +271,24 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
             }
             w.flush().map_err(fail)
         }
+    }
+}
+
+/// Refuses a row of zeros in the file `path` (`first` rows before `rows`).
+fn refuse_dark_rows(
+    rows: &[f64],
+    cols: usize,
+    first: usize,
+    path: &Path,
+    param: &'static str,
+) -> Result<()> {
+    match v2ref::conformance::estimate::first_dark_row(rows, cols) {
+        Some(r) => Err(Error::data(
+            param,
+            path,
+            format!("row {} (1-based)", first + r + 1),
+            v2ref::conformance::estimate::DARK_ROW,
+        )),
+        None => Ok(()),
     }
 }

@@ -30,6 +30,10 @@ pub struct Args {
     /// Only this part of the golden data.
     #[arg(long, value_enum)]
     only: Option<Part>,
+    /// With --update: replace DIR even when it does not hold golden data
+    /// v2ref wrote.
+    #[arg(long)]
+    force: bool,
 }
 
 /// A part of the golden data.
@@ -74,6 +78,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let figures = args.only != Some(Part::Vectors);
     let vectors = args.only != Some(Part::Figures);
     if args.update {
+        check_update_dir(&args.dir, args.force)?;
         let mut files = Vec::new();
         if figures {
             // Replaces the whole folder: the vectors are written after it.
@@ -161,4 +166,36 @@ fn holds_golden_data(dir: &std::path::Path) -> bool {
         let path = e.path();
         path.extension().is_some_and(|x| x == "csv" || x == "json")
     })
+}
+
+/// Refuses, before any work, to replace with `--update` a folder v2ref did
+/// not write: DIR must be new, empty, or hold a figure's metadata written by
+/// `golden --update` (a `fig*.json` naming its generator), else `--force`.
+fn check_update_dir(dir: &std::path::Path, force: bool) -> Result<()> {
+    let refuse = |reason: &str| Error::Invalid {
+        param: "dir",
+        reason: format!("{}: {reason}", dir.display()),
+    };
+    match std::fs::symlink_metadata(dir) {
+        Err(_) => return Ok(()),
+        Ok(m) if !m.is_dir() => return Err(refuse("exists and is not a folder; give a folder")),
+        Ok(_) => {}
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let entries: Vec<_> = entries.flatten().map(|e| e.path()).collect();
+    let written_by_golden = entries.iter().any(|p| {
+        let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+        name.is_some_and(|n| n.starts_with("fig") && n.ends_with(".json"))
+            && std::fs::read_to_string(p)
+                .is_ok_and(|t| t.contains(v2ref::reproduction::golden::GENERATOR))
+    });
+    if force || entries.is_empty() || written_by_golden {
+        Ok(())
+    } else {
+        Err(refuse(
+            "is a folder golden --update did not write (no fig*.json naming its generator) and would be replaced; give a new folder or --force",
+        ))
+    }
 }

@@ -68,14 +68,18 @@ pub fn flag_of(param: &str) -> String {
 
 /// Prints a library error as one line naming the flag
 /// (`error: --flag: detail`, or `error: detail` where the error names no
-/// parameter), and returns status 2.
+/// parameter), and returns its status ([`output::exit_status`]: 2 for bad
+/// input, 74 for an output that cannot be written).
 pub fn fail(e: &Error) -> ExitCode {
     let line = match e.param() {
         Some(p) => format!("{}: {}", flag_of(p), e.detail()),
         None => e.detail(),
     };
-    errln!("error: {}", line.replace('\n', " "));
-    ExitCode::from(EXIT_BAD_INPUT)
+    // A reader that closed the pipe early is told nothing (see output).
+    if !output::is_broken_pipe(e) {
+        errln!("error: {}", line.replace('\n', " "));
+    }
+    ExitCode::from(output::exit_status(e))
 }
 
 /// Handles a clap parse error: help and version print normally (status 0);
@@ -180,7 +184,12 @@ pub fn show_progress(quiet: bool) -> bool {
 /// A progress bar over `len` steps, hidden when not [`show_progress`].
 pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar {
     if !show_progress(quiet) {
-        return indicatif::ProgressBar::hidden();
+        let bar = indicatif::ProgressBar::hidden();
+        bar.set_length(len);
+        if !quiet {
+            output::watch_cost(&bar, what);
+        }
+        return bar;
     }
     let bar = indicatif::ProgressBar::new(len);
     if let Ok(style) =

@@ -2,9 +2,11 @@
 //! the folders of `--out`.
 //!
 //! - A write to standard output that fails is an error (one line on
-//!   stderr, status [`EXIT_WRITE_FAILED`]), except a reader that closed the
-//!   pipe early (`v2ref claims | head`), which ends the process quietly
-//!   with status 0.
+//!   stderr, status [`EXIT_WRITE_FAILED`]); a reader that closed the pipe
+//!   early (`v2ref claims | head`) ends the process with the same status
+//!   but no message.
+//! - [`exit_status`] maps every error to its status: 2 for bad input, 74
+//!   for an output that cannot be written.
 //! - Standard error is written without panicking when it cannot be.
 //! - An `--out` folder is only replaced when v2ref wrote it (it holds the
 //!   [`OUT_MARKER`] file) or it is empty; anything else needs `--force`.
@@ -35,12 +37,14 @@ pub fn flush_stdout() {
     }
 }
 
-/// Ends the process after a failed write to standard output: quietly with
-/// status 0 when the reader went away, else with one line and
-/// [`EXIT_WRITE_FAILED`].
+/// Ends the process after a failed write to standard output with
+/// [`EXIT_WRITE_FAILED`]: quietly when the reader went away, else with one
+/// line.
 fn stdout_failed(e: &io::Error) -> ! {
     if e.kind() == io::ErrorKind::BrokenPipe {
-        std::process::exit(0);
+        // The reader went away (`| head`): nothing was lost that it wanted,
+        // so no message, but the output was not all written.
+        std::process::exit(i32::from(EXIT_WRITE_FAILED));
     }
     write_stderr_line(format_args!("error: cannot write to standard output: {e}"));
     std::process::exit(i32::from(EXIT_WRITE_FAILED));
@@ -99,4 +103,123 @@ pub fn write_out_marker(dir: &Path) -> Result<()> {
         "; v2ref replaces this folder when asked to write here again\n"
     );
     std::fs::write(&path, text).map_err(|e| Error::file(Some("out"), path, e))
+}
+
+/// How long a run is measured before its cost is predicted.
+const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// Predicted durations beyond this are announced, seconds.
+const COST_NOTICE_S: f64 = 60.0;
+
+/// Where no bar is drawn (stderr not a terminal): after [`COST_PROBE`],
+/// predicts the run's duration from the steps done so far (the cost of
+/// every command is linear in its steps: trials, rows, grid points) and,
+/// when it exceeds [`COST_NOTICE_S`], says so once on stderr, with how to
+/// stop it. Nothing is said of a run that ends sooner.
+pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
+    let (bar, what) = (bar.clone(), what.to_owned());
+    let start = std::time::Instant::now();
+    std::thread::spawn(move || {
+        std::thread::sleep(COST_PROBE);
+        let (done, len) = (bar.position(), bar.length().unwrap_or(0));
+        if bar.is_finished() || len == 0 {
+            return;
+        }
+        let elapsed = start.elapsed().as_secs_f64();
+        // Nothing done yet: at least the probe per step.
+        let per_step = elapsed / done.max(1) as f64;
+        let left = per_step * (len.saturating_sub(done)) as f64;
+        if left > COST_NOTICE_S {
+            write_stderr_line(format_args!(
+                "note: {what}: about {} left at the present rate ({done} of {len} steps in {elapsed:.0} s); Ctrl-C stops it and leaves no partial output",
+                duration_words(left)
+            ));
+        }
+    });
+}
+
+/// A duration in words: seconds, minutes, hours or days.
+fn duration_words(s: f64) -> String {
+    match s {
+        s if s < 120.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
+        s => format!("{:.0} days", s / 86400.0),
+    }
+}
+
+/// The library parameters that name a file the CLI reads: a failure to
+/// read one is bad input (status 2) whatever the system said.
+const INPUT_FILES: &[&str] = &[
+    "input",
+    "calibrator",
+    "estimates",
+    "sidecar",
+    "spectrum",
+    "truth",
+];
+
+/// The exit status of an error: [`EXIT_WRITE_FAILED`] for an output that
+/// cannot be written (read-only or full file system, no permission, a
+/// closed or failing stream, an answer that cannot be produced), 2 for
+/// everything else (bad input, including an output path whose parent
+/// folder does not exist or is not a folder).
+pub fn exit_status(e: &Error) -> u8 {
+    match e {
+        Error::Output { .. } => EXIT_WRITE_FAILED,
+        Error::Io { param, source, .. } => {
+            let input = param.is_some_and(|p| INPUT_FILES.contains(&p));
+            // ENOENT, ENOTDIR: the path itself is wrong (a missing parent,
+            // a file used as a folder).
+            let bad_path =
+                source.kind() == io::ErrorKind::NotFound || source.raw_os_error() == Some(20);
+            if input || bad_path {
+                super::EXIT_BAD_INPUT
+            } else {
+                EXIT_WRITE_FAILED
+            }
+        }
+        _ => super::EXIT_BAD_INPUT,
+    }
+}
+
+/// Whether `e` is a write to a pipe whose reader went away.
+pub fn is_broken_pipe(e: &Error) -> bool {
+    matches!(e, Error::Io { source, .. } if source.kind() == io::ErrorKind::BrokenPipe)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{exit_status, EXIT_WRITE_FAILED};
+    use v2ref::Error;
+
+    fn io(param: Option<&'static str>, errno: i32) -> Error {
+        Error::file(param, "x", std::io::Error::from_raw_os_error(errno))
+    }
+
+    #[test]
+    fn each_system_error_has_its_status() {
+        // EROFS, ENOSPC, EACCES, EPIPE, EIO, EDQUOT on an output: 74.
+        for errno in [30, 28, 13, 32, 5, 122] {
+            assert_eq!(
+                exit_status(&io(Some("out"), errno)),
+                EXIT_WRITE_FAILED,
+                "{errno}"
+            );
+            assert_eq!(exit_status(&io(None, errno)), EXIT_WRITE_FAILED, "{errno}");
+        }
+        // ENOENT, ENOTDIR: the path is wrong, bad input.
+        for errno in [2, 20] {
+            assert_eq!(exit_status(&io(Some("out"), errno)), 2, "{errno}");
+        }
+        // Any failure to read an input file is bad input.
+        for errno in [13, 5, 21] {
+            assert_eq!(exit_status(&io(Some("input"), errno)), 2, "{errno}");
+        }
+        let refused = Error::Invalid {
+            param: "out",
+            reason: "exists".into(),
+        };
+        assert_eq!(exit_status(&refused), 2);
+    }
 }

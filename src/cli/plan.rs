@@ -105,6 +105,9 @@ pub struct Args {
     /// OIFITS v2 (V², predicted σ, the biases to correct as keywords).
     #[arg(long, value_name = "FILE.fits")]
     oifits: Option<std::path::PathBuf>,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
@@ -179,6 +182,10 @@ fn request(args: &Args) -> (Physical, PlanRequest) {
 pub fn run(args: Args) -> Result<ExitCode> {
     if let Some(p) = &args.oifits {
         v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
+        v2ref::formats::check_output_file(p, "oifits", args.force)?;
+    }
+    if let Some(svg) = &args.svg {
+        v2ref::formats::check_output_file(svg, "svg", args.force)?;
     }
     let (physical, req) = request(&args);
     let prepared = plan::prepare(&physical, &req)?;

@@ -133,6 +133,7 @@ pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
 
 /// Runs `score`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    v2ref::conformance::score::critical_z(args.alpha, 1)?;
     let sc = read_sidecar(&args.sidecar)?;
     let truth = sc.truth(args.bins, args.bias).ok_or_else(|| {
         Error::data(

@@ -53,6 +53,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Replace an existing output file (never a link, folder or device).
+    #[arg(long)]
+    force: bool,
 }
 
 /// Runs `synth`.
@@ -64,6 +67,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
     v2ref::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
+    check_set_paths(&args.out, args.csv, args.force)?;
+    if args.oifits {
+        v2ref::formats::check_output_file(&truth_fits_path(&args.out), "out", args.force)?;
+    }
     let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,
@@ -79,9 +86,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
     bar.finish_and_clear();
     if args.oifits {
-        let name = args.out.file_name().unwrap_or_default().to_string_lossy();
-        let path = args.out.with_file_name(format!("{name}.truth.fits"));
-        super::oifits::write_truth(&path, &sidecar)?;
+        super::oifits::write_truth(&truth_fits_path(&args.out), &sidecar)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -223,4 +228,24 @@ impl Stem {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
     }
+}
+
+/// The truth's OIFITS file of the set `out` (`synth --oifits`): `OUT.truth.fits`.
+fn truth_fits_path(out: &Path) -> std::path::PathBuf {
+    let name = out.file_name().unwrap_or_default().to_string_lossy();
+    out.with_file_name(format!("{name}.truth.fits"))
+}
+
+/// Refuses before any work a set whose files exist (without `--force`) or
+/// cannot be written (see [`v2ref::formats::check_output_file`]).
+fn check_set_paths(out: &Path, csv: bool, force: bool) -> Result<()> {
+    let stem = Stem::new(out)?;
+    let mut paths = vec![&stem.npy, &stem.json];
+    if csv {
+        paths.push(&stem.csv);
+    }
+    for p in paths {
+        v2ref::formats::check_output_file(p, "out", force)?;
+    }
+    Ok(())
 }

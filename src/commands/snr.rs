@@ -1,7 +1,7 @@
 //! `snr`: the closed-form expectations, variances and SNRs of V1² and V2²
 //! under detector and photon noise.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
 use crate::noise::report::{Light, SnrReport};
 use crate::noise::Formula;
@@ -18,5 +18,17 @@ pub fn answer(p: &Physical, bins: BinWindow, formula: Formula) -> Result<SnrRepo
         visibility: p.visibility,
         noise,
     };
-    SnrReport::new(&obs, p.record(&obs), &sampling, bins, light, formula)
+    let answer = SnrReport::new(&obs, p.record(&obs), &sampling, bins, light, formula)?;
+    if let Some(w) = answer.window_exact.as_ref().filter(|w| w.stats.bins == 0) {
+        return Err(Error::OutOfRange {
+            param: "samples",
+            value: sampling.samples() as f64,
+            accepted: format!(
+                "at least 3 samples: {} samples leave the {} window no bin, and its SNR has no meaning",
+                sampling.samples(),
+                w.window
+            ),
+        });
+    }
+    Ok(answer)
 }

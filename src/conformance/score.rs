@@ -96,16 +96,23 @@ fn reach(z_crit: f64, dof: Option<u64>) -> f64 {
     }
 }
 
+/// Smallest `alpha` accepted: the threshold's quantile `1 − alpha/(2·tests)`
+/// still holds `alpha` to 3 significant digits (at 10⁻²⁰ it is exactly 1
+/// and the threshold infinite).
+pub const MIN_ALPHA: f64 = 1e-12;
+
 /// The two-sided Bonferroni threshold `z_crit = Φ⁻¹(1 − alpha/(2·tests))`.
 ///
-/// Refuses `alpha` outside (0, 1) and `tests == 0`.
+/// Refuses `alpha` outside [[`MIN_ALPHA`], 1) and `tests == 0`.
 pub fn critical_z(alpha: f64, tests: usize) -> Result<f64> {
     crate::error::finite("alpha", alpha)?;
-    if !(alpha > 0.0 && alpha < 1.0) {
+    if !((MIN_ALPHA..1.0).contains(&alpha)) {
         return Err(Error::OutOfRange {
             param: "alpha",
             value: alpha,
-            accepted: "0 < alpha < 1".into(),
+            accepted: format!(
+                "{MIN_ALPHA:e} <= alpha < 1 (below, 1 - alpha/(2 tests) is 1 to double precision and the threshold is not resolved)"
+            ),
         });
     }
     if tests == 0 {

@@ -17,10 +17,9 @@ pub(crate) struct TempTarget {
 
 impl TempTarget {
     pub(crate) fn create(target: &Path, param: Option<&'static str>) -> Result<(TempTarget, File)> {
-        let dir = match target.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
+        super::target::check_parent(target, param)?;
+        super::target::check_replaceable(target, param)?;
+        let dir = super::target::parent_of(target);
         let name = target
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
@@ -57,6 +56,8 @@ impl TempTarget {
 
     /// Renames the temporary file onto the target.
     pub(crate) fn persist(mut self) -> Result<()> {
+        // Checked again: a link or a device put there meanwhile stays.
+        super::target::check_replaceable(&self.target, self.param)?;
         std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
         crate::cleanup::unregister(&self.temp);
         self.done = true;

@@ -20,10 +20,12 @@ pub mod csv;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
+pub mod target;
 
 pub use atomic::write_text_atomic;
 pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
+pub use target::{check_output_file, check_parent};
 
 use crate::{Error, Result};
 use std::fs::File;

@@ -63,6 +63,7 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
             "not a NumPy .npy file (no \\x93NUMPY magic); a .npy file (float64) is needed",
         ));
     }
+    check_header_len(head, file_len, param, path)?;
     let header = NpyHeader::from_reader(&mut reader).map_err(|e| {
         Error::data(
             param,
@@ -86,12 +87,11 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
             ),
         ));
     }
-    let shape: Vec<usize> = header.shape().iter().map(|&d| d as usize).collect();
-    let count = header.len();
+    let (shape, count) = checked_shape(header.shape(), param, path)?;
     let data_start = reader
         .stream_position()
         .map_err(|e| Error::file(Some(param), path, e))?;
-    let need = count.saturating_mul(8);
+    let need = count * 8;
     let have = file_len.saturating_sub(data_start);
     if have != need {
         let what = if have < need { "truncated" } else { "too long" };
@@ -110,6 +110,56 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
         order: header.order(),
         bytes: need,
     })
+}
+
+/// Refuses a header whose claimed length runs past the end of the file
+/// before npyz allocates it (a version 2 header may claim 4 GiB).
+fn check_header_len(head: &[u8], file_len: u64, param: &'static str, path: &Path) -> Result<()> {
+    let bad = |what: String| Error::data(param, path, "header", what);
+    let (len, start) = match (head.get(6), head.get(8..12)) {
+        (Some(1), Some(b)) => (u64::from(u16::from_le_bytes([b[0], b[1]])), 10),
+        (Some(2 | 3), Some(b)) => (u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])), 12),
+        (Some(v), Some(_)) => {
+            return Err(bad(format!(
+                "unknown .npy format version {v}; versions 1 to 3 (numpy.save) are read"
+            )))
+        }
+        _ => return Err(bad("truncated before the header's length".into())),
+    };
+    if start + len > file_len {
+        return Err(bad(format!(
+            "the header claims {len} bytes but the file has {} after the preamble; the file is truncated or not a .npy file",
+            file_len.saturating_sub(start)
+        )));
+    }
+    Ok(())
+}
+
+/// The header's shape as `usize`s and its number of values, refused when
+/// a dimension or the product of the dimensions (times 8 bytes) does not
+/// fit in a `u64`/`usize` (npyz's own product wraps on overflow).
+fn checked_shape(dims: &[u64], param: &'static str, path: &Path) -> Result<(Vec<usize>, u64)> {
+    let too_big = || {
+        Error::data(
+            param,
+            path,
+            "header",
+            format!(
+                "shape {dims:?} claims more values than any file can hold; a .npy file written by numpy.save is needed"
+            ),
+        )
+    };
+    let mut count: u64 = 1;
+    let mut shape = Vec::with_capacity(dims.len());
+    for &d in dims {
+        shape.push(usize::try_from(d).map_err(|_| too_big())?);
+        count = count.checked_mul(d).ok_or_else(too_big)?;
+    }
+    count
+        .checked_mul(8)
+        .and_then(|b| usize::try_from(b).ok())
+        .ok_or_else(too_big)?;
+    Ok((shape, count))
 }
 
 /// The data section of a checked `<f8` `.npy` file, its reader positioned
@@ -144,7 +194,7 @@ pub(crate) fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, 
     // array is `count` little-endian 8-byte values, read here in bulk
     // (npyz's element iterator costs ~4 ns a value, 4 s on a 1 GB file).
     let mut data = Vec::with_capacity(count as usize);
-    let mut chunk = vec![0u8; 1 << 23];
+    let mut chunk = vec![0u8; (1usize << 23).min(need as usize)];
     let mut left = need as usize;
     while left > 0 {
         let take = left.min(chunk.len());

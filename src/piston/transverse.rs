@@ -141,7 +141,7 @@ impl TransverseTable {
     /// quadratures, computed in parallel (each the same whatever the thread
     /// count).
     pub fn new(turb: Turbulence, aperture_m: f64) -> Result<TransverseTable> {
-        error::positive("aperture_m", aperture_m)?;
+        crate::bounds::check_aperture_m(aperture_m)?;
         Ok(TransverseTable {
             turb,
             aperture_m,

@@ -348,7 +348,10 @@ fn grid_point(
     let size = Trials {
         trials: inputs.scans,
         seed: derive_seed(inputs.seed, "plan", &[fringe_hz, stroke_um]),
-        threads: 1,
+        // 0: the pool the grid runs on. A pool per point built inside the
+        // grid's pool nests each waiting worker's stolen points on its
+        // stack (a 10000-point grid overflowed it).
+        threads: 0,
     };
     let mc = simulate(
         &piston_model,

@@ -246,6 +246,7 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
     let _ = std::fs::remove_dir_all(&tmp);
     crate::cleanup::register(&tmp);
     let filled = std::fs::create_dir_all(&tmp)
+        .and_then(|()| std::fs::write(tmp.join(TEMP_MARKER), TEMP_MARKER_TEXT))
         .map_err(|e| io(&tmp, e))
         .and_then(|()| fill(&tmp));
     let value = match filled {
@@ -267,6 +268,7 @@ pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<
         return Err(io(dir, e));
     }
     crate::cleanup::unregister(&tmp);
+    let _ = std::fs::remove_file(dir.join(TEMP_MARKER));
     let _ = std::fs::remove_dir_all(&old);
     Ok(value)
 }
@@ -294,6 +296,21 @@ pub fn check_parent_writable(dir: &Path) -> Result<()> {
     std::fs::remove_file(&probe).map_err(|e| io(&probe, e))
 }
 
+/// The file [`replace_dir_atomically`] puts first into its temporary
+/// folder: a stale sibling is removed only when it holds this file with
+/// this content (a user's folder that merely has the name stays).
+const TEMP_MARKER: &str = ".v2ref-temporary";
+const TEMP_MARKER_TEXT: &str = "a temporary folder of v2ref; removed when its run is gone\n";
+
+/// Whether `path` is a folder [`replace_dir_atomically`] made (its
+/// [`TEMP_MARKER`] inside), or the old folder it moved aside (which held
+/// golden data or the `.v2ref-output` marker).
+fn is_own_temporary(path: &Path) -> bool {
+    let marked =
+        std::fs::read_to_string(path.join(TEMP_MARKER)).is_ok_and(|t| t == TEMP_MARKER_TEXT);
+    marked || path.join(".v2ref-output").is_file()
+}
+
 /// Removes `.{stem}.tmp-PID` and `.{stem}.old-PID` folders in `parent`
 /// whose process is gone (on systems with `/proc`; elsewhere a process
 /// cannot be told alive, and nothing is removed). Failures are ignored: the
@@ -314,7 +331,7 @@ fn remove_stale_siblings(parent: &Path, stem: &str) {
             .find_map(|p| name.strip_prefix(p.as_str()))
             .and_then(|rest| rest.parse::<u32>().ok());
         let gone = pid.is_some_and(|pid| !Path::new("/proc").join(pid.to_string()).exists());
-        if gone {
+        if gone && is_own_temporary(&entry.path()) {
             let _ = std::fs::remove_dir_all(entry.path());
         }
     }

@@ -240,6 +240,12 @@ impl RowEstimator {
                 reason: format!("{} values is not a whole number of rows of {n}", rows.len()),
             });
         }
+        if let Some(r) = first_dark_row(rows, n) {
+            return Err(Error::Invalid {
+                param: "interferograms",
+                reason: format!("row {} (1-based): {DARK_ROW}", r + 1),
+            });
+        }
         let job = || {
             rows.par_chunks(n * 256)
                 .flat_map_iter(|block| {
@@ -288,4 +294,20 @@ pub fn estimate_row_oracle(
 ) -> RowEstimate {
     let raw = raw_estimates(&naive_dft(m), bins);
     RowEstimate::new(raw, noise_bias(variance, bins), calibration)
+}
+
+/// Why a row of zeros is refused.
+pub const DARK_ROW: &str =
+    "every sample is 0 (no light at all, or no data); an interferogram with light is needed";
+
+/// The first row (0-based) of `rows` (row-major, `n` per row) whose samples
+/// are all zero: no light reached the detector (or the file holds no data),
+/// and the estimators would return a bias-subtracted number of no meaning.
+pub fn first_dark_row(rows: &[f64], n: usize) -> Option<usize> {
+    // A non-finite value is refused first, by the caller's own check.
+    if n == 0 || rows.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    rows.chunks_exact(n)
+        .position(|row| row.iter().all(|&v| v == 0.0))
 }

@@ -56,7 +56,7 @@ impl PistonInputs {
 
     /// The differential-piston spectrum on `baseline_m`.
     pub fn spectrum(&self, baseline_m: f64) -> Result<PistonSpectrum> {
-        error::positive("aperture_m", self.aperture_m)?;
+        crate::bounds::check_aperture_m(self.aperture_m)?;
         let turb = Turbulence::from_seeing(
             self.seeing_arcsec,
             self.wavelength_um,

@@ -16,15 +16,22 @@ use serde::Serialize;
 /// merged in batches, so memory does not grow with it).
 pub const MAX_TRIALS: u64 = 1 << 40;
 
-/// Refuses fewer than 2 or more than [`MAX_TRIALS`] trials.
+/// Fewest trials a simulation accepts: the standard error of a sample
+/// variance needs the fourth moment of at least 4 draws (with 2 or 3 it is
+/// undefined, and a report would hold no number where one belongs).
+pub const MIN_TRIALS: u64 = 4;
+
+/// Refuses fewer than [`MIN_TRIALS`] or more than [`MAX_TRIALS`] trials.
 pub fn check_trials(trials: u64) -> Result<()> {
-    if (2..=MAX_TRIALS).contains(&trials) {
+    if (MIN_TRIALS..=MAX_TRIALS).contains(&trials) {
         Ok(())
     } else {
         Err(Error::OutOfRange {
             param: "trials",
             value: trials as f64,
-            accepted: format!("2 to {MAX_TRIALS}"),
+            accepted: format!(
+                "{MIN_TRIALS} to {MAX_TRIALS} (the standard error of the variance needs at least {MIN_TRIALS} trials)"
+            ),
         })
     }
 }

@@ -1,0 +1,264 @@
+//! The file readers fed random and truncated headers and bytes: every
+//! `.npy`, CSV and estimates file either reads or is refused with a typed
+//! error naming the file, never a panic, and no single allocation grows
+//! beyond a small constant plus a few times the file's size (a header
+//! claiming 2^64 values must not be believed).
+//!
+//! A counting global allocator records the largest allocation made while a
+//! reader runs.
+
+use proptest::prelude::*;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use v2ref::formats::{read_estimates, read_matrix, NpyRows};
+use v2ref::Error;
+
+/// The system allocator, recording the largest request since the last
+/// [`reset_largest`].
+struct Counting;
+
+static LARGEST: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        LARGEST.fetch_max(layout.size(), Ordering::Relaxed);
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        LARGEST.fetch_max(new_size, Ordering::Relaxed);
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
+
+/// Tests of this binary run one at a time here (the allocator's record is
+/// process-wide).
+static SERIAL: Mutex<()> = Mutex::new(());
+
+/// The reader's buffer (1 MiB) and a margin; beyond that, an allocation
+/// must be paid for by the file's own bytes.
+const FIXED_ALLOWANCE: usize = 2 << 20;
+
+fn temp_file(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p
+}
+
+/// Runs every reader on `path` and checks the outcome and the allocations.
+fn read_all_ways(path: &Path, len: usize) -> Result<(), TestCaseError> {
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    LARGEST.store(0, Ordering::Relaxed);
+    let outcomes = std::panic::catch_unwind(|| {
+        let m = match read_matrix(path, "input") {
+            // A matrix read is whole: every row can be indexed.
+            Ok(m) => {
+                let whole = m.rows.checked_mul(m.cols) == Some(m.data.len());
+                assert!(
+                    whole,
+                    "{} x {} with {} values",
+                    m.rows,
+                    m.cols,
+                    m.data.len()
+                );
+                let _ = m.row(m.rows - 1);
+                None
+            }
+            Err(e) => Some(e),
+        };
+        let e = read_estimates(path, None).err();
+        let s = match NpyRows::open(path, "input") {
+            Ok(Some(mut rows)) => {
+                let mut block = Vec::new();
+                let mut err = None;
+                loop {
+                    match rows.next_block(7, &mut block) {
+                        Ok(0) => break,
+                        Ok(_) => {}
+                        Err(x) => {
+                            err = Some(x);
+                            break;
+                        }
+                    }
+                }
+                err
+            }
+            Ok(None) => None,
+            Err(x) => Some(x),
+        };
+        [m, e, s]
+    });
+    let largest = LARGEST.load(Ordering::Relaxed);
+    let Ok(errors) = outcomes else {
+        return Err(TestCaseError::fail(format!(
+            "a reader panicked on {}",
+            path.display()
+        )));
+    };
+    for e in errors.into_iter().flatten() {
+        match &e {
+            Error::Data { path: p, .. } | Error::Io { path: p, .. } => {
+                prop_assert_eq!(p.as_path(), path, "{}", e);
+            }
+            Error::Invalid { .. } => {}
+            other => return Err(TestCaseError::fail(format!("untyped refusal: {other:?}"))),
+        }
+    }
+    prop_assert!(
+        largest <= FIXED_ALLOWANCE + 8 * len,
+        "an allocation of {} bytes for a file of {} bytes",
+        largest,
+        len
+    );
+    Ok(())
+}
+
+/// A `.npy` header text with the given shape and order, padded as numpy
+/// pads it.
+fn header_text(shape: &str, fortran: bool, descr: &str) -> String {
+    let order = if fortran { "True" } else { "False" };
+    let mut h = format!("{{'descr': '{descr}', 'fortran_order': {order}, 'shape': {shape}, }}");
+    while (10 + h.len() + 1) % 64 != 0 {
+        h.push(' ');
+    }
+    h.push('\n');
+    h
+}
+
+/// Dimensions from ordinary to absurd.
+fn dim() -> impl Strategy<Value = u64> {
+    prop_oneof![
+        0u64..6,
+        Just(1u64 << 32),
+        Just(1u64 << 61),
+        Just(u64::MAX),
+        Just(i64::MAX as u64),
+        any::<u64>(),
+    ]
+}
+
+fn shape() -> impl Strategy<Value = String> {
+    prop::collection::vec(dim(), 0..4).prop_map(|d| match d.len() {
+        1 => format!("({},)", d[0]),
+        _ => format!(
+            "({})",
+            d.iter().map(u64::to_string).collect::<Vec<_>>().join(", ")
+        ),
+    })
+}
+
+/// A `.npy` file: a well-formed or damaged preamble, a header claiming any
+/// shape, and any number of data bytes, possibly truncated anywhere.
+fn npy_bytes() -> impl Strategy<Value = Vec<u8>> {
+    (
+        shape(),
+        any::<bool>(),
+        prop_oneof![
+            Just("<f8"),
+            Just(">f8"),
+            Just("<i8"),
+            Just("|u1"),
+            Just("<f4")
+        ],
+        prop_oneof![Just(1u8), Just(2u8), Just(3u8), any::<u8>()],
+        prop_oneof![Just(None), any::<u32>().prop_map(Some)],
+        prop::collection::vec(any::<u8>(), 0..400),
+        prop_oneof![Just(None), any::<usize>().prop_map(Some)],
+    )
+        .prop_map(|(shape, fortran, descr, version, claimed, data, cut)| {
+            let h = header_text(&shape, fortran, descr);
+            let mut out = b"\x93NUMPY".to_vec();
+            out.push(version);
+            out.push(0);
+            let len = claimed.unwrap_or(h.len() as u32);
+            if version == 1 {
+                out.extend_from_slice(&(len as u16).to_le_bytes());
+            } else {
+                out.extend_from_slice(&len.to_le_bytes());
+            }
+            out.extend_from_slice(h.as_bytes());
+            out.extend_from_slice(&data);
+            if let Some(c) = cut {
+                out.truncate(c % (out.len() + 1));
+            }
+            out
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn npy_headers_and_data_of_any_claim(bytes in npy_bytes()) {
+        let dir = tempfile::tempdir().unwrap();
+        let p = temp_file(dir.path(), "x.npy", &bytes);
+        read_all_ways(&p, bytes.len())?;
+    }
+
+    #[test]
+    fn npy_of_random_bytes(bytes in prop::collection::vec(any::<u8>(), 0..300)) {
+        let dir = tempfile::tempdir().unwrap();
+        let mut with_magic = b"\x93NUMPY".to_vec();
+        with_magic.extend_from_slice(&bytes);
+        for (name, b) in [("a.npy", &bytes), ("b.npy", &with_magic)] {
+            let p = temp_file(dir.path(), name, b);
+            read_all_ways(&p, b.len())?;
+        }
+    }
+
+    #[test]
+    fn csv_of_random_text_and_bytes(
+        text in "[0-9eE+.,#\n -]{0,300}|(v1_sq|v2_sq|row|x)(,(v1_sq|v2_sq|row|1e308|nan|inf|-0)){0,4}\n([0-9.,e-]{0,20}\n){0,8}",
+        bytes in prop::collection::vec(any::<u8>(), 0..200),
+    ) {
+        let dir = tempfile::tempdir().unwrap();
+        for (name, b) in [("a.csv", text.as_bytes()), ("b.csv", &bytes[..])] {
+            let p = temp_file(dir.path(), name, b);
+            read_all_ways(&p, b.len())?;
+        }
+    }
+}
+
+/// The headers that panicked or aborted before this round, each refused by
+/// name (a test that fails on the old reader).
+#[test]
+fn claimed_shapes_that_overflow_are_refused_with_the_header() {
+    let dir = tempfile::tempdir().unwrap();
+    for shape in [
+        "(4294967296, 4294967296)",
+        "(2305843009213693952, 8)",
+        "(18446744073709551615, 3)",
+        "(3, 6148914691236517206)",
+    ] {
+        let h = header_text(shape, false, "<f8");
+        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+        bytes.extend_from_slice(&(h.len() as u16).to_le_bytes());
+        bytes.extend_from_slice(h.as_bytes());
+        let p = temp_file(dir.path(), "big.npy", &bytes);
+        let e = read_matrix(&p, "input").unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("input") && text.contains("header") && text.contains("claims"),
+            "{shape}: {text}"
+        );
+        read_all_ways(&p, bytes.len()).unwrap();
+    }
+    // A version-2 header claiming 4 GiB of header text, in a 16-byte file.
+    let mut bytes = b"\x93NUMPY\x02\x00".to_vec();
+    bytes.extend_from_slice(&u32::MAX.to_le_bytes());
+    bytes.extend_from_slice(b"{'descr'");
+    let p = temp_file(dir.path(), "hdr.npy", &bytes);
+    let text = read_matrix(&p, "calibrator").unwrap_err().to_string();
+    assert!(
+        text.contains("calibrator") && text.contains("header claims"),
+        "{text}"
+    );
+    read_all_ways(&p, bytes.len()).unwrap();
+}
