@@ -482,7 +482,7 @@ def _check_rows(estimates: Any, text: str) -> None:
         rows = int(_json.loads(text)["data"]["rows"])
     except (ValueError, KeyError, TypeError):
         return  # the sidecar's own check says what is wrong with it
-    cols = estimates.values() if isinstance(estimates, Mapping) else [estimates]
+    cols = estimates.values() if isinstance(estimates, _abc.Mapping) else [estimates]
     for c in cols:
         n = _rows_claimed(c)
         if n is not None and n != rows:
