@@ -225,19 +225,8 @@ fn calibration(
     est.calibration_from_rows(&data.data, args.threads)
 }
 
-fn values(e: &RowEstimate) -> [f64; 6] {
-    [
-        e.v1_sq_raw,
-        e.v2_sq_raw,
-        e.v1_sq_bias,
-        e.v2_sq_bias,
-        e.v1_sq,
-        e.v2_sq,
-    ]
-}
-
 fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
-    let flat: Vec<f64> = rows.iter().flat_map(values).collect();
+    let flat: Vec<f64> = rows.iter().flat_map(RowEstimate::values).collect();
     match out {
         Some(p) if p.extension().is_some_and(|e| e == "npy") => {
             let mut w = NpyRowWriter::create(p, rows.len() as u64, COLUMNS.len(), "out")?;
@@ -261,7 +250,7 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
             let fail = |e: std::io::Error| Error::file(Some("out"), "<stdout>", e);
             writeln!(w, "{}", COLUMNS.join(",")).map_err(fail)?;
             for r in rows {
-                let v = values(r);
+                let v = r.values();
                 writeln!(
                     w,
                     "{:?},{:?},{:?},{:?},{:?},{:?}",

@@ -8,16 +8,12 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
-use v2ref::conformance::truth::{
-    default_reference_blocks, reference_rows_per_block, truth, TruthSize,
-};
+use v2ref::commands::synth::{synthesize, SetSize};
+use v2ref::conformance::sidecar::Sidecar;
+use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
 use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
-
-/// Units generated at once while streaming (memory ≈ this × 8192 rows).
-const STREAM_BATCH_UNITS: u64 = 8;
 
 /// Flags of `synth`.
 #[derive(Debug, clap::Args)]
@@ -117,66 +113,34 @@ pub fn write_set(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Sidecar> {
     let stem = Stem::new(out)?;
-    let inputs = &model.inputs;
-    let size = TruthSize {
-        rows: spec.rows,
-        seed: spec.seed,
-        reference_blocks: spec.reference_blocks,
-        threads: spec.threads,
-    };
-    let truth = truth(model, size, progress)?;
-    let set = model.rows(spec.rows, spec.seed, spec.threads)?;
-    let continuum = &model.signal.continuum;
-    let mut npy = NpyRowWriter::create(&stem.npy, spec.rows, inputs.samples, "out")?;
+    let samples = model.inputs.samples;
+    let mut npy = NpyRowWriter::create(&stem.npy, spec.rows, samples, "out")?;
     let mut csv = if spec.csv {
         Some(CsvRowWriter::create(
-            &stem.csv,
-            spec.rows,
-            inputs.samples,
-            None,
-            "out",
+            &stem.csv, spec.rows, samples, None, "out",
         )?)
     } else {
         None
     };
-    let mut shifted = Vec::new();
-    set.stream(spec.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
-        let rows: &[f64] = if spec.keep_continuum {
-            shifted.clear();
-            shifted.extend(
-                block
-                    .iter()
-                    .zip(continuum.iter().cycle())
-                    .map(|(m, c)| m + c),
-            );
-            &shifted
-        } else {
-            block
-        };
+    let size = SetSize {
+        rows: spec.rows,
+        seed: spec.seed,
+        reference_blocks: spec.reference_blocks,
+        threads: spec.threads,
+        keep_continuum: spec.keep_continuum,
+    };
+    let names = (
+        stem.file_name(&stem.npy),
+        spec.csv.then(|| stem.file_name(&stem.csv)),
+    );
+    let mut sink = |rows: &[f64]| -> Result<()> {
         npy.write_rows(rows)?;
         if let Some(c) = csv.as_mut() {
             c.write_rows(rows)?;
         }
-        progress((block.len() / inputs.samples) as u64);
-        Ok::<(), Error>(())
-    })?;
-    let sidecar = Sidecar {
-        format: FORMAT.to_owned(),
-        version: env!("CARGO_PKG_VERSION").to_owned(),
-        data: DataFiles {
-            npy: stem.file_name(&stem.npy),
-            csv: spec.csv.then(|| stem.file_name(&stem.csv)),
-            rows: spec.rows,
-            samples: inputs.samples,
-        },
-        seed: spec.seed,
-        continuum_subtracted: !spec.keep_continuum,
-        sample_opd_um: model.sample_opd_um(),
-        continuum_photons: continuum.clone(),
-        mean_counts_photons: model.signal.mean_counts(),
-        inputs: inputs.clone(),
-        truth,
+        Ok(())
     };
+    let sidecar = synthesize(model, &size, names, &mut sink, progress)?;
     let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
         path: stem.json.display().to_string(),
         reason: e.to_string(),

@@ -8,14 +8,6 @@ pub mod bias;
 pub mod piston;
 pub mod plan;
 pub mod snr;
+pub mod synth;
 
-/// The columns of `estimate`'s answer, in order (the CLI's CSV header,
-/// Python's `ESTIMATE_COLUMNS`).
-pub const ESTIMATE_COLUMNS: [&str; 6] = [
-    "v1_sq_raw",
-    "v2_sq_raw",
-    "v1_sq_bias",
-    "v2_sq_bias",
-    "v1_sq",
-    "v2_sq",
-];
+pub use crate::simulator::estimate::ESTIMATE_COLUMNS;

@@ -77,7 +77,31 @@ pub struct RowEstimate {
     pub v2_sq: f64,
 }
 
+/// The columns of a row's estimates, in the order of
+/// [`RowEstimate::values`] (the CLI's CSV header, Python's
+/// `ESTIMATE_COLUMNS`).
+pub const ESTIMATE_COLUMNS: [&str; 6] = [
+    "v1_sq_raw",
+    "v2_sq_raw",
+    "v1_sq_bias",
+    "v2_sq_bias",
+    "v1_sq",
+    "v2_sq",
+];
+
 impl RowEstimate {
+    /// The six values in [`ESTIMATE_COLUMNS`] order.
+    pub fn values(&self) -> [f64; 6] {
+        [
+            self.v1_sq_raw,
+            self.v2_sq_raw,
+            self.v1_sq_bias,
+            self.v2_sq_bias,
+            self.v1_sq,
+            self.v2_sq,
+        ]
+    }
+
     fn new(raw: Pair, bias: Pair, calibration: Pair) -> RowEstimate {
         RowEstimate {
             v1_sq_raw: raw.v1_sq,

@@ -3,11 +3,10 @@
 
 use super::data::{check_finite, data_error, estimate_column, matrix, parse_sidecar};
 use super::{convention, formula, json, window};
+use crate::commands::synth::{self as synth_set, SetSize};
 use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::conformance::score::score_report;
-use crate::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
-use crate::conformance::truth::{truth, TruthSize};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::formalism::estimator::{BinWindow, Pair};
 use crate::noise::calibrated::Trials;
 use crate::python::inputs::Physical;
@@ -19,9 +18,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
-
-/// Units generated at once while streaming.
-const STREAM_BATCH_UNITS: u64 = 8;
 
 use crate::commands::ESTIMATE_COLUMNS;
 
@@ -190,14 +186,7 @@ fn calibrator_rows<'a>(c: &'a PyReadonlyArray2<'_, f64>, cols: usize) -> PyResul
 fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Bound<'py, PyDict>> {
     let mut columns: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(rows.len()));
     for e in rows {
-        for (c, v) in columns.iter_mut().zip([
-            e.v1_sq_raw,
-            e.v2_sq_raw,
-            e.v1_sq_bias,
-            e.v2_sq_bias,
-            e.v1_sq,
-            e.v2_sq,
-        ]) {
+        for (c, v) in columns.iter_mut().zip(e.values()) {
             c.push(v);
         }
     }
@@ -235,48 +224,20 @@ pub(super) fn synthesize<'py>(
     ))?;
     let model = ok(Model::new(&inputs))?;
     let n = inputs.samples;
+    let size = SetSize {
+        rows,
+        seed,
+        reference_blocks,
+        threads,
+        keep_continuum,
+    };
     let (data, sidecar) = interruptible(py, |tick| {
-        let size = TruthSize {
-            rows,
-            seed,
-            reference_blocks,
-            threads,
-        };
-        let truth = truth(&model, size, tick)?;
-        let set = model.rows(rows, seed, threads)?;
-        let continuum = &model.signal.continuum;
         let mut data: Vec<f64> = Vec::with_capacity(rows as usize * n);
-        set.stream(threads, STREAM_BATCH_UNITS, |block: &[f64]| {
-            if keep_continuum {
-                data.extend(
-                    block
-                        .iter()
-                        .zip(continuum.iter().cycle())
-                        .map(|(m, c)| m + c),
-                );
-            } else {
-                data.extend_from_slice(block);
-            }
-            tick((block.len() / n) as u64);
-            Ok::<(), Error>(())
-        })?;
-        let sidecar = Sidecar {
-            format: FORMAT.to_owned(),
-            version: env!("CARGO_PKG_VERSION").to_owned(),
-            data: DataFiles {
-                npy,
-                csv: None,
-                rows,
-                samples: n,
-            },
-            seed,
-            continuum_subtracted: !keep_continuum,
-            sample_opd_um: model.sample_opd_um(),
-            continuum_photons: continuum.clone(),
-            mean_counts_photons: model.signal.mean_counts(),
-            inputs: inputs.clone(),
-            truth,
+        let mut sink = |block: &[f64]| -> Result<()> {
+            data.extend_from_slice(block);
+            Ok(())
         };
+        let sidecar = synth_set::synthesize(&model, &size, (npy, None), &mut sink, tick)?;
         Ok((data, sidecar))
     })?;
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
