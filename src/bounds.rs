@@ -69,6 +69,26 @@ pub const PLAN_SIGMA_V2_MIN: f64 = 1e-9;
 /// piston variance ∝ r0^(−5/3) heads for the floating-point limit.
 pub const SEEING_MAX_ARCSEC: f64 = 100.0;
 
+/// Shortest and longest wavelength at which a seeing may be quoted, µm:
+/// site monitors measure it in the visible (0.5 µm) or the near infrared,
+/// where the λ^(−1/5) law that converts it holds; a seeing "at" 1 nm or
+/// 10 cm describes no measurement.
+pub const SEEING_WAVELENGTH_MIN_UM: f64 = 0.3;
+/// See [`SEEING_WAVELENGTH_MIN_UM`] (the N band's long end, rounded up).
+pub const SEEING_WAVELENGTH_MAX_UM: f64 = 30.0;
+
+/// Checks the wavelength at which a seeing is quoted (µm):
+/// [`SEEING_WAVELENGTH_MIN_UM`] to [`SEEING_WAVELENGTH_MAX_UM`].
+pub fn check_seeing_wavelength_um(wavelength_um: f64) -> Result<f64> {
+    error::finite("seeing_wavelength_um", wavelength_um)?;
+    check(
+        "seeing_wavelength_um",
+        wavelength_um,
+        SEEING_WAVELENGTH_MIN_UM,
+        SEEING_WAVELENGTH_MAX_UM,
+    )
+}
+
 /// Checks a seeing (arcsec): `0 <= seeing <=` [`SEEING_MAX_ARCSEC`]
 /// (0: no turbulence).
 pub fn check_seeing_arcsec(seeing_arcsec: f64) -> Result<f64> {

@@ -165,7 +165,11 @@ pub const PARAMETERS: [Parameter; 24] = [
     p("fringe_hz", "Hz", "1e-3 to 1e7"),
     p("wind_mps", "m/s", "> 0 to 343"),
     p("seeing_arcsec", "arcsec", "0 to 100"),
-    p("seeing_wavelength_um", "um", "0.001 to 100000"),
+    p(
+        "seeing_wavelength_um",
+        "um",
+        "0.3 to 30 (or the observing wavelength)",
+    ),
     p("aperture_m", "m", "> 0"),
     p("outer_scale_m", "m", "> 0"),
     p("sub_samples", "", "1 to 64"),

@@ -381,3 +381,74 @@ fn cli_plan_from_a_magnitude_echoes_the_photometry() {
     ]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// Every null of a plan point comes with its reason in words
+/// (`why_null`), in target mode (reachable or not) and in budget mode
+/// (a budget that fits scans, and one that fits none); and the table says
+/// what its "-" stands for.
+#[test]
+fn every_null_of_a_plan_has_its_reason_in_words() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "plan",
+            "--fringe-hz",
+            "300",
+            "--stroke-um",
+            "16",
+            "--scans",
+            "200",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    // (flags, the reason's words, whether the table shows a "-").
+    let cases: [(&[&str], &str, bool); 4] = [
+        (&[], "time budget reaches", true),
+        (&["--target-sigma-v2", "1e-9"], "unreachable", true),
+        (
+            &["--time-budget-s", "3600"],
+            "they are the times to a target",
+            false,
+        ),
+        (
+            &["--time-budget-s", "5e-324"],
+            "shorter than one scan",
+            true,
+        ),
+    ];
+    for (extra, words, dash) in cases {
+        let mut json_args = extra.to_vec();
+        json_args.push("--json");
+        let v: serde_json::Value = serde_json::from_str(&run(&json_args)).unwrap();
+        for p in v["points"].as_array().unwrap() {
+            let nulls: Vec<&String> = p
+                .as_object()
+                .unwrap()
+                .iter()
+                .filter(|(k, x)| x.is_null() && k.as_str() != "why_null")
+                .map(|(k, _)| k)
+                .collect();
+            let why = p["why_null"].as_str().unwrap_or("");
+            assert!(why.contains(words), "{extra:?}: {why}");
+            for k in nulls {
+                assert!(
+                    why.contains(k.as_str()),
+                    "{extra:?}: {k} null, reason: {why}"
+                );
+            }
+        }
+        let table = run(extra);
+        let explained = table.contains("  -: ") && table.contains(words);
+        assert_eq!(explained, dash, "{extra:?}: {table}");
+    }
+}

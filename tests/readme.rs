@@ -76,9 +76,18 @@ fn readme_commands_run_as_written() {
         }
         if sub == "score" {
             // The user's pipeline writes est.csv: stand in with v2ref's own
-            // estimates (the next README command), then score them.
+            // estimates (the next README command), then score them (again
+            // before each score: --force, as the file is the stand-in's own).
             run(
-                &["estimate", "--sidecar", "set.json", "--out", "est.csv"].map(String::from),
+                &[
+                    "estimate",
+                    "--sidecar",
+                    "set.json",
+                    "--out",
+                    "est.csv",
+                    "--force",
+                ]
+                .map(String::from),
                 dir.path(),
             );
         }

@@ -65,6 +65,8 @@ const CASES: &[Case] = &[
     case("overwrite", &["golden", "--update", "--dir", "file.txt"], Refused("--dir", "not a folder")),
     // --- meaningless: inputs where no result has a meaning.
     case("meaningless", &["estimate", "--input", "zeros.npy"], Refused("--input", "no light")),
+    case("meaningless", &["piston", "--seeing-arcsec", "100", "--seeing-wavelength-um", "0.001", "--scans", "10"], Refused("--seeing-wavelength-um", "0.3 to 30")),
+    case("meaningless", &["plan", "--seeing-wavelength-um", "1e5", "--scans", "64"], Refused("--seeing-wavelength-um", "0.3 to 30")),
     case("meaningless", &["estimate", "--input", "zeros.csv"], Refused("--input", "no light")),
     case("meaningless", &["estimate", "--input", "good.npy", "--calibrator", "zeros.npy"], Refused("--calibrator", "no light")),
     case("meaningless", &["simulate", "--trials", "2"], Refused("--trials", "at least 4")),

@@ -118,7 +118,7 @@ pub struct TurbulenceArgs {
     #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
     /// Wavelength at which --seeing-arcsec is quoted, µm (site monitors
-    /// quote 0.5), 0.001 to 100000; converted to the observing wavelength
+    /// quote 0.5), 0.3 to 30 (where seeing is measured); converted to the observing wavelength
     /// by r0 ∝ λ^(6/5) [default: the observing wavelength --wavelength-um].
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_wavelength_um: Option<f64>,

@@ -327,7 +327,13 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
             terms(p, plan.confidence);
             corrections(inputs, p);
         }
-        None => outln!("no setting of the grid reaches the {target}: the piston bias exceeds it everywhere; see the rows below"),
+        None => outln!(
+            "no recommendation ({target}): {}",
+            plan.no_v1_reason
+                .as_deref()
+                .or(plan.no_v2_reason.as_deref())
+                .unwrap_or("see the rows below")
+        ),
     }
     for (e, best, reason) in [
         (Estimator::V1, &plan.best_v1, &plan.no_v1_reason),
@@ -376,7 +382,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
         "time",
         "sigma_reach"
     );
-    for p in rows {
+    for p in &rows {
         let count = p.scans_needed.map_or("-".into(), |n| format!("{n:.0}"));
         let time = p.time_s.map_or("-".into(), human_duration);
         let reach = p.sigma_reached.map_or("-".into(), |s| format!("{s:.2e}"));
@@ -393,6 +399,21 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
             time,
             reach
         );
+    }
+    // What a "-" in the table stands for, once per reason shown.
+    let mut reasons: Vec<&str> = Vec::new();
+    for p in &rows {
+        if let Some(r) = p
+            .why_null
+            .filter(|_| p.scans_needed.is_none() || p.sigma_reached.is_none())
+        {
+            if !reasons.contains(&r) {
+                reasons.push(r);
+            }
+        }
+    }
+    for r in reasons {
+        outln!("  -: {r}");
     }
     if plan.points.is_empty() {
         return Err(Error::Invalid {

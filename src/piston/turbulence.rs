@@ -116,12 +116,11 @@ pub fn r0_from_seeing_m(seeing_arcsec: f64, wavelength_um: f64) -> Result<f64> {
 pub fn seeing_at_wavelength_arcsec(seeing_arcsec: f64, from_um: f64, to_um: f64) -> Result<f64> {
     crate::bounds::check_seeing_arcsec(seeing_arcsec)?;
     crate::bounds::check_wavelength_um(to_um)?;
-    crate::bounds::check(
-        "seeing_wavelength_um",
-        from_um,
-        crate::bounds::WAVELENGTH_MIN_UM,
-        crate::bounds::WAVELENGTH_MAX_UM,
-    )?;
+    if from_um != to_um {
+        // Quoted elsewhere than the observing wavelength: where seeing is
+        // measured (at the observing wavelength itself any band is fine).
+        crate::bounds::check_seeing_wavelength_um(from_um)?;
+    }
     Ok(seeing_arcsec * (to_um / from_um).powf(-0.2))
 }
 

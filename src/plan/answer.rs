@@ -117,6 +117,12 @@ pub fn no_recommendation_reason(plan: &Plan, e: Estimator) -> Option<String> {
         return None;
     }
     let ours = || plan.points.iter().filter(|p| p.estimator == e);
+    if ours().all(|p| p.why_null == Some(super::reach::SHORT_BUDGET)) {
+        return Some(format!(
+            "no setting of the grid: {}",
+            super::reach::SHORT_BUDGET
+        ));
+    }
     let least_bias = ours()
         .map(|p| p.bias_piston_upper)
         .fold(f64::INFINITY, f64::min);

@@ -203,13 +203,16 @@ pub struct PlanPoint {
     /// |bandwidth and dispersion bias| / target σ: above 1, the user must
     /// correct it (it is deterministic) to reach the target.
     pub bandwidth_bias_over_target: f64,
-    /// |finite scan and detector bias| / target σ.
+    /// |finite scan and detector bias| / target σ (in budget mode both
+    /// ratios are to the σ reached).
     pub scan_bias_over_target: f64,
     /// The V² error from the uncertainty of the source diameter
     /// (`diameter_err_mas`), |dV²/dθ|·δθ at the monochromatic visibility.
     pub v_sq_error_from_diameter: f64,
     /// σ(V²) reached in the time budget (budget mode).
     pub sigma_reached: Option<f64>,
+    /// Why this point's null fields are null, in words (None: none is).
+    pub why_null: Option<&'static str>,
 }
 
 /// The plan.
@@ -407,6 +410,7 @@ fn grid_point(
             scan_bias_over_target: bias_scan_detector.abs() / target,
             v_sq_error_from_diameter: diameter_error,
             sigma_reached: None,
+            why_null: None,
         };
         let lower = Bounds {
             sigma_piston: (piston.std - t_factor * piston.stderr_std).max(0.0),

@@ -4,6 +4,18 @@
 
 use super::{Estimator, PlanInputs, PlanPoint, Target, ONE_NIGHT_S};
 
+/// Why a target-mode point has no scans or time.
+pub const UNREACHABLE: &str = "unreachable: the piston bias (upper end of its interval) is at or above the target sigma(V^2), so no number of scans reaches it: scans_needed and time_s are null (and time_lower_s where even the lower end of the bias is at or above the target), and sigma_reached is the sigma(V^2) a time budget reaches";
+
+/// Why a reachable target-mode point has `sigma_reached` null.
+pub const TARGET_MODE: &str = "sigma_reached is null: it is the sigma(V^2) a time budget reaches, and this plan has a target instead";
+
+/// Why a budget-mode point has the lower and noise-only times null.
+pub const BUDGET_MODE: &str = "time_lower_s and time_noise_only_s are null: they are the times to a target sigma(V^2), and this plan has a time budget instead";
+
+/// Why a budget-mode point has no scans at all.
+pub const SHORT_BUDGET: &str = "the time budget is shorter than one scan and its dead time: no scan fits, so scans_needed, time_s and sigma_reached are null, time_lower_s and time_noise_only_s are times to a target sigma(V^2) (this plan has a budget), and the biases have no sigma to be compared with (bandwidth_bias_over_target, scan_bias_over_target null)";
+
 /// The lower ends of the piston terms' intervals.
 pub(super) struct Bounds {
     pub(super) sigma_piston: f64,
@@ -36,6 +48,11 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
             p.time_noise_only_s =
                 scans_for(target, p.sigma_noise_per_scan, 0.0).map(|n| n * per_scan_s);
             p.exceeds_one_night = p.time_s.is_some_and(|t| t > ONE_NIGHT_S);
+            p.why_null = Some(if upper.is_some() {
+                TARGET_MODE
+            } else {
+                UNREACHABLE
+            });
         }
         Target::TimeBudgetS(budget) => {
             let n = (budget / per_scan_s).floor();
@@ -46,6 +63,13 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
                 p.scans_needed = Some(n);
                 p.time_s = Some(n * per_scan_s);
                 p.exceeds_one_night = n * per_scan_s > ONE_NIGHT_S;
+                // The biases to correct, against the σ the budget reaches.
+                let reached = p.sigma_reached.unwrap_or(f64::NAN);
+                p.bandwidth_bias_over_target = p.bias_bandwidth_dispersion.abs() / reached;
+                p.scan_bias_over_target = p.bias_scan_detector.abs() / reached;
+                p.why_null = Some(BUDGET_MODE);
+            } else {
+                p.why_null = Some(SHORT_BUDGET);
             }
         }
     }
