@@ -79,7 +79,7 @@ pub struct ScanArgs {
     #[arg(long, default_value = "0.5", value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
     /// Number of samples N (ignored when --stroke-um is given). The finite
-    /// scan costs about N² (N = 16384: half a minute).
+    /// scan costs about N² (N = 16384: about 10 s on two cores).
     #[arg(long, value_parser = super::count_usize, default_value = "128", allow_negative_numbers = true)]
     pub samples: usize,
     /// Integrating detector (each sample averages the fringe over δx).

@@ -138,6 +138,18 @@ pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
     });
 }
 
+/// Before a run whose cost follows a known law (not a count of steps a bar
+/// can time): when `predicted_s` exceeds [`COST_NOTICE_S`], says so once on
+/// stderr with the law it comes from, before any work.
+pub fn announce_cost(what: &str, predicted_s: f64, law: &str) {
+    if predicted_s > COST_NOTICE_S {
+        write_stderr_line(format_args!(
+            "note: {what}: predicted about {} ({law}); Ctrl-C stops it",
+            duration_words(predicted_s)
+        ));
+    }
+}
+
 /// A duration in words: seconds, minutes, hours or days.
 fn duration_words(s: f64) -> String {
     match s {

@@ -335,3 +335,40 @@ fn a_long_run_says_how_long_before_it_has_gone_far() {
         "{stderr}"
     );
 }
+
+/// A run whose cost follows a known law (the finite scan's N²) says how
+/// long it will take before it starts, whether or not stderr is a
+/// terminal; a short one says nothing.
+#[test]
+fn a_finite_scan_states_its_predicted_cost_before_it_starts() {
+    let dir = workspace();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["bias", "--finite-scan", "--samples", "262144"])
+        .current_dir(dir.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let _ = child.kill();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // 262144 = 16 × 16384: 256 × 10.2 s ≈ 44 min.
+    assert!(
+        stderr.contains("note: bias: the finite scan of 262144 samples: predicted about 44 min")
+            && stderr.contains("N²")
+            && stderr.contains("Ctrl-C"),
+        "{stderr}"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["bias", "--finite-scan", "--samples", "1024"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
