@@ -4,15 +4,22 @@
 //! is available.)
 
 use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::claims::{evaluate, ledger, Status};
+use v2ref::reproduction::claims::{evaluate, ledger, ClaimResult, Status};
 use v2ref::tolerance::ROUNDING_REL;
 use v2ref::{assert_abs_eq, assert_rel_eq};
 
+/// The claims at quick effort, evaluated once for every test of the suite
+/// that reads them (8 s each time).
+pub(crate) fn quick_claims() -> &'static [ClaimResult] {
+    static CLAIMS: std::sync::OnceLock<Vec<ClaimResult>> = std::sync::OnceLock::new();
+    CLAIMS.get_or_init(|| evaluate(Effort::Quick))
+}
+
 #[test]
 fn every_claim_is_answered_honestly() {
-    let results = evaluate(Effort::Quick);
+    let results = quick_claims();
     assert_eq!(results.len(), ledger().len());
-    for r in &results {
+    for r in results {
         assert!(!r.note.is_empty(), "{}: no note", r.id);
         match r.status {
             Status::Reproduced => {
@@ -49,7 +56,7 @@ fn every_claim_is_answered_honestly() {
 
 #[test]
 fn foundation_claims_are_computed() {
-    let results = evaluate(Effort::Quick);
+    let results = quick_claims();
     let get = |id: &str| results.iter().find(|r| r.id == id).unwrap();
     for id in [
         "formalism.fringe_count",

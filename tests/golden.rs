@@ -128,7 +128,12 @@ fn every_kind_of_difference_is_reported() {
     );
 }
 
+/// The CLI's figure check at full effort (22 s: the slow tier). Its
+/// comparison is the library's, tested on toy figures above and on the real
+/// ones by `golden_data_matches_the_code`; the CLI's reporting of a mismatch
+/// is tested quickly on the vectors (tests/conformance_cli.rs).
 #[test]
+#[ignore = "slow tier: every figure at full effort through the CLI (22 s)"]
 fn cli_check_names_each_mismatch_and_exits_non_zero() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("golden");
@@ -163,7 +168,13 @@ fn cli_check_names_each_mismatch_and_exits_non_zero() {
         stderr.contains("fig1_v1") && stderr.contains("row 101"),
         "{stderr}"
     );
+    crate::cli::assert_no_duplicate_keys(&["golden", "--check", "--only", "figures"], &{
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    });
+}
 
+#[test]
+fn golden_needs_exactly_one_of_check_and_update() {
     // Neither or both flags: bad input, one line, status 2.
     for args in [vec!["golden"], vec!["golden", "--check", "--update"]] {
         let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -176,4 +187,41 @@ fn cli_check_names_each_mismatch_and_exits_non_zero() {
             1
         );
     }
+}
+
+/// The CLI's check names a mismatching file and exits 1 (the vectors: 3 s,
+/// where the figures take 22 s; the two share the report and its printing).
+#[test]
+fn cli_check_of_the_vectors_names_the_mismatch_and_exits_1() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("golden");
+    std::fs::create_dir_all(dir.join("vectors")).unwrap();
+    for sub in ["", "vectors"] {
+        for e in std::fs::read_dir(golden_dir().join(sub)).unwrap() {
+            let e = e.unwrap();
+            if e.path().is_file() {
+                std::fs::copy(e.path(), dir.join(sub).join(e.file_name())).unwrap();
+            }
+        }
+    }
+    // One bit of the last sample of one vector set.
+    let path = dir.join("vectors").join("dispersion.npy");
+    let mut bytes = std::fs::read(&path).unwrap();
+    *bytes.last_mut().unwrap() ^= 1;
+    std::fs::write(&path, bytes).unwrap();
+
+    let args = ["golden", "--check", "--only", "vectors", "--json", "--dir"];
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(args)
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    crate::cli::assert_no_duplicate_keys(&args, &stdout);
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(json["mismatched"], 1, "{json}");
+    assert_eq!(json["mismatches"][0]["table"], "vectors/dispersion.npy");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("vectors/dispersion.npy"), "{stderr}");
 }

@@ -2,13 +2,12 @@
 //! user runs, at the quick effort; errata carry both values.
 
 use v2ref::assert_abs_eq;
-use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::claims::{evaluate, Status};
+use v2ref::reproduction::claims::Status;
 use v2ref::tolerance::{PRINTED_2_DECIMALS_ABS, VISIBILITY_SCALING_REL};
 
 #[test]
 fn every_piston_claim_is_answered() {
-    let all = evaluate(Effort::Quick);
+    let all = crate::claims::quick_claims();
     let piston: Vec<_> = all.iter().filter(|c| c.id.starts_with("piston.")).collect();
     assert!(piston.len() >= 18, "{} piston claims", piston.len());
     for c in &piston {

@@ -5,6 +5,11 @@
 //! following fails here. Skipped, with the test that covers each: the full
 //! `reproduce` (tests/reproduce.rs, CI's reproduction diff), `claims`
 //! (tests/claims.rs), `golden` (tests/golden.rs).
+//!
+//! The README's `plan` examples search the default grid (80 points, 17 s of
+//! piston Monte Carlo each): the quick tier runs them on 6 points of that
+//! grid ([`SMALL_GRID`], same flags otherwise, so the same power against a
+//! renamed flag or a moved file); the slow tier runs them as written.
 
 use std::path::Path;
 use std::process::Command;
@@ -56,8 +61,30 @@ fn run(args: &[String], dir: &Path) {
     );
 }
 
+/// Appended to the README's `plan` commands in the quick tier: 3 fringe
+/// frequencies by 2 strokes of the default grid instead of 20 by 4.
+const SMALL_GRID: &[&str] = &[
+    "--fringe-hz",
+    "100:1000:3:log",
+    "--stroke-um",
+    "32",
+    "--stroke-um",
+    "128",
+];
+
 #[test]
+fn readme_commands_run_with_a_small_plan_grid() {
+    run_readme_commands(SMALL_GRID);
+}
+
+#[test]
+#[ignore = "slow tier: the README's three plans on the full default grid (55 s)"]
 fn readme_commands_run_as_written() {
+    run_readme_commands(&[]);
+}
+
+/// Runs the README's commands in order, `plan_extra` appended to each `plan`.
+fn run_readme_commands(plan_extra: &[&str]) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
     let commands = readme_commands(&readme);
@@ -91,7 +118,11 @@ fn readme_commands_run_as_written() {
                 dir.path(),
             );
         }
-        run(args, dir.path());
+        let mut args = args.clone();
+        if sub == "plan" {
+            args.extend(plan_extra.iter().map(|a| a.to_string()));
+        }
+        run(&args, dir.path());
         ran.push(sub.to_owned());
     }
     for sub in [

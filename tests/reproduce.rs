@@ -6,6 +6,19 @@ use std::process::Command;
 fn quick_reproduction_writes_every_expected_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("repro");
+    // The folder is one v2ref wrote (its marker inside): it is replaced, and
+    // the leftovers of a killed run go (tests/robustness_cli.rs: a user's
+    // folder is refused).
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join(".v2ref-output"), "written by v2ref\n").unwrap();
+    std::fs::write(out.join("old.csv"), "stale\n").unwrap();
+    let stale = dir.path().join(".repro.tmp-4000000000");
+    std::fs::create_dir(&stale).unwrap();
+    std::fs::write(
+        stale.join(".v2ref-temporary"),
+        "a temporary folder of v2ref; removed when its run is gone\n",
+    )
+    .unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_v2ref"))
         .args(["reproduce", "--quick", "--quiet", "--json", "--out"])
         .arg(&out)
@@ -16,7 +29,11 @@ fn quick_reproduction_writes_every_expected_file() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let answer: serde_json::Value = serde_json::from_slice(&run.stdout).expect("JSON answer");
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    crate::cli::assert_no_duplicate_keys(&["reproduce", "--quick", "--json"], &stdout);
+    let answer: serde_json::Value = serde_json::from_str(&stdout).expect("JSON answer");
+    assert!(out.join(".v2ref-output").is_file());
+    assert!(!out.join("old.csv").exists(), "the old content stayed");
 
     // Every figure, each table as CSV (with the header its metadata declares) and SVG.
     for id in ["fig0", "fig1", "fig2", "fig3", "fig4", "fig5"] {
@@ -102,7 +119,7 @@ fn quick_reproduction_writes_every_expected_file() {
     }
     let md = std::fs::read_to_string(out.join("fig5_sensitivity.md")).unwrap();
     assert_eq!(md.matches("| three-slope |").count(), 12);
-    // No staging directory is left behind.
+    // No staging directory is left behind, and the killed run's is gone.
     let leftovers: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name())

@@ -423,7 +423,11 @@ fn an_unwritable_stderr_does_not_panic() {
     }
 }
 
+/// A reader that closes its pipe while the command computes (`claims`
+/// computes for 40 s before it prints: the slow tier; a reader gone before
+/// a quick answer is tests/robustness_files/status.rs).
 #[test]
+#[ignore = "slow tier: the full claims (40 s) behind a closed pipe"]
 fn a_reader_that_closes_early_ends_with_74_and_no_message() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
         .args(["claims"])
@@ -442,30 +446,12 @@ fn a_reader_that_closes_early_ends_with_74_and_no_message() {
     );
 }
 
+/// A user's folder is refused and kept (that `reproduce` replaces a folder
+/// it wrote and removes a killed run's temporaries is checked with the run
+/// of tests/reproduce.rs: a quick reproduction costs 10 s).
 #[test]
-fn reproduce_leaves_a_users_folder_alone_and_replaces_its_own() {
+fn reproduce_leaves_a_users_folder_alone() {
     let dir = workspace();
-    // A folder v2ref wrote (its marker inside) is replaced...
-    let own = dir.path().join("own");
-    std::fs::create_dir(&own).unwrap();
-    std::fs::write(own.join(".v2ref-output"), "written by v2ref\n").unwrap();
-    std::fs::write(own.join("old.csv"), "stale\n").unwrap();
-    // ...as is an empty one, and the leftovers of a killed run go.
-    let stale = dir.path().join(".own.tmp-4000000000");
-    std::fs::create_dir(&stale).unwrap();
-    std::fs::write(
-        stale.join(".v2ref-temporary"),
-        "a temporary folder of v2ref; removed when its run is gone\n",
-    )
-    .unwrap();
-    let (code, _, stderr) = run_in(
-        dir.path(),
-        &["reproduce", "--quick", "--out", "own", "--quiet"],
-    );
-    assert_eq!(code, 0, "{stderr}");
-    assert!(own.join(".v2ref-output").is_file());
-    assert!(!own.join("old.csv").exists(), "the old content stayed");
-    assert!(!stale.exists(), "a killed run's temporary folder stayed");
     // A user's folder is refused, and kept, unless --force.
     let before = snapshot(&dir.path().join("keep"));
     let (code, _, stderr) = run_in(dir.path(), &["reproduce", "--quick", "--out", "keep"]);

@@ -132,18 +132,23 @@ fn a_full_stdout_is_74_for_every_writer() {
     }
 }
 
+/// A reader gone before the first write: stdout is a socket whose other
+/// end is closed before the command starts (a pipe's read end closed after
+/// the spawn races with a command that answers at once: under load the
+/// answer was sometimes written first, and the test failed with status 0).
 #[test]
 fn a_closed_stdout_is_74_without_a_message() {
     let dir = workspace();
     for args in [&["bias"][..], &["estimate", "--input", "good.npy"][..]] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        let (ours, theirs) = std::os::unix::net::UnixStream::pair().unwrap();
+        drop(ours);
+        let child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
             .args(args)
             .current_dir(dir.path())
-            .stdout(Stdio::piped())
+            .stdout(Stdio::from(std::os::fd::OwnedFd::from(theirs)))
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
-        drop(child.stdout.take());
         let out = child.wait_with_output().unwrap();
         assert_eq!(out.status.code(), Some(74), "{args:?}: {out:?}");
         assert!(

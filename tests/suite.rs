@@ -1,0 +1,76 @@
+//! The integration tests, one module per file of `tests/` and one test
+//! binary for them all: linked once instead of once per file (the build of
+//! the tests was mostly linking), and run together, so that a long test of
+//! one file overlaps with the others instead of holding the suite up.
+//!
+//! Run one file's tests with `cargo test --release --test suite -- NAME::`
+//! (for example `-- golden::`); the slow tier (tests marked
+//! `#[ignore = "slow tier: ..."]`) with `cargo test --release --test suite
+//! -- --ignored`. A new file of `tests/` is a module declared here (the test
+//! `every_file_of_tests_is_a_module_of_the_suite` fails otherwise: Cargo
+//! builds no other test binary, `autotests = false`).
+
+mod architecture;
+mod bias_bandwidth;
+mod bias_dispersion;
+mod bias_finite_scan;
+mod bias_line;
+mod bias_normalization;
+mod bias_snapshots;
+mod claims;
+mod cli;
+mod cli_noise;
+mod cli_piston;
+mod conformance_cli;
+mod conformance_files;
+mod conformance_score;
+mod conformance_truth;
+mod examples;
+mod fft;
+mod figures_render;
+mod foundation;
+mod golden;
+mod montecarlo_noise;
+mod noise;
+mod noise_calibrated;
+mod noise_mc;
+mod oifits;
+mod oifits_robustness;
+mod piston;
+mod piston_claims;
+mod piston_errors;
+mod piston_spectrum;
+mod plan;
+mod plan_cases;
+mod properties;
+mod readme;
+mod reproduce;
+mod robustness_cli;
+mod robustness_files;
+mod robustness_lib;
+mod robustness_readers;
+mod running_stats;
+mod simulator;
+mod special;
+mod spectral_estimators;
+mod spectrum_csv;
+mod turbulence;
+
+/// Cargo builds only this binary (`autotests = false` in Cargo.toml): a
+/// file of `tests/` not declared above would be silently skipped.
+#[test]
+fn every_file_of_tests_is_a_module_of_the_suite() {
+    let this = include_str!("suite.rs");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if let Some(module) = name.strip_suffix(".rs") {
+            if module != "suite" {
+                assert!(
+                    this.contains(&format!("\nmod {module};\n")),
+                    "tests/{name} is not declared in tests/suite.rs: its tests would not run"
+                );
+            }
+        }
+    }
+}
