@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Mutation testing of the numeric core, one area at a time, each with the
-# test binaries that verify it (docs/mutation.md, tests/README.md).
+# test files that verify it (docs/mutation.md, tests/README.md): modules of
+# the one test binary tests/suite.rs, chosen by libtest filters (`NAME::`).
 #
 #   scripts/mutants.sh AREA [AREA ...] [-- extra cargo-mutants options]
 #   scripts/mutants.sh all
@@ -27,10 +28,7 @@
 # .cargo/mutants.toml.
 set -euo pipefail
 
-# AREA -> "file globs | test binaries"
-# (an area whose tests do not run the v2ref binary is built without the
-# default "cli" feature: no binary to link and a fifth less of the crate to
-# compile per mutant; NEEDS_CLI lists the others)
+# AREA -> "file globs | test files (modules of tests/suite.rs)"
 declare -A AREAS=(
     [estimators]="src/formalism/estimator.rs|spectral_estimators foundation"
     [statistics]="src/montecarlo/statistics.rs|running_stats montecarlo_noise"
@@ -46,7 +44,6 @@ declare -A AREAS=(
     [piston_spectrum]="src/piston/spectrum.rs src/piston/transverse.rs|piston_spectrum turbulence piston"
     [fft]="src/math/fft.rs|fft"
 )
-NEEDS_CLI=" seeding turbulence piston_spectrum "
 
 # AREA -> tests (libtest name filters) left out of the first pass: each
 # takes 1–30 s at opt-level 0 where the rest of the area takes about one.
@@ -96,12 +93,14 @@ for area in "${areas[@]}"; do
         echo "unknown area '$area'; areas: ${ORDER[*]}" >&2
         exit 2
     fi
-    files=() tests=()
+    files=() filters=()
     for f in ${spec%%|*}; do files+=(--file "$f"); done
     # --cargo-arg, not "-- --test": cargo-mutants passes arguments after
-    # "--" to the test run only, and would build every test binary.
-    for t in ${spec##*|}; do tests+=(--cargo-arg="--test=$t"); done
-    [[ $NEEDS_CLI == *" $area "* ]] || tests+=(--cargo-arg=--no-default-features)
+    # "--" to the test run only, and would also build the library's unit
+    # tests and the examples. The suite needs the binary (the default
+    # features) as some of its files run it.
+    tests=(--cargo-arg=--test=suite)
+    for t in ${spec##*|}; do filters+=("$t::"); done
     echo "== $area: ${spec%%|*} with ${spec##*|}"
     out="mutants.out/$area"
     only=()
@@ -114,8 +113,7 @@ for area in "${areas[@]}"; do
     for t in ${SLOW[$area]:-}; do skips+=(--skip "$t"); done
     # cargo-mutants appends what follows its "--" to `cargo test`, so the
     # libtest filters need a second "--".
-    harness=()
-    [[ ${#skips[@]} -gt 0 ]] && harness=(-- -- "${skips[@]}")
+    harness=(-- -- "${filters[@]}" "${skips[@]}")
     cargo mutants "${files[@]}" "${tests[@]}" --output "$out" "${only[@]}" "$@" "${harness[@]}" || true
 
     missed="$out/mutants.out/missed.txt"
@@ -135,6 +133,6 @@ for area in "${areas[@]}"; do
                 *) rest+=("$a") ;;
             esac
         done
-        cargo mutants "${files[@]}" "${tests[@]}" --output "$out/full" --re "$re" "${rest[@]}" || true
+        cargo mutants "${files[@]}" "${tests[@]}" --output "$out/full" --re "$re" "${rest[@]}" -- -- "${filters[@]}" || true
     fi
 done

@@ -3,16 +3,33 @@
 //! claims as the steering ledger is checked by `.ci/run`, where that ledger
 //! is available.)
 
-use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::claims::{evaluate, ledger, ClaimResult, Status};
+use v2ref::reproduction::claims::{ledger, ClaimResult, Status};
 use v2ref::tolerance::ROUNDING_REL;
 use v2ref::{assert_abs_eq, assert_rel_eq};
 
-/// The claims at quick effort, evaluated once for every test of the suite
-/// that reads them (8 s each time).
+/// `v2ref claims --quick --json`, the code path a user runs (the CLI calls
+/// `evaluate(Effort::Quick)`), run once for every test of the suite that
+/// reads the claims: 10 s of Monte Carlo each time.
+pub(crate) fn quick_claims_json() -> &'static str {
+    static ANSWER: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    ANSWER.get_or_init(|| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args(["claims", "--quick", "--json"])
+            .output()
+            .expect("the binary runs");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).expect("UTF-8")
+    })
+}
+
+/// The claims of [`quick_claims_json`], read back.
 pub(crate) fn quick_claims() -> &'static [ClaimResult] {
     static CLAIMS: std::sync::OnceLock<Vec<ClaimResult>> = std::sync::OnceLock::new();
-    CLAIMS.get_or_init(|| evaluate(Effort::Quick))
+    CLAIMS.get_or_init(|| serde_json::from_str(quick_claims_json()).expect("the claims' JSON"))
 }
 
 #[test]

@@ -232,9 +232,15 @@ fn estimate_without_a_sidecar_and_with_a_calibrator_file() {
 fn vectors_regenerate_byte_for_byte() {
     let root = env!("CARGO_MANIFEST_DIR");
     let golden = format!("{root}/golden");
-    let (code, out, err) = v2ref(&["golden", "--check", "--only", "vectors", "--dir", &golden]);
+    let args = [
+        "golden", "--check", "--only", "vectors", "--json", "--dir", &golden,
+    ];
+    let (code, out, err) = v2ref(&args);
     assert_eq!(code, 0, "{out}{err}");
-    assert!(out.contains("0 mismatch"), "{out}");
+    crate::cli::assert_no_duplicate_keys(&args, &out);
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["mismatched"], 0, "{json}");
+    assert!(json["checked"].as_u64().unwrap() >= 19, "{json}");
 }
 
 fn assert_bad(args: &[&str], names: &[&str]) {

@@ -19,6 +19,11 @@ fn quick_reproduction_writes_every_expected_file() {
         "a temporary folder of v2ref; removed when its run is gone\n",
     )
     .unwrap();
+    // Named as a killed run's temporary, of a process that is gone, but
+    // without v2ref's marker inside: the user's, kept.
+    let users = dir.path().join(".repro.tmp-4000000001");
+    std::fs::create_dir(&users).unwrap();
+    std::fs::write(users.join("thesis.tex"), "mine\n").unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_v2ref"))
         .args(["reproduce", "--quick", "--quiet", "--json", "--out"])
         .arg(&out)
@@ -34,6 +39,12 @@ fn quick_reproduction_writes_every_expected_file() {
     let answer: serde_json::Value = serde_json::from_str(&stdout).expect("JSON answer");
     assert!(out.join(".v2ref-output").is_file());
     assert!(!out.join("old.csv").exists(), "the old content stayed");
+    assert!(!out.join(".v2ref-temporary").exists());
+    assert!(!stale.exists(), "v2ref's own leftover stayed");
+    assert!(
+        users.join("thesis.tex").is_file(),
+        "the user's folder was removed"
+    );
 
     // Every figure, each table as CSV (with the header its metadata declares) and SVG.
     for id in ["fig0", "fig1", "fig2", "fig3", "fig4", "fig5"] {
@@ -119,12 +130,18 @@ fn quick_reproduction_writes_every_expected_file() {
     }
     let md = std::fs::read_to_string(out.join("fig5_sensitivity.md")).unwrap();
     assert_eq!(md.matches("| three-slope |").count(), 12);
-    // No staging directory is left behind, and the killed run's is gone.
-    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+    // No staging directory is left behind, the killed run's is gone, the
+    // user's stays.
+    let mut leftovers: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(leftovers.len(), 1, "{leftovers:?}");
+    leftovers.sort();
+    assert_eq!(
+        leftovers,
+        [".repro.tmp-4000000001", "repro"],
+        "{leftovers:?}"
+    );
 }
 
 #[test]
