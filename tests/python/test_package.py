@@ -379,6 +379,7 @@ def test_threads_are_capped_as_the_cli_caps_them():
 
 
 @needs_cli
+@pytest.mark.slow  # two quick evaluations of every claim: 25 s
 def test_claims_equal_cli():
     want = json.loads(cli("claims", "--quick", "--json", "--quiet"))
     assert v2ref.claims(quick=True) == want
