@@ -186,7 +186,8 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
-        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        (the denominator of z_mean), z_mean, var, expected_var,
+        stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
     ...
