@@ -44,6 +44,27 @@ pub enum SourceKind {
     Ud,
 }
 
+/// Library parameter names (in errors, [`crate::Error::param`]) whose
+/// keyword is not the same name: the physical input or the edges' argument
+/// that sets them.
+const KEYWORD_OF_PARAM: &[(&str, &str)] = &[
+    ("spectrum", "spectrum_csv"),
+    ("peak_to_peak_rad", "dispersion_pp_rad"),
+    ("photons_per_sample", "photons"),
+    ("truth", "sidecar"),
+];
+
+/// The keyword that sets the library parameter `param` (the Python keyword
+/// argument; the CLI's flag is `--` and it with `_` as `-`): an entry of
+/// [`KEYWORD_OF_PARAM`], else `param` with `-` as `_`.
+pub fn keyword_of(param: &str) -> String {
+    let p = param.replace('-', "_");
+    KEYWORD_OF_PARAM
+        .iter()
+        .find(|(k, _)| *k == p)
+        .map_or(p, |(_, f)| (*f).to_owned())
+}
+
 /// The spatial frequency when neither it nor the baseline is given,
 /// cycles/arcsec: the paper's 18 m baseline in K.
 pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
@@ -52,7 +73,7 @@ pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 /// names are the Python keyword arguments and, with `_` as `-`, the CLI's
 /// flags (but `photon_noise`, which the CLI turns off with
 /// `--no-photon-noise`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Physical {
     /// Centre wavelength λ0, µm.
     pub wavelength_um: f64,

@@ -145,7 +145,7 @@ pub const PARAMETERS: [Parameter; 24] = [
     Parameter {
         name: "spatial_freq_cpas",
         unit: "cycles/arcsec",
-        accepted: "0 to 1e13",
+        accepted: "0 to 1e13 (and B = S/σ_eff at most 1e9 m)",
         what: "Spatial frequency S = B σ_eff",
         note: "",
         unset: "40, the paper's 18 m baseline in K (or from {baseline_m})",
@@ -172,9 +172,9 @@ pub const PARAMETERS: [Parameter; 24] = [
     Parameter {
         name: "stroke_um",
         unit: "µm",
-        accepted: "2 to 2^24 times {dx_um}",
+        accepted: "N = Δx/δx, rounded, from 2 to 2^24",
         what: "OPD stroke Δx",
-        note: "Sets N = Δx/δx.",
+        note: "",
         unset: "{samples} × {dx_um}",
         why: "",
     },
@@ -319,3 +319,166 @@ pub const PARAMETERS: [Parameter; 24] = [
         why: "",
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::{refer_to, Parameter, PARAMETERS};
+    use crate::parameters::{Physical, DEFAULT_SPATIAL_FREQ_CPAS};
+    use serde_json::json;
+
+    /// Every text names other inputs by declared names only, and an input
+    /// may be unset exactly where its field is an `Option` (unset by
+    /// default), the spatial frequency's default being the library's.
+    #[test]
+    fn texts_name_declared_inputs_and_unset_means_none() {
+        let defaults = serde_json::to_value(Physical::DEFAULT).unwrap();
+        let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
+        let fields: Vec<&String> = defaults.as_object().unwrap().keys().collect();
+        let mut sorted = names.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, fields);
+        for p in &PARAMETERS {
+            for text in [p.accepted, p.what, p.note, p.unset, p.why] {
+                refer_to(text, &|n| {
+                    assert!(names.contains(&n), "{}: {{{n}}}", p.name);
+                    String::new()
+                });
+            }
+            assert_eq!(
+                p.unset.is_empty(),
+                !defaults[p.name].is_null(),
+                "{}",
+                p.name
+            );
+            assert_eq!(p.is_flag(), defaults[p.name].is_boolean(), "{}", p.name);
+        }
+        let s = Parameter::named("spatial_freq_cpas").unset;
+        assert!(
+            s.starts_with(&format!("{DEFAULT_SPATIAL_FREQ_CPAS}, ")),
+            "{s}"
+        );
+    }
+
+    /// The bounds of `accepted` in words: (low, low included, high, high
+    /// included) for `[> ]A[ λ0] to [under ]B[ λ0][ (…)]`
+    /// and `> 0`, with λ0 the default's, in nm (the bandwidth's); None for
+    /// words of another form (a choice, a file, a rounded count).
+    fn bounds(p: &Parameter) -> Option<(f64, bool, f64, bool)> {
+        let d = Physical::DEFAULT;
+        // A condition in brackets bounds the high end elsewhere: not tested.
+        let (words, cond) = match p.accepted.split_once(" (") {
+            Some((w, _)) => (w, true),
+            None => (p.accepted, false),
+        };
+        let number = |w: &str| -> Option<f64> {
+            let (w, f) = match w.strip_suffix(" λ0") {
+                Some(w) => (w, d.wavelength_um * 1e3),
+                None => (w, 1.0),
+            };
+            let x = match w.split_once('^') {
+                Some((b, e)) => b.parse::<f64>().ok()?.powf(e.parse().ok()?),
+                None => w.parse().ok()?,
+            };
+            Some(x * f)
+        };
+        let (lo, hi) = words.split_once(" to ").unwrap_or((words, "inf"));
+        let (lo, lo_in) = lo.strip_prefix("> ").map_or((lo, true), |l| (l, false));
+        let (hi, hi_in) = hi.strip_prefix("under ").map_or((hi, true), |h| (h, false));
+        let hi = if cond { None } else { number(hi) };
+        Some((number(lo)?, lo_in, hi.unwrap_or(f64::INFINITY), hi_in))
+    }
+
+    /// `value` of the input `name` is refused by the library and names it
+    /// (Err), or accepted (Ok): the default configuration, with the piston
+    /// on and an integrating detector so that every input is checked.
+    fn probe(name: &str, value: f64) -> Result<(), String> {
+        let mut v = serde_json::to_value(Physical::DEFAULT).unwrap();
+        v["fringe_hz"] = json!(300.0);
+        v["integrating"] = json!(true);
+        v[name] = if value.fract() == 0.0 && name.contains("samples") {
+            json!(value as u64)
+        } else {
+            json!(value)
+        };
+        if name == "wavelength_um" {
+            // The band follows λ0, as a user's would.
+            v["bandwidth_nm"] = json!(value * 100.0);
+        }
+        if name.ends_with("wavelength_um") || name == "bandwidth_nm" {
+            // Four samples per shortest wavelength of the band.
+            let shortest =
+                v["wavelength_um"].as_f64().unwrap() - v["bandwidth_nm"].as_f64().unwrap() / 2e3;
+            v["dx_um"] = json!(shortest / 4.0);
+        }
+        let p: Physical = serde_json::from_value(v).unwrap();
+        match p.check().and_then(|()| p.inputs()) {
+            Ok(_) => Ok(()),
+            Err(e) if e.param().map(crate::parameters::keyword_of).as_deref() == Some(name) => {
+                Err(e.to_string())
+            }
+            Err(e) => panic!("{name} = {value}: refused for another input: {e}"),
+        }
+    }
+
+    /// The accepted range in words is the library's: each bound accepted
+    /// when included, and the values just beyond it refused naming the
+    /// input (a range stated wider or narrower than the checks fails).
+    #[test]
+    fn accepted_ranges_are_the_library_checks() {
+        let mut tested = Vec::new();
+        for p in &PARAMETERS {
+            let Some((lo, lo_in, hi, hi_in)) = bounds(p) else {
+                continue;
+            };
+            let count = p.name.contains("samples");
+            // A value just beyond `x` in the direction `dir`, and `x` itself
+            // nudged inward by its rounding.
+            let beyond = |x: f64, dir: f64| match count {
+                true => x + dir,
+                false => x + dir * (x.abs() * 1e-6).max(1e-9),
+            };
+            let at = |x: f64, inward: f64| {
+                if count {
+                    x
+                } else {
+                    x + inward * x.abs() * 1e-12
+                }
+            };
+            let (ok_lo, bad_lo) = match lo_in {
+                true => (at(lo, 1.0), beyond(lo, -1.0)),
+                false => (beyond(lo, 1.0), lo),
+            };
+            let (ok_hi, bad_hi) = match hi_in {
+                true => (at(hi, -1.0), beyond(hi, 1.0)),
+                false => (beyond(hi, -1.0), hi),
+            };
+            for (x, ok) in [
+                (ok_lo, true),
+                (bad_lo, false),
+                (ok_hi, true),
+                (bad_hi, false),
+            ] {
+                if x.is_finite() {
+                    assert_eq!(
+                        probe(p.name, x).is_ok(),
+                        ok,
+                        "{} = {x}: {:?}",
+                        p.name,
+                        probe(p.name, x)
+                    );
+                }
+            }
+            tested.push(p.name);
+        }
+        let untested: Vec<&str> = PARAMETERS
+            .iter()
+            .map(|p| p.name)
+            .filter(|n| !tested.contains(n))
+            .collect();
+        let words = ["spectrum_csv", "source", "stroke_um", "integrating"];
+        assert_eq!(
+            untested,
+            [&words[..], &["photon_noise", "reference"]].concat()
+        );
+    }
+}
