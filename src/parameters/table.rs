@@ -482,3 +482,49 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod docs {
+    use super::PARAMETERS;
+    use crate::parameters::Physical;
+
+    /// The table of the physical inputs in `docs/conventions.md` (§14),
+    /// rendered from the declaration.
+    fn table() -> String {
+        let defaults = serde_json::to_value(Physical::DEFAULT).unwrap();
+        let code = |n: &str| format!("`{n}`");
+        let mut out = String::from(
+            "| Input | What | Unit | Default | Accepted | Why |\n|---|---|---|---|---|---|\n",
+        );
+        for p in &PARAMETERS {
+            let default = match &defaults[p.name] {
+                serde_json::Value::Null => p.unset(&code),
+                serde_json::Value::Number(x) => x.as_f64().unwrap().to_string(),
+                serde_json::Value::String(s) => code(s),
+                v => v.to_string(),
+            };
+            let accepted = super::refer_to(p.accepted, &code);
+            let why = super::refer_to(p.why, &code);
+            let what = super::refer_to(p.what, &code);
+            let row = [code(p.name), what, p.unit.into(), default, accepted, why];
+            out += &format!("| {} |\n", row.join(" | "));
+        }
+        out
+    }
+
+    /// The docs' table of the physical inputs is the declaration's (on a
+    /// change, paste the table this test prints between the markers).
+    #[test]
+    fn docs_table_is_the_declaration() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/conventions.md");
+        let text = std::fs::read_to_string(path).unwrap();
+        let (begin, end) = ("<!-- parameters: begin -->\n", "<!-- parameters: end -->");
+        let start = text.find(begin).expect("the begin marker") + begin.len();
+        let stop = text.find(end).expect("the end marker");
+        let want = table();
+        assert!(
+            text[start..stop] == want,
+            "docs/conventions.md, §14:\n{want}"
+        );
+    }
+}
