@@ -129,7 +129,7 @@ pub const PARAMETERS: [Parameter; 24] = [
         unit: "",
         accepted: "point or ud",
         what: "Source model",
-        note: "",
+        note: "ud: a uniform disk of diameter {diameter_mas}; point: unresolved (V = 1).",
         unset: "",
         why: "",
     },

@@ -4,6 +4,7 @@
 
 use super::{parse_enum, Fail};
 use crate::parameters::PARAMETERS;
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -75,4 +76,31 @@ impl Physical {
         p.check().map_err(|e| e.into_py_err())?;
         Ok(p)
     }
+}
+
+/// Adds the one declaration of the physical inputs to the module:
+/// `PHYSICAL_KEYWORDS` (their names, in order), `PHYSICAL_DEFAULTS` and
+/// `PHYSICAL_PARAMETERS` (JSON: [`PARAMETERS`], each with its help text
+/// `doc` and what leaving it unset means, `unset_doc`, other inputs named
+/// ``` ``name`` ```, for the docstrings).
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
+    m.add("PHYSICAL_KEYWORDS", names)?;
+    m.add("PHYSICAL_DEFAULTS", json(&Physical::default())?)?;
+    let keyword = |n: &str| format!("``{n}``");
+    let table: Vec<serde_json::Value> = PARAMETERS
+        .iter()
+        .map(|p| {
+            let mut v = serde_json::json!(p);
+            v["doc"] = p.describe(&keyword).into();
+            v["unset_doc"] = p.unset(&keyword).into();
+            v
+        })
+        .collect();
+    m.add("PHYSICAL_PARAMETERS", json(&table)?)
+}
+
+/// `v` as JSON text.
+fn json<T: serde::Serialize>(v: &T) -> PyResult<String> {
+    serde_json::to_string(v).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }

@@ -151,18 +151,7 @@ pub fn interruptible<T: Send>(
 #[pymodule]
 fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    let names: Vec<&str> = crate::parameters::PARAMETERS
-        .iter()
-        .map(|p| p.name)
-        .collect();
-    m.add("PHYSICAL_KEYWORDS", names)?;
-    // The one declaration of the physical inputs: defaults, units, ranges.
-    let defaults = serde_json::to_string(&crate::parameters::Physical::default())
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    m.add("PHYSICAL_DEFAULTS", defaults)?;
-    let table = serde_json::to_string(&crate::parameters::PARAMETERS)
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    m.add("PHYSICAL_PARAMETERS", table)?;
+    inputs::register(m)?;
     m.add(
         "ESTIMATE_COLUMNS",
         crate::commands::ESTIMATE_COLUMNS.to_vec(),
