@@ -56,7 +56,7 @@ const KEYWORD_OF_PARAM: &[(&str, &str)] = &[
 
 /// The keyword that sets the library parameter `param` (the Python keyword
 /// argument; the CLI's flag is `--` and it with `_` as `-`): an entry of
-/// [`KEYWORD_OF_PARAM`], else `param` with `-` as `_`.
+/// `KEYWORD_OF_PARAM`, else `param` with `-` as `_`.
 pub fn keyword_of(param: &str) -> String {
     let p = param.replace('-', "_");
     KEYWORD_OF_PARAM

@@ -92,7 +92,7 @@ fn the_score_does_not_reuse_the_truths_stderr_names() {
     let t = truth(2.0, 1.0, 0.4, 0.3, Some(0.6), 0.8);
     let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
     let score_json = serde_json::to_value(s).unwrap();
-    let truth_json = serde_json::to_value(&t).unwrap();
+    let truth_json = serde_json::to_value(t).unwrap();
     for name in ["stderr_mean", "stderr_var"] {
         assert!(truth_json.get(name).is_some(), "the sidecar names {name}");
         assert!(score_json.get(name).is_none(), "the score reuses {name}");
