@@ -3,7 +3,7 @@
 //! CLI's flags).
 
 use super::{parse_enum, Fail};
-use crate::parameters::PARAMETERS;
+use crate::parameters::{Parameter, PARAMETERS};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -25,6 +25,25 @@ fn item<'py, T: FromPyObject<'py>>(d: &Bound<'py, PyDict>, key: &str, default: T
     }
 }
 
+/// The choice `key` of `d` (missing or None: `default`), one of the words
+/// its declaration accepts (`point or ud`).
+fn choice<T: serde::de::DeserializeOwned>(
+    d: &Bound<'_, PyDict>,
+    key: &'static str,
+    default: T,
+) -> PyResult<T> {
+    let word: Option<String> = item(d, key, None)?;
+    let Some(word) = word else {
+        return Ok(default);
+    };
+    let accepted: Vec<&str> = Parameter::named(key)
+        .accepted
+        .split([',', ' '])
+        .filter(|w| !w.is_empty() && *w != "or")
+        .collect();
+    parse_enum(key, &word, &accepted).map_err(|e| e.into_py_err())
+}
+
 impl Physical {
     /// The physical inputs in `d` (missing or None: [`Physical::default`]),
     /// checked ([`Physical::check`]).
@@ -40,13 +59,11 @@ impl Physical {
             }
         }
         let d0 = Physical::default();
-        let text = |key: &str, default: &str| item(d, key, default.to_owned());
         let p = Physical {
             wavelength_um: item(d, "wavelength_um", d0.wavelength_um)?,
             bandwidth_nm: item(d, "bandwidth_nm", d0.bandwidth_nm)?,
             spectrum_csv: item(d, "spectrum_csv", d0.spectrum_csv)?,
-            source: parse_enum("source", &text("source", "ud")?, &["point", "ud"])
-                .map_err(|e| e.into_py_err())?,
+            source: choice(d, "source", d0.source)?,
             diameter_mas: item(d, "diameter_mas", d0.diameter_mas)?,
             spatial_freq_cpas: item(d, "spatial_freq_cpas", d0.spatial_freq_cpas)?,
             baseline_m: item(d, "baseline_m", d0.baseline_m)?,
@@ -66,12 +83,7 @@ impl Physical {
             aperture_m: item(d, "aperture_m", d0.aperture_m)?,
             outer_scale_m: item(d, "outer_scale_m", d0.outer_scale_m)?,
             sub_samples: item(d, "sub_samples", d0.sub_samples)?,
-            reference: parse_enum(
-                "reference",
-                &text("reference", "mean")?,
-                &["centre", "mean", "absolute"],
-            )
-            .map_err(|e| e.into_py_err())?,
+            reference: choice(d, "reference", d0.reference)?,
         };
         p.check().map_err(|e| e.into_py_err())?;
         Ok(p)
