@@ -69,8 +69,9 @@ mod tests {
     use super::InputsArgs;
     use crate::cli::flag_of;
     use clap::{CommandFactory, Parser};
+    use serde_json::Value;
     use std::collections::BTreeSet;
-    use v2ref::parameters::{Physical, PARAMETERS};
+    use v2ref::parameters::{Parameter, Physical, PARAMETERS};
 
     #[derive(Parser)]
     struct Cli {
@@ -122,14 +123,10 @@ mod tests {
         ("piston", "fringe-hz"),
     ];
 
-    /// Every physical flag of every command states its one declaration:
-    /// its help starts with the declared text, unit and accepted range,
-    /// its default is the declared one (or, unset, the help says what that
-    /// means), and every declared input has a flag somewhere.
-    #[test]
-    fn every_physical_flag_states_its_declaration() {
-        let defaults = serde_json::to_value(Physical::default()).unwrap();
-        let mut seen = BTreeSet::new();
+    /// Every flag of every command that sets a physical input: (`command
+    /// --flag`, the flag, its declaration, whether it turns the input off).
+    fn physical_flags() -> Vec<(String, clap::Arg, &'static Parameter, bool)> {
+        let mut out = Vec::new();
         for sub in crate::Cli::command().get_subcommands() {
             for arg in sub.get_arguments() {
                 let Some(long) = arg.get_long() else { continue };
@@ -140,41 +137,67 @@ mod tests {
                 let Some(p) = PARAMETERS.iter().find(|p| p.name == name) else {
                     continue;
                 };
-                if NOT_PHYSICAL.contains(&(sub.get_name(), long)) {
-                    continue;
+                if !NOT_PHYSICAL.contains(&(sub.get_name(), long)) {
+                    out.push((format!("{} --{long}", sub.get_name()), arg.clone(), p, off));
                 }
-                let at = format!("{} --{long}", sub.get_name());
-                let help = arg.get_help().expect("a help").to_string();
-                let flags = |n: &str| flag_of(n);
-                let mut head = v2ref::parameters::Parameter { note: "", ..*p }.describe(&flags);
-                head.pop(); // the full stop
-                if off {
-                    head = format!("Turns off: {head}");
-                }
-                assert!(help.starts_with(&head), "{at}: {help:?} for {head:?}");
-                let shown: Vec<String> = arg
-                    .get_default_values()
-                    .iter()
-                    .map(|v| v.to_string_lossy().into_owned())
-                    .collect();
-                match &defaults[p.name] {
-                    serde_json::Value::Null => {
-                        assert!(shown.is_empty(), "{at}: {shown:?}");
-                        let unset = format!("[default: {}]", p.unset(&flags));
-                        assert!(help.ends_with(&unset), "{at}: {help:?}");
-                    }
-                    serde_json::Value::Bool(b) => assert_eq!(*b, off, "{at}"),
-                    serde_json::Value::Number(x) => {
-                        let shown: f64 = shown[0].parse().unwrap();
-                        assert_eq!(Some(shown), x.as_f64(), "{at}");
-                    }
-                    serde_json::Value::String(w) => assert_eq!(shown, [w.as_str()], "{at}"),
-                    v => panic!("{at}: {v}"),
-                }
-                seen.insert(p.name);
             }
+        }
+        out
+    }
+
+    /// Every physical flag of every command states its one declaration:
+    /// its help starts with the declared text, unit and accepted range
+    /// (what leaving it unset means at its end), and every declared input
+    /// has a flag somewhere.
+    #[test]
+    fn every_physical_flag_states_its_declaration() {
+        let mut seen = BTreeSet::new();
+        let flags = |n: &str| flag_of(n);
+        for (at, arg, p, off) in physical_flags() {
+            let help = arg.get_help().expect("a help").to_string();
+            let mut head = Parameter { note: "", ..*p }.describe(&flags);
+            head.pop(); // the full stop
+            if off {
+                head = format!("Turns off: {head}");
+            }
+            assert!(help.starts_with(&head), "{at}: {help:?} for {head:?}");
+            if !p.unset.is_empty() {
+                let unset = format!("[default: {}]", p.unset(&flags));
+                assert!(help.ends_with(&unset), "{at}: {help:?}");
+            }
+            seen.insert(p.name);
         }
         let declared: BTreeSet<_> = PARAMETERS.iter().map(|p| p.name).collect();
         assert_eq!(seen, declared);
+    }
+
+    /// Every physical flag's default is the declared one (none where the
+    /// input may be unset), and a choice offers the declared words.
+    #[test]
+    fn every_physical_flag_has_the_declared_default() {
+        let defaults = serde_json::to_value(Physical::default()).unwrap();
+        for (at, arg, p, off) in physical_flags() {
+            let shown: Vec<String> = arg
+                .get_default_values()
+                .iter()
+                .map(|v| v.to_string_lossy().into_owned())
+                .collect();
+            match &defaults[p.name] {
+                Value::Null => assert!(shown.is_empty(), "{at}: {shown:?}"),
+                Value::Bool(b) => assert_eq!(*b, off, "{at}"),
+                Value::Number(x) => assert_eq!(shown[0].parse().ok(), x.as_f64(), "{at}"),
+                Value::String(w) => {
+                    assert_eq!(shown, [w.as_str()], "{at}");
+                    let words: Vec<String> = arg
+                        .get_possible_values()
+                        .iter()
+                        .map(|v| v.get_name().to_owned())
+                        .collect();
+                    let listed = p.accepted.replace(" or ", ", ");
+                    assert_eq!(listed.split(", ").collect::<Vec<_>>(), words, "{at}");
+                }
+                v => panic!("{at}: {v}"),
+            }
+        }
     }
 }

@@ -420,53 +420,45 @@ mod tests {
         }
     }
 
-    /// The accepted range in words is the library's: each bound accepted
-    /// when included, and the values just beyond it refused naming the
-    /// input (a range stated wider or narrower than the checks fails).
+    /// The values at the edges of `p`'s accepted range in words, each
+    /// with whether it is accepted: each bound (nudged inward by its
+    /// rounding) when included, and just beyond it; None as [`bounds`].
+    fn edges(p: &Parameter) -> Option<Vec<(f64, bool)>> {
+        let (lo, lo_in, hi, hi_in) = bounds(p)?;
+        let count = p.name.contains("samples");
+        let beyond = |x: f64, dir: f64| match count {
+            true => x + dir,
+            false => x + dir * (x.abs() * 1e-6).max(1e-9),
+        };
+        let at = |x: f64, inward: f64| x + if count { 0.0 } else { inward * x.abs() * 1e-12 };
+        let (ok_lo, bad_lo) = match lo_in {
+            true => (at(lo, 1.0), beyond(lo, -1.0)),
+            false => (beyond(lo, 1.0), lo),
+        };
+        let (ok_hi, bad_hi) = match hi_in {
+            true => (at(hi, -1.0), beyond(hi, 1.0)),
+            false => (beyond(hi, -1.0), hi),
+        };
+        let all = [
+            (ok_lo, true),
+            (bad_lo, false),
+            (ok_hi, true),
+            (bad_hi, false),
+        ];
+        Some(all.into_iter().filter(|(x, _)| x.is_finite()).collect())
+    }
+
+    /// The accepted range in words is the library's: the values at its
+    /// edges are accepted or refused naming the input as it says (a range
+    /// stated wider or narrower than the checks fails).
     #[test]
     fn accepted_ranges_are_the_library_checks() {
         let mut tested = Vec::new();
         for p in &PARAMETERS {
-            let Some((lo, lo_in, hi, hi_in)) = bounds(p) else {
-                continue;
-            };
-            let count = p.name.contains("samples");
-            // A value just beyond `x` in the direction `dir`, and `x` itself
-            // nudged inward by its rounding.
-            let beyond = |x: f64, dir: f64| match count {
-                true => x + dir,
-                false => x + dir * (x.abs() * 1e-6).max(1e-9),
-            };
-            let at = |x: f64, inward: f64| {
-                if count {
-                    x
-                } else {
-                    x + inward * x.abs() * 1e-12
-                }
-            };
-            let (ok_lo, bad_lo) = match lo_in {
-                true => (at(lo, 1.0), beyond(lo, -1.0)),
-                false => (beyond(lo, 1.0), lo),
-            };
-            let (ok_hi, bad_hi) = match hi_in {
-                true => (at(hi, -1.0), beyond(hi, 1.0)),
-                false => (beyond(hi, -1.0), hi),
-            };
-            for (x, ok) in [
-                (ok_lo, true),
-                (bad_lo, false),
-                (ok_hi, true),
-                (bad_hi, false),
-            ] {
-                if x.is_finite() {
-                    assert_eq!(
-                        probe(p.name, x).is_ok(),
-                        ok,
-                        "{} = {x}: {:?}",
-                        p.name,
-                        probe(p.name, x)
-                    );
-                }
+            let Some(edges) = edges(p) else { continue };
+            for (x, ok) in edges {
+                let got = probe(p.name, x);
+                assert_eq!(got.is_ok(), ok, "{} = {x}: {got:?}", p.name);
             }
             tested.push(p.name);
         }
