@@ -10,7 +10,7 @@ use v2ref::parameters::{Parameter, Physical};
 pub use v2ref::parameters::SourceKind;
 
 /// The defaults of the physical flags: the library's one declaration.
-pub const D: Physical = Physical::DEFAULT;
+pub const DEFAULTS: Physical = Physical::DEFAULT;
 
 /// The `--help` of the flag of the physical input `name`, from its one
 /// declaration ([`Parameter::describe`]; other inputs named by their
@@ -33,21 +33,21 @@ pub fn help_off(name: &str) -> String {
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ObservationArgs {
-    #[arg(long, help = help("wavelength_um"), default_value_t = D.wavelength_um, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("wavelength_um"), default_value_t = DEFAULTS.wavelength_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
-    #[arg(long, help = help("bandwidth_nm"), default_value_t = D.bandwidth_nm, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("bandwidth_nm"), default_value_t = DEFAULTS.bandwidth_nm, value_parser = finite_f64, allow_negative_numbers = true)]
     pub bandwidth_nm: f64,
     #[arg(long, help = help("spectrum_csv"), value_name = "FILE")]
     pub spectrum_csv: Option<PathBuf>,
-    #[arg(long, help = help("source"), value_enum, default_value_t = D.source)]
+    #[arg(long, help = help("source"), value_enum, default_value_t = DEFAULTS.source)]
     pub source: SourceKind,
-    #[arg(long, help = help("diameter_mas"), default_value_t = D.diameter_mas, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("diameter_mas"), default_value_t = DEFAULTS.diameter_mas, value_parser = finite_f64, allow_negative_numbers = true)]
     pub diameter_mas: f64,
     #[arg(long, help = help("spatial_freq_cpas"), value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
     pub spatial_freq_cpas: Option<f64>,
     #[arg(long, help = help("baseline_m"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub baseline_m: Option<f64>,
-    #[arg(long, help = help("dispersion_pp_rad"), default_value_t = D.dispersion_pp_rad, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("dispersion_pp_rad"), default_value_t = DEFAULTS.dispersion_pp_rad, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dispersion_pp_rad: f64,
 }
 
@@ -77,9 +77,9 @@ impl ObservationArgs {
 pub struct ScanArgs {
     #[arg(long, help = help("stroke_um"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub stroke_um: Option<f64>,
-    #[arg(long, help = help("dx_um"), default_value_t = D.dx_um, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("dx_um"), default_value_t = DEFAULTS.dx_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
-    #[arg(long, help = help("samples"), default_value_t = D.samples, value_parser = super::count_usize, allow_negative_numbers = true)]
+    #[arg(long, help = help("samples"), default_value_t = DEFAULTS.samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub samples: usize,
     #[arg(long, help = help("integrating"))]
     pub integrating: bool,
@@ -108,19 +108,19 @@ pub struct SamplingArgs {
 /// The turbulence, the telescopes and the scans through the piston (§6).
 #[derive(Debug, Clone, clap::Args)]
 pub struct TurbulenceArgs {
-    #[arg(long, help = help("wind_mps"), default_value_t = D.wind_mps, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("wind_mps"), default_value_t = DEFAULTS.wind_mps, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wind_mps: f64,
-    #[arg(long, help = help("seeing_arcsec"), default_value_t = D.seeing_arcsec, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("seeing_arcsec"), default_value_t = DEFAULTS.seeing_arcsec, value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
     #[arg(long, help = help("seeing_wavelength_um"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_wavelength_um: Option<f64>,
-    #[arg(long, help = help("aperture_m"), default_value_t = D.aperture_m, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("aperture_m"), default_value_t = DEFAULTS.aperture_m, value_parser = finite_f64, allow_negative_numbers = true)]
     pub aperture_m: f64,
     #[arg(long, help = help("outer_scale_m"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub outer_scale_m: Option<f64>,
-    #[arg(long, help = help("sub_samples"), default_value_t = D.sub_samples, value_parser = super::count_usize, allow_negative_numbers = true)]
+    #[arg(long, help = help("sub_samples"), default_value_t = DEFAULTS.sub_samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub sub_samples: usize,
-    #[arg(long, help = help("reference"), value_enum, default_value_t = D.reference)]
+    #[arg(long, help = help("reference"), value_enum, default_value_t = DEFAULTS.reference)]
     pub reference: v2ref::piston::PistonReference,
 }
 
@@ -184,11 +184,11 @@ pub struct RunArgs {
 /// The light: the fringe's visibility scale, the photons, the noise.
 #[derive(Debug, Clone, clap::Args)]
 pub struct LightArgs {
-    #[arg(long, help = help("visibility"), default_value_t = D.visibility, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_hyphen_values = true)]
     pub visibility: f64,
-    #[arg(long, help = help("photons"), default_value_t = D.photons, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("photons"), default_value_t = DEFAULTS.photons, value_parser = finite_f64, allow_hyphen_values = true)]
     pub photons: f64,
-    #[arg(long, help = help("read_noise"), default_value_t = D.read_noise, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_hyphen_values = true)]
     pub read_noise: f64,
     #[arg(long, help = help_off("photon_noise"))]
     pub no_photon_noise: bool,

@@ -2,7 +2,7 @@
 //! that reach a target σ(V²) (or the σ reached in a time budget) for an
 //! instrument, a source and a site (`v2ref::plan`).
 
-use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, D};
+use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, DEFAULTS};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
@@ -22,7 +22,7 @@ pub struct Args {
     samples_per_fringe: f64,
     #[arg(long, help = help("integrating"))]
     integrating: bool,
-    #[arg(long, help = help("visibility"), default_value_t = D.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
     visibility: f64,
     /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
@@ -45,7 +45,7 @@ pub struct Args {
     /// QE), 0 < T <= 1; with --magnitude.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
     throughput: Option<f64>,
-    #[arg(long, help = help("read_noise"), default_value_t = D.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
     read_noise: f64,
     #[arg(long, help = help_off("photon_noise"))]
     no_photon_noise: bool,
