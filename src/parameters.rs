@@ -10,8 +10,10 @@
 //! default, a conversion or a check lives in one place; tests check that
 //! the CLI's flag defaults and the Python signatures agree with it.
 //!
-//! [`PARAMETERS`] states each one's unit and accepted range in words (the
-//! library's checks in [`crate::bounds`] enforce them).
+//! [`PARAMETERS`] states each one's unit, accepted range and help text (the
+//! library's checks in [`crate::bounds`] and the constructors enforce the
+//! ranges): the CLI's `--help`, the Python docstrings and the docs' input
+//! table are rendered from it.
 
 use crate::error::{Error, Result};
 use crate::formalism::interferogram::Sampling;
@@ -27,6 +29,10 @@ use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use serde::Serialize;
 use std::path::PathBuf;
 
+mod table;
+
+pub use table::{Parameter, PARAMETERS};
+
 /// The source model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -38,6 +44,27 @@ pub enum SourceKind {
     Ud,
 }
 
+/// Library parameter names (in errors, [`crate::Error::param`]) whose
+/// keyword is not the same name: the physical input or the edges' argument
+/// that sets them.
+const KEYWORD_OF_PARAM: &[(&str, &str)] = &[
+    ("spectrum", "spectrum_csv"),
+    ("peak_to_peak_rad", "dispersion_pp_rad"),
+    ("photons_per_sample", "photons"),
+    ("truth", "sidecar"),
+];
+
+/// The keyword that sets the library parameter `param` (the Python keyword
+/// argument; the CLI's flag is `--` and it with `_` as `-`): an entry of
+/// `KEYWORD_OF_PARAM`, else `param` with `-` as `_`.
+pub fn keyword_of(param: &str) -> String {
+    let p = param.replace('-', "_");
+    KEYWORD_OF_PARAM
+        .iter()
+        .find(|(k, _)| *k == p)
+        .map_or(p, |(_, f)| (*f).to_owned())
+}
+
 /// The spatial frequency when neither it nor the baseline is given,
 /// cycles/arcsec: the paper's 18 m baseline in K.
 pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
@@ -46,7 +73,7 @@ pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 /// names are the Python keyword arguments and, with `_` as `-`, the CLI's
 /// flags (but `photon_noise`, which the CLI turns off with
 /// `--no-photon-noise`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct Physical {
     /// Centre wavelength λ0, µm.
     pub wavelength_um: f64,
@@ -101,90 +128,43 @@ pub struct Physical {
 }
 
 impl Default for Physical {
-    /// The paper's K-band case: a 43 mas disk at 40 cycles/arcsec, 400 nm
-    /// at 2.2 µm, 128 samples of 0.5 µm, 10 photons per sample.
+    /// [`Physical::DEFAULT`].
     fn default() -> Self {
-        Physical {
-            wavelength_um: 2.2,
-            bandwidth_nm: 400.0,
-            spectrum_csv: None,
-            source: SourceKind::Ud,
-            diameter_mas: 43.0,
-            spatial_freq_cpas: None,
-            baseline_m: None,
-            dispersion_pp_rad: 0.0,
-            stroke_um: None,
-            dx_um: 0.5,
-            samples: 128,
-            integrating: false,
-            visibility: 1.0,
-            photons: 10.0,
-            read_noise: 0.0,
-            photon_noise: true,
-            fringe_hz: None,
-            wind_mps: 10.0,
-            seeing_arcsec: 1.0,
-            seeing_wavelength_um: None,
-            aperture_m: 0.45,
-            outer_scale_m: None,
-            sub_samples: crate::piston::DEFAULT_SUB_SAMPLES,
-            reference: PistonReference::Mean,
-        }
-    }
-}
-
-/// One physical input's name, unit and accepted range, in words.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Parameter {
-    /// The field of [`Physical`] (the Python keyword argument).
-    pub name: &'static str,
-    /// Its unit (empty for a count, a flag or a choice).
-    pub unit: &'static str,
-    /// The values accepted.
-    pub accepted: &'static str,
-}
-
-/// Every field of [`Physical`], in declaration order.
-pub const PARAMETERS: [Parameter; 24] = [
-    p("wavelength_um", "um", "0.001 to 100000"),
-    p("bandwidth_nm", "nm", "1e-12 λ0 to under 2 λ0"),
-    p("spectrum_csv", "", "a CSV file"),
-    p("source", "", "point or ud"),
-    p("diameter_mas", "mas", "> 0 to 3.6e6"),
-    p("spatial_freq_cpas", "cycles/arcsec", "0 to 1e13"),
-    p("baseline_m", "m", "0 to 1e9"),
-    p("dispersion_pp_rad", "rad", "-1e4 to 1e4"),
-    p("stroke_um", "um", "> 0"),
-    p("dx_um", "um", "> 0"),
-    p("samples", "", "2 to 2^24"),
-    p("integrating", "", "true or false"),
-    p("visibility", "", "0 to 1"),
-    p("photons", "photons/sample", "> 0 to 1e12"),
-    p("read_noise", "photons/sample", "0 to 1e12"),
-    p("photon_noise", "", "true or false"),
-    p("fringe_hz", "Hz", "1e-3 to 1e7"),
-    p("wind_mps", "m/s", "> 0 to 343"),
-    p("seeing_arcsec", "arcsec", "0 to 100"),
-    p(
-        "seeing_wavelength_um",
-        "um",
-        "0.3 to 30 (or the observing wavelength)",
-    ),
-    p("aperture_m", "m", "> 0"),
-    p("outer_scale_m", "m", "> 0"),
-    p("sub_samples", "", "1 to 64"),
-    p("reference", "", "centre, mean or absolute"),
-];
-
-const fn p(name: &'static str, unit: &'static str, accepted: &'static str) -> Parameter {
-    Parameter {
-        name,
-        unit,
-        accepted,
+        Physical::DEFAULT
     }
 }
 
 impl Physical {
+    /// The defaults: the paper's K-band case, a 43 mas disk at 40
+    /// cycles/arcsec, 400 nm at 2.2 µm, 128 samples of 0.5 µm, 10 photons
+    /// per sample (a constant, for the CLI's flag defaults).
+    pub const DEFAULT: Physical = Physical {
+        wavelength_um: 2.2,
+        bandwidth_nm: 400.0,
+        spectrum_csv: None,
+        source: SourceKind::Ud,
+        diameter_mas: 43.0,
+        spatial_freq_cpas: None,
+        baseline_m: None,
+        dispersion_pp_rad: 0.0,
+        stroke_um: None,
+        dx_um: 0.5,
+        samples: 128,
+        integrating: false,
+        visibility: 1.0,
+        photons: 10.0,
+        read_noise: 0.0,
+        photon_noise: true,
+        fringe_hz: None,
+        wind_mps: 10.0,
+        seeing_arcsec: 1.0,
+        seeing_wavelength_um: None,
+        aperture_m: 0.45,
+        outer_scale_m: None,
+        sub_samples: crate::piston::DEFAULT_SUB_SAMPLES,
+        reference: PistonReference::Mean,
+    };
+
     /// Refuses a non-finite number and the spatial frequency given with the
     /// baseline (each edge calls it once, after filling the inputs).
     pub fn check(&self) -> Result<()> {

@@ -69,7 +69,7 @@ fn exact_scores_of_a_four_row_set() {
     assert_rel_eq!(s.mean, 2.5, 1e-15);
     assert_rel_eq!(s.var, 5.0 / 3.0, 1e-15);
     assert_rel_eq!(s.stderr_mean_combined, 0.5, 1e-15);
-    assert_rel_eq!(s.stderr_var, 1.0, 1e-15);
+    assert_rel_eq!(s.stderr_var_combined, 1.0, 1e-15);
     assert_eq!(s.stderr_var_source, VarStderrSource::Truth);
     assert_rel_eq!(s.z_mean, 1.0, 1e-14);
     assert_rel_eq!(s.z_var, 2.0 / 3.0, 1e-14);
@@ -84,6 +84,22 @@ fn exact_scores_of_a_four_row_set() {
     assert!(s.pass_mean && s.pass_var && s.pass);
 }
 
+/// One name, one meaning: the truth's own standard errors are
+/// `stderr_mean` and `stderr_var` in the sidecar; the score's denominators
+/// combine them with the set's scatter and must not take those names.
+#[test]
+fn the_score_does_not_reuse_the_truths_stderr_names() {
+    let t = truth(2.0, 1.0, 0.4, 0.3, Some(0.6), 0.8);
+    let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
+    let score_json = serde_json::to_value(s).unwrap();
+    let truth_json = serde_json::to_value(t).unwrap();
+    for name in ["stderr_mean", "stderr_var"] {
+        assert!(truth_json.get(name).is_some(), "the sidecar names {name}");
+        assert!(score_json.get(name).is_none(), "the score reuses {name}");
+        assert!(score_json.get(format!("{name}_combined")).is_some());
+    }
+}
+
 #[test]
 fn variance_stderr_falls_back_to_the_sample() {
     // x = 1, 2, 3, 4: Σ(x − x̄)⁴ = 2·(3/2)⁴ + 2·(1/2)⁴ = 41/4, μ4 = 41/16;
@@ -92,7 +108,7 @@ fn variance_stderr_falls_back_to_the_sample() {
     let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
     assert_eq!(s.stderr_var_source, VarStderrSource::Sample);
     let se = (707.0f64 / 1728.0).sqrt();
-    assert_rel_eq!(s.stderr_var, se, 1e-14);
+    assert_rel_eq!(s.stderr_var_combined, se, 1e-14);
     assert_rel_eq!(s.z_var, (2.0 / 3.0) / se, 1e-14);
     assert_eq!(s.z_mean, 0.0);
 }

@@ -22,8 +22,11 @@ photons per sample for fluxes and noise.
 """
 
 import collections.abc as _abc
+import inspect as _inspect
 import json as _json
 import os as _os
+import textwrap as _textwrap
+import typing as _typing
 
 # The names of typing used in the signatures below; deleted at the end of the
 # module so that the namespace holds the API only (the signatures keep the
@@ -54,8 +57,14 @@ __all__ = [
 ESTIMATE_COLUMNS = tuple(_v2ref.ESTIMATE_COLUMNS)
 
 #: The defaults of the physical inputs, from the library's one declaration
-#: (``v2ref::parameters::Physical::default``, also the CLI's defaults).
+#: (``v2ref::parameters::Physical::DEFAULT``, also the CLI's defaults).
 _DEFAULTS: Dict[str, Any] = _json.loads(_v2ref.PHYSICAL_DEFAULTS)
+
+#: The physical inputs' units, accepted ranges and help texts, from the same
+#: declaration (``v2ref::parameters::PARAMETERS``).
+_PARAMETERS: Dict[str, Dict[str, str]] = {
+    p["name"]: p for p in _json.loads(_v2ref.PHYSICAL_PARAMETERS)
+}
 
 _PathLike = Union[str, _os.PathLike[str]]
 
@@ -84,15 +93,16 @@ def _word(name: str, value: Any) -> str:
     return value
 
 
-def _physical(names: Sequence[str], values: Mapping[str, Any]) -> Dict[str, Any]:
-    """The physical keyword arguments, types checked, paths as strings."""
+def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[str, Any]:
+    """The physical keyword arguments among ``values`` (but ``exclude``), types checked, paths as strings."""
     out: Dict[str, Any] = {}
-    for k in names:
-        v = values[k]
-        if v is None:
+    for k, v in values.items():
+        if k not in _DEFAULTS or k in exclude or v is None:
             continue
         if k == "spectrum_csv":
-            v = _os.fspath(v)
+            if not isinstance(v, (str, bytes, _os.PathLike)):
+                raise TypeError(f"{k}: {v!r} is not a path")
+            v = _os.fsdecode(v)
         elif k in ("source", "reference"):
             v = _word(k, v)
         elif k in ("samples", "sub_samples"):
@@ -109,6 +119,49 @@ def _physical(names: Sequence[str], values: Mapping[str, Any]) -> Dict[str, Any]
     return out
 
 
+def _type_words(annotation: Any) -> str:
+    """The type of a docstring entry: ``float``, ``path``, ``int``, …"""
+    args = [a for a in _typing.get_args(annotation) if a is not type(None)]
+    if not args:
+        return annotation.__name__
+    if any(_typing.get_origin(a) is _os.PathLike for a in args):
+        return "path"
+    return " or ".join(a.__name__ for a in args)
+
+
+def _entry(param: _inspect.Parameter, indent: str) -> str:
+    """The docstring entry of a physical keyword argument, from its declaration."""
+    p = _PARAMETERS[param.name]
+    kind = _type_words(param.annotation)
+    if param.default is None:
+        head, text = f"{kind}, optional", f"{p['doc']} Default: {p['unset_doc']}."
+    else:
+        head, text = f"{kind}, default {param.default!r}", p["doc"]
+    body = _textwrap.fill(text, 76, initial_indent=indent + "    ", subsequent_indent=indent + "    ")
+    return f"{indent}{param.name} : {head}\n{body}"
+
+
+def _documented(*, exclude: Sequence[str] = ()):
+    """Fills the ``{physical}`` line of a function's docstring with an entry
+    per physical keyword argument of its signature (but ``exclude``), written
+    once in the library's declaration."""
+
+    def fill(f):
+        sig = _inspect.signature(f)
+        lines = f.__doc__.split("\n")
+        at = [l.strip() for l in lines].index("{physical}")
+        indent = lines[at][: len(lines[at]) - len(lines[at].lstrip())]
+        entries = [
+            _entry(param, indent)
+            for name, param in sig.parameters.items()
+            if name in _PARAMETERS and name not in exclude
+        ]
+        f.__doc__ = "\n".join(lines[:at] + entries + lines[at + 1 :])
+        return f
+
+    return fill
+
+
 #: Largest copy a conversion makes, bytes (half the physical memory where
 #: it can be read, else 4 GiB): an array that would need more (a
 #: broadcast view claiming 10^9 rows, a non-float64 array of hundreds of
@@ -121,7 +174,7 @@ def _copy_limit() -> int:
         return 4 << 30
 
 
-def _contiguous(name: str, a: "_np.ndarray", shape_words: str) -> "_np.ndarray":
+def _contiguous(name: str, a: _np.ndarray, shape_words: str) -> _np.ndarray:
     """``a`` as C-contiguous float64, refusing a copy beyond :func:`_copy_limit`."""
     if a.dtype == _np.float64 and a.flags.c_contiguous:
         return a
@@ -137,7 +190,7 @@ def _contiguous(name: str, a: "_np.ndarray", shape_words: str) -> "_np.ndarray":
     return _np.ascontiguousarray(a, dtype=_np.float64)
 
 
-def _matrix(name: str, x: Any) -> "_np.ndarray":
+def _matrix(name: str, x: Any) -> _np.ndarray:
     """A 2-D C-contiguous float64 view of ``x`` (no copy when it is one)."""
     a = _np.asarray(x)
     if a.dtype == _np.bool_ or not (
@@ -153,7 +206,7 @@ def _matrix(name: str, x: Any) -> "_np.ndarray":
     return _contiguous(name, a, "a 2-D array (rows, samples)")
 
 
-def _vector(name: str, x: Any) -> "_np.ndarray":
+def _vector(name: str, x: Any) -> _np.ndarray:
     a = _np.asarray(x)
     if a.dtype == _np.bool_ or not (
         _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
@@ -183,23 +236,7 @@ def _sidecar_text(sidecar: Any) -> Tuple[str, str]:
 # --------------------------------------------------------------------------
 # The functions.
 
-_OBS = (
-    "wavelength_um",
-    "bandwidth_nm",
-    "spectrum_csv",
-    "source",
-    "diameter_mas",
-    "spatial_freq_cpas",
-    "baseline_m",
-    "dispersion_pp_rad",
-)
-_SCAN = ("stroke_um", "dx_um", "samples", "integrating")
-_LIGHT = ("visibility", "photons", "read_noise", "photon_noise")
-_TURB = ("wind_mps", "seeing_arcsec", "seeing_wavelength_um", "aperture_m", "outer_scale_m", "sub_samples", "reference")
-_ALL = _OBS + _SCAN + _LIGHT + ("fringe_hz",) + _TURB
-_ESTIMATE = _OBS + ("dx_um", "integrating") + _LIGHT + ("fringe_hz",) + _TURB
-
-
+@_documented()
 def estimate(
     interferograms: Any,
     *,
@@ -231,7 +268,7 @@ def estimate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-) -> Dict[str, "_np.ndarray"]:
+) -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
     Parameters
@@ -260,57 +297,7 @@ def estimate(
         (the CLI's ``--counts``).
     threads : int
         Worker threads (0: all cores); the answer does not depend on it.
-    wavelength_um : float
-        Centre wavelength λ0, µm.
-    bandwidth_nm : float
-        Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
-    spectrum_csv : path, optional
-        A tabulated S(σ)F(σ) instead of the flat band: CSV with header
-        ``wavelength_um,weight`` or ``wavenumber_per_um,weight``.
-    source : {"ud", "point"}
-        Source model: uniform disk of ``diameter_mas``, or unresolved.
-    diameter_mas : float
-        Uniform-disk diameter θ, mas.
-    spatial_freq_cpas : float, optional
-        Spatial frequency S = B σ_eff, cycles/arcsec (default 40, the
-        paper's 18 m baseline in K).
-    baseline_m : float, optional
-        Projected baseline B, m (instead of ``spatial_freq_cpas``).
-    dispersion_pp_rad : float
-        Quadratic dispersion phase, peak-to-peak over the band, rad.
-    dx_um : float
-        Sample spacing δx, µm.
-    integrating : bool
-        Integrating detector (each sample averages the fringe over δx).
-    visibility : float
-        Visibility V scaling the fringe, 0 to 1.
-    photons : float
-        Continuum photons per sample n (c = n), > 0 and at most 1e12
-        (0 is refused).
-    read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
-    photon_noise : bool
-        Poisson photon noise (False: detector noise only; the CLI's
-        ``--no-photon-noise``).
-    fringe_hz : float, optional
-        Fringe frequency f = v/λ0, Hz: the rows carry the differential
-        piston of §6 (then N must be the configuration's ``samples``).
-    wind_mps : float
-        Wind speed, m/s (frozen flow along the baseline).
-    seeing_arcsec : float
-        Seeing λ/r0, arcsec, at ``seeing_wavelength_um`` (0: no turbulence).
-    seeing_wavelength_um : float, optional
-        Wavelength at which ``seeing_arcsec`` is quoted, µm (site monitors
-        quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5).
-        Default: the observing wavelength.
-    aperture_m : float
-        Telescope aperture diameter, m.
-    outer_scale_m : float, optional
-        von Kármán outer scale, m (default: infinite).
-    sub_samples : int
-        Sub-samples per sample of the integrating detector.
-    reference : {"mean", "centre", "absolute"}
-        Where the fringe packet sits in each scan.
+    {physical}
 
     Returns
     -------
@@ -328,7 +315,7 @@ def estimate(
     if continuum_subtracted is not None and not isinstance(continuum_subtracted, (bool, _np.bool_)):
         raise TypeError(f"continuum_subtracted: {continuum_subtracted!r} is not a bool")
     if sidecar is not None:
-        given = [k for k in _ESTIMATE if values[k] != _DEFAULTS[k]]
+        given = [k for k, v in values.items() if k in _DEFAULTS and v != _DEFAULTS[k]]
         if given:
             raise ValueError(
                 f"{given[0]}: cannot be used with sidecar (the configuration comes from it)"
@@ -337,7 +324,7 @@ def estimate(
         physical: Dict[str, Any] = {}
     else:
         text, name = None, ""
-        physical = _physical(_ESTIMATE, values)
+        physical = _physical(values)
         physical["samples"] = data.shape[1]
     return _v2ref.estimate(
         data,
@@ -352,6 +339,7 @@ def estimate(
     )
 
 
+@_documented()
 def synthesize(
     *,
     rows: int = 1000,
@@ -384,7 +372,7 @@ def synthesize(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-) -> Tuple["_np.ndarray", Dict[str, Any]]:
+) -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -408,27 +396,7 @@ def synthesize(
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
-    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
-        The observation: λ0 (µm), Δλ (nm), a tabulated spectrum (CSV path),
-        "ud" or "point", the disk's diameter (mas), S (cycles/arcsec,
-        default 40) or B (m), dispersion peak-to-peak (rad); see
-        :func:`estimate`.
-    stroke_um : float, optional
-        OPD stroke Δx, µm (sets N = Δx/δx; default ``samples`` × ``dx_um``).
-    dx_um : float
-        Sample spacing δx, µm.
-    samples : int
-        Number of samples N per row (ignored when ``stroke_um`` is given).
-    integrating : bool
-        Integrating detector.
-    visibility, photons, read_noise, photon_noise
-        V (0 to 1), continuum photons per sample, detector noise σ_det
-        (photons per sample), Poisson photon noise on/off.
-    fringe_hz, wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
-        The differential piston (on when ``fringe_hz``, Hz, is given): wind
-        (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
-        observing wavelength), aperture (m), outer scale (m, default
-        infinite), sub-samples, packet reference.
+    {physical}
 
     Returns
     -------
@@ -439,7 +407,7 @@ def synthesize(
         ``data.npy`` is the data file's name with ``out``, else empty).
     """
     values = dict(locals())
-    physical = _physical(_ALL, values)
+    physical = _physical(values)
     npy = ""
     if out is not None:
         out = _os.fspath(out)
@@ -576,7 +544,8 @@ def score(
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
-        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        (the denominator of z_mean), z_mean, var, expected_var,
+        stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
     text, name = _sidecar_text(sidecar)
@@ -598,6 +567,7 @@ def score(
     )
 
 
+@_documented()
 def simulate(
     *,
     trials: int = 100000,
@@ -647,9 +617,7 @@ def simulate(
         Where the photon bias takes the mean counts from.
     formula : {"exact", "published"}
         Formula of the subtracted bias: exact, or as printed in the paper.
-    wavelength_um, bandwidth_nm, ..., reference
-        The physical inputs, as for :func:`synthesize` (units: µm, nm, mas,
-        cycles/arcsec, m, rad, photons per sample, Hz, m/s, arcsec).
+    {physical}
 
     Returns
     -------
@@ -661,7 +629,7 @@ def simulate(
     values = dict(locals())
     return _json.loads(
         _v2ref.simulate(
-            _physical(_ALL, values),
+            _physical(values),
             _word("bins", bins),
             _word("bias", bias),
             _word("formula", formula),
@@ -672,6 +640,7 @@ def simulate(
     )
 
 
+@_documented()
 def bias(
     *,
     finite_scan: bool = False,
@@ -698,11 +667,7 @@ def bias(
         (implied by ``stroke_um``).
     bins : {"positive", "band", "all"}
         Fourier bins of the finite-scan estimators.
-    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
-        The observation (µm, nm, CSV path, "ud"/"point", mas,
-        cycles/arcsec, m, rad); see :func:`estimate`.
-    stroke_um, dx_um, samples, integrating
-        The scan: stroke (µm), spacing (µm), N, integrating detector.
+    {physical}
 
     Returns
     -------
@@ -715,10 +680,11 @@ def bias(
     if not isinstance(finite_scan, (bool, _np.bool_)):
         raise TypeError(f"finite_scan: {finite_scan!r} is not a bool")
     return _json.loads(
-        _v2ref.bias(_physical(_OBS + _SCAN, values), _word("bins", bins), bool(finite_scan))
+        _v2ref.bias(_physical(values), _word("bins", bins), bool(finite_scan))
     )
 
 
+@_documented()
 def snr(
     *,
     bins: str = "positive",
@@ -748,11 +714,7 @@ def snr(
         Window of the exact window statistics (``window_exact``).
     formula : {"exact", "published"}
         Formula: exact, or as printed in the paper's Appendix.
-    wavelength_um, ..., integrating
-        The observation and scan, as for :func:`bias`.
-    visibility, photons, read_noise, photon_noise
-        V (0 to 1), continuum photons per sample, detector noise σ_det
-        (photons per sample), Poisson photon noise on/off.
+    {physical}
 
     Returns
     -------
@@ -764,13 +726,14 @@ def snr(
     values = dict(locals())
     return _json.loads(
         _v2ref.snr(
-            _physical(_OBS + _SCAN + _LIGHT, values),
+            _physical(values),
             _word("bins", bins),
             _word("formula", formula),
         )
     )
 
 
+@_documented(exclude=("fringe_hz",))
 def piston(
     *,
     fringe_hz: Union[float, Sequence[float], None] = None,
@@ -814,13 +777,7 @@ def piston(
         Worker threads (0: all cores); the answer does not depend on it.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
-    wavelength_um, ..., integrating
-        The observation and scan, as for :func:`bias`.
-    wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
-        Wind (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
-        observing wavelength), aperture (m), outer scale (m, default
-        infinite), integrating sub-samples, packet reference
-        ("mean", "centre", "absolute").
+    {physical}
     psd : {"two-aperture", "three-slope"}
         The differential-piston spectrum the sequences are drawn from: the
         two-aperture integral, or the three-slope model (power laws -2/3,
@@ -847,7 +804,7 @@ def piston(
         freqs = [float(f) for f in fringe_hz]
     return _json.loads(
         _v2ref.piston(
-            _physical(_OBS + _SCAN + _TURB, values),
+            _physical(values, exclude=("fringe_hz",)),
             freqs,
             _word("bins", bins),
             _uint("scans", scans),
@@ -859,6 +816,12 @@ def piston(
     )
 
 
+#: The keyword arguments of :func:`plan` named as physical inputs that are
+#: its grid instead.
+_PLAN_GRID = ("fringe_hz", "stroke_um")
+
+
+@_documented(exclude=_PLAN_GRID)
 def plan(
     *,
     target_sigma_v2: Optional[float] = None,
@@ -925,10 +888,7 @@ def plan(
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
         the target.
-    wavelength_um, ..., reference
-        The instrument, source, noise and atmosphere, as for :func:`simulate`
-        (seeing λ/r0 in arcsec at ``seeing_wavelength_um``, default ``wavelength_um``, wind m/s, aperture m,
-        outer scale m).
+    {physical}
 
     Returns
     -------
@@ -939,15 +899,13 @@ def plan(
         ``recommended``.
     """
     values = dict(locals())
-    values.update(stroke_um=None, dx_um=0.5, samples=128, photons=10.0, fringe_hz=None)
     out = None if oifits is None else _os.fspath(oifits)
     if out is not None and not isinstance(out, str):
         raise TypeError(f"oifits: {oifits!r} is not a path")
-    names = _OBS + _SCAN + _LIGHT + _TURB
     opt = lambda name, v: None if v is None else _float(name, v)
     return _json.loads(
         _v2ref.plan(
-            _physical(names, values),
+            _physical(values, exclude=_PLAN_GRID),
             _float("samples_per_fringe", samples_per_fringe),
             _float("photon_rate_per_s", photon_rate_per_s),
             _float("dead_time_s", dead_time_s),
@@ -964,6 +922,7 @@ def plan(
     )
 
 
+@_documented()
 def photon_rate(
     magnitude: float,
     *,
@@ -973,11 +932,12 @@ def photon_rate(
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
 ) -> float:
-    """Photons per second at the detector in the band from a 2MASS magnitude, as ``v2ref plan --magnitude``.
+    """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 
     ``F_ν = F_ν0 10^(-m/2.5)`` with the zero points of Cohen, Wheaton &
-    Megeath (2003, AJ 126, 1090, Table 2: J 1594, H 1024, Ks 666.7 Jy),
-    taken flat over [λ0 − Δλ/2, λ0 + Δλ/2]: ``F_ν ln(λmax/λmin)/h`` photons
+    Megeath (2003, AJ 126, 1090, Table 2: 2MASS J 1594, H 1024, Ks 666.7 Jy)
+    or Bessell, Castelli & Plez (1998, A&A 333, 231: Johnson–Cousins V
+    3640, R 3080, I 2550 Jy), taken flat over [λ0 − Δλ/2, λ0 + Δλ/2]: ``F_ν ln(λmax/λmin)/h`` photons
     s⁻¹ m⁻², times the two apertures' area ``2 π D²/4`` and ``throughput``.
     Pass the result to :func:`plan` as ``photon_rate_per_s``.
 
@@ -985,16 +945,14 @@ def photon_rate(
     ----------
     magnitude : float
         The source's magnitude in ``band``, -10 to 30.
-    band : {"J", "H", "Ks"}
-        The 2MASS band of ``magnitude``.
+    band : {"J", "H", "Ks", "V", "R", "I"}
+        The band of ``magnitude``: 2MASS J, H, Ks or Johnson–Cousins V, R, I
+        (it must cover the observing band).
     throughput : float
         Fraction of the source's photons counted in the sampled
         interferogram (atmosphere, optics, combiner outputs sampled,
         detector QE), 0 < T <= 1.
-    aperture_m : float
-        Telescope aperture diameter D, m (two telescopes).
-    wavelength_um, bandwidth_nm : float
-        The observing band: centre λ0 (µm) and full width Δλ (nm).
+    {physical}
     """
     return _v2ref.photon_rate(
         _float("magnitude", magnitude),

@@ -39,57 +39,74 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
         (the CLI's ``--counts``).
     threads : int
         Worker threads (0: all cores); the answer does not depend on it.
-    wavelength_um : float
-        Centre wavelength λ0, µm.
-    bandwidth_nm : float
-        Full bandwidth Δλ, nm (flat band [λ0 − Δλ/2, λ0 + Δλ/2]).
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
     spectrum_csv : path, optional
-        A tabulated S(σ)F(σ) instead of the flat band: CSV with header
-        ``wavelength_um,weight`` or ``wavenumber_per_um,weight``.
-    source : {"ud", "point"}
-        Source model: uniform disk of ``diameter_mas``, or unresolved.
-    diameter_mas : float
-        Uniform-disk diameter θ, mas.
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
     spatial_freq_cpas : float, optional
-        Spatial frequency S = B σ_eff, cycles/arcsec (default 40, the
-        paper's 18 m baseline in K).
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
     baseline_m : float, optional
-        Projected baseline B, m (instead of ``spatial_freq_cpas``).
-    dispersion_pp_rad : float
-        Quadratic dispersion phase, peak-to-peak over the band, rad.
-    dx_um : float
-        Sample spacing δx, µm.
-    integrating : bool
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    integrating : bool, default False
         Integrating detector (each sample averages the fringe over δx).
-    visibility : float
-        Visibility V scaling the fringe, 0 to 1.
-    photons : float
-        Continuum photons per sample n (c = n), > 0 and at most 1e12
-        (0 is refused).
-    read_noise : float
-        Detector noise standard deviation σ_det, photons per sample, 0 to 1e12.
-    photon_noise : bool
-        Poisson photon noise (False: detector noise only; the CLI's
-        ``--no-photon-noise``).
+    visibility : float, default 1.0
+        Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point
+        source (a source of known V: ``source`` point).
+    photons : float, default 10.0
+        Continuum n (c = n), photons per sample: > 0 to 1e12.
+    read_noise : float, default 0.0
+        Detector noise standard deviation σ_det, photons per sample: 0 to
+        1e12.
+    photon_noise : bool, default True
+        Poisson photon noise (when off, detector noise only).
     fringe_hz : float, optional
-        Fringe frequency f = v/λ0, Hz: the rows carry the differential
-        piston of §6 (then N must be the configuration's ``samples``).
-    wind_mps : float
-        Wind speed, m/s (frozen flow along the baseline).
-    seeing_arcsec : float
-        Seeing λ/r0, arcsec, at ``seeing_wavelength_um`` (0: no turbulence).
+        Fringe frequency f = v/λ0, Hz: 0.001 to 1e7. Adds the differential
+        piston of §6 (consecutive scans through one piston sequence).
+        Default: no piston.
+    wind_mps : float, default 10.0
+        Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline.
+    seeing_arcsec : float, default 1.0
+        Seeing λ/r0, arcsec: 0 to 100. Quoted at ``seeing_wavelength_um``;
+        0: no turbulence.
     seeing_wavelength_um : float, optional
-        Wavelength at which ``seeing_arcsec`` is quoted, µm (site monitors
-        quote 0.5); converted to the observing wavelength by r0 ∝ λ^(6/5).
-        Default: the observing wavelength.
-    aperture_m : float
-        Telescope aperture diameter, m.
+        Wavelength at which ``seeing_arcsec`` is quoted, µm: 0.3 to 30. Site
+        monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+        λ^(6/5). Default: the observing wavelength ``wavelength_um``.
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
     outer_scale_m : float, optional
-        von Kármán outer scale, m (default: infinite).
-    sub_samples : int
-        Sub-samples per sample of the integrating detector.
-    reference : {"mean", "centre", "absolute"}
-        Where the fringe packet sits in each scan.
+        von Kármán outer scale, m: > 0. Default: infinite.
+    sub_samples : int, default 6
+        Sub-samples per sample of the integrating detector under piston: 1
+        to 64.
+    reference : str, default 'mean'
+        Where the fringe packet sits in each scan: centre, mean or absolute.
 
     Returns
     -------
@@ -124,27 +141,80 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
-    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
-        The observation: λ0 (µm), Δλ (nm), a tabulated spectrum (CSV path),
-        "ud" or "point", the disk's diameter (mas), S (cycles/arcsec,
-        default 40) or B (m), dispersion peak-to-peak (rad); see
-        :func:`estimate`.
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
     stroke_um : float, optional
-        OPD stroke Δx, µm (sets N = Δx/δx; default ``samples`` × ``dx_um``).
-    dx_um : float
-        Sample spacing δx, µm.
-    samples : int
-        Number of samples N per row (ignored when ``stroke_um`` is given).
-    integrating : bool
-        Integrating detector.
-    visibility, photons, read_noise, photon_noise
-        V (0 to 1), continuum photons per sample, detector noise σ_det
-        (photons per sample), Poisson photon noise on/off.
-    fringe_hz, wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
-        The differential piston (on when ``fringe_hz``, Hz, is given): wind
-        (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
-        observing wavelength), aperture (m), outer scale (m, default
-        infinite), sub-samples, packet reference.
+        OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24. Default:
+        ``samples`` × ``dx_um``.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    samples : int, default 128
+        Number of samples N: 2 to 2^24. Ignored when ``stroke_um`` is given.
+        The finite scan costs about N² (N = 16384: about 10 s on two cores).
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
+    visibility : float, default 1.0
+        Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point
+        source (a source of known V: ``source`` point).
+    photons : float, default 10.0
+        Continuum n (c = n), photons per sample: > 0 to 1e12.
+    read_noise : float, default 0.0
+        Detector noise standard deviation σ_det, photons per sample: 0 to
+        1e12.
+    photon_noise : bool, default True
+        Poisson photon noise (when off, detector noise only).
+    fringe_hz : float, optional
+        Fringe frequency f = v/λ0, Hz: 0.001 to 1e7. Adds the differential
+        piston of §6 (consecutive scans through one piston sequence).
+        Default: no piston.
+    wind_mps : float, default 10.0
+        Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline.
+    seeing_arcsec : float, default 1.0
+        Seeing λ/r0, arcsec: 0 to 100. Quoted at ``seeing_wavelength_um``;
+        0: no turbulence.
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm: 0.3 to 30. Site
+        monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+        λ^(6/5). Default: the observing wavelength ``wavelength_um``.
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
+    outer_scale_m : float, optional
+        von Kármán outer scale, m: > 0. Default: infinite.
+    sub_samples : int, default 6
+        Sub-samples per sample of the integrating detector under piston: 1
+        to 64.
+    reference : str, default 'mean'
+        Where the fringe packet sits in each scan: centre, mean or absolute.
 
     Returns
     -------
@@ -186,7 +256,8 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
         The fields of ``v2ref score --json``: ``sidecar``, ``estimates``,
         ``bins``, ``bias``, ``rows``, ``alpha``, ``tests``, ``z_crit``,
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
-        (the denominator of z_mean), z_mean, var, expected_var, z_var,
+        (the denominator of z_mean), z_mean, var, expected_var,
+        stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
     ...
@@ -208,9 +279,80 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
         Where the photon bias takes the mean counts from.
     formula : {"exact", "published"}
         Formula of the subtracted bias: exact, or as printed in the paper.
-    wavelength_um, bandwidth_nm, ..., reference
-        The physical inputs, as for :func:`synthesize` (units: µm, nm, mas,
-        cycles/arcsec, m, rad, photons per sample, Hz, m/s, arcsec).
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    stroke_um : float, optional
+        OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24. Default:
+        ``samples`` × ``dx_um``.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    samples : int, default 128
+        Number of samples N: 2 to 2^24. Ignored when ``stroke_um`` is given.
+        The finite scan costs about N² (N = 16384: about 10 s on two cores).
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
+    visibility : float, default 1.0
+        Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point
+        source (a source of known V: ``source`` point).
+    photons : float, default 10.0
+        Continuum n (c = n), photons per sample: > 0 to 1e12.
+    read_noise : float, default 0.0
+        Detector noise standard deviation σ_det, photons per sample: 0 to
+        1e12.
+    photon_noise : bool, default True
+        Poisson photon noise (when off, detector noise only).
+    fringe_hz : float, optional
+        Fringe frequency f = v/λ0, Hz: 0.001 to 1e7. Adds the differential
+        piston of §6 (consecutive scans through one piston sequence).
+        Default: no piston.
+    wind_mps : float, default 10.0
+        Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline.
+    seeing_arcsec : float, default 1.0
+        Seeing λ/r0, arcsec: 0 to 100. Quoted at ``seeing_wavelength_um``;
+        0: no turbulence.
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm: 0.3 to 30. Site
+        monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+        λ^(6/5). Default: the observing wavelength ``wavelength_um``.
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
+    outer_scale_m : float, optional
+        von Kármán outer scale, m: > 0. Default: infinite.
+    sub_samples : int, default 6
+        Sub-samples per sample of the integrating detector under piston: 1
+        to 64.
+    reference : str, default 'mean'
+        Where the fringe packet sits in each scan: centre, mean or absolute.
 
     Returns
     -------
@@ -231,11 +373,48 @@ def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=
         (implied by ``stroke_um``).
     bins : {"positive", "band", "all"}
         Fourier bins of the finite-scan estimators.
-    wavelength_um, bandwidth_nm, spectrum_csv, source, diameter_mas, spatial_freq_cpas, baseline_m, dispersion_pp_rad
-        The observation (µm, nm, CSV path, "ud"/"point", mas,
-        cycles/arcsec, m, rad); see :func:`estimate`.
-    stroke_um, dx_um, samples, integrating
-        The scan: stroke (µm), spacing (µm), N, integrating detector.
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    stroke_um : float, optional
+        OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24. Default:
+        ``samples`` × ``dx_um``.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    samples : int, default 128
+        Number of samples N: 2 to 2^24. Ignored when ``stroke_um`` is given.
+        The finite scan costs about N² (N = 16384: about 10 s on two cores).
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
 
     Returns
     -------
@@ -255,11 +434,58 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
         Window of the exact window statistics (``window_exact``).
     formula : {"exact", "published"}
         Formula: exact, or as printed in the paper's Appendix.
-    wavelength_um, ..., integrating
-        The observation and scan, as for :func:`bias`.
-    visibility, photons, read_noise, photon_noise
-        V (0 to 1), continuum photons per sample, detector noise σ_det
-        (photons per sample), Poisson photon noise on/off.
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    stroke_um : float, optional
+        OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24. Default:
+        ``samples`` × ``dx_um``.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    samples : int, default 128
+        Number of samples N: 2 to 2^24. Ignored when ``stroke_um`` is given.
+        The finite scan costs about N² (N = 16384: about 10 s on two cores).
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
+    visibility : float, default 1.0
+        Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point
+        source (a source of known V: ``source`` point).
+    photons : float, default 10.0
+        Continuum n (c = n), photons per sample: > 0 to 1e12.
+    read_noise : float, default 0.0
+        Detector noise standard deviation σ_det, photons per sample: 0 to
+        1e12.
+    photon_noise : bool, default True
+        Poisson photon noise (when off, detector noise only).
 
     Returns
     -------
@@ -285,13 +511,66 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         Worker threads (0: all cores); the answer does not depend on it.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
-    wavelength_um, ..., integrating
-        The observation and scan, as for :func:`bias`.
-    wind_mps, seeing_arcsec, seeing_wavelength_um, aperture_m, outer_scale_m, sub_samples, reference
-        Wind (m/s), seeing (arcsec, quoted at seeing_wavelength_um, default the
-        observing wavelength), aperture (m), outer scale (m, default
-        infinite), integrating sub-samples, packet reference
-        ("mean", "centre", "absolute").
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    stroke_um : float, optional
+        OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24. Default:
+        ``samples`` × ``dx_um``.
+    dx_um : float, default 0.5
+        Sample spacing δx, µm: > 0.
+    samples : int, default 128
+        Number of samples N: 2 to 2^24. Ignored when ``stroke_um`` is given.
+        The finite scan costs about N² (N = 16384: about 10 s on two cores).
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
+    wind_mps : float, default 10.0
+        Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline.
+    seeing_arcsec : float, default 1.0
+        Seeing λ/r0, arcsec: 0 to 100. Quoted at ``seeing_wavelength_um``;
+        0: no turbulence.
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm: 0.3 to 30. Site
+        monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+        λ^(6/5). Default: the observing wavelength ``wavelength_um``.
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
+    outer_scale_m : float, optional
+        von Kármán outer scale, m: > 0. Default: infinite.
+    sub_samples : int, default 6
+        Sub-samples per sample of the integrating detector under piston: 1
+        to 64.
+    reference : str, default 'mean'
+        Where the fringe packet sits in each scan: centre, mean or absolute.
     psd : {"two-aperture", "three-slope"}
         The differential-piston spectrum the sequences are drawn from: the
         two-aperture integral, or the three-slope model (power laws -2/3,
@@ -314,21 +593,114 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
 def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
-    target_sigma_v2: σ of the averaged V² (default 1e-3); time_budget_s: instead, the time to
-    spend (s); photon_rate_per_s: continuum photons/s at the detector in the band;
-    samples_per_fringe: δx = λ0/this; dead_time_s: between scans (s); fringe_hz (Hz) and
-    stroke_um (µm): the grid; scans: piston Monte Carlo size; the instrument, source, noise and
-    atmosphere as for :func:`simulate`. Returns ``inputs``, ``points``, ``best_v1``,
-    ``best_v2``, ``recommended``.
+    Parameters
+    ----------
+    target_sigma_v2 : float, optional
+        σ of the averaged V² to reach (default 1e-3 when no time budget).
+    time_budget_s : float, optional
+        Instead, the time to spend, s: the σ reached is reported.
+    photon_rate_per_s : float
+        Continuum photons per second at the detector in the band.
+    samples_per_fringe : float
+        Samples per fringe at λ0 (δx = λ0 / this).
+    dead_time_s : float
+        Dead time between scans, s.
+    fringe_hz, stroke_um : sequence of float, optional
+        The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
+        and strokes (µm; default 16, 32, 64, 128).
+    scans : int
+        Scans of each piston Monte Carlo (32 and more; cut into up to 16
+        independent piston sequences, whose spread gives the errors).
+    seed, threads : int
+        Seed of the piston Monte Carlo; worker threads (0: all cores; the
+        answer does not depend on it).
+    diameter_err_mas : float
+        1σ uncertainty of the uniform disk's diameter, mas (>= 0): its
+        effect on V² is reported beside the corrections.
+    oifits : path, optional
+        Also write the predicted observation at the recommended setting as
+        OIFITS v2 (as ``v2ref plan --oifits``): V², its predicted σ, and the
+        biases left to correct in header keywords. Refused unless it ends
+        in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
+        the target.
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
+    spectrum_csv : path, optional
+        A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+        100000 rows, 16 MiB. Header `wavelength_um,weight` or
+        `wavenumber_per_um,weight`, the weight per unit wavenumber
+        (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per
+        unit wavelength and is converted by λ²); a leading byte-order mark
+        is fine. Default: the flat band of ``wavelength_um`` and
+        ``bandwidth_nm``.
+    source : str, default 'ud'
+        Source model: point or ud. ud: a uniform disk of diameter
+        ``diameter_mas``; point: unresolved (V = 1).
+    diameter_mas : float, default 43.0
+        Uniform-disk diameter θ, mas: > 0 to 3.6e6.
+    spatial_freq_cpas : float, optional
+        Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B =
+        S/σ_eff at most 1e9 m). Default: 40, the paper's 18 m baseline in K
+        (or from ``baseline_m``).
+    baseline_m : float, optional
+        Projected baseline B, m: 0 to 1e9. Instead of ``spatial_freq_cpas``.
+        Default: from ``spatial_freq_cpas``.
+    dispersion_pp_rad : float, default 0.0
+        Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to
+        1e4.
+    integrating : bool, default False
+        Integrating detector (each sample averages the fringe over δx).
+    visibility : float, default 1.0
+        Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point
+        source (a source of known V: ``source`` point).
+    read_noise : float, default 0.0
+        Detector noise standard deviation σ_det, photons per sample: 0 to
+        1e12.
+    photon_noise : bool, default True
+        Poisson photon noise (when off, detector noise only).
+    wind_mps : float, default 10.0
+        Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline.
+    seeing_arcsec : float, default 1.0
+        Seeing λ/r0, arcsec: 0 to 100. Quoted at ``seeing_wavelength_um``;
+        0: no turbulence.
+    seeing_wavelength_um : float, optional
+        Wavelength at which ``seeing_arcsec`` is quoted, µm: 0.3 to 30. Site
+        monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+        λ^(6/5). Default: the observing wavelength ``wavelength_um``.
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
+    outer_scale_m : float, optional
+        von Kármán outer scale, m: > 0. Default: infinite.
+    sub_samples : int, default 6
+        Sub-samples per sample of the integrating detector under piston: 1
+        to 64.
+    reference : str, default 'mean'
+        Where the fringe packet sits in each scan: centre, mean or absolute.
+
+    Returns
+    -------
+    dict
+        ``inputs``, ``points`` (every estimator × fringe frequency × stroke
+        with each term: bandwidth and scan biases, noise and piston σ per
+        scan, piston bias, scans, time), ``best_v1``, ``best_v2``,
+        ``recommended``.
     """
     ...
 
 def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: float=0.45, wavelength_um: float=2.2, bandwidth_nm: float=400.0) -> float:
-    """Photons per second at the detector in the band from a 2MASS magnitude, as ``v2ref plan --magnitude``.
+    """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 
     ``F_ν = F_ν0 10^(-m/2.5)`` with the zero points of Cohen, Wheaton &
-    Megeath (2003, AJ 126, 1090, Table 2: J 1594, H 1024, Ks 666.7 Jy),
-    taken flat over [λ0 − Δλ/2, λ0 + Δλ/2]: ``F_ν ln(λmax/λmin)/h`` photons
+    Megeath (2003, AJ 126, 1090, Table 2: 2MASS J 1594, H 1024, Ks 666.7 Jy)
+    or Bessell, Castelli & Plez (1998, A&A 333, 231: Johnson–Cousins V
+    3640, R 3080, I 2550 Jy), taken flat over [λ0 − Δλ/2, λ0 + Δλ/2]: ``F_ν ln(λmax/λmin)/h`` photons
     s⁻¹ m⁻², times the two apertures' area ``2 π D²/4`` and ``throughput``.
     Pass the result to :func:`plan` as ``photon_rate_per_s``.
 
@@ -336,16 +708,24 @@ def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: f
     ----------
     magnitude : float
         The source's magnitude in ``band``, -10 to 30.
-    band : {"J", "H", "Ks"}
-        The 2MASS band of ``magnitude``.
+    band : {"J", "H", "Ks", "V", "R", "I"}
+        The band of ``magnitude``: 2MASS J, H, Ks or Johnson–Cousins V, R, I
+        (it must cover the observing band).
     throughput : float
         Fraction of the source's photons counted in the sampled
         interferogram (atmosphere, optics, combiner outputs sampled,
         detector QE), 0 < T <= 1.
-    aperture_m : float
-        Telescope aperture diameter D, m (two telescopes).
-    wavelength_um, bandwidth_nm : float
-        The observing band: centre λ0 (µm) and full width Δλ (nm).
+    aperture_m : float, default 0.45
+        Telescope aperture diameter, m: 0.001 to 1000.
+    wavelength_um : float, default 2.2
+        Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
+        still sets λ0 of the fringe frequency f = v/λ0, of the samples per
+        fringe and of the seeing: give the spectrum's centre.
+    bandwidth_nm : float, default 400.0
+        Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2,
+        λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit
+        wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
+        Δλ/2)).
     """
     ...
 

@@ -5,46 +5,49 @@
 use super::finite_f64;
 use std::path::PathBuf;
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::parameters::Physical;
+use v2ref::parameters::{Parameter, Physical};
 
 pub use v2ref::parameters::SourceKind;
+
+/// The defaults of the physical flags: the library's one declaration.
+pub const DEFAULTS: Physical = Physical::DEFAULT;
+
+/// The `--help` of the flag of the physical input `name`, from its one
+/// declaration ([`Parameter::describe`]; other inputs named by their
+/// flags), with what leaving it unset means where it may be unset.
+pub fn help(name: &str) -> String {
+    let p = Parameter::named(name);
+    let text = p.describe(&|n| super::flag_of(n));
+    let text = text.trim_end_matches('.');
+    match p.unset(&|n| super::flag_of(n)) {
+        unset if unset.is_empty() => text.to_owned(),
+        unset => format!("{text} [default: {unset}]"),
+    }
+}
+
+/// The `--help` of `--no-NAME`, the flag that turns the input `name` off.
+pub fn help_off(name: &str) -> String {
+    format!("Turns off: {}", help(name))
+}
 
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ObservationArgs {
-    /// Centre wavelength λ0, µm: 0.001 to 100000. With --spectrum-csv it
-    /// still sets λ0 of the fringe frequency f = v/λ0, of the samples per
-    /// fringe and of the seeing: give the spectrum's centre.
-    #[arg(long, default_value = "2.2", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("wavelength_um"), default_value_t = DEFAULTS.wavelength_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
-    /// Full bandwidth Δλ, nm: the band [λ0 − Δλ/2, λ0 + Δλ/2], flat per
-    /// unit wavenumber σ = 1/λ (not per unit wavelength: W(σ) is constant
-    /// between 1/(λ0 + Δλ/2) and 1/(λ0 − Δλ/2)); 1e-12 λ0 to under 2 λ0.
-    #[arg(long, default_value = "400", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("bandwidth_nm"), default_value_t = DEFAULTS.bandwidth_nm, value_parser = finite_f64, allow_negative_numbers = true)]
     pub bandwidth_nm: f64,
-    /// A tabulated S(σ)F(σ) instead of the flat band: CSV with header
-    /// `wavelength_um,weight` or `wavenumber_per_um,weight`, the weight per
-    /// unit wavenumber (`weight_per_wavenumber` says so explicitly;
-    /// `weight_per_um` is per unit wavelength and is converted by λ²); a
-    /// leading byte-order mark is fine; at most 100000 rows, 16 MiB.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, help = help("spectrum_csv"), value_name = "FILE")]
     pub spectrum_csv: Option<PathBuf>,
-    /// Source model.
-    #[arg(long, value_enum, default_value = "ud")]
+    #[arg(long, help = help("source"), value_enum, default_value_t = DEFAULTS.source)]
     pub source: SourceKind,
-    /// Uniform-disk diameter θ, mas: > 0 to 3.6e6 (1°).
-    #[arg(long, default_value = "43", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("diameter_mas"), default_value_t = DEFAULTS.diameter_mas, value_parser = finite_f64, allow_negative_numbers = true)]
     pub diameter_mas: f64,
-    /// Spatial frequency S = B σ_eff, cycles/arcsec [default: 40, the
-    /// paper's 18 m baseline in K]; 0 to 1e13.
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
+    #[arg(long, help = help("spatial_freq_cpas"), value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
     pub spatial_freq_cpas: Option<f64>,
-    /// Projected baseline B, m (instead of --spatial-freq-cpas): 0 to 1e9.
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("baseline_m"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub baseline_m: Option<f64>,
-    /// Quadratic dispersion phase, peak-to-peak over the band, rad: −1e4 to
-    /// 1e4.
-    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("dispersion_pp_rad"), default_value_t = DEFAULTS.dispersion_pp_rad, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dispersion_pp_rad: f64,
 }
 
@@ -72,18 +75,13 @@ impl ObservationArgs {
 /// How the interferogram is scanned and sampled.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ScanArgs {
-    /// OPD stroke Δx, µm (sets N = Δx/δx; default: --samples × --dx-um).
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("stroke_um"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub stroke_um: Option<f64>,
-    /// Sample spacing δx, µm.
-    #[arg(long, default_value = "0.5", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("dx_um"), default_value_t = DEFAULTS.dx_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
-    /// Number of samples N (ignored when --stroke-um is given). The finite
-    /// scan costs about N² (N = 16384: about 10 s on two cores).
-    #[arg(long, value_parser = super::count_usize, default_value = "128", allow_negative_numbers = true)]
+    #[arg(long, help = help("samples"), default_value_t = DEFAULTS.samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub samples: usize,
-    /// Integrating detector (each sample averages the fringe over δx).
-    #[arg(long)]
+    #[arg(long, help = help("integrating"))]
     pub integrating: bool,
 }
 
@@ -110,29 +108,19 @@ pub struct SamplingArgs {
 /// The turbulence, the telescopes and the scans through the piston (§6).
 #[derive(Debug, Clone, clap::Args)]
 pub struct TurbulenceArgs {
-    /// Wind speed, m/s (frozen flow along the baseline): > 0 to 343.
-    #[arg(long, default_value = "10", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("wind_mps"), default_value_t = DEFAULTS.wind_mps, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wind_mps: f64,
-    /// Seeing λ/r0, arcsec, at --seeing-wavelength-um: 0 (no turbulence)
-    /// to 100.
-    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("seeing_arcsec"), default_value_t = DEFAULTS.seeing_arcsec, value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
-    /// Wavelength at which --seeing-arcsec is quoted, µm (site monitors
-    /// quote 0.5), 0.3 to 30 (where seeing is measured); converted to the observing wavelength
-    /// by r0 ∝ λ^(6/5) [default: the observing wavelength --wavelength-um].
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("seeing_wavelength_um"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_wavelength_um: Option<f64>,
-    /// Telescope aperture diameter, m.
-    #[arg(long, default_value = "0.45", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("aperture_m"), default_value_t = DEFAULTS.aperture_m, value_parser = finite_f64, allow_negative_numbers = true)]
     pub aperture_m: f64,
-    /// von Kármán outer scale, m [default: infinite].
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("outer_scale_m"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub outer_scale_m: Option<f64>,
-    /// Sub-samples per sample of the integrating detector.
-    #[arg(long, value_parser = super::count_usize, default_value_t = v2ref::piston::DEFAULT_SUB_SAMPLES, allow_negative_numbers = true)]
+    #[arg(long, help = help("sub_samples"), default_value_t = DEFAULTS.sub_samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub sub_samples: usize,
-    /// Where the fringe packet sits in each scan.
-    #[arg(long, value_enum, default_value = "mean")]
+    #[arg(long, help = help("reference"), value_enum, default_value_t = DEFAULTS.reference)]
     pub reference: v2ref::piston::PistonReference,
 }
 
@@ -196,18 +184,13 @@ pub struct RunArgs {
 /// The light: the fringe's visibility scale, the photons, the noise.
 #[derive(Debug, Clone, clap::Args)]
 pub struct LightArgs {
-    /// Visibility V scaling the fringe (m_0 = n V for a point source), 0 to 1.
-    #[arg(long, default_value = "1", value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_hyphen_values = true)]
     pub visibility: f64,
-    /// Continuum photons per sample n (c = n): 0 to 1e12.
-    #[arg(long, default_value = "10", value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("photons"), default_value_t = DEFAULTS.photons, value_parser = finite_f64, allow_hyphen_values = true)]
     pub photons: f64,
-    /// Detector noise standard deviation σ_det, photons per sample: 0 to
-    /// 1e12.
-    #[arg(long, default_value = "0", value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_hyphen_values = true)]
     pub read_noise: f64,
-    /// No Poisson photon noise (detector noise only).
-    #[arg(long)]
+    #[arg(long, help = help_off("photon_noise"))]
     pub no_photon_noise: bool,
 }
 

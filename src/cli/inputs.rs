@@ -1,7 +1,7 @@
 //! The flags of the end-to-end simulator (`simulate`, `synth`, `estimate`):
 //! every physical input, gathered into [`v2ref::simulator::Inputs`].
 
-use super::common::{LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
+use super::common::{help, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
 use super::finite_f64;
 use v2ref::parameters::Physical;
 use v2ref::simulator::{Inputs, Model};
@@ -10,9 +10,7 @@ use v2ref::Result;
 /// The differential piston: on when `--fringe-hz` is given.
 #[derive(Debug, Clone, clap::Args)]
 pub struct PistonArgs {
-    /// Fringe frequency f = v/λ0, Hz: adds the differential piston of §6
-    /// (consecutive scans through one piston sequence); none without it.
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("fringe_hz"), value_parser = finite_f64, allow_negative_numbers = true)]
     pub fringe_hz: Option<f64>,
     #[command(flatten)]
     pub turbulence: TurbulenceArgs,
@@ -69,8 +67,11 @@ impl InputsArgs {
 #[cfg(test)]
 mod tests {
     use super::InputsArgs;
-    use clap::Parser;
-    use v2ref::parameters::Physical;
+    use crate::cli::flag_of;
+    use clap::{CommandFactory, Parser};
+    use serde_json::Value;
+    use std::collections::BTreeSet;
+    use v2ref::parameters::{Parameter, Physical, PARAMETERS};
 
     #[derive(Parser)]
     struct Cli {
@@ -111,6 +112,92 @@ mod tests {
             let mut want = Physical::default();
             set(&mut want);
             assert_eq!(cli.inputs.physical(), want, "{flags:?}");
+        }
+    }
+
+    /// Flags named as a physical input that take something else: the
+    /// grids of `plan` and the list of `piston`.
+    const NOT_PHYSICAL: [(&str, &str); 3] = [
+        ("plan", "fringe-hz"),
+        ("plan", "stroke-um"),
+        ("piston", "fringe-hz"),
+    ];
+
+    /// Every flag of every command that sets a physical input: (`command
+    /// --flag`, the flag, its declaration, whether it turns the input off).
+    fn physical_flags() -> Vec<(String, clap::Arg, &'static Parameter, bool)> {
+        let mut out = Vec::new();
+        for sub in crate::Cli::command().get_subcommands() {
+            for arg in sub.get_arguments() {
+                let Some(long) = arg.get_long() else { continue };
+                let (name, off) = match long.strip_prefix("no-") {
+                    Some(n) => (n.replace('-', "_"), true),
+                    None => (long.replace('-', "_"), false),
+                };
+                let Some(p) = PARAMETERS.iter().find(|p| p.name == name) else {
+                    continue;
+                };
+                if !NOT_PHYSICAL.contains(&(sub.get_name(), long)) {
+                    out.push((format!("{} --{long}", sub.get_name()), arg.clone(), p, off));
+                }
+            }
+        }
+        out
+    }
+
+    /// Every physical flag of every command states its one declaration:
+    /// its help starts with the declared text, unit and accepted range
+    /// (what leaving it unset means at its end), and every declared input
+    /// has a flag somewhere.
+    #[test]
+    fn every_physical_flag_states_its_declaration() {
+        let mut seen = BTreeSet::new();
+        let flags = |n: &str| flag_of(n);
+        for (at, arg, p, off) in physical_flags() {
+            let help = arg.get_help().expect("a help").to_string();
+            let mut head = Parameter { note: "", ..*p }.describe(&flags);
+            head.pop(); // the full stop
+            if off {
+                head = format!("Turns off: {head}");
+            }
+            assert!(help.starts_with(&head), "{at}: {help:?} for {head:?}");
+            if !p.unset.is_empty() {
+                let unset = format!("[default: {}]", p.unset(&flags));
+                assert!(help.ends_with(&unset), "{at}: {help:?}");
+            }
+            seen.insert(p.name);
+        }
+        let declared: BTreeSet<_> = PARAMETERS.iter().map(|p| p.name).collect();
+        assert_eq!(seen, declared);
+    }
+
+    /// Every physical flag's default is the declared one (none where the
+    /// input may be unset), and a choice offers the declared words.
+    #[test]
+    fn every_physical_flag_has_the_declared_default() {
+        let defaults = serde_json::to_value(Physical::default()).unwrap();
+        for (at, arg, p, off) in physical_flags() {
+            let shown: Vec<String> = arg
+                .get_default_values()
+                .iter()
+                .map(|v| v.to_string_lossy().into_owned())
+                .collect();
+            match &defaults[p.name] {
+                Value::Null => assert!(shown.is_empty(), "{at}: {shown:?}"),
+                Value::Bool(b) => assert_eq!(*b, off, "{at}"),
+                Value::Number(x) => assert_eq!(shown[0].parse().ok(), x.as_f64(), "{at}"),
+                Value::String(w) => {
+                    assert_eq!(shown, [w.as_str()], "{at}");
+                    let words: Vec<String> = arg
+                        .get_possible_values()
+                        .iter()
+                        .map(|v| v.get_name().to_owned())
+                        .collect();
+                    let listed = p.accepted.replace(" or ", ", ");
+                    assert_eq!(listed.split(", ").collect::<Vec<_>>(), words, "{at}");
+                }
+                v => panic!("{at}: {v}"),
+            }
         }
     }
 }

@@ -45,25 +45,13 @@ use v2ref::Error;
 /// Exit status for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
 
-/// Library parameter names (Rust names, snake_case) whose flag is not
-/// `--` + the name with `_` turned into `-`.
-const FLAG_OF_PARAM: &[(&str, &str)] = &[
-    ("spectrum", "--spectrum-csv"),
-    ("peak_to_peak_rad", "--dispersion-pp-rad"),
-    ("photons_per_sample", "--photons"),
-    ("truth", "--sidecar"),
-];
-
-/// The flag that sets the library parameter `param`: an entry of
-/// [`FLAG_OF_PARAM`], else `--` + `param` with `_` (or a legacy `-`) as `-`.
+/// The flag that sets the library parameter `param`: `--` and its keyword
+/// ([`v2ref::parameters::keyword_of`]) with `_` as `-`.
 pub fn flag_of(param: &str) -> String {
-    FLAG_OF_PARAM
-        .iter()
-        .find(|(p, _)| *p == param.replace('-', "_"))
-        .map_or_else(
-            || format!("--{}", param.replace('_', "-")),
-            |(_, f)| (*f).to_owned(),
-        )
+    format!(
+        "--{}",
+        v2ref::parameters::keyword_of(param).replace('_', "-")
+    )
 }
 
 /// Prints a library error as one line naming the flag
@@ -227,5 +215,6 @@ mod tests {
         assert_eq!(flag_of("spectrum"), "--spectrum-csv");
         assert_eq!(flag_of("photons_per_sample"), "--photons");
         assert_eq!(flag_of("peak_to_peak_rad"), "--dispersion-pp-rad");
+        assert_eq!(flag_of("truth"), "--sidecar");
     }
 }

@@ -2,7 +2,7 @@
 //! that reach a target σ(V²) (or the σ reached in a time budget) for an
 //! instrument, a source and a site (`v2ref::plan`).
 
-use super::common::{ObservationArgs, TurbulenceArgs};
+use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, DEFAULTS};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
@@ -20,12 +20,9 @@ pub struct Args {
     /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
     #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
     samples_per_fringe: f64,
-    /// Integrating detector (each sample averages the fringe over δx).
-    #[arg(long)]
+    #[arg(long, help = help("integrating"))]
     integrating: bool,
-    /// Visibility V scaling the fringe (a source of known V: --source point
-    /// --visibility V), 0 to 1.
-    #[arg(long, default_value = "1", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
     visibility: f64,
     /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
@@ -40,7 +37,7 @@ pub struct Args {
           conflicts_with_all = ["photon_rate_per_s", "spectrum_csv"],
           requires_all = ["magnitude_band", "throughput"])]
     magnitude: Option<f64>,
-    /// The 2MASS band of --magnitude.
+    /// The band of --magnitude: 2MASS J, H, Ks or Johnson–Cousins V, R, I.
     #[arg(long, value_enum, requires = "magnitude")]
     magnitude_band: Option<MagnitudeBand>,
     /// Fraction of the source's photons counted in the sampled
@@ -48,11 +45,9 @@ pub struct Args {
     /// QE), 0 < T <= 1; with --magnitude.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
     throughput: Option<f64>,
-    /// Detector noise standard deviation per sample, photons.
-    #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
     read_noise: f64,
-    /// No Poisson photon noise (detector noise only).
-    #[arg(long)]
+    #[arg(long, help = help_off("photon_noise"))]
     no_photon_noise: bool,
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]

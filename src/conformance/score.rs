@@ -156,8 +156,10 @@ pub struct EstimatorScore {
     /// T.var, the expected variance.
     pub expected_var: f64,
     /// `se_var = √(se_set_var² + T.stderr_var²)`, the denominator of
-    /// `z_var`.
-    pub stderr_var: f64,
+    /// `z_var`: the scatter of a set's variance and the truth's own
+    /// uncertainty combined (not the truth's `stderr_var`, which is only
+    /// the second).
+    pub stderr_var_combined: f64,
     /// Where `se_set_var` came from.
     pub stderr_var_source: VarStderrSource,
     /// `(s² − T.var)/se_var`, as its normal equivalent when `dof` is
@@ -295,7 +297,7 @@ pub fn score_with_threshold(
         z_mean,
         var,
         expected_var: truth.var,
-        stderr_var: se_var,
+        stderr_var_combined: se_var,
         stderr_var_source,
         z_var,
         dof,

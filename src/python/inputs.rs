@@ -3,7 +3,8 @@
 //! CLI's flags).
 
 use super::{parse_enum, Fail};
-use crate::parameters::PARAMETERS;
+use crate::parameters::{Parameter, PARAMETERS};
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -24,6 +25,25 @@ fn item<'py, T: FromPyObject<'py>>(d: &Bound<'py, PyDict>, key: &str, default: T
     }
 }
 
+/// The choice `key` of `d` (missing or None: `default`), one of the words
+/// its declaration accepts (`point or ud`).
+fn choice<T: serde::de::DeserializeOwned>(
+    d: &Bound<'_, PyDict>,
+    key: &'static str,
+    default: T,
+) -> PyResult<T> {
+    let word: Option<String> = item(d, key, None)?;
+    let Some(word) = word else {
+        return Ok(default);
+    };
+    let accepted: Vec<&str> = Parameter::named(key)
+        .accepted
+        .split([',', ' '])
+        .filter(|w| !w.is_empty() && *w != "or")
+        .collect();
+    parse_enum(key, &word, &accepted).map_err(|e| e.into_py_err())
+}
+
 impl Physical {
     /// The physical inputs in `d` (missing or None: [`Physical::default`]),
     /// checked ([`Physical::check`]).
@@ -39,13 +59,11 @@ impl Physical {
             }
         }
         let d0 = Physical::default();
-        let text = |key: &str, default: &str| item(d, key, default.to_owned());
         let p = Physical {
             wavelength_um: item(d, "wavelength_um", d0.wavelength_um)?,
             bandwidth_nm: item(d, "bandwidth_nm", d0.bandwidth_nm)?,
             spectrum_csv: item(d, "spectrum_csv", d0.spectrum_csv)?,
-            source: parse_enum("source", &text("source", "ud")?, &["point", "ud"])
-                .map_err(|e| e.into_py_err())?,
+            source: choice(d, "source", d0.source)?,
             diameter_mas: item(d, "diameter_mas", d0.diameter_mas)?,
             spatial_freq_cpas: item(d, "spatial_freq_cpas", d0.spatial_freq_cpas)?,
             baseline_m: item(d, "baseline_m", d0.baseline_m)?,
@@ -65,14 +83,36 @@ impl Physical {
             aperture_m: item(d, "aperture_m", d0.aperture_m)?,
             outer_scale_m: item(d, "outer_scale_m", d0.outer_scale_m)?,
             sub_samples: item(d, "sub_samples", d0.sub_samples)?,
-            reference: parse_enum(
-                "reference",
-                &text("reference", "mean")?,
-                &["centre", "mean", "absolute"],
-            )
-            .map_err(|e| e.into_py_err())?,
+            reference: choice(d, "reference", d0.reference)?,
         };
         p.check().map_err(|e| e.into_py_err())?;
         Ok(p)
     }
+}
+
+/// Adds the one declaration of the physical inputs to the module:
+/// `PHYSICAL_KEYWORDS` (their names, in order), `PHYSICAL_DEFAULTS` and
+/// `PHYSICAL_PARAMETERS` (JSON: [`PARAMETERS`], each with its help text
+/// `doc` and what leaving it unset means, `unset_doc`, other inputs named
+/// ``` ``name`` ```, for the docstrings).
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
+    m.add("PHYSICAL_KEYWORDS", names)?;
+    m.add("PHYSICAL_DEFAULTS", json(&Physical::default())?)?;
+    let keyword = |n: &str| format!("``{n}``");
+    let table: Vec<serde_json::Value> = PARAMETERS
+        .iter()
+        .map(|p| {
+            let mut v = serde_json::json!(p);
+            v["doc"] = p.describe(&keyword).into();
+            v["unset_doc"] = p.unset(&keyword).into();
+            v
+        })
+        .collect();
+    m.add("PHYSICAL_PARAMETERS", json(&table)?)
+}
+
+/// `v` as JSON text.
+fn json<T: serde::Serialize>(v: &T) -> PyResult<String> {
+    serde_json::to_string(v).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }

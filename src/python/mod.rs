@@ -20,23 +20,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
-/// Library parameter names whose Python keyword is not the same name
-/// (the CLI's `FLAG_OF_PARAM`, without the `--`).
-const KEYWORD_OF_PARAM: &[(&str, &str)] = &[
-    ("spectrum", "spectrum_csv"),
-    ("peak_to_peak_rad", "dispersion_pp_rad"),
-    ("photons_per_sample", "photons"),
-    ("truth", "sidecar"),
-    ("input", "interferograms"),
-];
-
-/// The keyword that sets the library parameter `param`.
+/// The keyword that sets the library parameter `param`
+/// ([`crate::parameters::keyword_of`]; the interferograms are `input` to
+/// the library and the CLI).
 pub fn keyword_of(param: &str) -> String {
-    let p = param.replace('-', "_");
-    KEYWORD_OF_PARAM
-        .iter()
-        .find(|(k, _)| *k == p)
-        .map_or(p, |(_, f)| (*f).to_owned())
+    match param {
+        "input" => "interferograms".into(),
+        p => crate::parameters::keyword_of(p),
+    }
 }
 
 /// The message of a library error: `keyword: detail`.
@@ -160,18 +151,7 @@ pub fn interruptible<T: Send>(
 #[pymodule]
 fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    let names: Vec<&str> = crate::parameters::PARAMETERS
-        .iter()
-        .map(|p| p.name)
-        .collect();
-    m.add("PHYSICAL_KEYWORDS", names)?;
-    // The one declaration of the physical inputs: defaults, units, ranges.
-    let defaults = serde_json::to_string(&crate::parameters::Physical::default())
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    m.add("PHYSICAL_DEFAULTS", defaults)?;
-    let table = serde_json::to_string(&crate::parameters::PARAMETERS)
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    m.add("PHYSICAL_PARAMETERS", table)?;
+    inputs::register(m)?;
     m.add(
         "ESTIMATE_COLUMNS",
         crate::commands::ESTIMATE_COLUMNS.to_vec(),

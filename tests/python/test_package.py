@@ -641,7 +641,9 @@ def test_signatures_carry_types_not_strings():
         f = getattr(v2ref, name)
         if not callable(f):
             continue
-        for p in inspect.signature(f).parameters.values():
+        sig = inspect.signature(f)
+        for p in sig.parameters.values():
             assert not isinstance(p.annotation, str), (name, p.name, p.annotation)
+        assert "ForwardRef" not in repr(sig.return_annotation), (name, sig.return_annotation)
     hints = typing.get_type_hints(v2ref.estimate)
     assert hints["continuum_subtracted"] == typing.Optional[bool]

@@ -16,6 +16,7 @@ import re
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import v2ref
@@ -31,6 +32,10 @@ TABLE = {p["name"]: p for p in json.loads(_v2ref.PHYSICAL_PARAMETERS)}
 
 # The public functions that take physical keyword arguments.
 FUNCTIONS = ["estimate", "synthesize", "simulate", "bias", "snr", "piston", "plan"]
+# Their keyword arguments named as a physical input that take something
+# else: plan's grids, piston's list of frequencies.
+NOT_PHYSICAL = {"plan": {"fringe_hz", "stroke_um"}, "piston": {"fringe_hz"}}
+STUB = ROOT / "python" / "v2ref" / "__init__.pyi"
 
 
 def test_the_declaration_is_complete():
@@ -51,7 +56,7 @@ def test_signature_defaults_are_the_declared_ones(name):
 
 def _stub_defaults():
     """{function: {keyword: default}} of python/v2ref/__init__.pyi."""
-    tree = ast.parse((ROOT / "python" / "v2ref" / "__init__.pyi").read_text())
+    tree = ast.parse(STUB.read_text(encoding="utf-8"))
     out = {}
     for node in tree.body:
         if isinstance(node, ast.FunctionDef):
@@ -98,3 +103,117 @@ def test_cli_help_states_each_declared_default(command):
         assert flag in entries, (command, flag)
         shown = f"{v:g}" if isinstance(v, float) else str(v)
         assert f"[default: {shown}]" in entries[flag], (command, flag, entries[flag])
+
+
+def _stub_functions():
+    """{name: ast.FunctionDef} of the stub."""
+    tree = ast.parse(STUB.read_text(encoding="utf-8"))
+    return {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+
+
+def _physical_keywords(name):
+    """The physical keyword arguments of ``v2ref.<name>``, in order."""
+    sig = inspect.signature(getattr(v2ref, name))
+    return [k for k in sig.parameters if k in TABLE and k not in NOT_PHYSICAL.get(name, ())]
+
+
+def _entry(doc, keyword):
+    """The docstring entry of ``keyword``: its head line and its text on one line."""
+    lines = doc.splitlines()
+    heads = [i for i, l in enumerate(lines) if re.match(rf"{keyword} : ", l)]
+    assert len(heads) == 1, (keyword, heads)
+    i = heads[0]
+    body = []
+    for line in lines[i + 1 :]:
+        if not line.startswith("    "):
+            break
+        body.append(line.strip())
+    return lines[i], " ".join(body)
+
+
+@pytest.mark.parametrize("where", ["package", "stub"])
+@pytest.mark.parametrize("name", FUNCTIONS + ["photon_rate"])
+def test_docstrings_state_each_declaration(name, where):
+    """Each physical keyword argument's entry, in ``help()`` and in the stub,
+    is the declaration's: its help text (unit and accepted range included)
+    and its default (or what leaving it unset means)."""
+    if where == "package":
+        doc = inspect.getdoc(getattr(v2ref, name))
+    else:
+        doc = ast.get_docstring(_stub_functions()[name])
+    sig = inspect.signature(getattr(v2ref, name))
+    keywords = _physical_keywords(name)
+    assert keywords, name
+    for k in keywords:
+        head, text = _entry(doc, k)
+        p = TABLE[k]
+        want = " ".join(p["doc"].split())
+        assert text.startswith(want), (name, k, text, want)
+        assert f", {p['unit']}: " in want or not p["unit"], (k, want)
+        assert p["accepted"] in want or p["accepted"] == "true or false", (k, want)
+        default = sig.parameters[k].default
+        if default is None:
+            assert head.endswith(", optional"), (name, head)
+            assert text.endswith(f"Default: {' '.join(p['unset_doc'].split())}."), (name, k, text)
+        else:
+            assert head.endswith(f", default {default!r}"), (name, head)
+
+
+def test_the_physical_entries_are_written_once():
+    """No docstring in the package's source describes a physical input by
+    hand: each entry comes from the declaration (a hand-written copy would
+    drift, as the stub's ``photons >= 0`` once did)."""
+    source = (ROOT / "python" / "v2ref" / "__init__.py").read_text(encoding="utf-8")
+    for p in TABLE.values():
+        assert p["what"].split("{")[0] not in source, p["what"]
+        assert p["doc"] not in source, p["name"]
+
+
+def test_the_stub_docstrings_are_the_packages():
+    """The stub carries the docstrings the package builds at import (editors
+    read the stub); ``python scripts/stub_docstrings.py`` rewrites them."""
+    stub = _stub_functions()
+    documented = [n for n, f in stub.items() if ast.get_docstring(f) is not None]
+    assert set(FUNCTIONS + ["photon_rate", "score", "claims"]) <= set(documented)
+    for name in documented:
+        got = ast.get_docstring(stub[name])
+        assert got == inspect.getdoc(getattr(v2ref, name)), (
+            f"{name}: the stub's docstring is out of date: run python scripts/stub_docstrings.py"
+        )
+
+
+def test_the_stub_signatures_are_the_packages():
+    """The stub's hand-written signatures have the package's parameters, in
+    the same order, of the same kind, with the same defaults."""
+    for name, node in _stub_functions().items():
+        sig = inspect.signature(getattr(v2ref, name))
+        a = node.args
+        stub = [(x.arg, "POSITIONAL_OR_KEYWORD") for x in a.posonlyargs + a.args]
+        stub += [(x.arg, "KEYWORD_ONLY") for x in a.kwonlyargs]
+        got = [(p.name, p.kind.name) for p in sig.parameters.values()]
+        assert stub == got, name
+        defaults = dict(zip([x.arg for x in a.args][len(a.args) - len(a.defaults) :], a.defaults))
+        defaults.update({x.arg: d for x, d in zip(a.kwonlyargs, a.kw_defaults) if d is not None})
+        for k, d in defaults.items():
+            if isinstance(d, ast.Constant) and d.value is Ellipsis:
+                continue
+            assert ast.literal_eval(d) == sig.parameters[k].default, (name, k)
+
+
+@pytest.mark.parametrize("name", FUNCTIONS)
+def test_every_physical_keyword_reaches_the_library(name):
+    """Each physical keyword argument is passed on (a wrong type of it is
+    refused by its name), not silently dropped."""
+    args = (np.ones((2, 16)),) if name == "estimate" else ()
+    for k in _physical_keywords(name):
+        with pytest.raises(TypeError, match=f"^{k}: "):
+            getattr(v2ref, name)(*args, **{k: object()})
+
+
+def test_every_declared_input_is_a_keyword_argument():
+    """A declared input missing from every signature is seen (the
+    signatures are written by hand)."""
+    used = set()
+    for name in FUNCTIONS:
+        used |= set(_physical_keywords(name))
+    assert used == set(TABLE)

@@ -60,8 +60,8 @@ pub(super) fn plan(
     json(&answer)
 }
 
-/// `photon_rate`: the photon rate at the detector from a 2MASS magnitude
-/// (`v2ref plan --magnitude`).
+/// `photon_rate`: the photon rate at the detector from a magnitude (2MASS
+/// or Johnson–Cousins; `v2ref plan --magnitude`).
 #[pyfunction]
 #[pyo3(signature = (magnitude, band, aperture_m, throughput, wavelength_um, bandwidth_nm))]
 pub(super) fn photon_rate(
