@@ -1,36 +1,62 @@
 #!/usr/bin/env bash
-# Every test of v2ref, on a fresh machine: the Rust suite, then the Python
-# suite (the `v2ref` package built from this checkout, and the independent
-# NumPy pipeline scored by the release binary on the conformance vectors).
-# Creates .venv and installs what it needs (numpy, pytest, maturin) from the
-# package registry; nothing installed by hand is assumed. Run from anywhere.
+# Every test of v2ref's default tier, on a fresh machine: the Rust suite,
+# then the Python suite (the `v2ref` package built from this checkout, and
+# the independent NumPy pipeline scored by the release binary on the
+# conformance vectors). The slow tier: tests/README.md ("Tiers"); .ci/run
+# runs both.
+# Creates .venv and installs what it needs (tests/python/requirements.txt:
+# numpy, pytest, maturin, astropy, oifits) from the package registry;
+# nothing installed by hand is assumed. Run from anywhere.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
+# Each step's wall time is printed (`timing:` lines) so that the README's
+# timings can be measured on a cold checkout.
+t=$SECONDS
 if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
 fi
 .venv/bin/pip install --quiet --upgrade pip
 .venv/bin/pip install --quiet -r tests/python/requirements.txt
+echo "timing: Python environment $((SECONDS - t)) s"
 
-# Each step's wall time is printed (`timing:` lines) so that the README's
-# timings can be measured on a cold checkout. One build makes the library,
-# the binary (target/release/v2ref, which the Python suite also runs) and
-# the one test binary (tests/suite.rs): a separate `cargo build` would build
-# it all again, as the tests' dependencies change the features of shared
-# crates.
+# One build makes the library, the binary (target/release/v2ref, which the
+# Python suite also runs) and the one test binary (tests/suite.rs): a
+# separate `cargo build` would build it all again, as the tests'
+# dependencies change the features of shared crates.
 t=$SECONDS; cargo test --release --no-run
 echo "timing: release build of the binary and the tests $((SECONDS - t)) s"
-t=$SECONDS; cargo test --release
-echo "timing: Rust tests run $((SECONDS - t)) s"
 
-# The package, built by maturin from this checkout into the venv.
+# The Python package (maturin: mostly the crate compiled again, with the
+# bindings) is built while the Rust tests run: cargo holds no lock on the
+# target folder while tests run, and the tests leave part of two cores idle
+# (measured: the two steps one after the other took N s more). Its log is
+# printed if it fails; Ctrl-C stops both.
+build_log=$(mktemp)
+trap 'rm -f "$build_log"; kill 0 2>/dev/null' INT TERM
+trap 'rm -f "$build_log"' EXIT
 t=$SECONDS
-.venv/bin/pip install --quiet --no-build-isolation .
+.venv/bin/pip install --quiet --no-build-isolation . > "$build_log" 2>&1 &
+package_build=$!
+rust=0
+cargo test --release || rust=$?
+echo "timing: Rust tests run (the package building meanwhile) $((SECONDS - t)) s"
+package=0
+wait "$package_build" || package=$?
+echo "timing: Python package built $((SECONDS - t)) s after the Rust tests started"
+if [ "$package" -ne 0 ]; then
+    cat "$build_log" >&2
+    echo "scripts/test.sh: the Python package did not build" >&2
+    exit 1
+fi
+if [ "$rust" -ne 0 ]; then
+    exit "$rust"
+fi
 
+t=$SECONDS
 status=0
 V2REF_BIN="${CARGO_TARGET_DIR:-target}/release/v2ref" .venv/bin/python -m pytest -q tests/python || status=$?
-echo "timing: Python package build and tests $((SECONDS - t)) s"
+echo "timing: Python tests $((SECONDS - t)) s"
 if [ "$status" -eq 5 ]; then
     echo "scripts/test.sh: pytest collected no tests in tests/python; there must be tests" >&2
     exit 1
