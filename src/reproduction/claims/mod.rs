@@ -204,11 +204,22 @@ pub struct ClaimResult {
 pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
     let specs = ledger();
     let find = |id: &str| specs.iter().find(|s| s.id == id);
-    let mut computed: Vec<Computed> = Vec::new();
-    computed.extend(foundation::claims(&find));
-    computed.extend(noise::claims(&find, effort));
-    computed.extend(bias::claims(&find, effort));
-    computed.extend(piston::claims(&find, effort));
+    // The four areas side by side: independent, each deterministic.
+    let ((foundation, noise), (bias, piston)) = rayon::join(
+        || {
+            rayon::join(
+                || foundation::claims(&find),
+                || noise::claims(&find, effort),
+            )
+        },
+        || {
+            rayon::join(
+                || bias::claims(&find, effort),
+                || piston::claims(&find, effort),
+            )
+        },
+    );
+    let computed: Vec<Computed> = [foundation, noise, bias, piston].concat();
     specs
         .iter()
         .map(|spec| {

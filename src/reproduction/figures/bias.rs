@@ -46,9 +46,14 @@ pub(crate) fn label(x: f64) -> String {
     s.replace('.', "p")
 }
 
-/// The figures of this area.
+/// The figures of this area, computed side by side (each is deterministic
+/// on its own; the first error in figure order is returned).
 pub(super) fn figures(effort: Effort) -> Result<Vec<Figure>> {
-    Ok(vec![fig0()?, fig1(effort)?, fig2(effort)?, fig3(effort)?])
+    let ((f0, f1), (f2, f3)) = rayon::join(
+        || rayon::join(fig0, || fig1(effort)),
+        || rayon::join(|| fig2(effort), || fig3(effort)),
+    );
+    Ok(vec![f0?, f1?, f2?, f3?])
 }
 
 /// Fig. 0.

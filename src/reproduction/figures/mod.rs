@@ -12,8 +12,10 @@ pub use piston::fig5_runs;
 
 /// Every figure (0 to 5), in order, at the given effort.
 pub fn all(effort: Effort) -> Result<Vec<Figure>> {
-    let mut out = bias::figures(effort)?;
-    out.extend(piston::figures(effort)?);
+    // Side by side: the figures are independent and each deterministic.
+    let (bias, piston) = rayon::join(|| bias::figures(effort), || piston::figures(effort));
+    let mut out = bias?;
+    out.extend(piston?);
     out.sort_by(|a, b| a.id.cmp(&b.id));
     Ok(out)
 }

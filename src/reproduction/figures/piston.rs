@@ -321,5 +321,6 @@ fn fig5_figure(count: usize, scans: usize, tables: Vec<Table>) -> Result<Figure>
 
 /// The figures this area computes.
 pub(super) fn figures(effort: Effort) -> Result<Vec<Figure>> {
-    Ok(vec![fig4(effort)?, fig5(effort)?])
+    let (f4, f5) = rayon::join(|| fig4(effort), || fig5(effort));
+    Ok(vec![f4?, f5?])
 }
