@@ -13,23 +13,33 @@ use pyo3::types::PyDict;
 #[pyfunction]
 #[pyo3(signature = (physical, bins, finite_scan))]
 pub(super) fn bias(
+    py: Python<'_>,
     physical: &Bound<'_, PyDict>,
     bins: &str,
     finite_scan: bool,
 ) -> PyResult<String> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
-    json(&ok(commands::bias::answer(&p, window, finite_scan))?)
+    json(&interruptible(py, |_| {
+        commands::bias::answer(&p, window, finite_scan)
+    })?)
 }
 
 /// `snr`: `v2ref snr --json`.
 #[pyfunction]
 #[pyo3(signature = (physical, bins, formula))]
-pub(super) fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<String> {
+pub(super) fn snr(
+    py: Python<'_>,
+    physical: &Bound<'_, PyDict>,
+    bins: &str,
+    formula: &str,
+) -> PyResult<String> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let formula = ok(self::formula(formula))?;
-    json(&ok(commands::snr::answer(&p, window, formula))?)
+    json(&interruptible(py, |_| {
+        commands::snr::answer(&p, window, formula)
+    })?)
 }
 
 /// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`; `psd`
@@ -59,8 +69,8 @@ pub(super) fn piston(
         psd,
         wind_angle_deg,
     };
-    let prepared = ok(commands::piston::prepare(&p, &req))?;
     let answer = interruptible(py, |tick| {
+        let prepared = commands::piston::prepare(&p, &req)?;
         commands::piston::run(&prepared, &p, &req, Some(tick))
     })?;
     json(&answer)

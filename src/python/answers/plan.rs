@@ -47,8 +47,10 @@ pub(super) fn plan(
         seed,
         diameter_err_mas,
     };
-    let prepared = ok(commands::plan::prepare(&p, &req))?;
-    let answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
+    let answer = interruptible(py, |tick| {
+        let prepared = commands::plan::prepare(&p, &req)?;
+        commands::plan::run(prepared, threads, tick)
+    })?;
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::write_plan(
             path,

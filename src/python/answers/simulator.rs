@@ -73,18 +73,13 @@ pub(super) fn estimate<'py>(
         continuum_subtracted,
     };
     let (inputs, continuum_subtracted) = configuration(given, rows, cols)?;
-    let model = ok(Model::new(&inputs))?;
-    let est = ok(RowEstimator::new(
-        &model,
-        window,
-        bias,
-        continuum_subtracted,
-    ))?;
     let cal = match &calibrator {
         None => None,
         Some(c) => Some(calibrator_rows(c, cols)?),
     };
-    let rows = py.allow_threads(|| -> Result<Vec<RowEstimate>> {
+    let rows = interruptible(py, |_| -> Result<Vec<RowEstimate>> {
+        let model = Model::new(&inputs)?;
+        let est = RowEstimator::new(&model, window, bias, continuum_subtracted)?;
         let est = match cal {
             None => est,
             Some(cdata) => {
@@ -95,8 +90,7 @@ pub(super) fn estimate<'py>(
             }
         };
         est.estimate_rows(data, threads)
-    });
-    let rows = ok(rows)?;
+    })?;
     check_rows_finite(data, cols, &rows)?;
     estimate_columns(py, &rows)
 }
@@ -222,7 +216,6 @@ pub(super) fn synthesize<'py>(
         inputs.samples,
         reference_blocks,
     ))?;
-    let model = ok(Model::new(&inputs))?;
     let n = inputs.samples;
     let size = SetSize {
         rows,
@@ -232,6 +225,7 @@ pub(super) fn synthesize<'py>(
         keep_continuum,
     };
     let (data, sidecar) = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
         let mut data: Vec<f64> = Vec::with_capacity(rows as usize * n);
         let mut sink = |block: &[f64]| -> Result<()> {
             data.extend_from_slice(block);
@@ -265,13 +259,13 @@ pub(super) fn simulate(
     );
     ok(check_trials(trials))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
-    let model = ok(Model::new(&inputs))?;
     let size = Trials {
         trials,
         seed,
         threads,
     };
     let run = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
         run_simulation(&model, window, bias, formula, size, tick)
     })?;
     let estimation = Estimation {
