@@ -1,10 +1,10 @@
 //! The paper's effects one at a time: `bias`, `snr`, `piston`, `claims`.
 
 use super::{formula, json, window};
-use crate::commands::{self, piston::PistonRequest};
+use crate::commands::{self, cost, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok, parse_enum};
+use crate::python::{interruptible, ok, parse_enum, warn_cost};
 use crate::reproduction::cases::Effort;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -20,6 +20,7 @@ pub(super) fn bias(
 ) -> PyResult<String> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
+    warn_cost(py, "bias", &ok(cost::bias(&p, finite_scan))?)?;
     json(&interruptible(py, |_| {
         commands::bias::answer(&p, window, finite_scan)
     })?)
@@ -37,6 +38,7 @@ pub(super) fn snr(
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let formula = ok(self::formula(formula))?;
+    warn_cost(py, "snr", &ok(cost::snr(&p))?)?;
     json(&interruptible(py, |_| {
         commands::snr::answer(&p, window, formula)
     })?)
@@ -69,8 +71,9 @@ pub(super) fn piston(
         psd,
         wind_angle_deg,
     };
+    let prepared = ok(commands::piston::prepare(&p, &req))?;
+    warn_cost(py, "piston", &prepared.cost(&req))?;
     let answer = interruptible(py, |tick| {
-        let prepared = commands::piston::prepare(&p, &req)?;
         commands::piston::run(&prepared, &p, &req, Some(tick))
     })?;
     json(&answer)

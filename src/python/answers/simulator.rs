@@ -3,6 +3,7 @@
 
 use super::data::{check_finite, data_error, estimate_column, matrix, parse_sidecar};
 use super::{convention, formula, json, window};
+use crate::commands::cost::{self, SetOutput};
 use crate::commands::synth::{self as synth_set, SetSize};
 use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::conformance::score::score_report;
@@ -10,7 +11,7 @@ use crate::error::Result;
 use crate::formalism::estimator::{BinWindow, Pair};
 use crate::noise::calibrated::Trials;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok};
+use crate::python::{interruptible, ok, warn_cost};
 use crate::simulator::report::{check_trials, Estimation, SimulateReport};
 use crate::simulator::{simulate as run_simulation, Inputs, Model};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -73,6 +74,11 @@ pub(super) fn estimate<'py>(
         continuum_subtracted,
     };
     let (inputs, continuum_subtracted) = configuration(given, rows, cols)?;
+    warn_cost(
+        py,
+        "estimate",
+        &ok(cost::estimate(&inputs, rows as u64, threads))?,
+    )?;
     let cal = match &calibrator {
         None => None,
         Some(c) => Some(calibrator_rows(c, cols)?),
@@ -217,6 +223,14 @@ pub(super) fn synthesize<'py>(
         reference_blocks,
     ))?;
     let n = inputs.samples;
+    let reference_rows = reference_blocks
+        * crate::conformance::truth::reference_rows_per_block(
+            rows,
+            reference_blocks,
+            inputs.piston.is_some(),
+        );
+    let predicted = cost::synth(&inputs, (rows, reference_rows), threads, SetOutput::Memory);
+    warn_cost(py, "synthesize", &ok(predicted)?)?;
     let size = SetSize {
         rows,
         seed,
@@ -264,6 +278,11 @@ pub(super) fn simulate(
         seed,
         threads,
     };
+    warn_cost(
+        py,
+        "simulate",
+        &ok(cost::simulate(&inputs, trials, threads))?,
+    )?;
     let run = interruptible(py, |tick| {
         let model = Model::new(&inputs)?;
         run_simulation(&model, window, bias, formula, size, tick)
