@@ -126,6 +126,7 @@
 
 pub mod bias;
 pub mod bounds;
+pub mod cancel;
 pub mod cleanup;
 pub mod commands;
 pub mod conformance;

@@ -12,6 +12,7 @@ const LEVELS: &[&[&str]] = &[
         "error",
         "tolerance",
         "bounds",
+        "cancel",
         "cleanup",
         "math",
         "montecarlo",

@@ -7,17 +7,9 @@ use v2ref::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
 /// on a terminal: its cost grows as N² (synthesis of N samples, each a sum
-/// over a spectral grid as fine as the scan resolves; docs/conventions.md).
+/// over a spectral grid as fine as the scan resolves; docs/conventions.md;
+/// the law in `v2ref::commands::cost`).
 const SLOW_SAMPLES: usize = 4096;
-
-/// Seconds of the finite scan at [`COST_LAW_SAMPLES`] samples on two
-/// cores (release build), the constant of its N² cost law: measured
-/// 2026-11-25, 0.65 s at 4096, 2.56 s at 8192, 10.2 s at 16384 (the
-/// ratios 3.9 and 4.0 of the N² law).
-const COST_LAW_S: f64 = 10.2;
-
-/// The N at which [`COST_LAW_S`] was measured.
-const COST_LAW_SAMPLES: f64 = 16384.0;
 
 /// Flags of `bias`.
 #[derive(Debug, clap::Args)]
@@ -41,12 +33,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     args.sampling.scan.apply_to(&mut p);
     let finite = v2ref::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
-    let predicted_s = COST_LAW_S * (n as f64 / COST_LAW_SAMPLES).powi(2);
-    super::output::announce_cost(
-        &format!("bias: the finite scan of {n} samples"),
-        predicted_s,
-        "its cost grows as N², 16384 samples take about 10 s on two cores",
-    );
+    super::output::announce("bias", &v2ref::commands::cost::bias(&p, args.finite_scan)?);
     let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
     let answer = v2ref::commands::bias::answer(&p, args.sampling.bins, args.finite_scan)?;
     bar.finish_and_clear();

@@ -122,6 +122,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
 /// The estimator of `rows` rows of `cols` samples under the flags.
 fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<RowEstimator> {
     let inputs = check_shape(source, rows, cols)?;
+    let cost = v2ref::commands::cost::estimate(&inputs, rows as u64, args.threads)?;
+    super::output::announce("estimate", &cost);
     let model = Model::new(&inputs)?;
     let est = RowEstimator::new(&model, args.bins, args.bias, source.continuum_subtracted)?;
     match args.calibrator.as_str() {

@@ -13,6 +13,8 @@
 
 use std::io::{self, Write};
 use std::path::Path;
+use std::sync::atomic::Ordering;
+use v2ref::commands::cost::{duration_words, Cost, NOTICE_S};
 use v2ref::{Error, Result};
 
 /// Exit status when the output cannot be written (sysexits' `EX_IOERR`).
@@ -108,28 +110,29 @@ pub fn write_out_marker(dir: &Path) -> Result<()> {
 /// How long a run is measured before its cost is predicted.
 const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
 
-/// Predicted durations beyond this are announced, seconds.
-const COST_NOTICE_S: f64 = 60.0;
+/// Whether the run's cost was announced before it started ([`announce`]).
+static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-/// Where no bar is drawn (stderr not a terminal): after [`COST_PROBE`],
-/// predicts the run's duration from the steps done so far (the cost of
-/// every command is linear in its steps: trials, rows, grid points) and,
-/// when it exceeds [`COST_NOTICE_S`], says so once on stderr, with how to
-/// stop it. Nothing is said of a run that ends sooner.
+/// Where no bar is drawn (stderr not a terminal) and the run was not
+/// announced before it started (its cost law under-predicted it): after
+/// [`COST_PROBE`], predicts the run's duration from the steps done so far
+/// (linear in its steps: trials, rows, grid points) and, when it exceeds
+/// [`NOTICE_S`], says so once on stderr, with how to stop it. Nothing is
+/// said of a run that ends sooner.
 pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
     let (bar, what) = (bar.clone(), what.to_owned());
     let start = std::time::Instant::now();
     std::thread::spawn(move || {
         std::thread::sleep(COST_PROBE);
         let (done, len) = (bar.position(), bar.length().unwrap_or(0));
-        if bar.is_finished() || len == 0 {
+        if bar.is_finished() || len == 0 || ANNOUNCED.load(Ordering::Relaxed) {
             return;
         }
         let elapsed = start.elapsed().as_secs_f64();
         // Nothing done yet: at least the probe per step.
         let per_step = elapsed / done.max(1) as f64;
         let left = per_step * (len.saturating_sub(done)) as f64;
-        if left > COST_NOTICE_S {
+        if left > NOTICE_S {
             write_stderr_line(format_args!(
                 "note: {what}: about {} left at the present rate ({done} of {len} steps in {elapsed:.0} s); Ctrl-C stops it and leaves no partial output",
                 duration_words(left)
@@ -138,25 +141,14 @@ pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
     });
 }
 
-/// Before a run whose cost follows a known law (not a count of steps a bar
-/// can time): when `predicted_s` exceeds [`COST_NOTICE_S`], says so once on
-/// stderr with the law it comes from, before any work.
-pub fn announce_cost(what: &str, predicted_s: f64, law: &str) {
-    if predicted_s > COST_NOTICE_S {
-        write_stderr_line(format_args!(
-            "note: {what}: predicted about {} ({law}); Ctrl-C stops it",
-            duration_words(predicted_s)
-        ));
-    }
-}
-
-/// A duration in words: seconds, minutes, hours or days.
-fn duration_words(s: f64) -> String {
-    match s {
-        s if s < 120.0 => format!("{s:.0} s"),
-        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
-        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
-        s => format!("{:.0} days", s / 86400.0),
+/// Before any work of the command `what`: when its predicted `cost`
+/// exceeds [`NOTICE_S`], says so once on stderr, with the run and how to
+/// stop it (whether stderr is a terminal or not, `--quiet` or not: a run
+/// of minutes or days is worth a line).
+pub fn announce(what: &str, cost: &Cost) {
+    if let Some(note) = cost.notice() {
+        ANNOUNCED.store(true, Ordering::Relaxed);
+        write_stderr_line(format_args!("note: {what}: {note}"));
     }
 }
 

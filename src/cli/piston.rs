@@ -55,6 +55,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         wind_angle_deg: args.wind_angle_deg,
     };
     let prepared = piston::prepare(&p, &req)?;
+    super::output::announce("piston", &prepared.cost(&req));
     let spectrum = &prepared.spectrum;
     args.turbulence
         .warn_if_outer_scale_infinite(spectrum.baseline_m(), spectrum.rms_um());

@@ -184,6 +184,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     }
     let (physical, req) = request(&args);
     let prepared = plan::prepare(&physical, &req)?;
+    super::output::announce("plan", &prepared.cost(args.threads)?);
     let piston = prepared.piston.clone();
     args.turbulence
         .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());

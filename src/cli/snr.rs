@@ -40,7 +40,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let mut p = args.obs.physical();
     args.sampling.scan.apply_to(&mut p);
     args.noise.light.apply_to(&mut p);
+    let cost = v2ref::commands::cost::snr(&p)?;
+    super::output::announce("snr", &cost);
+    // Seconds or more (N in the thousands): a spinner on a terminal.
+    let bar = super::spinner(cost.seconds < 1.0, &format!("snr: {}", cost.what));
     let answer = v2ref::commands::snr::answer(&p, args.sampling.bins, args.noise.formula)?;
+    bar.finish_and_clear();
     if args.json {
         print_json(&answer);
     } else {

@@ -8,6 +8,7 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use v2ref::commands::cost::SetOutput;
 use v2ref::commands::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
@@ -61,12 +62,21 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .reference_blocks
         .unwrap_or_else(|| default_reference_blocks(inputs.piston.is_some()));
     v2ref::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
-    let model = Model::new(&inputs)?;
-    args.inputs.warn_about(&model);
     check_set_paths(&args.out, args.csv, args.force)?;
     if args.oifits {
         v2ref::formats::check_output_file(&truth_fits_path(&args.out), "out", args.force)?;
     }
+    let piston = inputs.piston.is_some();
+    let reference_rows =
+        reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
+    let output = SetOutput::Files { csv: args.csv };
+    let rows = (args.rows, reference_rows);
+    super::output::announce(
+        "synth",
+        &v2ref::commands::cost::synth(&inputs, rows, args.run.threads, output)?,
+    );
+    let model = Model::new(&inputs)?;
+    args.inputs.warn_about(&model);
     let spec = SetSpec {
         rows: args.rows,
         seed: args.run.seed,
@@ -75,9 +85,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
         csv: args.csv,
         keep_continuum: args.keep_continuum,
     };
-    let piston = inputs.piston.is_some();
-    let reference_rows =
-        reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
     let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
     bar.finish_and_clear();

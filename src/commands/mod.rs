@@ -5,6 +5,7 @@
 //! convert and print; nothing here reads a flag, writes a file or prints.
 
 pub mod bias;
+pub mod cost;
 pub mod piston;
 pub mod plan;
 pub mod snr;

@@ -47,7 +47,7 @@ use crate::error::Result;
 use crate::formalism::estimator::{
     dft, noise_bias, raw_estimates, wide_band, BinWindow, Pair, BIN_WINDOWS,
 };
-use crate::montecarlo::{derive_seed, RunningStats};
+use crate::montecarlo::{derive_seed, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
 use crate::simulator::Model;
@@ -187,6 +187,7 @@ fn reference_run(
         let parts = rows.map_units(0..rows.units(), size.threads, |_, block| {
             let mut s =
                 vec![vec![[RunningStats::default(); 2]; BIAS_CONVENTIONS.len()]; windows.len()];
+            let mut steps = Steps::new(progress, n);
             for row in block.chunks_exact(n) {
                 for (sw, ew) in s.iter_mut().zip(&estimators) {
                     for (sc, e) in sw.iter_mut().zip(ew) {
@@ -195,8 +196,9 @@ fn reference_run(
                         sc[1].push(r.v2_sq);
                     }
                 }
+                steps.step();
             }
-            progress((block.len() / n) as u64);
+            steps.finish();
             s
         });
         for (wi, aw) in acc.iter_mut().enumerate() {

@@ -164,6 +164,48 @@ const NODES_PER_PANEL: usize = 16;
 /// Largest phase change of the integrand across one panel, in cycles.
 const CYCLES_PER_PANEL: f64 = 0.25;
 
+/// Panels of [`SpectralNodes::new`] between two cancellation checkpoints
+/// (each panel evaluates the spectrum and the source at its nodes, a
+/// Bessel function among them).
+const PANELS_PER_CHECKPOINT: usize = 1 << 12;
+
+/// The panels of [`SpectralNodes`]: for each piece `(a, b)` of the
+/// spectrum (σ, µm⁻¹), as many panels as keep the phase change of the
+/// integrand across one within [`CYCLES_PER_PANEL`] for |x| ≤ `max_opd_um`.
+fn panel_plan(obs: &Observation, max_opd_um: f64) -> Vec<(f64, f64, usize)> {
+    let spectrum = &obs.spectrum;
+    // Cycles per unit σ of everything that oscillates in the integrand:
+    // the fringe term, the disk's Bessel lobes (z = πθBσ, ~1/2 cycle per
+    // π of z), the dispersion phase.
+    let disk_rate = match &obs.source {
+        crate::formalism::source::Source::UniformDisk { diameter_mas } => {
+            0.5 * diameter_mas
+                * crate::formalism::source::ARCSEC_PER_MAS
+                * obs.baseline_m
+                * crate::formalism::spectrum::CPAS_PER_M_PER_INV_UM
+        }
+        _ => 0.0,
+    };
+    let (lo, hi) = spectrum.support();
+    let phase_rate = {
+        let d = |s: f64| {
+            (obs.phase.at(s + PHASE_STEP_PER_UM) - obs.phase.at(s - PHASE_STEP_PER_UM))
+                / (2.0 * PHASE_STEP_PER_UM)
+        };
+        d(lo).abs().max(d(hi).abs()) / (2.0 * std::f64::consts::PI)
+    };
+    let rate = max_opd_um.abs() + disk_rate + phase_rate + 1.0 / (hi - lo);
+    let pieces = spectrum.pieces(&obs.source.features_per_um());
+    pieces
+        .windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let panels = ((b - a) * rate / CYCLES_PER_PANEL).ceil().max(1.0) as usize;
+            (a, b, panels)
+        })
+        .collect()
+}
+
 /// The fringe spectrum `W V e^{iφ} s` on a quadrature grid: σ_j and
 /// `a_j = w_j W(σ_j) V(σ_j) e^{iφ(σ_j)} s(σ_j)`, so that the modulated
 /// signal per unit continuum at OPD x is `Re Σ_j a_j e^{2πiσ_j x}`.
@@ -192,36 +234,16 @@ impl SpectralNodes {
                 amplitude: vec![obs.fringe_amplitude(s) * filter(s)],
             };
         }
-        // Cycles per unit σ of everything that oscillates in the integrand:
-        // the fringe term, the disk's Bessel lobes (z = πθBσ, ~1/2 cycle per
-        // π of z), the dispersion phase.
-        let disk_rate = match &obs.source {
-            crate::formalism::source::Source::UniformDisk { diameter_mas } => {
-                0.5 * diameter_mas
-                    * crate::formalism::source::ARCSEC_PER_MAS
-                    * obs.baseline_m
-                    * crate::formalism::spectrum::CPAS_PER_M_PER_INV_UM
-            }
-            _ => 0.0,
-        };
-        let (lo, hi) = spectrum.support();
-        let phase_rate = {
-            let d = |s: f64| {
-                (obs.phase.at(s + PHASE_STEP_PER_UM) - obs.phase.at(s - PHASE_STEP_PER_UM))
-                    / (2.0 * PHASE_STEP_PER_UM)
-            };
-            d(lo).abs().max(d(hi).abs()) / (2.0 * std::f64::consts::PI)
-        };
-        let rate = max_opd_um.abs() + disk_rate + phase_rate + 1.0 / (hi - lo);
         let (gx, gw) = gauss_legendre(NODES_PER_PANEL);
         let mut sigma = Vec::new();
         let mut amplitude = Vec::new();
-        let pieces = spectrum.pieces(&obs.source.features_per_um());
-        for w in pieces.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let panels = ((b - a) * rate / CYCLES_PER_PANEL).ceil().max(1.0) as usize;
+        for (a, b, panels) in panel_plan(obs, max_opd_um) {
             let h = (b - a) / panels as f64;
             for p in 0..panels {
+                // Millions of panels at the longest scans.
+                if p % PANELS_PER_CHECKPOINT == 0 {
+                    crate::cancel::checkpoint();
+                }
                 let c = a + (p as f64 + 0.5) * h;
                 for (x, wt) in gx.iter().zip(&gw) {
                     let s = c + 0.5 * h * x;
@@ -238,6 +260,19 @@ impl SpectralNodes {
             sigma_per_um: sigma,
             amplitude,
         }
+    }
+
+    /// How many nodes [`SpectralNodes::new`] makes for `obs` and
+    /// `max_opd_um` at most (the nodes of zero weight are dropped), without
+    /// making them: what a sample of the interferogram costs.
+    pub fn count(obs: &Observation, max_opd_um: f64) -> usize {
+        if obs.spectrum.is_monochromatic() {
+            return 1;
+        }
+        panel_plan(obs, max_opd_um)
+            .iter()
+            .map(|&(_, _, panels)| panels.saturating_mul(NODES_PER_PANEL))
+            .fold(0, usize::saturating_add)
     }
 
     /// `Re Σ_j a_j e^{2πiσ_j x}`: the modulated signal per unit continuum at
@@ -316,8 +351,15 @@ impl Interferogram {
             max_opd,
             sampling.integrating().then_some(sampling.dx_um()),
         );
+        // N samples × N-proportional nodes: the one long loop of a large N.
+        let every = crate::cancel::stride(nodes.sigma_per_um.len());
         let modulated = (0..n)
-            .map(|i| photons_per_sample * nodes.fringe(x(i)))
+            .map(|i| {
+                if i % every == 0 {
+                    crate::cancel::checkpoint();
+                }
+                photons_per_sample * nodes.fringe(x(i))
+            })
             .collect();
         Ok(Interferogram {
             continuum: vec![photons_per_sample; n],

@@ -78,6 +78,45 @@ where
     })
 }
 
+/// Reports the steps of a loop (trials, rows, scans) to a progress
+/// callback in batches, each batch about [`crate::cancel::WORK_PER_CHECKPOINT`]
+/// operations (a call per step would cost more than a short step), with a
+/// cancellation checkpoint after each; [`Steps::finish`] reports the rest.
+pub struct Steps<'a> {
+    progress: &'a (dyn Fn(u64) + Sync),
+    every: u64,
+    pending: u64,
+}
+
+impl<'a> Steps<'a> {
+    /// Steps of `work_per_step` elementary operations each, reported to
+    /// `progress`.
+    pub fn new(progress: &'a (dyn Fn(u64) + Sync), work_per_step: usize) -> Steps<'a> {
+        Steps {
+            progress,
+            every: crate::cancel::stride(work_per_step) as u64,
+            pending: 0,
+        }
+    }
+
+    /// One more step done.
+    pub fn step(&mut self) {
+        self.pending += 1;
+        if self.pending >= self.every {
+            (self.progress)(self.pending);
+            self.pending = 0;
+            crate::cancel::checkpoint();
+        }
+    }
+
+    /// Reports the steps not yet reported.
+    pub fn finish(self) {
+        if self.pending > 0 {
+            (self.progress)(self.pending);
+        }
+    }
+}
+
 /// Units computed together by [`fold_units`] before their results are
 /// merged: enough to keep every core busy, few enough that the results of
 /// one batch are small (memory does not grow with the number of units).
@@ -150,7 +189,14 @@ pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
     if threads == 0 {
         job()
     } else {
-        match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        // The pool's threads work for the caller's computation: they hold
+        // its cancellation token (crate::cancel), if any.
+        let token = crate::cancel::current();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .start_handler(move |_| crate::cancel::hold(token.clone()))
+            .build();
+        match pool {
             Ok(pool) => pool.install(job),
             // A pool that cannot be built (resource limits): run on the
             // global pool; the result is the same by construction.

@@ -4,7 +4,7 @@
 //! [`crate::montecarlo`].
 
 use crate::formalism::estimator::dft_phase;
-use crate::montecarlo::{fold_units, run_units, Rng, RunningStats};
+use crate::montecarlo::{fold_units, run_units, Rng, RunningStats, Steps};
 
 /// Both raw estimators over a fixed window of Fourier bins, evaluated
 /// without a full FFT where possible:
@@ -404,7 +404,8 @@ fn unit_trials(trials: u64, unit: u64) -> u64 {
 /// Simulates `trials` noisy interferograms of `spec` and accumulates both raw
 /// estimators (seeded per unit of [`TRIALS_PER_UNIT`] trials from
 /// (`seed`, unit); bit-identical for any `threads`). `progress(done)` is
-/// called with the number of trials of each finished unit.
+/// called with the number of trials just finished, every few milliseconds
+/// of work ([`Steps`]).
 ///
 /// # Example
 ///
@@ -443,14 +444,15 @@ pub fn simulate_noisy(
         let mut run = NoisyRun::default();
         let mut buf = vec![0.0; n];
         let mut scratch = Vec::new();
-        let t = unit_trials(trials, u);
-        for _ in 0..t {
+        let mut steps = Steps::new(progress, n);
+        for _ in 0..unit_trials(trials, u) {
             noise.draw(rng, &mut buf);
             let r = est.raw(&buf, &mut scratch);
             run.v1_sq.push(r.v1_sq);
             run.v2_sq.push(r.v2_sq);
+            steps.step();
         }
-        progress(t);
+        steps.finish();
         run
     };
     fold_units(seed, 0..units, threads, work, |p: NoisyRun| {

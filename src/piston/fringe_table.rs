@@ -79,7 +79,11 @@ impl FringeTable {
         // Per node, march e^{2πiδ_j x} along the grid by complex
         // multiplication, re-anchored exactly every RESYNC steps.
         const RESYNC: usize = 128;
-        for (&s, &a) in nodes.sigma_per_um.iter().zip(&nodes.amplitude) {
+        let every = crate::cancel::stride(n);
+        for (j, (&s, &a)) in nodes.sigma_per_um.iter().zip(&nodes.amplitude).enumerate() {
+            if j % every == 0 {
+                crate::cancel::checkpoint();
+            }
             let d = s - sigma_c;
             let w = 2.0 * PI * d;
             let step = Complex64::from_polar(1.0, w * h);

@@ -215,7 +215,11 @@ impl PistonSequence {
         let n = self.samples;
         let (mut excursion, mut resid2) = (0.0_f64, 0.0);
         let scans = self.first_scan[self.sequences()];
+        let every = crate::cancel::stride(n);
         for s in 0..scans {
+            if s % every == 0 {
+                crate::cancel::checkpoint();
+            }
             let (series, local) = self.locate(s);
             let m = series.len();
             let r = self.reference_um(s);

@@ -75,6 +75,7 @@ pub fn synthesize_series(
     let dnu = 1.0 / (m as f64 * dt_s);
     let units = (half - 1).div_ceil(COEFF_BLOCK) as u64;
     let blocks = run_units(seed, units, threads, |u, rng| {
+        crate::cancel::checkpoint();
         let first = 1 + u as usize * COEFF_BLOCK;
         let last = (first + COEFF_BLOCK).min(half);
         (first..last)

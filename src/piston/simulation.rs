@@ -21,7 +21,7 @@ use crate::formalism::estimator::{BinWindow, Pair, BIN_WINDOWS};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
 use crate::montecarlo::{
-    derive_seed, effective_count, replicated_summary, run_units, RunningStats, Summary,
+    derive_seed, effective_count, replicated_summary, run_units, RunningStats, Steps, Summary,
 };
 use crate::piston::calibration::{Calibration, ScanContext, Workspace};
 use crate::piston::fringe_table::MAX_OPD_UM;
@@ -29,9 +29,6 @@ use crate::piston::scan::{fill_scan, Detector, ScanSetup};
 use crate::piston::sequences::{correlation_time_s, max_scans, PistonSequence};
 use crate::piston::turbulence::PistonSpectrum;
 use serde::Serialize;
-
-/// Scans between two calls of the progress callback (and chances to stop).
-const PROGRESS_SCANS: usize = 100;
 
 /// Piston statistics for one window of bins.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -203,22 +200,18 @@ fn scan_all(
     // sequences): the units' generators are unused, their seed is a label.
     let unit_seed = derive_seed(size.seed, "piston-scans", &[]);
     let units = sequence.sequences() as u64;
+    // A scan: its samples (and sub-samples) through each detector, a few
+    // operations each.
+    let scan_work = 16 * ctx.setup.samples * calibrations.len();
     run_units(unit_seed, units, size.threads, |unit, _rng| {
         let mut ws = Workspace::new(ctx.setup.samples);
         let mut stats = DifferenceStats::new(calibrations.len());
-        let mut done = 0;
+        let mut steps = Steps::new(progress.unwrap_or(&|_| {}), scan_work);
         for s in sequence.scans_of(unit as usize) {
             stats.push(&scan(ctx, sequence, calibrations, s, &mut ws));
-            done += 1;
-            if done % PROGRESS_SCANS == 0 {
-                if let Some(cb) = progress {
-                    cb(PROGRESS_SCANS as u64);
-                }
-            }
+            steps.step();
         }
-        if let Some(cb) = progress {
-            cb((done % PROGRESS_SCANS) as u64);
-        }
+        steps.finish();
         stats
     })
 }

@@ -4,19 +4,20 @@
 //! JSON come back as JSON text built from the same fields (the Python side
 //! parses it), per-row estimates and interferograms as NumPy arrays.
 //!
-//! Long calls release the GIL and run on a worker thread; the calling
+//! Long calls release the GIL and run on worker threads; the calling
 //! thread checks for signals every 100 ms and, on Ctrl-C, raises
-//! `KeyboardInterrupt` after stopping the work at its next progress report.
+//! `KeyboardInterrupt` after stopping the work at its next checkpoint
+//! ([`crate::cancel`]).
 
 mod answers;
 mod inputs;
 mod oifits;
 
+use crate::cancel::{checkpoint, run_cancellable, Cancelled, Token};
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
@@ -75,28 +76,37 @@ pub fn parse_enum<T: serde::de::DeserializeOwned>(
     })
 }
 
-/// The payload of the unwind that stops a cancelled run.
-struct Cancelled;
+/// Before a call predicted to take more than a minute
+/// ([`crate::commands::cost`]): a `UserWarning` naming the call, its
+/// predicted duration and how to stop it, pointing at the caller's line.
+pub fn warn_cost(py: Python<'_>, what: &str, cost: &crate::commands::cost::Cost) -> PyResult<()> {
+    if let Some(note) = cost.notice() {
+        let text = std::ffi::CString::new(format!("{what}: {note}"))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+        // 2: the line that called the package's function, not the package.
+        PyErr::warn(py, &category, &text, 2)?;
+    }
+    Ok(())
+}
 
-/// Runs `work` on a thread of its own with the GIL released, handing it a
+/// Runs `work` on threads of its own with the GIL released, handing it a
 /// progress callback; checks for signals (Ctrl-C) every 100 ms meanwhile.
-/// On a signal the callback stops the work at its next call and the
-/// signal's exception is raised. A panic in the work becomes a
-/// `RuntimeError` (nothing unwinds into Python).
+/// On a signal the work is cancelled ([`crate::cancel`]: it stops at its
+/// next checkpoint, a few milliseconds of work away) and the signal's
+/// exception is raised once its threads have stopped. A panic in the work
+/// becomes a `RuntimeError` (nothing unwinds into Python).
 pub fn interruptible<T: Send>(
     py: Python<'_>,
     work: impl FnOnce(&(dyn Fn(u64) + Sync)) -> crate::Result<T> + Send,
 ) -> PyResult<T> {
-    let cancel = AtomicBool::new(false);
-    let tick = |_: u64| {
-        if cancel.load(Ordering::Relaxed) {
-            resume_unwind(Box::new(Cancelled));
-        }
-    };
+    let token = Token::new();
+    // Each progress report is also a checkpoint.
+    let tick = |_: u64| checkpoint();
     let finished = (Mutex::new(false), Condvar::new());
     std::thread::scope(|s| {
         let handle = s.spawn(|| {
-            let out = catch_unwind(AssertUnwindSafe(|| work(&tick)));
+            let out = catch_unwind(AssertUnwindSafe(|| run_cancellable(&token, || work(&tick))));
             let (lock, cvar) = &finished;
             *lock.lock().unwrap_or_else(|e| e.into_inner()) = true;
             cvar.notify_all();
@@ -117,7 +127,7 @@ pub fn interruptible<T: Send>(
             }
             if interrupted.is_none() {
                 if let Err(e) = py.check_signals() {
-                    cancel.store(true, Ordering::Relaxed);
+                    token.cancel();
                     interrupted = Some(e);
                 }
             }

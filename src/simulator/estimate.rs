@@ -270,13 +270,18 @@ impl RowEstimator {
                 reason: format!("row {} (1-based): {DARK_ROW}", r + 1),
             });
         }
+        let every = crate::cancel::stride(n);
         let job = || {
             rows.par_chunks(n * 256)
                 .flat_map_iter(|block| {
                     let (mut buf, mut scratch) = (vec![0.0; n], Vec::new());
                     block
                         .chunks_exact(n)
-                        .map(|row| {
+                        .enumerate()
+                        .map(|(i, row)| {
+                            if i % every == 0 {
+                                crate::cancel::checkpoint();
+                            }
                             buf.copy_from_slice(row);
                             self.estimate_with(&mut buf, &mut scratch)
                         })

@@ -235,7 +235,11 @@ impl Rows<'_> {
     pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) {
         let n = self.samples();
         let first = u * ROWS_PER_UNIT;
+        let every = crate::cancel::stride(n) as u64;
         for s in first..first + self.unit_rows(u) {
+            if (s - first) % every == 0 {
+                crate::cancel::checkpoint();
+            }
             let start = out.len();
             out.resize(start + n, 0.0);
             let row = &mut out[start..];

@@ -9,7 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
-use crate::montecarlo::{replicated_summary, RunningStats, Summary};
+use crate::montecarlo::{replicated_summary, RunningStats, Steps, Summary};
 use crate::noise::calibrated::{calibrated_run, expectation, CalibratedExpectation, Trials};
 use crate::noise::Formula;
 use crate::simulator::estimate::{BiasConvention, RowEstimator};
@@ -145,6 +145,7 @@ fn reduce_rows(
     let mut total = vec![UnitStats::default(); rows.sequences()];
     let work = |first_row: u64, block: &[f64]| {
         let mut s = vec![UnitStats::default(); rows.sequences()];
+        let mut steps = Steps::new(progress, n);
         for (i, row) in block.chunks_exact(n).enumerate() {
             let acc = &mut s[rows.sequence_of(first_row + i as u64)];
             let e = est.estimate(row);
@@ -152,8 +153,9 @@ fn reduce_rows(
             acc.v2_sq.push(e.v2_sq);
             acc.v1.push(e.v1_sq.sqrt() - v0.0);
             acc.v2.push(e.v2_sq.sqrt() - v0.1);
+            steps.step();
         }
-        progress((block.len() / n) as u64);
+        steps.finish();
         s
     };
     rows.fold_units(threads, work, |p: Vec<UnitStats>| {

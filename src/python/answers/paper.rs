@@ -1,10 +1,10 @@
 //! The paper's effects one at a time: `bias`, `snr`, `piston`, `claims`.
 
 use super::{formula, json, window};
-use crate::commands::{self, piston::PistonRequest};
+use crate::commands::{self, cost, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok, parse_enum};
+use crate::python::{interruptible, ok, parse_enum, warn_cost};
 use crate::reproduction::cases::Effort;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -13,23 +13,35 @@ use pyo3::types::PyDict;
 #[pyfunction]
 #[pyo3(signature = (physical, bins, finite_scan))]
 pub(super) fn bias(
+    py: Python<'_>,
     physical: &Bound<'_, PyDict>,
     bins: &str,
     finite_scan: bool,
 ) -> PyResult<String> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
-    json(&ok(commands::bias::answer(&p, window, finite_scan))?)
+    warn_cost(py, "bias", &ok(cost::bias(&p, finite_scan))?)?;
+    json(&interruptible(py, |_| {
+        commands::bias::answer(&p, window, finite_scan)
+    })?)
 }
 
 /// `snr`: `v2ref snr --json`.
 #[pyfunction]
 #[pyo3(signature = (physical, bins, formula))]
-pub(super) fn snr(physical: &Bound<'_, PyDict>, bins: &str, formula: &str) -> PyResult<String> {
+pub(super) fn snr(
+    py: Python<'_>,
+    physical: &Bound<'_, PyDict>,
+    bins: &str,
+    formula: &str,
+) -> PyResult<String> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let formula = ok(self::formula(formula))?;
-    json(&ok(commands::snr::answer(&p, window, formula))?)
+    warn_cost(py, "snr", &ok(cost::snr(&p))?)?;
+    json(&interruptible(py, |_| {
+        commands::snr::answer(&p, window, formula)
+    })?)
 }
 
 /// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`; `psd`
@@ -60,6 +72,7 @@ pub(super) fn piston(
         wind_angle_deg,
     };
     let prepared = ok(commands::piston::prepare(&p, &req))?;
+    warn_cost(py, "piston", &prepared.cost(&req))?;
     let answer = interruptible(py, |tick| {
         commands::piston::run(&prepared, &p, &req, Some(tick))
     })?;

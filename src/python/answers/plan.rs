@@ -3,7 +3,7 @@
 use super::json;
 use crate::commands::{self, plan::PlanRequest};
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok, parse_enum};
+use crate::python::{interruptible, ok, parse_enum, warn_cost};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -48,6 +48,7 @@ pub(super) fn plan(
         diameter_err_mas,
     };
     let prepared = ok(commands::plan::prepare(&p, &req))?;
+    warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
     let answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::write_plan(

@@ -3,6 +3,7 @@
 
 use super::data::{check_finite, data_error, estimate_column, matrix, parse_sidecar};
 use super::{convention, formula, json, window};
+use crate::commands::cost::{self, SetOutput};
 use crate::commands::synth::{self as synth_set, SetSize};
 use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::conformance::score::score_report;
@@ -10,7 +11,7 @@ use crate::error::Result;
 use crate::formalism::estimator::{BinWindow, Pair};
 use crate::noise::calibrated::Trials;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok};
+use crate::python::{interruptible, ok, warn_cost};
 use crate::simulator::report::{check_trials, Estimation, SimulateReport};
 use crate::simulator::{simulate as run_simulation, Inputs, Model};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -73,18 +74,18 @@ pub(super) fn estimate<'py>(
         continuum_subtracted,
     };
     let (inputs, continuum_subtracted) = configuration(given, rows, cols)?;
-    let model = ok(Model::new(&inputs))?;
-    let est = ok(RowEstimator::new(
-        &model,
-        window,
-        bias,
-        continuum_subtracted,
-    ))?;
+    warn_cost(
+        py,
+        "estimate",
+        &ok(cost::estimate(&inputs, rows as u64, threads))?,
+    )?;
     let cal = match &calibrator {
         None => None,
         Some(c) => Some(calibrator_rows(c, cols)?),
     };
-    let rows = py.allow_threads(|| -> Result<Vec<RowEstimate>> {
+    let rows = interruptible(py, |_| -> Result<Vec<RowEstimate>> {
+        let model = Model::new(&inputs)?;
+        let est = RowEstimator::new(&model, window, bias, continuum_subtracted)?;
         let est = match cal {
             None => est,
             Some(cdata) => {
@@ -95,8 +96,7 @@ pub(super) fn estimate<'py>(
             }
         };
         est.estimate_rows(data, threads)
-    });
-    let rows = ok(rows)?;
+    })?;
     check_rows_finite(data, cols, &rows)?;
     estimate_columns(py, &rows)
 }
@@ -222,8 +222,15 @@ pub(super) fn synthesize<'py>(
         inputs.samples,
         reference_blocks,
     ))?;
-    let model = ok(Model::new(&inputs))?;
     let n = inputs.samples;
+    let reference_rows = reference_blocks
+        * crate::conformance::truth::reference_rows_per_block(
+            rows,
+            reference_blocks,
+            inputs.piston.is_some(),
+        );
+    let predicted = cost::synth(&inputs, (rows, reference_rows), threads, SetOutput::Memory);
+    warn_cost(py, "synthesize", &ok(predicted)?)?;
     let size = SetSize {
         rows,
         seed,
@@ -232,6 +239,7 @@ pub(super) fn synthesize<'py>(
         keep_continuum,
     };
     let (data, sidecar) = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
         let mut data: Vec<f64> = Vec::with_capacity(rows as usize * n);
         let mut sink = |block: &[f64]| -> Result<()> {
             data.extend_from_slice(block);
@@ -265,13 +273,18 @@ pub(super) fn simulate(
     );
     ok(check_trials(trials))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
-    let model = ok(Model::new(&inputs))?;
     let size = Trials {
         trials,
         seed,
         threads,
     };
+    warn_cost(
+        py,
+        "simulate",
+        &ok(cost::simulate(&inputs, trials, threads))?,
+    )?;
     let run = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
         run_simulation(&model, window, bias, formula, size, tick)
     })?;
     let estimation = Estimation {
