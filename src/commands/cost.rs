@@ -16,8 +16,7 @@
 //!   N samples × a spectral grid that grows with the stroke
 //!   ([`SpectralNodes::count`]): the N² cost of a long scan, sequential;
 //! - the exact window statistics (only up to
-//!   [`MAX_WINDOW_SAMPLES`](crate::noise::calibrated::MAX_WINDOW_SAMPLES)
-//!   samples): N², sequential;
+//!   [`MAX_WINDOW_SAMPLES`] samples): N², sequential;
 //! - the rows (trials, rows of a set, scans): linear, in parallel.
 
 use crate::error::Result;
@@ -54,7 +53,7 @@ pub const ROW_DIRECT_S_PER_SAMPLE: f64 = 3.5e-8;
 
 /// Entries of the Poisson alias tables a run may use (as
 /// `noise::simulation` decides; the tables cover about λ ± 12√λ + 20).
-const ALIAS_TABLE_ENTRIES: f64 = (1u64 << 20) as f64;
+pub const ALIAS_TABLE_ENTRIES: f64 = (1u64 << 20) as f64;
 
 /// A row of a set's reference run against a row of the set (four
 /// estimators each): 65536 rows of 1024 samples in 1.4 s, 2.1e-8 per
