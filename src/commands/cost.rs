@@ -131,13 +131,16 @@ fn cores(threads: usize) -> f64 {
 }
 
 /// Core-seconds of the noise-free interferograms of `obs` and of its
-/// calibrator through `sampling`.
-pub fn interferograms_s(obs: &Observation, sampling: &Sampling) -> f64 {
+/// calibrator through `sampling`; refuses a sampling that aliases the
+/// band, as the synthesis would (a cost is predicted for valid inputs
+/// only, so that the error comes before any note).
+pub fn interferograms_s(obs: &Observation, sampling: &Sampling) -> Result<f64> {
+    sampling.check_aliasing(obs)?;
     let n = sampling.samples();
     let max_opd_um = (0..n).map(|i| sampling.opd_um(i).abs()).fold(0.0, f64::max);
     let nodes =
         SpectralNodes::count(obs, max_opd_um) + SpectralNodes::count(&obs.calibrator(), max_opd_um);
-    SYNTHESIS_S_PER_SAMPLE_NODE * n as f64 * nodes as f64
+    Ok(SYNTHESIS_S_PER_SAMPLE_NODE * n as f64 * nodes as f64)
 }
 
 /// Core-seconds of `windows` exact window statistics at `n` samples (none
@@ -180,7 +183,7 @@ fn count(n: f64) -> String {
 /// `bias`: the finite scan, when asked (its two interferograms).
 pub fn bias(p: &Physical, finite_scan: bool) -> Result<Cost> {
     let seconds = if crate::commands::bias::wants_finite_scan(p, finite_scan) {
-        interferograms_s(&p.observation()?, &p.sampling()?)
+        interferograms_s(&p.observation()?, &p.sampling()?)?
     } else {
         0.0
     };
@@ -195,7 +198,7 @@ pub fn snr(p: &Physical) -> Result<Cost> {
     let sampling = p.sampling()?;
     let n = sampling.samples();
     Ok(Cost {
-        seconds: interferograms_s(&p.observation()?, &sampling) + window_stats_s(n, 1.0),
+        seconds: interferograms_s(&p.observation()?, &sampling)? + window_stats_s(n, 1.0),
         what: format!("closed forms over {n} samples"),
     })
 }
@@ -204,7 +207,7 @@ pub fn snr(p: &Physical) -> Result<Cost> {
 /// interferograms twice over (the model, the noise bias of the window)
 /// and two windows' statistics, then the rows.
 pub fn simulate(inputs: &Inputs, trials: u64, threads: usize) -> Result<Cost> {
-    let setup = 2.0 * interferograms_s(&inputs.observation()?, &inputs.sampling()?)
+    let setup = 2.0 * interferograms_s(&inputs.observation()?, &inputs.sampling()?)?
         + window_stats_s(inputs.samples, 2.0);
     Ok(Cost {
         seconds: setup + trials as f64 * row_s(inputs) / cores(threads),
@@ -239,7 +242,7 @@ pub fn synth(
     output: SetOutput,
 ) -> Result<Cost> {
     let n = inputs.samples as f64;
-    let setup = 6.5 * interferograms_s(&inputs.observation()?, &inputs.sampling()?)
+    let setup = 6.5 * interferograms_s(&inputs.observation()?, &inputs.sampling()?)?
         + window_stats_s(inputs.samples, 3.0);
     let row = row_s(inputs);
     let compute =
@@ -260,7 +263,7 @@ pub fn synth(
 /// `estimate` of `rows` rows of `inputs`: the model (1.6 times the
 /// interferograms: 4.12 s at 8192 samples) and the rows.
 pub fn estimate(inputs: &Inputs, rows: u64, threads: usize) -> Result<Cost> {
-    let setup = 1.6 * interferograms_s(&inputs.observation()?, &inputs.sampling()?);
+    let setup = 1.6 * interferograms_s(&inputs.observation()?, &inputs.sampling()?)?;
     let n = inputs.samples as f64;
     Ok(Cost {
         seconds: setup + rows as f64 * n * ESTIMATE_S_PER_SAMPLE / cores(threads),
@@ -293,26 +296,24 @@ pub fn plan(
     (frequencies, strokes): (usize, &[Sampling]),
     scans: u64,
     threads: usize,
-) -> Cost {
-    let per_frequency: f64 = strokes
-        .iter()
-        .map(|s| {
-            let n = s.samples();
-            PLAN_POINT_S
-                + 3.0 * interferograms_s(obs, s)
-                + window_stats_s(n, 1.0)
-                + scans as f64 * n as f64 * SCAN_S_PER_SAMPLE
-        })
-        .sum();
+) -> Result<Cost> {
+    let mut per_frequency = 0.0;
+    for s in strokes {
+        let n = s.samples();
+        per_frequency += PLAN_POINT_S
+            + 3.0 * interferograms_s(obs, s)?
+            + window_stats_s(n, 1.0)
+            + scans as f64 * n as f64 * SCAN_S_PER_SAMPLE;
+    }
     let points = frequencies * strokes.len();
-    Cost {
+    Ok(Cost {
         seconds: PISTON_SPECTRUM_S + frequencies as f64 * per_frequency / cores(threads),
         what: format!(
             "{} grid points of {} scans",
             count(points as f64),
             count(scans as f64)
         ),
-    }
+    })
 }
 
 #[cfg(test)]

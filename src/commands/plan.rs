@@ -107,12 +107,7 @@ impl Prepared {
             }
         }
         let grid = (inputs.fringe_hz.len(), strokes.as_slice());
-        Ok(crate::commands::cost::plan(
-            &obs,
-            grid,
-            inputs.scans,
-            threads,
-        ))
+        crate::commands::cost::plan(&obs, grid, inputs.scans, threads)
     }
 }
 
@@ -176,6 +171,7 @@ pub fn prepare(p: &Physical, req: &PlanRequest) -> Result<Prepared> {
         seed: req.seed,
         diameter_err_mas: req.diameter_err_mas,
     };
+    inputs.validate()?;
     let piston = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
     Ok(Prepared {
         inputs,

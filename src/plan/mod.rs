@@ -235,7 +235,9 @@ pub struct Plan {
 }
 
 impl PlanInputs {
-    fn validate(&self) -> Result<()> {
+    /// Checks every input against its accepted range before any
+    /// computation (also before a cost is predicted from them).
+    pub fn validate(&self) -> Result<()> {
         use crate::bounds::{positive_at_most, PLAN_SAMPLES_PER_FRINGE_MAX as SPF};
         use crate::bounds::{PHOTON_RATE_MAX_PER_S, PLAN_SIGMA_V2_MIN, PLAN_TIME_MAX_S};
         error::in_range("samples_per_fringe", self.samples_per_fringe, 2.0, SPF)?;
