@@ -429,31 +429,43 @@ def test_results_do_not_depend_on_threads():
         lambda: v2ref.simulate(trials=10**9, samples=64, bias="counts"),
         lambda: v2ref.synthesize(rows=10**6, samples=64, reference_blocks=1000),
         lambda: v2ref.piston(scans=250000, samples=64, fringe_hz=[100, 150, 200, 300, 500, 700, 1000, 2000]),
+        lambda: v2ref.plan(scans=60000),
+        lambda: v2ref.bias(finite_scan=True, samples=65536),
+        lambda: v2ref.snr(samples=16384),
     ],
+    ids=["simulate", "simulate-counts", "synthesize", "piston", "plan", "bias-finite-scan", "snr"],
 )
-def test_ctrl_c_stops_long_calls(call):
+def test_ctrl_c_stops_long_calls_within_a_second(call):
     import signal
     import threading
     import time
+    import warnings
 
     # A process started in the background by a non-interactive shell (a CI
     # runner's `cmd &`) inherits SIGINT ignored, and Python then installs no
     # KeyboardInterrupt handler: install it for the test, restore after.
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
-    start = time.perf_counter()
+    sent = []
+
+    def interrupt():
+        sent.append(time.perf_counter())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(0.5, interrupt)
     timer.start()
     try:
-        with pytest.raises(KeyboardInterrupt):
+        with pytest.raises(KeyboardInterrupt), warnings.catch_warnings():
+            # Each call announces its predicted minutes first (a UserWarning).
+            warnings.simplefilter("ignore")
             call()
     finally:
         timer.join()
         signal.signal(signal.SIGINT, previous)
-    # Uninterrupted, each call runs for minutes (10^9 trials; 8 x 250 000
-    # piston scans; 1000 reference replicates): returning within 30 s shows
-    # the interrupt worked, with room for a loaded machine (the piston call
-    # must first finish synthesizing its sequences, which no tick interrupts).
-    assert time.perf_counter() - start < 30.0
+    # Uninterrupted, each call runs for minutes to days (by the cost laws of
+    # v2ref::commands::cost). Measured here: 0.002 to 0.12 s from the signal
+    # to the exception, idle or with both cores loaded by two other
+    # processes; the bound is the one promised to users.
+    assert time.perf_counter() - sent[0] < 1.0
 
 
 # --------------------------------------------------------------------------
