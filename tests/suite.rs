@@ -21,6 +21,7 @@ mod claims;
 mod cli;
 mod cli_noise;
 mod cli_piston;
+mod commands_estimate;
 mod conformance_cli;
 mod conformance_files;
 mod conformance_score;

@@ -6,10 +6,10 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use v2ref::commands::estimate::{estimate_rows, CalibratorRows, Configuration, RowsName};
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows};
-use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.
@@ -63,10 +63,18 @@ pub struct Args {
 
 /// The configuration and the file to read.
 struct Source {
-    inputs: Inputs,
+    config: Configuration,
     input: PathBuf,
-    continuum_subtracted: bool,
-    expected_rows: Option<u64>,
+}
+
+impl Source {
+    /// How a refusal names the interferograms.
+    fn name(&self) -> RowsName<'_> {
+        RowsName {
+            param: "input",
+            path: Some(&self.input),
+        }
+    }
 }
 
 /// Rows estimated at a time from a streamed `.npy` (8 MB at N = 128).
@@ -87,16 +95,19 @@ pub fn run(args: Args) -> Result<ExitCode> {
             let mut out = Vec::with_capacity(stream.rows);
             let mut block = Vec::new();
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
-                refuse_dark_rows(&block, stream.cols, out.len(), &source.input, "input")?;
-                out.extend(est.estimate_rows(&block, args.threads)?);
+                let at = (block.as_slice(), out.len());
+                out.extend(estimate_rows(&est, source.name(), at, args.threads)?);
             }
             (out, stream.cols)
         }
         None => {
             let data = read_matrix(&source.input, "input")?;
             let est = estimator(&args, &source, data.rows, data.cols)?;
-            refuse_dark_rows(&data.data, data.cols, 0, &source.input, "input")?;
-            (est.estimate_rows(&data.data, args.threads)?, data.cols)
+            let at = (data.data.as_slice(), 0);
+            (
+                estimate_rows(&est, source.name(), at, args.threads)?,
+                data.cols,
+            )
         }
     };
     if let Some(p) = args
@@ -104,7 +115,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .as_ref()
         .filter(|p| v2ref::formats::oifits::is_fits_path(p))
     {
-        let inputs = check_shape(&source, rows.len(), cols)?;
+        let inputs = source.config.inputs_for(source.name(), rows.len(), cols)?;
         super::oifits::write_estimates(
             p,
             &inputs,
@@ -119,20 +130,27 @@ pub fn run(args: Args) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The estimator of `rows` rows of `cols` samples under the flags.
+/// The estimator of `rows` rows of `cols` samples under the flags, its
+/// cost announced first.
 fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<RowEstimator> {
-    let inputs = check_shape(source, rows, cols)?;
+    let inputs = source.config.inputs_for(source.name(), rows, cols)?;
     let cost = v2ref::commands::cost::estimate(&inputs, rows as u64, args.threads)?;
     super::output::announce("estimate", &cost);
-    let model = Model::new(&inputs)?;
-    let est = RowEstimator::new(&model, args.bins, args.bias, source.continuum_subtracted)?;
-    match args.calibrator.as_str() {
-        "model" => Ok(est),
-        path => {
-            let cal = calibration(args, &model, path, source.continuum_subtracted)?;
-            est.with_calibration(cal)
-        }
-    }
+    let calibrator = match args.calibrator.as_str() {
+        "model" => None,
+        path => Some((Path::new(path), read_matrix(Path::new(path), "calibrator")?)),
+    };
+    let calibrator = calibrator.as_ref().map(|(path, data)| CalibratorRows {
+        name: RowsName {
+            param: "calibrator",
+            path: Some(path),
+        },
+        rows: &data.data,
+        cols: data.cols,
+    });
+    let options = (args.bins, args.bias);
+    let cs = source.config.continuum_subtracted;
+    v2ref::commands::estimate::estimator(&inputs, options, cs, calibrator, args.threads)
 }
 
 fn source(args: &Args) -> Result<Source> {
@@ -140,15 +158,22 @@ fn source(args: &Args) -> Result<Source> {
         Some(path) => {
             let sidecar = super::score::read_sidecar(path)?;
             let folder = path.parent().unwrap_or(Path::new("."));
-            let (input, expected_rows) = match &args.input {
-                Some(p) => (p.clone(), None),
-                None => (folder.join(&sidecar.data.npy), Some(sidecar.data.rows)),
-            };
-            Ok(Source {
-                inputs: sidecar.inputs,
-                input,
-                continuum_subtracted: sidecar.continuum_subtracted,
-                expected_rows,
+            let default_input = folder.join(&sidecar.data.npy);
+            let config = Configuration::from_sidecar(sidecar);
+            // Other rows than the set's (--input) may be as many as they
+            // like, but of the set's N.
+            Ok(match &args.input {
+                Some(p) => Source {
+                    config: Configuration {
+                        set_rows: None,
+                        ..config
+                    },
+                    input: p.clone(),
+                },
+                None => Source {
+                    config,
+                    input: default_input,
+                },
             })
         }
         None => {
@@ -159,72 +184,11 @@ fn source(args: &Args) -> Result<Source> {
                         .into(),
             })?;
             Ok(Source {
-                inputs: args.inputs.inputs_unchecked()?,
+                config: Configuration::from_physical(&args.inputs.physical(), !args.counts)?,
                 input,
-                continuum_subtracted: !args.counts,
-                expected_rows: None,
             })
         }
     }
-}
-
-/// The inputs with N from the file (without a sidecar) or checked against
-/// it (with one).
-fn check_shape(source: &Source, rows: usize, cols: usize) -> Result<Inputs> {
-    if let Some(expected) = source.expected_rows {
-        if rows as u64 != expected {
-            return Err(Error::data(
-                "input",
-                &source.input,
-                "",
-                format!("{rows} rows; its sidecar says {expected}"),
-            ));
-        }
-    }
-    let mut inputs = source.inputs.clone();
-    if inputs.samples != cols {
-        if source.expected_rows.is_some() || source.inputs.piston.is_some() {
-            return Err(Error::data(
-                "input",
-                &source.input,
-                "",
-                format!(
-                    "{} columns; the configuration has {} samples per row",
-                    cols, inputs.samples
-                ),
-            ));
-        }
-        inputs.samples = cols;
-    }
-    inputs.validate()?;
-    Ok(inputs)
-}
-
-/// The calibration measured on a calibrator's file.
-fn calibration(
-    args: &Args,
-    model: &Model,
-    path: &str,
-    continuum_subtracted: bool,
-) -> Result<v2ref::formalism::estimator::Pair> {
-    let path = Path::new(path);
-    let data = read_matrix(path, "calibrator")?;
-    if data.cols != model.samples() {
-        return Err(Error::data(
-            "calibrator",
-            path,
-            "",
-            format!(
-                "{} columns; the interferograms have {}",
-                data.cols,
-                model.samples()
-            ),
-        ));
-    }
-    refuse_dark_rows(&data.data, data.cols, 0, path, "calibrator")?;
-    let cal_model = model.calibrator_model()?;
-    let est = RowEstimator::new(&cal_model, args.bins, args.bias, continuum_subtracted)?;
-    est.calibration_from_rows(&data.data, args.threads)
 }
 
 fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
@@ -262,24 +226,5 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
             }
             w.flush().map_err(fail)
         }
-    }
-}
-
-/// Refuses a row of zeros in the file `path` (`first` rows before `rows`).
-fn refuse_dark_rows(
-    rows: &[f64],
-    cols: usize,
-    first: usize,
-    path: &Path,
-    param: &'static str,
-) -> Result<()> {
-    match v2ref::conformance::estimate::first_dark_row(rows, cols) {
-        Some(r) => Err(Error::data(
-            param,
-            path,
-            format!("row {} (1-based)", first + r + 1),
-            v2ref::conformance::estimate::DARK_ROW,
-        )),
-        None => Ok(()),
     }
 }

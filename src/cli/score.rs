@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
-use v2ref::conformance::sidecar::{self, Sidecar};
+use v2ref::conformance::sidecar::Sidecar;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::{Error, Result};
 
@@ -89,46 +89,9 @@ fn read_limited(path: &Path, param: &'static str, max_bytes: u64) -> Result<Stri
     Ok(text)
 }
 
-/// Reads and checks a sidecar.
+/// Reads and checks a sidecar ([`Sidecar::from_json`]).
 pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
-    const P: &str = "sidecar";
-    let text = read_limited(path, P, MAX_SIDECAR_BYTES)?;
-    let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
-        Error::data(
-            P,
-            path,
-            format!("line {}, column {}", e.line(), e.column()),
-            format!("not JSON ({e}); the sidecar written by v2ref synth is needed"),
-        )
-    })?;
-    match value.get("format") {
-        Some(serde_json::Value::String(f)) if f == sidecar::FORMAT => {}
-        Some(f) => {
-            return Err(Error::data(
-                P,
-                path,
-                "field format",
-                format!("{f}; \"{}\" is needed", sidecar::FORMAT),
-            ))
-        }
-        None => {
-            return Err(Error::data(
-                P,
-                path,
-                "field format",
-                format!("missing; \"{}\" is needed", sidecar::FORMAT),
-            ))
-        }
-    }
-    // Parsed again from the text so that an error carries its line.
-    serde_json::from_str::<Sidecar>(&text).map_err(|e| {
-        Error::data(
-            P,
-            path,
-            format!("line {}, column {}", e.line(), e.column()),
-            format!("not a v2ref sidecar: {e}"),
-        )
-    })
+    Sidecar::from_json(&read_limited(path, "sidecar", MAX_SIDECAR_BYTES)?, path)
 }
 
 /// Runs `score`.

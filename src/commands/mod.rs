@@ -6,6 +6,7 @@
 
 pub mod bias;
 pub mod cost;
+pub mod estimate;
 pub mod piston;
 pub mod plan;
 pub mod snr;

@@ -165,6 +165,47 @@ pub struct ReferenceRun {
 }
 
 impl Sidecar {
+    /// A sidecar from its JSON text, read from `path` (named in every
+    /// refusal, under the parameter `sidecar`): JSON, of [`FORMAT`], with
+    /// every field a v2ref sidecar has. An error of the JSON gives its
+    /// line and column.
+    pub fn from_json(text: &str, path: &std::path::Path) -> crate::Result<Sidecar> {
+        use crate::error::Error;
+        const P: &str = "sidecar";
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+            Error::data(
+                P,
+                path,
+                format!("line {}, column {}", e.line(), e.column()),
+                format!("not JSON ({e}); the sidecar written by v2ref synth is needed"),
+            )
+        })?;
+        let format = match value.get("format") {
+            Some(serde_json::Value::String(f)) if f == FORMAT => return Self::fields(text, path),
+            Some(f) => f.to_string(),
+            None => "missing".to_owned(),
+        };
+        Err(Error::data(
+            P,
+            path,
+            "field format",
+            format!("{format}; \"{FORMAT}\" is needed"),
+        ))
+    }
+
+    /// The fields of a sidecar's text, parsed again from the text so that
+    /// an error carries its line.
+    fn fields(text: &str, path: &std::path::Path) -> crate::Result<Sidecar> {
+        serde_json::from_str::<Sidecar>(text).map_err(|e| {
+            crate::error::Error::data(
+                "sidecar",
+                path,
+                format!("line {}, column {}", e.line(), e.column()),
+                format!("not a v2ref sidecar: {e}"),
+            )
+        })
+    }
+
     /// The truth of `window` under `bias`, if the sidecar has it.
     pub fn truth(&self, window: BinWindow, bias: BiasConvention) -> Option<&ConventionTruth> {
         self.truth

@@ -523,6 +523,10 @@ def test_bad_arrays_and_words_raise():
             v2ref.estimate(y, bins=window, bias="counts")
     with pytest.raises(ValueError, match=r"calibrator: row 2, column 16 \(1-based\): -inf is not a finite"):
         v2ref.estimate(x, calibrator=y)
+    # A dark calibrator is named as the calibrator (it was named as the
+    # interferograms before the answer was built once).
+    with pytest.raises(ValueError, match=r"^calibrator: row 1 \(1-based\): every sample is 0"):
+        v2ref.estimate(np.ones((4, 16)), calibrator=x)
     with pytest.raises(ValueError, match="bins: 'middle' is not one of: positive, band, all"):
         v2ref.estimate(x, bins="middle")
     with pytest.raises(ValueError, match="bias: 'x' is not one of: model, counts"):

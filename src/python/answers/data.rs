@@ -1,7 +1,7 @@
 //! The checks of array and sidecar arguments: a message naming the
 //! argument and where in it the value is unusable.
 
-use crate::conformance::sidecar::{Sidecar, FORMAT};
+use crate::conformance::sidecar::Sidecar;
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -12,21 +12,6 @@ pub(super) fn data_error(param: &str, location: &str, reason: &str) -> PyErr {
         PyValueError::new_err(format!("{param}: {reason}"))
     } else {
         PyValueError::new_err(format!("{param}: {location}: {reason}"))
-    }
-}
-
-/// The first non-finite value of a row-major matrix of `cols` columns.
-pub(super) fn check_finite(param: &str, data: &[f64], cols: usize) -> PyResult<()> {
-    match data.iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(i) => Err(data_error(
-            param,
-            &format!("row {}, column {} (1-based)", i / cols + 1, i % cols + 1),
-            &format!(
-                "{} is not a finite number; every value must be finite",
-                data[i]
-            ),
-        )),
     }
 }
 
@@ -56,32 +41,7 @@ pub(super) fn matrix<'a>(
 
 /// A sidecar from its JSON text (`name`: where it came from, for messages).
 pub(super) fn parse_sidecar(text: &str, name: &str) -> PyResult<Sidecar> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
-        data_error(
-            "sidecar",
-            name,
-            &format!("not JSON ({e}); the sidecar written by v2ref synth is needed"),
-        )
-    })?;
-    match value.get("format") {
-        Some(serde_json::Value::String(f)) if f == FORMAT => {}
-        Some(f) => {
-            return Err(data_error(
-                "sidecar",
-                &format!("{name}: field format"),
-                &format!("{f}; \"{FORMAT}\" is needed"),
-            ))
-        }
-        None => {
-            return Err(data_error(
-                "sidecar",
-                &format!("{name}: field format"),
-                &format!("missing; \"{FORMAT}\" is needed"),
-            ))
-        }
-    }
-    serde_json::from_value::<Sidecar>(value)
-        .map_err(|e| data_error("sidecar", name, &format!("not a v2ref sidecar: {e}")))
+    crate::python::ok(Sidecar::from_json(text, std::path::Path::new(name)))
 }
 
 /// The estimates of column `name` (`v1_sq` or `v2_sq`) given to `score`:

@@ -1,19 +1,20 @@
 //! The end-to-end simulator and the conformance kit: `simulate`,
 //! `synthesize`, `estimate`, `score`.
 
-use super::data::{check_finite, data_error, estimate_column, matrix, parse_sidecar};
+use super::data::{data_error, estimate_column, matrix, parse_sidecar};
 use super::{convention, formula, json, window};
 use crate::commands::cost::{self, SetOutput};
+use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
 use crate::commands::synth::{self as synth_set, SetSize};
-use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use crate::conformance::estimate::{BiasConvention, RowEstimate};
 use crate::conformance::score::score_report;
 use crate::error::Result;
-use crate::formalism::estimator::{BinWindow, Pair};
+use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::Trials;
 use crate::python::inputs::Physical;
 use crate::python::{interruptible, ok, warn_cost};
 use crate::simulator::report::{check_trials, Estimation, SimulateReport};
-use crate::simulator::{simulate as run_simulation, Inputs, Model};
+use crate::simulator::{simulate as run_simulation, Model};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -21,31 +22,6 @@ use pyo3::types::PyDict;
 use serde::Serialize;
 
 use crate::commands::ESTIMATE_COLUMNS;
-
-/// The first non-finite value of the interferograms, found without a
-/// pass over all of them: a NaN or infinity in a row makes its raw
-/// estimates non-finite (sums and products with unit-modulus twiddles
-/// keep it), so only the rows whose raw estimates are not finite are
-/// searched, in order.
-fn check_rows_finite(data: &[f64], cols: usize, rows: &[RowEstimate]) -> PyResult<()> {
-    for (r, e) in rows.iter().enumerate() {
-        if e.v1_sq_raw.is_finite() && e.v2_sq_raw.is_finite() {
-            continue;
-        }
-        let row = &data[r * cols..(r + 1) * cols];
-        if let Some(c) = row.iter().position(|v| !v.is_finite()) {
-            return Err(data_error(
-                "interferograms",
-                &format!("row {}, column {} (1-based)", r + 1, c + 1),
-                &format!(
-                    "{} is not a finite number; every value must be finite",
-                    row[c]
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
 
 /// `estimate`: per-row V1², V2² (raw, bias, normalized), as `v2ref
 /// estimate`. `physical` holds only the keyword arguments given;
@@ -68,12 +44,13 @@ pub(super) fn estimate<'py>(
     let window = ok(window(bins))?;
     let bias = ok(convention(bias))?;
     let (rows, cols, data) = matrix("interferograms", &interferograms)?;
-    let given = Configuration {
+    let given = Given {
         physical,
         sidecar: sidecar.map(|text| (text, sidecar_name)),
         continuum_subtracted,
     };
-    let (inputs, continuum_subtracted) = configuration(given, rows, cols)?;
+    let config = configuration(given)?;
+    let inputs = ok(config.inputs_for(INTERFEROGRAMS, rows, cols))?;
     warn_cost(
         py,
         "estimate",
@@ -81,105 +58,64 @@ pub(super) fn estimate<'py>(
     )?;
     let cal = match &calibrator {
         None => None,
-        Some(c) => Some(calibrator_rows(c, cols)?),
+        Some(c) => {
+            let (_, cols, rows) = matrix("calibrator", c)?;
+            Some(CalibratorRows {
+                name: RowsName {
+                    param: "calibrator",
+                    path: None,
+                },
+                rows,
+                cols,
+            })
+        }
     };
     let rows = interruptible(py, |_| -> Result<Vec<RowEstimate>> {
-        let model = Model::new(&inputs)?;
-        let est = RowEstimator::new(&model, window, bias, continuum_subtracted)?;
-        let est = match cal {
-            None => est,
-            Some(cdata) => {
-                let cal_model = model.calibrator_model()?;
-                let cal_est = RowEstimator::new(&cal_model, window, bias, continuum_subtracted)?;
-                let c: Pair = cal_est.calibration_from_rows(cdata, threads)?;
-                est.with_calibration(c)?
-            }
-        };
-        est.estimate_rows(data, threads)
+        let options = (window, bias);
+        let cs = config.continuum_subtracted;
+        let est = rows_estimate::estimator(&inputs, options, cs, cal, threads)?;
+        rows_estimate::estimate_rows(&est, INTERFEROGRAMS, (data, 0), threads)
     })?;
-    check_rows_finite(data, cols, &rows)?;
     estimate_columns(py, &rows)
 }
+
+/// How a refusal names the rows of `estimate`.
+const INTERFEROGRAMS: RowsName<'static> = RowsName {
+    param: "interferograms",
+    path: None,
+};
 
 /// Where `estimate` takes its configuration from: the keyword arguments
 /// given, or a sidecar's JSON text and where it came from (then no
 /// keyword may be given).
-struct Configuration<'a, 'py> {
+struct Given<'a, 'py> {
     physical: &'a Bound<'py, PyDict>,
     sidecar: Option<(&'a str, &'a str)>,
     continuum_subtracted: Option<bool>,
 }
 
-/// The inputs of `estimate` and whether the rows are continuum-subtracted,
-/// checked against the `rows` × `cols` interferograms: a sidecar's must
-/// match them; keyword arguments take their samples per row from them
-/// unless a piston is modelled.
-fn configuration(
-    given: Configuration<'_, '_>,
-    rows: usize,
-    cols: usize,
-) -> PyResult<(Inputs, bool)> {
-    let (mut inputs, continuum_subtracted, strict) = match given.sidecar {
-        Some((text, sidecar_name)) => {
-            if let Some((k, _)) = given.physical.iter().next() {
-                return Err(PyValueError::new_err(format!(
-                    "{k}: cannot be used with sidecar (the configuration comes from it)"
-                )));
-            }
-            if given.continuum_subtracted.is_some() {
-                return Err(PyValueError::new_err(
-                    "continuum_subtracted: cannot be used with sidecar (the configuration comes from it)",
-                ));
-            }
-            let sc = parse_sidecar(text, sidecar_name)?;
-            if rows as u64 != sc.data.rows {
-                return Err(data_error(
-                    "interferograms",
-                    "",
-                    &format!("{rows} rows; its sidecar says {}", sc.data.rows),
-                ));
-            }
-            (sc.inputs, sc.continuum_subtracted, true)
-        }
-        None => {
-            let p = Physical::from_dict(given.physical)?;
-            (
-                ok(p.inputs_unchecked())?,
-                given.continuum_subtracted.unwrap_or(true),
-                false,
-            )
-        }
+/// The configuration of `estimate`: a sidecar's (its set's rows), or the
+/// keyword arguments' (N from the rows).
+fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
+    let Some((text, sidecar_name)) = given.sidecar else {
+        let p = Physical::from_dict(given.physical)?;
+        let cs = given.continuum_subtracted.unwrap_or(true);
+        return ok(Configuration::from_physical(&p, cs));
     };
-    if inputs.samples != cols {
-        if strict || inputs.piston.is_some() {
-            return Err(data_error(
-                "interferograms",
-                "",
-                &format!(
-                    "{cols} columns; the configuration has {} samples per row",
-                    inputs.samples
-                ),
-            ));
-        }
-        inputs.samples = cols;
+    if let Some((k, _)) = given.physical.iter().next() {
+        return Err(PyValueError::new_err(format!(
+            "{k}: cannot be used with sidecar (the configuration comes from it)"
+        )));
     }
-    ok(inputs.validate())?;
-    Ok((inputs, continuum_subtracted))
-}
-
-/// The calibrator's rows, checked: finite, with as many columns (`cols`)
-/// as the interferograms.
-fn calibrator_rows<'a>(c: &'a PyReadonlyArray2<'_, f64>, cols: usize) -> PyResult<&'a [f64]> {
-    let (_, ccols, cdata) = matrix("calibrator", c)?;
-    check_finite("calibrator", cdata, ccols)?;
-    if ccols != cols {
-        return Err(data_error(
-            "calibrator",
-            "",
-            &format!("{ccols} columns; the interferograms have {cols}"),
+    if given.continuum_subtracted.is_some() {
+        return Err(PyValueError::new_err(
+            "continuum_subtracted: cannot be used with sidecar (the configuration comes from it)",
         ));
     }
-    Ok(cdata)
+    Ok(Configuration::from_sidecar(parse_sidecar(
+        text,
+        sidecar_name,
+    )?))
 }
 
 /// The per-row estimates as a dict of 1-D arrays, [`ESTIMATE_COLUMNS`].
