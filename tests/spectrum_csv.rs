@@ -199,3 +199,40 @@ fn weight_per_um_is_converted_by_the_jacobian() {
     let c = Spectrum::from_csv_str(&plain).unwrap();
     assert!((c.sigma_eff_per_um() - b.sigma_eff_per_um()).abs() > 1e-4);
 }
+
+/// Two rows are all a table needs: the quadratures integrate piece by
+/// piece between the nodes, where a table is linear, so the two-row K
+/// band of docs/conventions.md §2 is the built-in flat K band (the
+/// wide-band V1², V2² of a 43 mas disk agree to quadrature precision).
+/// This is why a two-row CSV is accepted; the test also sees a table's
+/// shape (a two-row ramp is far from the flat band).
+#[test]
+fn a_two_row_table_is_the_flat_band_it_writes_down() {
+    use v2ref::bias::bandwidth::curve;
+    use v2ref::formalism::phase::SpectralPhase;
+    use v2ref::formalism::source::Source;
+    use v2ref::formalism::spectrum::Band;
+    use v2ref::tolerance::QUADRATURE_REL;
+    let band = Band::k();
+    let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
+    let table = |w_lo: f64, w_hi: f64| {
+        let text = format!("wavenumber_per_um,weight\n{lo},{w_lo}\n{hi},{w_hi}\n");
+        Spectrum::from_csv_str(&text).unwrap()
+    };
+    let disk = Source::UniformDisk { diameter_mas: 43.0 };
+    let at = [11.5, 28.364, 51.9];
+    let v2 = |sp: &Spectrum| curve(sp, &disk, &SpectralPhase::zero(), &at).unwrap();
+    let (two_rows, flat, ramp) = (
+        v2(&table(1.0, 1.0)),
+        v2(&Spectrum::flat(band)),
+        v2(&table(1.0, 3.0)),
+    );
+    for ((t, f), r) in two_rows.iter().zip(&flat).zip(&ramp) {
+        assert!((t.v1_sq - f.v1_sq).abs() < QUADRATURE_REL, "{t:?} {f:?}");
+        assert!((t.v2_sq - f.v2_sq).abs() < QUADRATURE_REL, "{t:?} {f:?}");
+        assert!(
+            (r.v1_sq - f.v1_sq).abs() > 1e3 * QUADRATURE_REL,
+            "{r:?} {f:?}"
+        );
+    }
+}
