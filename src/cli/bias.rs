@@ -3,6 +3,7 @@
 use super::common::{ObservationArgs, SamplingArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
+use v2ref::commands::cost::duration_words;
 use v2ref::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
@@ -33,8 +34,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     args.sampling.scan.apply_to(&mut p);
     let finite = v2ref::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
-    super::output::announce("bias", &v2ref::commands::cost::bias(&p, args.finite_scan)?);
-    let bar = super::spinner(n < SLOW_SAMPLES, &format!("finite scan of {n} samples"));
+    let cost = v2ref::commands::cost::bias(&p, args.finite_scan)?;
+    super::output::announce("bias", &cost);
+    let what = format!(
+        "finite scan of {n} samples, predicted about {}",
+        duration_words(cost.seconds)
+    );
+    let bar = super::spinner(n < SLOW_SAMPLES, &what);
     let answer = v2ref::commands::bias::answer(&p, args.sampling.bins, args.finite_scan)?;
     bar.finish_and_clear();
     let wb = answer.infinite_scan;

@@ -43,7 +43,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let cost = v2ref::commands::cost::snr(&p)?;
     super::output::announce("snr", &cost);
     // Seconds or more (N in the thousands): a spinner on a terminal.
-    let bar = super::spinner(cost.seconds < 1.0, &format!("snr: {}", cost.what));
+    let what = format!(
+        "snr: {}, predicted about {}",
+        cost.what,
+        v2ref::commands::cost::duration_words(cost.seconds)
+    );
+    let bar = super::spinner(cost.seconds < 1.0, &what);
     let answer = v2ref::commands::snr::answer(&p, args.sampling.bins, args.noise.formula)?;
     bar.finish_and_clear();
     if args.json {
