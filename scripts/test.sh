@@ -12,29 +12,42 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Each step's wall time is printed (`timing:` lines) so that the README's
 # timings can be measured on a cold checkout.
+#
+# The Python environment (mostly the package registry and the disk) is made
+# while cargo builds (the two cores); its log is printed if it fails.
+env_log=$(mktemp)
+build_log=$(mktemp)
+trap 'rm -f "$env_log" "$build_log"; kill 0 2>/dev/null' INT TERM
+trap 'rm -f "$env_log" "$build_log"' EXIT
 t=$SECONDS
-if [ ! -x .venv/bin/python ]; then
-    python3 -m venv .venv
-fi
-.venv/bin/pip install --quiet --upgrade pip
-.venv/bin/pip install --quiet -r tests/python/requirements.txt
-echo "timing: Python environment $((SECONDS - t)) s"
+(
+    if [ ! -x .venv/bin/python ]; then
+        python3 -m venv .venv
+    fi
+    .venv/bin/pip install --quiet --upgrade pip
+    .venv/bin/pip install --quiet -r tests/python/requirements.txt
+) > "$env_log" 2>&1 &
+environment=$!
 
 # One build makes the library, the binary (target/release/v2ref, which the
 # Python suite also runs) and the one test binary (tests/suite.rs): a
 # separate `cargo build` would build it all again, as the tests'
 # dependencies change the features of shared crates.
-t=$SECONDS; cargo test --release --no-run
+cargo test --release --no-run
 echo "timing: release build of the binary and the tests $((SECONDS - t)) s"
+if ! wait "$environment"; then
+    cat "$env_log" >&2
+    echo "scripts/test.sh: the Python environment could not be made" >&2
+    exit 1
+fi
+echo "timing: Python environment ready $((SECONDS - t)) s after the start (made during the build)"
 
-# The Python package (maturin: mostly the crate compiled again, with the
-# bindings) is built while the Rust tests run: cargo holds no lock on the
-# target folder while tests run, and the tests leave part of two cores idle
-# (measured: the two steps one after the other took N s more). Its log is
-# printed if it fails; Ctrl-C stops both.
-build_log=$(mktemp)
-trap 'rm -f "$build_log"; kill 0 2>/dev/null' INT TERM
-trap 'rm -f "$build_log"' EXIT
+# The Python package (maturin: the crate and 50-odd dependencies compiled
+# again, with other features, and the bindings) is built while the Rust
+# tests run: cargo holds no lock on the target folder while tests run, and
+# the tests leave part of two cores idle. Measured on a fresh clone: the
+# Rust tests alone 71 s, the package alone 49 s, both at once 116 s. Its log
+# is printed if it fails; Ctrl-C stops both.
 t=$SECONDS
 .venv/bin/pip install --quiet --no-build-isolation . > "$build_log" 2>&1 &
 package_build=$!
