@@ -70,6 +70,7 @@ t=$SECONDS
 status=0
 V2REF_BIN="${CARGO_TARGET_DIR:-target}/release/v2ref" .venv/bin/python -m pytest -q tests/python || status=$?
 echo "timing: Python tests $((SECONDS - t)) s"
+echo "timing: scripts/test.sh in all $SECONDS s"
 if [ "$status" -eq 5 ]; then
     echo "scripts/test.sh: pytest collected no tests in tests/python; there must be tests" >&2
     exit 1

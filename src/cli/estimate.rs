@@ -19,7 +19,8 @@ pub use v2ref::commands::ESTIMATE_COLUMNS as COLUMNS;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Interferograms: .npy (float64, rows × N) or .csv (one row per line);
-    /// default: the sidecar's .npy.
+    /// default: the sidecar's .npy. With --sidecar, other rows than the
+    /// set's may be any number but must have its N.
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
     /// A synth sidecar (SET.json): the configuration comes from it, and the
