@@ -17,8 +17,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 # while cargo builds (the two cores); its log is printed if it fails.
 env_log=$(mktemp)
 build_log=$(mktemp)
-trap 'rm -f "$env_log" "$build_log"; kill 0 2>/dev/null' INT TERM
-trap 'rm -f "$env_log" "$build_log"' EXIT
+py_log=$(mktemp)
+trap 'rm -f "$env_log" "$build_log" "$py_log"; kill 0 2>/dev/null' INT TERM
+trap 'rm -f "$env_log" "$build_log" "$py_log"' EXIT
 t=$SECONDS
 (
     if [ ! -x .venv/bin/python ]; then
@@ -49,9 +50,6 @@ echo "timing: Python environment ready $((SECONDS - t)) s after the start (made 
 # built. Measured on a fresh clone: the Rust tests alone 71 s, the package
 # alone 49 s, both at once 116 s, the Python tests 14 s after them. The
 # Python output is printed after the Rust tests'; Ctrl-C stops both.
-py_log=$(mktemp)
-trap 'rm -f "$env_log" "$build_log" "$py_log"; kill 0 2>/dev/null' INT TERM
-trap 'rm -f "$env_log" "$build_log" "$py_log"' EXIT
 t=$SECONDS
 (
     if ! .venv/bin/pip install --quiet --no-build-isolation . > "$build_log" 2>&1; then

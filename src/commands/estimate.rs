@@ -15,7 +15,7 @@
 //! Errors name the rows as the edge does ([`RowsName`]): the CLI's flag
 //! and its file, or Python's argument.
 
-use crate::conformance::estimate::{first_dark_row, BiasConvention, RowEstimate, RowEstimator};
+use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::conformance::sidecar::Sidecar;
 use crate::error::{Error, Result};
 use crate::formalism::estimator::{BinWindow, Pair};
@@ -163,22 +163,25 @@ pub fn estimator(
 
 /// Refuses the first non-finite value and the first dark row (every
 /// sample 0: no light, or no data) of `rows` (`cols` samples each, the
-/// first `first` rows of the file before them), named by `name`.
+/// first `first` rows of the file before them), named by `name`; a
+/// non-finite value anywhere comes first. One pass over the rows.
 pub fn check_rows(name: RowsName<'_>, rows: &[f64], cols: usize, first: usize) -> Result<()> {
-    if let Some(i) = rows.iter().position(|v| !v.is_finite()) {
-        return Err(name.error(
-            format!(
-                "row {}, column {} (1-based)",
-                first + i / cols + 1,
-                i % cols + 1
-            ),
-            format!(
-                "{} is not a finite number; every value must be finite",
-                rows[i]
-            ),
-        ));
+    let mut dark = None;
+    for (r, row) in rows.chunks(cols.max(1)).enumerate() {
+        if let Some(c) = row.iter().position(|v| !v.is_finite()) {
+            return Err(name.error(
+                format!("row {}, column {} (1-based)", first + r + 1, c + 1),
+                format!(
+                    "{} is not a finite number; every value must be finite",
+                    row[c]
+                ),
+            ));
+        }
+        if dark.is_none() && row.iter().all(|&v| v == 0.0) {
+            dark = Some(r);
+        }
     }
-    match first_dark_row(rows, cols) {
+    match dark {
         Some(r) => Err(name.error(
             format!("row {} (1-based)", first + r + 1),
             crate::conformance::estimate::DARK_ROW,
