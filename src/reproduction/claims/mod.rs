@@ -13,8 +13,10 @@ mod bias;
 mod foundation;
 mod noise;
 mod piston;
+mod verdict;
 
 pub use piston::sensitivity;
+pub use verdict::{decide, Check, Finding};
 
 /// The ledger as shipped in the crate.
 pub const LEDGER_TOML: &str = include_str!("../../../paper/claims.toml");
@@ -73,15 +75,6 @@ pub enum Status {
 }
 
 impl Status {
-    /// `Reproduced` if `|computed − paper| ≤ tol`, else `Differs`.
-    pub fn compare(paper: f64, tol: f64, computed: f64) -> Status {
-        if (computed - paper).abs() <= tol {
-            Status::Reproduced
-        } else {
-            Status::Differs
-        }
-    }
-
     /// The lowercase name.
     pub fn as_str(&self) -> &'static str {
         match self {
@@ -96,70 +89,88 @@ impl Status {
     }
 }
 
-/// What a provider computed for one claim.
+/// What a provider computed for one claim: the numbers its status is
+/// decided from ([`decide`]) and the evidence in words.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Computed {
     /// The ledger id.
     pub id: &'static str,
-    /// The computed value in the ledger's unit (None for statements without one).
-    pub value: Option<f64>,
-    /// The verdict.
-    pub status: Status,
-    /// The evidence, in words and numbers.
+    /// The numbers (or the predicate) the status is decided from.
+    pub finding: Finding,
+    /// The evidence, in words and computed numbers.
     pub note: String,
-    /// For errata: the value the paper's printed formula gives.
-    pub published: Option<f64>,
-    /// For errata: the correct value.
-    pub exact: Option<f64>,
 }
 
 impl Computed {
-    /// A numeric claim judged against the ledger's paper value and rounding.
-    pub fn numeric(
-        spec: &ClaimSpec,
-        id: &'static str,
-        value: f64,
-        note: impl Into<String>,
-    ) -> Computed {
-        let status = match (spec.paper, spec.tol) {
-            (Some(p), Some(t)) => Status::compare(p, t, value),
-            _ => Status::Qualitative,
-        };
+    /// A value in the ledger's unit, with neither a printed formula nor a
+    /// check: judged against the printed value and its rounding.
+    pub fn number(id: &'static str, exact: f64, note: impl Into<String>) -> Computed {
         Computed {
             id,
-            value: Some(value),
-            status,
+            finding: Finding::number(exact),
             note: note.into(),
-            published: None,
-            exact: None,
+        }
+    }
+
+    /// The exact value and the value of the paper's printed formula (or
+    /// reading), `published`.
+    pub fn formula(
+        id: &'static str,
+        exact: f64,
+        published: f64,
+        note: impl Into<String>,
+    ) -> Computed {
+        Computed {
+            id,
+            finding: Finding::Number {
+                exact,
+                published: Some(published),
+                checks: Vec::new(),
+            },
+            note: note.into(),
+        }
+    }
+
+    /// This value, confirmed by `check` as well (a no-op on a finding
+    /// that is not a number).
+    pub fn checked(mut self, check: Check) -> Computed {
+        if let Finding::Number { checks, .. } = &mut self.finding {
+            checks.push(check);
+        }
+        self
+    }
+
+    /// A statement judged by a computed predicate, `holds`, with its
+    /// evidence number `value`.
+    pub fn statement(
+        id: &'static str,
+        value: Option<f64>,
+        holds: bool,
+        note: impl Into<String>,
+    ) -> Computed {
+        Computed {
+            id,
+            finding: Finding::Statement { value, holds },
+            note: note.into(),
+        }
+    }
+
+    /// A claim needing data the project does not have; the note says which.
+    pub fn unavailable(id: &'static str, note: impl Into<String>) -> Computed {
+        Computed {
+            id,
+            finding: Finding::Unavailable,
+            note: note.into(),
         }
     }
 
     /// A claim whose computation failed with `error`: status
     /// [`Status::Failed`], the error in the note (never silently `pending`).
     pub fn failed(id: &'static str, error: &crate::Error) -> Computed {
-        Computed::with_status(
-            id,
-            None,
-            Status::Failed,
-            format!("computation failed: {error}"),
-        )
-    }
-
-    /// A claim with an explicit status.
-    pub fn with_status(
-        id: &'static str,
-        value: Option<f64>,
-        status: Status,
-        note: impl Into<String>,
-    ) -> Computed {
         Computed {
             id,
-            value,
-            status,
-            note: note.into(),
-            published: None,
-            exact: None,
+            finding: Finding::Failed,
+            note: format!("computation failed: {error}"),
         }
     }
 }
@@ -200,8 +211,9 @@ pub struct ClaimResult {
     pub exact: Option<f64>,
 }
 
-/// Computes every claim of the ledger, in ledger order.
-pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
+/// What every provider computed, in no particular order (one entry per
+/// claim a provider answers). [`evaluate`] judges them with [`decide`].
+pub fn compute(effort: Effort) -> Vec<Computed> {
     let specs = ledger();
     let find = |id: &str| specs.iter().find(|s| s.id == id);
     // The four areas side by side: independent, each deterministic.
@@ -219,23 +231,42 @@ pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
             )
         },
     );
-    let computed: Vec<Computed> = [foundation, noise, bias, piston].concat();
+    [foundation, noise, bias, piston].concat()
+}
+
+/// Computes every claim of the ledger and decides its status, in ledger
+/// order.
+pub fn evaluate(effort: Effort) -> Vec<ClaimResult> {
+    judge(&ledger(), &compute(effort))
+}
+
+/// The table row of each claim of `specs` from what was `computed`: the
+/// status from [`decide`], `pending` where no provider answered.
+pub fn judge(specs: &[ClaimSpec], computed: &[Computed]) -> Vec<ClaimResult> {
     specs
         .iter()
         .map(|spec| {
             let c = computed.iter().find(|c| c.id == spec.id);
+            let (published, exact) = match c.map(|c| &c.finding) {
+                Some(Finding::Number {
+                    exact,
+                    published: Some(p),
+                    ..
+                }) => (Some(*p), Some(*exact)),
+                _ => (None, None),
+            };
             ClaimResult {
                 id: spec.id.clone(),
                 paper: spec.paper,
-                computed: c.and_then(|c| c.value),
+                computed: c.and_then(|c| c.finding.value()),
                 unit: spec.unit.clone(),
-                status: c.map_or(Status::Pending, |c| c.status),
+                status: c.map_or(Status::Pending, |c| decide(spec, &c.finding)),
                 note: c.map_or_else(
                     || "not computed yet: the issue that computes it is open".to_owned(),
                     |c| c.note.clone(),
                 ),
-                published: c.and_then(|c| c.published),
-                exact: c.and_then(|c| c.exact),
+                published,
+                exact,
             }
         })
         .collect()

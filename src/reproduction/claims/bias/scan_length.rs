@@ -39,7 +39,7 @@ fn max_finite_scan_bias(sampling: &Sampling, points: usize) -> MaxBias {
 
 /// The finite-scan claims (Fig. 3): the stroke that keeps V1 within 0.2%,
 /// V2's smaller bias, and the ABCD scan.
-pub(super) fn scanlength_claims(find: &Find<'_>, effort: Effort, out: &mut Vec<Computed>) {
+pub(super) fn scanlength_claims(effort: Effort, out: &mut Vec<Computed>) {
     let points = match effort {
         Effort::Full => 161,
         Effort::Quick => 81,
@@ -55,16 +55,26 @@ pub(super) fn scanlength_claims(find: &Find<'_>, effort: Effort, out: &mut Vec<C
             )
         })
         .collect();
-    out.push(v1_stroke_claim(find, &rows));
+    out.push(v1_stroke_claim(&rows));
     out.push(v2_negligible_claim(&rows));
     out.push(abcd_scan_claim(points));
 }
+
+/// Strokes below this are "very short scans" (µm): the shortest of Fig. 3
+/// at which V2's bias falls below [`NEGLIGIBLE_BIAS`].
+const VERY_SHORT_BELOW_UM: f64 = 32.0;
+/// A bias V2 may carry and still be negligible: half the 0.2% accuracy.
+const NEGLIGIBLE_BIAS: f64 = 1e-3;
+/// How many times below V1's bias V2's must lie to be negligible beside it.
+const NEGLIGIBLE_RATIO: f64 = 10.0;
+/// The stroke whose V2 bias the table shows (µm): V1's threshold stroke.
+const SHOWN_STROKE_UM: f64 = 64.0;
 
 /// One row per Fig. 3 stroke: (nominal stroke, N, largest biases).
 type ScanRow = (f64, usize, MaxBias);
 
 /// `scanlength.v1_stroke_02pct_um`.
-fn v1_stroke_claim(find: &Find<'_>, rows: &[ScanRow]) -> Computed {
+fn v1_stroke_claim(rows: &[ScanRow]) -> Computed {
     // Smallest stroke from which every longer one stays below 0.2%.
     let mut threshold = None;
     for (st, _, m) in rows {
@@ -79,18 +89,19 @@ fn v1_stroke_claim(find: &Find<'_>, rows: &[ScanRow]) -> Computed {
         .map(|(st, n, m)| format!("{st} um (N={n}): {:.2e} at {:.2}", m.v1, m.s_v1))
         .collect::<Vec<_>>()
         .join(", ");
+    let first_null = s_of_z(bessel_j1_zero(1));
     match threshold {
-        Some(t) => Computed::numeric(
-            spec(find, "scanlength.v1_stroke_02pct_um"),
+        Some(t) => Computed::number(
             "scanlength.v1_stroke_02pct_um",
             t,
-            format!("max |V1 finite - V1 infinite| over 0-80 cycles/arcsec (positive-frequency bins, calibrated on a point source, dx = 0.55 um): {table}; the largest bias sits at the first null (28.36)"),
+            format!("max |V1 finite - V1 infinite| over 0-{S_MAX_CPAS} cycles/arcsec (positive-frequency bins, calibrated on a point source, dx = {DX_UM} um): {table}; the largest bias sits near the first null ({first_null:.2})"),
         ),
-        None => Computed::with_status(
+        // No stroke keeps V1 within the accuracy: the statement fails.
+        None => Computed::statement(
             "scanlength.v1_stroke_02pct_um",
             None,
-            Status::Differs,
-            format!("no stroke keeps V1 below 0.2%: {table}"),
+            false,
+            format!("no stroke keeps V1 below {ACCURACY}: {table}"),
         ),
     }
 }
@@ -102,15 +113,25 @@ fn v2_negligible_claim(rows: &[ScanRow]) -> Computed {
         .map(|(st, _, m)| format!("{st} um: {:.2e}", m.v2))
         .collect::<Vec<_>>()
         .join(", ");
-    let long_ok = rows
+    // The predicate: from the shortest "not very short" stroke up, V2's
+    // bias is negligible (below NEGLIGIBLE_BIAS) and NEGLIGIBLE_RATIO times
+    // below V1's.
+    let (long, short): (Vec<&ScanRow>, Vec<&ScanRow>) =
+        rows.iter().partition(|r| r.0 >= VERY_SHORT_BELOW_UM);
+    let long_ok = long
         .iter()
-        .filter(|r| r.0 >= 32.0)
-        .all(|r| r.2.v2 < 1e-3 && r.2.v2 < r.2.v1 / 10.0);
-    Computed::with_status(
+        .all(|r| r.2.v2 < NEGLIGIBLE_BIAS && r.2.v2 * NEGLIGIBLE_RATIO < r.2.v1);
+    let worst = |rows: &[&ScanRow]| rows.iter().map(|r| r.2.v2).fold(0.0_f64, f64::max);
+    let smallest_ratio = long
+        .iter()
+        .map(|r| r.2.v1 / r.2.v2)
+        .fold(f64::INFINITY, f64::min);
+    let shown = rows.iter().find(|r| r.0 == SHOWN_STROKE_UM);
+    Computed::statement(
         "scanlength.v2_negligible",
-        Some(rows.iter().find(|r| r.0 == 64.0).map_or(f64::NAN, |r| r.2.v2)),
-        if long_ok { Status::Qualitative } else { Status::Differs },
-        format!("max |V2 finite - V2 infinite| over 0-80 cycles/arcsec: {table2} (value: 64 um); at least ten times below V1's and below 0.1% from 32 um up, up to 0.2% for 4-16 um strokes. With all N bins instead of the positive half, V2^2 = N^2 m_0^2 does not depend on the stroke at all"),
+        Some(shown.map_or(f64::NAN, |r| r.2.v2)),
+        long_ok,
+        format!("max |V2 finite - V2 infinite| over 0-{S_MAX_CPAS} cycles/arcsec: {table2} (value: {SHOWN_STROKE_UM} um); from {VERY_SHORT_BELOW_UM} um up at most {:.2e} (below {NEGLIGIBLE_BIAS:e}: {long_ok}) and at least {smallest_ratio:.1} times below V1's, up to {:.2e} for shorter strokes. With all N bins instead of the positive half, V2^2 = N^2 m_0^2 does not depend on the stroke at all", worst(&long), worst(&short)),
     )
 }
 
@@ -120,12 +141,17 @@ fn abcd_scan_claim(points: usize) -> Computed {
     let abcd = Sampling::from_stroke(2.0, ABCD_DX_UM, false).expect("valid scan");
     let m = max_finite_scan_bias(&abcd, points);
     let bins = finite_scan::WINDOW.bins(abcd.samples(), abcd.dx_um(), &k_band());
-    Computed::with_status(
+    // The predicate: four samples and the one bin of the fringe, the
+    // first (the ABCD estimator is the modulus of that bin).
+    let holds = abcd.samples() == 4 && bins == [1];
+    Computed::statement(
         "scanlength.abcd",
         Some(abcd.samples() as f64),
-        Status::Qualitative,
+        holds,
         format!(
-            "2 um / (2 um / 4) = {} samples, one positive-frequency bin ({:?}, at sigma = 1/(N dx) = 0.5 per um): V1 = V2 = |B_1|/|B_1,cal|, the ABCD estimator; its bias against the infinite scan reaches {:.2e} for V1 (at {:.2}) and {:.2e} for V2",
+            "{} um / {} um = {} samples, one positive-frequency bin ({:?}, at sigma = 1/(N dx) = 0.5 per um): V1 = V2 = |B_1|/|B_1,cal|, the ABCD estimator; its bias against the infinite scan reaches {:.2e} for V1 (at {:.2}) and {:.2e} for V2",
+            abcd.stroke_um(),
+            abcd.dx_um(),
             abcd.samples(),
             bins,
             m.v1,

@@ -10,7 +10,7 @@
 //! crossover, and the ABCD variance. A step whose computation fails yields
 //! [`Computed::failed`] for each of its claims.
 
-use super::{settle, Computed, Find, Status};
+use super::{settle, Check, Computed, Find};
 use crate::formalism::interferogram::Interferogram;
 use crate::montecarlo::RunningStats;
 use crate::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
@@ -23,6 +23,7 @@ use crate::noise::{
 use crate::reproduction::cases::{
     appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON, APPENDIX_SEED,
 };
+use crate::tolerance::IDENTITY_REL;
 use crate::Result;
 
 /// The seed of the Monte Carlo that computes `what` (a claim id or group):
@@ -55,6 +56,20 @@ fn versus(mc: f64, se: f64, reference: f64) -> String {
         "{mc:.6} +- {se:.2e} vs {reference:.6} ({:+.1} se)",
         (mc - reference) / se
     )
+}
+
+/// A Monte Carlo check: `estimate ± stderr`.
+fn mc(estimate: f64, stderr: f64) -> Check {
+    Check::MonteCarlo { estimate, stderr }
+}
+
+/// "holds" or "does not hold", for the notes' conclusions.
+fn holds_text(holds: bool) -> &'static str {
+    if holds {
+        "holds"
+    } else {
+        "does not hold"
+    }
 }
 
 /// V1² and V2² of `trials` noisy interferograms of `spec`.
@@ -173,6 +188,8 @@ struct AllBins {
     pp: noise::AppendixStats,
     /// Exact detector-noise closed forms.
     ed: noise::AppendixStats,
+    /// Printed detector-noise closed forms.
+    pd: noise::AppendixStats,
     /// N Σ m_i² and N² m_0².
     sig: (f64, f64),
     /// N.
@@ -206,6 +223,7 @@ impl AllBins {
             ep: stats(&case.photon, Formula::Exact)?,
             pp: stats(&case.photon, Formula::Published)?,
             ed: stats(&case.detector, Formula::Exact)?,
+            pd: stats(&case.detector, Formula::Published)?,
             sig: (big_n * sum_m2, big_n * big_n * m0 * m0),
             big_n,
             trials: sz.interferograms,
@@ -232,16 +250,21 @@ fn expectation_v1_claim(a: &AllBins) -> Computed {
     let (ed, ep, pp, sig1) = (&a.ed, &a.ep, &a.pp, a.sig.0);
     let r_det1 = (d1.mean - ed.bias_v1_sq) / sig1;
     let r_phot1 = (p1.mean - ep.bias_v1_sq) / sig1;
-    Computed::with_status(
+    // The predicate: both means, exact bias removed, are N Σ m_i².
+    let holds = mc(r_det1, d1.stderr_mean() / sig1).confirms(1.0)
+        && mc(r_phot1, p1.stderr_mean() / sig1).confirms(1.0);
+    Computed::statement(
         "appendix.expectation_v1",
         Some(r_phot1),
-        Status::Qualitative,
+        holds,
         format!(
-                    "128-sample Appendix interferogram, {t} trials each: (mean V1^2_raw - exact bias) / (N sum m_i^2) = {} (detector noise, bias N^2 s^2) and {} (photon noise, bias N sum n_i); with the printed photon bias N sum m_i the mean exceeds N sum m_i^2 by N sum c_i = {:.4e}, i.e. ratio {:.4}. Exact: N sum m_i^2 holds once the right bias is removed",
+                    "{n}-sample Appendix interferogram, {t} trials each: (mean V1^2_raw - exact bias) / (N sum m_i^2) = {} (detector noise, bias N^2 s^2) and {} (photon noise, bias N sum n_i); with the printed photon bias N sum m_i the mean exceeds N sum m_i^2 by N sum c_i = {:.4e}, i.e. ratio {:.4}. <V1^2> = N sum m_i^2 once the right bias is removed {}",
                     versus(r_det1, d1.stderr_mean() / sig1, 1.0),
                     versus(r_phot1, p1.stderr_mean() / sig1, 1.0),
                     pp.expectation_v1_sq - sig1,
                     (p1.mean - pp.bias_v1_sq) / sig1,
+                    holds_text(holds),
+                    n = a.big_n,
                     t = a.trials
                 ),
     )
@@ -255,15 +278,21 @@ fn expectation_v2_claim(a: &AllBins, case: &Case) -> Computed {
     let shifted = half_sample_m0(&case.setup);
     let r_phot2 = (p2.mean - ep.bias_v2_sq) / sig2;
     let r_det2 = (d2.mean - ed.bias_v2_sq) / sig2;
-    Computed::with_status(
+    // The predicate: both means, exact bias removed, are N² m_0², and
+    // half a sample off the fringe loses V2² (m_0 < n).
+    let holds = mc(r_det2, d2.stderr_mean() / sig2).confirms(1.0)
+        && mc(r_phot2, p2.stderr_mean() / sig2).confirms(1.0)
+        && shifted < 1.0;
+    Computed::statement(
         "appendix.expectation_v2",
         Some(r_phot2),
-        Status::Qualitative,
+        holds,
         format!(
-                    "(mean V2^2_raw - exact bias) / (N^2 m_0^2) = {} (detector) and {} (photon, bias N^2 n_0; the printed N^2 m_0 leaves N^2 c_0 = {:.4e}). Sample 0 half a sample (0.25 um) off the white-light fringe gives m_0/n = {:.4}, so V2^2 reads {:.4} of its value: V2 needs sample 0 on the fringe",
+                    "(mean V2^2_raw - exact bias) / (N^2 m_0^2) = {} (detector) and {} (photon, bias N^2 n_0; the printed N^2 m_0 leaves N^2 c_0 = {:.4e}). Sample 0 half a sample ({} um) off the white-light fringe gives m_0/n = {:.4}, so V2^2 reads {:.4} of its value: V2 needs sample 0 on the fringe",
                     versus(r_det2, d2.stderr_mean() / sig2, 1.0),
                     versus(r_phot2, p2.stderr_mean() / sig2, 1.0),
                     pp.expectation_v2_sq - sig2,
+                    0.5 * case.setup.dx_um,
                     shifted,
                     shifted * shifted
                 ),
@@ -275,11 +304,13 @@ fn photon_bias_claim(a: &AllBins) -> Computed {
     let (ep, pp, big_n) = (&a.ep, &a.pp, a.big_n);
     let (sig1, sig2) = a.sig;
     let rel_pub = (p1.mean - pp.bias_v1_sq - sig1) / p1.stderr_mean();
-    Computed {
-        id: "appendix.photon_bias_terms",
-        value: Some(ep.bias_v1_sq / (big_n * big_n)),
-        status: Status::Erratum,
-        note: format!(
+    // In the claim's unit (mean count per sample): bias / N².
+    let per_sample = big_n * big_n;
+    Computed::formula(
+        "appendix.photon_bias_terms",
+        ep.bias_v1_sq / per_sample,
+        pp.bias_v1_sq / per_sample,
+        format!(
                     "the photon-noise power in V1^2_raw is N sum n_i (n_i = c_i + m_i, the mean total count), not N sum m_i; in V2^2_raw N^2 n_0, not N^2 m_0. Monte Carlo ({} interferograms, photon noise, Appendix case): mean V1^2_raw - N sum m_i^2 = {} vs exact N sum n_i; the printed N sum m_i = {:.4e} misses by {:.0} se. V2: mean - N^2 m_0^2 = {} vs exact N^2 n_0. value = sum n_i / N (mean count per sample) = {:.4}; published sum m_i / N = {:.4}",
             a.trials,
                     versus(p1.mean - sig1, p1.stderr_mean(), ep.bias_v1_sq),
@@ -289,21 +320,29 @@ fn photon_bias_claim(a: &AllBins) -> Computed {
                     ep.bias_v1_sq / (big_n * big_n),
                     pp.bias_v1_sq / (big_n * big_n),
                 ),
-                published: Some(pp.bias_v1_sq / (big_n * big_n)),
-                exact: Some(ep.bias_v1_sq / (big_n * big_n)),
-    }
+    )
+    .checked(mc((p1.mean - sig1) / per_sample, p1.stderr_mean() / per_sample))
 }
 
 fn detector_variance_claim(a: &AllBins) -> Computed {
     let ((d1, d2), ed) = (&a.det, &a.ed);
     let rv1 = d1.variance() / ed.var_v1_sq;
     let rv2 = d2.variance() / ed.var_v2_sq;
-    Computed::with_status(
+    let (pd, same) = (&a.pd, |x: f64, y: f64| {
+        (x - y).abs() <= IDENTITY_REL * y.abs()
+    });
+    // The predicate: the printed forms are the exact ones, and the Monte
+    // Carlo confirms them.
+    let printed_exact = same(pd.var_v1_sq, ed.var_v1_sq) && same(pd.var_v2_sq, ed.var_v2_sq);
+    let holds = printed_exact
+        && mc(rv1, d1.stderr_variance() / ed.var_v1_sq).confirms(1.0)
+        && mc(rv2, d2.stderr_variance() / ed.var_v2_sq).confirms(1.0);
+    Computed::statement(
         "appendix.detector_variances",
         Some(rv1),
-        Status::Qualitative,
+        holds,
         format!(
-                    "printed and exact agree; Monte Carlo ({} interferograms, s = 0.2 n): var V1^2 / (2 N^2 s^2 [2 sum m^2 + N s^2]) = {}, var V2^2 / (2 N^4 s^2 [2 m_0^2 + s^2]) = {}",
+                    "printed forms equal to the exact ones: {printed_exact}; Monte Carlo ({} interferograms, s = 0.2 n): var V1^2 / (2 N^2 s^2 [2 sum m^2 + N s^2]) = {}, var V2^2 / (2 N^4 s^2 [2 m_0^2 + s^2]) = {}",
             a.trials,
                     versus(rv1, d1.stderr_variance() / ed.var_v1_sq, 1.0),
                     versus(rv2, d2.stderr_variance() / ed.var_v2_sq, 1.0),
@@ -315,11 +354,11 @@ fn photon_variance_claim(a: &AllBins) -> Computed {
     let ((p1, p2), ep, pp) = (&a.phot, &a.ep, &a.pp);
     let pv1 = p1.variance();
     let pv2 = p2.variance();
-    Computed {
-        id: "appendix.photon_variances",
-        value: Some(ep.var_v1_sq),
-        status: Status::Erratum,
-        note: format!(
+    Computed::formula(
+        "appendix.photon_variances",
+        ep.var_v1_sq,
+        pp.var_v1_sq,
+        format!(
                     "printed N^2 sum n_i(4n_i^2+6n_i+1) is N^2 sum var(I_i^2) of the total count; the estimator uses M = I - c: var V1^2 = N^2 sum (4 m_i^2 n_i + 4 m_i n_i + 2 n_i^2 + n_i), var V2^2 = N^4 (4 m_0^2 n_0 + 4 m_0 n_0 + 2 n_0^2 + n_0). Monte Carlo ({} interferograms, Appendix case, n = 10): var V1^2 = {} (exact), printed {:.4e} ({:.0} se away); var V2^2 = {} (exact), printed {:.4e} ({:.0} se away)",
             a.trials,
                     versus(pv1, p1.stderr_variance(), ep.var_v1_sq),
@@ -329,9 +368,8 @@ fn photon_variance_claim(a: &AllBins) -> Computed {
                     pp.var_v2_sq,
                     (pv2 - pp.var_v2_sq) / p2.stderr_variance(),
                 ),
-                published: Some(pp.var_v1_sq),
-                exact: Some(ep.var_v1_sq),
-    }
+    )
+    .checked(mc(pv1, p1.stderr_variance()))
 }
 
 /// The moments of one sample, printed vs exact, by Monte Carlo:
@@ -354,12 +392,19 @@ fn sample_moment_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec
     let p4 = published::gaussian_m4(m, s);
     let p2 = published::gaussian_m2(m, s);
     let e = moments(&gauss, m, 0.0);
-    let gaussian = Computed::with_status(
+    let same = |x: f64, y: f64| (x - y).abs() <= IDENTITY_REL * y.abs();
+    // The predicate: the printed forms are the exact cumulant forms, and
+    // the Monte Carlo confirms them.
+    let printed_exact = same(p4, e.raw[4]) && same(p2, e.raw[2]);
+    let holds = printed_exact
+        && self::mc(mc[3].mean, mc[3].stderr_mean()).confirms(p4)
+        && self::mc(mc[1].mean, mc[1].stderr_mean()).confirms(p2);
+    let gaussian = Computed::statement(
         "appendix.gaussian_moments",
         Some(mc[3].mean / p4),
-        Status::Qualitative,
+        holds,
         format!(
-                "printed forms equal the exact cumulant forms ({p4} = {}, {p2} = {}); Monte Carlo m = {m}, s = {s}, {} draws: <M^4> = {}, <M^2> = {}",
+                "printed forms equal to the exact cumulant forms: {printed_exact} ({p4} and {}, {p2} and {}); Monte Carlo m = {m}, s = {s}, {} draws: <M^4> = {}, <M^2> = {}",
                 e.raw[4],
                 e.raw[2],
                 sz.scalar,
@@ -390,20 +435,19 @@ fn photon_moment_claim(case: &Case, sz: &Sizes) -> Result<Computed> {
     let e = moments(&case.photon, mp, nn);
     let p4 = published::photon_m4(nn);
     let p2 = published::photon_m2(nn);
-    Ok(Computed {
-        id: "appendix.photon_moments",
-        value: Some(e.raw[4]),
-        status: Status::Erratum,
-        note: format!(
+    Ok(Computed::formula(
+        "appendix.photon_moments",
+        e.raw[4],
+        p4,
+        format!(
                 "the printed n^4+6n^3+7n^2+n and n^2+n are the raw moments of the Poisson count I (mean n), not of M = I - c. Exact for M = m + e (cumulants of e all equal n): <M^2> = m^2 + n, <M^4> = m^4 + 6m^2 n + 4mn + n + 3n^2. At m = c = {mp} (n = {nn}), {} draws: <M^4> = {} (printed {p4}, {:.0} se away); <M^2> = {} (printed {p2})",
                 sz.scalar,
                 versus(mc[3].mean, mc[3].stderr_mean(), e.raw[4]),
                 (mc[3].mean - p4) / mc[3].stderr_mean(),
                 versus(mc[1].mean, mc[1].stderr_mean(), e.raw[2]),
             ),
-            published: Some(p4),
-            exact: Some(e.raw[4]),
-    })
+    )
+    .checked(self::mc(mc[3].mean, mc[3].stderr_mean())))
 }
 
 fn combined_noise_claim(case: &Case, s: f64, sz: &Sizes) -> Result<Computed> {
@@ -432,19 +476,18 @@ fn combined_noise_claim(case: &Case, s: f64, sz: &Sizes) -> Result<Computed> {
     // var(M^2) by Monte Carlo, from the moments of M^2 (sample 2 of mc).
     let v = mc[1].variance();
     let se = mc[1].stderr_variance();
-    Ok(Computed {
-        id: "snr.combined_noise_variance",
-        value: Some(exact),
-        status: Status::Erratum,
-        note: format!(
+    Ok(Computed::formula(
+        "snr.combined_noise_variance",
+        exact,
+        sum,
+        format!(
                 "var(M^2) with both noises is not the sum of the two: the 2 kappa2^2 term of var(M^2) = 4m^2 k2 + 4m k3 + k4 + 2 k2^2 with k2 = s^2 + n adds the cross term 4 s^2 n. At m = c = {mp}, n = {nn}, s = {s}: exact {exact}, sum of the parts {sum}; Monte Carlo ({} draws) var(M^2) = {} ({:.1} se from the sum). The paper's photon part is itself the erratum of appendix.photon_variances",
                 sz.scalar,
                 versus(v, se, exact),
                 (v - sum) / se,
             ),
-            published: Some(sum),
-            exact: Some(exact),
-    })
+    )
+    .checked(self::mc(v, se)))
 }
 
 /// The windowed variance against the paper's window factor, detector
@@ -479,11 +522,15 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
         versus(a.variance(), a.stderr_variance(), w2.var_v1_sq),
         versus(b.variance(), b.stderr_variance(), w2.var_v2_sq)
     );
-    Ok(vec![Computed {
-        id: "appendix.window_variance_factor",
-        value: Some(ratio1),
-        status: Status::Erratum,
-        note: format!(
+    // The Monte Carlo of the windowed variance, as a ratio to the all-bins
+    // closed form (the claim's unit).
+    let mc_ratio = w_all.var_v1_sq / a.variance();
+    let mc_ratio_se = mc_ratio * a.stderr_variance() / a.variance();
+    Ok(vec![Computed::formula(
+        "appendix.window_variance_factor",
+        ratio1,
+        factor * factor,
+        format!(
                 "exact quadratic-form variances, detector case (s = 0.2 n), 128 samples: the band covers {} positive bins ({} with their mirror images, which a window must keep to keep the whole fringe of a real signal). Paper factor (1/dx)/delta-sigma_0 = {:.2}. Exact var(all bins)/var(two-sided band window): V1^2 {ratio1:.3}, V2^2 {ratio2:.3} (the white-noise argument divides only the noise x noise term; the signal x noise term of V1^2 lies inside the window and stays). SNR gain: V1 {:.3}, V2 {:.3} vs the paper's sqrt = {factor:.3}; positive-band-only window: SNR1 {:.3}, SNR2 {:.3} (all bins: {:.3}, {:.3}){mc_note}",
                 window1.len(),
                 window2.len(),
@@ -495,9 +542,8 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
                 w_all.snr1,
                 w_all.snr2,
             ),
-            published: Some(factor * factor),
-            exact: Some(ratio1),
-    }])
+    )
+    .checked(mc(mc_ratio, mc_ratio_se))])
 }
 
 /// m_0/n when sample 0 sits half a sample (δx/2) off the white-light fringe.
@@ -513,7 +559,7 @@ use snr::{abcd_claims, crossover_claims, worked_example_claims};
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reproduction::claims::ledger;
+    use crate::reproduction::claims::{ledger, Finding};
 
     /// A case whose interferogram cannot be built (no samples): every claim
     /// that reads it is `failed` with the error in its note, none is
@@ -540,12 +586,12 @@ mod tests {
                 .iter()
                 .find(|c| c.id == *id)
                 .expect("every claim answered");
-            assert_eq!(c.status, Status::Failed, "{id}");
+            assert_eq!(c.finding, Finding::Failed, "{id}");
             assert!(c.note.starts_with("computation failed: "), "{}", c.note);
-            assert_eq!(c.value, None);
+            assert_eq!(c.finding.value(), None);
         }
         let abcd = out.iter().find(|c| c.id == ABCD_IDS[0]).expect("answered");
-        assert_ne!(abcd.status, Status::Failed, "ABCD does not read the case");
+        assert_ne!(abcd.finding, Finding::Failed, "ABCD does not read the case");
     }
 
     /// A step that fails yields `failed` for each of its ids.
@@ -559,7 +605,7 @@ mod tests {
         assert_eq!(out.len(), WORKED_IDS.len());
         for (c, id) in out.iter().zip(WORKED_IDS) {
             assert_eq!(c.id, id);
-            assert_eq!(c.status, Status::Failed);
+            assert_eq!(c.finding, Finding::Failed);
             assert_eq!(c.note, format!("computation failed: {err}"));
         }
     }

@@ -15,34 +15,60 @@ pub(super) fn worked_example_claims(
     let p = worked_example(&setup, Formula::Published)?;
     let e = worked_example(&setup, Formula::Exact)?;
     let table = variants_table(&setup)?;
+    let fringe_power = find("snr.detector_v1")
+        .and_then(|sp| sp.paper)
+        .map_or_else(String::new, |printed| {
+            let x = fringe_power_for_detector_snr1(&setup, printed);
+            format!(
+                ". sum m^2/n^2 = {x:.2} would give the printed SNR1 {printed}: the paper's interferogram carried {:.1} % less fringe power than ours",
+                100.0 * (1.0 - x / p.sum_m2_over_n2)
+            )
+        });
     let why = format!(
-            "project interferogram: 128 samples, dx = 0.5 um, flat 2.0-2.4 um band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}. sum m^2/n^2 = 11.41 would give both 7.63 and 1.33: the paper's interferogram carried 1.4 % less fringe power than ours"
-        );
-    let mut out = Vec::new();
-    if let Some(sp) = find("snr.detector_v1") {
-        out.push(Computed::numeric(
-            sp,
+        "project interferogram: {} samples, dx = {} um, flat 2.0-2.4 um band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}{fringe_power}",
+        setup.samples, setup.dx_um
+    );
+    let r = APPENDIX_READ_NOISE_PER_PHOTON;
+    let out = vec![
+        Computed::number(
             "snr.detector_v1",
             p.detector.0,
             format!(
-                    "SNR1 (all bins, without the window factor) = {:.4}; printed and exact formulas agree for detector noise. {why}",
-                    p.detector.0
-                ),
-        ));
-    }
-    if let Some(sp) = find("snr.detector_v2") {
-        out.push(Computed::numeric(
-            sp,
+                "SNR1 (all bins, without the window factor) = {:.4} (exact formula {:.4}). {why}",
+                p.detector.0, e.detector.0
+            ),
+        )
+        .checked(Check::Route {
+            value: e.detector.0,
+            tol: IDENTITY_REL * e.detector.0,
+        }),
+        Computed::number(
             "snr.detector_v2",
             p.detector.1,
             format!(
-                    "SNR2 = m_0^2 / sqrt(2 s^2 (2 m_0^2 + s^2)) = 1/sqrt(0.08 * 2.04) = {:.4}, independent of the interferogram's shape",
-                    p.detector.1
-                ),
-        ));
-    }
-    out.extend(photon_snr_claims(&p, &e));
-    Ok(out)
+                "SNR2 = m_0^2 / sqrt(2 s^2 (2 m_0^2 + s^2)) = 1/sqrt({:.2} * {:.2}) = {:.4} with m_0 = n, s = {r} n, independent of the interferogram's shape",
+                2.0 * r * r,
+                2.0 + r * r,
+                p.detector.1
+            ),
+        )
+        .checked(Check::Route {
+            value: 1.0 / (2.0 * r * r * (2.0 + r * r)).sqrt(),
+            tol: IDENTITY_REL * p.detector.1,
+        }),
+    ];
+    Ok([out, photon_snr_claims(&setup, &p, &e)].concat())
+}
+
+/// The fringe power Σ m_i²/n² for which the detector-noise SNR_1 of the
+/// worked example is `snr1`: the positive root of
+/// x² − 2k x − k N r² = 0, k = 2 r² SNR_1², from
+/// SNR_1 = x / sqrt(2 r² (2x + N r²)) (r = σ_det/n).
+fn fringe_power_for_detector_snr1(setup: &ExampleSetup, snr1: f64) -> f64 {
+    let r = APPENDIX_READ_NOISE_PER_PHOTON;
+    let big_n = setup.samples as f64;
+    let k = 2.0 * r * r * snr1 * snr1;
+    k + (k * k + k * big_n * r * r).sqrt()
 }
 
 /// The worked example's SNRs for the interferograms the paper might have
@@ -88,45 +114,69 @@ fn variants_table(setup: &ExampleSetup) -> Result<String> {
     Ok(table.join("; "))
 }
 
+/// The paper's "a factor 2 to 3": ratios that round to 2 or 3 at one
+/// significant digit lie in this range.
+const FACTOR_2_TO_3: std::ops::Range<f64> = 1.5..3.5;
+
 /// `snr.photon_v1`, `snr.photon_v2` and `sensitivity.v1_over_v2` from the
 /// worked example in the printed (`p`) and exact (`e`) formulas.
-fn photon_snr_claims(p: &noise::WorkedExample, e: &noise::WorkedExample) -> Vec<Computed> {
+fn photon_snr_claims(
+    setup: &ExampleSetup,
+    p: &noise::WorkedExample,
+    e: &noise::WorkedExample,
+) -> Vec<Computed> {
+    // Sample 0 of the worked example: m_0 = n, n_0 = c + m_0.
+    let m0 = setup.photons;
+    let n0 = 2.0 * m0;
+    let printed_var = n0 * (4.0 * n0 * n0 + 6.0 * n0 + 1.0);
+    let exact_var = 4.0 * m0 * m0 * n0 + 4.0 * m0 * n0 + 2.0 * n0 * n0 + n0;
+    let ratios = [
+        p.detector.0 / p.detector.1,
+        p.photon.0 / p.photon.1,
+        e.photon.0 / e.photon.1,
+    ];
+    // The predicate: with the printed formulas (what the paper computed),
+    // V1's SNR is "2 to 3" times V2's under both noises.
+    let holds = FACTOR_2_TO_3.contains(&ratios[0]) && FACTOR_2_TO_3.contains(&ratios[1]);
     vec![
-        Computed {
-            id: "snr.photon_v1",
-            value: Some(e.photon.0),
-            status: Status::Erratum,
-            note: format!(
-                "with the printed photon variance n_i(4n_i^2+6n_i+1) our interferogram gives {:.4} (paper 1.33; the 1.4 % fringe-power difference of snr.detector_v1); with the exact var(M_i^2) = 4m_i^2 n_i + 4 m_i n_i + 2n_i^2 + n_i (confirmed by Monte Carlo, appendix.photon_variances) SNR1 = {:.4}",
+        Computed::formula(
+            "snr.photon_v1",
+            e.photon.0,
+            p.photon.0,
+            format!(
+                "with the printed photon variance n_i(4n_i^2+6n_i+1) our interferogram gives {:.4} (the fringe-power difference of snr.detector_v1); with the exact var(M_i^2) = 4m_i^2 n_i + 4 m_i n_i + 2n_i^2 + n_i (confirmed by Monte Carlo, appendix.photon_variances) SNR1 = {:.4}",
                 p.photon.0, e.photon.0
             ),
-            published: Some(p.photon.0),
-            exact: Some(e.photon.0),
-        },
-        Computed {
-            id: "snr.photon_v2",
-            value: Some(e.photon.1),
-            status: Status::Erratum,
-            note: format!(
-                "printed formula with m_0 = 10, n_0 = c + m_0 = 20: 100/sqrt(20*1721) = {:.4} (reproduces 0.54); exact var(M_0^2) = 4m_0^2 n_0 + 4m_0 n_0 + 2n_0^2 + n_0 = 9620 gives SNR2 = {:.4}",
-                p.photon.1, e.photon.1
-            ),
-            published: Some(p.photon.1),
-            exact: Some(e.photon.1),
-        },
-        Computed::with_status(
-            "sensitivity.v1_over_v2",
-            Some(p.detector.0 / p.detector.1),
-            Status::Qualitative,
+        ),
+        Computed::formula(
+            "snr.photon_v2",
+            e.photon.1,
+            p.photon.1,
             format!(
-                "SNR1/SNR2 in the Appendix case, all bins: detector noise {:.2}; photon noise {:.2} with the printed variances, {:.2} with the exact ones. Within 2-3 for the printed formulas; exact photon noise gives 4.0",
-                p.detector.0 / p.detector.1,
-                p.photon.0 / p.photon.1,
-                e.photon.0 / e.photon.1
+                "printed formula with m_0 = {m0}, n_0 = c + m_0 = {n0}: {}/sqrt({printed_var}) = {:.4}; exact var(M_0^2) = 4m_0^2 n_0 + 4m_0 n_0 + 2n_0^2 + n_0 = {exact_var} gives SNR2 = {:.4}",
+                m0 * m0,
+                p.photon.1,
+                e.photon.1
+            ),
+        )
+        .checked(Check::Route {
+            value: m0 * m0 / exact_var.sqrt(),
+            tol: IDENTITY_REL * e.photon.1,
+        }),
+        Computed::statement(
+            "sensitivity.v1_over_v2",
+            Some(ratios[0]),
+            holds,
+            format!(
+                "SNR1/SNR2 in the Appendix case, all bins: detector noise {:.2}; photon noise {:.2} with the printed variances, {:.2} with the exact ones. In {}-{} (a factor 2 to 3 at one digit) for the printed formulas: {holds}",
+                ratios[0], ratios[1], ratios[2], FACTOR_2_TO_3.start, FACTOR_2_TO_3.end
             ),
         ),
     ]
 }
+
+/// "A few thousand" samples.
+const A_FEW_THOUSAND: std::ops::Range<usize> = 1_000..10_000;
 
 /// The crossover of SNR_1 and SNR_2 when the fringe packet is read with
 /// more and more empty samples: `snr.crossover_samples`.
@@ -143,15 +193,23 @@ pub(super) fn crossover_claims(
     let cpp = cross(&case.photon, Formula::Published)?;
     let cpe = cross(&case.photon, Formula::Exact)?;
     let fmt = |c: Option<usize>| c.map_or("never".to_owned(), |v| v.to_string());
-    Ok(vec![Computed::with_status(
+    let few_thousand = |c: Option<usize>| c.is_some_and(|n| A_FEW_THOUSAND.contains(&n));
+    Ok(vec![Computed::statement(
             "snr.crossover_samples",
             cd.map(|v| v as f64),
-            Status::Qualitative,
+            few_thousand(cd),
             format!(
-                "the Appendix fringe packet read with more samples (no fringe, continuum c = n) until SNR1 <= SNR2: detector noise s = 0.2 n at N = {}; photon noise n = 10 at N = {} (printed variances) or {} (exact). 'a few thousand' holds for detector noise and for the exact photon variances; the printed photon variances would put it below a thousand",
+                "the Appendix fringe packet read with more samples (no fringe, continuum c = n) until SNR1 <= SNR2: detector noise s = {} n at N = {}; photon noise n = {} at N = {} (printed variances) or {} (exact). 'a few thousand' ({}-{} samples) holds for detector noise: {}, exact photon variances: {}, printed photon variances: {}",
+                APPENDIX_READ_NOISE_PER_PHOTON,
                 fmt(cd),
+                case.setup.photons,
                 fmt(cpp),
-                fmt(cpe)
+                fmt(cpe),
+                A_FEW_THOUSAND.start,
+                A_FEW_THOUSAND.end,
+                few_thousand(cd),
+                few_thousand(cpe),
+                few_thousand(cpp)
             ),
     )])
 }
@@ -175,12 +233,19 @@ pub(super) fn abcd_claims(sz: &Sizes) -> Result<Vec<Computed>> {
     let (z, _) = mc_estimators(&spec_abcd, sz.scalar, seed("snr.abcd"))?;
     let exact = abcd_detector_variance(total, vis, sig);
     let colavita = colavita_detector_variance(sig);
-    Ok(vec![Computed::with_status(
+    // The predicate: the Monte Carlo confirms the corrected variance and
+    // rejects Colavita's.
+    let check = Check::MonteCarlo {
+        estimate: z.variance(),
+        stderr: z.stderr_variance(),
+    };
+    let holds = check.confirms(exact) && !check.confirms(colavita);
+    Ok(vec![Computed::statement(
             "snr.colavita_correction",
             Some(z.variance() / exact),
-            Status::Qualitative,
+            holds,
             format!(
-                "ABCD estimator (A-C)^2 + (B-D)^2 = |B_1|^2 of the 4-sample DFT, <N> = {total} photons, V = {vis}, s = {sig}, sampling detector: Monte Carlo ({} trials) variance {}; Colavita's 16 s^4 = {colavita} alone is {:.0} se away. The paper's extra term is right",
+                "ABCD estimator (A-C)^2 + (B-D)^2 = |B_1|^2 of the 4-sample DFT, <N> = {total} photons, V = {vis}, s = {sig}, sampling detector: Monte Carlo ({} trials) variance {}; Colavita's 16 s^4 = {colavita} alone is {:.0} se away. The paper's extra term is right: {holds}",
                 sz.scalar,
                 versus(z.variance(), z.stderr_variance(), exact),
                 (z.variance() - colavita) / z.stderr_variance()

@@ -75,10 +75,10 @@ fn fig4_v1_bias_300(c: &Fig4Columns) -> Computed {
         .zip(&c.bias_v1_300_se)
         .filter(|(b, se)| b.abs() - SIGNIFICANCE_SIGMAS * **se < 1e-3)
         .count();
-    Computed::with_status(
+    Computed::statement(
         "piston.fig4_v1_bias_300hz",
         Some(v1_300),
-        holds(below == n300 && 2 * sig_v1 <= n300),
+        below == n300 && 2 * sig_v1 <= n300,
         format!("at 300 Hz over both disks and all {n300} spatial frequencies: largest |bias V1| {v1_300:.2e} (paper: below 0.1%); {below} points consistent with |bias| < 1e-3 at 3 standard errors; {sig_v1} points differ from zero by more than 3 standard errors (zero-mean noise otherwise)"),
     )
 }
@@ -89,10 +89,10 @@ fn fig4_v2_biased_300(c: &Fig4Columns) -> Computed {
     let v2_300 = max_abs(&c.bias_v2_300);
     let sig_v1 = significant(&c.bias_v1_300, &c.bias_v1_300_se);
     let sig_v2 = significant(&c.bias_v2_300, &c.bias_v2_300_se);
-    Computed::with_status(
+    Computed::statement(
         "piston.fig4_v2_biased_300hz",
         Some(v2_300),
-        holds(sig_v2 > sig_v1 && 2 * sig_v2 >= n300 - 2),
+        sig_v2 > sig_v1 && 2 * sig_v2 >= n300 - 2,
         format!("at 300 Hz {sig_v2} of {n300} points have |bias V2| > 3 standard errors (V1: {sig_v1}); largest |bias V2| = {v2_300:.2e}, largest |bias V1| = {v1_300:.2e}"),
     )
 }
@@ -100,10 +100,10 @@ fn fig4_v2_biased_300(c: &Fig4Columns) -> Computed {
 fn fig4_v2_1000(c: &Fig4Columns) -> Computed {
     let b1000 = &c.bias_v2_1000;
     let under = b1000.iter().filter(|b| b.abs() < 1e-4).count();
-    Computed::with_status(
+    Computed::statement(
         "piston.fig4_v2_1000hz",
         Some(under as f64 / b1000.len().max(1) as f64),
-        holds(2 * under > b1000.len()),
+        2 * under > b1000.len(),
         format!(
             "at 1000 Hz {under} of {} points have |bias V2| < 1e-4 (largest {:.2e})",
             b1000.len(),
@@ -125,10 +125,10 @@ fn fig4_v2_scatter_smaller(c: &Fig4Columns) -> Computed {
     r.sort_by(f64::total_cmp);
     // NaN when no point has piston: the claim then differs, visibly.
     let median_ratio = r.get(r.len() / 2).copied().unwrap_or(f64::NAN);
-    Computed::with_status(
+    Computed::statement(
         "piston.fig4_v2_scatter_smaller",
         Some(median_ratio),
-        holds(!pairs.is_empty() && smaller == pairs.len()),
+        !pairs.is_empty() && smaller == pairs.len(),
         format!("scatter V2 < scatter V1 at {smaller} of {} points with piston; median ratio scatter V2 / scatter V1 = {median_ratio:.3}", pairs.len()),
     )
 }
@@ -275,22 +275,25 @@ fn fig5_v1_unbiased_above<'a>(
     let freqs = &c.freqs;
     let (unb, unb_lo) = unbiased_from(freqs, &c.b1, &c.se1);
     let l_1e3 = locate(samp, "bias_v1", 1e-3)?;
-    let status = match spec(id).paper {
-        Some(p) if unb.is_finite() && p >= unb_lo && p <= unb => Status::Reproduced,
-        Some(p) if unb.is_finite() && (unb / p).ln().abs() < (freqs[1] / freqs[0]).ln() => {
-            Status::Reproduced
-        }
-        _ => Status::Differs,
-    };
-    Ok(Computed::with_status(
+    // The interval: from the last significant point up to the first
+    // unbiased one, widened by one frequency step either way.
+    let step = freqs[1] / freqs[0];
+    let paper = spec(id)
+        .paper
+        .map_or_else(String::new, |p| format!("; paper {p} Hz"));
+    Ok(Computed {
         id,
-        Some(unb),
-        status,
-        format!(
-            "every |bias V1| is within 3 standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < 0.1% above {} ; paper 300 Hz. {MODEL_NOTE} {evidence}",
+        finding: Finding::Interval {
+            value: unb,
+            lo: unb_lo.min(unb / step),
+            hi: unb * step,
+            resolved: unb.is_finite(),
+        },
+        note: format!(
+            "every |bias V1| is within {SIGNIFICANCE_SIGMAS} standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < 0.1% above {}{paper}. {MODEL_NOTE} {evidence}",
             crossing_text(l_1e3.crossing)
         ),
-    ))
+    })
 }
 
 fn fig5_v2_1e5_above<'a>(
@@ -351,10 +354,10 @@ fn fig5_integration_low_freq(c: &Fig5Columns) -> Computed {
     };
     let d1 = mean_growth(&c.b1_i, &c.b1);
     let d2 = mean_growth(&c.b2_i, &c.b2);
-    Computed::with_status(
+    Computed::statement(
         "piston.fig5_integration_low_freq",
         Some(d1),
-        holds(grow1 * 2 > low.len() && d1 > d2),
+        grow1 * 2 > low.len() && d1 > d2,
         format!(
             "below 200 Hz ({} frequencies): |bias| larger with integration at {grow1} (V1) and {grow2} (V2); mean increase of |bias| {d1:.2e} (V1), {d2:.2e} (V2); at {:.0} Hz scatter V1 {:.3e} integrating vs {:.3e} sampled",
             low.len(), c.freqs[0], c.s1_i[0], c.s1[0]
@@ -370,10 +373,10 @@ fn scatter_1000_scans(c: &Fig5Columns) -> Computed {
         .min_by(|&a, &b| dist(a).total_cmp(&dist(b)))
         .unwrap_or(0); // freqs is not empty (checked on reading)
     let err1000 = c.s1[i300] / 1000f64.sqrt();
-    Computed::with_status(
+    Computed::statement(
         "piston.scatter_1000_scans",
         Some(err1000),
-        holds(err1000 >= 0.5e-3),
+        err1000 >= 0.5e-3,
         format!(
             "scatter of V1 at {:.0} Hz on 18 m: {:.3e}; over 1000 scans the standard error is {err1000:.2e} (V2: {:.2e}) — the paper's 0.1% is the V1 figure",
             freqs[i300],

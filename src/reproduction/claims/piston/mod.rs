@@ -2,7 +2,7 @@
 //! piston", Figs. 4 and 5). Every Monte Carlo number here comes from the same
 //! code path as `v2ref piston` and the figure data (`figures::piston`).
 
-use super::{Computed, Find, Status};
+use super::{Computed, Find, Finding};
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
 use crate::formalism::observation::{Frequency, Observation};
@@ -14,11 +14,11 @@ use crate::piston::turbulence::{
     differential_piston_variance_from_structure_um2, r0_from_seeing_m, PistonSpectrum,
 };
 use crate::piston::{simulate, Detector, PistonRun, RunSize, ScanSetup};
-use crate::reproduction::cases::Effort;
 use crate::reproduction::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
+use crate::reproduction::cases::{Effort, WAVELENGTH_UM};
 use crate::reproduction::figures::piston::{fig4, fig5};
 use crate::reproduction::table::{Figure, Table};
-use crate::tolerance::{MC_SIGMAS, SIGNIFICANCE_SIGMAS};
+use crate::tolerance::{MC_SIGMAS, SIGNIFICANCE_SIGMAS, TURBULENCE_CHECK_REL};
 use num_complex::Complex64;
 
 mod figures;
@@ -148,24 +148,24 @@ fn threshold_claim(
     what: &str,
     extra: &str,
 ) -> Computed {
-    let status = match (paper, loc.crossing) {
-        (Some(p), Crossing::At(_)) if p >= loc.lo && p <= loc.hi => Status::Reproduced,
-        _ => Status::Differs,
-    };
     let paper_txt = paper.map_or(String::new(), |p| {
         format!("; paper {p} Hz, {}", inside_text(p, loc))
     });
-    Computed::with_status(
+    Computed {
         id,
-        Some(loc.value),
-        status,
-        format!(
+        finding: Finding::Interval {
+            value: loc.value,
+            lo: loc.lo,
+            hi: loc.hi,
+            resolved: matches!(loc.crossing, Crossing::At(_)),
+        },
+        note: format!(
             "{what}: {} (interval {:.0}-{:.0} Hz from |bias| -/+ {SIGNIFICANCE_SIGMAS} standard errors and half a frequency step){paper_txt}. {extra}",
             crossing_text(loc.crossing),
             loc.lo,
             loc.hi
         ),
-    )
+    }
 }
 
 /// The table `name` of `fig`; a missing table is an error.
@@ -230,8 +230,7 @@ type Spec<'a> = dyn Fn(&str) -> &'a super::ClaimSpec + 'a;
 fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
     let sigma_eff = Spectrum::flat(Band::k()).sigma_eff_per_um();
     let s = 18.0 * sigma_eff * CPAS_PER_M_PER_INV_UM;
-    let mut out = vec![Computed::numeric(
-        spec("piston.baseline_18m_cpas"),
+    let mut out = vec![Computed::number(
         "piston.baseline_18m_cpas",
         s,
         format!("S = B sigma_eff = 18 m x {sigma_eff:.6} per um = {s:.3} cycles/arcsec (flat 2.0-2.4 um band)"),
@@ -239,8 +238,7 @@ fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
     let turb = paper_turbulence();
     let r0_cm = 100.0 * turb.r0_m();
     out.push(match r0_from_seeing_m(1.0, 2.2) {
-        Ok(r) => Computed::numeric(
-            spec("piston.r0_k_cm"),
+        Ok(r) => Computed::number(
             "piston.r0_k_cm",
             100.0 * r,
             format!(
@@ -251,8 +249,7 @@ fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
         Err(e) => Computed::failed("piston.r0_k_cm", &e),
     });
     let tau_ms = 1e3 * turb.coherence_time_s();
-    out.push(Computed::numeric(
-        spec("piston.coherence_time_ms"),
+    out.push(Computed::number(
         "piston.coherence_time_ms",
         tau_ms,
         format!(
@@ -264,37 +261,41 @@ fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
         ("piston.opd_per_tau_300hz_um", 300.0, 1000.0),
         ("piston.opd_per_tau_1000hz_um", 1000.0, 300.0),
     ] {
-        out.push(opd_per_tau_claim(spec(id), id, f, other, tau_ms));
+        let printed_tau_ms = spec("piston.coherence_time_ms").paper;
+        out.push(opd_per_tau_claim(id, f, other, tau_ms, printed_tau_ms));
     }
     out.push(rms_claim(r0_cm));
     out
 }
 
-/// The OPD scanned in one coherence time at `f` (the paper swapped the two
-/// printed values).
+/// The OPD scanned in one coherence time at `f`, against the paper's
+/// reading: the value at the `other` frequency with the printed,
+/// rounded coherence time (the paper swapped the two printed values).
 fn opd_per_tau_claim(
-    sp: &super::ClaimSpec,
     id: &'static str,
     f: f64,
     other: f64,
     tau_ms: f64,
+    printed_tau_ms: Option<f64>,
 ) -> Computed {
-    let opd = f * 2.2 * tau_ms * 1e-3;
-    let opd_rounded = f * 2.2 * 0.045;
-    let printed_matches_other = other * 2.2 * 0.045;
-    let mut c = Computed::with_status(
+    let opd = f * WAVELENGTH_UM * tau_ms * 1e-3;
+    let Some(printed_tau_ms) = printed_tau_ms else {
+        return Computed::number(id, opd, "the ledger prints no coherence time");
+    };
+    let opd_rounded = f * WAVELENGTH_UM * printed_tau_ms * 1e-3;
+    let swapped = other * WAVELENGTH_UM * printed_tau_ms * 1e-3;
+    Computed::formula(
         id,
-        Some(opd),
-        Status::Erratum,
+        opd,
+        swapped,
         format!(
-            "OPD scanned in one coherence time = f x lambda0 x tau = {f} Hz x 2.2 um x {tau_ms:.2} ms = {opd:.2} um ({opd_rounded:.1} um with tau rounded to 45 ms). The printed {} um is the value for {other} Hz ({printed_matches_other:.1} um): the paper swapped the two numbers. The physical argument that follows (piston mostly frozen at the higher frequency, where ~100 um > 64 um stroke are scanned per coherence time) needs the swapped reading.",
-            sp.paper.unwrap_or(f64::NAN)
+            "OPD scanned in one coherence time = f x lambda0 x tau = {f} Hz x {WAVELENGTH_UM} um x {tau_ms:.2} ms = {opd:.2} um ({opd_rounded:.1} um with tau rounded to {printed_tau_ms} ms). At {other} Hz with the rounded tau: {swapped:.1} um, the paper's reading with the two frequencies swapped. The physical argument that follows (piston mostly frozen at the higher frequency, where more OPD than the Fig. 5 scan's stroke is scanned per coherence time) needs the swapped reading.",
         ),
-    );
-    c.published = sp.paper;
-    c.exact = Some(opd);
-    c
+    )
 }
+
+/// The paper's bound on the saturated RMS differential piston (µm).
+const SATURATED_PISTON_UM: f64 = 20.0;
 
 /// The RMS differential piston on 18 m, two ways.
 fn rms_claim(r0_cm: f64) -> Computed {
@@ -306,21 +307,19 @@ fn rms_claim(r0_cm: f64) -> Computed {
     };
     let rms_sf =
         differential_piston_variance_from_structure_um2(&turb, APERTURE_M, FIG5_BASELINE_M).sqrt();
-    Computed::with_status(
+    // The predicate: the two routes agree and the piston stays below the
+    // paper's bound.
+    let routes_agree = (rms - rms_sf).abs() <= TURBULENCE_CHECK_REL * rms;
+    let holds = routes_agree && rms <= SATURATED_PISTON_UM;
+    Computed::statement(
         id,
         Some(rms),
-        Status::Qualitative,
+        holds,
         format!(
-            "sigma_p = {rms:.3} um from the spectral integral, {rms_sf:.3} um from the aperture-averaged structure function (45 cm apertures, r0 = {:.1} cm at 2.2 um, infinite outer scale); consistent with the paper's remark that the saturated piston stays near or below 20 um",
-            r0_cm
+            "sigma_p = {rms:.3} um from the spectral integral, {rms_sf:.3} um from the aperture-averaged structure function ({:.0} cm apertures, r0 = {:.1} cm at 2.2 um, infinite outer scale); the paper's remark that the saturated piston stays near or below {SATURATED_PISTON_UM} um {}",
+            100.0 * APERTURE_M,
+            r0_cm,
+            if holds { "holds" } else { "does not hold" }
         ),
     )
-}
-
-fn holds(ok: bool) -> Status {
-    if ok {
-        Status::Qualitative
-    } else {
-        Status::Differs
-    }
 }

@@ -84,10 +84,10 @@ fn wind_rescaling_claim(scans: usize) -> Result<Computed> {
         && z2.abs() < MC_SIGMAS
         && zb2.abs() < MC_SIGMAS
         && n1.abs() > MC_SIGMAS;
-    Ok(Computed::with_status(
+    Ok(Computed::statement(
         "piston.wind_rescaling",
         Some(z1),
-        holds(ok),
+        ok,
         format!(
             "{scans} scans each, independent seeds: (100 Hz, 10 m/s) vs (200 Hz, 20 m/s) differ by z = {z1:+.2} (scatter V1), {z2:+.2} (scatter V2), {zb2:+.2} (bias V2) standard errors; without rescaling (100 Hz, 20 m/s) the scatter differs by z = {n1:+.1} (V1), {n2:+.1} (V2). In this model the rescaling is exact in distribution: v P(nu) depends on nu and v only through nu/v, and the sample times scale as 1/f, so in units of the fringe period the scans see statistically identical piston sequences"
         ),
@@ -111,10 +111,10 @@ fn multiplicative_claim(scans: usize) -> Result<Computed> {
         wg.v2.std / wp.v2.std,
     ];
     let worst = r.iter().fold(0.0_f64, |m, x| m.max((x - 0.5).abs()));
-    Ok(Computed::with_status(
+    Ok(Computed::statement(
         "piston.multiplicative",
         Some(r[1]),
-        holds(worst < crate::tolerance::VISIBILITY_SCALING_ABS),
+        worst < crate::tolerance::VISIBILITY_SCALING_ABS,
         format!(
             "V = 0.5 (grey) against V = 1, same piston sequences at 150 Hz, {scans} scans: ratios bias V1 {:.9}, bias V2 {:.9}, scatter V1 {:.9}, scatter V2 {:.9} (0.5 expected; the fringe scales with V, so bias and scatter of V do too). For a resolved disk the visibility varies across the band and the scaling holds only approximately (see Fig. 4 tables)",
             r[0], r[1], r[2], r[3]
