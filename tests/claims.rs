@@ -1,9 +1,13 @@
-//! The claims ledger: every claim is answered honestly, and the
-//! foundation's claims hold. (That the project's ledger lists the same
+//! The claims ledger: every status is the deciding function's verdict on
+//! the computed numbers, and moves when they are perturbed; the README's
+//! counts are the ledger's; the foundation's claims hold. (That the project's ledger lists the same
 //! claims as the steering ledger is checked by `.ci/run`, where that ledger
 //! is available.)
 
-use v2ref::reproduction::claims::{ledger, ClaimResult, Status};
+use v2ref::reproduction::cases::Effort;
+use v2ref::reproduction::claims::{
+    compute, decide, ledger, summary, ClaimResult, ClaimSpec, Computed, Finding, Status,
+};
 use v2ref::tolerance::ROUNDING_REL;
 use v2ref::{assert_abs_eq, assert_rel_eq};
 
@@ -32,25 +36,58 @@ pub(crate) fn quick_claims() -> &'static [ClaimResult] {
     CLAIMS.get_or_init(|| serde_json::from_str(quick_claims_json()).expect("the claims' JSON"))
 }
 
+/// What the library's providers compute at the quick effort (the numbers
+/// the statuses are decided from), computed once for the tests below.
+fn quick_findings() -> &'static [Computed] {
+    static FINDINGS: std::sync::OnceLock<Vec<Computed>> = std::sync::OnceLock::new();
+    FINDINGS.get_or_init(|| compute(Effort::Quick))
+}
+
+/// Each claim of the ledger with what was computed for it.
+fn records() -> Vec<(ClaimSpec, &'static Computed)> {
+    ledger()
+        .into_iter()
+        .map(|spec| {
+            let c = quick_findings()
+                .iter()
+                .find(|c| c.id == spec.id)
+                .unwrap_or_else(|| panic!("{} is not computed", spec.id));
+            (spec, c)
+        })
+        .collect()
+}
+
+/// The size of the error planted in a computed value.
+const PLANTED_ERROR_REL: f64 = 0.01;
+
 #[test]
-fn every_claim_is_answered_honestly() {
+fn every_status_is_the_verdict_of_its_numbers() {
     let results = quick_claims();
     assert_eq!(results.len(), ledger().len());
-    for r in results {
+    for ((spec, computed), r) in records().iter().zip(results) {
+        assert_eq!(spec.id, r.id);
         assert!(!r.note.is_empty(), "{}: no note", r.id);
+        // The CLI's status is the deciding function's, and no claim fails
+        // or is left pending.
+        assert_eq!(r.status, decide(spec, &computed.finding), "{}", r.id);
+        assert!(
+            !matches!(r.status, Status::Failed | Status::Pending),
+            "{}: {} ({})",
+            r.id,
+            r.status.as_str(),
+            r.note
+        );
         match r.status {
             Status::Reproduced => {
-                // Reproduced means computed and within the paper's rounding.
-                let spec = ledger().into_iter().find(|s| s.id == r.id).unwrap();
-                let (p, t, c) = (spec.paper.unwrap(), spec.tol.unwrap(), r.computed.unwrap());
-                assert!((c - p).abs() <= t, "{}: {c} vs {p} ± {t}", r.id);
+                if let (Some(p), Some(t), Some(c)) = (spec.paper, spec.tol, r.computed) {
+                    assert!((c - p).abs() <= t, "{}: {c} vs {p} ± {t}", r.id);
+                }
             }
-            Status::Differs => assert!(r.computed.is_some(), "{}: differs without a value", r.id),
-            Status::Erratum => assert!(
-                r.published.is_some() || r.exact.is_some() || r.computed.is_some(),
-                "{}",
-                r.id
-            ),
+            Status::Differs => assert!(r.computed.is_some() || r.paper.is_some(), "{}", r.id),
+            Status::Erratum => {
+                let (p, e) = (r.published.unwrap(), r.exact.unwrap());
+                assert!(p != e && r.computed == Some(e), "{}: {p} vs {e}", r.id);
+            }
             _ => {}
         }
     }
@@ -69,6 +106,134 @@ fn every_claim_is_answered_honestly() {
         })
         .collect();
     insta::assert_snapshot!("claims_table_quick", table);
+}
+
+/// The status of `spec` when its finding is `f`.
+fn verdict(spec: &ClaimSpec, f: Finding) -> Status {
+    decide(spec, &f)
+}
+
+/// Every claim's status moves when its numbers are perturbed: a planted
+/// error in a reproduced or checked value, an exact value made equal to
+/// the printed one, a published formula made exact, a threshold interval
+/// moved, a predicate reversed. Run on the real computed records.
+#[test]
+fn every_status_changes_when_its_numbers_are_perturbed() {
+    for (spec, computed) in records() {
+        let id = &spec.id;
+        let status = decide(&spec, &computed.finding);
+        match computed.finding.clone() {
+            Finding::Number {
+                exact,
+                published,
+                checks,
+            } => {
+                let with = |exact: f64, published: Option<f64>| Finding::Number {
+                    exact,
+                    published,
+                    checks: checks.clone(),
+                };
+                // A planted error: 1 %, or past the printed rounding where
+                // that is coarser.
+                let planted = |paper: f64, tol: f64| {
+                    let error = (PLANTED_ERROR_REL * exact.abs()).max(2.0 * tol);
+                    if exact >= paper {
+                        exact + error
+                    } else {
+                        exact - error
+                    }
+                };
+                match (status, spec.paper.zip(spec.tol)) {
+                    (Status::Reproduced, Some((p, t))) => {
+                        let moved = verdict(&spec, with(planted(p, t), published));
+                        assert_ne!(moved, Status::Reproduced, "{id}: planted error");
+                    }
+                    (Status::Differs | Status::Erratum, Some((p, _))) if checks.is_empty() => {
+                        let moved = verdict(&spec, with(p, published));
+                        assert_eq!(moved, Status::Reproduced, "{id}: exact = printed");
+                    }
+                    (Status::Differs | Status::Erratum, Some((p, _))) => {
+                        // The printed value is not what the checks confirm.
+                        let moved = verdict(&spec, with(p, published));
+                        assert_eq!(moved, Status::Failed, "{id}: exact = printed");
+                    }
+                    (Status::Qualitative, None) => {
+                        // A value without a printed number is checked by a
+                        // second route that a 1 % error breaks.
+                        assert!(!checks.is_empty(), "{id}: an unchecked number");
+                        let moved = verdict(&spec, with(exact * (1.0 + PLANTED_ERROR_REL), None));
+                        assert_eq!(moved, Status::Failed, "{id}: planted error");
+                    }
+                    (Status::Erratum, None) => {
+                        let moved = verdict(&spec, with(exact, Some(exact)));
+                        assert_eq!(moved, Status::Qualitative, "{id}: published = exact");
+                    }
+                    other => panic!("{id}: no perturbation for {other:?}"),
+                }
+                if status == Status::Erratum {
+                    // A published formula equal to the exact value is no
+                    // erratum.
+                    let moved = verdict(&spec, with(exact, Some(exact)));
+                    assert_ne!(moved, Status::Erratum, "{id}: published = exact");
+                }
+            }
+            Finding::Interval { value, lo, hi, .. } => {
+                let p = spec.paper.expect("a located threshold has a printed value");
+                let moved = if status == Status::Reproduced {
+                    // The interval moved by a planted error past the printed value.
+                    let shift = (p - lo).max(hi - p) * (1.0 + PLANTED_ERROR_REL);
+                    Finding::Interval {
+                        value: value + shift,
+                        lo: lo + shift,
+                        hi: hi + shift,
+                        resolved: true,
+                    }
+                } else {
+                    Finding::Interval {
+                        value: p,
+                        lo: p * (1.0 - PLANTED_ERROR_REL),
+                        hi: p * (1.0 + PLANTED_ERROR_REL),
+                        resolved: true,
+                    }
+                };
+                assert_ne!(verdict(&spec, moved), status, "{id}: interval moved");
+            }
+            Finding::Statement { value, holds } => {
+                let moved = Finding::Statement {
+                    value,
+                    holds: !holds,
+                };
+                assert_ne!(verdict(&spec, moved), status, "{id}: predicate reversed");
+            }
+            Finding::Unavailable => {
+                assert_eq!(status, Status::Unavailable, "{id}");
+                assert_eq!(verdict(&spec, Finding::Failed), Status::Failed);
+            }
+            Finding::Failed => panic!("{id} failed: {}", computed.note),
+        }
+    }
+}
+
+/// README.md states the counts of the committed reproduction (which CI
+/// compares with a fresh `reproduce`), and the quick effort decides every
+/// claim as the full one did.
+#[test]
+fn the_readme_states_the_ledger_counts() {
+    let committed: Vec<ClaimResult> =
+        serde_json::from_str(include_str!("../paper/reproduction/claims.json"))
+            .expect("the committed claims' JSON");
+    let readme = include_str!("../README.md")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let sentence = summary(&committed);
+    assert!(
+        readme.contains(&sentence),
+        "README.md does not state the ledger's counts: {sentence}"
+    );
+    for (full, quick) in committed.iter().zip(quick_claims()) {
+        assert_eq!((&full.id, full.status), (&quick.id, quick.status));
+    }
 }
 
 #[test]

@@ -1,9 +1,9 @@
 //! Every `piston.*` claim is computed (no `pending`), by the code path the
 //! user runs, at the quick effort; errata carry both values.
 
-use v2ref::assert_abs_eq;
 use v2ref::reproduction::claims::Status;
-use v2ref::tolerance::{PRINTED_2_DECIMALS_ABS, VISIBILITY_SCALING_REL};
+use v2ref::tolerance::{ROUNDING_REL, VISIBILITY_SCALING_REL};
+use v2ref::{assert_abs_eq, assert_rel_eq};
 
 #[test]
 fn every_piston_claim_is_answered() {
@@ -21,13 +21,31 @@ fn every_piston_claim_is_answered() {
         }
     }
     let get = |id: &str| piston.iter().find(|c| c.id == id).unwrap();
-    // The closed forms: r0 = 45.4 cm, tau0 = 45.4 ms, 18 m = 40 cycles/arcsec.
-    assert_eq!(get("piston.r0_k_cm").status, Status::Reproduced);
-    assert_eq!(get("piston.coherence_time_ms").status, Status::Reproduced);
-    // The swapped OPD-per-coherence-time pair.
+    // The closed forms: r0 = lambda / seeing (2.2 um over 1 arcsec, in
+    // cm), tau0 = r0 / v (10 m/s, in ms).
+    let r0_cm = 100.0 * 2.2e-6 / (1.0f64 / 3600.0).to_radians();
+    assert_rel_eq!(get("piston.r0_k_cm").computed.unwrap(), r0_cm, ROUNDING_REL);
+    let tau_ms = get("piston.coherence_time_ms").computed.unwrap();
+    assert_rel_eq!(tau_ms, r0_cm / 100.0 / 10.0 * 1e3, ROUNDING_REL);
+    // The swapped OPD-per-coherence-time pair: each exact value is the
+    // other's published reading (up to the printed tau's rounding).
     let o300 = get("piston.opd_per_tau_300hz_um");
-    assert_eq!(o300.status, Status::Erratum);
-    assert_abs_eq!(o300.exact.unwrap(), 29.95, PRINTED_2_DECIMALS_ABS);
+    let o1000 = get("piston.opd_per_tau_1000hz_um");
+    assert_rel_eq!(
+        o300.exact.unwrap(),
+        300.0 * 2.2 * tau_ms * 1e-3,
+        ROUNDING_REL
+    );
+    assert_rel_eq!(
+        o300.published.unwrap(),
+        1000.0 * 2.2 * 45.0 * 1e-3,
+        ROUNDING_REL
+    );
+    assert_rel_eq!(
+        o1000.published.unwrap(),
+        300.0 * 2.2 * 45.0 * 1e-3,
+        ROUNDING_REL
+    );
     // Grey visibility: bias ratio 0.5 to rounding.
     let m = get("piston.multiplicative");
     assert_abs_eq!(m.computed.unwrap(), 0.5, VISIBILITY_SCALING_REL);

@@ -315,3 +315,20 @@ pub fn status_counts(results: &[ClaimResult]) -> Vec<(Status, usize)> {
     .map(|s| (s, results.iter().filter(|r| r.status == s).count()))
     .collect()
 }
+
+/// The counts of `results` in words, in the order of [`Status`] (a status
+/// no claim has is left out): the sentence README.md states, checked
+/// against the committed reproduction by the test suite.
+pub fn summary(results: &[ClaimResult]) -> String {
+    status_counts(results)
+        .into_iter()
+        .filter(|&(_, n)| n > 0)
+        .map(|(status, n)| match status {
+            Status::Differs => format!("{n} differing (with the reason)"),
+            Status::Erratum => format!("{n} errata (with the right value and the evidence)"),
+            Status::Qualitative => format!("{n} qualitative statements with computed evidence"),
+            other => format!("{n} {}", other.as_str()),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
