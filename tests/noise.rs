@@ -1,7 +1,6 @@
 //! Closed forms of `noise` and `window_variance`: identities, the slow
 //! oracle, property tests. (Monte Carlo checks: `tests/noise_mc.rs`.)
 
-use approx::assert_relative_eq;
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 use v2ref::formalism::estimator::{dft, noise_bias, positive_bins, raw_estimates};
@@ -14,6 +13,7 @@ use v2ref::noise::{
 };
 use v2ref::reproduction::cases::appendix_setup;
 use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
+use v2ref::{assert_abs_eq, assert_rel_eq};
 
 fn gauss(s: f64) -> NoiseModel {
     NoiseModel::detector(s).unwrap()
@@ -25,26 +25,22 @@ fn cumulant_recursion_gives_textbook_moments() {
     // polynomials λ⁴ + 6λ³ + 7λ² + λ (independent textbook forms).
     let g = raw_moments_from_cumulants(&[1.5, 4.0, 0.0, 0.0]);
     // E X² = m² + s² = 2.25 + 4
-    assert_relative_eq!(g[2], 6.25, max_relative = IDENTITY_REL);
+    assert_rel_eq!(g[2], 6.25, IDENTITY_REL);
     // The printed ⟨M²⟩ = m² + σ², at σ = 1.3 (σ = 2 has σ + σ = σ·σ).
-    assert_relative_eq!(
+    assert_rel_eq!(
         published::gaussian_m2(1.5, 1.3),
         raw_moments_from_cumulants(&[1.5, 1.69])[2],
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
-    assert_relative_eq!(
-        g[4],
-        published::gaussian_m4(1.5, 2.0),
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(g[4], published::gaussian_m4(1.5, 2.0), IDENTITY_REL);
     let l = 3.7;
     let p = raw_moments_from_cumulants(&[l, l, l, l]);
-    assert_relative_eq!(p[2], published::photon_m2(l), max_relative = IDENTITY_REL);
-    assert_relative_eq!(p[4], published::photon_m4(l), max_relative = IDENTITY_REL);
+    assert_rel_eq!(p[2], published::photon_m2(l), IDENTITY_REL);
+    assert_rel_eq!(p[4], published::photon_m4(l), IDENTITY_REL);
     // Sixth Touchard polynomial: λ⁶ + 15λ⁵ + 65λ⁴ + 90λ³ + 31λ² + λ.
     let p6 = raw_moments_from_cumulants(&[l; 6])[6];
     let t6 = l.powi(6) + 15.0 * l.powi(5) + 65.0 * l.powi(4) + 90.0 * l.powi(3) + 31.0 * l * l + l;
-    assert_relative_eq!(p6, t6, max_relative = IDENTITY_REL);
+    assert_rel_eq!(p6, t6, IDENTITY_REL);
 }
 
 #[test]
@@ -57,22 +53,20 @@ fn closed_moments_match_the_generic_recursion() {
         for &(m, c) in &[(0.0, 5.0), (3.0, 4.0), (-2.0, 6.0), (10.0, 10.0)] {
             let mo = moments(&noise, m, m + c);
             for r in 0..=4 {
-                assert_relative_eq!(
+                assert_abs_eq!(
                     mo.raw[r],
                     raw_moment(&noise, m, m + c, r),
-                    max_relative = IDENTITY_REL,
-                    epsilon = IDENTITY_ABS
+                    IDENTITY_ABS + IDENTITY_REL * (raw_moment(&noise, m, m + c, r)).abs()
                 );
             }
             let v = mo.raw[4] - mo.raw[2] * mo.raw[2];
-            assert_relative_eq!(var_m2(&noise, m, m + c), v, max_relative = IDENTITY_REL);
+            assert_rel_eq!(var_m2(&noise, m, m + c), v, IDENTITY_REL);
             // central moments: E(M − m)^r from the raw ones.
             let c3 = mo.raw[3] - 3.0 * m * mo.raw[2] + 2.0 * m.powi(3);
-            assert_relative_eq!(
+            assert_abs_eq!(
                 mo.central[3],
                 c3,
-                max_relative = IDENTITY_REL,
-                epsilon = CANCELLATION_ABS
+                CANCELLATION_ABS + IDENTITY_REL * (c3).abs()
             );
         }
     }
@@ -85,22 +79,12 @@ fn central_moments_are_the_textbook_ones() {
     let mo = moments(&gauss(1.7), 4.0, 9.0);
     let s2 = 1.7 * 1.7;
     for (got, want) in mo.central.iter().zip([1.0, 0.0, s2, 0.0, 3.0 * s2 * s2]) {
-        assert_relative_eq!(
-            *got,
-            want,
-            max_relative = IDENTITY_REL,
-            epsilon = IDENTITY_ABS
-        );
+        assert_abs_eq!(*got, want, IDENTITY_ABS + IDENTITY_REL * (want).abs());
     }
     let n = 6.5;
     let mo = moments(&NoiseModel::photon(), 2.0, n);
     for (got, want) in mo.central.iter().zip([1.0, 0.0, n, n, n + 3.0 * n * n]) {
-        assert_relative_eq!(
-            *got,
-            want,
-            max_relative = IDENTITY_REL,
-            epsilon = IDENTITY_ABS
-        );
+        assert_abs_eq!(*got, want, IDENTITY_ABS + IDENTITY_REL * (want).abs());
     }
 }
 
@@ -109,19 +93,19 @@ fn published_photon_moments_are_those_of_the_count_not_of_m() {
     // With no continuum (c = 0) M = I and the printed forms are exact ...
     let p = NoiseModel::photon();
     let n = 20.0;
-    assert_relative_eq!(
+    assert_rel_eq!(
         moments(&p, n, n).raw[4],
         published::photon_m4(n),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
-    assert_relative_eq!(
+    assert_rel_eq!(
         var_m2(&p, n, n),
         published::photon_var_term(n),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
     // ... with c = n − m they are not: var(M²) = 4m²n + 4mn + 2n² + n.
     let m = 10.0;
-    assert_relative_eq!(
+    assert_rel_eq!(
         var_m2(&p, m, n),
         4.0 * m * m * n + 4.0 * m * n + 2.0 * n * n + n
     );
@@ -134,19 +118,19 @@ fn detector_formulas_agree_published_and_exact() {
     let d = gauss(2.0);
     let a = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Exact).unwrap();
     let b = appendix_stats(&ifg.modulated, &ifg.continuum, &d, Formula::Published).unwrap();
-    assert_relative_eq!(a.var_v1_sq, b.var_v1_sq, max_relative = IDENTITY_REL);
-    assert_relative_eq!(a.var_v2_sq, b.var_v2_sq, max_relative = IDENTITY_REL);
+    assert_rel_eq!(a.var_v1_sq, b.var_v1_sq, IDENTITY_REL);
+    assert_rel_eq!(a.var_v2_sq, b.var_v2_sq, IDENTITY_REL);
     // The printed closed forms 2N²σ²[2Σm² + Nσ²] and 2N⁴σ²[2m0² + σ²].
     let (nn, s2) = (128.0_f64, 4.0);
-    assert_relative_eq!(
+    assert_rel_eq!(
         a.var_v1_sq,
         2.0 * nn * nn * s2 * (2.0 * a.sum_m2 + nn * s2),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
-    assert_relative_eq!(
+    assert_rel_eq!(
         a.var_v2_sq,
         2.0 * nn.powi(4) * s2 * (2.0 * a.m0 * a.m0 + s2),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
 }
 
@@ -154,30 +138,18 @@ fn detector_formulas_agree_published_and_exact() {
 fn worked_examples_follow_from_sum_m2() {
     // SNR2 depends on m0 and σ only: 1/√(0.08·2.04) for σ = 0.2 n, m0 = n.
     let w = worked_example(&appendix_setup(), Formula::Published).unwrap();
-    assert_relative_eq!(
-        w.detector.1,
-        1.0 / (0.08_f64 * 2.04).sqrt(),
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(w.detector.1, 1.0 / (0.08_f64 * 2.04).sqrt(), IDENTITY_REL);
     // SNR1 = s / √(0.08 (2 s + 0.04 N)) with s = Σm²/n².
     let s = w.sum_m2_over_n2;
-    assert_relative_eq!(
+    assert_rel_eq!(
         w.detector.0,
         s / (0.08 * (2.0 * s + 0.04 * 128.0)).sqrt(),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
     // Photon SNR2 with n0 = 20, m0 = 10: printed 100/√(20·1721), exact 100/√9620.
-    assert_relative_eq!(
-        w.photon.1,
-        100.0 / (20.0_f64 * 1721.0).sqrt(),
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(w.photon.1, 100.0 / (20.0_f64 * 1721.0).sqrt(), IDENTITY_REL);
     let e = worked_example(&appendix_setup(), Formula::Exact).unwrap();
-    assert_relative_eq!(
-        e.photon.1,
-        100.0 / 9620.0_f64.sqrt(),
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(e.photon.1, 100.0 / 9620.0_f64.sqrt(), IDENTITY_REL);
     // Σ m²/n² of a flat band: ≈ 1/(2 δx Δσ) = 12 less the truncated tails.
     assert!(s > 11.0 && s < 12.0, "{s}");
     // The one-sided scan holds about half the fringe power.
@@ -207,11 +179,11 @@ fn window_all_bins_equals_appendix() {
     ] {
         let w = window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &all).unwrap();
         let a = appendix_stats(&ifg.modulated, &ifg.continuum, &noise, Formula::Exact).unwrap();
-        assert_relative_eq!(w.var_v1_sq, a.var_v1_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(w.var_v2_sq, a.var_v2_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(w.bias_v1_sq, a.bias_v1_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(w.bias_v2_sq, a.bias_v2_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(w.signal_v1_sq, a.signal_v1_sq, max_relative = IDENTITY_REL);
+        assert_rel_eq!(w.var_v1_sq, a.var_v1_sq, IDENTITY_REL);
+        assert_rel_eq!(w.var_v2_sq, a.var_v2_sq, IDENTITY_REL);
+        assert_rel_eq!(w.bias_v1_sq, a.bias_v1_sq, IDENTITY_REL);
+        assert_rel_eq!(w.bias_v2_sq, a.bias_v2_sq, IDENTITY_REL);
+        assert_rel_eq!(w.signal_v1_sq, a.signal_v1_sq, IDENTITY_REL);
     }
 }
 
@@ -229,29 +201,28 @@ fn window_variance_matches_the_four_index_oracle() {
     ] {
         let (a1, a2) = quadratic_forms(8, &bins);
         let w = window_stats(&m, &counts, &noise, &bins).unwrap();
-        assert_relative_eq!(
+        assert_rel_eq!(
             w.var_v1_sq,
             variance_by_moments(&a1, &m, &counts, &noise),
-            max_relative = IDENTITY_REL
+            IDENTITY_REL
         );
-        assert_relative_eq!(
+        assert_rel_eq!(
             w.var_v2_sq,
             variance_by_moments(&a2, &m, &counts, &noise),
-            max_relative = IDENTITY_REL
+            IDENTITY_REL
         );
         // the bias is estimator::noise_bias of the per-sample variance
         let v: Vec<f64> = counts.iter().map(|&c| noise.cumulants(c).k2).collect();
         let nb = noise_bias(&v, &bins);
-        assert_relative_eq!(w.bias_v1_sq, nb.v1_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(w.bias_v2_sq, nb.v2_sq, max_relative = IDENTITY_REL);
+        assert_rel_eq!(w.bias_v1_sq, nb.v1_sq, IDENTITY_REL);
+        assert_rel_eq!(w.bias_v2_sq, nb.v2_sq, IDENTITY_REL);
         // the signal is the noise-free raw estimator
         let r = raw_estimates(&dft(&m), &bins);
-        assert_relative_eq!(w.signal_v1_sq, r.v1_sq, max_relative = IDENTITY_REL);
-        assert_relative_eq!(
+        assert_rel_eq!(w.signal_v1_sq, r.v1_sq, IDENTITY_REL);
+        assert_abs_eq!(
             w.signal_v2_sq,
             r.v2_sq,
-            max_relative = IDENTITY_REL,
-            epsilon = CANCELLATION_ABS
+            CANCELLATION_ABS + IDENTITY_REL * (r.v2_sq).abs()
         );
     }
 }
@@ -271,17 +242,17 @@ fn white_noise_window_factor_holds_only_without_signal() {
     let k: Vec<usize> = (5..=10).collect();
     let wa = window_stats(&zeros, &counts, &noise, &all).unwrap();
     let wk = window_stats(&zeros, &counts, &noise, &k).unwrap();
-    assert_relative_eq!(
+    assert_rel_eq!(
         wa.var_v1_sq / wk.var_v1_sq,
         2.0 * n as f64 / k.len() as f64,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
     let k2: Vec<usize> = k.iter().flat_map(|&b| [b, n - b]).collect();
     let wk2 = window_stats(&zeros, &counts, &noise, &k2).unwrap();
-    assert_relative_eq!(
+    assert_rel_eq!(
         wa.var_v1_sq / wk2.var_v1_sq,
         n as f64 / k2.len() as f64,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
     // With the fringe, the signal × noise term is not reduced.
     let ifg = example_interferogram(&appendix_setup()).unwrap();
@@ -390,16 +361,16 @@ fn published_detector_terms_are_exact_for_any_read_noise() {
     for s in [0.7, 1.3, 3.1] {
         let d = gauss(s);
         for m in [0.0, 2.5, -4.0] {
-            assert_relative_eq!(
+            assert_rel_eq!(
                 published::detector_var_term(m, s),
                 var_m2(&d, m, 0.0),
-                max_relative = IDENTITY_REL
+                IDENTITY_REL
             );
             for formula in [Formula::Exact, Formula::Published] {
-                assert_relative_eq!(
+                assert_rel_eq!(
                     noise::sample_bias(formula, &d, m, 10.0),
                     s * s,
-                    max_relative = IDENTITY_REL
+                    IDENTITY_REL
                 );
             }
         }
@@ -411,15 +382,15 @@ fn photon_bias_is_the_mean_count_exact_and_the_modulation_published() {
     // Exact: κ2 = σ² + n (n the mean total count); printed: σ² + m.
     let both = NoiseModel::new(0.7, true).unwrap();
     let (m, n) = (3.0, 11.0);
-    assert_relative_eq!(
+    assert_rel_eq!(
         noise::sample_bias(Formula::Exact, &both, m, n),
         0.49 + 11.0,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
-    assert_relative_eq!(
+    assert_rel_eq!(
         noise::sample_bias(Formula::Published, &both, m, n),
         0.49 + 3.0,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
 }
 
@@ -428,7 +399,7 @@ fn a_sample_with_zero_mean_count_is_accepted_and_a_negative_one_refused() {
     // Visibility 1 in a fringe trough: m = −c, no photons expected there.
     let p = NoiseModel::photon();
     let ok = appendix_stats(&[5.0, -5.0], &[5.0, 5.0], &p, Formula::Exact).unwrap();
-    assert_relative_eq!(ok.sum_m2, 50.0, max_relative = IDENTITY_REL);
+    assert_rel_eq!(ok.sum_m2, 50.0, IDENTITY_REL);
     assert!(appendix_stats(&[5.0, -5.5], &[5.0, 5.0], &p, Formula::Exact).is_err());
 }
 
@@ -440,43 +411,27 @@ fn expectation_is_the_signal_with_the_exact_bias_and_off_by_the_continuum_with_t
     let (m, c) = ([5.0, 3.0, -1.0, -4.0], [10.0, 12.0, 9.0, 6.0]);
     let noise = NoiseModel::new(1.3, true).unwrap();
     let exact = appendix_stats(&m, &c, &noise, Formula::Exact).unwrap();
-    assert_relative_eq!(
-        exact.expectation_v1_sq,
-        4.0 * 51.0,
-        max_relative = IDENTITY_REL
-    );
-    assert_relative_eq!(
-        exact.expectation_v2_sq,
-        16.0 * 25.0,
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(exact.expectation_v1_sq, 4.0 * 51.0, IDENTITY_REL);
+    assert_rel_eq!(exact.expectation_v2_sq, 16.0 * 25.0, IDENTITY_REL);
     let printed = appendix_stats(&m, &c, &noise, Formula::Published).unwrap();
     let (sum_c, n) = (37.0, 4.0);
-    assert_relative_eq!(
+    assert_rel_eq!(
         printed.expectation_v1_sq,
         n * 51.0 + n * sum_c,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
-    assert_relative_eq!(
+    assert_rel_eq!(
         printed.expectation_v2_sq,
         n * n * 25.0 + n * n * 10.0,
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
 }
 
 #[test]
 fn paper_window_factor_is_the_root_of_the_bandwidth_ratio() {
     // √((1/δx)/Δσ_0): δx = 0.25 µm, Δσ_0 = 1 µm⁻¹ → √4; δx = 0.5, Δσ_0 = 1/8 → √16.
-    assert_relative_eq!(
-        noise::paper_window_factor(0.25, 1.0),
-        2.0,
-        max_relative = IDENTITY_REL
-    );
-    assert_relative_eq!(
-        noise::paper_window_factor(0.5, 0.125),
-        4.0,
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(noise::paper_window_factor(0.25, 1.0), 2.0, IDENTITY_REL);
+    assert_rel_eq!(noise::paper_window_factor(0.5, 0.125), 4.0, IDENTITY_REL);
 }
 
 #[test]
@@ -496,10 +451,10 @@ fn empty_samples_add_their_noise_to_v1_sq_only() {
         .sum();
     let c_mean: f64 = 6.0;
     let expected = 41.0 / (var_sum + extra as f64 * (c_mean + 2.0 * c_mean * c_mean)).sqrt();
-    assert_relative_eq!(snr1, expected, max_relative = IDENTITY_REL);
-    assert_relative_eq!(snr2, base.snr2, max_relative = IDENTITY_REL);
+    assert_rel_eq!(snr1, expected, IDENTITY_REL);
+    assert_rel_eq!(snr2, base.snr2, IDENTITY_REL);
     let (same1, _) = noise::snr_with_extra_samples(&m, &c, &p, Formula::Exact, 0).unwrap();
-    assert_relative_eq!(same1, base.snr1, max_relative = IDENTITY_REL);
+    assert_rel_eq!(same1, base.snr1, IDENTITY_REL);
 }
 
 /// The smallest total number of samples with SNR_1 ≤ SNR_2, by walking the
@@ -559,21 +514,17 @@ fn abcd_variance_is_that_of_two_squared_gaussian_differences() {
         let amp = photons * v / 2.0;
         let two_squares =
             var_m2(&diff, amp * f64::cos(phase), 0.0) + var_m2(&diff, amp * f64::sin(phase), 0.0);
-        assert_relative_eq!(
+        assert_rel_eq!(
             noise::abcd_detector_variance(photons, v, s),
             two_squares,
-            max_relative = IDENTITY_REL
+            IDENTITY_REL
         );
     }
-    assert_relative_eq!(
-        noise::colavita_detector_variance(0.5),
-        1.0,
-        max_relative = IDENTITY_REL
-    );
-    assert_relative_eq!(
+    assert_rel_eq!(noise::colavita_detector_variance(0.5), 1.0, IDENTITY_REL);
+    assert_rel_eq!(
         noise::abcd_detector_variance(80.0, 0.0, 0.5),
         noise::colavita_detector_variance(0.5),
-        max_relative = IDENTITY_REL
+        IDENTITY_REL
     );
 }
 
@@ -600,11 +551,7 @@ fn gaussian_cumulant4_is_a_sum_of_noncentral_chi_squares() {
                 .zip(delta.iter())
                 .map(|(l, d)| 48.0 * l.powi(4) * (1.0 + 4.0 * d * d))
                 .sum();
-            assert_relative_eq!(
-                gaussian_cumulant4(&a, &m, &var),
-                want,
-                max_relative = IDENTITY_REL
-            );
+            assert_rel_eq!(gaussian_cumulant4(&a, &m, &var), want, IDENTITY_REL);
         }
     }
 }
@@ -626,15 +573,7 @@ fn window_stats_refuses_unmatched_samples_and_gives_signal_over_root_variance() 
     let m = [3.0, -1.0, 2.5, 0.5];
     let counts = [8.0, 4.0, 7.5, 5.5];
     let w = window_stats(&m, &counts, &noise, &[1, 3]).unwrap();
-    assert_relative_eq!(
-        w.snr1,
-        w.signal_v1_sq / w.var_v1_sq.sqrt(),
-        max_relative = IDENTITY_REL
-    );
-    assert_relative_eq!(
-        w.snr2,
-        w.signal_v2_sq / w.var_v2_sq.sqrt(),
-        max_relative = IDENTITY_REL
-    );
+    assert_rel_eq!(w.snr1, w.signal_v1_sq / w.var_v1_sq.sqrt(), IDENTITY_REL);
+    assert_rel_eq!(w.snr2, w.signal_v2_sq / w.var_v2_sq.sqrt(), IDENTITY_REL);
     assert!(w.snr1 > 0.0 && w.snr2 > 0.0);
 }
