@@ -11,39 +11,79 @@
 
 use v2ref::prelude::*;
 
-const WAVELENGTH_UM: f64 = 1.65;
-const BANDWIDTH_UM: f64 = 0.30;
-const DIAMETER_MAS: f64 = 2.5;
-const DISPERSION_PP_RAD: f64 = 0.5;
-const STROKE_UM: f64 = 40.0;
-const DX_UM: f64 = 0.35;
+pub const WAVELENGTH_UM: f64 = 1.65;
+pub const BANDWIDTH_UM: f64 = 0.30;
+pub const DIAMETER_MAS: f64 = 2.5;
+pub const DISPERSION_PP_RAD: f64 = 0.5;
+pub const STROKE_UM: f64 = 40.0;
+pub const DX_UM: f64 = 0.35;
 
-pub fn main() -> v2ref::Result<()> {
+/// One baseline of the budget: every difference is estimator − V mono.
+#[derive(Debug, Clone, Copy)]
+pub struct Row {
+    pub baseline_m: f64,
+    pub s_cpas: f64,
+    pub v_mono: f64,
+    /// Infinite scan, no dispersion.
+    pub dv1_band: f64,
+    pub dv2_band: f64,
+    /// Infinite scan with the dispersion.
+    pub dv1_disp: f64,
+    pub dv2_disp: f64,
+    /// The finite scan with the dispersion, positive-frequency bins,
+    /// calibrated on a point source.
+    pub dv1_scan: f64,
+    pub dv2_scan: f64,
+}
+
+/// The budget at baselines 20, 50, …, 320 m.
+pub fn budget() -> v2ref::Result<Vec<Row>> {
     let spectrum = Spectrum::flat(Band::new(WAVELENGTH_UM, BANDWIDTH_UM)?);
     let source = Source::uniform_disk(DIAMETER_MAS)?;
     let dispersion = SpectralPhase::dispersion_peak_to_peak(&spectrum, DISPERSION_PP_RAD)?;
     let sampling = Sampling::from_stroke(STROKE_UM, DX_UM, false)?;
+    (20..=330)
+        .step_by(30)
+        .map(|b| {
+            let at = Frequency::BaselineM(b as f64);
+            let plain =
+                Observation::new(spectrum.clone(), source.clone(), at, SpectralPhase::zero())?;
+            let dispersed =
+                Observation::new(spectrum.clone(), source.clone(), at, dispersion.clone())?;
+            let band = wide_band(&plain);
+            let disp = wide_band(&dispersed);
+            let scan = sampled_wide_band(&dispersed, &sampling, BinWindow::Positive)?;
+            Ok(Row {
+                baseline_m: b as f64,
+                s_cpas: band.spatial_freq_cpas,
+                v_mono: band.v_mono,
+                dv1_band: band.v1 - band.v_mono,
+                dv2_band: band.v2 - band.v_mono,
+                dv1_disp: disp.v1 - band.v_mono,
+                dv2_disp: disp.v2 - band.v_mono,
+                dv1_scan: scan.v1_sq.sqrt() - band.v_mono,
+                dv2_scan: scan.v2_sq.sqrt() - band.v_mono,
+            })
+        })
+        .collect()
+}
+
+pub fn main() -> v2ref::Result<()> {
     println!(
         "{:>8} {:>10} {:>9} | {:>10} {:>10} | {:>10} | {:>10} {:>10}",
         "B [m]", "S [c/as]", "V mono", "dV1 band", "dV2 band", "dV2 +disp", "dV1 scan", "dV2 scan"
     );
-    for baseline_m in (20..=330).step_by(30) {
-        let at = Frequency::BaselineM(baseline_m as f64);
-        let plain = Observation::new(spectrum.clone(), source.clone(), at, SpectralPhase::zero())?;
-        let dispersed = Observation::new(spectrum.clone(), source.clone(), at, dispersion.clone())?;
-        let band = wide_band(&plain);
-        let disp = wide_band(&dispersed);
-        let scan = sampled_wide_band(&dispersed, &sampling, BinWindow::Positive)?;
+    for r in budget()? {
         println!(
             "{:>8} {:>10.3} {:>9.5} | {:>+10.2e} {:>+10.2e} | {:>+10.2e} | {:>+10.2e} {:>+10.2e}",
-            baseline_m,
-            band.spatial_freq_cpas,
-            band.v_mono,
-            band.v1 - band.v_mono,
-            band.v2 - band.v_mono,
-            disp.v2 - band.v_mono,
-            scan.v1_sq.sqrt() - band.v_mono,
-            scan.v2_sq.sqrt() - band.v_mono,
+            r.baseline_m,
+            r.s_cpas,
+            r.v_mono,
+            r.dv1_band,
+            r.dv2_band,
+            r.dv2_disp,
+            r.dv1_scan,
+            r.dv2_scan,
         );
     }
     println!(

@@ -4,11 +4,14 @@
 mod check_against_golden;
 
 #[path = "../examples/bias_budget.rs"]
-#[allow(dead_code)]
 mod bias_budget;
 
+use std::f64::consts::PI;
 use std::path::Path;
-use v2ref::tolerance::EXAMPLE_GOLDEN_ABS;
+use v2ref::assert_abs_eq;
+use v2ref::formalism::source::ARCSEC_PER_MAS;
+use v2ref::math::special::jinc;
+use v2ref::tolerance::{BESSEL_ABS, EXAMPLE_GOLDEN_ABS, IDENTITY_ABS};
 
 #[test]
 fn third_party_check_passes_on_the_golden_data_and_catches_an_error() {
@@ -33,7 +36,29 @@ fn third_party_check_passes_on_the_golden_data_and_catches_an_error() {
     assert!(check_against_golden::check(dir.path(), EXAMPLE_GOLDEN_ABS).is_err());
 }
 
+/// The budget's numbers are what they must be: V mono is the uniform
+/// disk's |2 J1(z)/z| at z = π θ S (the Bessel closed form), and V1 does
+/// not see the dispersion (it weights |V|² only, so the phase cancels).
+/// Power: the visibility of a disk 1 % larger differs from the budget's
+/// by more than the tolerance at every baseline but the shortest few.
 #[test]
-fn bias_budget_runs() {
-    bias_budget::main().expect("the example runs");
+fn bias_budget_states_true_numbers() {
+    let rows = bias_budget::budget().expect("the example runs");
+    assert_eq!(rows.len(), 11);
+    let disk = |theta_mas: f64, s: f64| jinc(PI * theta_mas * ARCSEC_PER_MAS * s).abs();
+    let mut planted_caught = 0;
+    for r in &rows {
+        assert_abs_eq!(
+            r.v_mono.abs(),
+            disk(bias_budget::DIAMETER_MAS, r.s_cpas),
+            BESSEL_ABS
+        );
+        assert_abs_eq!(r.dv1_disp, r.dv1_band, IDENTITY_ABS);
+        let planted = disk(1.01 * bias_budget::DIAMETER_MAS, r.s_cpas);
+        if (planted - r.v_mono.abs()).abs() > BESSEL_ABS {
+            planted_caught += 1;
+        }
+    }
+    assert!(planted_caught > rows.len() / 2, "{planted_caught}");
+    bias_budget::main().expect("the example prints");
 }

@@ -28,6 +28,10 @@ oifits_pkg = pytest.importorskip("oifits")
 ROOT = Path(__file__).resolve().parents[2]
 ROWS = 240
 
+# Every test here reads files the binary writes (missing binary: CI fails,
+# a local run skips saying why; conftest.py).
+pytestmark = pytest.mark.needs_bin
+
 
 def v2ref_bin():
     b = Path(os.environ.get("V2REF_BIN", "target/release/v2ref"))

@@ -8,6 +8,7 @@ use crate::reproduction::table::Figure;
 pub(crate) mod bias;
 pub(crate) mod piston;
 
+pub use bias::fig3;
 pub use piston::fig5_runs;
 
 /// Every figure (0 to 5), in order, at the given effort.
