@@ -24,7 +24,7 @@ over the window K of bins (``--bins``):
 
     positive   k = 1 … ⌈N/2⌉ − 1
     all        k = 0 … N − 1
-    band       the sidecar's truth.windows[bins == "band"].bin_indices
+    band       the positive bins with σ_min ≤ k/(N δx) ≤ σ_max
 
 The additive-noise bias is subtracted with v_i the noise variance of sample i:
 
@@ -34,10 +34,27 @@ The additive-noise bias is subtracted with v_i the noise variance of sample i:
     v_i = σ_det² + n_i   with photon noise,   σ_det² without
 
 where n_i is the sample's mean count, taken (``--bias``) from the model
-(``model``: n_i = ``mean_counts_photons[i]``) or from the row itself
-(``counts``: n_i = c_i + M_i). The normalized estimates are
-(raw − bias) / C, C being the sidecar's ``calibration`` of the window
-(the calibrator's noise-free raw V1² and V2²).
+(``model``: n_i = c + m_i) or from the row itself (``counts``:
+n_i = c + M_i). The normalized estimates are (raw − bias) / C, C being the
+calibrator's noise-free raw V1² and V2² over the window.
+
+The model — the continuum c, the mean modulated counts m_i, the band's
+bins and the calibration C — is computed here from the physical inputs the
+sidecar states (``--model inputs``, the default), as a user's pipeline
+would compute it from its instrument: a flat band [σ_min, σ_max] =
+[1/(λ0 + Δλ/2), 1/(λ0 − Δλ/2)] with W = 1/(σ_max − σ_min), the source's
+visibility V(σ) (point: 1; uniform disk: 2 J1(z)/z, z = π θ B σ, J1 by
+its integral representation), the quadratic dispersion phase
+φ = ½ D (σ − σ0)², D = 8P/Δσ², the integrating detector's sinc(σ δx),
+sample positions in DFT order, and
+
+    m_i = c V_in Re ∫ W V e^{iφ} s e^{2πiσx_i} dσ     (Gauss–Legendre),
+
+c = ``photons``, V_in = ``visibility``; the calibrator is the same with a
+point source, V_in = 1 and no phase. Piston only moves the data, not the
+model. ``--model sidecar`` reads these from the sidecar instead (what
+v2ref computed): then an error in v2ref's fringe model would cancel
+between the data and the calibration, and this pipeline could not see it.
 
 ``--mistake`` deliberately gets one thing wrong, to check that a scorer
 catches it:
@@ -51,7 +68,8 @@ index), floats written with repr() so they round-trip exactly.
 
 Usage:
     python numpy_pipeline.py SET.json --out EST.csv [--bins positive|band|all]
-                             [--bias model|counts] [--mistake ...]
+                             [--bias model|counts] [--model inputs|sidecar]
+                             [--mistake ...]
 """
 
 import argparse
@@ -66,6 +84,16 @@ FORMAT = "v2ref-synth-1"
 WINDOWS = ("positive", "band", "all")
 BIAS_CONVENTIONS = ("model", "counts")
 MISTAKES = ("none", "photon-bias-from-m", "no-calibration")
+MODELS = ("inputs", "sidecar")
+
+# Quadrature nodes over the band: the integrand turns through a few cycles
+# at most over a flat band (σ x ≤ a few tens), so 256 Gauss–Legendre
+# nodes reach rounding.
+BAND_NODES = 256
+# Trapezoid nodes of the J1 integral over one period: exponentially
+# accurate for the |z| ≲ 30 of a resolved disk on one baseline.
+J1_NODES = 128
+MAS_TO_RAD = np.pi / (180.0 * 3600.0 * 1000.0)
 
 
 def load_set(sidecar_path):
@@ -95,14 +123,104 @@ def window_entry(sidecar, window):
     raise ValueError(f"the sidecar has no truth for window {window!r}")
 
 
-def window_bins(n, window, sidecar):
-    """The bins K a window sums, for N = n samples."""
+def band_edges(inputs):
+    """[σ_min, σ_max] (1/µm) of the stated band: only flat bands are modelled."""
+    spectrum = inputs["spectrum"]
+    if spectrum.get("kind") != "flat":
+        raise ValueError(
+            f"spectrum {spectrum.get('kind')!r}: this pipeline models flat bands only "
+            "(use --model sidecar)"
+        )
+    lam = float(spectrum["wavelength_um"])
+    half = float(spectrum["bandwidth_nm"]) / 1000.0 / 2.0
+    return 1.0 / (lam + half), 1.0 / (lam - half)
+
+
+def bessel_j1(z):
+    """J1(z) = (1/2π) ∫_0^{2π} cos(τ − z sin τ) dτ, trapezoid over one period."""
+    tau = 2.0 * np.pi * np.arange(J1_NODES) / J1_NODES
+    z = np.asarray(z, dtype=np.float64)
+    return np.cos(tau - z[..., None] * np.sin(tau)).mean(axis=-1)
+
+
+def source_visibility(inputs, sigma):
+    """The source's complex visibility at B σ (σ in 1/µm)."""
+    source = inputs["source"]
+    if source["kind"] == "point":
+        return np.ones_like(sigma)
+    if source["kind"] == "ud":
+        theta_rad = float(source["diameter_mas"]) * MAS_TO_RAD
+        z = np.pi * theta_rad * float(inputs["baseline_m"]) * sigma * 1e6
+        small = np.abs(z) < 1e-8
+        return np.where(small, 1.0, 2.0 * bessel_j1(z) / np.where(small, 1.0, z))
+    raise ValueError(
+        f"source {source['kind']!r}: this pipeline models point sources and uniform disks "
+        "only (use --model sidecar)"
+    )
+
+
+def sample_positions(n, dx):
+    """x_i (µm) in DFT order: 0, δx, …, then the negative half."""
+    i = np.arange(n)
+    return np.where(i < (n + 1) // 2, i, i - n) * dx
+
+
+def modulated_counts(inputs, calibrator=False):
+    """m_i (photons) of the stated source, or of its calibrator (point
+    source, no phase, visibility 1), noise- and piston-free."""
+    lo, hi = band_edges(inputs)
+    t, w = np.polynomial.legendre.leggauss(BAND_NODES)
+    sigma = 0.5 * (hi - lo) * t + 0.5 * (hi + lo)
+    # dσ = (σ_max − σ_min)/2 dt times W = 1/(σ_max − σ_min).
+    weight = w / 2.0
+    dx = float(inputs["dx_um"])
+    amplitude = weight.astype(np.complex128)
+    if not calibrator:
+        sigma0, width = 0.5 * (lo + hi), hi - lo
+        d = 8.0 * float(inputs["dispersion_pp_rad"]) / width**2
+        phase = 0.5 * d * (sigma - sigma0) ** 2
+        amplitude = amplitude * source_visibility(inputs, sigma) * np.exp(1j * phase)
+    if inputs["integrating"]:
+        amplitude = amplitude * np.sinc(sigma * dx)
+    x = sample_positions(int(inputs["samples"]), dx)
+    fringe = (np.exp(2j * np.pi * np.outer(x, sigma)) @ amplitude).real
+    scale = 1.0 if calibrator else float(inputs["visibility"])
+    return float(inputs["photons"]) * scale * fringe
+
+
+def model_from_inputs(inputs, window):
+    """(continuum c_i, mean counts n_i, bins K, calibration (C1, C2)) from
+    the stated physical inputs."""
+    n = int(inputs["samples"])
+    continuum = np.full(n, float(inputs["photons"]))
+    mean_counts = continuum + modulated_counts(inputs)
+    lo, hi = band_edges(inputs)
+    bins = window_bins(n, window, float(inputs["dx_um"]), (lo, hi))
+    b = np.fft.fft(modulated_counts(inputs, calibrator=True))[bins]
+    calibration = (float(np.sum(np.abs(b) ** 2)), float(np.abs(np.sum(b)) ** 2))
+    return continuum, mean_counts, bins, calibration
+
+
+def model_from_sidecar(sidecar, window):
+    """The same four, read from what v2ref wrote in the sidecar."""
+    continuum = np.asarray(sidecar["continuum_photons"], dtype=np.float64)
+    mean_counts = np.asarray(sidecar["mean_counts_photons"], dtype=np.float64)
+    entry = window_entry(sidecar, window)
+    bins = np.asarray(entry["bin_indices"], dtype=np.int64)
+    cal = entry["calibration"]
+    return continuum, mean_counts, bins, (cal["v1_sq"], cal["v2_sq"])
+
+
+def window_bins(n, window, dx, band):
+    """The bins K a window sums, for N = n samples at δx over the band."""
+    positive = np.arange(1, (n + 1) // 2)  # 1 … ⌈N/2⌉ − 1
     if window == "positive":
-        return np.arange(1, (n + 1) // 2)  # 1 … ⌈N/2⌉ − 1
+        return positive
     if window == "all":
         return np.arange(n)
     if window == "band":
-        return np.asarray(window_entry(sidecar, "band")["bin_indices"], dtype=np.int64)
+        sigma = positive / (n * dx)
+        return positive[(sigma >= band[0]) & (sigma <= band[1])]
     raise ValueError(f"unknown window {window!r}")
 
 
@@ -115,12 +233,16 @@ def v2_bias_weights(n, bins):
     return np.abs(u) ** 2
 
 
-def estimate(sidecar, rows, window="positive", bias="model", mistake="none"):
+def estimate(sidecar, rows, window="positive", bias="model", mistake="none", model="inputs"):
     """Normalized (V1², V2²) of every row: two arrays of length rows."""
     inputs = sidecar["inputs"]
     n = rows.shape[1]
-    continuum = np.asarray(sidecar["continuum_photons"], dtype=np.float64)
-    mean_counts = np.asarray(sidecar["mean_counts_photons"], dtype=np.float64)
+    if model == "inputs":
+        continuum, mean_counts, bins, cal = model_from_inputs(inputs, window)
+    elif model == "sidecar":
+        continuum, mean_counts, bins, cal = model_from_sidecar(sidecar, window)
+    else:
+        raise ValueError(f"unknown model {model!r}")
     read_var = float(inputs["read_noise"]) ** 2
     photon = bool(inputs["photon_noise"])
 
@@ -128,7 +250,6 @@ def estimate(sidecar, rows, window="positive", bias="model", mistake="none"):
     m_rows = rows if sidecar["continuum_subtracted"] else rows - continuum
 
     # Raw estimates over the window.
-    bins = window_bins(n, window, sidecar)
     b = np.fft.fft(m_rows, axis=1)[:, bins]
     v1_raw = np.sum(np.abs(b) ** 2, axis=1)
     v2_raw = np.abs(np.sum(b, axis=1)) ** 2
@@ -151,9 +272,8 @@ def estimate(sidecar, rows, window="positive", bias="model", mistake="none"):
     v1 = v1_raw - b1
     v2 = v2_raw - b2
     if mistake != "no-calibration":
-        cal = window_entry(sidecar, window)["calibration"]
-        v1 = v1 / cal["v1_sq"]
-        v2 = v2 / cal["v2_sq"]
+        v1 = v1 / cal[0]
+        v2 = v2 / cal[1]
     return v1, v2
 
 
@@ -172,10 +292,11 @@ def main(argv=None):
     p.add_argument("--bins", choices=WINDOWS, default="positive")
     p.add_argument("--bias", choices=BIAS_CONVENTIONS, default="model")
     p.add_argument("--mistake", choices=MISTAKES, default="none")
+    p.add_argument("--model", choices=MODELS, default="inputs")
     a = p.parse_args(argv)
     try:
         sidecar, rows = load_set(a.sidecar)
-        v1, v2 = estimate(sidecar, rows, a.bins, a.bias, a.mistake)
+        v1, v2 = estimate(sidecar, rows, a.bins, a.bias, a.mistake, a.model)
     except (OSError, ValueError, KeyError) as e:
         print(f"numpy_pipeline: {e}", file=sys.stderr)
         return 2
