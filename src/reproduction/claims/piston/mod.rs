@@ -15,7 +15,7 @@ use crate::piston::turbulence::{
 };
 use crate::piston::{simulate, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
-use crate::reproduction::cases::{Effort, WAVELENGTH_UM};
+use crate::reproduction::cases::{Effort, SEEING_ARCSEC, WAVELENGTH_UM, WIND_MPS};
 use crate::reproduction::figures::piston::{fig4, fig5};
 use crate::reproduction::table::{Figure, Table};
 use crate::tolerance::{MC_SIGMAS, SIGNIFICANCE_SIGMAS, TURBULENCE_CHECK_REL};
@@ -228,21 +228,26 @@ type Spec<'a> = dyn Fn(&str) -> &'a super::ClaimSpec + 'a;
 /// The closed forms: the 18 m spatial frequency, r0, the coherence time,
 /// the OPD scanned per coherence time and the RMS differential piston.
 fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
-    let sigma_eff = Spectrum::flat(Band::k()).sigma_eff_per_um();
-    let s = 18.0 * sigma_eff * CPAS_PER_M_PER_INV_UM;
+    let band = Band::k();
+    let sigma_eff = Spectrum::flat(band).sigma_eff_per_um();
+    let s = FIG5_BASELINE_M * sigma_eff * CPAS_PER_M_PER_INV_UM;
     let mut out = vec![Computed::number(
         "piston.baseline_18m_cpas",
         s,
-        format!("S = B sigma_eff = 18 m x {sigma_eff:.6} per um = {s:.3} cycles/arcsec (flat 2.0-2.4 um band)"),
+        format!(
+            "S = B sigma_eff = {FIG5_BASELINE_M} m x {sigma_eff:.6} per um = {s:.3} cycles/arcsec (flat band, {} um wide at {} um)",
+            band.width_um(),
+            band.centre_um()
+        ),
     )];
     let turb = paper_turbulence();
     let r0_cm = 100.0 * turb.r0_m();
-    out.push(match r0_from_seeing_m(1.0, 2.2) {
+    out.push(match r0_from_seeing_m(SEEING_ARCSEC, WAVELENGTH_UM) {
         Ok(r) => Computed::number(
             "piston.r0_k_cm",
             100.0 * r,
             format!(
-                "r0 = lambda / seeing = 2.2 um / 1 arcsec = {:.2} cm",
+                "r0 = lambda / seeing = {WAVELENGTH_UM} um / {SEEING_ARCSEC} arcsec = {:.2} cm",
                 100.0 * r
             ),
         ),
@@ -253,7 +258,7 @@ fn closed_form_claims<'a>(spec: &Spec<'a>) -> Vec<Computed> {
         "piston.coherence_time_ms",
         tau_ms,
         format!(
-            "tau = r0 / v = {:.4} m / 10 m/s = {tau_ms:.2} ms",
+            "tau = r0 / v = {:.4} m / {WIND_MPS} m/s = {tau_ms:.2} ms",
             r0_cm / 100.0
         ),
     ));
