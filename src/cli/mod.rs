@@ -31,6 +31,7 @@ pub mod output;
 pub mod piston;
 pub mod plan;
 pub mod plan_svg;
+pub mod plan_verify;
 pub mod reproduce;
 pub mod score;
 pub mod simulate;

@@ -6,6 +6,7 @@ use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, DEFAULTS};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
+use v2ref::conformance::estimate::BiasConvention;
 use v2ref::parameters::Physical;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
@@ -81,6 +82,22 @@ pub struct Args {
     /// error it gives is printed beside the corrections.
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     diameter_err_mas: f64,
+    /// Where your pipeline takes the photon-noise bias's counts from:
+    /// counts (each scan's own; unbiased for both estimators under piston)
+    /// or model (the source's piston-free counts; off by the piston's shift
+    /// of the fringe, predicted and added to the bias). The predicted mean
+    /// and the noise follow it.
+    #[arg(long, value_enum, default_value = "counts")]
+    bias: BiasConvention,
+    /// Also simulate the recommended observation (n consecutive scans
+    /// through one atmosphere, photon and detector noise, --bias): the
+    /// σ(V²) and mean achieved, with intervals, beside the promise. Its
+    /// duration is announced before it starts.
+    #[arg(long)]
+    verify: bool,
+    /// Observations simulated by --verify: 32 to 1e6.
+    #[arg(long, value_parser = super::count_u64, default_value = "256", allow_negative_numbers = true, requires = "verify")]
+    verify_observations: u64,
     /// Seed of the piston Monte Carlo.
     #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
@@ -169,6 +186,7 @@ fn request(args: &Args) -> (Physical, PlanRequest) {
         scans: args.scans,
         seed: args.seed,
         diameter_err_mas: args.diameter_err_mas,
+        bias: args.bias,
     };
     (p, req)
 }
@@ -189,8 +207,24 @@ pub fn run(args: Args) -> Result<ExitCode> {
     args.turbulence
         .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());
     let bar = progress_bar(prepared.points(), args.quiet || args.json, "plan");
-    let answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
+    let mut answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
     bar.finish_and_clear();
+    if args.verify {
+        let size = plan::verification(&answer, args.verify_observations)?;
+        let cost = v2ref::commands::cost::plan_verification(&size, args.threads);
+        if cost.notice().is_some() {
+            super::output::announce("plan --verify", &cost);
+        } else if !args.quiet {
+            super::output::write_stderr_line(format_args!(
+                "note: plan --verify: simulating {}, about {}",
+                cost.what,
+                v2ref::commands::cost::duration_words(cost.seconds)
+            ));
+        }
+        let bar = progress_bar(size.scans(), args.quiet || args.json, "plan --verify");
+        plan::verify(&mut answer, &size, args.threads, &|k| bar.inc(k))?;
+        bar.finish_and_clear();
+    }
     if let Some(path) = &args.svg {
         super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
     }
@@ -201,6 +235,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         print_json(&answer);
     } else {
         print_table(&answer.inputs, &answer.plan, &piston, args.all)?;
+        if let Some(v) = &answer.verification {
+            super::plan_verify::print(v);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
