@@ -20,7 +20,8 @@
 //! K sequences ([`crate::montecarlo::replicated_summary`]: batch means,
 //! valid however correlated the blocks of one sequence are), with K − 1
 //! degrees of freedom. When n consecutive scans do not fit in one
-//! sequence (the memory limit [`crate::piston::series::MAX_SERIES`]), the
+//! sequence (the memory limit [`crate::piston::series::MAX_SERIES`]
+//! samples), the
 //! longest block that fits, n′, is measured and the piston variance is
 //! carried to n as 1/n (`extrapolated_from_scans`: it assumes the scans
 //! further apart than n′ scan periods are uncorrelated).
@@ -70,8 +71,8 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 
 /// Scans per sequence for observations of `n` scans: at least `n`, the
 /// span of [`SPAN_CORRELATION_TIMES`] correlation times and `budget / K`
-/// (the plan's `scans`), at most what the memory limit allows (None when
-/// not even one scan fits).
+/// (the plan's `scans`), at most what one sequence within the memory limit
+/// holds (None when not even one scan fits).
 pub(crate) fn scans_per_sequence(
     sky: &PistonSpectrum,
     (samples, stride, sample_time_s): (usize, usize, f64),
@@ -82,13 +83,16 @@ pub(crate) fn scans_per_sequence(
     let wanted = (n as f64)
         .max(span.ceil())
         .max((budget / SEQUENCES as u64) as f64);
-    let most = (MAX_SERIES / SEQUENCES).saturating_sub(samples + 4) / stride;
+    // One sequence at a time at most (the sequences are simulated in
+    // batches that fit the memory limit together).
+    let most = MAX_SERIES.saturating_sub(samples + 4) / stride;
     (most >= 1).then(|| wanted.min(most as f64) as usize)
 }
 
 impl ContiguousScans {
     /// Simulates `SEQUENCES × per_sequence` scans of `model` (with piston),
-    /// `stride` samples apart, from `seed`, estimated under `bias`;
+    /// `stride` samples apart, from `seed` (in batches of sequences that fit
+    /// [`MAX_SERIES`] samples together), estimated under `bias`;
     /// `offsets` (noise-free scans of a model whose noise is `noisy`) also
     /// records the `model` convention's offset.
     pub(crate) fn simulate(
@@ -99,8 +103,6 @@ impl ContiguousScans {
         seed: u64,
         progress: &(dyn Fn(u64) + Sync),
     ) -> Result<ContiguousScans> {
-        let rows = (SEQUENCES * per_sequence) as u64;
-        let set = model.rows_with_layout(rows, seed, 0, Some((SEQUENCES, stride)))?;
         let window = BinWindow::Positive;
         let est = RowEstimator::new(model, window, bias, true)?;
         let pair = match noisy {
@@ -111,23 +113,32 @@ impl ContiguousScans {
             None => None,
         };
         let n = model.samples();
-        let mut values = Vec::with_capacity(rows as usize);
-        set.fold_units(
-            0,
-            |_, block| {
-                let mut steps = Steps::new(progress, n);
-                let out: Vec<ScanValues> = block
-                    .chunks_exact(n)
-                    .map(|row| {
-                        steps.step();
-                        scan_values(&est, pair.as_ref(), row)
-                    })
-                    .collect();
-                steps.finish();
-                out
-            },
-            |block: Vec<ScanValues>| values.extend(block),
-        );
+        let mut values = Vec::with_capacity(SEQUENCES * per_sequence);
+        // As many sequences at a time as the memory limit allows.
+        let length = (per_sequence - 1) * stride + n + 4;
+        let per_batch = (MAX_SERIES / length).clamp(1, SEQUENCES);
+        for first in (0..SEQUENCES).step_by(per_batch) {
+            let k = per_batch.min(SEQUENCES - first);
+            let rows = (k * per_sequence) as u64;
+            let batch_seed = derive_seed(seed, "observation-batch", &[first as f64]);
+            let set = model.rows_with_layout(rows, batch_seed, 0, Some((k, stride)))?;
+            set.fold_units(
+                0,
+                |_, block| {
+                    let mut steps = Steps::new(progress, n);
+                    let out: Vec<ScanValues> = block
+                        .chunks_exact(n)
+                        .map(|row| {
+                            steps.step();
+                            scan_values(&est, pair.as_ref(), row)
+                        })
+                        .collect();
+                    steps.finish();
+                    out
+                },
+                |block: Vec<ScanValues>| values.extend(block),
+            );
+        }
         Ok(ContiguousScans {
             sequences: values.chunks(per_sequence).map(<[_]>::to_vec).collect(),
             scan_period_s: stride as f64 * sample_time_s,
