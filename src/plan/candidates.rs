@@ -5,6 +5,7 @@
 
 use super::observation::{
     observation_seed, scans_per_sequence, solve_scans, stride_samples, AtPoint, ContiguousScans,
+    BLOCKS_PER_SEQUENCE,
 };
 use super::reach::{merit, UNREACHABLE};
 use super::{Estimator, PlanInputs, PlanPoint, ONE_NIGHT_S};
@@ -81,7 +82,13 @@ fn contiguous(
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
     let stride = stride_samples(inputs, &piston, fringe_hz);
     let shape = (piston.samples(), stride, t_s);
-    let per_sequence = scans_per_sequence(sky, shape, n, inputs.scans).unwrap_or(1);
+    let per_sequence = scans_per_sequence(
+        sky,
+        shape,
+        (n.saturating_mul(BLOCKS_PER_SEQUENCE), n),
+        (inputs.scans, true),
+    )
+    .unwrap_or(1);
     let seed = observation_seed(inputs.seed, fringe_hz, stroke_um);
     let scans = ContiguousScans::simulate(
         &piston,
@@ -104,8 +111,8 @@ fn resolve(
     let start = p.scans_needed.unwrap_or(1.0);
     let (mut scans, noisy) = contiguous(inputs, sky, (p.fringe_hz, p.stroke_um), start as u64)?;
     let sigma_noise = sigma_noise_per_scan(inputs, &noisy, p)?;
-    let mut solved;
-    loop {
+    let mut solved = None;
+    for _ in 0..3 {
         let at = AtPoint {
             scans: &scans,
             point: p,
@@ -113,9 +120,13 @@ fn resolve(
             sigma_noise_per_scan: sigma_noise,
         };
         solved = solve_scans(&at, target, start, true);
-        let longer = solved.filter(|o| o.extrapolated_from_scans.is_some());
-        let Some(o) = longer else { break };
-        // n outgrew the sequences: simulate longer ones once, if they fit.
+        let fewer_blocks = |o: &super::ObservationError| {
+            o.scans.saturating_mul(BLOCKS_PER_SEQUENCE) > scans.per_sequence() as u64
+        };
+        let Some(o) = solved.filter(fewer_blocks) else {
+            break;
+        };
+        // n outgrew the sequences: simulate longer ones, if they fit.
         let (more, _) = contiguous(inputs, sky, (p.fringe_hz, p.stroke_um), o.scans)?;
         if more.per_sequence() <= scans.per_sequence() {
             break;

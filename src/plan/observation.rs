@@ -69,23 +69,44 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
     model.samples() + (inputs.dead_time_s / t_s).round() as usize
 }
 
-/// Scans per sequence for observations of `n` scans: at least `n`, the
-/// span of [`SPAN_CORRELATION_TIMES`] correlation times and `budget / K`
-/// (the plan's `scans`), at most what one sequence within the memory limit
-/// holds (None when not even one scan fits).
+/// Blocks of n consecutive scans each sequence of the plan's observation
+/// Monte Carlo holds at least (when [`MAX_OBSERVATION_SAMPLES`] allows):
+/// the sequence then also holds the piston's wander slower than the
+/// observation (an FFT sequence has nothing below one over its length),
+/// and the K sequences give 4K observations. Measured in the bright case of
+/// `tests/plan_observation.rs` (V1², 130 m, n = 1866): sequences of 1.4 n
+/// (two correlation times, one block each) promised 6.2e-5 where the
+/// verification's 16-block sequences achieved 7.4e-5 ± 0.4e-5.
+pub const BLOCKS_PER_SEQUENCE: u64 = 4;
+
+/// Most samples (scans × N) one observation Monte Carlo of the plan
+/// simulates: 2^25, about 3 core-seconds
+/// ([`crate::commands::cost::SCAN_S_PER_SAMPLE`]); beyond, fewer blocks
+/// per sequence (wider intervals), but always at least n scans.
+pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 25;
+
+/// Scans per sequence that hold `scans` scans (the blocks wanted), span
+/// [`SPAN_CORRELATION_TIMES`] correlation times and hold `budget / K` (the
+/// plan's `scans`); at most what one sequence within the memory limit
+/// holds and, with `capped`, what [`MAX_OBSERVATION_SAMPLES`] allows (but
+/// `least`); None when not even one scan fits.
 pub(crate) fn scans_per_sequence(
     sky: &PistonSpectrum,
     (samples, stride, sample_time_s): (usize, usize, f64),
-    n: u64,
-    budget: u64,
+    (scans, least): (u64, u64),
+    (budget, capped): (u64, bool),
 ) -> Option<usize> {
     let span = SPAN_CORRELATION_TIMES * correlation_time_s(sky) / sample_time_s / stride as f64;
-    let wanted = (n as f64)
+    let wanted = (scans as f64)
         .max(span.ceil())
         .max((budget / SEQUENCES as u64) as f64);
     // One sequence at a time at most (the sequences are simulated in
     // batches that fit the memory limit together).
-    let most = MAX_SERIES.saturating_sub(samples + 4) / stride;
+    let mut most = MAX_SERIES.saturating_sub(samples + 4) / stride;
+    if capped {
+        let affordable = MAX_OBSERVATION_SAMPLES / (SEQUENCES * samples.max(1));
+        most = most.min(affordable.max(least as usize));
+    }
     (most >= 1).then(|| wanted.min(most as f64) as usize)
 }
 

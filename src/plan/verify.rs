@@ -77,7 +77,8 @@ pub fn verification_size(
     let stride = stride_samples(inputs, &model, p.fringe_hz);
     let blocks = observations.div_ceil(SEQUENCES as u64);
     let shape = (model.samples(), stride, t_s);
-    let per_sequence = scans_per_sequence(sky, shape, n.saturating_mul(blocks), 0).unwrap_or(0);
+    let per_sequence =
+        scans_per_sequence(sky, shape, (n.saturating_mul(blocks), n), (0, false)).unwrap_or(0);
     if (per_sequence as u64) < n {
         return Err(Error::Invalid {
             param: "verify",
@@ -123,6 +124,8 @@ pub struct Verification {
     pub sigma_if_independent: f64,
     /// σ(V²) over the simulated observations.
     pub achieved_sigma: f64,
+    /// Its standard error (spread between the sequences).
+    pub achieved_sigma_stderr: f64,
     /// Its interval.
     pub achieved_sigma_interval: [f64; 2],
     /// The mean the plan predicts (V²_sampled + piston bias + the
@@ -130,8 +133,12 @@ pub struct Verification {
     pub predicted_mean: f64,
     /// The mean over the simulated observations.
     pub achieved_mean: f64,
+    /// Its standard error.
+    pub achieved_mean_stderr: f64,
     /// Its interval.
     pub achieved_mean_interval: [f64; 2],
+    /// The standard error of the prediction (the Monte Carlo's).
+    pub predicted_mean_stderr: f64,
     /// The predicted bias: predicted_mean − V²_sampled.
     pub predicted_bias: f64,
     /// The achieved bias: achieved_mean − V²_sampled.
@@ -185,10 +192,13 @@ pub fn verify(
         promised_sigma: o.sigma,
         sigma_if_independent: p.sigma_per_scan / (n as f64).sqrt(),
         achieved_sigma: s.std,
+        achieved_sigma_stderr: s.stderr_std,
         achieved_sigma_interval: sigma_interval,
         predicted_mean: o.predicted_mean,
         achieved_mean: s.mean,
+        achieved_mean_stderr: s.stderr_mean,
         achieved_mean_interval: mean_interval,
+        predicted_mean_stderr: o.bias_stderr,
         predicted_bias: o.bias,
         achieved_bias: s.mean - p.v_sq_sampled,
         sigma_kept: sigma_interval[0] <= o.sigma,
