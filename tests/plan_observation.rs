@@ -197,3 +197,61 @@ fn noise_dominated_v2_keeps_the_promise() {
     assert!(piston_over_noise(&p) < 0.5, "{p:?}");
     assert_kept(&v);
 }
+
+/// The faint visible case: 0.625 µm, 18.75 photons per sample at 2 000 Hz.
+const VISIBLE: Site = Site {
+    band: (0.625, 50.0),
+    baseline_m: 50.0,
+    aperture_m: 1.0,
+    outer_scale_m: 25.0,
+    seeing_05: 1.0,
+    photon_rate_per_s: 1.5e5,
+    read_noise: 1.0,
+    fringe_hz: 2000.0,
+    stroke_um: 16.0,
+    target: 1e-2,
+};
+
+/// The means of `scans`-scan observations of each estimator's best point
+/// at the faint visible setting estimated with `bias`, beside the plan's
+/// predicted means (which do not depend on the observation's length).
+fn visible_means(bias: BiasConvention, scans: f64) -> Vec<Verification> {
+    let inputs = inputs(&VISIBLE, bias);
+    let plan = plan(&inputs, 0, &|_| {}).unwrap();
+    let sky = inputs.atmosphere.spectrum(VISIBLE.baseline_m).unwrap();
+    let mut out = Vec::new();
+    for best in [plan.best_v1, plan.best_v2] {
+        let p = PlanPoint {
+            scans_needed: Some(scans),
+            ..best.expect("the target is reachable")
+        };
+        let size = verification_size(&inputs, &sky, &p, 256).unwrap();
+        let v = verify(&inputs, &sky, &p, &size, &|_| {}).unwrap();
+        let o = p.observation.unwrap();
+        eprintln!(
+            "{bias:?} {:?}: photons/sample {:.2}, offset {:+.2e} +/- {:.1e}; mean predicted {:.6e} +/- {:.1e}, achieved {:.6e} +/- {:.1e}",
+            p.estimator,
+            p.photons_per_sample,
+            o.convention_offset,
+            o.convention_offset_stderr,
+            v.predicted_mean,
+            v.predicted_mean_stderr,
+            v.achieved_mean,
+            v.achieved_mean_stderr
+        );
+        out.push(v);
+    }
+    out
+}
+
+#[test]
+#[ignore = "slow tier: two plans and four verifications of a faint visible case, about 30 s"]
+fn the_predicted_mean_follows_the_bias_convention_in_a_faint_case() {
+    for bias in [BiasConvention::Counts, BiasConvention::Model] {
+        for v in visible_means(bias, 256.0) {
+            assert_eq!(v.bias, bias);
+            let se = v.achieved_mean_stderr.hypot(v.predicted_mean_stderr);
+            assert_within_sigmas!(v.achieved_mean, v.predicted_mean, se, PLAN_MEAN_SIGMAS);
+        }
+    }
+}

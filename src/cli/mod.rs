@@ -29,6 +29,7 @@ pub mod inputs;
 pub mod oifits;
 pub mod output;
 pub mod piston;
+pub mod piston_observation;
 pub mod plan;
 pub mod plan_svg;
 pub mod plan_verify;

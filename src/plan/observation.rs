@@ -393,3 +393,94 @@ pub(crate) fn solve_scans(
 pub(crate) fn observation_seed(seed: u64, fringe_hz: f64, stroke_um: f64) -> u64 {
     derive_seed(seed, "plan-observation", &[fringe_hz, stroke_um])
 }
+
+/// σ of the mean of n consecutive noise-free scans (the piston alone) at
+/// one fringe frequency: what `v2ref piston --observation-scans` reports.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ObservationPiston {
+    /// f, Hz.
+    pub fringe_hz: f64,
+    /// n, consecutive scans (no dead time between them).
+    pub scans: u64,
+    /// The observation's length, n scans, s.
+    pub duration_s: f64,
+    /// Independent piston sequences simulated ([`SEQUENCES`]).
+    pub sequences: usize,
+    /// Consecutive scans simulated in each.
+    pub scans_per_sequence: u64,
+    /// Blocks of n consecutive scans (simulated observations) in all.
+    pub simulated_observations: u64,
+    /// σ of V1² per scan (the same scans).
+    pub sigma_v1_sq_per_scan: f64,
+    /// σ of V2² per scan.
+    pub sigma_v2_sq_per_scan: f64,
+    /// σ of the mean of n consecutive scans of V1².
+    pub sigma_v1_sq: f64,
+    /// Its standard error (spread between the sequences).
+    pub sigma_v1_sq_stderr: f64,
+    /// σ of the mean of n consecutive scans of V2².
+    pub sigma_v2_sq: f64,
+    /// Its standard error.
+    pub sigma_v2_sq_stderr: f64,
+    /// n σ²(mean)/σ²(scan) for V1²: 1 for independent scans.
+    pub variance_inflation_v1: f64,
+    /// The same for V2².
+    pub variance_inflation_v2: f64,
+    /// n′ when n consecutive scans do not fit in one simulated sequence:
+    /// measured at n′ and carried to n as 1/n.
+    pub extrapolated_from_scans: Option<u64>,
+}
+
+/// The [`ObservationPiston`] of `model` (noise-free, with piston on the
+/// spectrum `sky`) for observations of `n` consecutive scans, from `seed`.
+pub fn observation_piston(
+    model: &Model,
+    sky: &PistonSpectrum,
+    n: u64,
+    seed: u64,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<ObservationPiston> {
+    let setup = model
+        .inputs
+        .scan_setup()
+        .ok_or_else(|| crate::Error::Invalid {
+            param: "fringe_hz",
+            reason: "an observation's piston needs a fringe frequency".into(),
+        })?;
+    crate::error::in_range("observation_scans", n as f64, 1.0, 1e12)?;
+    let t_s = setup.sample_time_s();
+    let samples = model.samples();
+    let shape = (samples, samples, t_s);
+    let wanted = (n.saturating_mul(BLOCKS_PER_SEQUENCE), n);
+    let per_sequence = scans_per_sequence(sky, shape, wanted, (0, true)).unwrap_or(1);
+    let scans = ContiguousScans::simulate(
+        model,
+        None,
+        BiasConvention::Model,
+        (per_sequence, samples, t_s),
+        seed,
+        progress,
+    )?;
+    let measured = n.min(per_sequence as u64);
+    let carry = (measured as f64 / n as f64).sqrt();
+    let [b1, b2] = scans.block_means(measured as usize, false);
+    let [s1, s2] = scans.block_means(1, false);
+    let inflation = |b: &Summary, s: &Summary| b.var * carry * carry * n as f64 / s.var;
+    Ok(ObservationPiston {
+        fringe_hz: setup.fringe_hz,
+        scans: n,
+        duration_s: n as f64 * setup.scan_time_s(),
+        sequences: SEQUENCES,
+        scans_per_sequence: per_sequence as u64,
+        simulated_observations: b1.count,
+        sigma_v1_sq_per_scan: s1.std,
+        sigma_v2_sq_per_scan: s2.std,
+        sigma_v1_sq: b1.std * carry,
+        sigma_v1_sq_stderr: b1.stderr_std * carry,
+        sigma_v2_sq: b2.std * carry,
+        sigma_v2_sq_stderr: b2.stderr_std * carry,
+        variance_inflation_v1: inflation(&b1, &s1),
+        variance_inflation_v2: inflation(&b2, &s2),
+        extrapolated_from_scans: (measured < n).then_some(measured),
+    })
+}
