@@ -255,3 +255,73 @@ fn the_predicted_mean_follows_the_bias_convention_in_a_faint_case() {
         }
     }
 }
+
+/// `piston --observation-scans n --json` on the bright site of [`BRIGHT`].
+fn piston_observation(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "piston",
+        "--source",
+        "point",
+        "--wavelength-um",
+        "1.65",
+        "--bandwidth-nm",
+        "300",
+        "--baseline-m",
+        "130",
+        "--aperture-m",
+        "8",
+        "--outer-scale-m",
+        "22",
+        "--seeing-arcsec",
+        "0.8",
+        "--seeing-wavelength-um",
+        "0.5",
+        "--samples",
+        "39",
+        "--fringe-hz",
+        "1000",
+        "--scans",
+        "200",
+        "--quiet",
+        "--json",
+    ];
+    args.extend(extra);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(&args)
+        .output()
+        .expect("runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    v["observation"][0].clone()
+}
+
+#[test]
+fn piston_reports_the_observations_sigma_and_its_inflation() {
+    // One scan: the mean is the scan, the inflation exactly 1.
+    let one = piston_observation(&["--observation-scans", "1"]);
+    assert_eq!(one["variance_inflation_v1"].as_f64(), Some(1.0));
+    assert_eq!(one["sigma_v1_sq"], one["sigma_v1_sq_per_scan"]);
+    // 1500 consecutive scans (17.7 s) share the piston: σ of their mean is
+    // above σ_scan/√n by more than MC_SIGMAS standard errors, for both
+    // estimators.
+    let long = piston_observation(&["--observation-scans", "1500"]);
+    for e in ["v1", "v2"] {
+        let sigma = long[format!("sigma_{e}_sq")].as_f64().unwrap();
+        let se = long[format!("sigma_{e}_sq_stderr")].as_f64().unwrap();
+        let per_scan = long[format!("sigma_{e}_sq_per_scan")].as_f64().unwrap();
+        let independent = per_scan / 1500f64.sqrt();
+        assert!(
+            independent < sigma - MC_SIGMAS * se,
+            "{e}: {sigma} +/- {se} against {independent}"
+        );
+    }
+    // The same observation given by its length.
+    let seconds = long["duration_s"].as_f64().unwrap();
+    let by_time = piston_observation(&["--observation-s", &format!("{}", seconds * 0.9999)]);
+    assert_eq!(by_time["scans"].as_u64(), Some(1500));
+    assert_eq!(by_time["sigma_v1_sq"], long["sigma_v1_sq"]);
+}
