@@ -276,9 +276,20 @@ fn describe(p: &PlanPoint) -> String {
             p.scans_needed.unwrap_or(0.0)
         ),
         (None, Some(t)) => format!(
-            "{:.0} scans, {}{}",
+            "{:.0} {}scans, {}{}{}",
             p.scans_needed.unwrap_or(0.0),
+            if p.observation.is_some() {
+                "consecutive "
+            } else {
+                ""
+            },
             human_duration(t),
+            p.time_lower_s
+                .filter(|_| p.observation.is_some())
+                .map_or(String::new(), |lo| format!(
+                    " (from {} with the piston terms at the lower ends of their intervals)",
+                    human_duration(lo)
+                )),
             if p.exceeds_one_night {
                 " (WARNING: longer than one night, 10 h)"
             } else {
@@ -311,6 +322,34 @@ fn terms(p: &PlanPoint, confidence: f64) {
         confidence * 100.0,
         p.sigma_piston_upper,
         p.bias_piston_upper,
+    );
+}
+
+/// The observation's σ and mean, when the point was solved for them.
+fn observation(p: &PlanPoint, inputs: &PlanInputs) {
+    let Some(o) = p.observation else { return };
+    outln!(
+        "  observation of {} consecutive scans through one atmosphere: sigma(V^2) {:.2e} = noise {:.2e} (+) piston {:.2e} (upper end; measured {:.2e} +/- {:.1e}, inflation {:.2} over independent scans' {:.2e}{})",
+        o.scans,
+        o.sigma,
+        o.sigma_noise,
+        o.sigma_piston_upper,
+        o.sigma_piston,
+        o.sigma_piston_stderr,
+        o.variance_inflation,
+        o.sigma_piston_if_independent,
+        o.extrapolated_from_scans.map_or(String::new(), |m| format!(
+            "; measured at {m} scans and carried to n as 1/n"
+        )),
+    );
+    outln!(
+        "  predicted mean V^2 {:.5e} with --bias {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",
+        o.predicted_mean,
+        inputs.bias.name(),
+        o.bias,
+        o.bias_stderr,
+        p.bias_piston,
+        o.convention_offset,
     );
 }
 
@@ -358,7 +397,11 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
         Some(p) => {
             outln!("recommended ({target}): {}", describe(p));
             terms(p, plan.confidence);
+            observation(p, inputs);
             corrections(inputs, p);
+            if let Some(note) = &plan.grid_edge {
+                outln!("  NOTE: {note}");
+            }
         }
         None => outln!(
             "no recommendation ({target}): {}",
@@ -417,7 +460,14 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     );
     for p in &rows {
         let count = p.scans_needed.map_or("-".into(), |n| format!("{n:.0}"));
-        let time = p.time_s.map_or("-".into(), human_duration);
+        let time = p.time_s.map_or("-".into(), |t| {
+            let mark = if p.observation.is_none() && matches!(inputs.target, Target::SigmaV2(_)) {
+                "*"
+            } else {
+                ""
+            };
+            format!("{}{mark}", human_duration(t))
+        });
         let reach = p.sigma_reached.map_or("-".into(), |s| format!("{s:.2e}"));
         outln!(
             "{:>5} {:>9.1} {:>11.0} {:>14.3} {:>12.2e} {:>13.2e} {:>+13.2e} {:>11} {:>9} {:>10}",
@@ -432,6 +482,11 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
             time,
             reach
         );
+    }
+    if rows.iter().any(|p| {
+        p.observation.is_none() && p.time_s.is_some() && matches!(inputs.target, Target::SigmaV2(_))
+    }) {
+        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest 3 settings of each estimator only");
     }
     // What a "-" in the table stands for, once per reason shown.
     let mut reasons: Vec<&str> = Vec::new();

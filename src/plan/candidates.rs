@@ -101,20 +101,24 @@ fn contiguous(
     Ok((scans, noisy))
 }
 
-/// Re-solves point `p` at the observation level for σ(V²) = `target`.
+/// Re-solves point `p` at the observation level for σ(V²) = `target` on
+/// the contiguous scans `shared` of its setting (simulated again, longer,
+/// when n outgrows them); `noisy` is the setting's noise model.
 fn resolve(
     inputs: &PlanInputs,
     sky: &PistonSpectrum,
+    (shared, noisy): (&ContiguousScans, &Model),
     p: &mut PlanPoint,
     target: f64,
 ) -> Result<()> {
     let start = p.scans_needed.unwrap_or(1.0);
-    let (mut scans, noisy) = contiguous(inputs, sky, (p.fringe_hz, p.stroke_um), start as u64)?;
-    let sigma_noise = sigma_noise_per_scan(inputs, &noisy, p)?;
+    let sigma_noise = sigma_noise_per_scan(inputs, noisy, p)?;
+    let mut longer: Option<ContiguousScans> = None;
     let mut solved = None;
     for _ in 0..3 {
+        let scans = longer.as_ref().unwrap_or(shared);
         let at = AtPoint {
-            scans: &scans,
+            scans,
             point: p,
             convention: inputs.bias,
             sigma_noise_per_scan: sigma_noise,
@@ -131,16 +135,16 @@ fn resolve(
         if more.per_sequence() <= scans.per_sequence() {
             break;
         }
-        scans = more;
+        longer = Some(more);
     }
     let at = AtPoint {
-        scans: &scans,
+        scans: longer.as_ref().unwrap_or(shared),
         point: p,
         convention: inputs.bias,
         sigma_noise_per_scan: sigma_noise,
     };
     let lower = solve_scans(&at, target, start, false);
-    let period = scans.scan_period_s;
+    let period = shared.scan_period_s;
     p.observation = solved;
     p.scans_needed = solved.map(|o| o.scans as f64);
     p.time_s = p.scans_needed.map(|n| n * period);
@@ -153,7 +157,8 @@ fn resolve(
 }
 
 /// Re-solves each estimator's [`CANDIDATES`] fastest points (target mode),
-/// in parallel on the current pool.
+/// the settings in parallel on the current pool; the V1² and V2² points of
+/// one setting share its simulation.
 pub(super) fn resolve_candidates(
     inputs: &PlanInputs,
     sky: &PistonSpectrum,
@@ -161,15 +166,32 @@ pub(super) fn resolve_candidates(
     target: f64,
 ) -> Result<()> {
     use rayon::prelude::*;
-    let chosen = candidates(points);
-    let solved: Vec<PlanPoint> = chosen
+    let mut settings: Vec<((f64, f64), Vec<usize>)> = Vec::new();
+    for i in candidates(points) {
+        let key = (points[i].fringe_hz, points[i].stroke_um);
+        match settings.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, group)) => group.push(i),
+            None => settings.push((key, vec![i])),
+        }
+    }
+    let solved: Vec<Vec<(usize, PlanPoint)>> = settings
         .par_iter()
-        .map(|&i| {
-            let mut p = points[i];
-            resolve(inputs, sky, &mut p, target).map(|()| p)
+        .map(|(key, group)| {
+            let n = group
+                .iter()
+                .filter_map(|&i| points[i].scans_needed)
+                .fold(1.0, f64::max);
+            let (shared, noisy) = contiguous(inputs, sky, *key, n as u64)?;
+            group
+                .iter()
+                .map(|&i| {
+                    let mut p = points[i];
+                    resolve(inputs, sky, (&shared, &noisy), &mut p, target).map(|()| (i, p))
+                })
+                .collect::<Result<Vec<_>>>()
         })
         .collect::<Result<_>>()?;
-    for (i, p) in chosen.into_iter().zip(solved) {
+    for (i, p) in solved.into_iter().flatten() {
         points[i] = p;
     }
     Ok(())

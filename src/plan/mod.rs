@@ -247,6 +247,9 @@ pub struct Plan {
     pub no_v2_reason: Option<String>,
     /// The confidence level of the piston terms' intervals ([`CONFIDENCE`]).
     pub confidence: f64,
+    /// When the recommendation sits on an edge of the grid: which, and
+    /// what to do ([`answer::grid_edge_note`]).
+    pub grid_edge: Option<String>,
 }
 
 impl PlanInputs {
@@ -503,7 +506,9 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
         no_v1_reason: None,
         no_v2_reason: None,
         confidence: CONFIDENCE,
+        grid_edge: None,
     };
+    plan.grid_edge = answer::grid_edge_note(&plan, inputs);
     plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);
     plan.no_v2_reason = no_recommendation_reason(&plan, Estimator::V2);
     Ok(plan)

@@ -80,10 +80,10 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 pub const BLOCKS_PER_SEQUENCE: u64 = 4;
 
 /// Most samples (scans × N) one observation Monte Carlo of the plan
-/// simulates: 2^25, about 3 core-seconds
+/// simulates: 2^24, about 1.5 core-seconds
 /// ([`crate::commands::cost::SCAN_S_PER_SAMPLE`]); beyond, fewer blocks
 /// per sequence (wider intervals), but always at least n scans.
-pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 25;
+pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
 
 /// Scans per sequence that hold `scans` scans (the blocks wanted), span
 /// [`SPAN_CORRELATION_TIMES`] correlation times and hold `budget / K` (the
