@@ -42,6 +42,7 @@ fn inputs(instrument: Inputs, seeing: f64, rate: f64, fringe_hz: Vec<f64>) -> Pl
         scans: 2000,
         seed: 3,
         diameter_err_mas: 0.0,
+        bias: BiasConvention::Model,
     }
 }
 

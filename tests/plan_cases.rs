@@ -75,6 +75,7 @@ fn case(
             scans: 16_000,
             seed: 1,
             diameter_err_mas: 0.0,
+            bias: v2ref::conformance::estimate::BiasConvention::Model,
         },
     }
 }

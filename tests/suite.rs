@@ -43,6 +43,7 @@ mod piston_errors;
 mod piston_spectrum;
 mod plan;
 mod plan_cases;
+mod plan_observation;
 mod properties;
 mod readme;
 mod reproduce;

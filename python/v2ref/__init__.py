@@ -836,6 +836,9 @@ def plan(
     threads: int = 0,
     diameter_err_mas: float = 0.0,
     oifits: Optional[_PathLike] = None,
+    bias: str = "counts",
+    verify: bool = False,
+    verify_observations: int = 256,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -888,6 +891,20 @@ def plan(
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
         the target.
+    bias : {"counts", "model"}
+        Where the user's pipeline takes the photon-noise bias's counts from
+        (as ``v2ref plan --bias``): each scan's own counts (unbiased for
+        both estimators under piston) or the source model's piston-free
+        counts (off by the piston's shift of the fringe: predicted and
+        added to the bias). The predicted mean and the noise follow it.
+    verify : bool
+        Also simulate the recommended observation, n consecutive scans
+        through one atmosphere with photon and detector noise, estimated
+        with ``bias`` (as ``v2ref plan --verify``): ``verification`` holds
+        the σ(V²) and mean achieved with intervals beside the promise. A
+        run predicted to take over a minute warns first.
+    verify_observations : int
+        Observations simulated by ``verify``: 32 to 1e6.
     {physical}
 
     Returns
@@ -895,14 +912,19 @@ def plan(
     dict
         ``inputs``, ``points`` (every estimator × fringe frequency × stroke
         with each term: bandwidth and scan biases, noise and piston σ per
-        scan, piston bias, scans, time), ``best_v1``, ``best_v2``,
-        ``recommended``.
+        scan, piston bias, scans, time; the fastest of each estimator with
+        ``observation``, the error of their consecutive scans' mean),
+        ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
+        with ``verify``.
     """
     values = dict(locals())
     out = None if oifits is None else _os.fspath(oifits)
     if out is not None and not isinstance(out, str):
         raise TypeError(f"oifits: {oifits!r} is not a path")
     opt = lambda name, v: None if v is None else _float(name, v)
+    if not isinstance(verify, bool):
+        raise TypeError(f"verify: {verify!r} is not a bool")
+    observations = _uint("verify_observations", verify_observations)
     return _json.loads(
         _v2ref.plan(
             _physical(values, exclude=_PLAN_GRID),
@@ -918,6 +940,8 @@ def plan(
             _v2ref.check_threads(_uint("threads", threads)),
             _float("diameter_err_mas", diameter_err_mas),
             out,
+            _word("bias", bias),
+            observations if verify else None,
         )
     )
 

@@ -34,6 +34,14 @@ pub struct Args {
     /// Number of consecutive scans per fringe frequency.
     #[arg(long, value_parser = super::count_usize, default_value = "1000", allow_negative_numbers = true)]
     scans: usize,
+    /// Also σ(V²) of the mean of an observation of this many consecutive
+    /// scans (1 to 1e12), from contiguous piston sequences
+    /// (docs/conventions.md, "The observation's error").
+    #[arg(long, value_parser = super::count_u64, allow_negative_numbers = true, conflicts_with = "observation_s")]
+    observation_scans: Option<u64>,
+    /// The same for an observation this long, s (> 0): n = ceil(T / scan time).
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    observation_s: Option<f64>,
     #[command(flatten)]
     run: RunArgs,
     #[command(flatten)]
@@ -53,6 +61,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         threads: args.run.threads,
         psd: args.psd,
         wind_angle_deg: args.wind_angle_deg,
+        observation: match (args.observation_scans, args.observation_s) {
+            (Some(n), _) => Some(piston::ObservationLength::Scans(n)),
+            (None, Some(t)) => Some(piston::ObservationLength::Seconds(t)),
+            (None, None) => None,
+        },
     };
     let prepared = piston::prepare(&p, &req)?;
     super::output::announce("piston", &prepared.cost(&req));
@@ -65,12 +78,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
         "piston scans",
     );
     let tick = |k: u64| bar.inc(k);
-    let answer = piston::run(&prepared, &p, &req, Some(&tick))?;
+    let answer = piston::run_with_observation(&prepared, &p, &req, Some(&tick))?;
     bar.finish_and_clear();
     if args.output.json {
         print_json(&answer);
     } else {
-        print_table(&answer);
+        print_table(&answer.report);
+        if let Some(rows) = &answer.observation {
+            super::piston_observation::print(rows);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

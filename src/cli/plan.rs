@@ -6,6 +6,7 @@ use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, DEFAULTS};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
+use v2ref::conformance::estimate::BiasConvention;
 use v2ref::parameters::Physical;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
@@ -81,6 +82,22 @@ pub struct Args {
     /// error it gives is printed beside the corrections.
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     diameter_err_mas: f64,
+    /// Where your pipeline takes the photon-noise bias's counts from:
+    /// counts (each scan's own; unbiased for both estimators under piston)
+    /// or model (the source's piston-free counts; off by the piston's shift
+    /// of the fringe, predicted and added to the bias). The predicted mean
+    /// and the noise follow it.
+    #[arg(long, value_enum, default_value = "counts")]
+    bias: BiasConvention,
+    /// Also simulate the recommended observation (n consecutive scans
+    /// through one atmosphere, photon and detector noise, --bias): the
+    /// σ(V²) and mean achieved, with intervals, beside the promise. Its
+    /// duration is announced before it starts.
+    #[arg(long)]
+    verify: bool,
+    /// Observations simulated by --verify: 32 to 1e6.
+    #[arg(long, value_parser = super::count_u64, default_value = "256", allow_negative_numbers = true, requires = "verify")]
+    verify_observations: u64,
     /// Seed of the piston Monte Carlo.
     #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
@@ -169,6 +186,7 @@ fn request(args: &Args) -> (Physical, PlanRequest) {
         scans: args.scans,
         seed: args.seed,
         diameter_err_mas: args.diameter_err_mas,
+        bias: args.bias,
     };
     (p, req)
 }
@@ -189,8 +207,24 @@ pub fn run(args: Args) -> Result<ExitCode> {
     args.turbulence
         .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());
     let bar = progress_bar(prepared.points(), args.quiet || args.json, "plan");
-    let answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
+    let mut answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
     bar.finish_and_clear();
+    if args.verify {
+        let size = plan::verification(&answer, args.verify_observations)?;
+        let cost = v2ref::commands::cost::plan_verification(&size, args.threads);
+        if cost.notice().is_some() {
+            super::output::announce("plan --verify", &cost);
+        } else if !args.quiet {
+            super::output::write_stderr_line(format_args!(
+                "note: plan --verify: simulating {}, about {}",
+                cost.what,
+                v2ref::commands::cost::duration_words(cost.seconds)
+            ));
+        }
+        let bar = progress_bar(size.scans(), args.quiet || args.json, "plan --verify");
+        plan::verify(&mut answer, &size, args.threads, &|k| bar.inc(k))?;
+        bar.finish_and_clear();
+    }
     if let Some(path) = &args.svg {
         super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
     }
@@ -201,6 +235,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         print_json(&answer);
     } else {
         print_table(&answer.inputs, &answer.plan, &piston, args.all)?;
+        if let Some(v) = &answer.verification {
+            super::plan_verify::print(v);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -239,9 +276,20 @@ fn describe(p: &PlanPoint) -> String {
             p.scans_needed.unwrap_or(0.0)
         ),
         (None, Some(t)) => format!(
-            "{:.0} scans, {}{}",
+            "{:.0} {}scans, {}{}{}",
             p.scans_needed.unwrap_or(0.0),
+            if p.observation.is_some() {
+                "consecutive "
+            } else {
+                ""
+            },
             human_duration(t),
+            p.time_lower_s
+                .filter(|_| p.observation.is_some())
+                .map_or(String::new(), |lo| format!(
+                    " (from {} with the piston terms at the lower ends of their intervals)",
+                    human_duration(lo)
+                )),
             if p.exceeds_one_night {
                 " (WARNING: longer than one night, 10 h)"
             } else {
@@ -274,6 +322,34 @@ fn terms(p: &PlanPoint, confidence: f64) {
         confidence * 100.0,
         p.sigma_piston_upper,
         p.bias_piston_upper,
+    );
+}
+
+/// The observation's σ and mean, when the point was solved for them.
+fn observation(p: &PlanPoint, inputs: &PlanInputs) {
+    let Some(o) = p.observation else { return };
+    outln!(
+        "  observation of {} consecutive scans through one atmosphere: sigma(V^2) {:.2e} = noise {:.2e} (+) piston {:.2e} (upper end; measured {:.2e} +/- {:.1e}, inflation {:.2} over independent scans' {:.2e}{})",
+        o.scans,
+        o.sigma,
+        o.sigma_noise,
+        o.sigma_piston_upper,
+        o.sigma_piston,
+        o.sigma_piston_stderr,
+        o.variance_inflation,
+        o.sigma_piston_if_independent,
+        o.extrapolated_from_scans.map_or(String::new(), |m| format!(
+            "; measured at {m} scans and carried to n as 1/n"
+        )),
+    );
+    outln!(
+        "  predicted mean V^2 {:.5e} with --bias {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",
+        o.predicted_mean,
+        inputs.bias.name(),
+        o.bias,
+        o.bias_stderr,
+        p.bias_piston,
+        o.convention_offset,
     );
 }
 
@@ -321,7 +397,11 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
         Some(p) => {
             outln!("recommended ({target}): {}", describe(p));
             terms(p, plan.confidence);
+            observation(p, inputs);
             corrections(inputs, p);
+            if let Some(note) = &plan.grid_edge {
+                outln!("  NOTE: {note}");
+            }
         }
         None => outln!(
             "no recommendation ({target}): {}",
@@ -380,7 +460,14 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     );
     for p in &rows {
         let count = p.scans_needed.map_or("-".into(), |n| format!("{n:.0}"));
-        let time = p.time_s.map_or("-".into(), human_duration);
+        let time = p.time_s.map_or("-".into(), |t| {
+            let mark = if p.observation.is_none() && matches!(inputs.target, Target::SigmaV2(_)) {
+                "*"
+            } else {
+                ""
+            };
+            format!("{}{mark}", human_duration(t))
+        });
         let reach = p.sigma_reached.map_or("-".into(), |s| format!("{s:.2e}"));
         outln!(
             "{:>5} {:>9.1} {:>11.0} {:>14.3} {:>12.2e} {:>13.2e} {:>+13.2e} {:>11} {:>9} {:>10}",
@@ -395,6 +482,11 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
             time,
             reach
         );
+    }
+    if rows.iter().any(|p| {
+        p.observation.is_none() && p.time_s.is_some() && matches!(inputs.target, Target::SigmaV2(_))
+    }) {
+        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest 3 settings of each estimator only");
     }
     // What a "-" in the table stands for, once per reason shown.
     let mut reasons: Vec<&str> = Vec::new();

@@ -316,6 +316,26 @@ pub fn plan(
     })
 }
 
+/// `plan --verify`: the scans of the simulated observations through the
+/// piston with noise (sequence, scan, noise, estimators), in parallel.
+pub fn plan_verification(size: &crate::plan::verify::VerificationSize, threads: usize) -> Cost {
+    let n = size.samples as f64;
+    let scans = size.scans() as f64;
+    let observations = scans / size.scans_per_observation.max(1) as f64;
+    Cost {
+        seconds: PISTON_SPECTRUM_S
+            + n * n * PISTON_TABLE_S_PER_SAMPLE_SQ
+            + scans * n * (SCAN_S_PER_SAMPLE + ROW_S_PER_SAMPLE) / cores(threads),
+        what: format!(
+            "{} observations of {} consecutive scans ({} scans of {} samples)",
+            count(observations.floor()),
+            size.scans_per_observation,
+            count(scans),
+            size.samples
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -34,6 +34,82 @@ pub struct PistonRequest {
     pub psd: PistonPsdModel,
     /// Wind direction from the baseline, degrees.
     pub wind_angle_deg: f64,
+    /// Also σ of the mean of an observation of this many consecutive
+    /// scans, or of this long ([`ObservationLength`]).
+    pub observation: Option<ObservationLength>,
+}
+
+/// The length of the observation `piston` reports σ of the mean for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ObservationLength {
+    /// n consecutive scans.
+    Scans(u64),
+    /// Seconds: n = ⌈T / scan time⌉ at each fringe frequency.
+    Seconds(f64),
+}
+
+/// The answer of `piston`: the per-scan report, and with an observation
+/// length, σ of the mean of its consecutive scans at each frequency.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct PistonAnswer {
+    /// The per-scan Monte Carlo.
+    #[serde(flatten)]
+    pub report: PistonReport,
+    /// Per fringe frequency: the observation's σ(V²) from the piston.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub observation: Option<Vec<crate::plan::observation::ObservationPiston>>,
+}
+
+/// [`run`], and the observation's σ of `req.observation` at each fringe
+/// frequency (noise-free V1², V2² of contiguous scans,
+/// [`crate::plan::observation`]).
+pub fn run_with_observation(
+    prepared: &Prepared,
+    p: &Physical,
+    req: &PistonRequest,
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<PistonAnswer> {
+    let report = run(prepared, p, req, progress)?;
+    let Some(length) = req.observation else {
+        return Ok(PistonAnswer {
+            report,
+            observation: None,
+        });
+    };
+    let mut rows = Vec::new();
+    for &f in &prepared.fringe_hz {
+        let inputs = crate::simulator::Inputs {
+            piston: Some(p.piston_inputs(f)?),
+            read_noise: 0.0,
+            photon_noise: false,
+            ..p.inputs_unchecked()?
+        };
+        let model =
+            crate::simulator::Model::with_piston_spectrum(&inputs, prepared.spectrum.clone())?;
+        let scan_s = inputs.scan_setup().map_or(f64::NAN, |s| s.scan_time_s());
+        let n = match length {
+            ObservationLength::Scans(n) => n,
+            ObservationLength::Seconds(t) => {
+                crate::error::positive("observation_s", t)?;
+                (t / scan_s).ceil().max(1.0) as u64
+            }
+        };
+        let seed = crate::montecarlo::derive_seed(req.seed, "piston-observation", &[f]);
+        let job = || {
+            crate::plan::observation::observation_piston(
+                &model,
+                &prepared.spectrum,
+                n,
+                seed,
+                &|_| {},
+            )
+        };
+        rows.push(crate::montecarlo::in_pool(req.threads, job)?);
+    }
+    Ok(PistonAnswer {
+        report,
+        observation: Some(rows),
+    })
 }
 
 /// A checked `piston` run, ready to compute.

@@ -4,10 +4,12 @@
 //! [`prepare`] checks the inputs and builds the piston spectrum, [`run`]
 //! computes the answer.
 
+use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};
 use crate::parameters::Physical;
 use crate::piston::turbulence::PistonSpectrum;
 use crate::plan::photometry::{Band2Mass, Magnitude};
+use crate::plan::verify::{verification_size, Verification, VerificationSize};
 use crate::plan::{default_grid, Plan, PlanInputs, SeeingGiven, Target};
 use crate::simulator::Inputs;
 use serde::Serialize;
@@ -42,6 +44,8 @@ pub struct PlanRequest {
     pub seed: u64,
     /// The source diameter's uncertainty, mas.
     pub diameter_err_mas: f64,
+    /// The bias convention of the user's pipeline.
+    pub bias: BiasConvention,
 }
 
 /// How the photon rate was obtained from a magnitude (echoed in the
@@ -76,6 +80,9 @@ pub struct PlanAnswer {
     /// Every grid point and the recommendation.
     #[serde(flatten)]
     pub plan: Plan,
+    /// The recommended observation simulated (`verify`), beside its promise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verification: Option<Verification>,
 }
 
 /// A checked plan, ready to run.
@@ -170,6 +177,7 @@ pub fn prepare(p: &Physical, req: &PlanRequest) -> Result<Prepared> {
         scans: req.scans,
         seed: req.seed,
         diameter_err_mas: req.diameter_err_mas,
+        bias: req.bias,
     };
     inputs.validate()?;
     let piston = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
@@ -196,5 +204,45 @@ pub fn run(
         seeing_as_given: prepared.seeing_as_given,
         photometry: prepared.photometry,
         plan,
+        verification: None,
     })
+}
+
+/// The size of the verification of `answer`'s recommendation with
+/// `observations` simulated observations (for its announced cost), or why
+/// there is none to verify.
+pub fn verification(answer: &PlanAnswer, observations: u64) -> Result<VerificationSize> {
+    let p = answer.plan.recommended.ok_or_else(|| Error::Invalid {
+        param: "verify",
+        reason: "the plan recommends nothing to verify".into(),
+    })?;
+    let sky = answer
+        .inputs
+        .atmosphere
+        .spectrum(answer.inputs.instrument.baseline_m)?;
+    verification_size(&answer.inputs, &sky, &p, observations)
+}
+
+/// Simulates the recommended observation of `answer` ([`verification`]'s
+/// size) and records what it achieved in the answer; `progress` counts
+/// scans.
+pub fn verify(
+    answer: &mut PlanAnswer,
+    size: &VerificationSize,
+    threads: usize,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<()> {
+    let Some(p) = answer.plan.recommended else {
+        return Err(Error::Invalid {
+            param: "verify",
+            reason: "the plan recommends nothing to verify".into(),
+        });
+    };
+    let inputs = &answer.inputs;
+    let sky = inputs.atmosphere.spectrum(inputs.instrument.baseline_m)?;
+    let v = crate::montecarlo::in_pool(threads, || {
+        crate::plan::verify::verify(inputs, &sky, &p, size, progress)
+    })?;
+    answer.verification = Some(v);
+    Ok(())
 }

@@ -46,7 +46,10 @@ pub struct PistonRow {
     /// errors come from the spread between them (`sequences − 1` degrees of
     /// freedom), valid however correlated consecutive scans are.
     pub sequences: usize,
-    /// Independent scans worth the bias of V1 (variance / stderr²).
+    /// Independent scans worth the bias of V1 (variance / stderr²): below
+    /// `scans` when consecutive scans share their errors, above it when
+    /// their errors alternate in sign; uncertain with the sequences'
+    /// K − 1 degrees of freedom.
     pub effective_scans_v1: f64,
     /// Independent scans worth the bias of V2.
     pub effective_scans_v2: f64,

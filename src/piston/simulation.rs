@@ -46,7 +46,10 @@ pub struct WindowResult {
     pub v2: Summary,
     /// The number of independent scans worth the bias of V1 (its variance
     /// over its squared standard error): fewer than `scans` when
-    /// consecutive scans are correlated.
+    /// consecutive scans share their errors, more when their errors
+    /// alternate in sign (negatively correlated scans average out faster
+    /// than independent ones), and itself uncertain (its error has the
+    /// sequences' K − 1 degrees of freedom).
     pub v1_effective_scans: f64,
     /// The same for V2.
     pub v2_effective_scans: f64,

@@ -131,3 +131,43 @@ pub fn no_recommendation_reason(plan: &Plan, e: Estimator) -> Option<String> {
         CONFIDENCE * 100.0
     ))
 }
+
+/// Where the recommendation sits on an edge of the grid, in one line (None
+/// inside it, or on a grid of one value): the best setting may then lie
+/// outside the grid, which the plan does not search; the user widens it
+/// (`--fringe-hz`, `--stroke-um`) within what the detector allows (it
+/// reads `samples per fringe × f` frames per second).
+pub fn grid_edge_note(plan: &Plan, inputs: &super::PlanInputs) -> Option<String> {
+    let p = plan.recommended?;
+    let edge = |values: &[f64], v: f64| {
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        match () {
+            _ if lo == hi => None,
+            _ if v >= hi => Some(("top", lo, hi)),
+            _ if v <= lo => Some(("bottom", lo, hi)),
+            _ => None,
+        }
+    };
+    let mut notes = Vec::new();
+    if let Some((side, lo, hi)) = edge(&inputs.fringe_hz, p.fringe_hz) {
+        notes.push(format!(
+            "the fringe frequency {:.1} Hz is the {side} of the grid ({lo:.1} to {hi:.1} Hz; {:.0} detector frames/s at {:.1} Hz)",
+            p.fringe_hz,
+            inputs.samples_per_fringe * hi,
+            hi
+        ));
+    }
+    if let Some((side, lo, hi)) = edge(&inputs.stroke_um, p.stroke_um) {
+        notes.push(format!(
+            "the stroke {:.0} um is the {side} of the grid ({lo:.0} to {hi:.0} um)",
+            p.stroke_um
+        ));
+    }
+    (!notes.is_empty()).then(|| {
+        format!(
+            "on the edge of the grid: {}; the best setting may lie beyond it, which the plan did not search: widen the grid (--fringe-hz, --stroke-um) within what the detector and the delay line allow",
+            notes.join("; ")
+        )
+    })
+}

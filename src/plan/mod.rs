@@ -42,10 +42,14 @@
 //! scan-mean piston.
 
 pub mod answer;
+mod candidates;
+pub mod observation;
 pub mod photometry;
 mod reach;
+pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
+pub use observation::ObservationError;
 use reach::{best, choose, reach, Bounds};
 
 use crate::conformance::estimate::BiasConvention;
@@ -124,6 +128,9 @@ pub struct PlanInputs {
     /// The 1σ uncertainty of the source's angular diameter, mas (0: known
     /// exactly): its effect on V² is reported beside each correction.
     pub diameter_err_mas: f64,
+    /// Where the user's pipeline takes the photon-noise bias's counts from
+    /// (the predicted mean and the noise σ of the observation follow it).
+    pub bias: BiasConvention,
 }
 
 /// `count` frequencies from `lo` to `hi` Hz, evenly spaced in log.
@@ -187,7 +194,11 @@ pub struct PlanPoint {
     pub bias_piston_upper: f64,
     /// Scans needed for the target σ, with the piston terms at the upper
     /// ends of their confidence intervals (None: unreachable, the bias's
-    /// upper end ≥ target).
+    /// upper end ≥ target): consecutive scans through one atmosphere when
+    /// `observation` is present (the observation's own σ, n on both
+    /// sides), else σ²_scan/(target² − bias²), which assumes independent
+    /// scans (the points not among the fastest [`candidates::CANDIDATES`]
+    /// of their estimator).
     pub scans_needed: Option<f64>,
     /// Time for them, s.
     pub time_s: Option<f64>,
@@ -213,6 +224,10 @@ pub struct PlanPoint {
     pub sigma_reached: Option<f64>,
     /// Why this point's null fields are null, in words (None: none is).
     pub why_null: Option<&'static str>,
+    /// The observation of `scans_needed` consecutive scans, measured on
+    /// contiguous piston sequences (target mode, the fastest
+    /// [`candidates::CANDIDATES`] points of each estimator; None elsewhere).
+    pub observation: Option<ObservationError>,
 }
 
 /// The plan.
@@ -232,6 +247,9 @@ pub struct Plan {
     pub no_v2_reason: Option<String>,
     /// The confidence level of the piston terms' intervals ([`CONFIDENCE`]).
     pub confidence: f64,
+    /// When the recommendation sits on an edge of the grid: which, and
+    /// what to do ([`answer::grid_edge_note`]).
+    pub grid_edge: Option<String>,
 }
 
 impl PlanInputs {
@@ -413,6 +431,7 @@ fn grid_point(
             v_sq_error_from_diameter: diameter_error,
             sigma_reached: None,
             why_null: None,
+            observation: None,
         };
         let lower = Bounds {
             sigma_piston: (piston.std - t_factor * piston.stderr_std).max(0.0),
@@ -470,7 +489,12 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
             })
             .collect::<Result<Vec<_>>>()
     })?;
-    let points: Vec<PlanPoint> = points.into_iter().flatten().collect();
+    let mut points: Vec<PlanPoint> = points.into_iter().flatten().collect();
+    if let Target::SigmaV2(target) = inputs.target {
+        crate::montecarlo::in_pool(threads, || {
+            candidates::resolve_candidates(inputs, &sky, &mut points, target)
+        })?;
+    }
     let (best_v1, best_v2) = (best(&points, Estimator::V1), best(&points, Estimator::V2));
     let bests: Vec<PlanPoint> = [best_v1, best_v2].into_iter().flatten().collect();
     let recommended = choose(bests.iter());
@@ -482,7 +506,9 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
         no_v1_reason: None,
         no_v2_reason: None,
         confidence: CONFIDENCE,
+        grid_edge: None,
     };
+    plan.grid_edge = answer::grid_edge_note(&plan, inputs);
     plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);
     plan.no_v2_reason = no_recommendation_reason(&plan, Estimator::V2);
     Ok(plan)

@@ -111,6 +111,13 @@ pub(super) fn choose<'a>(points: impl Iterator<Item = &'a PlanPoint> + Clone) ->
         .map(|(_, p)| *p)
 }
 
+/// The best point of estimator `e`: among the points re-solved at the
+/// observation level when there are any (target mode).
 pub(super) fn best(points: &[PlanPoint], e: Estimator) -> Option<PlanPoint> {
-    choose(points.iter().filter(|p| p.estimator == e))
+    let ours = || points.iter().filter(move |p| p.estimator == e);
+    if ours().any(|p| p.observation.is_some()) {
+        choose(ours().filter(|p| p.observation.is_some()))
+    } else {
+        choose(ours())
+    }
 }

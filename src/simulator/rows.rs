@@ -85,6 +85,22 @@ impl Model {
     /// # Ok::<(), v2ref::Error>(())
     /// ```
     pub fn rows(&self, rows: u64, seed: u64, threads: usize) -> Result<Rows<'_>> {
+        self.rows_with_layout(rows, seed, threads, None)
+    }
+
+    /// [`Model::rows`] with the piston layout given, `(sequences,
+    /// stride)`: the rows are cut from that many independent sequences
+    /// (shared out as [`PistonSequence::synthesize_layout`] does) whose
+    /// scans start `stride` samples apart (the scan period: an
+    /// observation's consecutive scans). The caller keeps all the sequences
+    /// within [`crate::piston::series::MAX_SERIES`] samples.
+    pub fn rows_with_layout(
+        &self,
+        rows: u64,
+        seed: u64,
+        threads: usize,
+        layout: Option<(usize, usize)>,
+    ) -> Result<Rows<'_>> {
         if rows == 0 {
             return Err(Error::OutOfRange {
                 param: "rows",
@@ -94,7 +110,7 @@ impl Model {
         }
         let piston = match (&self.piston_spectrum, self.inputs.scan_setup()) {
             (Some(spectrum), Some(setup)) => {
-                Some(self.piston_scans(spectrum, setup, rows, seed, threads)?)
+                Some(self.piston_scans(spectrum, setup, (rows, seed, threads), layout)?)
             }
             _ => None,
         };
@@ -120,17 +136,24 @@ impl Model {
         &self,
         spectrum: &crate::piston::turbulence::PistonSpectrum,
         setup: ScanSetup,
-        rows: u64,
-        seed: u64,
-        threads: usize,
+        (rows, seed, threads): (u64, u64, usize),
+        layout: Option<(usize, usize)>,
     ) -> Result<PistonScans> {
         let size = RunSize {
             scans: usize::try_from(rows).unwrap_or(usize::MAX),
             seed: piston::sweep_seed(seed, setup.fringe_hz),
             threads,
         };
-        validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
-        let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
+        let sequence = match layout {
+            None => {
+                validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
+                PistonSequence::synthesize(spectrum, &setup, &size)?
+            }
+            Some(layout) => {
+                setup.validate()?;
+                PistonSequence::synthesize_layout(spectrum, &setup, &size, layout)?
+            }
+        };
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {

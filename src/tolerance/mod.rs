@@ -49,7 +49,7 @@
 //!   [`INTEGRATION_LOSS_ABS`], [`PRINTED_5_DECIMALS_ABS`],
 //!   [`PRINTED_3_DECIMALS_ABS`], [`PRINTED_2_DECIMALS_ABS`];
 //! * Monte Carlo: [`MC_SIGMAS`], [`SIGNIFICANCE_SIGMAS`], [`POWER_FACTOR`],
-//!   [`MC_POWER_SIGMAS`].
+//!   [`MC_POWER_SIGMAS`], [`PLAN_MEAN_SIGMAS`].
 //!
 //! The assertion macros [`assert_rel_eq!`](crate::assert_rel_eq),
 //! [`assert_abs_eq!`](crate::assert_abs_eq) and

@@ -23,3 +23,11 @@ pub const POWER_FACTOR: f64 = 100.0;
 /// fluctuation nor the error of the standard error (a few % at the sample
 /// sizes used) can fake the rejection.
 pub const MC_POWER_SIGMAS: f64 = 50.0;
+
+/// Standard errors within which a plan's predicted mean V² must agree with
+/// the mean of its simulated observations (`tests/plan_observation.rs`):
+/// 3, the acceptance of the planner's bias-convention check (issue 33),
+/// stricter than [`MC_SIGMAS`]; the seeds are fixed (the check is
+/// deterministic), and the error is that of the difference (the
+/// prediction's and the simulation's standard errors combined).
+pub const PLAN_MEAN_SIGMAS: f64 = 3.0;

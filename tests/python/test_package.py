@@ -649,6 +649,33 @@ def test_plan_answer_states_corrections_and_durations():
     assert out["confidence"] == 0.9
 
 
+@needs_cli
+def test_plan_verify_and_bias_match_the_cli():
+    """``verify=True`` and ``bias`` are ``plan --verify --bias`` (same JSON);
+    bad values raise naming the keyword."""
+    args = dict(wavelength_um=2.2, bandwidth_nm=400.0, source="point", baseline_m=50.0,
+                photon_rate_per_s=2e6, read_noise=2.0, fringe_hz=[800.0], stroke_um=[32.0],
+                scans=400, target_sigma_v2=3e-3)
+    mine = v2ref.plan(**args, bias="model", verify=True, verify_observations=64)
+    out = cli("plan", "--wavelength-um", "2.2", "--bandwidth-nm", "400", "--source", "point",
+              "--baseline-m", "50", "--photon-rate-per-s", "2e6", "--read-noise", "2",
+              "--fringe-hz", "800", "--stroke-um", "32", "--scans", "400",
+              "--target-sigma-v2", "3e-3", "--bias", "model", "--verify",
+              "--verify-observations", "64", "--json", "--quiet")
+    assert mine == json.loads(out)
+    v = mine["verification"]
+    assert v["bias"] == "model" and mine["inputs"]["bias"] == "model"
+    assert v["observations"] >= 64
+    assert v["scans_per_observation"] == mine["recommended"]["scans_needed"]
+    assert "verification" not in v2ref.plan(**args)
+    with pytest.raises(ValueError, match="bias"):
+        v2ref.plan(**args, bias="pipeline")
+    with pytest.raises(ValueError, match="verify_observations"):
+        v2ref.plan(**args, verify=True, verify_observations=5)
+    with pytest.raises(TypeError, match="verify"):
+        v2ref.plan(**args, verify="yes")
+
+
 def test_the_namespace_is_the_api():
     """``dir(v2ref)`` shows ``__all__``, the extension module and dunders only:
     no typing names (``Optional``…), no ``annotations``, no helpers."""

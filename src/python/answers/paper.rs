@@ -70,6 +70,7 @@ pub(super) fn piston(
         threads,
         psd,
         wind_angle_deg,
+        observation: None,
     };
     let prepared = ok(commands::piston::prepare(&p, &req))?;
     warn_cost(py, "piston", &prepared.cost(&req))?;

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 /// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3);
 /// `oifits`: `--oifits`.
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -29,6 +29,8 @@ pub(super) fn plan(
     threads: usize,
     diameter_err_mas: f64,
     oifits: Option<PathBuf>,
+    bias: &str,
+    verify_observations: Option<u64>,
 ) -> PyResult<String> {
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::check_fits_extension(path, "oifits"))?;
@@ -46,10 +48,23 @@ pub(super) fn plan(
         scans,
         seed,
         diameter_err_mas,
+        bias: ok(parse_enum("bias", bias, &["model", "counts"]))?,
     };
     let prepared = ok(commands::plan::prepare(&p, &req))?;
     warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
-    let answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
+    let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
+    if let Some(observations) = verify_observations {
+        // `plan --verify`: its cost warned about before it starts.
+        let size = ok(commands::plan::verification(&answer, observations))?;
+        warn_cost(
+            py,
+            "plan(verify=True)",
+            &commands::cost::plan_verification(&size, threads),
+        )?;
+        interruptible(py, |tick| {
+            commands::plan::verify(&mut answer, &size, threads, tick)
+        })?;
+    }
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::write_plan(
             path,
