@@ -38,6 +38,14 @@ pub struct Args {
     /// pipeline's own file); default: as the keyword says.
     #[arg(long, value_enum)]
     estimator: Option<super::oifits::Which>,
+    /// OIFITS: read only the rows of this target (its TARGET name in
+    /// OI_TARGET, or its TARGET_ID); needed when the rows are of several.
+    #[arg(long, value_name = "NAME|ID")]
+    target: Option<String>,
+    /// OIFITS: read a file whose CHECKSUM or DATASUM does not match its
+    /// bytes (refused by default: it changed after it was written).
+    #[arg(long)]
+    accept_checksum_mismatch: bool,
     /// Window of bins the estimates sum.
     #[arg(long, value_enum, default_value = "positive")]
     bins: BinWindow,
@@ -110,13 +118,18 @@ pub fn run(args: Args) -> Result<ExitCode> {
             ),
         )
     })?;
+    let flags = super::oifits::OifitsFlags {
+        insname: args.insname.clone(),
+        estimator: args.estimator,
+        target: args.target.clone(),
+        accept_checksum_mismatch: args.accept_checksum_mismatch,
+    };
     let input = super::oifits::read_for_score(
         &args.estimates,
         args.columns.as_deref(),
         &sc,
-        truth,
-        args.insname.as_deref(),
-        args.estimator,
+        (truth, args.bins, args.bias),
+        &flags,
     )?;
     let (est, rows) = (&input.estimates, input.rows);
     let report = score_report(

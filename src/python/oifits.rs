@@ -54,8 +54,16 @@ fn estimator_name(e: Estimator) -> &'static str {
 /// `estimator`, `revn`, `hdu`, `eff_wave_m`, and `vis2data`, `vis2err`,
 /// `flag` of shape (rows, nwave)).
 #[pyfunction]
-fn read_oifits<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyList>> {
-    let tables = ok(oifits::read_vis2_tables(Path::new(path), "path"))?;
+#[pyo3(signature = (path, accept_checksum_mismatch=false))]
+fn read_oifits<'py>(
+    py: Python<'py>,
+    path: &str,
+    accept_checksum_mismatch: bool,
+) -> PyResult<Bound<'py, PyList>> {
+    let options = oifits::ReadOptions {
+        accept_checksum_mismatch,
+    };
+    let tables = ok(oifits::read_oifits_file(Path::new(path), "path", options))?.tables;
     let out = PyList::empty(py);
     for t in tables {
         let d = PyDict::new(py);
@@ -139,7 +147,8 @@ fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult
 /// dict (`v1_sq`, `v2_sq`: arrays of the unflagged rows or None; `rows`,
 /// `flagged`).
 #[pyfunction]
-#[pyo3(signature = (path, sidecar, sidecar_name, insname, estimator))]
+#[pyo3(signature = (path, sidecar, sidecar_name, insname, estimator, target, bins, bias, accept_checksum_mismatch))]
+#[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
 fn read_oifits_estimates<'py>(
     py: Python<'py>,
     path: &str,
@@ -147,7 +156,13 @@ fn read_oifits_estimates<'py>(
     sidecar_name: &str,
     insname: Option<&str>,
     estimator: Option<&str>,
+    target: Option<&str>,
+    bins: &str,
+    bias: &str,
+    accept_checksum_mismatch: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let bins: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
+    let bias: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let est = match estimator {
         None => None,
@@ -163,9 +178,19 @@ fn read_oifits_estimates<'py>(
     let expected = Expected {
         rows: sc.data.rows,
         band_m: (1e-6 / hi, 1e-6 / lo),
+        bins,
+        bias,
+    };
+    let choice = oifits::Choice {
+        insname,
+        estimator: est,
+        target,
+        read: oifits::ReadOptions {
+            accept_checksum_mismatch,
+        },
     };
     let read = ok(
-        oifits::read_oifits_estimates(Path::new(path), insname, est, &expected)
+        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
             .map_err(|e| renamed(e, "estimates", "path")),
     )?;
     let d = PyDict::new(py);

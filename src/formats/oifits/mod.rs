@@ -26,15 +26,18 @@
 //! `V2R_EST`, `V2R_BINS`, `V2R_BIAS` of each `OI_VIS2` table.
 
 pub mod docs;
+pub mod fits;
 mod mem;
+mod order;
 pub mod read;
 mod select;
 pub mod setting;
+pub mod table;
 pub mod write;
 
 pub use read::{
-    read_oifits_estimates, read_vis2_tables, truth_for_kept_rows, Expected, OifitsEstimates,
-    Vis2Table,
+    parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables, truth_for_kept_rows,
+    Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
