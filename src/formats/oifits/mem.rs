@@ -85,15 +85,21 @@ impl MemFits {
         }
     }
 
-    /// Flushes and closes the file; its bytes (a whole number of blocks).
+    /// Writes every HDU's `CHECKSUM` and `DATASUM`, flushes and closes the
+    /// file; its bytes (a whole number of blocks).
     pub(crate) fn into_bytes(mut self) -> Result<Vec<u8>, String> {
         let mut status = 0;
         let (mut nhdu, mut head, mut start, mut end) = (0, 0, 0, 0);
-        // SAFETY: the file is open; the calls only write the out-parameters.
+        // SAFETY: the file is open; the calls write the out-parameters and
+        // the file's own buffer, which cfitsio grows itself (realloc).
         unsafe {
             let fptr = self.file.as_raw();
-            fitsio_sys::ffflus(fptr, &mut status);
             fitsio_sys::ffthdu(fptr, &mut nhdu, &mut status);
+            for hdu in 1..=nhdu {
+                fitsio_sys::ffmahd(fptr, hdu, ptr::null_mut(), &mut status);
+                fitsio_sys::ffpcks(fptr, &mut status);
+            }
+            fitsio_sys::ffflus(fptr, &mut status);
             fitsio_sys::ffmahd(fptr, nhdu, ptr::null_mut(), &mut status);
             fitsio_sys::ffghadll(fptr, &mut head, &mut start, &mut end, &mut status);
         }

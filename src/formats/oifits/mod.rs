@@ -48,12 +48,26 @@ use std::path::Path;
 /// The extensions of a FITS file (lower case, without the dot).
 pub const FITS_EXTENSIONS: [&str; 3] = ["fits", "oifits", "fit"];
 
-/// True when `path` ends in one of [`FITS_EXTENSIONS`] (any case).
+/// True when `path` ends in one of [`FITS_EXTENSIONS`] (any case),
+/// possibly followed by `.gz` (a gzipped file, read and written as such).
 pub fn is_fits_path(path: &Path) -> bool {
-    path.extension()
+    let plain = if is_gzip_path(path) {
+        path.file_stem().map(Path::new).unwrap_or(path)
+    } else {
+        path
+    };
+    plain
+        .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .is_some_and(|e| FITS_EXTENSIONS.contains(&e.as_str()))
+}
+
+/// True when `path` ends in `.gz` (any case).
+pub fn is_gzip_path(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"))
 }
 
 /// Keyword naming the estimator of an `OI_VIS2` table (`V1SQ` or `V2SQ`).
@@ -93,7 +107,7 @@ pub fn check_fits_extension(path: &Path, param: &'static str) -> Result<()> {
         param,
         path,
         "",
-        format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit"),
+        format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit (each possibly .gz)"),
     ))
 }
 

@@ -93,6 +93,17 @@ pub fn parse_oifits(
     options: ReadOptions,
 ) -> std::result::Result<OifitsFile, Refusal> {
     let hdus = fits::parse(bytes)?;
+    if let Some(n) = hdus[0].header.int(super::write::KEY_NHDU) {
+        if n != hdus.len() as i64 {
+            return Err(fits::refuse(
+                format!("HDU 1, keyword {}", super::write::KEY_NHDU),
+                format!(
+                    "the file was written with {n} HDUs and holds {}: it is truncated",
+                    hdus.len()
+                ),
+            ));
+        }
+    }
     if !options.accept_checksum_mismatch {
         for hdu in &hdus {
             let bad = checksum_mismatches(hdu);

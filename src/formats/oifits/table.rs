@@ -208,21 +208,22 @@ impl<'a> Table<'a> {
     /// Every value of numeric column `c`, row after row, as f64 with
     /// `TSCALn`/`TZEROn` applied; refused for a non-numeric column.
     pub fn reals(&self, c: &Column) -> Result<Vec<f64>, Refusal> {
-        let convert: fn(&[u8]) -> f64 =
-            match c.kind {
-                Kind::F64 => |b| f64::from_be_bytes(b.try_into().unwrap_or_default()),
-                Kind::F32 => |b| f32::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
-                Kind::I16 => |b| i16::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
-                Kind::I32 => |b| i32::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
-                Kind::I64 => |b| i64::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
-                Kind::U8 => |b| b[0] as f64,
-                other => return Err(refuse(
+        let convert: fn(&[u8]) -> f64 = match c.kind {
+            Kind::F64 => |b| f64::from_be_bytes(b.try_into().unwrap_or_default()),
+            Kind::F32 => |b| f32::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
+            Kind::I16 => |b| i16::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
+            Kind::I32 => |b| i32::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
+            Kind::I64 => |b| i64::from_be_bytes(b.try_into().unwrap_or_default()) as f64,
+            Kind::U8 => |b| b[0] as f64,
+            other => {
+                return Err(refuse(
                     format!("{}, column {}", self.hdu.at(), c.name),
                     format!(
                         "of type {other:?}; a numeric column (TFORM D, E, I, J, K or B) is needed"
                     ),
-                )),
-            };
+                ))
+            }
+        };
         let (scale, zero) = c.scale;
         self.each(c, |b| convert(b) * scale + zero)
     }
