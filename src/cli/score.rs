@@ -131,6 +131,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
         (truth, args.bins, args.bias),
         &flags,
     )?;
+    if let Some(flagged) = input.flagged {
+        let floor = v2ref::formats::oifits::min_unflagged_rows(sc.data.rows);
+        if input.rows < floor {
+            return Ok(too_few_rows(&args, sc.data.rows, flagged, floor));
+        }
+    }
     let (est, rows) = (&input.estimates, input.rows);
     let report = score_report(
         est.v1_sq.as_deref(),
@@ -168,6 +174,31 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         ExitCode::from(EXIT_FAIL)
     })
+}
+
+/// The verdict "too few rows": more of the set's rows are FLAGged than
+/// the score can stand for (status [`EXIT_FAIL`]).
+fn too_few_rows(args: &Args, set_rows: u64, flagged: u64, floor: u64) -> ExitCode {
+    let kept = set_rows - flagged;
+    if args.json {
+        print_json(&serde_json::json!({
+            "sidecar": args.sidecar.display().to_string(),
+            "estimates": args.estimates.display().to_string(),
+            "bins": args.bins,
+            "bias": args.bias,
+            "rows": kept,
+            "flagged": flagged,
+            "min_rows": floor,
+            "verdict": "too few rows",
+            "pass": false,
+        }));
+    } else {
+        outln!(
+            "FAIL: too few rows: {kept} unflagged of {set_rows} ({flagged} FLAGged); \
+             at least {floor} are scored"
+        );
+    }
+    ExitCode::from(EXIT_FAIL)
 }
 
 fn verdict(pass: bool) -> &'static str {

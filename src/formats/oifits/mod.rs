@@ -36,8 +36,8 @@ pub mod table;
 pub mod write;
 
 pub use read::{
-    parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables, truth_for_kept_rows,
-    Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
+    min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
+    truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};

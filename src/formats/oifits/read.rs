@@ -299,4 +299,6 @@ pub struct Expected {
     pub bias: crate::conformance::estimate::BiasConvention,
 }
 
-pub use super::select::{read_oifits_estimates, truth_for_kept_rows, Choice};
+pub use super::select::{
+    min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice, MIN_UNFLAGGED_FRACTION,
+};

@@ -9,6 +9,18 @@ use crate::formats::Estimates;
 use crate::{Error, Result};
 use std::path::Path;
 
+/// Fewest unflagged rows scored, as a fraction of the set's rows. FLAG is
+/// a selection: the truth scored against assumes the rows kept are a
+/// random half or more of the set; with more flagged, the verdict would
+/// say more about the flags than about the estimator (398 rows flagged of
+/// 400 left a test of no power that still said PASS).
+pub const MIN_UNFLAGGED_FRACTION: f64 = 0.5;
+
+/// The fewest unflagged rows of a set of `rows` rows that are scored.
+pub fn min_unflagged_rows(rows: u64) -> u64 {
+    (rows as f64 * MIN_UNFLAGGED_FRACTION).ceil() as u64
+}
+
 /// Relative slack on the band's ends (`EFF_WAVE` is stored as float32).
 const BAND_SLACK: f64 = 1e-4;
 

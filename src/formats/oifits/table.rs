@@ -304,9 +304,9 @@ fn column(hdu: &Hdu, n: i64, offset: u64) -> Result<(Column, u64), Refusal> {
     })?;
     let width = match kind {
         Kind::Bit => repeat.div_ceil(8),
-        _ => repeat.checked_mul(kind.bytes()).unwrap_or(u64::MAX),
+        _ => repeat.saturating_mul(kind.bytes()),
     };
-    let next = offset.checked_add(width).unwrap_or(u64::MAX);
+    let next = offset.saturating_add(width);
     let real = |k: &str, default: f64| match hdu.header.get(&format!("{k}{n}")) {
         Some(Value::Int(i)) => *i as f64,
         Some(Value::Real(x)) => *x,
