@@ -1,7 +1,11 @@
-//! Malformed and truncated FITS files given to `score --estimates`: each
-//! is refused with status 2 and one line naming `--estimates`, never a
-//! panic, and never an allocation the file's size does not support (a
-//! header announcing a billion rows is refused before any is read).
+//! Malformed, truncated and altered FITS files given to `score
+//! --estimates`: each is refused with status 2 and one line naming
+//! `--estimates`, never a panic, and never an allocation the file's size
+//! does not support (a header announcing a billion rows is refused before
+//! any is read). The structural checks are tried with the checksums
+//! ignored (`--accept-checksum-mismatch`), so that each is reached; the
+//! checksums on their own refuse any altered byte. The files that crashed
+//! or fooled the former reader are kept in `tests/data/oifits_damaged/`.
 
 use std::path::Path;
 use std::process::Command;
@@ -106,6 +110,16 @@ fn malformed_fits_files_are_refused_cleanly() {
             "--estimates",
         ),
         ("OI_REVN 7", with_card(&good, "OI_REVN", "7", 3), "OI_REVN"),
+        (
+            "wider rows",
+            with_card(&good, "NAXIS1", "630000", 3),
+            "truncated or its header",
+        ),
+        (
+            "a whole HDU cut off",
+            good[..good.len() - 2880 * 7].to_vec(),
+            "truncated",
+        ),
     ];
     for (what, bytes, words) in cases {
         let path = dir.path().join("bad.fits");
@@ -116,6 +130,7 @@ fn malformed_fits_files_are_refused_cleanly() {
             &sidecar,
             "--estimates",
             path.to_str().unwrap(),
+            "--accept-checksum-mismatch",
         ]);
         assert_eq!(code, 2, "{what}: {err}");
         assert!(!err.contains("panicked"), "{what}: {err}");
@@ -125,4 +140,112 @@ fn malformed_fits_files_are_refused_cleanly() {
             "{what}: {err}"
         );
     }
+}
+
+fn score_status(sidecar: &str, path: &Path, extra: &[&str]) -> (i32, String) {
+    let mut args = vec![
+        "score",
+        "--sidecar",
+        sidecar,
+        "--estimates",
+        path.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+#[test]
+fn a_file_changed_after_it_was_written_is_refused_by_its_checksums() {
+    let dir = tempfile::tempdir().unwrap();
+    let (sidecar, good) = set(dir.path());
+    let path = dir.path().join("changed.fits");
+    // One byte of a VIS2DATA value changed: the data's sum no longer matches.
+    let mut data = good.clone();
+    let last = data.len() - 2880 * 2;
+    data[last] ^= 0x01;
+    std::fs::write(&path, &data).unwrap();
+    let (code, err) = score_status(&sidecar, &path, &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("DATASUM") && err.contains("--accept-checksum-mismatch"),
+        "{err}"
+    );
+    let (code, err) = score_status(&sidecar, &path, &["--accept-checksum-mismatch"]);
+    assert!(code == 0 || code == 1, "{err}");
+    // A header card changed: its HDU's CHECKSUM no longer matches.
+    std::fs::write(&path, with_card(&good, "OI_REVN", "1", 3)).unwrap();
+    let (code, err) = score_status(&sidecar, &path, &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("CHECKSUM") && !err.contains("DATASUM"),
+        "{err}"
+    );
+    // The file cut at any whole block is refused.
+    for blocks in 1..good.len() / 2880 {
+        std::fs::write(&path, &good[..blocks * 2880]).unwrap();
+        let (code, err) = score_status(&sidecar, &path, &["--accept-checksum-mismatch"]);
+        assert_eq!(code, 2, "{blocks} blocks: {err}");
+    }
+}
+
+#[test]
+fn the_files_that_crashed_or_fooled_the_former_reader_are_refused() {
+    // Written by the former writer (no checksums); the former reader died
+    // of a segmentation fault on the inflated sizes and scored the
+    // truncated files (PASS for one block cut off).
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/oifits_damaged");
+    let sidecar = dir.join("set.json");
+    for name in [
+        "naxis1_inflated",
+        "naxis2_inflated",
+        "truncated_one_block",
+        "truncated_two_blocks",
+    ] {
+        let path = dir.join(format!("{name}.fits.gz"));
+        let (code, err) = score_status(sidecar.to_str().unwrap(), &path, &[]);
+        assert_eq!(code, 2, "{name}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{name}: {err}");
+        assert!(err.contains("truncated"), "{name}: {err}");
+    }
+}
+
+#[test]
+fn a_gzipped_file_is_scored_as_the_plain_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (sidecar, good) = set(dir.path());
+    let plain = dir.path().join("est.fits");
+    let gz = dir.path().join("est.fits.gz");
+    std::fs::write(&plain, &good).unwrap();
+    let (code, err) = run(&[
+        "estimate",
+        "--sidecar",
+        &sidecar,
+        "--out",
+        gz.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(std::fs::read(&gz).unwrap()[..2], [0x1f, 0x8b]);
+    let json = |p: &Path| {
+        let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .args([
+                "score",
+                "--sidecar",
+                &sidecar,
+                "--estimates",
+                p.to_str().unwrap(),
+                "--json",
+            ])
+            .output()
+            .unwrap();
+        let mut v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["estimates"] = serde_json::Value::Null;
+        v
+    };
+    assert_eq!(json(&plain), json(&gz));
+    // A gzip stream cut short is refused, naming gzip.
+    let bytes = std::fs::read(&gz).unwrap();
+    std::fs::write(&gz, &bytes[..bytes.len() / 2]).unwrap();
+    let (code, err) = score_status(&sidecar, &gz, &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("gzip"), "{err}");
 }

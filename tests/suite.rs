@@ -36,6 +36,7 @@ mod noise;
 mod noise_calibrated;
 mod noise_mc;
 mod oifits;
+mod oifits_fuzz;
 mod oifits_robustness;
 mod piston;
 mod piston_claims;

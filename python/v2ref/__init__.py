@@ -519,12 +519,14 @@ def score(
 
     Parameters
     ----------
-    estimates : dict, structured array or array_like
+    estimates : dict, structured array, array_like or OIFITS path
         The normalized per-row estimates (dimensionless), one per row of
         the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
         :func:`estimate`), a structured array with those fields, or a 2-D
         array whose columns are named by ``columns`` (default
-        ``v1_sq,v2_sq``; a 1-D array needs one name).
+        ``v1_sq,v2_sq``; a 1-D array needs one name); or the path of an
+        OIFITS file (``.fits``, ``.oifits``, ``.fit``, each possibly
+        ``.gz``), scored as :func:`score_oifits` does.
     sidecar : dict or path
         The set's sidecar (from :func:`synthesize`, or a SET.json path):
         the truth scored against.
@@ -548,6 +550,11 @@ def score(
         stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
+    from .oifits import is_fits_path, score_oifits
+
+    if is_fits_path(estimates) and columns is None:
+        # An OIFITS path: read as `v2ref score --estimates FILE.fits`.
+        return score_oifits(estimates, sidecar=sidecar, bins=bins, bias=bias, alpha=alpha)
     text, name = _sidecar_text(sidecar)
     _check_rows(estimates, text)
     v1, v2 = _estimate_columns(estimates, columns)
@@ -1006,9 +1013,9 @@ def claims(*, quick: bool = False) -> list:
 
 
 # OIFITS (python/v2ref/oifits.py).
-from .oifits import read_oifits, read_oifits_estimates, write_oifits, write_oifits_truth  # noqa: E402
+from .oifits import read_oifits, read_oifits_estimates, score_oifits, write_oifits, write_oifits_truth  # noqa: E402
 
-__all__ += ["read_oifits", "read_oifits_estimates", "write_oifits", "write_oifits_truth"]
+__all__ += ["read_oifits", "read_oifits_estimates", "score_oifits", "write_oifits", "write_oifits_truth"]
 
 
 # --------------------------------------------------------------------------

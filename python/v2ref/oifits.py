@@ -1,5 +1,5 @@
 """OIFITS (v2 written, v1 and v2 read) from Python, with the Rust library's
-own reader and writers (cfitsio through the ``fitsio`` crate): NumPy arrays
+own reader (safe Rust) and writers (cfitsio through the ``fitsio`` crate): NumPy arrays
 in and out. The files are those of ``v2ref estimate --out FILE.fits``,
 ``v2ref synth --oifits`` and ``v2ref score --estimates FILE.fits``.
 """
@@ -36,15 +36,17 @@ def _sidecar(sidecar: Any):
     return _sidecar_text(sidecar)
 
 
-def read_oifits(path: Any) -> List[Dict[str, Any]]:
+def read_oifits(path: Any, *, accept_checksum_mismatch: bool = False) -> List[Dict[str, Any]]:
     """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
 
     Each is a dict: ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from
     v2ref's ``V2R_EST`` keyword, else None), ``revn``, ``hdu``,
     ``eff_wave_m`` (metres, one per channel) and ``vis2data``, ``vis2err``,
-    ``flag`` of shape (rows, channels). A malformed file raises ValueError.
+    ``flag`` of shape (rows, channels). A malformed file raises ValueError;
+    so does one whose CHECKSUM or DATASUM no longer match its bytes, unless
+    ``accept_checksum_mismatch``. ``.fits.gz`` is read as well.
     """
-    return _v2ref.read_oifits(_path("path", path))
+    return _v2ref.read_oifits(_path("path", path), _flag("accept_checksum_mismatch", accept_checksum_mismatch))
 
 
 def write_oifits(
@@ -81,12 +83,79 @@ def write_oifits_truth(path: Any, *, sidecar: Any) -> None:
     _v2ref.write_oifits_truth(_path("path", path), text, name)
 
 
+def _optional_str(name: str, value: Any) -> None:
+    if value is not None and not isinstance(value, str):
+        raise TypeError(f"{name}: {value!r} is not a string")
+
+
+def _flag(name: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise TypeError(f"{name}: {value!r} is not True or False")
+    return value
+
+
+#: The extensions of an OIFITS path (any case; each possibly ``.gz``).
+FITS_SUFFIXES = (".fits", ".oifits", ".fit", ".fits.gz", ".oifits.gz", ".fit.gz")
+
+
+def is_fits_path(path: Any) -> bool:
+    """True for a path (str, bytes, os.PathLike) ending in an OIFITS extension."""
+    if not isinstance(path, (str, bytes, _os.PathLike)):
+        return False
+    return _os.fsdecode(path).lower().endswith(FITS_SUFFIXES)
+
+
+def score_oifits(
+    path: Any,
+    *,
+    sidecar: Any,
+    bins: str = "positive",
+    bias: str = "model",
+    alpha: float = 1e-3,
+    insname: Optional[str] = None,
+    estimator: Optional[str] = None,
+    target: Optional[str] = None,
+    accept_checksum_mismatch: bool = False,
+) -> Dict[str, Any]:
+    """Scores an OIFITS file of per-row estimates, as ``v2ref score
+    --estimates FILE.fits --json``: FLAGged rows left out and counted
+    (``flagged``); when fewer than half the set's rows are left, no score
+    but ``verdict`` "too few rows" and ``pass`` False. ``insname``,
+    ``estimator``, ``target`` choose tables and rows as the CLI's flags do;
+    ``accept_checksum_mismatch`` reads a file whose CHECKSUM or DATASUM no
+    longer match (refused otherwise)."""
+    text, name = _sidecar(sidecar)
+    for n, v in (("bins", bins), ("bias", bias), ("insname", insname), ("estimator", estimator), ("target", target)):
+        _optional_str(n, v)
+    if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
+        raise TypeError(f"alpha: {alpha!r} is not a real number")
+    out = _v2ref.score_oifits(
+        _path("path", path),
+        text,
+        name,
+        bins,
+        bias,
+        float(alpha),
+        insname,
+        estimator,
+        target,
+        _flag("accept_checksum_mismatch", accept_checksum_mismatch),
+    )
+    import json as _json
+
+    return _json.loads(out)
+
+
 def read_oifits_estimates(
     path: Any,
     *,
     sidecar: Any,
     insname: Optional[str] = None,
     estimator: Optional[str] = None,
+    target: Optional[str] = None,
+    bins: str = "positive",
+    bias: str = "model",
+    accept_checksum_mismatch: bool = False,
 ) -> Dict[str, Any]:
     """A pipeline's estimates from OIFITS, matched to a set's rows in order,
     as ``v2ref score`` reads them.
@@ -94,11 +163,23 @@ def read_oifits_estimates(
     Returns ``v1_sq`` and ``v2_sq`` (arrays of the unflagged rows, or None),
     ``rows`` (in the file) and ``flagged`` (left out). ``insname`` chooses
     the tables when there are several; ``estimator`` (``"v1_sq"`` or
-    ``"v2_sq"``) says what tables without v2ref's keyword hold.
+    ``"v2_sq"``) says what tables without v2ref's keyword hold; ``target``
+    (a TARGET name or TARGET_ID) chooses the rows when they are of several
+    targets. A table whose ``V2R_BINS`` or ``V2R_BIAS`` differs from
+    ``bins`` or ``bias`` is refused; so is a file whose checksums no
+    longer match, unless ``accept_checksum_mismatch``.
     """
     text, name = _sidecar(sidecar)
-    if insname is not None and not isinstance(insname, str):
-        raise TypeError(f"insname: {insname!r} is not a string")
-    if estimator is not None and not isinstance(estimator, str):
-        raise TypeError(f"estimator: {estimator!r} is not a string")
-    return _v2ref.read_oifits_estimates(_path("path", path), text, name, insname, estimator)
+    for n, v in (("insname", insname), ("estimator", estimator), ("target", target), ("bins", bins), ("bias", bias)):
+        _optional_str(n, v)
+    return _v2ref.read_oifits_estimates(
+        _path("path", path),
+        text,
+        name,
+        insname,
+        estimator,
+        target,
+        bins,
+        bias,
+        _flag("accept_checksum_mismatch", accept_checksum_mismatch),
+    )

@@ -94,20 +94,35 @@ pub struct ScoreInput {
     pub flagged: Option<u64>,
 }
 
+/// The OIFITS flags of `score` (ignored for .csv and .npy, refused when
+/// given for them).
+#[derive(Debug, Clone, Default)]
+pub struct OifitsFlags {
+    /// `--insname`.
+    pub insname: Option<String>,
+    /// `--estimator`.
+    pub estimator: Option<Which>,
+    /// `--target`.
+    pub target: Option<String>,
+    /// `--accept-checksum-mismatch`.
+    pub accept_checksum_mismatch: bool,
+}
+
 /// Reads `score`'s estimates: OIFITS by extension, else .csv or .npy.
 pub fn read_for_score(
     path: &Path,
     columns: Option<&[String]>,
     sidecar: &Sidecar,
-    truth: &ConventionTruth,
-    insname: Option<&str>,
-    estimator: Option<Which>,
+    (truth, bins, bias): (&ConventionTruth, BinWindow, BiasConvention),
+    flags: &OifitsFlags,
 ) -> Result<ScoreInput> {
     let rows = sidecar.data.rows;
     if !oifits::is_fits_path(path) {
         for (flag, given) in [
-            ("insname", insname.is_some()),
-            ("estimator", estimator.is_some()),
+            ("insname", flags.insname.is_some()),
+            ("estimator", flags.estimator.is_some()),
+            ("target", flags.target.is_some()),
+            ("accept_checksum_mismatch", flags.accept_checksum_mismatch),
         ] {
             if given {
                 return Err(Error::Invalid {
@@ -134,9 +149,18 @@ pub fn read_for_score(
     let expected = Expected {
         rows,
         band_m: (1e-6 / hi, 1e-6 / lo),
+        bins,
+        bias,
     };
-    let single = estimator.and_then(Which::single);
-    let read = oifits::read_oifits_estimates(path, insname, single, &expected)?;
+    let choice = oifits::Choice {
+        insname: flags.insname.as_deref(),
+        estimator: flags.estimator.and_then(Which::single),
+        target: flags.target.as_deref(),
+        read: oifits::ReadOptions {
+            accept_checksum_mismatch: flags.accept_checksum_mismatch,
+        },
+    };
+    let read = oifits::read_oifits_estimates(path, &choice, &expected)?;
     let kept = (read.rows - read.flagged) as u64;
     Ok(ScoreInput {
         estimates: read.estimates,

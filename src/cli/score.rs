@@ -38,6 +38,14 @@ pub struct Args {
     /// pipeline's own file); default: as the keyword says.
     #[arg(long, value_enum)]
     estimator: Option<super::oifits::Which>,
+    /// OIFITS: read only the rows of this target (its TARGET name in
+    /// OI_TARGET, or its TARGET_ID); needed when the rows are of several.
+    #[arg(long, value_name = "NAME|ID")]
+    target: Option<String>,
+    /// OIFITS: read a file whose CHECKSUM or DATASUM does not match its
+    /// bytes (refused by default: it changed after it was written).
+    #[arg(long)]
+    accept_checksum_mismatch: bool,
     /// Window of bins the estimates sum.
     #[arg(long, value_enum, default_value = "positive")]
     bins: BinWindow,
@@ -110,14 +118,25 @@ pub fn run(args: Args) -> Result<ExitCode> {
             ),
         )
     })?;
+    let flags = super::oifits::OifitsFlags {
+        insname: args.insname.clone(),
+        estimator: args.estimator,
+        target: args.target.clone(),
+        accept_checksum_mismatch: args.accept_checksum_mismatch,
+    };
     let input = super::oifits::read_for_score(
         &args.estimates,
         args.columns.as_deref(),
         &sc,
-        truth,
-        args.insname.as_deref(),
-        args.estimator,
+        (truth, args.bins, args.bias),
+        &flags,
     )?;
+    if let Some(flagged) = input.flagged {
+        let floor = v2ref::formats::oifits::min_unflagged_rows(sc.data.rows);
+        if input.rows < floor {
+            return Ok(too_few_rows(&args, sc.data.rows, flagged, floor));
+        }
+    }
     let (est, rows) = (&input.estimates, input.rows);
     let report = score_report(
         est.v1_sq.as_deref(),
@@ -155,6 +174,31 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         ExitCode::from(EXIT_FAIL)
     })
+}
+
+/// The verdict "too few rows": more of the set's rows are FLAGged than
+/// the score can stand for (status [`EXIT_FAIL`]).
+fn too_few_rows(args: &Args, set_rows: u64, flagged: u64, floor: u64) -> ExitCode {
+    let kept = set_rows - flagged;
+    if args.json {
+        print_json(&serde_json::json!({
+            "sidecar": args.sidecar.display().to_string(),
+            "estimates": args.estimates.display().to_string(),
+            "bins": args.bins,
+            "bias": args.bias,
+            "rows": kept,
+            "flagged": flagged,
+            "min_rows": floor,
+            "verdict": "too few rows",
+            "pass": false,
+        }));
+    } else {
+        outln!(
+            "FAIL: too few rows: {kept} unflagged of {set_rows} ({flagged} FLAGged); \
+             at least {floor} are scored"
+        );
+    }
+    ExitCode::from(EXIT_FAIL)
 }
 
 fn verdict(pass: bool) -> &'static str {

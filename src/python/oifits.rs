@@ -54,8 +54,16 @@ fn estimator_name(e: Estimator) -> &'static str {
 /// `estimator`, `revn`, `hdu`, `eff_wave_m`, and `vis2data`, `vis2err`,
 /// `flag` of shape (rows, nwave)).
 #[pyfunction]
-fn read_oifits<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyList>> {
-    let tables = ok(oifits::read_vis2_tables(Path::new(path), "path"))?;
+#[pyo3(signature = (path, accept_checksum_mismatch=false))]
+fn read_oifits<'py>(
+    py: Python<'py>,
+    path: &str,
+    accept_checksum_mismatch: bool,
+) -> PyResult<Bound<'py, PyList>> {
+    let options = oifits::ReadOptions {
+        accept_checksum_mismatch,
+    };
+    let tables = ok(oifits::read_oifits_file(Path::new(path), "path", options))?.tables;
     let out = PyList::empty(py);
     for t in tables {
         let d = PyDict::new(py);
@@ -139,7 +147,8 @@ fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult
 /// dict (`v1_sq`, `v2_sq`: arrays of the unflagged rows or None; `rows`,
 /// `flagged`).
 #[pyfunction]
-#[pyo3(signature = (path, sidecar, sidecar_name, insname, estimator))]
+#[pyo3(signature = (path, sidecar, sidecar_name, insname, estimator, target, bins, bias, accept_checksum_mismatch))]
+#[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
 fn read_oifits_estimates<'py>(
     py: Python<'py>,
     path: &str,
@@ -147,25 +156,32 @@ fn read_oifits_estimates<'py>(
     sidecar_name: &str,
     insname: Option<&str>,
     estimator: Option<&str>,
+    target: Option<&str>,
+    bins: &str,
+    bias: &str,
+    accept_checksum_mismatch: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let bins: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
+    let bias: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
-    let est = match estimator {
-        None => None,
-        Some("v1_sq") => Some(Estimator::V1Sq),
-        Some("v2_sq") => Some(Estimator::V2Sq),
-        Some(s) => {
-            return Err(PyValueError::new_err(format!(
-                "estimator: '{s}' is not one of: v1_sq, v2_sq"
-            )))
-        }
-    };
+    let est = estimator_of(estimator)?;
     let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
     let expected = Expected {
         rows: sc.data.rows,
         band_m: (1e-6 / hi, 1e-6 / lo),
+        bins,
+        bias,
+    };
+    let choice = oifits::Choice {
+        insname,
+        estimator: est,
+        target,
+        read: oifits::ReadOptions {
+            accept_checksum_mismatch,
+        },
     };
     let read = ok(
-        oifits::read_oifits_estimates(Path::new(path), insname, est, &expected)
+        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
             .map_err(|e| renamed(e, "estimates", "path")),
     )?;
     let d = PyDict::new(py);
@@ -182,11 +198,103 @@ fn read_oifits_estimates<'py>(
     Ok(d)
 }
 
+/// `score` of an OIFITS path: `v2ref score --estimates FILE.fits --json`
+/// (flagged rows left out and counted; the verdict "too few rows" when
+/// fewer than [`oifits::min_unflagged_rows`] are left).
+#[pyfunction]
+#[pyo3(signature = (path, sidecar, sidecar_name, bins, bias, alpha, insname, estimator, target, accept_checksum_mismatch))]
+#[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
+fn score_oifits(
+    path: &str,
+    sidecar: &str,
+    sidecar_name: &str,
+    bins: &str,
+    bias: &str,
+    alpha: f64,
+    insname: Option<&str>,
+    estimator: Option<&str>,
+    target: Option<&str>,
+    accept_checksum_mismatch: bool,
+) -> PyResult<String> {
+    let window: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
+    let convention: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
+    ok(crate::conformance::score::critical_z(alpha, 1))?;
+    let sc = sidecar_of(sidecar, sidecar_name)?;
+    let truth = sc.truth(window, convention).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "sidecar: {sidecar_name}: no truth for bins={bins} bias={bias}; pick a window and convention the set has"
+        ))
+    })?;
+    let est = estimator_of(estimator)?;
+    let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
+    let expected = Expected {
+        rows: sc.data.rows,
+        band_m: (1e-6 / hi, 1e-6 / lo),
+        bins: window,
+        bias: convention,
+    };
+    let choice = oifits::Choice {
+        insname,
+        estimator: est,
+        target,
+        read: oifits::ReadOptions {
+            accept_checksum_mismatch,
+        },
+    };
+    let read = ok(
+        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
+            .map_err(|e| renamed(e, "estimates", "path")),
+    )?;
+    let (set_rows, flagged) = (sc.data.rows, read.flagged as u64);
+    let kept = set_rows - flagged;
+    let head = serde_json::json!({
+        "sidecar": sidecar_name,
+        "estimates": path,
+        "bins": window,
+        "bias": convention,
+        "rows": kept,
+        "flagged": flagged,
+    });
+    let floor = oifits::min_unflagged_rows(set_rows);
+    let mut answer = head.as_object().cloned().unwrap_or_default();
+    if kept < floor {
+        answer.insert("min_rows".into(), floor.into());
+        answer.insert("verdict".into(), "too few rows".into());
+        answer.insert("pass".into(), false.into());
+    } else {
+        let truth = oifits::truth_for_kept_rows(truth, set_rows, kept);
+        let e = &read.estimates;
+        let report = ok(crate::conformance::score::score_report(
+            e.v1_sq.as_deref(),
+            e.v2_sq.as_deref(),
+            &truth,
+            kept,
+            alpha,
+        ))?;
+        let report = serde_json::to_value(&report)
+            .map_err(|e| PyValueError::new_err(format!("cannot serialize the answer: {e}")))?;
+        answer.extend(report.as_object().cloned().unwrap_or_default());
+    }
+    Ok(serde_json::Value::Object(answer).to_string())
+}
+
+fn estimator_of(estimator: Option<&str>) -> PyResult<Option<Estimator>> {
+    match estimator {
+        None => Ok(None),
+        Some("v1_sq") => Ok(Some(Estimator::V1Sq)),
+        Some("v2_sq") => Ok(Some(Estimator::V2Sq)),
+        Some(s) => Err(PyValueError::new_err(format!(
+            "estimator: '{s}' is not one of: v1_sq, v2_sq"
+        ))),
+    }
+}
+
 /// Adds the functions to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_oifits, m)?)?;
     m.add_function(wrap_pyfunction!(write_oifits, m)?)?;
     m.add_function(wrap_pyfunction!(write_oifits_truth, m)?)?;
     m.add_function(wrap_pyfunction!(read_oifits_estimates, m)?)?;
+    m.add_function(wrap_pyfunction!(score_oifits, m)?)?;
     Ok(())
 }

@@ -1,7 +1,7 @@
-//! cfitsio files in memory: built in a buffer cfitsio grows with the C
-//! allocator (then copied out and written atomically), or opened read-only
-//! on the bytes of a file already read. No cfitsio file name is ever
-//! parsed, so a path holding `[`, `]` or `!` is just a path.
+//! cfitsio files being written, in memory: built in a buffer cfitsio
+//! grows with the C allocator, then copied out and written atomically.
+//! No cfitsio file name is ever parsed, so a path holding `[`, `]` or `!`
+//! is just a path. (Files are read without cfitsio: [`super::fits`].)
 
 use super::status_text;
 use fitsio::{FileOpenMode, FitsFile};
@@ -14,8 +14,7 @@ extern "C" {
     fn free(p: *mut c_void);
 }
 
-/// One FITS block, bytes (every HDU is a whole number of them).
-pub(crate) const BLOCK: usize = 2880;
+use super::fits::BLOCK;
 
 /// The buffer and its size, at a fixed address while cfitsio holds
 /// pointers to both.
@@ -86,15 +85,21 @@ impl MemFits {
         }
     }
 
-    /// Flushes and closes the file; its bytes (a whole number of blocks).
+    /// Writes every HDU's `CHECKSUM` and `DATASUM`, flushes and closes the
+    /// file; its bytes (a whole number of blocks).
     pub(crate) fn into_bytes(mut self) -> Result<Vec<u8>, String> {
         let mut status = 0;
         let (mut nhdu, mut head, mut start, mut end) = (0, 0, 0, 0);
-        // SAFETY: the file is open; the calls only write the out-parameters.
+        // SAFETY: the file is open; the calls write the out-parameters and
+        // the file's own buffer, which cfitsio grows itself (realloc).
         unsafe {
             let fptr = self.file.as_raw();
-            fitsio_sys::ffflus(fptr, &mut status);
             fitsio_sys::ffthdu(fptr, &mut nhdu, &mut status);
+            for hdu in 1..=nhdu {
+                fitsio_sys::ffmahd(fptr, hdu, ptr::null_mut(), &mut status);
+                fitsio_sys::ffpcks(fptr, &mut status);
+            }
+            fitsio_sys::ffflus(fptr, &mut status);
             fitsio_sys::ffmahd(fptr, nhdu, ptr::null_mut(), &mut status);
             fitsio_sys::ffghadll(fptr, &mut head, &mut start, &mut end, &mut status);
         }
@@ -111,62 +116,5 @@ impl MemFits {
         // SAFETY: `buf.ptr` holds `buf.size >= len` initialized bytes
         // written by cfitsio, and the file is closed.
         Ok(unsafe { std::slice::from_raw_parts(buf.ptr as *const u8, len) }.to_vec())
-    }
-}
-
-/// A FITS file opened read-only on bytes in memory; closed on drop.
-pub(crate) struct MemRead {
-    pub(crate) fptr: *mut fitsio_sys::fitsfile,
-    // cfitsio keeps pointers to these two until the file is closed.
-    _ptr: Box<*mut c_void>,
-    _size: Box<usize>,
-    _bytes: Vec<u8>,
-}
-
-impl MemRead {
-    /// Opens `bytes` (a whole file) read-only.
-    pub(crate) fn open(mut bytes: Vec<u8>) -> Result<MemRead, String> {
-        let mut ptr_box = Box::new(bytes.as_mut_ptr() as *mut c_void);
-        let mut size_box = Box::new(bytes.len());
-        let mut fptr = ptr::null_mut();
-        let mut status = 0;
-        let name = c"v2ref-input.fits";
-        // SAFETY: the bytes and the two boxed words outlive the file (they
-        // are owned by the returned value, which closes the file first);
-        // READONLY with no realloc: cfitsio never writes or grows them.
-        unsafe {
-            fitsio_sys::ffomem(
-                &mut fptr,
-                name.as_ptr(),
-                fitsio_sys::READONLY as c_int,
-                &mut *ptr_box,
-                &mut *size_box,
-                0,
-                None,
-                &mut status,
-            );
-        }
-        if status != 0 || fptr.is_null() {
-            if !fptr.is_null() {
-                let mut ignored = 0;
-                // SAFETY: closing what ffomem opened.
-                unsafe { fitsio_sys::ffclos(fptr, &mut ignored) };
-            }
-            return Err(format!("not a readable FITS file: {}", status_text(status)));
-        }
-        Ok(MemRead {
-            fptr,
-            _ptr: ptr_box,
-            _size: size_box,
-            _bytes: bytes,
-        })
-    }
-}
-
-impl Drop for MemRead {
-    fn drop(&mut self) {
-        let mut status = 0;
-        // SAFETY: `fptr` was opened by ffomem and is closed once.
-        unsafe { fitsio_sys::ffclos(self.fptr, &mut status) };
     }
 }

@@ -26,15 +26,18 @@
 //! `V2R_EST`, `V2R_BINS`, `V2R_BIAS` of each `OI_VIS2` table.
 
 pub mod docs;
+pub mod fits;
 mod mem;
+mod order;
 pub mod read;
 mod select;
 pub mod setting;
+pub mod table;
 pub mod write;
 
 pub use read::{
-    read_oifits_estimates, read_vis2_tables, truth_for_kept_rows, Expected, OifitsEstimates,
-    Vis2Table,
+    min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
+    truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
@@ -45,12 +48,26 @@ use std::path::Path;
 /// The extensions of a FITS file (lower case, without the dot).
 pub const FITS_EXTENSIONS: [&str; 3] = ["fits", "oifits", "fit"];
 
-/// True when `path` ends in one of [`FITS_EXTENSIONS`] (any case).
+/// True when `path` ends in one of [`FITS_EXTENSIONS`] (any case),
+/// possibly followed by `.gz` (a gzipped file, read and written as such).
 pub fn is_fits_path(path: &Path) -> bool {
-    path.extension()
+    let plain = if is_gzip_path(path) {
+        path.file_stem().map(Path::new).unwrap_or(path)
+    } else {
+        path
+    };
+    plain
+        .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase)
         .is_some_and(|e| FITS_EXTENSIONS.contains(&e.as_str()))
+}
+
+/// True when `path` ends in `.gz` (any case).
+pub fn is_gzip_path(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"))
 }
 
 /// Keyword naming the estimator of an `OI_VIS2` table (`V1SQ` or `V2SQ`).
@@ -90,7 +107,7 @@ pub fn check_fits_extension(path: &Path, param: &'static str) -> Result<()> {
         param,
         path,
         "",
-        format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit"),
+        format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit (each possibly .gz)"),
     ))
 }
 

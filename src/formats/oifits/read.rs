@@ -1,20 +1,21 @@
 //! Reading `OI_VIS2` tables from OIFITS v1 or v2, and a pipeline's
 //! estimates from them, matched to a set's rows in order.
 //!
-//! The file is read whole (its size bounds every allocation: a table whose
-//! header announces more values than the file holds is refused before any
-//! is read) and opened from memory by cfitsio. Every refusal is an
+//! The file is read whole (at most [`MAX_OIFITS_BYTES`], after gunzip for
+//! `.fits.gz`) and parsed in safe Rust ([`super::fits`], [`super::table`]):
+//! every size a header announces is checked against the bytes of the file
+//! before a value is read, so a damaged header is refused, never followed.
+//! `CHECKSUM`/`DATASUM` are verified where present. Every refusal is an
 //! [`Error::Data`] naming the parameter, the HDU and what is accepted.
 
-use super::mem::MemRead;
-use super::status_text;
+use super::fits::{self, checksum_mismatches, Hdu, Refusal};
+use super::table::Table;
 use crate::formats::Estimates;
 use crate::{Error, Result};
-use std::ffi::CString;
-use std::os::raw::{c_char, c_int};
 use std::path::Path;
 
-/// Largest OIFITS file read, bytes (1 GiB: 40 million rows of V²).
+/// Largest OIFITS file read, bytes (1 GiB: 40 million rows of V²); for a
+/// `.fits.gz`, the size once decompressed.
 pub const MAX_OIFITS_BYTES: u64 = 1 << 30;
 
 /// One `OI_VIS2` table, with the wavelengths of its `INSNAME`.
@@ -28,12 +29,20 @@ pub struct Vis2Table {
     pub revn: i64,
     /// `V2R_EST` where present (`V1SQ`, `V2SQ`).
     pub estimator: Option<String>,
+    /// `V2R_BINS` where present: the window of bins the values sum.
+    pub bins: Option<String>,
+    /// `V2R_BIAS` where present: the bias convention they subtract.
+    pub bias: Option<String>,
     /// Rows.
     pub rows: usize,
     /// Channels per row (`NWAVE`).
     pub nwave: usize,
     /// `EFF_WAVE` of the `OI_WAVELENGTH` of the same `INSNAME`, m.
     pub eff_wave_m: Vec<f64>,
+    /// `TARGET_ID` of each row (1 where the table has no such column).
+    pub target_id: Vec<i64>,
+    /// `MJD` of each row, days (0 where the table has no such column).
+    pub mjd: Vec<f64>,
     /// `VIS2DATA`, `rows × nwave`, row after row.
     pub vis2data: Vec<f64>,
     /// `VIS2ERR`, same shape.
@@ -42,247 +51,106 @@ pub struct Vis2Table {
     pub flag: Vec<bool>,
 }
 
-/// An open file and what refusals name.
-struct Reader<'a> {
-    mem: MemRead,
-    bytes: u64,
-    param: &'static str,
-    path: &'a Path,
+/// What an OIFITS file holds for scoring: its `OI_VIS2` tables and its
+/// targets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OifitsFile {
+    /// `OI_VIS2` tables, in file order.
+    pub tables: Vec<Vis2Table>,
+    /// `OI_TARGET`'s (`TARGET_ID`, `TARGET`) pairs, in order (empty when
+    /// the file has no `OI_TARGET`).
+    pub targets: Vec<(i64, String)>,
 }
 
-impl Reader<'_> {
-    fn err(&self, location: impl Into<String>, reason: impl Into<String>) -> Error {
-        Error::data(self.param, self.path, location, reason)
-    }
-
-    fn check(&self, status: c_int, location: &str, what: &str) -> Result<()> {
-        match status {
-            0 => Ok(()),
-            s => Err(self.err(
-                location,
-                format!("{what}: {}; a valid OIFITS file is needed", status_text(s)),
-            )),
-        }
-    }
-
-    /// A string keyword of the current HDU (None when absent).
-    fn key_str(&self, name: &str) -> Result<Option<String>> {
-        let key = CString::new(name).map_err(|e| self.err("", e.to_string()))?;
-        let mut value = [0 as c_char; 72];
-        let mut status = 0;
-        // SAFETY: the value buffer exceeds FLEN_VALUE (71); no comment read.
-        unsafe {
-            fitsio_sys::ffgkys(
-                self.mem.fptr,
-                key.as_ptr(),
-                value.as_mut_ptr(),
-                std::ptr::null_mut(),
-                &mut status,
-            )
-        };
-        match status {
-            0 => Ok(Some(c_string(&value).trim_end().to_owned())),
-            202 | 204 => Ok(None), // KEY_NO_EXIST, VALUE_UNDEFINED
-            s => Err(self.err(format!("keyword {name}"), status_text(s))),
-        }
-    }
-
-    /// An integer keyword of the current HDU (None when absent).
-    fn key_int(&self, name: &str) -> Result<Option<i64>> {
-        let key = CString::new(name).map_err(|e| self.err("", e.to_string()))?;
-        let mut value: std::os::raw::c_long = 0;
-        let mut status = 0;
-        // SAFETY: writes one long; no comment read.
-        unsafe {
-            fitsio_sys::ffgkyj(
-                self.mem.fptr,
-                key.as_ptr(),
-                &mut value,
-                std::ptr::null_mut(),
-                &mut status,
-            )
-        };
-        match status {
-            0 => Ok(Some(value as i64)),
-            202 | 204 => Ok(None),
-            s => Err(self.err(format!("keyword {name}"), status_text(s))),
-        }
-    }
-
-    fn move_to(&self, hdu: usize) -> Result<()> {
-        let mut status = 0;
-        let mut typ = 0;
-        // SAFETY: moves the open file to an HDU that ffthdu counted.
-        unsafe { fitsio_sys::ffmahd(self.mem.fptr, hdu as c_int, &mut typ, &mut status) };
-        self.check(status, &format!("HDU {hdu}"), "unreadable header")
-    }
-
-    fn rows(&self, at: &str) -> Result<usize> {
-        let mut n = 0;
-        let mut status = 0;
-        // SAFETY: writes one LONGLONG.
-        unsafe { fitsio_sys::ffgnrwll(self.mem.fptr, &mut n, &mut status) };
-        self.check(status, at, "no row count")?;
-        usize::try_from(n).map_err(|_| self.err(at, format!("{n} rows")))
-    }
-
-    /// Column `name`: its number (1-based) and repeat count.
-    fn column(&self, name: &str, at: &str) -> Result<(c_int, usize)> {
-        let mut templ = CString::new(name)
-            .map_err(|e| self.err(at, e.to_string()))?
-            .into_bytes_with_nul();
-        let (mut colnum, mut typ, mut repeat, mut width) = (0, 0, 0, 0);
-        let mut status = 0;
-        // SAFETY: the template is NUL-terminated; outputs are plain ints.
-        unsafe {
-            fitsio_sys::ffgcno(
-                self.mem.fptr,
-                0,
-                templ.as_mut_ptr() as *mut c_char,
-                &mut colnum,
-                &mut status,
-            );
-            fitsio_sys::ffgtclll(
-                self.mem.fptr,
-                colnum,
-                &mut typ,
-                &mut repeat,
-                &mut width,
-                &mut status,
-            );
-        }
-        if status != 0 {
-            return Err(self.err(
-                format!("{at}, column {name}"),
-                format!(
-                    "missing or unreadable ({}); the standard requires it",
-                    status_text(status)
-                ),
-            ));
-        }
-        let repeat = usize::try_from(repeat).unwrap_or(0);
-        Ok((colnum, repeat))
-    }
-
-    /// `n` values must fit in the file: refused before allocating.
-    fn fits_in_file(&self, n: usize, bytes_each: u64, at: &str) -> Result<()> {
-        if (n as u64).saturating_mul(bytes_each) > self.bytes {
-            return Err(self.err(
-                at,
-                format!(
-                    "the header announces {n} values, more than the file's {} bytes hold; \
-                     the file is truncated or its header is wrong",
-                    self.bytes
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// `n` values (from row 1) of numeric column `colnum`, as f64.
-    fn read_f64(&self, colnum: c_int, n: usize, at: &str) -> Result<Vec<f64>> {
-        self.fits_in_file(n, 1, at)?;
-        let mut out = vec![0.0; n];
-        let (mut anynul, mut status) = (0, 0);
-        if n > 0 {
-            // SAFETY: `out` holds `n` doubles.
-            unsafe {
-                fitsio_sys::ffgcvd(
-                    self.mem.fptr,
-                    colnum,
-                    1,
-                    1,
-                    n as i64,
-                    f64::NAN,
-                    out.as_mut_ptr(),
-                    &mut anynul,
-                    &mut status,
-                )
-            };
-        }
-        self.check(status, at, "values unreadable")?;
-        Ok(out)
-    }
-
-    /// `n` values (from row 1) of logical column `colnum`.
-    fn read_flags(&self, colnum: c_int, n: usize, at: &str) -> Result<Vec<bool>> {
-        self.fits_in_file(n, 1, at)?;
-        let mut out: Vec<c_char> = vec![0; n];
-        let (mut anynul, mut status) = (0, 0);
-        if n > 0 {
-            // SAFETY: `out` holds `n` chars.
-            unsafe {
-                fitsio_sys::ffgcvl(
-                    self.mem.fptr,
-                    colnum,
-                    1,
-                    1,
-                    n as i64,
-                    0,
-                    out.as_mut_ptr(),
-                    &mut anynul,
-                    &mut status,
-                )
-            };
-        }
-        self.check(status, at, "flags unreadable")?;
-        Ok(out.into_iter().map(|c| c != 0).collect())
-    }
-}
-
-fn c_string(buf: &[c_char]) -> String {
-    buf.iter()
-        .take_while(|&&c| c != 0)
-        .map(|&c| c as u8 as char)
-        .collect()
+/// How damage is treated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadOptions {
+    /// Read an HDU whose `CHECKSUM` or `DATASUM` does not match its bytes
+    /// (refused by default: the file changed after it was written).
+    pub accept_checksum_mismatch: bool,
 }
 
 /// Reads every `OI_VIS2` table of `path` (named by `param`), in file
-/// order, each with the `EFF_WAVE` of its `INSNAME`.
+/// order, each with the `EFF_WAVE` of its `INSNAME`; checksums verified.
 pub fn read_vis2_tables(path: &Path, param: &'static str) -> Result<Vec<Vis2Table>> {
+    Ok(read_oifits_file(path, param, ReadOptions::default())?.tables)
+}
+
+/// Reads the `OI_VIS2` tables and the targets of `path` (named by
+/// `param`).
+pub fn read_oifits_file(
+    path: &Path,
+    param: &'static str,
+    options: ReadOptions,
+) -> Result<OifitsFile> {
     let bytes = read_bounded(path, param)?;
-    let len = bytes.len() as u64;
-    let mem = MemRead::open(bytes).map_err(|r| Error::data(param, path, "", r))?;
-    let r = Reader {
-        mem,
-        bytes: len,
-        param,
-        path,
-    };
-    let mut nhdu = 0;
-    let mut status = 0;
-    // SAFETY: writes one int.
-    unsafe { fitsio_sys::ffthdu(r.mem.fptr, &mut nhdu, &mut status) };
-    r.check(status, "", "HDUs unreadable")?;
+    parse_oifits(&bytes, options).map_err(|r| Error::data(param, path, r.location, r.reason))
+}
+
+/// [`read_oifits_file`] on a file's bytes.
+pub fn parse_oifits(
+    bytes: &[u8],
+    options: ReadOptions,
+) -> std::result::Result<OifitsFile, Refusal> {
+    let hdus = fits::parse(bytes)?;
+    if let Some(n) = hdus[0].header.int(super::write::KEY_NHDU) {
+        if n != hdus.len() as i64 {
+            return Err(fits::refuse(
+                format!("HDU 1, keyword {}", super::write::KEY_NHDU),
+                format!(
+                    "the file was written with {n} HDUs and holds {}: it is truncated",
+                    hdus.len()
+                ),
+            ));
+        }
+    }
+    if !options.accept_checksum_mismatch {
+        for hdu in &hdus {
+            let bad = checksum_mismatches(hdu);
+            if !bad.is_empty() {
+                return Err(fits::refuse(
+                    hdu.at(),
+                    format!(
+                        "{} does not match the bytes: the file changed after it was written; \
+                         --accept-checksum-mismatch (Python: accept_checksum_mismatch=True) reads it anyway",
+                        bad.join(" and ")
+                    ),
+                ));
+            }
+        }
+    }
     let mut waves: Vec<(String, Vec<f64>)> = Vec::new();
     let mut tables = Vec::new();
-    for hdu in 2..=nhdu.max(0) as usize {
-        r.move_to(hdu)?;
-        match r.key_str("EXTNAME")?.as_deref() {
-            Some("OI_WAVELENGTH") => waves.push(wavelength_table(&r, hdu)?),
-            Some("OI_VIS2") => tables.push(vis2_table(&r, hdu)?),
+    let mut targets = Vec::new();
+    for hdu in hdus.iter().skip(1) {
+        match hdu.header.str("EXTNAME") {
+            Some("OI_WAVELENGTH") => waves.push(wavelength_table(hdu)?),
+            Some("OI_VIS2") => tables.push(vis2_table(hdu)?),
+            Some("OI_TARGET") => targets.extend(target_table(hdu)?),
             _ => {}
         }
     }
     for t in &mut tables {
         let at = format!("HDU {} (OI_VIS2 INSNAME {})", t.hdu, t.insname);
         let Some((_, w)) = waves.iter().find(|(n, _)| *n == t.insname) else {
-            return Err(r.err(
+            return Err(fits::refuse(
                 at,
                 "no OI_WAVELENGTH table of this INSNAME; the standard requires one",
             ));
         };
         if w.len() != t.nwave {
-            return Err(r.err(
+            return Err(fits::refuse(
                 at,
                 format!("{} channels, its OI_WAVELENGTH has {}", t.nwave, w.len()),
             ));
         }
         t.eff_wave_m = w.clone();
     }
-    Ok(tables)
+    Ok(OifitsFile { tables, targets })
 }
 
+/// The file's bytes, gunzipped when they start with gzip's magic number;
+/// at most [`MAX_OIFITS_BYTES`] either way.
 fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
     use std::io::Read;
     let file = crate::formats::open(path, param)?;
@@ -290,6 +158,21 @@ fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
     file.take(MAX_OIFITS_BYTES + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| Error::file(Some(param), path, e))?;
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        let mut plain = Vec::new();
+        flate2::read::MultiGzDecoder::new(&bytes[..])
+            .take(MAX_OIFITS_BYTES + 1)
+            .read_to_end(&mut plain)
+            .map_err(|e| {
+                Error::data(
+                    param,
+                    path,
+                    "",
+                    format!("a gzip file that does not decompress ({e}): truncated or damaged"),
+                )
+            })?;
+        bytes = plain;
+    }
     if bytes.len() as u64 > MAX_OIFITS_BYTES {
         return Err(Error::data(
             param,
@@ -298,65 +181,94 @@ fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
             format!("larger than {MAX_OIFITS_BYTES} bytes"),
         ));
     }
-    if bytes.len() < super::mem::BLOCK || bytes.len() % super::mem::BLOCK != 0 {
-        return Err(Error::data(
-            param,
-            path,
-            "",
-            format!(
-                "{} bytes, not a whole number of 2880-byte FITS blocks: truncated or not FITS",
-                bytes.len()
-            ),
-        ));
-    }
     Ok(bytes)
 }
 
-fn insname(r: &Reader, at: &str) -> Result<String> {
-    r.key_str("INSNAME")?
-        .ok_or_else(|| r.err(at, "no INSNAME keyword; the standard requires one"))
+fn insname(hdu: &Hdu, what: &str) -> std::result::Result<String, Refusal> {
+    hdu.header
+        .str("INSNAME")
+        .filter(|s| !s.is_empty())
+        .map(str::to_owned)
+        .ok_or_else(|| {
+            fits::refuse(
+                format!("{} ({what})", hdu.at()),
+                "no INSNAME keyword; the standard requires one",
+            )
+        })
 }
 
-fn wavelength_table(r: &Reader, hdu: usize) -> Result<(String, Vec<f64>)> {
-    let at = format!("HDU {hdu} (OI_WAVELENGTH)");
-    let name = insname(r, &at)?;
-    let rows = r.rows(&at)?;
-    let (col, _) = r.column("EFF_WAVE", &at)?;
-    Ok((
-        name,
-        r.read_f64(col, rows, &format!("{at}, column EFF_WAVE"))?,
-    ))
+fn wavelength_table(hdu: &Hdu) -> std::result::Result<(String, Vec<f64>), Refusal> {
+    let name = insname(hdu, "OI_WAVELENGTH")?;
+    let t = Table::new(hdu)?;
+    Ok((name, t.reals(t.column("EFF_WAVE")?)?))
 }
 
-fn vis2_table(r: &Reader, hdu: usize) -> Result<Vis2Table> {
-    let at = format!("HDU {hdu} (OI_VIS2)");
-    let insname = insname(r, &at)?;
-    let revn = r.key_int("OI_REVN")?.unwrap_or(0);
+fn target_table(hdu: &Hdu) -> std::result::Result<Vec<(i64, String)>, Refusal> {
+    let t = Table::new(hdu)?;
+    let ids = t.reals(t.column("TARGET_ID")?)?;
+    let names = t.strings(t.column("TARGET")?)?;
+    Ok(ids.into_iter().map(|i| i as i64).zip(names).collect())
+}
+
+fn vis2_table(hdu: &Hdu) -> std::result::Result<Vis2Table, Refusal> {
+    let at = format!("{} (OI_VIS2)", hdu.at());
+    let insname = insname(hdu, "OI_VIS2")?;
+    let revn = hdu.header.int("OI_REVN").unwrap_or(0);
     if !(1..=2).contains(&revn) {
-        return Err(r.err(&at, format!("OI_REVN {revn}; OIFITS 1 or 2 is read")));
-    }
-    let rows = r.rows(&at)?;
-    let (data_col, nwave) = r.column("VIS2DATA", &at)?;
-    let (err_col, err_rep) = r.column("VIS2ERR", &at)?;
-    let (flag_col, flag_rep) = r.column("FLAG", &at)?;
-    if nwave == 0 || err_rep != nwave || flag_rep != nwave {
-        return Err(r.err(
+        return Err(fits::refuse(
             &at,
-            format!("VIS2DATA, VIS2ERR, FLAG hold {nwave}, {err_rep}, {flag_rep} values per row; the same NWAVE > 0 is needed"),
+            format!("OI_REVN {revn}; OIFITS 1 or 2 is read"),
         ));
     }
-    let n = rows.saturating_mul(nwave);
+    let t = Table::new(hdu)?;
+    let (data, err, flag) = (
+        t.column("VIS2DATA")?,
+        t.column("VIS2ERR")?,
+        t.column("FLAG")?,
+    );
+    let nwave = data.repeat;
+    if nwave == 0 || err.repeat != nwave || flag.repeat != nwave {
+        return Err(fits::refuse(
+            &at,
+            format!(
+                "VIS2DATA, VIS2ERR, FLAG hold {nwave}, {}, {} values per row; the same NWAVE > 0 is needed",
+                err.repeat, flag.repeat
+            ),
+        ));
+    }
+    // TARGET_ID and MJD are mandatory, but a pipeline's own file may lack
+    // them: then its rows are of one target, in the order written.
+    let one_per_row = |name: &str, absent: f64| -> std::result::Result<Vec<f64>, Refusal> {
+        let Ok(c) = t.column(name) else {
+            return Ok(vec![absent; t.rows]);
+        };
+        if c.repeat != 1 {
+            return Err(fits::refuse(
+                format!("{at}, column {name}"),
+                format!("{} values per row; one is needed", c.repeat),
+            ));
+        }
+        t.reals(c)
+    };
+    let key = |k: &str| hdu.header.str(k).map(str::to_owned);
     Ok(Vis2Table {
-        hdu,
-        estimator: r.key_str(super::KEY_ESTIMATOR)?,
+        hdu: hdu.number,
+        estimator: key(super::KEY_ESTIMATOR),
+        bins: key(super::KEY_BINS),
+        bias: key(super::KEY_BIAS),
         insname,
         revn,
-        rows,
+        rows: t.rows,
         nwave,
         eff_wave_m: Vec::new(),
-        vis2data: r.read_f64(data_col, n, &format!("{at}, column VIS2DATA"))?,
-        vis2err: r.read_f64(err_col, n, &format!("{at}, column VIS2ERR"))?,
-        flag: r.read_flags(flag_col, n, &format!("{at}, column FLAG"))?,
+        target_id: one_per_row("TARGET_ID", 1.0)?
+            .into_iter()
+            .map(|i| i as i64)
+            .collect(),
+        mjd: one_per_row("MJD", 0.0)?,
+        vis2data: t.reals(data)?,
+        vis2err: t.reals(err)?,
+        flag: t.logicals(flag)?,
     })
 }
 
@@ -373,13 +285,20 @@ pub struct OifitsEstimates {
     pub insnames: Vec<String>,
 }
 
-/// What the file must match: the set's rows and band.
+/// What the file must match: the set's rows and band, and the window and
+/// convention scored.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Expected {
     /// Rows of the set.
     pub rows: u64,
     /// The band's wavelengths (shortest, longest), m.
     pub band_m: (f64, f64),
+    /// The window of bins scored (a table's `V2R_BINS` must agree).
+    pub bins: crate::formalism::estimator::BinWindow,
+    /// The bias convention scored (a table's `V2R_BIAS` must agree).
+    pub bias: crate::conformance::estimate::BiasConvention,
 }
 
-pub use super::select::{read_oifits_estimates, truth_for_kept_rows};
+pub use super::select::{
+    min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice, MIN_UNFLAGGED_FRACTION,
+};

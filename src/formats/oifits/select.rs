@@ -2,39 +2,65 @@
 //! a set's: one broadband channel per row, in order, the counts and the
 //! wavelength checked, flagged rows left out and counted.
 
-use super::read::{read_vis2_tables, Expected, OifitsEstimates, Vis2Table};
-use super::{estimator_key, KEY_ESTIMATOR};
+use super::read::{read_oifits_file, Expected, OifitsEstimates, ReadOptions, Vis2Table};
+use super::{estimator_key, KEY_BIAS, KEY_BINS, KEY_ESTIMATOR};
 use crate::conformance::score::Estimator;
 use crate::formats::Estimates;
 use crate::{Error, Result};
 use std::path::Path;
 
+/// Fewest unflagged rows scored, as a fraction of the set's rows. FLAG is
+/// a selection: the truth scored against assumes the rows kept are a
+/// random half or more of the set; with more flagged, the verdict would
+/// say more about the flags than about the estimator (398 rows flagged of
+/// 400 left a test of no power that still said PASS).
+pub const MIN_UNFLAGGED_FRACTION: f64 = 0.5;
+
+/// The fewest unflagged rows of a set of `rows` rows that are scored.
+pub fn min_unflagged_rows(rows: u64) -> u64 {
+    (rows as f64 * MIN_UNFLAGGED_FRACTION).ceil() as u64
+}
+
 /// Relative slack on the band's ends (`EFF_WAVE` is stored as float32).
 const BAND_SLACK: f64 = 1e-4;
 
+/// Which tables and rows of a file are read, and how damage is treated.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Choice<'a> {
+    /// Read only the tables of this `INSNAME`; needed when the tables of
+    /// one estimator have several (parameter `insname`).
+    pub insname: Option<&'a str>,
+    /// The estimator of tables without a `V2R_EST` keyword (a pipeline's
+    /// own file); tables whose `V2R_EST` says otherwise are left aside.
+    /// Needed when a table does not say (parameter `estimator`).
+    pub estimator: Option<Estimator>,
+    /// Read only the rows of this target (its `TARGET` in `OI_TARGET`, or
+    /// its `TARGET_ID`); needed when the rows are of several (parameter
+    /// `target`).
+    pub target: Option<&'a str>,
+    /// How checksums are treated.
+    pub read: ReadOptions,
+}
+
 /// Reads a pipeline's estimates from the OIFITS file `path` (parameter
-/// `estimates`).
-///
-/// - `insname`: read only the tables of this `INSNAME`; needed when the
-///   tables of one estimator have several (parameter `insname`).
-/// - `estimator`: the estimator of tables without a `V2R_EST` keyword (a
-///   pipeline's own file); tables whose `V2R_EST` says otherwise are left
-///   aside. Needed when a table does not say (parameter `estimator`).
+/// `estimates`), the tables and rows of `choice`.
 ///
 /// Tables of the same estimator are read one after the other, in file
 /// order. Refused: no table, more than one channel per row, an
-/// `EFF_WAVE` outside the set's band, a row count other than the set's, a
-/// non-finite unflagged value. A row flagged in any table read is left
-/// out of every estimator.
+/// `EFF_WAVE` outside the set's band, a `V2R_BINS` or `V2R_BIAS` other
+/// than the window and convention scored, rows of several targets when
+/// none is chosen, rows out of time order (`MJD`), a row count other than
+/// the set's, a non-finite unflagged value. A row flagged in any table
+/// read is left out of every estimator.
 pub fn read_oifits_estimates(
     path: &Path,
-    insname: Option<&str>,
-    estimator: Option<Estimator>,
+    choice: &Choice,
     expected: &Expected,
 ) -> Result<OifitsEstimates> {
     const P: &str = "estimates";
     let err = |loc: String, reason: String| Error::data(P, path, loc, reason);
-    let all = read_vis2_tables(path, P)?;
+    let file = read_oifits_file(path, P, choice.read)?;
+    let all = &file.tables;
     if all.is_empty() {
         return Err(err(String::new(), "no OI_VIS2 table".into()));
     }
@@ -43,7 +69,7 @@ pub fn read_oifits_estimates(
         v.dedup();
         v.join(", ")
     };
-    let chosen: Vec<&Vis2Table> = match insname {
+    let chosen: Vec<&Vis2Table> = match choice.insname {
         Some(n) => all.iter().filter(|t| t.insname == n.trim_end()).collect(),
         None => all.iter().collect(),
     };
@@ -52,14 +78,15 @@ pub fn read_oifits_estimates(
             param: "insname",
             reason: format!(
                 "{}: no OI_VIS2 table of this INSNAME; the file has {}",
-                insname.unwrap_or(""),
+                choice.insname.unwrap_or(""),
                 names()
             ),
         });
     }
     let mut by_est: [Vec<&Vis2Table>; 2] = [Vec::new(), Vec::new()];
     for t in chosen {
-        if let Some(e) = assign(t, estimator, path)? {
+        if let Some(e) = assign(t, choice.estimator, path)? {
+            check_convention(t, expected)?;
             by_est[(e == Estimator::V2Sq) as usize].push(t);
         }
     }
@@ -85,11 +112,12 @@ pub fn read_oifits_estimates(
             });
         }
     }
+    let target = super::order::target_of(&file, &by_est, choice.target, path)?;
     let columns = by_est
         .iter()
         .map(|g| {
             (!g.is_empty())
-                .then(|| concat(g, expected, path))
+                .then(|| concat(g, target, expected, path))
                 .transpose()
         })
         .collect::<Result<Vec<_>>>()?;
@@ -98,6 +126,35 @@ pub fn read_oifits_estimates(
         path,
         all.iter().map(|t| t.insname.clone()).collect(),
     )
+}
+
+/// Refuses a table whose `V2R_BINS` or `V2R_BIAS` names another window or
+/// convention than the one scored: its values would be compared with
+/// another truth.
+fn check_convention(t: &Vis2Table, expected: &Expected) -> Result<()> {
+    let checks = [
+        ("bins", KEY_BINS, &t.bins, expected.bins.name()),
+        ("bias", KEY_BIAS, &t.bias, expected.bias.name()),
+    ];
+    for (param, key, written, asked) in checks {
+        if let Some(w) = written.as_deref().filter(|w| *w != asked) {
+            return Err(Error::Invalid {
+                param,
+                reason: format!(
+                    "{asked} is scored, but OI_VIS2 INSNAME {} (HDU {}) says {key} = '{w}': \
+                     its estimates are of another {}; score with {param} {w}",
+                    t.insname,
+                    t.hdu,
+                    if param == "bins" {
+                        "window of bins"
+                    } else {
+                        "bias convention"
+                    }
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The estimator of table `t`: its `V2R_EST`, else `estimator`; None when
@@ -135,6 +192,7 @@ fn assign(t: &Vis2Table, estimator: Option<Estimator>, path: &Path) -> Result<Op
 /// the set.
 fn concat(
     tables: &[&Vis2Table],
+    target: Option<i64>,
     expected: &Expected,
     path: &Path,
 ) -> Result<(Vec<f64>, Vec<bool>)> {
@@ -155,8 +213,12 @@ fn concat(
                 "EFF_WAVE {w:e} m lies outside the set's band [{lo:e}, {hi:e}] m: not this set's wavelength"
             )));
         }
-        values.extend_from_slice(&t.vis2data);
-        flags.extend_from_slice(&t.flag);
+        super::order::check_time_order(t, target, path)?;
+        let of_target = |r: &usize| target.map_or(true, |id| t.target_id[*r] == id);
+        for r in (0..t.rows).filter(of_target) {
+            values.push(t.vis2data[r]);
+            flags.push(t.flag[r]);
+        }
     }
     if values.len() as u64 != expected.rows {
         return Err(Error::data(

@@ -6,7 +6,7 @@ use crate::formalism::spectrum::Spectrum;
 use crate::simulator::Inputs;
 use crate::Result;
 
-/// MJD at the start of the rows: 2000-01-01T00:00 UTC (TIME counts from it). The rows are a
+/// MJD at the start of the rows by default: 2000-01-01T00:00 UTC. The rows are a
 /// model's, not a night's: a fixed, recognisable epoch.
 pub const MJD0: f64 = 51_544.0;
 /// `DATE-OBS` of [`MJD0`].
@@ -14,11 +14,67 @@ pub const DATE_OBS: &str = "2000-01-01";
 /// Row spacing, s, where the configuration has no scan speed (no piston).
 pub const NOMINAL_ROW_S: f64 = 1.0;
 
+/// Where the array stands: a named site, geodetic (WGS84).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Site {
+    /// `ARRNAME` and `TELESCOP`.
+    pub name: String,
+    /// East longitude, degrees.
+    pub lon_deg: f64,
+    /// Geodetic latitude, degrees.
+    pub lat_deg: f64,
+    /// Height above the ellipsoid, m.
+    pub height_m: f64,
+}
+
+/// The site of the paper's instrument: IOTA (FLUOR's 0.45 m siderostats)
+/// on Mount Hopkins, Arizona (Traub et al. 2003, SPIE 4838, 45).
+pub fn iota() -> Site {
+    Site {
+        name: "IOTA".into(),
+        lon_deg: -110.885,
+        lat_deg: 31.6916,
+        height_m: 2564.0,
+    }
+}
+
+impl Site {
+    /// The site's geocentric position (ITRS), m: WGS84 ellipsoid.
+    pub fn geocentric_m(&self) -> [f64; 3] {
+        const A: f64 = 6_378_137.0;
+        const F: f64 = 1.0 / 298.257_223_563;
+        let e2 = F * (2.0 - F);
+        let (lat, lon) = (self.lat_deg.to_radians(), self.lon_deg.to_radians());
+        let n = A / (1.0 - e2 * lat.sin().powi(2)).sqrt();
+        let r = (n + self.height_m) * lat.cos();
+        [
+            r * lon.cos(),
+            r * lon.sin(),
+            (n * (1.0 - e2) + self.height_m) * lat.sin(),
+        ]
+    }
+
+    /// The local east unit vector in the geocentric frame.
+    pub fn east(&self) -> [f64; 3] {
+        let lon = self.lon_deg.to_radians();
+        [-lon.sin(), lon.cos(), 0.0]
+    }
+}
+
 /// What an OIFITS file says of the observation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setting {
     /// `TARGET` of `OI_TARGET`.
     pub target: String,
+    /// The target's right ascension and declination (J2000), degrees.
+    pub target_radec_deg: (f64, f64),
+    /// `DATE-OBS`, `YYYY-MM-DD`: the night of the first row (at 00:00 UTC).
+    pub date_obs: String,
+    /// The array's site; its two stations stand on the baseline, east–west.
+    pub site: Site,
+    /// Telescope diameter, m (`DIAMETER`; 0 where the configuration has
+    /// no aperture).
+    pub diameter_m: f64,
     /// Projected baseline, m: `UCOORD` (east), `VCOORD = 0`, and the
     /// second station's position.
     pub baseline_m: f64,
@@ -45,6 +101,10 @@ impl Setting {
             .map(|p| inputs.samples as f64 * inputs.dx_um / (p.fringe_hz * p.wavelength_um));
         Ok(Setting {
             target: target.to_owned(),
+            target_radec_deg: (0.0, 0.0),
+            date_obs: DATE_OBS.to_owned(),
+            site: iota(),
+            diameter_m: inputs.piston.as_ref().map_or(0.0, |p| p.aperture_m),
             baseline_m: inputs.baseline_m,
             eff_wave_m,
             eff_band_m,
@@ -52,11 +112,33 @@ impl Setting {
         })
     }
 
-    /// Seconds from [`MJD0`] to the middle of row `r` (0-based).
-    pub fn time_s(&self, r: usize) -> f64 {
-        let step = self.scan_s.unwrap_or(NOMINAL_ROW_S);
-        (r as f64 + 0.5) * step
+    /// Seconds between rows, and the integration time of each.
+    pub fn row_s(&self) -> f64 {
+        self.scan_s.unwrap_or(NOMINAL_ROW_S)
     }
+
+    /// The MJD of the middle of row `r` (0-based): rows follow one
+    /// another from 00:00 UTC of [`Setting::date_obs`].
+    pub fn mjd(&self, r: usize) -> f64 {
+        mjd_of_date(&self.date_obs).unwrap_or(MJD0) + (r as f64 + 0.5) * self.row_s() / 86_400.0
+    }
+}
+
+/// The MJD of 00:00 UTC of a `YYYY-MM-DD` date (None when it is not one).
+pub fn mjd_of_date(date: &str) -> Option<f64> {
+    let mut parts = date.splitn(3, '-').map(|p| p.parse::<i64>().ok());
+    let (y, m, d) = (parts.next()??, parts.next()??, parts.next()??);
+    if date.len() != 10 || !(1..=12).contains(&m) || !(1..=31).contains(&d) {
+        return None;
+    }
+    // Days from the civil date (Hinnant's days_from_civil), then MJD.
+    let y = if m <= 2 { y - 1 } else { y };
+    let era = y.div_euclid(400);
+    let yoe = y - era * 400;
+    let doy = (153 * (if m > 2 { m - 3 } else { m + 9 }) + 2) / 5 + d - 1;
+    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    let days_since_1970 = era * 146_097 + doe - 719_468;
+    Some(days_since_1970 as f64 + 40_587.0)
 }
 
 /// `EFF_WAVE` and `EFF_BAND` of a spectrum, m.

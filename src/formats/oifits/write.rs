@@ -4,7 +4,7 @@
 //! 5–11), built in memory by cfitsio and written atomically.
 
 use super::mem::MemFits;
-use super::setting::{Setting, DATE_OBS, MJD0};
+use super::setting::Setting;
 use super::{check_fits_extension, estimator_key, KEY_ESTIMATOR};
 use crate::conformance::score::Estimator;
 use crate::formats::atomic::TempTarget;
@@ -15,8 +15,9 @@ use fitsio::FitsFile;
 use std::io::Write;
 use std::path::Path;
 
-/// `ARRNAME` of `OI_ARRAY` and `OI_VIS2`.
-pub const ARRNAME: &str = "V2REF_BASELINE";
+/// Keyword of the primary header giving the number of HDUs written: a
+/// file cut after a whole HDU is then refused, not read short.
+pub const KEY_NHDU: &str = "V2R_NHDU";
 
 /// A header keyword's value.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,10 +97,14 @@ pub struct OifitsDoc {
 pub fn write_oifits(path: &Path, param: &'static str, doc: &OifitsDoc) -> Result<()> {
     check_fits_extension(path, param)?;
     check_doc(doc, param)?;
-    let bytes = to_bytes(doc).map_err(|reason| Error::Output {
+    let output_error = |reason: String| Error::Output {
         path: path.display().to_string(),
         reason,
-    })?;
+    };
+    let mut bytes = to_bytes(doc).map_err(output_error)?;
+    if super::is_gzip_path(path) {
+        bytes = gzip(&bytes).map_err(|e| output_error(format!("gzip: {e}")))?;
+    }
     let (temp, mut file) = TempTarget::create(path, Some(param))?;
     file.write_all(&bytes)
         .and_then(|_| file.sync_all())
@@ -133,16 +138,28 @@ fn check_doc(doc: &OifitsDoc, param: &'static str) -> Result<()> {
     Ok(())
 }
 
-/// The file's bytes.
+fn gzip(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
+    let mut z = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    z.write_all(bytes)?;
+    z.finish()
+}
+
+/// The file's bytes: every HDU with its `CHECKSUM` and `DATASUM`; a row
+/// whose `VIS2DATA` or `VIS2ERR` is not a number is flagged.
 pub fn to_bytes(doc: &OifitsDoc) -> std::result::Result<Vec<u8>, String> {
     let mut mem = MemFits::create()?;
     let f = &mut mem.file;
     primary(f, doc)?;
     target(f, &doc.setting)?;
     array(f, &doc.setting)?;
-    for t in &doc.tables {
-        wavelength(f, &doc.setting, &t.insname)?;
-        vis2(f, &doc.setting, t)?;
+    for (i, t) in doc.tables.iter().enumerate() {
+        let extver = i as i64 + 1;
+        wavelength(f, &doc.setting, &t.insname, extver)?;
+        let mut t = t.clone();
+        for (r, flag) in t.flag.iter_mut().enumerate() {
+            *flag |= !(t.vis2data[r].is_finite() && t.vis2err[r].is_finite());
+        }
+        vis2(f, &doc.setting, &t, extver)?;
     }
     mem.into_bytes()
 }
@@ -179,12 +196,8 @@ fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String>
             "institution or software that wrote the file",
         ),
         Key::str("DATE", &today(), "UTC date the file was written"),
-        Key::str(
-            "DATE-OBS",
-            DATE_OBS,
-            "nominal: a model's rows, not a night's",
-        ),
-        Key::str("TELESCOP", ARRNAME, "a two-station model baseline"),
+        Key::str("DATE-OBS", &s.date_obs, "UTC date of the first row"),
+        Key::str("TELESCOP", &s.site.name, "array (two stations)"),
         Key::str("INSTRUME", &doc.tables[0].insname, "first INSNAME"),
         Key::str("OBSERVER", "v2ref", "no observer: computed"),
         Key::str("OBJECT", &s.target, "target"),
@@ -206,6 +219,11 @@ fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String>
             "estimators V1^2 and V2^2",
         ),
     ];
+    keys.push(Key {
+        name: KEY_NHDU.into(),
+        value: KeyValue::Int(3 + 2 * doc.tables.len() as i64),
+        comment: "HDUs in this file, the primary included".into(),
+    });
     keys.extend(doc.keywords.iter().cloned());
     put_keys(f, &hdu, &keys)
 }
@@ -343,9 +361,9 @@ fn target(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
     let h = create(f, "OI_TARGET", &cols, &[])?;
     write_i16(f, &h, "TARGET_ID", &[1])?;
     write_str(f, &h, "TARGET", &[&s.target])?;
+    write_f64(f, &h, "RAEP0", &[s.target_radec_deg.0])?;
+    write_f64(f, &h, "DECEP0", &[s.target_radec_deg.1])?;
     for name in [
-        "RAEP0",
-        "DECEP0",
         "RA_ERR",
         "DEC_ERR",
         "SYSVEL",
@@ -375,35 +393,68 @@ fn array(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
         col("FOV", Double, 1, "arcsec"),
         col("FOVTYPE", A, 6, ""),
     ];
+    let centre = s.site.geocentric_m();
     let keys = [
-        Key::str("ARRNAME", ARRNAME, "two stations on the model baseline"),
+        Key::str("ARRNAME", &s.site.name, "array"),
         Key::str("FRAME", "GEOCENTRIC", "coordinate frame of STAXYZ"),
-        Key::f64("ARRAYX", 0.0, "[m] array centre (nominal)"),
-        Key::f64("ARRAYY", 0.0, "[m] array centre (nominal)"),
-        Key::f64("ARRAYZ", 0.0, "[m] array centre (nominal)"),
+        Key::f64("ARRAYX", centre[0], "[m] array centre, geocentric X"),
+        Key::f64("ARRAYY", centre[1], "[m] array centre, geocentric Y"),
+        Key::f64("ARRAYZ", centre[2], "[m] array centre, geocentric Z"),
     ];
     let h = create(f, "OI_ARRAY", &cols, &keys)?;
+    // The two stations half a baseline either side of the centre, east–west.
+    let east = s.site.east();
+    let station = |sign: f64| east.map(|e| sign * 0.5 * s.baseline_m * e);
+    let staxyz: Vec<f64> = [station(-1.0), station(1.0)].concat();
+    // Field of view: the telescopes' diffraction FWHM, λ/D.
+    let fov_arcsec = if s.diameter_m > 0.0 {
+        (s.eff_wave_m / s.diameter_m).to_degrees() * 3600.0
+    } else {
+        0.0
+    };
     write_str(f, &h, "TEL_NAME", &["T1", "T2"])?;
     write_str(f, &h, "STA_NAME", &["S1", "S2"])?;
     write_i16(f, &h, "STA_INDEX", &[1, 2])?;
-    write_f32(f, &h, "DIAMETER", &[0.0, 0.0])?;
-    write_f64(f, &h, "STAXYZ", &[0.0, 0.0, 0.0, s.baseline_m, 0.0, 0.0])?;
-    write_f64(f, &h, "FOV", &[0.0, 0.0])?;
+    write_f32(f, &h, "DIAMETER", &[s.diameter_m as f32; 2])?;
+    write_f64(f, &h, "STAXYZ", &staxyz)?;
+    write_f64(f, &h, "FOV", &[fov_arcsec; 2])?;
     write_str(f, &h, "FOVTYPE", &["FWHM", "FWHM"])
 }
 
-fn wavelength(f: &mut FitsFile, s: &Setting, insname: &str) -> std::result::Result<(), String> {
+fn wavelength(
+    f: &mut FitsFile,
+    s: &Setting,
+    insname: &str,
+    extver: i64,
+) -> std::result::Result<(), String> {
     let cols = [
         col("EFF_WAVE", ColumnDataType::Float, 1, "m"),
         col("EFF_BAND", ColumnDataType::Float, 1, "m"),
     ];
-    let keys = [Key::str("INSNAME", insname, "instrument (estimator)")];
+    let keys = [
+        Key::str("INSNAME", insname, "instrument (estimator)"),
+        extver_key(extver),
+    ];
     let h = create(f, "OI_WAVELENGTH", &cols, &keys)?;
     write_f32(f, &h, "EFF_WAVE", &[s.eff_wave_m as f32])?;
     write_f32(f, &h, "EFF_BAND", &[s.eff_band_m as f32])
 }
 
-fn vis2(f: &mut FitsFile, s: &Setting, t: &Vis2Out) -> std::result::Result<(), String> {
+/// `EXTVER`: tables of the same `EXTNAME` are told apart by it.
+fn extver_key(extver: i64) -> Key {
+    Key {
+        name: "EXTVER".into(),
+        value: KeyValue::Int(extver),
+        comment: "version of this EXTNAME".into(),
+    }
+}
+
+fn vis2(
+    f: &mut FitsFile,
+    s: &Setting,
+    t: &Vis2Out,
+    extver: i64,
+) -> std::result::Result<(), String> {
     use ColumnDataType::{Double, Logical, Short};
     let cols = [
         col("TARGET_ID", Short, 1, ""),
@@ -418,9 +469,15 @@ fn vis2(f: &mut FitsFile, s: &Setting, t: &Vis2Out) -> std::result::Result<(), S
         col("FLAG", Logical, 1, ""),
     ];
     let mut keys = vec![
-        Key::str("DATE-OBS", DATE_OBS, "nominal start"),
-        Key::str("ARRNAME", ARRNAME, ""),
+        extver_key(extver),
+        Key::str("DATE-OBS", &s.date_obs, "UTC date of the first row"),
+        Key::str("ARRNAME", &s.site.name, ""),
         Key::str("INSNAME", &t.insname, ""),
+        // One channel: the arrays are declared of one element, as
+        // OIFITS readers that shape columns by TDIM expect.
+        Key::str("TDIM5", "(1)", ""),
+        Key::str("TDIM6", "(1)", ""),
+        Key::str("TDIM10", "(1)", ""),
     ];
     if let Some(est) = t.estimator {
         keys.push(Key::str(
@@ -432,12 +489,12 @@ fn vis2(f: &mut FitsFile, s: &Setting, t: &Vis2Out) -> std::result::Result<(), S
     keys.extend(t.keywords.iter().cloned());
     let h = create(f, "OI_VIS2", &cols, &keys)?;
     let n = t.vis2data.len();
-    let time: Vec<f64> = (0..n).map(|r| s.time_s(r)).collect();
-    let mjd: Vec<f64> = time.iter().map(|t| MJD0 + t / 86_400.0).collect();
+    // OIFITS v2 keeps TIME at zero: the time is MJD.
+    let mjd: Vec<f64> = (0..n).map(|r| s.mjd(r)).collect();
     write_i16(f, &h, "TARGET_ID", &vec![1; n])?;
-    write_f64(f, &h, "TIME", &time)?;
+    write_f64(f, &h, "TIME", &vec![0.0; n])?;
     write_f64(f, &h, "MJD", &mjd)?;
-    write_f64(f, &h, "INT_TIME", &vec![s.scan_s.unwrap_or(0.0); n])?;
+    write_f64(f, &h, "INT_TIME", &vec![s.row_s(); n])?;
     write_f64(f, &h, "VIS2DATA", &t.vis2data)?;
     write_f64(f, &h, "VIS2ERR", &t.vis2err)?;
     write_f64(f, &h, "UCOORD", &vec![s.baseline_m; n])?;

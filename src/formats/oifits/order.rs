@@ -1,0 +1,108 @@
+//! Which rows of an OIFITS file stand for a set's rows: those of one
+//! target (`TARGET_ID`, chosen by name or number when there are several),
+//! in time order (`MJD` never decreasing), since a set's rows are matched
+//! to the file's in order.
+
+use super::read::{OifitsFile, Vis2Table};
+use crate::{Error, Result};
+use std::path::Path;
+
+/// The `TARGET_ID` whose rows are read: None when every row is of one
+/// target and none is chosen; `chosen` (a `TARGET` name or a number)
+/// resolved otherwise. Refused: rows of several targets and none chosen,
+/// a chosen target with no rows.
+pub fn target_of(
+    file: &OifitsFile,
+    groups: &[Vec<&Vis2Table>],
+    chosen: Option<&str>,
+    path: &Path,
+) -> Result<Option<i64>> {
+    let mut ids: Vec<i64> = groups
+        .iter()
+        .flatten()
+        .flat_map(|t| t.target_id.iter().copied())
+        .collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let listed = || {
+        ids.iter()
+            .map(|id| match file.targets.iter().find(|(i, _)| i == id) {
+                Some((_, name)) => format!("{id} ({name})"),
+                None => id.to_string(),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let Some(name) = chosen else {
+        if ids.len() > 1 {
+            return Err(Error::Invalid {
+                param: "target",
+                reason: format!(
+                    "the rows are of several targets, TARGET_ID {}; choose one (its TARGET name or TARGET_ID)",
+                    listed()
+                ),
+            });
+        }
+        return Ok(None);
+    };
+    let by_name = file
+        .targets
+        .iter()
+        .find(|(_, n)| n.eq_ignore_ascii_case(name.trim()))
+        .map(|(i, _)| *i);
+    let id = by_name.or_else(|| name.trim().parse::<i64>().ok());
+    match id.filter(|id| ids.contains(id)) {
+        Some(id) => Ok(Some(id)),
+        None => Err(Error::Invalid {
+            param: "target",
+            reason: format!(
+                "{name}: no OI_VIS2 row of this target in {}; its rows are of TARGET_ID {}",
+                path.display(),
+                listed()
+            ),
+        }),
+    }
+}
+
+/// Refuses rows of table `t` (those of `target`, or all) whose `MJD` is
+/// not a number or is earlier than the row before: the rows would not
+/// be the set's, in order.
+pub fn check_time_order(t: &Vis2Table, target: Option<i64>, path: &Path) -> Result<()> {
+    let mut last: Option<(usize, f64)> = None;
+    for r in 0..t.rows {
+        if target.is_some_and(|id| t.target_id[r] != id) {
+            continue;
+        }
+        let mjd = t.mjd[r];
+        let at = || {
+            format!(
+                "HDU {} (OI_VIS2 INSNAME {}), row {}",
+                t.hdu,
+                t.insname,
+                r + 1
+            )
+        };
+        if !mjd.is_finite() {
+            return Err(Error::data(
+                "estimates",
+                path,
+                at(),
+                format!("MJD {mjd}; a date (days) is needed"),
+            ));
+        }
+        if let Some((q, before)) = last.filter(|(_, before)| mjd < *before) {
+            return Err(Error::data(
+                "estimates",
+                path,
+                at(),
+                format!(
+                    "MJD {mjd} is earlier than row {}'s {before}: the rows are matched to the \
+                     set's in order, so they must be in time order",
+                    q + 1
+                ),
+            ));
+        }
+        last = Some((r, mjd));
+    }
+    Ok(())
+}
