@@ -16,6 +16,8 @@
 //! Monte Carlo, 2^17 trials of N = 128, Poisson and Gaussian), `synth`
 //! (the rows of a set), `piston` (one piston sequence and its scans).
 
+#[path = "floors/estimate_floor.rs"]
+mod estimate_floor;
 #[path = "floors/paths.rs"]
 mod paths;
 
