@@ -95,6 +95,58 @@ fn a_refusal_names_the_file_or_the_argument_and_the_row() {
     assert_eq!(check_rows(ARRAY, &data, 8, 0), Ok(()));
 }
 
+/// `estimate_rows` checks each row as it estimates it, blocks of rows on
+/// several threads: it refuses what `check_rows` refuses, with the same
+/// message (a non-finite value anywhere before an earlier dark row; the
+/// earliest of each, whichever thread met it), and its estimates of good
+/// rows are those of one row at a time, to the bit, for any thread count.
+#[test]
+fn one_pass_estimate_refuses_what_check_rows_refuses_and_keeps_the_bits() {
+    let (n, count) = (16, 2000);
+    let inputs = Configuration::from_physical(&physical(n), true)
+        .unwrap()
+        .inputs_for(ARRAY, count, n)
+        .unwrap();
+    let model = Model::new(&inputs).unwrap();
+    let scales: Vec<f64> = (0..count).map(|r| 1.0 + (r % 7) as f64 * 0.25).collect();
+    let mut data = rows(&model, &scales);
+    let options = (BinWindow::Positive, BiasConvention::Model);
+    let est = estimator(&inputs, options, true, None, 1).unwrap();
+    let one_by_one: Vec<_> = data.chunks(n).map(|row| est.estimate(row)).collect();
+    for threads in [1, 2, 3] {
+        let all = estimate_rows(&est, ARRAY, (&data, 0), threads).unwrap();
+        assert_eq!(all, one_by_one, "{threads} threads");
+    }
+    // A dark row in the first block, non-finite values in later blocks
+    // (rows 1500 and 1800): the first non-finite one is refused.
+    data[300 * n..301 * n].fill(0.0);
+    data[1800 * n + 3] = f64::INFINITY;
+    data[1500 * n + 9] = f64::NAN;
+    let by_check = check_rows(ARRAY, &data, n, 10).unwrap_err();
+    assert_eq!(
+        by_check.to_string(),
+        "interferograms: row 1511, column 10 (1-based): NaN is not a finite number; every value must be finite"
+    );
+    for threads in [1, 2, 3] {
+        let got = estimate_rows(&est, ARRAY, (&data, 10), threads).unwrap_err();
+        assert_eq!(got, by_check, "{threads} threads");
+    }
+    // Without them: the earliest of the dark rows 301 and 1901 (1-based).
+    data[1500 * n + 9] = 1.0;
+    data[1800 * n + 3] = 1.0;
+    data[1900 * n..1901 * n].fill(0.0);
+    let dark = check_rows(ARRAY, &data, n, 0).unwrap_err();
+    assert!(dark
+        .to_string()
+        .starts_with("interferograms: row 301 (1-based): every sample is 0"));
+    for threads in [1, 2, 3] {
+        assert_eq!(
+            estimate_rows(&est, ARRAY, (&data, 0), threads).unwrap_err(),
+            dark
+        );
+    }
+}
+
 /// The estimates through the command equal the slow oracle's (naive DFT,
 /// the bias by its definition), normalized by the model or by a
 /// calibrator's rows (the point source's, twice as bright): the

@@ -9,13 +9,13 @@
 //!    ([`Configuration::inputs_for`]);
 //! 3. the estimator, normalized by the model's point source or by a
 //!    calibrator's rows ([`estimator`]);
-//! 4. the rows checked ([`check_rows`]: finite, not dark) and estimated
-//!    ([`estimate_rows`]).
+//! 4. the rows checked (finite, not dark: [`check_rows`]) and estimated,
+//!    in one pass ([`estimate_rows`]).
 //!
 //! Errors name the rows as the edge does ([`RowsName`]): the CLI's flag
 //! and its file, or Python's argument.
 
-use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator, RowFault};
 use crate::conformance::sidecar::Sidecar;
 use crate::error::{Error, Result};
 use crate::formalism::estimator::{BinWindow, Pair};
@@ -164,40 +164,38 @@ pub fn estimator(
 /// Refuses the first non-finite value and the first dark row (every
 /// sample 0: no light, or no data) of `rows` (`cols` samples each, the
 /// first `first` rows of the file before them), named by `name`; a
-/// non-finite value anywhere comes first. One pass over the rows.
+/// non-finite value anywhere comes first ([`RowFault::first`]). One pass
+/// over the rows.
 pub fn check_rows(name: RowsName<'_>, rows: &[f64], cols: usize, first: usize) -> Result<()> {
-    let mut dark = None;
+    let mut fault = None;
     for (r, row) in rows.chunks(cols.max(1)).enumerate() {
-        if let Some(c) = row.iter().position(|v| !v.is_finite()) {
-            return Err(name.error(
-                format!("row {}, column {} (1-based)", first + r + 1, c + 1),
-                format!(
-                    "{} is not a finite number; every value must be finite",
-                    row[c]
-                ),
-            ));
-        }
-        if dark.is_none() && row.iter().all(|&v| v == 0.0) {
-            dark = Some(r);
+        fault = RowFault::first(fault, RowFault::of_row(r, row));
+        if let Some(RowFault::NonFinite { .. }) = fault {
+            break;
         }
     }
-    match dark {
-        Some(r) => Err(name.error(
-            format!("row {} (1-based)", first + r + 1),
-            crate::conformance::estimate::DARK_ROW,
-        )),
+    match fault {
+        Some(f) => Err(name.error(f.location(first), f.reason())),
         None => Ok(()),
     }
 }
 
 /// The estimates of `rows` (the first `first` rows of the file before
-/// them), checked by [`check_rows`] first.
+/// them), each row checked ([`check_rows`]'s refusals, same messages) as
+/// it is estimated, in one pass over the rows.
 pub fn estimate_rows(
     est: &RowEstimator,
     name: RowsName<'_>,
     (rows, first): (&[f64], usize),
     threads: usize,
 ) -> Result<Vec<RowEstimate>> {
-    check_rows(name, rows, est.samples(), first)?;
-    est.estimate_rows(rows, threads)
+    let n = est.samples();
+    if rows.len() % n != 0 {
+        return Err(name.error(
+            "",
+            format!("{} values is not a whole number of rows of {n}", rows.len()),
+        ));
+    }
+    est.try_estimate_rows(rows, threads)
+        .map_err(|f| name.error(f.location(first), f.reason()))
 }

@@ -61,8 +61,9 @@ impl Workspace {
         }
     }
 
-    /// The raw V1², V2² per window of the samples now in the workspace.
-    pub(crate) fn raw_per_window(&mut self, ctx: &ScanContext) -> Vec<Pair> {
+    /// The raw V1², V2² per window ([`BIN_WINDOWS`]) of the samples now in
+    /// the workspace.
+    pub(crate) fn raw_per_window(&mut self, ctx: &ScanContext) -> [Pair; BIN_WINDOWS.len()] {
         self.buf.clear();
         self.buf
             .extend(self.samples.iter().map(|&m| Complex64::new(m, 0.0)));
@@ -70,10 +71,7 @@ impl Workspace {
         self.scratch.resize(ctx.fft.get_inplace_scratch_len(), zero);
         ctx.fft
             .process_with_scratch(&mut self.buf, &mut self.scratch);
-        ctx.bins
-            .iter()
-            .map(|b| raw_estimates(&self.buf, b))
-            .collect()
+        std::array::from_fn(|w| raw_estimates(&self.buf, &ctx.bins[w]))
     }
 }
 
@@ -99,10 +97,10 @@ impl Calibration {
         fill_scan(&ctx.table, ctx.setup, u, w, &|_| 0.0, 0.0, &mut ws.samples);
         let source = ws.raw_per_window(ctx);
         let calibrator = match &ctx.cal_table {
-            None => source.clone(),
+            None => source.to_vec(),
             Some(t) => {
                 fill_scan(t, ctx.setup, u, w, &|_| 0.0, 0.0, &mut ws.samples);
-                ws.raw_per_window(ctx)
+                ws.raw_per_window(ctx).to_vec()
             }
         };
         let no_piston = source
@@ -123,13 +121,13 @@ impl Calibration {
 
     /// V(piston) − V(no piston) of V1 and V2 per window, from the raw
     /// estimates of a scan with piston.
-    pub(crate) fn differences(&self, raw: &[Pair]) -> Vec<Pair> {
-        raw.iter()
-            .zip(self.calibrator.iter().zip(&self.no_piston))
-            .map(|(r, (c, v0))| Pair {
+    pub(crate) fn differences(&self, raw: &[Pair; BIN_WINDOWS.len()]) -> [Pair; BIN_WINDOWS.len()] {
+        std::array::from_fn(|w| {
+            let (r, c, v0) = (raw[w], self.calibrator[w], self.no_piston[w]);
+            Pair {
                 v1_sq: (r.v1_sq / c.v1_sq).sqrt() - v0.v1_sq,
                 v2_sq: (r.v2_sq / c.v2_sq).sqrt() - v0.v2_sq,
-            })
-            .collect()
+            }
+        })
     }
 }

@@ -202,10 +202,13 @@ impl PistonSequence {
         }
     }
 
-    /// The piston of scan `s` at τ sample intervals from its start, µm.
-    pub(crate) fn at(&self, s: usize, tau: f64) -> f64 {
+    /// The piston of scan `s` (µm) as a function of τ, sample intervals
+    /// from the scan's start; its sequence is located once, not at each
+    /// sample.
+    pub(crate) fn of_scan(&self, s: usize) -> impl Fn(f64) -> f64 + '_ {
         let (series, local) = self.locate(s);
-        interp(series, (local * self.stride) as f64 + tau)
+        let start = (local * self.stride) as f64;
+        move |tau| interp(series, start + tau)
     }
 
     /// Over all the scans: the largest |p − reference| any sub-sample can

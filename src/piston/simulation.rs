@@ -135,13 +135,6 @@ pub(crate) fn table_range_um(setup: &ScanSetup, excursion_um: f64) -> Result<f64
     Ok(max_opd)
 }
 
-/// One scan's effect of the piston: per detector, per window, the V1 and V2
-/// differences (in the `v1_sq`, `v2_sq` fields of [`Pair`], here not
-/// squared).
-struct ScanResult {
-    per_detector: Vec<Vec<Pair>>,
-}
-
 /// Running statistics of the differences, one accumulator per detector ×
 /// window × estimator.
 #[derive(Clone)]
@@ -158,35 +151,32 @@ impl DifferenceStats {
         }
     }
 
-    fn push(&mut self, scan: &ScanResult) {
-        for (acc, diffs) in self.per_detector.iter_mut().zip(&scan.per_detector) {
-            for ((v1, v2), d) in acc.iter_mut().zip(diffs) {
-                v1.push(d.v1_sq);
-                v2.push(d.v2_sq);
-            }
+    /// One scan's V1 and V2 differences through detector `detector`, per
+    /// window (in the `v1_sq`, `v2_sq` fields of [`Pair`], here not
+    /// squared).
+    fn push(&mut self, detector: usize, diffs: &[Pair]) {
+        for ((v1, v2), d) in self.per_detector[detector].iter_mut().zip(diffs) {
+            v1.push(d.v1_sq);
+            v2.push(d.v2_sq);
         }
     }
 }
 
-/// Scan `s` of the sequence seen by every calibrated detector.
+/// Scan `s` of the sequence seen by every calibrated detector, its
+/// differences added to `stats` (nothing allocated per scan).
 fn scan(
-    ctx: &ScanContext,
-    sequence: &PistonSequence,
-    calibrations: &[Calibration],
+    (ctx, sequence, calibrations): (&ScanContext, &PistonSequence, &[Calibration]),
     s: usize,
     ws: &mut Workspace,
-) -> ScanResult {
+    stats: &mut DifferenceStats,
+) {
     let r = sequence.reference_um(s);
-    let p = |tau: f64| sequence.at(s, tau);
-    let per_detector = calibrations
-        .iter()
-        .map(|cal| {
-            let (u, w) = (&cal.sub.0, &cal.sub.1);
-            fill_scan(&ctx.table, ctx.setup, u, w, &p, r, &mut ws.samples);
-            cal.differences(&ws.raw_per_window(ctx))
-        })
-        .collect();
-    ScanResult { per_detector }
+    let p = sequence.of_scan(s);
+    for (d, cal) in calibrations.iter().enumerate() {
+        let (u, w) = (&cal.sub.0, &cal.sub.1);
+        fill_scan(&ctx.table, ctx.setup, u, w, &p, r, &mut ws.samples);
+        stats.push(d, &cal.differences(&ws.raw_per_window(ctx)));
+    }
 }
 
 /// All scans, one work unit per independent sequence (its consecutive
@@ -211,7 +201,7 @@ fn scan_all(
         let mut stats = DifferenceStats::new(calibrations.len());
         let mut steps = Steps::new(progress.unwrap_or(&|_| {}), scan_work);
         for s in sequence.scans_of(unit as usize) {
-            stats.push(&scan(ctx, sequence, calibrations, s, &mut ws));
+            scan((ctx, sequence, calibrations), s, &mut ws, &mut stats);
             steps.step();
         }
         steps.finish();

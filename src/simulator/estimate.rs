@@ -237,25 +237,32 @@ impl RowEstimator {
 
     /// The estimates of one row (length N).
     pub fn estimate(&self, row: &[f64]) -> RowEstimate {
-        let mut m = row.to_vec();
-        self.estimate_with(&mut m, &mut Vec::new())
+        self.estimate_row(row, &mut Vec::new(), &mut Vec::new())
     }
 
-    /// The estimates of the row in `buf` (overwritten by its modulated
-    /// samples), with `scratch` reused between calls.
-    fn estimate_with(&self, buf: &mut [f64], scratch: &mut Vec<Complex64>) -> RowEstimate {
-        if !self.continuum_subtracted {
-            for (x, c) in buf.iter_mut().zip(&self.continuum) {
-                *x -= c;
-            }
-        }
-        let raw = self.windowed.raw(buf, scratch);
-        RowEstimate::new(raw, self.bias(buf), self.calibration)
+    /// The estimates of `row`; `buf` (the modulated samples of a row of
+    /// counts) and `scratch` are reused between calls. A row that already
+    /// holds the modulated samples is read in place, not copied.
+    fn estimate_row(
+        &self,
+        row: &[f64],
+        buf: &mut Vec<f64>,
+        scratch: &mut Vec<Complex64>,
+    ) -> RowEstimate {
+        let m: &[f64] = if self.continuum_subtracted {
+            row
+        } else {
+            buf.clear();
+            buf.extend(row.iter().zip(&self.continuum).map(|(x, c)| x - c));
+            buf
+        };
+        let raw = self.windowed.raw(m, scratch);
+        RowEstimate::new(raw, self.bias(m), self.calibration)
     }
 
     /// The estimates of every row of `rows` (row-major, N per row), on
     /// `threads` threads (0: all); each row's answer depends on that row
-    /// alone.
+    /// alone. Refuses the set's first fault ([`RowFault`]).
     pub fn estimate_rows(&self, rows: &[f64], threads: usize) -> Result<Vec<RowEstimate>> {
         let n = self.samples();
         if rows.len() % n != 0 {
@@ -264,32 +271,49 @@ impl RowEstimator {
                 reason: format!("{} values is not a whole number of rows of {n}", rows.len()),
             });
         }
-        if let Some(r) = first_dark_row(rows, n) {
-            return Err(Error::Invalid {
+        self.try_estimate_rows(rows, threads)
+            .map_err(|fault| Error::Invalid {
                 param: "interferograms",
-                reason: format!("row {} (1-based): {DARK_ROW}", r + 1),
-            });
-        }
+                reason: format!("{}: {}", fault.location(0), fault.reason()),
+            })
+    }
+
+    /// The estimates of every whole row of `rows` (row-major, N per row) on
+    /// `threads` threads (0: all), or the set's first fault
+    /// ([`RowFault::first`]). One pass over the rows: each is checked while
+    /// it is estimated, blocks of rows written in place by the threads.
+    pub fn try_estimate_rows(
+        &self,
+        rows: &[f64],
+        threads: usize,
+    ) -> std::result::Result<Vec<RowEstimate>, RowFault> {
+        const BLOCK_ROWS: usize = 256;
+        let n = self.samples();
+        let mut out = vec![RowEstimate::default(); rows.len() / n];
         let every = crate::cancel::stride(n);
         let job = || {
-            rows.par_chunks(n * 256)
-                .flat_map_iter(|block| {
-                    let (mut buf, mut scratch) = (vec![0.0; n], Vec::new());
-                    block
-                        .chunks_exact(n)
-                        .enumerate()
-                        .map(|(i, row)| {
-                            if i % every == 0 {
-                                crate::cancel::checkpoint();
-                            }
-                            buf.copy_from_slice(row);
-                            self.estimate_with(&mut buf, &mut scratch)
-                        })
-                        .collect::<Vec<_>>()
+            out.par_chunks_mut(BLOCK_ROWS)
+                .zip(rows.par_chunks(n * BLOCK_ROWS))
+                .enumerate()
+                .map(|(b, (out, block))| {
+                    let (mut buf, mut scratch, mut fault) = (Vec::new(), Vec::new(), None);
+                    for (i, (o, row)) in out.iter_mut().zip(block.chunks_exact(n)).enumerate() {
+                        if i % every == 0 {
+                            crate::cancel::checkpoint();
+                        }
+                        if let Some(f) = RowFault::of_row(b * BLOCK_ROWS + i, row) {
+                            fault = RowFault::first(fault, Some(f));
+                        }
+                        *o = self.estimate_row(row, &mut buf, &mut scratch);
+                    }
+                    fault
                 })
-                .collect()
+                .reduce(|| None, RowFault::first)
         };
-        Ok(crate::montecarlo::in_pool(threads, job))
+        match crate::montecarlo::in_pool(threads, job) {
+            None => Ok(out),
+            Some(fault) => Err(fault),
+        }
     }
 
     /// The calibration measured on a calibrator's rows: the mean over them
@@ -329,14 +353,79 @@ pub fn estimate_row_oracle(
 pub const DARK_ROW: &str =
     "every sample is 0 (no light at all, or no data); an interferogram with light is needed";
 
-/// The first row (0-based) of `rows` (row-major, `n` per row) whose samples
-/// are all zero: no light reached the detector (or the file holds no data),
-/// and the estimators would return a bias-subtracted number of no meaning.
-pub fn first_dark_row(rows: &[f64], n: usize) -> Option<usize> {
-    // A non-finite value is refused first, by the caller's own check.
-    if n == 0 || rows.iter().any(|v| !v.is_finite()) {
-        return None;
+/// What makes a set of rows unusable: a value that is not a finite number,
+/// or a dark row (every sample 0: no light reached the detector, or the
+/// file holds no data, and the estimators would return a bias-subtracted
+/// number of no meaning).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RowFault {
+    /// `value`, at `row` and `col` (0-based), is not finite.
+    NonFinite {
+        /// Row, 0-based.
+        row: usize,
+        /// Column, 0-based.
+        col: usize,
+        /// The value.
+        value: f64,
+    },
+    /// Every sample of `row` (0-based) is 0.
+    Dark {
+        /// Row, 0-based.
+        row: usize,
+    },
+}
+
+impl RowFault {
+    /// The fault of `row`, row `index` of its set, if any.
+    pub fn of_row(index: usize, row: &[f64]) -> Option<RowFault> {
+        // No early exit, so that the loop vectorizes: the row is checked
+        // while it is in cache, at a fraction of the estimate's cost.
+        let (finite, lit) = row.iter().fold((true, false), |(finite, lit), &v| {
+            (finite & v.is_finite(), lit | (v != 0.0))
+        });
+        if !finite {
+            let col = row.iter().position(|v| !v.is_finite())?;
+            return Some(RowFault::NonFinite {
+                row: index,
+                col,
+                value: row[col],
+            });
+        }
+        (!lit).then_some(RowFault::Dark { row: index })
     }
-    rows.chunks_exact(n)
-        .position(|row| row.iter().all(|&v| v == 0.0))
+
+    /// The fault a set reports of `a` and `b`: a non-finite value before
+    /// any dark row, then the earlier row (the same whatever order the
+    /// rows were checked in).
+    pub fn first(a: Option<RowFault>, b: Option<RowFault>) -> Option<RowFault> {
+        let rank = |f: &RowFault| match *f {
+            RowFault::NonFinite { row, col, .. } => (0, row, col),
+            RowFault::Dark { row } => (1, row, 0),
+        };
+        match (a, b) {
+            (Some(x), Some(y)) => Some(if rank(&y) < rank(&x) { y } else { x }),
+            (x, None) | (None, x) => x,
+        }
+    }
+
+    /// Where the fault is, 1-based, the set's first `first` rows (of its
+    /// file) before it.
+    pub fn location(&self, first: usize) -> String {
+        match *self {
+            RowFault::NonFinite { row, col, .. } => {
+                format!("row {}, column {} (1-based)", first + row + 1, col + 1)
+            }
+            RowFault::Dark { row } => format!("row {} (1-based)", first + row + 1),
+        }
+    }
+
+    /// Why the rows are refused.
+    pub fn reason(&self) -> String {
+        match *self {
+            RowFault::NonFinite { value, .. } => {
+                format!("{value} is not a finite number; every value must be finite")
+            }
+            RowFault::Dark { .. } => DARK_ROW.to_owned(),
+        }
+    }
 }

@@ -322,7 +322,13 @@ impl Rows<'_> {
         let mut first = 0;
         while first < self.units() {
             let last = (first + batch).min(self.units());
-            for block in self.map_units(first..last, threads, |_, rows| rows.to_vec()) {
+            // Each unit's rows handed over as generated (not copied).
+            let blocks = run_unit_range(self.seed, first..last, threads, |u, rng| {
+                let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
+                self.fill_unit(u, rng, &mut rows);
+                rows
+            });
+            for block in blocks {
                 sink(&block)?;
             }
             first = last;
@@ -359,7 +365,7 @@ impl PistonScans {
     /// The noise-free modulated samples of scan `s`.
     fn scan(&self, s: usize, out: &mut [f64]) {
         let r = self.sequence.reference_um(s);
-        let p = |tau: f64| self.sequence.at(s, tau);
+        let p = self.sequence.of_scan(s);
         fill_scan(
             &self.table,
             &self.setup,
