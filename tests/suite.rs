@@ -55,6 +55,7 @@ mod simulator;
 mod special;
 mod spectral_estimators;
 mod spectrum_csv;
+mod synth_layout;
 mod turbulence;
 
 /// Cargo builds only this binary (`autotests = false` in Cargo.toml): a

@@ -27,7 +27,7 @@ use crate::piston::scan::{fill_scan, ScanSetup};
 use crate::piston::sequences::PistonSequence;
 use crate::piston::simulation::{table_range_um, validate_size};
 use crate::piston::{self, RunSize};
-use crate::simulator::Model;
+use crate::simulator::{Model, RowLayout, SetLayout};
 
 /// Rows per work unit (that of `simulate`, so that a noise-only set draws
 /// what `simulate` draws).
@@ -35,6 +35,7 @@ pub const ROWS_PER_UNIT: u64 = TRIALS_PER_UNIT;
 
 /// The scans through the piston of one set.
 struct PistonScans {
+    layout: RowLayout,
     sequence: PistonSequence,
     table: FringeTable,
     setup: ScanSetup,
@@ -85,6 +86,19 @@ impl Model {
     /// # Ok::<(), v2ref::Error>(())
     /// ```
     pub fn rows(&self, rows: u64, seed: u64, threads: usize) -> Result<Rows<'_>> {
+        self.rows_in(RowLayout::Sequences, rows, seed, threads)
+    }
+
+    /// [`Model::rows`] laid out in time as `layout` says (the same rows in
+    /// the default [`RowLayout::Sequences`]; the layout changes nothing
+    /// without piston).
+    pub fn rows_in(
+        &self,
+        layout: RowLayout,
+        rows: u64,
+        seed: u64,
+        threads: usize,
+    ) -> Result<Rows<'_>> {
         if rows == 0 {
             return Err(Error::OutOfRange {
                 param: "rows",
@@ -94,7 +108,12 @@ impl Model {
         }
         let piston = match (&self.piston_spectrum, self.inputs.scan_setup()) {
             (Some(spectrum), Some(setup)) => {
-                Some(self.piston_scans(spectrum, setup, rows, seed, threads)?)
+                let size = RunSize {
+                    scans: usize::try_from(rows).unwrap_or(usize::MAX),
+                    seed: piston::sweep_seed(seed, setup.fringe_hz),
+                    threads,
+                };
+                Some(self.piston_scans(spectrum, setup, &size, layout)?)
             }
             _ => None,
         };
@@ -120,20 +139,20 @@ impl Model {
         &self,
         spectrum: &crate::piston::turbulence::PistonSpectrum,
         setup: ScanSetup,
-        rows: u64,
-        seed: u64,
-        threads: usize,
+        size: &RunSize,
+        layout: RowLayout,
     ) -> Result<PistonScans> {
-        let size = RunSize {
-            scans: usize::try_from(rows).unwrap_or(usize::MAX),
-            seed: piston::sweep_seed(seed, setup.fringe_hz),
-            threads,
+        validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
+        let sequence = match layout {
+            RowLayout::Sequences => PistonSequence::synthesize(spectrum, &setup, size)?,
+            RowLayout::Observation => {
+                PistonSequence::synthesize_observation(spectrum, &setup, size)?
+            }
         };
-        validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
-        let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
+            layout,
             sequence,
             table,
             setup,
@@ -196,6 +215,24 @@ impl Rows<'_> {
             scan_time_s: p.setup.scan_time_s(),
             piston_rms_um: p.sequence.rms_um(),
             residual_rms_um: p.residual_rms_um,
+        })
+    }
+
+    /// Where the rows lie in time through the piston (None without
+    /// piston: the rows are then independent of each other).
+    pub fn layout(&self) -> Option<SetLayout> {
+        let p = self.piston.as_ref()?;
+        let sequence = &p.sequence;
+        let stride_samples = sequence.stride();
+        Some(SetLayout {
+            layout: p.layout,
+            sequences: sequence.sequences(),
+            rows_per_sequence: (0..sequence.sequences())
+                .map(|j| sequence.scans_of(j).len() as u64)
+                .collect(),
+            stride_samples,
+            stride_s: stride_samples as f64 * p.setup.sample_time_s(),
+            scan_time_s: p.setup.scan_time_s(),
         })
     }
 
