@@ -40,6 +40,7 @@ mod oifits_robustness;
 mod piston;
 mod piston_claims;
 mod piston_errors;
+mod piston_models;
 mod piston_spectrum;
 mod plan;
 mod plan_cases;

@@ -72,6 +72,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         print_table(&answer);
     }
+    for c in &answer.three_slope_comparison {
+        eprintln!("note: {}", c.note);
+    }
     Ok(ExitCode::SUCCESS)
 }
 

@@ -20,6 +20,7 @@
 
 pub mod calibration;
 pub mod fringe_table;
+pub mod model_comparison;
 pub mod report;
 pub mod scan;
 pub mod sequences;

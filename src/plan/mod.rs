@@ -42,10 +42,12 @@
 //! scan-mean piston.
 
 pub mod answer;
+pub mod figure;
 pub mod photometry;
 mod reach;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
+pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
 
 use crate::conformance::estimate::BiasConvention;
