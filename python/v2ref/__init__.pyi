@@ -138,6 +138,14 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         of freedom), 8 without (pooled independent rows).
     keep_continuum : bool
         Rows hold the counts I_i (photons) instead of M_i = I_i − c_i.
+    layout : str
+        How the rows lie in time through the piston (with ``fringe_hz``):
+        ``"sequences"`` (default) cuts them from up to 16 independent piston
+        sequences, scans spread out in each — the statistics of one scan;
+        ``"observation"`` puts all of them through one contiguous sequence,
+        scan after scan — the observation a plan recommends, whose mean
+        over n rows scatters as n consecutive scans through one atmosphere
+        do. The sidecar's ``layout`` records it.
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.

@@ -1,7 +1,7 @@
 //! The numbers of the plan's figure (`plan --svg`): the σ(V²) each
 //! estimator reaches against fringe frequency, at the best stroke of each,
 //! in the plan's time — computed by the planner's own
-//! [`sigma_reached_in`](super::sigma_reached_in), the piston terms at the
+//! [`sigma_reached_in`], the piston terms at the
 //! upper ends of their intervals, so that the figure and the table cannot
 //! disagree (the figure once recomputed σ from the central values).
 
