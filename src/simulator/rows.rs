@@ -14,7 +14,9 @@
 //!
 //! Randomness: the noise of the rows of work unit u (rows
 //! `u·ROWS_PER_UNIT …`) comes from the generator of (seed, u); the piston
-//! sequence of the whole set from [`piston::sweep_seed`]`(seed, f)`. Without
+//! sequence of the whole set from [`piston::sweep_seed`]`(seed, f)`, laid
+//! out in time as [`RowLayout`] says (independent sequences by default, one
+//! contiguous observation with [`Model::rows_in`]). Without
 //! piston the draws are exactly those of `v2ref simulate`
 //! ([`crate::noise::simulation::simulate_noisy`]); with piston and no noise
 //! the rows are those of `v2ref piston` at the same seed.
