@@ -65,6 +65,7 @@ fn sidecar() -> Sidecar {
             samples: 8,
         },
         seed: 1,
+        layout: None,
         inputs: Inputs::default(),
         continuum_subtracted: true,
         sample_opd_um: vec![0.0; 8],

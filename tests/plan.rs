@@ -453,3 +453,69 @@ fn every_null_of_a_plan_has_its_reason_in_words() {
         assert_eq!(explained, dash, "{extra:?}: {table}");
     }
 }
+
+// --- The plan's figure (`plan --svg`) draws the planner's numbers --------
+
+use v2ref::plan::figure::{figure_time_s, sigma_curve};
+use v2ref::plan::sigma_reached_in;
+
+/// One computation for the figure and the table. With a time budget the
+/// figure's σ at each fringe frequency is the least `sigma_reached` of the
+/// table over the strokes, exactly; with a target, the recommended setting
+/// reaches the target in the plan's scans on the figure's own formula and
+/// not in one scan fewer (so a figure drawn from the central values of the
+/// piston terms, below their upper ends, fails it).
+#[test]
+fn the_plan_figure_draws_the_planners_numbers() {
+    let k_band = Inputs {
+        source: SourceInput::Point,
+        baseline_m: 18.0,
+        read_noise: 1.0,
+        ..Inputs::default()
+    };
+    let grid = || inputs(k_band.clone(), 1.0, 2e5, vec![100.0, 300.0, 1000.0]);
+    let budget = PlanInputs {
+        stroke_um: vec![24.0, 48.0],
+        target: Target::TimeBudgetS(60.0),
+        scans: 400,
+        ..grid()
+    };
+    let result = plan(&budget, 0, &|_| {}).unwrap();
+    let time_s = figure_time_s(&result, &budget);
+    assert_eq!(time_s, 60.0);
+    for e in [Estimator::V1, Estimator::V2] {
+        let curve = sigma_curve(&result, &budget, e, time_s);
+        assert_eq!(curve.len(), 3, "{e:?}");
+        for (f, sigma) in curve {
+            let table = result
+                .points
+                .iter()
+                .filter(|p| p.estimator == e && p.fringe_hz == f)
+                .filter_map(|p| p.sigma_reached)
+                .min_by(f64::total_cmp)
+                .unwrap();
+            assert_eq!(sigma, table, "{e:?} at {f} Hz");
+        }
+    }
+    let target = 2e-3;
+    let aimed = PlanInputs {
+        target: Target::SigmaV2(target),
+        scans: 400,
+        ..grid()
+    };
+    let result = plan(&aimed, 0, &|_| {}).unwrap();
+    let rec = result.recommended.expect("a recommendation");
+    let n = rec.scans_needed.unwrap();
+    let per_scan_s = rec.scan_time_s + aimed.dead_time_s;
+    assert!(n > 1.0, "{n} scans: nothing to tell apart");
+    let at = |scans: f64| sigma_reached_in(&rec, &aimed, scans * per_scan_s).unwrap();
+    assert!(at(n) <= target, "{} in {n} scans", at(n));
+    assert!(at(n - 1.0) > target, "{} in {} scans", at(n - 1.0), n - 1.0);
+    let time_s = figure_time_s(&result, &aimed);
+    let curve = sigma_curve(&result, &aimed, rec.estimator, time_s);
+    let (_, drawn) = curve.iter().find(|(f, _)| *f == rec.fringe_hz).unwrap();
+    assert!(
+        *drawn <= at(n),
+        "the figure draws {drawn} at the recommendation"
+    );
+}

@@ -41,6 +41,7 @@ mod oifits_robustness;
 mod piston;
 mod piston_claims;
 mod piston_errors;
+mod piston_models;
 mod piston_spectrum;
 mod plan;
 mod plan_cases;
@@ -57,6 +58,7 @@ mod simulator;
 mod special;
 mod spectral_estimators;
 mod spectrum_csv;
+mod synth_layout;
 mod turbulence;
 
 /// Cargo builds only this binary (`autotests = false` in Cargo.toml): a

@@ -347,6 +347,7 @@ def synthesize(
     threads: int = 0,
     reference_blocks: Optional[int] = None,
     keep_continuum: bool = False,
+    layout: str = "sequences",
     out: Optional[_PathLike] = None,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -393,6 +394,14 @@ def synthesize(
         of freedom), 8 without (pooled independent rows).
     keep_continuum : bool
         Rows hold the counts I_i (photons) instead of M_i = I_i − c_i.
+    layout : str
+        How the rows lie in time through the piston (with ``fringe_hz``):
+        ``"sequences"`` (default) cuts them from up to 16 independent piston
+        sequences, scans spread out in each — the statistics of one scan;
+        ``"observation"`` puts all of them through one contiguous sequence,
+        scan after scan — the observation a plan recommends, whose mean
+        over n rows scatters as n consecutive scans through one atmosphere
+        do. The sidecar's ``layout`` records it.
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
@@ -420,6 +429,7 @@ def synthesize(
         None if reference_blocks is None else _uint("reference_blocks", reference_blocks),
         bool(keep_continuum),
         npy,
+        _word("layout", layout),
     )
     sidecar = _json.loads(text)
     if out is not None:

@@ -88,6 +88,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
             super::piston_observation::print(rows);
         }
     }
+    for c in &answer.three_slope_comparison {
+        eprintln!("note: {}", c.note);
+    }
     Ok(ExitCode::SUCCESS)
 }
 

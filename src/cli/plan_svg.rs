@@ -1,33 +1,12 @@
 //! The planner's figure: the σ(V²) each estimator reaches against fringe
-//! frequency (best stroke at each), in the plan's time, with the target.
+//! frequency (best stroke at each), in the plan's time, with the target;
+//! its numbers are the planner's ([`v2ref::plan::figure`]), only drawn here.
 
 use plotters::prelude::*;
 use std::path::Path;
-use v2ref::plan::{Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref::plan::figure::{figure_time_s, sigma_curve};
+use v2ref::plan::{Estimator, Plan, PlanInputs, Target};
 use v2ref::{Error, Result};
-
-/// σ(V²) reached by `p` in `time_s`: `sqrt(σ²_scan/n + bias²)`.
-fn reached(p: &PlanPoint, inputs: &PlanInputs, time_s: f64) -> Option<f64> {
-    let n = (time_s / (p.scan_time_s + inputs.dead_time_s)).floor();
-    (n >= 1.0 && p.sigma_per_scan.is_finite())
-        .then(|| (p.sigma_per_scan * p.sigma_per_scan / n + p.bias_piston * p.bias_piston).sqrt())
-}
-
-/// (f, best σ reached over the strokes) for one estimator.
-fn curve(plan: &Plan, inputs: &PlanInputs, e: Estimator, time_s: f64) -> Vec<(f64, f64)> {
-    inputs
-        .fringe_hz
-        .iter()
-        .filter_map(|&f| {
-            plan.points
-                .iter()
-                .filter(|p| p.estimator == e && p.fringe_hz == f)
-                .filter_map(|p| reached(p, inputs, time_s))
-                .min_by(f64::total_cmp)
-                .map(|s| (f, s))
-        })
-        .collect()
-}
 
 fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output {
@@ -38,12 +17,10 @@ fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
 
 /// Writes the figure to `path` (SVG).
 pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
-    let time_s = match inputs.target {
-        Target::TimeBudgetS(t) => t,
-        Target::SigmaV2(_) => plan.recommended.and_then(|p| p.time_s).unwrap_or(3600.0),
-    };
-    let v1 = curve(plan, inputs, Estimator::V1, time_s);
-    let v2 = curve(plan, inputs, Estimator::V2, time_s);
+    // The planner's own numbers (upper ends of the piston intervals).
+    let time_s = figure_time_s(plan, inputs);
+    let v1 = sigma_curve(plan, inputs, Estimator::V1, time_s);
+    let v2 = sigma_curve(plan, inputs, Estimator::V2, time_s);
     let all: Vec<f64> = v1.iter().chain(&v2).map(|p| p.1).collect();
     let target = match inputs.target {
         Target::SigmaV2(s) => Some(s),

@@ -13,7 +13,7 @@ use v2ref::commands::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
 use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter};
-use v2ref::simulator::Model;
+use v2ref::simulator::{Model, RowLayout};
 use v2ref::{Error, Result};
 
 /// Flags of `synth`.
@@ -38,6 +38,15 @@ pub struct Args {
     /// Write the counts I_i instead of the modulated samples M_i = I_i − c_i.
     #[arg(long)]
     keep_continuum: bool,
+    /// How the rows lie in time through the piston (with --fringe-hz).
+    /// sequences: cut from up to 16 independent piston sequences, scans
+    /// spread over two correlation times in each — the statistics of one
+    /// scan (per-scan bias and scatter). observation: all rows through one
+    /// contiguous sequence, scan after scan (stride: one scan period) — the
+    /// observation a plan recommends, to check its promise for the mean of
+    /// n consecutive scans. The sidecar's `layout` records it.
+    #[arg(long, value_enum, default_value = "sequences")]
+    layout: RowLayout,
     /// Blocks of the truth's reference run: 0 (closed forms only), or 8 to
     /// 1000; default 16 with piston (replicates of the set, whose spread the
     /// score divides by, as Student-t with blocks − 1 degrees of freedom),
@@ -84,6 +93,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         threads: args.run.threads,
         csv: args.csv,
         keep_continuum: args.keep_continuum,
+        layout: args.layout,
     };
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
     let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
@@ -109,6 +119,8 @@ pub struct SetSpec {
     pub csv: bool,
     /// Write the counts rather than the continuum-subtracted samples.
     pub keep_continuum: bool,
+    /// How the rows lie in time through the piston.
+    pub layout: RowLayout,
 }
 
 /// Writes the set of `model` described by `spec` at `out` (.npy, .json and
@@ -135,6 +147,7 @@ pub fn write_set(
         reference_blocks: spec.reference_blocks,
         threads: spec.threads,
         keep_continuum: spec.keep_continuum,
+        layout: spec.layout,
     };
     let names = (
         stem.file_name(&stem.npy),

@@ -24,6 +24,7 @@ fn spec(v: &Vector) -> SetSpec {
         threads: 0,
         csv: false,
         keep_continuum: false,
+        layout: Default::default(),
     }
 }
 

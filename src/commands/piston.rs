@@ -8,7 +8,8 @@ use crate::formalism::estimator::BinWindow;
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
 use crate::parameters::Physical;
-use crate::piston::report::{PistonReport, PistonSetting};
+use crate::piston::model_comparison::PsdComparison;
+use crate::piston::report::{ComparisonNote, PistonReport, PistonSetting};
 use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::simulator::record::{InputsRecord, SamplingRecord};
@@ -233,5 +234,33 @@ pub fn run(
         window: req.bins,
         reference: p.reference,
     };
-    Ok(PistonReport::new(inputs, setting, &runs))
+    let mut report = PistonReport::new(inputs, setting, &runs);
+    if spectrum.model() == PistonPsdModel::ThreeSlope {
+        report.three_slope_comparison = three_slope_notes(spectrum, &setup, fringe_hz)?;
+    }
+    Ok(report)
+}
+
+/// Why the three-slope spectrum gives less piston than the two-aperture
+/// one of the same site, at the scan time of each fringe frequency.
+fn three_slope_notes(
+    spectrum: &PistonSpectrum,
+    setup: &ScanSetup,
+    fringe_hz: &[f64],
+) -> Result<Vec<ComparisonNote>> {
+    fringe_hz
+        .iter()
+        .map(|&f| {
+            let scan = ScanSetup {
+                fringe_hz: f,
+                ..*setup
+            };
+            let comparison = PsdComparison::new(spectrum, scan.scan_time_s())?;
+            Ok(ComparisonNote {
+                fringe_hz: f,
+                note: format!("at {f:.2} Hz, {}", comparison.note()),
+                comparison,
+            })
+        })
+        .collect()
 }

@@ -4,9 +4,9 @@
 //! truth is built here once.
 
 use crate::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
-use crate::conformance::truth::{truth, TruthSize};
+use crate::conformance::truth::{truth_laid_out, TruthSize};
 use crate::error::Result;
-use crate::simulator::Model;
+use crate::simulator::{Model, RowLayout};
 
 /// The size of a set and how its rows are given.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,6 +21,8 @@ pub struct SetSize {
     pub threads: usize,
     /// The counts `c_i + M_i` rather than the continuum-subtracted `M_i`.
     pub keep_continuum: bool,
+    /// How the rows lie in time through the piston.
+    pub layout: RowLayout,
 }
 
 /// Units generated at once while streaming the rows.
@@ -44,8 +46,8 @@ pub fn synthesize(
         reference_blocks: size.reference_blocks,
         threads: size.threads,
     };
-    let truth = truth(model, truth_size, progress)?;
-    let set = model.rows(size.rows, size.seed, size.threads)?;
+    let truth = truth_laid_out(model, truth_size, size.layout, progress)?;
+    let set = model.rows_in(size.layout, size.rows, size.seed, size.threads)?;
     let continuum = &model.signal.continuum;
     let mut shifted = Vec::new();
     set.stream(size.threads, STREAM_BATCH_UNITS, |block: &[f64]| {
@@ -75,6 +77,7 @@ pub fn synthesize(
             samples: inputs.samples,
         },
         seed: size.seed,
+        layout: set.layout(),
         continuum_subtracted: !size.keep_continuum,
         sample_opd_um: model.sample_opd_um(),
         continuum_photons: continuum.clone(),

@@ -5,7 +5,7 @@
 
 use crate::conformance::estimate::BiasConvention;
 use crate::formalism::estimator::{BinWindow, Pair};
-use crate::simulator::Inputs;
+use crate::simulator::{Inputs, SetLayout};
 use serde::{Deserialize, Serialize};
 
 /// The value of [`Sidecar::format`] this version writes and reads.
@@ -22,6 +22,12 @@ pub struct Sidecar {
     pub data: DataFiles,
     /// The seed of the set's random draws.
     pub seed: u64,
+    /// With piston, where the rows lie in time: the independent sequences,
+    /// the rows of each and the stride between them, from which each row's
+    /// start follows ([`SetLayout::row_start`]). Absent without piston
+    /// (the rows are independent) and in sidecars written before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layout: Option<SetLayout>,
     /// Every physical input.
     pub inputs: Inputs,
     /// Whether the continuum c_i was subtracted from each row (rows hold

@@ -50,7 +50,7 @@ use crate::formalism::estimator::{
 use crate::montecarlo::{derive_seed, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
-use crate::simulator::Model;
+use crate::simulator::{Model, RowLayout};
 
 /// The size of a set and of its reference run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -133,13 +133,25 @@ fn usable_windows(model: &Model) -> Vec<BinWindow> {
 /// The truth of a set of `size.rows` rows of `model`; `progress` is called
 /// with the rows of the reference run done since its last call.
 pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) -> Result<Truth> {
+    truth_laid_out(model, size, RowLayout::Sequences, progress)
+}
+
+/// [`truth`] of a set whose rows lie in time as `layout` says: with
+/// piston, each replicate of the reference run is laid out as the set is.
+pub fn truth_laid_out(
+    model: &Model,
+    size: TruthSize,
+    layout: RowLayout,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Truth> {
     let obs = &model.observation;
     let wb = wide_band(obs);
     let v2 = model.inputs.visibility * model.inputs.visibility;
     let windows = usable_windows(model);
     let piston = model.inputs.piston.is_some();
     let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
-    let reference = reference_run(model, &windows, size, rows_per_block, progress)?;
+    let blocks = (rows_per_block, layout);
+    let reference = reference_run(model, &windows, size, blocks, progress)?;
     let mut out = Vec::new();
     for (w, blocks) in windows.iter().zip(&reference) {
         out.push(window_truth(model, *w, blocks, size, piston)?);
@@ -163,12 +175,12 @@ pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) ->
 type Reference = Vec<Vec<[BlockMoments; 2]>>;
 
 /// The reference run: `size.reference_blocks` blocks of `rows_per_block`
-/// rows.
+/// rows laid out as `layout` says.
 fn reference_run(
     model: &Model,
     windows: &[BinWindow],
     size: TruthSize,
-    rows_per_block: u64,
+    (rows_per_block, layout): (u64, RowLayout),
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Reference> {
     let estimators = windows
@@ -183,7 +195,8 @@ fn reference_run(
     let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows.len()];
     let n = model.samples();
     for b in 0..size.reference_blocks {
-        let rows = model.rows(rows_per_block, reference_seed(size.seed, b), size.threads)?;
+        let seed = reference_seed(size.seed, b);
+        let rows = model.rows_in(layout, rows_per_block, seed, size.threads)?;
         let parts = rows.map_units(0..rows.units(), size.threads, |_, block| {
             let mut s =
                 vec![vec![[RunningStats::default(); 2]; BIAS_CONVENTIONS.len()]; windows.len()];

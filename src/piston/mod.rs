@@ -9,6 +9,8 @@
 //!   by quadrature and tabulated ([`transverse::TransverseTable`]).
 //! - [`three_slope`]: the three-slope model of that spectrum (Conan et al.
 //!   1995 asymptotes, as in Perrin 1997), [`spectrum::PistonPsdModel`].
+//! - [`model_comparison`]: why the three-slope model gives less piston
+//!   than the two-aperture spectrum of the same site with an outer scale.
 //! - [`series`]: piston sequences synthesised from that spectrum.
 //! - [`fringe_table`]: the fringe tabulated against OPD.
 //! - [`scan`]: the detectors, the packet reference and one scan's samples.
@@ -20,6 +22,7 @@
 
 pub mod calibration;
 pub mod fringe_table;
+pub mod model_comparison;
 pub mod report;
 pub mod scan;
 pub mod sequences;

@@ -8,6 +8,7 @@ use super::spectrum::PistonSpectrum;
 use crate::formalism::estimator::BinWindow;
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
+use crate::piston::model_comparison::PsdComparison;
 use crate::record::InputsRecord;
 use serde::Serialize;
 
@@ -129,6 +130,23 @@ pub struct PistonReport {
     pub stroke_um: f64,
     /// One row per fringe frequency, in the order asked.
     pub results: Vec<PistonRow>,
+    /// With the three-slope spectrum, per fringe frequency: how far the
+    /// piston moves within one scan under each model of the same site, and
+    /// the note that says why they differ (absent otherwise).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub three_slope_comparison: Vec<ComparisonNote>,
+}
+
+/// The two spectra compared over the scans of one fringe frequency.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ComparisonNote {
+    /// f, Hz.
+    pub fringe_hz: f64,
+    /// The numbers.
+    #[serde(flatten)]
+    pub comparison: PsdComparison,
+    /// What they mean, in one line.
+    pub note: String,
 }
 
 /// What a piston run was made of.
@@ -184,6 +202,7 @@ impl PistonReport {
             dx_um: sampling.dx_um(),
             stroke_um: sampling.stroke_um(),
             results: runs.iter().map(|r| PistonRow::new(r, window)).collect(),
+            three_slope_comparison: Vec::new(),
         }
     }
 }

@@ -43,6 +43,7 @@
 
 pub mod answer;
 mod candidates;
+pub mod figure;
 pub mod observation;
 pub mod photometry;
 mod reach;
@@ -50,6 +51,7 @@ pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
 pub use observation::ObservationError;
+pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
 
 use crate::conformance::estimate::BiasConvention;

@@ -57,9 +57,7 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
         Target::TimeBudgetS(budget) => {
             let n = (budget / per_scan_s).floor();
             if n >= 1.0 {
-                let sigma = sigma_at(p.sigma_piston_upper);
-                let s2 = sigma * sigma / n;
-                p.sigma_reached = Some((s2 + p.bias_piston_upper * p.bias_piston_upper).sqrt());
+                p.sigma_reached = sigma_reached_in(p, inputs, budget);
                 p.scans_needed = Some(n);
                 p.time_s = Some(n * per_scan_s);
                 p.exceeds_one_night = n * per_scan_s > ONE_NIGHT_S;
@@ -73,6 +71,19 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
             }
         }
     }
+}
+
+/// The σ(V²) point `p` reaches in `time_s` seconds, as the plan states it:
+/// the scans that fit (dead time included), the piston terms at the upper
+/// ends of their intervals, `√((σ²_noise + σ²_piston,upper)/n +
+/// bias²_upper)`; None when no scan fits or σ is not finite. The one
+/// computation behind a budget plan's `sigma_reached` and the plan's figure.
+pub fn sigma_reached_in(p: &PlanPoint, inputs: &PlanInputs, time_s: f64) -> Option<f64> {
+    let n = (time_s / (p.scan_time_s + inputs.dead_time_s)).floor();
+    let var_scan = p.sigma_noise_per_scan * p.sigma_noise_per_scan
+        + p.sigma_piston_upper * p.sigma_piston_upper;
+    let sigma = (var_scan / n + p.bias_piston_upper * p.bias_piston_upper).sqrt();
+    (n >= 1.0 && sigma.is_finite()).then_some(sigma)
 }
 
 /// The figure of merit of a point: the time for the target, or the σ

@@ -15,6 +15,7 @@
 
 pub mod estimate;
 pub mod inputs;
+pub mod layout;
 pub mod model;
 pub mod record;
 pub mod report;
@@ -22,6 +23,7 @@ pub mod rows;
 pub mod run;
 
 pub use inputs::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+pub use layout::{RowLayout, SetLayout};
 pub use model::Model;
 pub use rows::{PistonFacts, Rows, ROWS_PER_UNIT};
 pub use run::{simulate, SimulationRun};

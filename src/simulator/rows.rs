@@ -14,7 +14,9 @@
 //!
 //! Randomness: the noise of the rows of work unit u (rows
 //! `u·ROWS_PER_UNIT …`) comes from the generator of (seed, u); the piston
-//! sequence of the whole set from [`piston::sweep_seed`]`(seed, f)`. Without
+//! sequence of the whole set from [`piston::sweep_seed`]`(seed, f)`, laid
+//! out in time as [`RowLayout`] says (independent sequences by default, one
+//! contiguous observation with [`Model::rows_in`]). Without
 //! piston the draws are exactly those of `v2ref simulate`
 //! ([`crate::noise::simulation::simulate_noisy`]); with piston and no noise
 //! the rows are those of `v2ref piston` at the same seed.
@@ -27,7 +29,7 @@ use crate::piston::scan::{fill_scan, ScanSetup};
 use crate::piston::sequences::PistonSequence;
 use crate::piston::simulation::{table_range_um, validate_size};
 use crate::piston::{self, RunSize};
-use crate::simulator::Model;
+use crate::simulator::{Model, RowLayout, SetLayout};
 
 /// Rows per work unit (that of `simulate`, so that a noise-only set draws
 /// what `simulate` draws).
@@ -35,6 +37,7 @@ pub const ROWS_PER_UNIT: u64 = TRIALS_PER_UNIT;
 
 /// The scans through the piston of one set.
 struct PistonScans {
+    layout: RowLayout,
     sequence: PistonSequence,
     table: FringeTable,
     setup: ScanSetup,
@@ -57,6 +60,14 @@ pub struct PistonFacts {
     pub piston_rms_um: f64,
     /// RMS of the piston left in the scans after the reference is removed, µm.
     pub residual_rms_um: f64,
+}
+
+/// How a set's rows are cut from the piston sequences: a layout `synth`
+/// names, or the planner's explicit `(sequences, stride)`.
+#[derive(Clone, Copy)]
+enum Layout {
+    Named(RowLayout),
+    Explicit(usize, usize),
 }
 
 /// A set of `rows` rows of one model from one seed.
@@ -85,7 +96,20 @@ impl Model {
     /// # Ok::<(), v2ref::Error>(())
     /// ```
     pub fn rows(&self, rows: u64, seed: u64, threads: usize) -> Result<Rows<'_>> {
-        self.rows_with_layout(rows, seed, threads, None)
+        self.rows_in(RowLayout::Sequences, rows, seed, threads)
+    }
+
+    /// [`Model::rows`] laid out in time as `layout` says (the same rows in
+    /// the default [`RowLayout::Sequences`]; the layout changes nothing
+    /// without piston).
+    pub fn rows_in(
+        &self,
+        layout: RowLayout,
+        rows: u64,
+        seed: u64,
+        threads: usize,
+    ) -> Result<Rows<'_>> {
+        self.rows_laid_out(Layout::Named(layout), rows, seed, threads)
     }
 
     /// [`Model::rows`] with the piston layout given, `(sequences,
@@ -101,6 +125,20 @@ impl Model {
         threads: usize,
         layout: Option<(usize, usize)>,
     ) -> Result<Rows<'_>> {
+        let layout = match layout {
+            None => Layout::Named(RowLayout::Sequences),
+            Some((sequences, stride)) => Layout::Explicit(sequences, stride),
+        };
+        self.rows_laid_out(layout, rows, seed, threads)
+    }
+
+    fn rows_laid_out(
+        &self,
+        layout: Layout,
+        rows: u64,
+        seed: u64,
+        threads: usize,
+    ) -> Result<Rows<'_>> {
         if rows == 0 {
             return Err(Error::OutOfRange {
                 param: "rows",
@@ -110,7 +148,12 @@ impl Model {
         }
         let piston = match (&self.piston_spectrum, self.inputs.scan_setup()) {
             (Some(spectrum), Some(setup)) => {
-                Some(self.piston_scans(spectrum, setup, (rows, seed, threads), layout)?)
+                let size = RunSize {
+                    scans: usize::try_from(rows).unwrap_or(usize::MAX),
+                    seed: piston::sweep_seed(seed, setup.fringe_hz),
+                    threads,
+                };
+                Some(self.piston_scans(spectrum, setup, &size, layout)?)
             }
             _ => None,
         };
@@ -136,27 +179,32 @@ impl Model {
         &self,
         spectrum: &crate::piston::turbulence::PistonSpectrum,
         setup: ScanSetup,
-        (rows, seed, threads): (u64, u64, usize),
-        layout: Option<(usize, usize)>,
+        size: &RunSize,
+        layout: Layout,
     ) -> Result<PistonScans> {
-        let size = RunSize {
-            scans: usize::try_from(rows).unwrap_or(usize::MAX),
-            seed: piston::sweep_seed(seed, setup.fringe_hz),
-            threads,
-        };
         let sequence = match layout {
-            None => {
-                validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
-                PistonSequence::synthesize(spectrum, &setup, &size)?
+            Layout::Named(RowLayout::Sequences) => {
+                validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
+                PistonSequence::synthesize(spectrum, &setup, size)?
             }
-            Some(layout) => {
+            Layout::Named(RowLayout::Observation) => {
+                validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
+                PistonSequence::synthesize_observation(spectrum, &setup, size)?
+            }
+            Layout::Explicit(sequences, stride) => {
                 setup.validate()?;
-                PistonSequence::synthesize_layout(spectrum, &setup, &size, layout)?
+                PistonSequence::synthesize_layout(spectrum, &setup, size, (sequences, stride))?
             }
         };
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
+            layout: match layout {
+                Layout::Named(named) => named,
+                // An observation's sequences read scan after scan: recorded
+                // as the independent-sequence layout they generalize.
+                Layout::Explicit(..) => RowLayout::Sequences,
+            },
             sequence,
             table,
             setup,
@@ -219,6 +267,24 @@ impl Rows<'_> {
             scan_time_s: p.setup.scan_time_s(),
             piston_rms_um: p.sequence.rms_um(),
             residual_rms_um: p.residual_rms_um,
+        })
+    }
+
+    /// Where the rows lie in time through the piston (None without
+    /// piston: the rows are then independent of each other).
+    pub fn layout(&self) -> Option<SetLayout> {
+        let p = self.piston.as_ref()?;
+        let sequence = &p.sequence;
+        let stride_samples = sequence.stride();
+        Some(SetLayout {
+            layout: p.layout,
+            sequences: sequence.sequences(),
+            rows_per_sequence: (0..sequence.sequences())
+                .map(|j| sequence.scans_of(j).len() as u64)
+                .collect(),
+            stride_samples,
+            stride_s: stride_samples as f64 * p.setup.sample_time_s(),
+            scan_time_s: p.setup.scan_time_s(),
         })
     }
 

@@ -252,6 +252,30 @@ def test_synthesize_equals_cli(tmp_path, keep_continuum):
 
 
 @needs_cli
+def test_synthesize_observation_layout_equals_cli(tmp_path):
+    """layout="observation" is synth --layout observation: the same rows and
+    sidecar, which records one sequence of every row back to back; another
+    name is refused under its keyword."""
+    kw = dict(SYNTH, rows=60, fringe_hz=300.0)
+    cli("synth", "--out", tmp_path / "set", "--quiet", *flags(**kw), "--layout", "observation")
+    rows, sidecar = v2ref.synthesize(layout="observation", **kw)
+    np.testing.assert_array_equal(rows, np.load(tmp_path / "set.npy"))
+    want = json.loads((tmp_path / "set.json").read_text())
+    sidecar["data"]["npy"] = want["data"]["npy"]
+    assert sidecar == want
+    layout = sidecar["layout"]
+    assert (layout["layout"], layout["sequences"], layout["rows_per_sequence"]) == ("observation", 1, [60])
+    assert layout["stride_samples"] == kw["samples"]
+    assert layout["stride_s"] == layout["scan_time_s"]
+    default = v2ref.synthesize(**kw)[1]["layout"]
+    assert default["layout"] == "sequences" and default["sequences"] > 1
+    with pytest.raises(ValueError, match="layout"):
+        v2ref.synthesize(layout="contiguous", **kw)
+    with pytest.raises(TypeError, match="layout"):
+        v2ref.synthesize(layout=1, **kw)
+
+
+@needs_cli
 def test_estimate_with_sidecar_equals_cli(tmp_path):
     cli("synth", "--out", tmp_path / "set", "--quiet", *flags(**SYNTH), "--keep-continuum")
     cli("estimate", "--sidecar", tmp_path / "set.json", "--bias", "counts", "--out", tmp_path / "e.npy")

@@ -136,7 +136,7 @@ fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Boun
 /// `synthesize`: a set's rows (2-D array) and its sidecar (JSON text), as
 /// `v2ref synth` writes them; `npy` is the data file name recorded.
 #[pyfunction]
-#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy))]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn synthesize<'py>(
     py: Python<'py>,
@@ -147,7 +147,9 @@ pub(super) fn synthesize<'py>(
     reference_blocks: Option<u64>,
     keep_continuum: bool,
     npy: String,
+    layout: &str,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
+    let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
     // None: sized by what the truth needs (`default_reference_blocks`).
     let reference_blocks = reference_blocks.unwrap_or_else(|| {
@@ -173,6 +175,7 @@ pub(super) fn synthesize<'py>(
         reference_blocks,
         threads,
         keep_continuum,
+        layout,
     };
     let (data, sidecar) = interruptible(py, |tick| {
         let model = Model::new(&inputs)?;
