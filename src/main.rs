@@ -51,21 +51,15 @@ const EXIT_STATUSES: &str = "Exit status:
       something (use --force for a regular file)
   74  an output that cannot be written: read-only or full file system,
       permission denied, standard output closed or failing
- 130  interrupted (Ctrl-C); no partial output is left
+ 130  interrupted by Ctrl-C (SIGINT); 143 by SIGTERM, 129 by SIGHUP: no
+      partial output is left, a set of files is the old one or the new one
 
 Run 'v2ref <COMMAND> --help' for the flags of a command and their ranges.";
 
-/// Exit status after an interrupt (128 + SIGINT).
-const EXIT_INTERRUPTED: i32 = 130;
-
 fn main() -> ExitCode {
-    // Ctrl-C stops any computation at once: the temporaries of the atomic
-    // writers are removed (what was there before stays), status 130.
-    let _ = ctrlc::set_handler(|| {
-        v2ref::cleanup::remove_all();
-        cli::output::write_stderr_line(format_args!("interrupted"));
-        std::process::exit(EXIT_INTERRUPTED);
-    });
+    // SIGINT, SIGTERM and SIGHUP stop any computation at once: the
+    // temporaries are removed (what was there before stays), status 128 + N.
+    cli::signals::install();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => return cli::clap_error(e),

@@ -236,6 +236,8 @@ fn claimed_shapes_that_overflow_are_refused_with_the_header() {
         "(2305843009213693952, 8)",
         "(18446744073709551615, 3)",
         "(3, 6148914691236517206)",
+        // Past u64: refused by v2ref's own reading of the shape.
+        "(99999999999999999999999, 1)",
     ] {
         let h = header_text(shape, false, "<f8");
         let mut bytes = b"\x93NUMPY\x01\x00".to_vec();

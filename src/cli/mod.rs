@@ -33,6 +33,7 @@ pub mod plan;
 pub mod plan_svg;
 pub mod reproduce;
 pub mod score;
+pub mod signals;
 pub mod simulate;
 pub mod snr;
 pub mod synth;

@@ -17,14 +17,17 @@
 
 pub mod atomic;
 pub mod csv;
+pub(crate) mod lock;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
+pub mod set;
 pub mod target;
 
 pub use atomic::write_text_atomic;
 pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
+pub use set::OutputSet;
 pub use target::{check_output_file, check_parent};
 
 use crate::{Error, Result};
