@@ -64,7 +64,26 @@ fn main() -> ExitCode {
         Ok(c) => c,
         Err(e) => return cli::clap_error(e),
     };
-    let result = match cli.command {
+    // Every command runs in one pool of `--threads 0`'s size (capped, fewer
+    // when the system refuses threads, said on stderr): rayon's global pool,
+    // which panics when it cannot start, is never used.
+    v2ref::montecarlo::pool::set_fewer_threads_notice(|asked, granted| {
+        cli::output::write_stderr_line(format_args!(
+            "note: the system gave {granted} of the {asked} threads asked (a process limit?); running on {granted}"
+        ));
+    });
+    let result = v2ref::montecarlo::pool::install(0, None, || run(cli.command));
+    let code = match result {
+        Ok(code) => code,
+        Err(e) => cli::fail(&e),
+    };
+    cli::output::flush_stdout();
+    code
+}
+
+/// Runs one command.
+fn run(command: Command) -> v2ref::Result<ExitCode> {
+    match command {
         Command::Bias(a) => cli::bias::run(a),
         Command::Claims(a) => cli::claims::run(a),
         Command::Snr(a) => cli::snr::run(a),
@@ -76,11 +95,5 @@ fn main() -> ExitCode {
         Command::Synth(a) => cli::synth::run(a),
         Command::Estimate(a) => cli::estimate::run(a),
         Command::Score(a) => cli::score::run(a),
-    };
-    let code = match result {
-        Ok(code) => code,
-        Err(e) => cli::fail(&e),
-    };
-    cli::output::flush_stdout();
-    code
+    }
 }

@@ -275,3 +275,23 @@ fn two_outputs_of_one_run_on_one_path_are_refused() {
     );
     assert!(names(dir.path()).is_empty());
 }
+
+/// `golden --update --dir D` writes into the folder it wrote before (the
+/// vectors alone: 6 s), and still refuses a user's folder.
+#[test]
+fn golden_update_rewrites_its_own_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let update = ["golden", "--update", "--only", "vectors", "--dir", "g"];
+    for time in ["first", "second"] {
+        let out = run(dir.path(), &update);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{time}: {err}");
+    }
+    std::fs::create_dir(dir.path().join("mine")).unwrap();
+    std::fs::write(dir.path().join("mine/notes.txt"), "mine").unwrap();
+    let out = run(
+        dir.path(),
+        &["golden", "--update", "--only", "vectors", "--dir", "mine"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+}

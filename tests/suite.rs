@@ -49,6 +49,7 @@ mod reproduce;
 mod robustness_cli;
 mod robustness_files;
 mod robustness_lib;
+mod robustness_limits;
 mod robustness_readers;
 mod robustness_sets;
 mod running_stats;

@@ -149,6 +149,22 @@ pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {
             ),
         ));
     }
+    // A column read twice would be read from the first, maybe junk, one.
+    for (name, first) in [("v1_sq", i1), ("v2_sq", i2)] {
+        let Some(c) = first else { continue };
+        if let Some(k) = names[c + 1..].iter().position(|f| f == name) {
+            return Err(Error::data(
+                P,
+                path,
+                format!("header (line {hline})"),
+                format!(
+                    "column {name} is named twice (columns {} and {}); name each column once",
+                    c + 1,
+                    c + k + 2
+                ),
+            ));
+        }
+    }
     let mut v1 = i1.map(|_| Vec::with_capacity(records.len()));
     let mut v2 = i2.map(|_| Vec::with_capacity(records.len()));
     for (r, (line, fields)) in records[1..].iter().enumerate() {
