@@ -50,6 +50,7 @@ mod robustness_cli;
 mod robustness_files;
 mod robustness_lib;
 mod robustness_limits;
+mod robustness_memory;
 mod robustness_readers;
 mod robustness_sets;
 mod running_stats;

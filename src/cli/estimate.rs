@@ -97,6 +97,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
 fn estimate_and_write(args: &Args, source: &Source) -> Result<ExitCode> {
     let (rows, cols) = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
+            // The answer is held whole (6 values a row): refused from the
+            // header when it cannot fit.
+            let answer_bytes = stream.rows as u64 * std::mem::size_of::<RowEstimate>() as u64;
+            v2ref::formats::check_budget(answer_bytes, "input", &source.input)?;
             let est = estimator(args, source, stream.rows, stream.cols)?;
             let mut out = Vec::with_capacity(stream.rows);
             let mut block = Vec::new();

@@ -266,15 +266,23 @@ fn push_le_f64(bytes: &[u8], out: &mut Vec<f64>) {
     );
 }
 
-pub(crate) fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> {
+/// Reads a whole `.npy` file of `<f8` once `shape_ok` has accepted its
+/// shape and its data fit in the [`memory_budget`]: both refusals come from
+/// the header, before the data are read.
+pub(crate) fn read_npy(
+    path: &Path,
+    param: &'static str,
+    shape_ok: impl FnOnce(&[usize]) -> Result<()>,
+) -> Result<(Vec<usize>, Vec<f64>)> {
     let NpyData {
         mut reader,
         shape,
         order,
         bytes: need,
     } = open_npy(path, param)?;
+    shape_ok(&shape)?;
+    check_budget(need, param, path)?;
     let count = need / 8;
-    use std::io::Read as _;
     // npyz has parsed and checked the header; the data section of a '<f8'
     // array is `count` little-endian 8-byte values, read here in bulk
     // (npyz's element iterator costs ~4 ns a value, 4 s on a 1 GB file).
@@ -393,7 +401,56 @@ pub(crate) fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Res
             });
         }
     }
-    let (shape, data) = read_npy(path, P)?;
+    let mut data = open_npy(path, P)?;
+    check_estimates_shape(&data.shape, &names, path)?;
+    let cols = data.shape.get(1).copied().unwrap_or(1);
+    let rows = data.shape[0];
+    if data.order == Order::Fortran && cols > 1 {
+        // Column after column on disk: read whole and taken apart.
+        let (_, all) = read_npy(path, P, |_| Ok(()))?;
+        let column = |c: usize| (0..rows).map(|r| all[r * cols + c]).collect::<Vec<f64>>();
+        return Ok(Estimates {
+            v1_sq: i1.map(column),
+            v2_sq: i2.map(column),
+        });
+    }
+    // Only the columns read are kept, filled a block of rows at a time.
+    let kept = u64::from(i1.is_some()) + u64::from(i2.is_some());
+    check_budget(rows as u64 * kept * 8, P, path)?;
+    let (mut v1, mut v2) = (
+        i1.map(|_| Vec::with_capacity(rows)),
+        i2.map(|_| Vec::with_capacity(rows)),
+    );
+    let mut bytes = Vec::new();
+    let mut values = Vec::new();
+    let mut done = 0;
+    while done < rows {
+        let take = ESTIMATE_BLOCK_ROWS.min(rows - done);
+        bytes.resize(take * cols * 8, 0);
+        data.reader
+            .read_exact(&mut bytes)
+            .map_err(|e| Error::file(Some(P), path, e))?;
+        values.clear();
+        push_le_f64(&bytes, &mut values);
+        for (idx, out) in [(i1, &mut v1), (i2, &mut v2)] {
+            if let (Some(c), Some(out)) = (idx, out.as_mut()) {
+                out.extend(values.chunks_exact(cols).map(|row| row[c]));
+            }
+        }
+        done += take;
+    }
+    Ok(Estimates {
+        v1_sq: v1,
+        v2_sq: v2,
+    })
+}
+
+/// Rows of an estimates file read at a time (a few MB).
+const ESTIMATE_BLOCK_ROWS: usize = 1 << 16;
+
+/// An estimates array is 1-D (one name) or 2-D with one column per name.
+fn check_estimates_shape(shape: &[usize], names: &[String], path: &Path) -> Result<()> {
+    const P: &str = "estimates";
     let cols = match shape.len() {
         1 => 1,
         2 => shape[1],
@@ -420,12 +477,59 @@ pub(crate) fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Res
             ),
         ));
     }
-    let rows = data.len().checked_div(cols).unwrap_or(0);
-    let column = |c: usize| (0..rows).map(|r| data[r * cols + c]).collect::<Vec<f64>>();
-    Ok(Estimates {
-        v1_sq: i1.map(column),
-        v2_sq: i2.map(column),
-    })
+    Ok(())
+}
+
+/// The most memory a whole `.npy` read may take, bytes: half the machine's
+/// physical memory, or `V2REF_MAX_MEMORY_GIB` GiB when set (to raise it, or
+/// lower it under a memory limit).
+pub fn memory_budget() -> u64 {
+    if let Some(gib) = std::env::var("V2REF_MAX_MEMORY_GIB")
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|g| g.is_finite() && *g > 0.0)
+    {
+        return (gib * (1u64 << 30) as f64) as u64;
+    }
+    physical_memory().map_or(u64::MAX, |m| m / 2)
+}
+
+#[cfg(unix)]
+fn physical_memory() -> Option<u64> {
+    // SAFETY: sysconf only reads a system constant.
+    let (pages, size) = unsafe {
+        (
+            libc::sysconf(libc::_SC_PHYS_PAGES),
+            libc::sysconf(libc::_SC_PAGESIZE),
+        )
+    };
+    let (pages, size) = (u64::try_from(pages).ok()?, u64::try_from(size).ok()?);
+    pages.checked_mul(size)
+}
+
+#[cfg(not(unix))]
+fn physical_memory() -> Option<u64> {
+    None
+}
+
+/// Refuses, from a header, `need` bytes of answer or data of the file
+/// `path` that would not fit in [`memory_budget`].
+pub fn check_budget(need: u64, param: &'static str, path: &Path) -> Result<()> {
+    let budget = memory_budget();
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(Error::data(
+        param,
+        path,
+        "header",
+        format!(
+            "reading it takes {:.2} GiB, more than the memory budget of {:.2} GiB (half the physical memory); raise it with V2REF_MAX_MEMORY_GIB",
+            gib(need),
+            gib(budget)
+        ),
+    ))
 }
 
 /// A `.npy` writer of `rows × cols` float64 (`<f8`, C order), streamed row
