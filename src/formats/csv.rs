@@ -160,11 +160,11 @@ fn push_row(
 
 pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {
     const P: &str = "estimates";
-    let mut header: Option<(usize, Vec<String>, Option<usize>, Option<usize>)> = None;
+    let mut header: Option<EstimatesHeader> = None;
     let (mut v1, mut v2) = (Vec::new(), Vec::new());
     let mut rows = 0usize;
     each_record(path, P, |line, fields| {
-        let Some((_, names, i1, i2)) = &header else {
+        let Some(EstimatesHeader { names, i1, i2 }) = &header else {
             header = Some(estimates_header(path, line, fields)?);
             return Ok(());
         };
@@ -177,21 +177,22 @@ pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {
         }
         Ok(())
     })?;
-    let (_, _, i1, i2) = header.unwrap_or_default();
+    let (i1, i2) = header.map_or((None, None), |h| (h.i1, h.i2));
     Ok(Estimates {
         v1_sq: i1.map(|_| v1),
         v2_sq: i2.map(|_| v2),
     })
 }
 
-/// The header of an estimates CSV: its line, the column names and where
-/// v1_sq and v2_sq are (at least one; neither named twice).
-#[allow(clippy::type_complexity)]
-fn estimates_header(
-    path: &Path,
-    hline: usize,
-    fields: &[&str],
-) -> Result<(usize, Vec<String>, Option<usize>, Option<usize>)> {
+/// The header of an estimates CSV: the column names and where v1_sq and
+/// v2_sq are (at least one; neither named twice).
+struct EstimatesHeader {
+    names: Vec<String>,
+    i1: Option<usize>,
+    i2: Option<usize>,
+}
+
+fn estimates_header(path: &Path, hline: usize, fields: &[&str]) -> Result<EstimatesHeader> {
     const P: &str = "estimates";
     let names: Vec<String> = fields.iter().map(|f| (*f).to_owned()).collect();
     let find = |n: &str| names.iter().position(|f| f == n);
@@ -223,7 +224,7 @@ fn estimates_header(
             ));
         }
     }
-    Ok((hline, names, i1, i2))
+    Ok(EstimatesHeader { names, i1, i2 })
 }
 
 /// A CSV writer of rows of float64 (shortest round-trip formatting: the

@@ -185,7 +185,10 @@ pub(super) fn synthesize<'py>(
         Ok((data, sidecar))
     })?;
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
-    Ok((array.into_any(), json(&sidecar)?))
+    // Pretty, as `v2ref synth` writes OUT.json (`write_set` writes this text).
+    let text = serde_json::to_string_pretty(&sidecar)
+        .map_err(|e| PyValueError::new_err(format!("cannot serialize the sidecar: {e}")))?;
+    Ok((array.into_any(), text))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.
