@@ -445,7 +445,9 @@ def synthesize(
         if not isinstance(out, (str, bytes, _os.PathLike)):
             raise TypeError(f"out: {out!r} is not a path")
         out = _os.fspath(out)
-        npy = _os.fsdecode(_os.path.basename(out)) + ".npy"
+        # The sidecar names the file in text: bytes that are not UTF-8 as
+        # U+FFFD, as the CLI writes them (the file itself keeps its bytes).
+        npy = _os.fsencode(_os.path.basename(out)).decode("utf-8", "replace") + ".npy"
     data, text = _v2ref.synthesize(
         physical,
         _uint("rows", rows),
@@ -459,7 +461,7 @@ def synthesize(
     if out is not None:
         # The CLI's writers: the set checked and locked, written whole or
         # not at all, an existing file replaced only with force=True.
-        _v2ref.write_set(out, data, text, _flag("force", force))
+        _v2ref.write_set(_os.fsdecode(out), data, text, _flag("force", force))
     return data, sidecar
 
 

@@ -141,6 +141,9 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
+    force : bool
+        Replace an existing OUT.npy or OUT.json (never a link, folder or
+        device).
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per

@@ -16,6 +16,7 @@
 //! numerical core reads and writes no file.
 
 pub mod atomic;
+pub mod budget;
 pub mod csv;
 pub(crate) mod lock;
 pub mod npy;
@@ -25,8 +26,9 @@ pub mod set;
 pub mod target;
 
 pub use atomic::write_text_atomic;
+pub use budget::{check_budget, memory_budget};
 pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
-pub use npy::{check_budget, memory_budget, NpyRowWriter, NpyRows};
+pub use npy::{NpyRowWriter, NpyRows};
 pub use set::OutputSet;
 pub use target::{check_output_file, check_parent};
 

@@ -85,9 +85,9 @@ def test_a_call_on_a_daemon_thread_does_not_abort_the_interpreter_at_exit():
 def test_a_masked_array_is_refused_by_name():
     rows = np.ma.masked_less(np.full((4, 16), 100.0) + np.arange(16), 101.0)
     with pytest.raises(TypeError, match=r"^interferograms: a masked array"):
-        v2ref.estimate(rows, samples=16)
+        v2ref.estimate(rows)
     with pytest.raises(TypeError, match=r"^calibrator: a masked array"):
-        v2ref.estimate(rows.data, calibrator=rows, samples=16)
+        v2ref.estimate(rows.data, calibrator=rows)
 
 
 @pytest.mark.parametrize(
