@@ -6,7 +6,9 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::commands::estimate::{estimate_rows, CalibratorRows, Configuration, RowsName};
+use v2ref::commands::estimate::{
+    estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
+};
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows, OutputSet};
@@ -77,9 +79,6 @@ impl Source {
         }
     }
 }
-
-/// Rows estimated at a time from a streamed `.npy` (8 MB at N = 128).
-const STREAM_ROWS: usize = 8192;
 
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {

@@ -103,3 +103,16 @@ def test_a_masked_array_is_refused_by_name():
 def test_an_integer_too_large_names_its_keyword(call, keyword):
     with pytest.raises(ValueError, match=rf"^{keyword}: "):
         call()
+
+
+def test_a_memory_mapped_array_is_refused_at_its_first_bad_row(tmp_path):
+    # 1 GiB of rows without light (a sparse file): refused at row 1 once
+    # its block is read, without reading (mapping in) the rest.
+    import resource
+
+    rows = np.lib.format.open_memmap(tmp_path / "dark.npy", mode="w+", dtype="<f8", shape=(1 << 20, 128))
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    with pytest.raises(ValueError, match=r"^interferograms: .*row 1\b"):
+        v2ref.estimate(rows)
+    grown_kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
+    assert grown_kib < 256 << 10, f"{grown_kib} KiB resident for a refusal at row 1"
