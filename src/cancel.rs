@@ -84,18 +84,18 @@ pub fn checkpoint() {
     }
 }
 
-/// Runs `job` on a thread pool (as many threads as cores) whose every
-/// thread holds `token`, and returns its result; a cancelled job unwinds
-/// with [`Cancelled`] out of this call. When no pool can be built
-/// (resource limits), `job` runs on the calling thread holding the token.
+/// Runs `job` on a thread pool ([`crate::montecarlo::pool::default_threads`]
+/// threads, fewer when the system refuses them) whose every thread holds
+/// `token`, and returns its result; a cancelled job unwinds with
+/// [`Cancelled`] out of this call. When no pool can be built at all, `job`
+/// runs on the calling thread holding the token.
 pub fn run_cancellable<T: Send>(token: &Token, job: impl FnOnce() -> T + Send) -> T {
     let for_pool = token.clone();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .start_handler(move |_| hold(Some(for_pool.clone())))
-        .build();
-    match pool {
-        Ok(pool) => pool.install(job),
-        Err(_) => {
+    let start: crate::montecarlo::pool::StartHandler =
+        Arc::new(move |_| hold(Some(for_pool.clone())));
+    match crate::montecarlo::pool::build_pool(0, Some(start)) {
+        Some(pool) => pool.install(job),
+        None => {
             let before = current();
             hold(Some(token.clone()));
             let restore = Restore(before);

@@ -4,9 +4,20 @@
 //! run leaves no partial output behind, only what was there before.
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 static IN_FLIGHT: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Held while the files of a set take their targets' places: the cleanup
+/// of a terminating signal waits for it, so that a set is never left half
+/// placed.
+static COMMIT: Mutex<()> = Mutex::new(());
+
+/// Holds off [`remove_all`] (the signal handler's cleanup) until the guard
+/// is dropped.
+pub fn hold_commit() -> MutexGuard<'static, ()> {
+    COMMIT.lock().unwrap_or_else(PoisonError::into_inner)
+}
 
 /// Records `path` as a temporary in flight.
 pub fn register(path: &Path) {
@@ -24,9 +35,8 @@ pub fn unregister(path: &Path) {
 
 /// Removes every temporary in flight (files and folders); returns how many.
 pub fn remove_all() -> usize {
-    let Ok(mut v) = IN_FLIGHT.lock() else {
-        return 0;
-    };
+    let _placed = hold_commit();
+    let mut v = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
     let n = v.len();
     for p in v.drain(..) {
         if p.is_dir() {

@@ -51,26 +51,39 @@ const EXIT_STATUSES: &str = "Exit status:
       something (use --force for a regular file)
   74  an output that cannot be written: read-only or full file system,
       permission denied, standard output closed or failing
- 130  interrupted (Ctrl-C); no partial output is left
+ 130  interrupted by Ctrl-C (SIGINT); 143 by SIGTERM, 129 by SIGHUP: no
+      partial output is left, a set of files is the old one or the new one
 
 Run 'v2ref <COMMAND> --help' for the flags of a command and their ranges.";
 
-/// Exit status after an interrupt (128 + SIGINT).
-const EXIT_INTERRUPTED: i32 = 130;
-
 fn main() -> ExitCode {
-    // Ctrl-C stops any computation at once: the temporaries of the atomic
-    // writers are removed (what was there before stays), status 130.
-    let _ = ctrlc::set_handler(|| {
-        v2ref::cleanup::remove_all();
-        cli::output::write_stderr_line(format_args!("interrupted"));
-        std::process::exit(EXIT_INTERRUPTED);
-    });
+    // SIGINT, SIGTERM and SIGHUP stop any computation at once: the
+    // temporaries are removed (what was there before stays), status 128 + N.
+    cli::signals::install();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => return cli::clap_error(e),
     };
-    let result = match cli.command {
+    // Every command runs in one pool of `--threads 0`'s size (capped, fewer
+    // when the system refuses threads, said on stderr): rayon's global pool,
+    // which panics when it cannot start, is never used.
+    v2ref::montecarlo::pool::set_fewer_threads_notice(|asked, granted| {
+        cli::output::write_stderr_line(format_args!(
+            "note: the system gave {granted} of the {asked} threads asked (a process limit?); running on {granted}"
+        ));
+    });
+    let result = v2ref::montecarlo::pool::install(0, None, || run(cli.command));
+    let code = match result {
+        Ok(code) => code,
+        Err(e) => cli::fail(&e),
+    };
+    cli::output::flush_stdout();
+    code
+}
+
+/// Runs one command.
+fn run(command: Command) -> v2ref::Result<ExitCode> {
+    match command {
         Command::Bias(a) => cli::bias::run(a),
         Command::Claims(a) => cli::claims::run(a),
         Command::Snr(a) => cli::snr::run(a),
@@ -82,11 +95,5 @@ fn main() -> ExitCode {
         Command::Synth(a) => cli::synth::run(a),
         Command::Estimate(a) => cli::estimate::run(a),
         Command::Score(a) => cli::score::run(a),
-    };
-    let code = match result {
-        Ok(code) => code,
-        Err(e) => cli::fail(&e),
-    };
-    cli::output::flush_stdout();
-    code
+    }
 }

@@ -236,6 +236,8 @@ fn claimed_shapes_that_overflow_are_refused_with_the_header() {
         "(2305843009213693952, 8)",
         "(18446744073709551615, 3)",
         "(3, 6148914691236517206)",
+        // Past u64: refused by v2ref's own reading of the shape.
+        "(99999999999999999999999, 1)",
     ] {
         let h = header_text(shape, false, "<f8");
         let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
@@ -261,4 +263,23 @@ fn claimed_shapes_that_overflow_are_refused_with_the_header() {
         "{text}"
     );
     read_all_ways(&p, bytes.len()).unwrap();
+}
+
+/// A column read twice is refused by its name and both places, whichever
+/// holds the junk (before, the first was read without a word).
+#[test]
+fn an_estimates_column_named_twice_is_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    for (header, twice, places) in [
+        ("v1_sq,v2_sq,v1_sq", "v1_sq", "columns 1 and 3"),
+        ("row,v2_sq,v2_sq", "v2_sq", "columns 2 and 3"),
+    ] {
+        let text = format!("{header}\n1,0.5,0.25\n2,0.5,0.25\n");
+        let p = temp_file(dir.path(), "twice.csv", text.as_bytes());
+        let e = read_estimates(&p, None).unwrap_err().to_string();
+        assert!(
+            e.contains("estimates") && e.contains(twice) && e.contains(places),
+            "{header}: {e}"
+        );
+    }
 }

@@ -76,15 +76,41 @@ _PathLike = Union[str, _os.PathLike[str]]
 def _uint(name: str, value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
         raise TypeError(f"{name}: {value!r} is not an integer")
-    if value < 0:
-        raise ValueError(f"{name}: {value} is out of range; accepted: an integer >= 0")
+    if value < 0 or value >= 2**64:
+        raise ValueError(f"{name}: {value} is out of range; accepted: an integer from 0 to 2^64 - 1")
     return int(value)
+
+
+def _to_float(name: str, value: Any) -> float:
+    """``float(value)``, an integer too large for a float refused by name."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(
+            f"{name}: {value} is out of range; accepted: a number within ±1.8e308"
+        ) from None
 
 
 def _float(name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, _np.integer, _np.floating)):
         raise TypeError(f"{name}: {value!r} is not a number")
-    return float(value)
+    return _to_float(name, value)
+
+
+def _flag(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, _np.bool_)):
+        raise TypeError(f"{name}: {value!r} is not a bool")
+    return bool(value)
+
+
+def _not_masked(name: str, x: Any) -> None:
+    """Refuses a masked array: its masked values would be used as numbers."""
+    if isinstance(x, _np.ma.MaskedArray):
+        raise TypeError(
+            f"{name}: a masked array; its masked values would be used as numbers. "
+            "Pass the rows to keep (x[~x.mask.any(axis=1)] for a 2-D array, x.compressed() "
+            "for a 1-D one) or filled values (x.filled(v))"
+        )
 
 
 def _word(name: str, value: Any) -> str:
@@ -114,7 +140,7 @@ def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[st
         else:
             if isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)):
                 raise TypeError(f"{k}: {v!r} is not a real number")
-            v = float(v)
+            v = _to_float(k, v)
         out[k] = v
     return out
 
@@ -192,6 +218,7 @@ def _contiguous(name: str, a: _np.ndarray, shape_words: str) -> _np.ndarray:
 
 def _matrix(name: str, x: Any) -> _np.ndarray:
     """A 2-D C-contiguous float64 view of ``x`` (no copy when it is one)."""
+    _not_masked(name, x)
     a = _np.asarray(x)
     if a.dtype == _np.bool_ or not (
         _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
@@ -207,6 +234,7 @@ def _matrix(name: str, x: Any) -> _np.ndarray:
 
 
 def _vector(name: str, x: Any) -> _np.ndarray:
+    _not_masked(name, x)
     a = _np.asarray(x)
     if a.dtype == _np.bool_ or not (
         _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
@@ -349,6 +377,7 @@ def synthesize(
     keep_continuum: bool = False,
     layout: str = "sequences",
     out: Optional[_PathLike] = None,
+    force: bool = False,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -405,6 +434,9 @@ def synthesize(
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
+    force : bool
+        Replace an existing OUT.npy or OUT.json (never a link, folder or
+        device).
     {physical}
 
     Returns
@@ -419,8 +451,12 @@ def synthesize(
     physical = _physical(values)
     npy = ""
     if out is not None:
+        if not isinstance(out, (str, bytes, _os.PathLike)):
+            raise TypeError(f"out: {out!r} is not a path")
         out = _os.fspath(out)
-        npy = _os.path.basename(out) + ".npy"
+        # The sidecar names the file in text: bytes that are not UTF-8 as
+        # U+FFFD, as the CLI writes them (the file itself keeps its bytes).
+        npy = _os.fsencode(_os.path.basename(out)).decode("utf-8", "replace") + ".npy"
     data, text = _v2ref.synthesize(
         physical,
         _uint("rows", rows),
@@ -433,10 +469,9 @@ def synthesize(
     )
     sidecar = _json.loads(text)
     if out is not None:
-        _np.save(out + ".npy", data)
-        with open(out + ".json", "w", encoding="utf-8") as f:
-            _json.dump(sidecar, f, indent=2)
-            f.write("\n")
+        # The CLI's writers: the set checked and locked, written whole or
+        # not at all, an existing file replaced only with force=True.
+        _v2ref.write_set(_os.fsdecode(out), data, text, _flag("force", force))
     return data, sidecar
 
 
@@ -487,6 +522,7 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
             None if k not in found else _vector(f"estimates[{k!r}]", found[k])
             for k in ("v1_sq", "v2_sq")
         )
+    _not_masked("estimates", estimates)
     a = _np.asarray(estimates)
     if a.dtype.names:
         names = a.dtype.names
@@ -579,7 +615,7 @@ def score(
             "<array>",
             _word("bins", bins),
             _word("bias", bias),
-            float(alpha),
+            _to_float("alpha", alpha),
         )
     )
 
@@ -816,9 +852,9 @@ def piston(
     if fringe_hz is None:
         freqs = []
     elif isinstance(fringe_hz, (int, float, _np.integer, _np.floating)) and not isinstance(fringe_hz, bool):
-        freqs = [float(fringe_hz)]
+        freqs = [_to_float("fringe_hz", fringe_hz)]
     else:
-        freqs = [float(f) for f in fringe_hz]
+        freqs = [_to_float("fringe_hz", f) for f in fringe_hz]
     return _json.loads(
         _v2ref.piston(
             _physical(values, exclude=("fringe_hz",)),
@@ -948,8 +984,8 @@ def plan(
             _float("samples_per_fringe", samples_per_fringe),
             _float("photon_rate_per_s", photon_rate_per_s),
             _float("dead_time_s", dead_time_s),
-            [float(f) for f in (fringe_hz or [])],
-            [float(s) for s in (stroke_um or [])],
+            [_to_float("fringe_hz", f) for f in (fringe_hz or [])],
+            [_to_float("stroke_um", s) for s in (stroke_um or [])],
             opt("target_sigma_v2", target_sigma_v2),
             opt("time_budget_s", time_budget_s),
             _uint("scans", scans),

@@ -117,7 +117,7 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
     """
     ...
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', out: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -149,6 +149,9 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
+    force : bool
+        Replace an existing OUT.npy or OUT.json (never a link, folder or
+        device).
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per

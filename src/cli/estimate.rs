@@ -6,10 +6,12 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::commands::estimate::{estimate_rows, CalibratorRows, Configuration, RowsName};
+use v2ref::commands::estimate::{
+    estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
+};
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows};
+use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows, OutputSet};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.
@@ -78,21 +80,27 @@ impl Source {
     }
 }
 
-/// Rows estimated at a time from a streamed `.npy` (8 MB at N = 128).
-const STREAM_ROWS: usize = 8192;
-
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let source = source(&args)?;
     // What is at the path first (a device, a link, a folder, a user's file),
     // then the format its extension names.
-    if let Some(out) = &args.out {
-        v2ref::formats::check_output_file(out, "out", args.force)?;
-    }
+    let targets: Vec<_> = args.out.iter().map(|p| (p.as_path(), "out")).collect();
+    let set = OutputSet::begin(&targets, args.force)?;
     super::oifits::check_estimates_out(args.out.as_deref())?;
+    set.write(|| estimate_and_write(&args, &source))
+}
+
+/// Estimates every row of the input and writes the answer to `--out` (or
+/// standard output).
+fn estimate_and_write(args: &Args, source: &Source) -> Result<ExitCode> {
     let (rows, cols) = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
-            let est = estimator(&args, &source, stream.rows, stream.cols)?;
+            // The answer is held whole (6 values a row): refused from the
+            // header when it cannot fit.
+            let answer_bytes = stream.rows as u64 * std::mem::size_of::<RowEstimate>() as u64;
+            v2ref::formats::check_budget(answer_bytes, "input", &source.input)?;
+            let est = estimator(args, source, stream.rows, stream.cols)?;
             let mut out = Vec::with_capacity(stream.rows);
             let mut block = Vec::new();
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
@@ -103,7 +111,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
         None => {
             let data = read_matrix(&source.input, "input")?;
-            let est = estimator(&args, &source, data.rows, data.cols)?;
+            let est = estimator(args, source, data.rows, data.cols)?;
             let at = (data.data.as_slice(), 0);
             (
                 estimate_rows(&est, source.name(), at, args.threads)?,

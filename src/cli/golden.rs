@@ -170,7 +170,8 @@ fn holds_golden_data(dir: &std::path::Path) -> bool {
 
 /// Refuses, before any work, to replace with `--update` a folder v2ref did
 /// not write: DIR must be new, empty, or hold a figure's metadata written by
-/// `golden --update` (a `fig*.json` naming its generator), else `--force`.
+/// `golden --update` (a `fig*.json` naming its generator) or its vectors
+/// (`vectors/README.md` saying so), else `--force`.
 fn check_update_dir(dir: &std::path::Path, force: bool) -> Result<()> {
     let refuse = |reason: &str| Error::Invalid {
         param: "dir",
@@ -191,11 +192,14 @@ fn check_update_dir(dir: &std::path::Path, force: bool) -> Result<()> {
             && std::fs::read_to_string(p)
                 .is_ok_and(|t| t.contains(v2ref::reproduction::golden::GENERATOR))
     });
-    if force || entries.is_empty() || written_by_golden {
+    let vectors_readme = dir.join(super::vectors::VECTORS_DIR).join("README.md");
+    let vectors_by_golden = std::fs::read_to_string(vectors_readme)
+        .is_ok_and(|t| t.contains(super::vectors::GENERATED_BY));
+    if force || entries.is_empty() || written_by_golden || vectors_by_golden {
         Ok(())
     } else {
         Err(refuse(
-            "is a folder golden --update did not write (no fig*.json naming its generator) and would be replaced; give a new folder or --force",
+            "is a folder golden --update did not write (no fig*.json naming its generator, no vectors/README.md of its own) and would be replaced; give a new folder or --force",
         ))
     }
 }

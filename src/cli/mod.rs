@@ -35,6 +35,7 @@ pub mod plan_svg;
 pub mod plan_verify;
 pub mod reproduce;
 pub mod score;
+pub mod signals;
 pub mod simulate;
 pub mod snr;
 pub mod synth;

@@ -122,7 +122,8 @@ static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool:
 pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
     let (bar, what) = (bar.clone(), what.to_owned());
     let start = std::time::Instant::now();
-    std::thread::spawn(move || {
+    // Under a process limit there may be no thread for it: then no note.
+    let _ = std::thread::Builder::new().spawn(move || {
         std::thread::sleep(COST_PROBE);
         let (done, len) = (bar.position(), bar.length().unwrap_or(0));
         if bar.is_finished() || len == 0 || ANNOUNCED.load(Ordering::Relaxed) {

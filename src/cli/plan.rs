@@ -195,11 +195,13 @@ fn request(args: &Args) -> (Physical, PlanRequest) {
 pub fn run(args: Args) -> Result<ExitCode> {
     if let Some(p) = &args.oifits {
         v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
-        v2ref::formats::check_output_file(p, "oifits", args.force)?;
     }
-    if let Some(svg) = &args.svg {
-        v2ref::formats::check_output_file(svg, "svg", args.force)?;
-    }
+    // Both files checked and locked before any work, written together.
+    let svg = args.svg.iter().map(|p| (p.as_path(), "svg"));
+    let targets: Vec<_> = svg
+        .chain(args.oifits.iter().map(|p| (p.as_path(), "oifits")))
+        .collect();
+    let set = v2ref::formats::OutputSet::begin(&targets, args.force)?;
     let (physical, req) = request(&args);
     let prepared = plan::prepare(&physical, &req)?;
     super::output::announce("plan", &prepared.cost(args.threads)?);
@@ -225,12 +227,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
         plan::verify(&mut answer, &size, args.threads, &|k| bar.inc(k))?;
         bar.finish_and_clear();
     }
-    if let Some(path) = &args.svg {
-        super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
-    }
-    if let Some(path) = &args.oifits {
-        v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)?;
-    }
+    set.write(|| {
+        if let Some(path) = &args.svg {
+            super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
+        }
+        if let Some(path) = &args.oifits {
+            v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)?;
+        }
+        Ok(())
+    })?;
     if args.json {
         print_json(&answer);
     } else {

@@ -12,7 +12,7 @@ use v2ref::commands::cost::SetOutput;
 use v2ref::commands::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
-use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter};
+use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter, OutputSet};
 use v2ref::simulator::{Model, RowLayout};
 use v2ref::{Error, Result};
 
@@ -71,10 +71,19 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .reference_blocks
         .unwrap_or_else(|| default_reference_blocks(inputs.piston.is_some()));
     v2ref::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
-    check_set_paths(&args.out, args.csv, args.force)?;
-    if args.oifits {
-        v2ref::formats::check_output_file(&truth_fits_path(&args.out), "out", args.force)?;
+    // Every file of the set checked and locked before any work; they
+    // appear together at the end, or none does.
+    let stem = Stem::new(&args.out)?;
+    let mut targets = vec![stem.npy.as_path(), stem.json.as_path()];
+    if args.csv {
+        targets.push(&stem.csv);
     }
+    let fits = truth_fits_path(&args.out);
+    if args.oifits {
+        targets.push(&fits);
+    }
+    let targets: Vec<_> = targets.into_iter().map(|p| (p, "out")).collect();
+    let set = OutputSet::begin(&targets, args.force)?;
     let piston = inputs.piston.is_some();
     let reference_rows =
         reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
@@ -96,11 +105,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
         layout: args.layout,
     };
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
-    let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
-    bar.finish_and_clear();
-    if args.oifits {
-        super::oifits::write_truth(&truth_fits_path(&args.out), &sidecar)?;
-    }
+    set.write(|| {
+        let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
+        bar.finish_and_clear();
+        if args.oifits {
+            super::oifits::write_truth(&fits, &sidecar)?;
+        }
+        Ok(())
+    })?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -183,18 +195,22 @@ struct Stem {
 
 impl Stem {
     fn new(out: &Path) -> Result<Stem> {
-        let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
-        let Some(name) = name.filter(|n| !n.is_empty() && n != "." && n != "..") else {
+        let Some(name) = out.file_name().filter(|n| !n.is_empty()) else {
             return Err(Error::Invalid {
                 param: "out",
                 reason: format!("{}: needs a file name (the set's stem)", out.display()),
             });
         };
-        let with = |ext: &str| out.with_file_name(format!("{name}.{ext}"));
+        // The name as given, bytes and all (not made valid UTF-8).
+        let with = |ext: &str| {
+            let mut n = name.to_os_string();
+            n.push(ext);
+            out.with_file_name(n)
+        };
         let stem = Stem {
-            npy: with("npy"),
-            csv: with("csv"),
-            json: with("json"),
+            npy: with(".npy"),
+            csv: with(".csv"),
+            json: with(".json"),
         };
         for p in [&stem.npy, &stem.csv, &stem.json] {
             if p.is_dir() {
@@ -215,21 +231,8 @@ impl Stem {
 }
 
 /// The truth's OIFITS file of the set `out` (`synth --oifits`): `OUT.truth.fits`.
-fn truth_fits_path(out: &Path) -> std::path::PathBuf {
-    let name = out.file_name().unwrap_or_default().to_string_lossy();
-    out.with_file_name(format!("{name}.truth.fits"))
-}
-
-/// Refuses before any work a set whose files exist (without `--force`) or
-/// cannot be written (see [`v2ref::formats::check_output_file`]).
-fn check_set_paths(out: &Path, csv: bool, force: bool) -> Result<()> {
-    let stem = Stem::new(out)?;
-    let mut paths = vec![&stem.npy, &stem.json];
-    if csv {
-        paths.push(&stem.csv);
-    }
-    for p in paths {
-        v2ref::formats::check_output_file(p, "out", force)?;
-    }
-    Ok(())
+fn truth_fits_path(out: &Path) -> PathBuf {
+    let mut name = out.file_name().unwrap_or_default().to_os_string();
+    name.push(".truth.fits");
+    out.with_file_name(name)
 }

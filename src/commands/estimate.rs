@@ -180,6 +180,10 @@ pub fn check_rows(name: RowsName<'_>, rows: &[f64], cols: usize, first: usize) -
     }
 }
 
+/// Rows estimated at a time from a large input (8 MB at N = 128): a bad
+/// row is refused once its block is read, not after the whole input.
+pub const STREAM_ROWS: usize = 8192;
+
 /// The estimates of `rows` (the first `first` rows of the file before
 /// them), each row checked ([`check_rows`]'s refusals, same messages) as
 /// it is estimated, in one pass over the rows.

@@ -1,7 +1,10 @@
 //! Atomic writes: each output goes to a temporary file beside its target
-//! (registered with [`crate::cleanup`], so that Ctrl-C removes it), which
-//! is renamed onto the target only once it is complete and synced.
+//! (`.v2ref-tmp-PID-K-NAME`, at most 255 bytes; registered with
+//! [`crate::cleanup`], so that a terminating signal removes it), which
+//! takes the target's place only once it is complete and synced, alone or
+//! with the rest of its set ([`super::set`]).
 
+use super::lock::{name_bytes, temp_name};
 use crate::{Error, Result};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -20,13 +23,10 @@ impl TempTarget {
         super::target::check_parent(target, param)?;
         super::target::check_replaceable(target, param)?;
         let dir = super::target::parent_of(target);
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "out".into());
+        let name = target.file_name().map(name_bytes).unwrap_or_default();
         let mut k = 0u32;
         loop {
-            let temp = dir.join(format!(".{name}.{}.{k}.tmp", std::process::id()));
+            let temp = dir.join(temp_name(&name, k));
             match std::fs::OpenOptions::new()
                 .write(true)
                 .create_new(true)
@@ -54,14 +54,76 @@ impl TempTarget {
         Error::file(self.param, &self.target, e)
     }
 
-    /// Renames the temporary file onto the target.
-    pub(crate) fn persist(mut self) -> Result<()> {
+    /// Puts the finished temporary file at its target: at once, or, when
+    /// this thread writes a set ([`super::set::OutputSet::write`]), with the
+    /// rest of the set.
+    pub(crate) fn persist(self) -> Result<()> {
+        match super::set::stage(self) {
+            None => Ok(()),
+            Some(temp) => temp.place(true).map(drop),
+        }
+    }
+
+    /// Renames the temporary file onto the target; without `replace`, only
+    /// when nothing is there at that moment (link, then unlink: a file that
+    /// appeared meanwhile stays and the write is refused). Returns the
+    /// target.
+    pub(crate) fn place(mut self, replace: bool) -> Result<PathBuf> {
         // Checked again: a link or a device put there meanwhile stays.
         super::target::check_replaceable(&self.target, self.param)?;
-        std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
+        if replace {
+            std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
+        } else {
+            self.link_new()?;
+        }
         crate::cleanup::unregister(&self.temp);
         self.done = true;
-        Ok(())
+        Ok(std::mem::take(&mut self.target))
+    }
+
+    /// Links the temporary at the target, refused when the target exists.
+    fn link_new(&self) -> Result<()> {
+        match std::fs::hard_link(&self.temp, &self.target) {
+            Ok(()) => {
+                let _ = std::fs::remove_file(&self.temp);
+                Ok(())
+            }
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => Err(Error::Invalid {
+                param: self.param.unwrap_or("out"),
+                reason: format!(
+                    "{}: appeared during the run and was not replaced; remove it, give a new name or --force",
+                    self.target.display()
+                ),
+            }),
+            // A file system without hard links: the rename, checked just
+            // before.
+            Err(_) if std::fs::symlink_metadata(&self.target).is_err() => {
+                std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))
+            }
+            Err(e) => Err(self.io(e)),
+        }
+    }
+
+    /// Keeps the regular file now at the target as a hard link beside it
+    /// (its own temporary name), so that it can be put back; None when
+    /// there is none.
+    pub(crate) fn keep_old(&self) -> Result<Option<PathBuf>> {
+        if !std::fs::symlink_metadata(&self.target).is_ok_and(|m| m.is_file()) {
+            return Ok(None);
+        }
+        let dir = super::target::parent_of(&self.target);
+        let name = self.target.file_name().map(name_bytes).unwrap_or_default();
+        for k in 1000..2000 {
+            let old = dir.join(temp_name(&name, k));
+            match std::fs::hard_link(&self.target, &old) {
+                Ok(()) => return Ok(Some(old)),
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+                // No hard links here: the old file is replaced without a
+                // copy kept.
+                Err(_) => return Ok(None),
+            }
+        }
+        Ok(None)
     }
 }
 

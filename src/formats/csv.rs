@@ -12,11 +12,17 @@ use std::path::Path;
 /// numbers at full precision.
 pub const MAX_CSV_LINE_BYTES: u64 = 4 << 20;
 
-/// The content lines of a CSV file: (1-based line number, fields), comments
-/// and blank lines skipped.
-fn csv_records(path: &Path, param: &'static str) -> Result<Vec<(usize, Vec<String>)>> {
+/// Hands each content line of a CSV file to `each` (its 1-based line
+/// number and its fields, trimmed), comments and blank lines skipped, one
+/// line at a time: nothing of the file is held but the line being read.
+/// Refused when there is no content line.
+fn each_record(
+    path: &Path,
+    param: &'static str,
+    mut each: impl FnMut(usize, &[&str]) -> Result<()>,
+) -> Result<()> {
     let mut reader = BufReader::new(open(path, param)?);
-    let mut out = Vec::new();
+    let mut records = 0usize;
     let mut line = String::new();
     for i in 0.. {
         line.clear();
@@ -55,9 +61,11 @@ fn csv_records(path: &Path, param: &'static str) -> Result<Vec<(usize, Vec<Strin
         if t.is_empty() || t.starts_with('#') {
             continue;
         }
-        out.push((i + 1, t.split(',').map(|f| f.trim().to_owned()).collect()));
+        let fields: Vec<&str> = t.split(',').map(str::trim).collect();
+        each(i + 1, &fields)?;
+        records += 1;
     }
-    if out.is_empty() {
+    if records == 0 {
         return Err(Error::data(
             param,
             path,
@@ -65,7 +73,7 @@ fn csv_records(path: &Path, param: &'static str) -> Result<Vec<(usize, Vec<Strin
             "empty file (no rows); comma-separated rows of numbers are needed",
         ));
     }
-    Ok(out)
+    Ok(())
 }
 
 fn check_width(
@@ -112,30 +120,81 @@ fn parse_value(
 }
 
 pub(crate) fn read_csv_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
-    let mut records = csv_records(path, param)?;
-    let header = records[0].1.iter().all(|f| f.parse::<f64>().is_err());
-    if header {
-        records.remove(0);
-    }
-    let cols = records.first().map_or(0, |r| r.1.len());
-    let mut data = Vec::with_capacity(records.len() * cols);
-    for (r, (line, fields)) in records.iter().enumerate() {
-        check_width(param, path, *line, r + 1, fields.len(), cols)?;
-        for (c, f) in fields.iter().enumerate() {
-            data.push(parse_value(param, path, *line, r + 1, c + 1, f)?);
-        }
-    }
+    let (mut rows, mut cols) = (0usize, None);
+    let mut data = Vec::new();
+    each_record(path, param, |line, fields| {
+        let Some(cols) = cols else {
+            cols = Some(fields.len());
+            // A first row that holds no number is a header.
+            if fields.iter().all(|f| f.parse::<f64>().is_err()) {
+                cols = None;
+                return Ok(());
+            }
+            return push_row(param, path, (line, rows), fields, &mut data).map(|()| rows += 1);
+        };
+        check_width(param, path, line, rows + 1, fields.len(), cols)?;
+        push_row(param, path, (line, rows), fields, &mut data)?;
+        rows += 1;
+        Ok(())
+    })?;
     Ok(Matrix {
-        rows: records.len(),
-        cols,
+        rows,
+        cols: cols.unwrap_or(0),
         data,
     })
 }
 
+/// Parses the fields of row `row` (0-based, at `line`) onto `data`.
+fn push_row(
+    param: &'static str,
+    path: &Path,
+    (line, row): (usize, usize),
+    fields: &[&str],
+    data: &mut Vec<f64>,
+) -> Result<()> {
+    for (c, f) in fields.iter().enumerate() {
+        data.push(parse_value(param, path, line, row + 1, c + 1, f)?);
+    }
+    Ok(())
+}
+
 pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {
     const P: &str = "estimates";
-    let records = csv_records(path, P)?;
-    let (hline, names) = &records[0];
+    let mut header: Option<EstimatesHeader> = None;
+    let (mut v1, mut v2) = (Vec::new(), Vec::new());
+    let mut rows = 0usize;
+    each_record(path, P, |line, fields| {
+        let Some(EstimatesHeader { names, i1, i2 }) = &header else {
+            header = Some(estimates_header(path, line, fields)?);
+            return Ok(());
+        };
+        rows += 1;
+        check_width(P, path, line, rows, fields.len(), names.len())?;
+        for (idx, out) in [(*i1, &mut v1), (*i2, &mut v2)] {
+            if let Some(c) = idx {
+                out.push(parse_value(P, path, line, rows, c + 1, fields[c])?);
+            }
+        }
+        Ok(())
+    })?;
+    let (i1, i2) = header.map_or((None, None), |h| (h.i1, h.i2));
+    Ok(Estimates {
+        v1_sq: i1.map(|_| v1),
+        v2_sq: i2.map(|_| v2),
+    })
+}
+
+/// The header of an estimates CSV: the column names and where v1_sq and
+/// v2_sq are (at least one; neither named twice).
+struct EstimatesHeader {
+    names: Vec<String>,
+    i1: Option<usize>,
+    i2: Option<usize>,
+}
+
+fn estimates_header(path: &Path, hline: usize, fields: &[&str]) -> Result<EstimatesHeader> {
+    const P: &str = "estimates";
+    let names: Vec<String> = fields.iter().map(|f| (*f).to_owned()).collect();
     let find = |n: &str| names.iter().position(|f| f == n);
     let (i1, i2) = (find("v1_sq"), find("v2_sq"));
     if i1.is_none() && i2.is_none() {
@@ -149,20 +208,23 @@ pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {
             ),
         ));
     }
-    let mut v1 = i1.map(|_| Vec::with_capacity(records.len()));
-    let mut v2 = i2.map(|_| Vec::with_capacity(records.len()));
-    for (r, (line, fields)) in records[1..].iter().enumerate() {
-        check_width(P, path, *line, r + 1, fields.len(), names.len())?;
-        for (idx, out) in [(i1, &mut v1), (i2, &mut v2)] {
-            if let (Some(c), Some(out)) = (idx, out.as_mut()) {
-                out.push(parse_value(P, path, *line, r + 1, c + 1, &fields[c])?);
-            }
+    // A column read twice would be read from the first, maybe junk, one.
+    for (name, first) in [("v1_sq", i1), ("v2_sq", i2)] {
+        let Some(c) = first else { continue };
+        if let Some(k) = names[c + 1..].iter().position(|f| f == name) {
+            return Err(Error::data(
+                P,
+                path,
+                format!("header (line {hline})"),
+                format!(
+                    "column {name} is named twice (columns {} and {}); name each column once",
+                    c + 1,
+                    c + k + 2
+                ),
+            ));
         }
     }
-    Ok(Estimates {
-        v1_sq: v1,
-        v2_sq: v2,
-    })
+    Ok(EstimatesHeader { names, i1, i2 })
 }
 
 /// A CSV writer of rows of float64 (shortest round-trip formatting: the

@@ -16,15 +16,20 @@
 //! numerical core reads and writes no file.
 
 pub mod atomic;
+pub mod budget;
 pub mod csv;
+pub(crate) mod lock;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
+pub mod set;
 pub mod target;
 
 pub use atomic::write_text_atomic;
+pub use budget::{check_budget, memory_budget};
 pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
+pub use set::OutputSet;
 pub use target::{check_output_file, check_parent};
 
 use crate::{Error, Result};
@@ -113,9 +118,11 @@ pub(crate) fn not_finite(param: &'static str, path: &Path, location: String, v: 
 pub fn read_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
     let m = match kind_of(path, param)? {
         Kind::Npy => {
-            let (shape, data) = npy::read_npy(path, param)?;
-            if shape.len() != 2 {
-                return Err(Error::data(
+            let (shape, data) = npy::read_npy(path, param, |shape| {
+                if shape.len() == 2 {
+                    return Ok(());
+                }
+                Err(Error::data(
                     param,
                     path,
                     "header",
@@ -123,8 +130,8 @@ pub fn read_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
                         "{}-D array of shape {shape:?}; a 2-D array (rows, samples) is needed",
                         shape.len()
                     ),
-                ));
-            }
+                ))
+            })?;
             Matrix {
                 rows: shape[0],
                 cols: shape[1],

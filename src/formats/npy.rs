@@ -2,11 +2,12 @@
 //! a time, or written row after row (atomically).
 
 use super::atomic::{finish_file, too_many, whole_rows, TempTarget, WRITE_BUFFER};
+use super::budget::check_budget;
 use super::{at, kind_of, not_finite, open, Estimates, Kind, DEFAULT_COLUMNS};
 use crate::{Error, Result};
 use npyz::{Endianness, NpyHeader, Order, TypeChar, WriterBuilder};
 use std::fs::File;
-use std::io::{BufRead, BufReader, BufWriter, Seek, Write};
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 const NPY_MAGIC: &[u8] = b"\x93NUMPY";
@@ -44,9 +45,6 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
         .map_err(|e| Error::file(Some(param), path, e))?
         .len();
     let mut reader = BufReader::with_capacity(1 << 20, file);
-    let head = reader
-        .fill_buf()
-        .map_err(|e| Error::file(Some(param), path, e))?;
     if file_len == 0 {
         return Err(Error::data(
             param,
@@ -55,16 +53,12 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
             "empty file; a NumPy .npy file (float64) is needed",
         ));
     }
-    if !head.starts_with(NPY_MAGIC) {
-        return Err(Error::data(
-            param,
-            path,
-            "header",
-            "not a NumPy .npy file (no \\x93NUMPY magic); a .npy file (float64) is needed",
-        ));
-    }
-    check_header_len(head, file_len, param, path)?;
-    let header = NpyHeader::from_reader(&mut reader).map_err(|e| {
+    let header_bytes = read_header_bytes(&mut reader, file_len, param, path)?;
+    // v2ref checks the shape itself before npyz sees it: npyz multiplies
+    // the dimensions unchecked while parsing (a panic where overflow checks
+    // are on, as in `cargo test`; a wrapped product elsewhere).
+    checked_shape(&header_shape(&header_bytes, param, path)?, param, path)?;
+    let header = NpyHeader::from_reader(header_bytes.as_slice()).map_err(|e| {
         Error::data(
             param,
             path,
@@ -88,9 +82,7 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
         ));
     }
     let (shape, count) = checked_shape(header.shape(), param, path)?;
-    let data_start = reader
-        .stream_position()
-        .map_err(|e| Error::file(Some(param), path, e))?;
+    let data_start = header_bytes.len() as u64;
     let need = count * 8;
     let have = file_len.saturating_sub(data_start);
     if have != need {
@@ -112,27 +104,121 @@ fn open_npy(path: &Path, param: &'static str) -> Result<NpyData> {
     })
 }
 
-/// Refuses a header whose claimed length runs past the end of the file
-/// before npyz allocates it (a version 2 header may claim 4 GiB).
-fn check_header_len(head: &[u8], file_len: u64, param: &'static str, path: &Path) -> Result<()> {
+/// The longest `.npy` header read: numpy itself refuses headers longer
+/// than 10 000 bytes unless told otherwise (`max_header_size`); a header
+/// of this size describes any array numpy writes.
+const MAX_HEADER_BYTES: u64 = 1 << 20;
+
+/// Reads the preamble (magic, version, header length) and the header text,
+/// refused when the magic is missing, the version unknown or the claimed
+/// length runs past the end of the file or past [`MAX_HEADER_BYTES`] (a
+/// version 2 header may claim 4 GiB), before anything is allocated for it.
+fn read_header_bytes(
+    reader: &mut impl Read,
+    file_len: u64,
+    param: &'static str,
+    path: &Path,
+) -> Result<Vec<u8>> {
     let bad = |what: String| Error::data(param, path, "header", what);
-    let (len, start) = match (head.get(6), head.get(8..12)) {
-        (Some(1), Some(b)) => (u64::from(u16::from_le_bytes([b[0], b[1]])), 10),
-        (Some(2 | 3), Some(b)) => (u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])), 12),
-        (Some(v), Some(_)) => {
+    let mut bytes = vec![0u8; 10.min(file_len) as usize];
+    reader
+        .read_exact(&mut bytes)
+        .map_err(|e| Error::file(Some(param), path, e))?;
+    if !bytes.starts_with(NPY_MAGIC) {
+        return Err(bad(
+            "not a NumPy .npy file (no \\x93NUMPY magic); a .npy file (float64) is needed".into(),
+        ));
+    }
+    let preamble = match bytes.get(6) {
+        Some(1) => 10,
+        Some(2 | 3) => 12,
+        Some(v) => {
             return Err(bad(format!(
                 "unknown .npy format version {v}; versions 1 to 3 (numpy.save) are read"
             )))
         }
-        _ => return Err(bad("truncated before the header's length".into())),
+        None => return Err(bad("truncated before the header's length".into())),
     };
-    if start + len > file_len {
+    if file_len < preamble {
+        return Err(bad("truncated before the header's length".into()));
+    }
+    bytes.resize(preamble as usize, 0);
+    reader
+        .read_exact(&mut bytes[10..])
+        .map_err(|e| Error::file(Some(param), path, e))?;
+    let len = match preamble {
+        10 => u64::from(u16::from_le_bytes([bytes[8], bytes[9]])),
+        _ => u64::from(u32::from_le_bytes([
+            bytes[8], bytes[9], bytes[10], bytes[11],
+        ])),
+    };
+    if preamble + len > file_len {
         return Err(bad(format!(
             "the header claims {len} bytes but the file has {} after the preamble; the file is truncated or not a .npy file",
-            file_len.saturating_sub(start)
+            file_len - preamble
         )));
     }
-    Ok(())
+    if len > MAX_HEADER_BYTES {
+        return Err(bad(format!(
+            "the header claims {len} bytes; at most {MAX_HEADER_BYTES} are read (numpy.save writes a few hundred)"
+        )));
+    }
+    bytes.resize((preamble + len) as usize, 0);
+    reader
+        .read_exact(&mut bytes[preamble as usize..])
+        .map_err(|e| Error::file(Some(param), path, e))?;
+    Ok(bytes)
+}
+
+/// The dimensions of the `'shape'` tuple of a header (`(3, 4)`, `(5,)`,
+/// `()`), each a decimal integer that fits a `u64`, read by v2ref before
+/// any dependency computes with them.
+fn header_shape(header: &[u8], param: &'static str, path: &Path) -> Result<Vec<u64>> {
+    let bad = |what: &str| {
+        Error::data(
+            param,
+            path,
+            "header",
+            format!("{what}; a .npy file written by numpy.save is needed"),
+        )
+    };
+    let text = String::from_utf8_lossy(header);
+    // The key followed by a colon (a structured dtype may name a field
+    // 'shape' in a list, followed by a comma).
+    let value = ["'shape'", "\"shape\""]
+        .iter()
+        .flat_map(|k| text.match_indices(k).map(|(i, _)| i + k.len()))
+        .filter_map(|i| text[i..].trim_start().strip_prefix(':'))
+        .min_by_key(|rest| std::cmp::Reverse(rest.len()))
+        .ok_or_else(|| bad("no 'shape' key in the header"))?;
+    let rest = value
+        .trim_start()
+        .strip_prefix('(')
+        .ok_or_else(|| bad("the header's 'shape' is not a tuple"))?;
+    let inside = &rest[..rest
+        .find(')')
+        .ok_or_else(|| bad("the header's 'shape' tuple is not closed"))?];
+    let mut dims = Vec::new();
+    for item in inside.split(',').map(str::trim) {
+        if item.is_empty() {
+            continue;
+        }
+        let digits = item.strip_suffix('L').unwrap_or(item);
+        match digits.parse::<u64>() {
+            Ok(d) => dims.push(d),
+            Err(_) if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) => {
+                return Err(bad(&format!(
+                    "shape dimension {digits} claims more values than any file can hold"
+                )))
+            }
+            Err(_) => {
+                return Err(bad(&format!(
+                    "shape dimension {item:?} is not a non-negative integer"
+                )))
+            }
+        }
+    }
+    Ok(dims)
 }
 
 /// The header's shape as `usize`s and its number of values, refused when
@@ -181,15 +267,23 @@ fn push_le_f64(bytes: &[u8], out: &mut Vec<f64>) {
     );
 }
 
-pub(crate) fn read_npy(path: &Path, param: &'static str) -> Result<(Vec<usize>, Vec<f64>)> {
+/// Reads a whole `.npy` file of `<f8` once `shape_ok` has accepted its
+/// shape and its data fit in the [`memory_budget`]: both refusals come from
+/// the header, before the data are read.
+pub(crate) fn read_npy(
+    path: &Path,
+    param: &'static str,
+    shape_ok: impl FnOnce(&[usize]) -> Result<()>,
+) -> Result<(Vec<usize>, Vec<f64>)> {
     let NpyData {
         mut reader,
         shape,
         order,
         bytes: need,
     } = open_npy(path, param)?;
+    shape_ok(&shape)?;
+    check_budget(need, param, path)?;
     let count = need / 8;
-    use std::io::Read as _;
     // npyz has parsed and checked the header; the data section of a '<f8'
     // array is `count` little-endian 8-byte values, read here in bulk
     // (npyz's element iterator costs ~4 ns a value, 4 s on a 1 GB file).
@@ -308,7 +402,56 @@ pub(crate) fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Res
             });
         }
     }
-    let (shape, data) = read_npy(path, P)?;
+    let mut data = open_npy(path, P)?;
+    check_estimates_shape(&data.shape, &names, path)?;
+    let cols = data.shape.get(1).copied().unwrap_or(1);
+    let rows = data.shape[0];
+    if data.order == Order::Fortran && cols > 1 {
+        // Column after column on disk: read whole and taken apart.
+        let (_, all) = read_npy(path, P, |_| Ok(()))?;
+        let column = |c: usize| (0..rows).map(|r| all[r * cols + c]).collect::<Vec<f64>>();
+        return Ok(Estimates {
+            v1_sq: i1.map(column),
+            v2_sq: i2.map(column),
+        });
+    }
+    // Only the columns read are kept, filled a block of rows at a time.
+    let kept = u64::from(i1.is_some()) + u64::from(i2.is_some());
+    check_budget(rows as u64 * kept * 8, P, path)?;
+    let (mut v1, mut v2) = (
+        i1.map(|_| Vec::with_capacity(rows)),
+        i2.map(|_| Vec::with_capacity(rows)),
+    );
+    let mut bytes = Vec::new();
+    let mut values = Vec::new();
+    let mut done = 0;
+    while done < rows {
+        let take = ESTIMATE_BLOCK_ROWS.min(rows - done);
+        bytes.resize(take * cols * 8, 0);
+        data.reader
+            .read_exact(&mut bytes)
+            .map_err(|e| Error::file(Some(P), path, e))?;
+        values.clear();
+        push_le_f64(&bytes, &mut values);
+        for (idx, out) in [(i1, &mut v1), (i2, &mut v2)] {
+            if let (Some(c), Some(out)) = (idx, out.as_mut()) {
+                out.extend(values.chunks_exact(cols).map(|row| row[c]));
+            }
+        }
+        done += take;
+    }
+    Ok(Estimates {
+        v1_sq: v1,
+        v2_sq: v2,
+    })
+}
+
+/// Rows of an estimates file read at a time (a few MB).
+const ESTIMATE_BLOCK_ROWS: usize = 1 << 16;
+
+/// An estimates array is 1-D (one name) or 2-D with one column per name.
+fn check_estimates_shape(shape: &[usize], names: &[String], path: &Path) -> Result<()> {
+    const P: &str = "estimates";
     let cols = match shape.len() {
         1 => 1,
         2 => shape[1],
@@ -335,12 +478,7 @@ pub(crate) fn read_estimates_npy(path: &Path, columns: Option<&[String]>) -> Res
             ),
         ));
     }
-    let rows = data.len().checked_div(cols).unwrap_or(0);
-    let column = |c: usize| (0..rows).map(|r| data[r * cols + c]).collect::<Vec<f64>>();
-    Ok(Estimates {
-        v1_sq: i1.map(column),
-        v2_sq: i2.map(column),
-    })
+    Ok(())
 }
 
 /// A `.npy` writer of `rows × cols` float64 (`<f8`, C order), streamed row

@@ -7,6 +7,7 @@
 //! `Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
 //! neighbouring units get unrelated streams.
 
+pub mod pool;
 pub mod statistics;
 
 pub use statistics::{
@@ -184,25 +185,20 @@ pub fn check_threads(threads: usize) -> crate::Result<usize> {
     Ok(threads)
 }
 
-/// Runs `job` on a pool of `threads` threads (0 = rayon's default pool).
+/// Runs `job` on a pool of `threads` threads; 0: the pool the caller runs
+/// in (the CLI's, of [`pool::default_threads`]), or a new one of
+/// [`pool::default_threads`] outside any pool. A system that refuses
+/// threads gives fewer ([`pool::build_pool`]).
 pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
-    if threads == 0 {
-        job()
-    } else {
-        // The pool's threads work for the caller's computation: they hold
-        // its cancellation token (crate::cancel), if any.
-        let token = crate::cancel::current();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .start_handler(move |_| crate::cancel::hold(token.clone()))
-            .build();
-        match pool {
-            Ok(pool) => pool.install(job),
-            // A pool that cannot be built (resource limits): run on the
-            // global pool; the result is the same by construction.
-            Err(_) => job(),
-        }
+    if threads == 0 && rayon::current_thread_index().is_some() {
+        return job();
     }
+    // The pool's threads work for the caller's computation: they hold its
+    // cancellation token (crate::cancel), if any.
+    let token = crate::cancel::current();
+    let start: pool::StartHandler =
+        std::sync::Arc::new(move |_| crate::cancel::hold(token.clone()));
+    pool::install(threads, Some(start), job)
 }
 
 /// The seed of one independent computation of a run: a SplitMix64 hash of

@@ -12,12 +12,14 @@
 mod answers;
 mod inputs;
 mod oifits;
+mod output;
 
 use crate::cancel::{checkpoint, run_cancellable, Cancelled, Token};
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
@@ -120,7 +122,10 @@ pub fn interruptible<T: Send>(
                 let (guard, _) = cvar
                     .wait_timeout_while(guard, Duration::from_millis(100), |done| !*done)
                     .unwrap_or_else(|e| e.into_inner());
-                *guard
+                let done = *guard;
+                drop(guard);
+                stay_out_if_exiting(&token);
+                done
             });
             if done {
                 break;
@@ -132,7 +137,11 @@ pub fn interruptible<T: Send>(
                 }
             }
         }
-        let out = py.allow_threads(|| handle.join());
+        let out = py.allow_threads(|| {
+            let out = handle.join();
+            stay_out_if_exiting(&token);
+            out
+        });
         let out = match out {
             Ok(r) => r,
             Err(p) => Err(p),
@@ -157,6 +166,30 @@ pub fn interruptible<T: Send>(
     })
 }
 
+/// Set by the interpreter's `atexit`: the interpreter is ending.
+static EXITING: AtomicBool = AtomicBool::new(false);
+
+/// Called at exit (registered with `atexit`): the calls still running on
+/// daemon threads stop, and never take the GIL back.
+#[pyfunction]
+fn mark_exiting() {
+    EXITING.store(true, Ordering::SeqCst);
+}
+
+/// When the interpreter is ending, cancels the work and parks the calling
+/// thread (a daemon thread: the process ends around it) instead of
+/// returning to take the GIL, which the ending interpreter answers by
+/// ending the thread with an unwind that Rust cannot pass (an abort,
+/// status 134).
+fn stay_out_if_exiting(token: &Token) {
+    if EXITING.load(Ordering::SeqCst) {
+        token.cancel();
+        loop {
+            std::thread::park();
+        }
+    }
+}
+
 /// The extension module `v2ref._v2ref`.
 #[pymodule]
 fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -167,5 +200,10 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
         crate::commands::ESTIMATE_COLUMNS.to_vec(),
     )?;
     oifits::register(m)?;
+    output::register(m)?;
+    // A daemon thread still in a call at exit must not take the GIL back
+    // (Python would end it by unwinding through Rust: an abort).
+    let atexit = m.py().import("atexit")?;
+    atexit.call_method1("register", (wrap_pyfunction!(mark_exiting, m)?,))?;
     answers::register(m)
 }

@@ -74,7 +74,20 @@ pub(super) fn estimate<'py>(
         let options = (window, bias);
         let cs = config.continuum_subtracted;
         let est = rows_estimate::estimator(&inputs, options, cs, cal, threads)?;
-        rows_estimate::estimate_rows(&est, INTERFEROGRAMS, (data, 0), threads)
+        // A block of rows at a time, as the CLI streams a file: a bad row of
+        // a memory-mapped array is refused once its block is read.
+        let mut out = Vec::with_capacity(rows);
+        let block_len = (rows_estimate::STREAM_ROWS * cols).max(1);
+        for (k, block) in data.chunks(block_len).enumerate() {
+            let at = (block, k * rows_estimate::STREAM_ROWS);
+            out.extend(rows_estimate::estimate_rows(
+                &est,
+                INTERFEROGRAMS,
+                at,
+                threads,
+            )?);
+        }
+        Ok(out)
     })?;
     estimate_columns(py, &rows)
 }
@@ -188,7 +201,10 @@ pub(super) fn synthesize<'py>(
         Ok((data, sidecar))
     })?;
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
-    Ok((array.into_any(), json(&sidecar)?))
+    // Pretty, as `v2ref synth` writes OUT.json (`write_set` writes this text).
+    let text = serde_json::to_string_pretty(&sidecar)
+        .map_err(|e| PyValueError::new_err(format!("cannot serialize the sidecar: {e}")))?;
+    Ok((array.into_any(), text))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.

@@ -1,0 +1,297 @@
+//! Robustness of outputs, third round (issue 35): a set of files is written
+//! whole or not at all, two runs on one output never both succeed, a file
+//! that appears at a target during a run is not replaced, every terminating
+//! signal stops cleanly (its status, no temporary left), a dead process's
+//! temporaries are removed by a later run, and names are kept as given.
+//!
+//! Each test starts the release binary in a fresh folder; the long runs are
+//! `synth` sets of 6.4e8 values (minutes), stopped by the test.
+
+use std::ffi::OsString;
+use std::os::unix::ffi::{OsStrExt as _, OsStringExt as _};
+use std::path::Path;
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn v2ref(dir: &Path) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_v2ref"));
+    c.current_dir(dir);
+    c
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    v2ref(dir).args(args).output().unwrap()
+}
+
+/// A `synth` of `--out set` that runs for minutes unless stopped.
+fn long_synth(dir: &Path, extra: &[&str]) -> Child {
+    let args = ["synth", "--rows", "10000000", "--samples", "64", "--quiet"];
+    v2ref(dir)
+        .args(args)
+        .args(["--out", "set", "--csv"])
+        .args(extra)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Names in `dir` (hidden ones too), sorted.
+fn names(dir: &Path) -> Vec<OsString> {
+    let mut v: Vec<OsString> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Waits until `dir` holds a file whose name starts with `prefix` (the run
+/// has begun writing or has taken its lock).
+fn wait_for(dir: &Path, prefix: &str) {
+    let start = Instant::now();
+    while !names(dir)
+        .iter()
+        .any(|n| n.as_bytes().starts_with(prefix.as_bytes()))
+    {
+        assert!(start.elapsed() < Duration::from_secs(60), "no {prefix}*");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// Sends `signal` (a `kill` name) to `child` and returns its status code
+/// and stderr.
+fn stop(mut child: Child, signal: &str) -> (Option<i32>, String) {
+    let kill = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "{signal} ignored"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out.status.code(), err)
+}
+
+/// `in.csv`: two rows of 16 samples for `estimate`.
+fn write_input(dir: &Path) {
+    let row: Vec<String> = (0..16)
+        .map(|i| (100.0 + f64::sin(i as f64)).to_string())
+        .collect();
+    let row = row.join(",");
+    std::fs::write(dir.join("in.csv"), format!("{row}\n{row}\n")).unwrap();
+}
+
+fn small_set(dir: &Path, seed: &str) -> Output {
+    let args = [
+        "synth",
+        "--rows",
+        "6",
+        "--samples",
+        "16",
+        "--quiet",
+        "--csv",
+    ];
+    let force = ["--out", "set", "--seed", seed, "--force"];
+    v2ref(dir).args(args).args(force).output().unwrap()
+}
+
+fn read_set(dir: &Path) -> Vec<Vec<u8>> {
+    ["set.npy", "set.csv", "set.json"]
+        .iter()
+        .map(|f| std::fs::read(dir.join(f)).unwrap())
+        .collect()
+}
+
+/// SIGINT, SIGTERM and SIGHUP each stop a `synth --force` over an existing
+/// set with 128 + the signal's number: the old set stays whole, byte for
+/// byte, and no temporary or lock is left.
+#[test]
+fn every_terminating_signal_leaves_the_old_set_whole() {
+    for (signal, code) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
+        let dir = tempfile::tempdir().unwrap();
+        assert!(small_set(dir.path(), "1").status.success());
+        let before = read_set(dir.path());
+        let listing = names(dir.path());
+        let child = long_synth(dir.path(), &["--force", "--seed", "2"]);
+        wait_for(dir.path(), ".v2ref-tmp-");
+        let (status, err) = stop(child, signal);
+        assert_eq!(status, Some(code), "SIG{signal}: {err}");
+        assert!(err.contains(&format!("SIG{signal}")), "{err}");
+        assert_eq!(read_set(dir.path()), before, "SIG{signal}");
+        assert_eq!(names(dir.path()), listing, "SIG{signal}");
+    }
+}
+
+/// A second run on an output being written is refused, naming the process
+/// that writes it; the first is not disturbed.
+#[test]
+fn a_second_run_on_the_same_output_is_refused_with_the_writer() {
+    let dir = tempfile::tempdir().unwrap();
+    write_input(dir.path());
+    let first = long_synth(dir.path(), &[]);
+    wait_for(dir.path(), ".v2ref-lock-");
+    let pid = first.id().to_string();
+    let tries: [&[&str]; 3] = [
+        &["synth", "--rows", "4", "--samples", "16", "--out", "set"],
+        &["synth", "--rows", "4", "--out", "set", "--force"],
+        &["estimate", "--input", "in.csv", "--out", "set.csv"],
+    ];
+    for args in tries {
+        let out = run(dir.path(), args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("--out") && err.contains(&pid),
+            "{args:?}: {err}"
+        );
+    }
+    let (status, _) = stop(first, "INT");
+    assert_eq!(status, Some(130));
+    assert_eq!(names(dir.path()), ["in.csv"]);
+}
+
+/// A file that a user makes at a target while the run goes on is not
+/// replaced without --force, and the rest of the set is not left beside
+/// it: the run is refused and nothing of the set appears.
+#[test]
+fn a_file_made_at_a_target_during_the_run_is_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = v2ref(dir.path())
+        .args(["synth", "--rows", "100000", "--samples", "64", "--quiet"])
+        .args(["--out", "set"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_for(dir.path(), ".v2ref-tmp-");
+    std::fs::write(dir.path().join("set.json"), "mine\n").unwrap();
+    let status = child.wait().unwrap();
+    let mut err = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut err).unwrap();
+    assert_eq!(status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("set.json") && err.contains("appeared"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read(dir.path().join("set.json")).unwrap(),
+        b"mine\n"
+    );
+    assert_eq!(names(dir.path()), ["set.json"]);
+}
+
+/// The temporaries of a process that died (SIGKILL leaves them) are
+/// removed by the next run that writes beside them; those of a running
+/// process, and a user's files, stay.
+#[test]
+fn a_dead_processs_temporaries_are_removed_by_a_later_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let child = long_synth(dir.path(), &[]);
+    wait_for(dir.path(), ".v2ref-tmp-");
+    let (status, _) = stop(child, "KILL");
+    assert_eq!(status, None);
+    let dead: Vec<_> = names(dir.path());
+    assert!(dead
+        .iter()
+        .any(|n| n.as_bytes().starts_with(b".v2ref-tmp-")));
+    let live = format!(".v2ref-tmp-{}-0-set.npy", std::process::id());
+    for f in [live.as_str(), "v2ref-tmp-1-0-x", ".v2ref-tmp-x"] {
+        std::fs::write(dir.path().join(f), "kept").unwrap();
+    }
+    assert!(small_set(dir.path(), "3").status.success());
+    let after: Vec<_> = names(dir.path());
+    let expect = [".v2ref-tmp-x", &live, "set.csv", "set.json", "set.npy"];
+    let mut expect: Vec<OsString> = expect.iter().map(OsString::from).collect();
+    expect.push("v2ref-tmp-1-0-x".into());
+    expect.sort();
+    assert_eq!(after, expect);
+}
+
+/// A name of 255 bytes (the longest a file system takes) works as an
+/// output: its temporary is no longer.
+#[test]
+fn a_name_of_255_bytes_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = format!("{}.csv", "n".repeat(251));
+    write_input(dir.path());
+    let out = run(
+        dir.path(),
+        &["estimate", "--input", "in.csv", "--out", &name],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(dir.path().join(&name).is_file());
+    assert_eq!(names(dir.path()).len(), 2);
+}
+
+/// A set named with bytes that are not UTF-8 is written under that name,
+/// byte for byte (not `\u{fffd}`).
+#[test]
+fn a_non_utf8_name_is_kept_as_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let stem = OsString::from_vec(b"s\xff\xfe".to_vec());
+    let out = v2ref(dir.path())
+        .args([
+            "synth",
+            "--rows",
+            "4",
+            "--samples",
+            "16",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&stem)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let expect: Vec<OsString> = [b"s\xff\xfe.json".to_vec(), b"s\xff\xfe.npy".to_vec()]
+        .into_iter()
+        .map(OsString::from_vec)
+        .collect();
+    assert_eq!(names(dir.path()), expect);
+}
+
+/// Two outputs of one run on the same file are refused before any work,
+/// naming both flags; nothing is written.
+#[test]
+fn two_outputs_of_one_run_on_one_path_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "plan", "--scans", "64", "--svg", "p.fits", "--oifits", "./p.fits",
+    ];
+    let out = run(dir.path(), &args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--oifits") && err.contains("svg") && err.contains("same file"),
+        "{err}"
+    );
+    assert!(names(dir.path()).is_empty());
+}
+
+/// `golden --update --dir D` writes into the folder it wrote before (the
+/// vectors alone: 6 s), and still refuses a user's folder.
+#[test]
+fn golden_update_rewrites_its_own_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let update = ["golden", "--update", "--only", "vectors", "--dir", "g"];
+    for time in ["first", "second"] {
+        let out = run(dir.path(), &update);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{time}: {err}");
+    }
+    std::fs::create_dir(dir.path().join("mine")).unwrap();
+    std::fs::write(dir.path().join("mine/notes.txt"), "mine").unwrap();
+    let out = run(
+        dir.path(),
+        &["golden", "--update", "--only", "vectors", "--dir", "mine"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+}
