@@ -88,7 +88,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             super::piston_observation::print(rows);
         }
     }
-    for c in &answer.three_slope_comparison {
+    for c in &answer.report.three_slope_comparison {
         eprintln!("note: {}", c.note);
     }
     Ok(ExitCode::SUCCESS)
