@@ -22,7 +22,14 @@
 //!   σ(V²) = target takes `n = σ²_scan/target²` scans of
 //!   `N t_s + dead time` each; a target below |piston bias| is unreachable;
 //!   with a time budget T instead, `n = T/(N t_s + dead)` and the σ reached
-//!   is `sqrt(σ²_scan/n)`.
+//!   is `sqrt(σ²_scan/n)`;
+//! - **the observation**: consecutive scans share the atmosphere, so in
+//!   target mode the fastest [`candidates::CANDIDATES`] settings of each
+//!   estimator are solved again with σ of the mean of n consecutive scans
+//!   measured on contiguous piston sequences ([`observation`], n on both
+//!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
+//!   the plan recommends among them; [`verify`] simulates the
+//!   recommended observation.
 //!
 //! - **honest piston terms**: the piston Monte Carlo cuts its scans from up
 //!   to 16 independent sequences, each spanning two piston correlation
@@ -37,9 +44,10 @@
 //!   whose piston terms are known best, so the recommendation does not
 //!   flip with the seed (`tests/plan_cases.rs`).
 //!
-//! Model choices, stated: the bias is subtracted with the exact model
-//! (`model` convention, positive bins); the piston packet is centred on the
-//! scan-mean piston.
+//! Model choices, stated: the per-scan noise is that of the exact model
+//! bias (`model` convention, positive bins; the observation's uses the
+//! convention asked for); the piston packet is centred on the scan-mean
+//! piston.
 
 pub mod answer;
 mod candidates;

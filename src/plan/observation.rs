@@ -7,7 +7,8 @@
 //! alternate in sign). The planner therefore measures it directly. K
 //! independent piston sequences ([`SEQUENCES`]) are each scanned by L
 //! consecutive scans one scan period apart (the scan and its dead time:
-//! an observation's own cadence), L ≥ n and spanning at least
+//! an observation's own cadence), L ≥ [`BLOCKS_PER_SEQUENCE`] n where the
+//! cost allows, and spanning at least
 //! [`crate::piston::sequences::SPAN_CORRELATION_TIMES`] correlation times
 //! B/v. Each sequence is cut into ⌊L/n⌋ blocks of n consecutive scans; the
 //! block means of the per-scan V² are the means of simulated observations,

@@ -5,16 +5,16 @@
 use super::{Estimator, PlanInputs, PlanPoint, Target, ONE_NIGHT_S};
 
 /// Why a target-mode point has no scans or time.
-pub const UNREACHABLE: &str = "unreachable: the piston bias (upper end of its interval) is at or above the target sigma(V^2), so no number of scans reaches it: scans_needed and time_s are null (and time_lower_s where even the lower end of the bias is at or above the target), and sigma_reached is the sigma(V^2) a time budget reaches";
+pub const UNREACHABLE: &str = "unreachable: the piston bias (upper end of its interval) is at or above the target sigma(V^2), so no number of scans reaches it: scans_needed and time_s are null (and time_lower_s where even the lower end of the bias is at or above the target), sigma_reached is the sigma(V^2) a time budget reaches, and observation (the error of the consecutive scans' mean) is null";
 
 /// Why a reachable target-mode point has `sigma_reached` null.
-pub const TARGET_MODE: &str = "sigma_reached is null: it is the sigma(V^2) a time budget reaches, and this plan has a target instead";
+pub const TARGET_MODE: &str = "sigma_reached is null: it is the sigma(V^2) a time budget reaches, and this plan has a target instead; observation is null on the settings not solved for the mean of consecutive scans (all but the 3 fastest of each estimator, whose scans assume independent scans)";
 
 /// Why a budget-mode point has the lower and noise-only times null.
-pub const BUDGET_MODE: &str = "time_lower_s and time_noise_only_s are null: they are the times to a target sigma(V^2), and this plan has a time budget instead";
+pub const BUDGET_MODE: &str = "time_lower_s and time_noise_only_s are null: they are the times to a target sigma(V^2), and this plan has a time budget instead; observation is null too (it is solved for a target)";
 
 /// Why a budget-mode point has no scans at all.
-pub const SHORT_BUDGET: &str = "the time budget is shorter than one scan and its dead time: no scan fits, so scans_needed, time_s and sigma_reached are null, time_lower_s and time_noise_only_s are times to a target sigma(V^2) (this plan has a budget), and the biases have no sigma to be compared with (bandwidth_bias_over_target, scan_bias_over_target null)";
+pub const SHORT_BUDGET: &str = "the time budget is shorter than one scan and its dead time: no scan fits, so scans_needed, time_s and sigma_reached are null, time_lower_s and time_noise_only_s are times to a target sigma(V^2) (this plan has a budget), and the biases have no sigma to be compared with (bandwidth_bias_over_target, scan_bias_over_target null); observation is null (it belongs to a target sigma(V^2))";
 
 /// The lower ends of the piston terms' intervals.
 pub(super) struct Bounds {
