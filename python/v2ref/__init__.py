@@ -893,8 +893,8 @@ def plan(
         Also write the predicted observation at the recommended setting as
         OIFITS v2 (as ``v2ref plan --oifits``): V², its predicted σ, and the
         biases left to correct in header keywords. Refused unless it ends
-        in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
-        the target.
+        in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
+        written when no setting reaches the target (``recommended`` null).
     {physical}
 
     Returns

@@ -51,6 +51,8 @@ pub(super) fn plan(
     warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
     let answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
     if let Some(path) = &oifits {
+        // Nothing is written when no setting reaches the target: the
+        // answer's `recommended` is then null, as the CLI says in a note.
         ok(crate::formats::oifits::write_plan(
             path,
             "oifits",
