@@ -457,7 +457,12 @@ fn fitsverify_finds_nothing_in_any_file_v2ref_writes() {
     let truth = dir.path().join("set.truth.fits");
     for file in [&est, &one, &plan, &truth] {
         let Some(report) = fitsverify(file) else {
-            // .ci/run installs it; a machine without it skips this check.
+            // .ci/run installs it and then requires it; a machine without
+            // it skips this check.
+            assert!(
+                std::env::var_os("V2REF_REQUIRE_FITSVERIFY").is_none(),
+                "V2REF_REQUIRE_FITSVERIFY is set and fitsverify does not run"
+            );
             eprintln!("fitsverify not installed: {} not verified", file.display());
             return;
         };
