@@ -208,3 +208,16 @@ fn the_mutations_reach_the_reader_they_aim_at() {
     let checked = parse_oifits(&rows_past, CHECKED).unwrap_err();
     assert!(checked.reason.contains("CHECKSUM"), "{checked:?}");
 }
+
+#[test]
+fn a_checksum_card_damaged_into_another_keyword_is_refused() {
+    // Found by the byte-flip property: a flip in the CHECKSUM keyword's
+    // name took the check of that header with it.
+    let bytes = good();
+    for at in cards(bytes, "CHECKSUM") {
+        let mut damaged = bytes.to_vec();
+        damaged[at + 7] ^= 0x01; // CHECKSUM -> CHECKSUL
+        let r = parse_oifits(&damaged, CHECKED).unwrap_err();
+        assert!(r.reason.contains("CHECKSUM"), "{r:?}");
+    }
+}

@@ -38,6 +38,7 @@ mod noise_mc;
 mod oifits;
 mod oifits_fuzz;
 mod oifits_robustness;
+mod oifits_rules;
 mod piston;
 mod piston_claims;
 mod piston_errors;

@@ -942,8 +942,8 @@ def plan(
         Also write the predicted observation at the recommended setting as
         OIFITS v2 (as ``v2ref plan --oifits``): V², its predicted σ, and the
         biases left to correct in header keywords. Refused unless it ends
-        in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
-        the target.
+        in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
+        written when no setting reaches the target (``recommended`` null).
     bias : {"counts", "model"}
         Where the user's pipeline takes the photon-noise bias's counts from
         (as ``v2ref plan --bias``): each scan's own counts (unbiased for

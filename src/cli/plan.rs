@@ -232,7 +232,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
             super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
         }
         if let Some(path) = &args.oifits {
-            v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)?;
+            if !v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)? {
+                errln!(
+                    "note: --oifits: no setting reaches the target, so no observation is predicted; {} not written",
+                    path.display()
+                );
+            }
         }
         Ok(())
     })?;

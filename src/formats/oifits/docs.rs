@@ -82,7 +82,7 @@ pub fn estimates_doc(
                 flag: vec![false; vals.len()],
                 vis2data: vals,
                 keywords,
-                vis2data_note: Some("normalized, bias-subtracted estimate of one scan".into()),
+                vis2data_note: Some("normalized, bias-subtracted V^2 of one scan".into()),
             }
         })
         .collect();
@@ -154,7 +154,9 @@ pub fn truth_doc(sidecar: &Sidecar, bins: BinWindow, bias: BiasConvention) -> Re
 /// (`V²_sampled + piston bias`) and its predicted σ (`VIS2ERR`, the
 /// target's). The deterministic biases left to correct are keywords
 /// (`V2R_BBW` bandwidth and dispersion, `V2R_BSCN` scan and detector,
-/// `V2R_BPST` piston) and a note on the `VIS2DATA` column.
+/// `V2R_BPST` piston and `V2R_EPST` its standard error), with the V² error
+/// from the diameter's (`V2R_VDIA`), the window and the bias convention,
+/// and a note on the `VIS2DATA` column.
 pub fn plan_doc(inputs: &PlanInputs, point: &PlanPoint) -> Result<OifitsDoc> {
     let scans = point.scans_needed.unwrap_or(0.0).ceil().max(1.0);
     let sigma = point
@@ -188,6 +190,16 @@ pub fn plan_doc(inputs: &PlanInputs, point: &PlanPoint) -> Result<OifitsDoc> {
             "bias: piston, Monte Carlo (correct)",
         ),
         Key::f64(
+            "V2R_EPST",
+            point.bias_piston_stderr,
+            "standard error of V2R_BPST (Monte Carlo)",
+        ),
+        Key::f64(
+            "V2R_VDIA",
+            point.v_sq_error_from_diameter,
+            "V^2 error from the diameter's error",
+        ),
+        Key::f64(
             "V2R_FHZ",
             point.fringe_hz,
             "[Hz] fringe frequency of the setting",
@@ -207,6 +219,11 @@ pub fn plan_doc(inputs: &PlanInputs, point: &PlanPoint) -> Result<OifitsDoc> {
             KEY_BINS,
             BinWindow::Positive.name(),
             "window of Fourier bins summed",
+        ),
+        Key::str(
+            KEY_BIAS,
+            BiasConvention::Model.name(),
+            "bias convention subtracted",
         ),
     ];
     let vmeas = point.v_sq_sampled + point.bias_piston;

@@ -317,8 +317,7 @@ pub fn ones_complement_sum(bytes: &[u8], sum: u32) -> u32 {
 }
 
 /// Which of `DATASUM` and `CHECKSUM` of `hdu` do not match its bytes (an
-/// absent keyword is not checked; `CHECKSUM = '0000000000000000'` or a
-/// `DATASUM` of `'0'`... are checked as written).
+/// absent keyword is not checked; a present one is checked as written).
 pub fn checksum_mismatches(hdu: &Hdu) -> Vec<&'static str> {
     let mut bad = Vec::new();
     let data_sum = ones_complement_sum(hdu.data, 0);

@@ -126,16 +126,17 @@ pub(crate) fn status_text(status: i32) -> String {
 
 /// Writes a plan's predicted observation at its recommended setting
 /// (`plan --oifits`, Python's `plan(oifits=...)`); `param` names the file.
+/// False, and nothing written, when no setting reaches the target: the
+/// plan itself says so, and is no less an answer (same exit status).
 pub fn write_plan(
     path: &Path,
     param: &'static str,
     inputs: &crate::plan::PlanInputs,
     plan: &crate::plan::Plan,
-) -> Result<()> {
-    let point = plan.recommended.as_ref().ok_or_else(|| Error::Invalid {
-        param,
-        reason: "no setting reaches the target, so there is no predicted observation to write"
-            .into(),
-    })?;
-    write_oifits(path, param, &docs::plan_doc(inputs, point)?)
+) -> Result<bool> {
+    let Some(point) = plan.recommended.as_ref() else {
+        return Ok(false);
+    };
+    write_oifits(path, param, &docs::plan_doc(inputs, point)?)?;
+    Ok(true)
 }

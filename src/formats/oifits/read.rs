@@ -105,8 +105,14 @@ pub fn parse_oifits(
         }
     }
     if !options.accept_checksum_mismatch {
+        // Checksums are written in every HDU or in none: one HDU without
+        // them in a file that has them lost its CHECKSUM card to damage.
+        let signed = hdus.iter().any(|h| h.header.get("CHECKSUM").is_some());
         for hdu in &hdus {
-            let bad = checksum_mismatches(hdu);
+            let mut bad = checksum_mismatches(hdu);
+            if signed && hdu.header.get("CHECKSUM").is_none() {
+                bad.push("CHECKSUM (absent here, present in other HDUs)");
+            }
             if !bad.is_empty() {
                 return Err(fits::refuse(
                     hdu.at(),

@@ -510,10 +510,17 @@ fn vis2(
 /// Sets the comment of the `TTYPEn` card of column `n` (1-based).
 fn note_column(f: &mut FitsFile, n: usize, note: &str) -> std::result::Result<(), String> {
     let key = std::ffi::CString::new(format!("TTYPE{n}")).map_err(|e| e.to_string())?;
-    let text: String = note
+    let mut text: String = note
         .chars()
         .filter(|c| c.is_ascii() && !c.is_control())
         .collect();
+    // The card `TTYPEn  = 'VIS2DATA'           / ` leaves 47 characters:
+    // a longer note is cut at a word, never inside one.
+    const ROOM: usize = 47;
+    if text.len() > ROOM {
+        let cut = text[..ROOM].rfind(' ').unwrap_or(ROOM);
+        text.truncate(cut);
+    }
     let com = std::ffi::CString::new(text).map_err(|e| e.to_string())?;
     let mut status = 0;
     // SAFETY: the file is open at the table; both strings are NUL-terminated.

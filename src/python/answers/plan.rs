@@ -66,6 +66,8 @@ pub(super) fn plan(
         })?;
     }
     if let Some(path) = &oifits {
+        // Nothing is written when no setting reaches the target: the
+        // answer's `recommended` is then null, as the CLI says in a note.
         ok(crate::formats::oifits::write_plan(
             path,
             "oifits",
