@@ -236,10 +236,14 @@ fn checked_shape(dims: &[u64], param: &'static str, path: &Path) -> Result<(Vec<
         )
     };
     let mut count: u64 = 1;
+    // The product of the non-zero dimensions bounds every partial product
+    // (npyz multiplies them for its strides, even for an empty array).
+    let mut strides: u64 = 1;
     let mut shape = Vec::with_capacity(dims.len());
     for &d in dims {
         shape.push(usize::try_from(d).map_err(|_| too_big())?);
         count = count.checked_mul(d).ok_or_else(too_big)?;
+        strides = strides.checked_mul(d.max(1)).ok_or_else(too_big)?;
     }
     count
         .checked_mul(8)
