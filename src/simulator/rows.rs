@@ -130,6 +130,9 @@ impl Model {
             threads,
         };
         validate_size(&setup, &size).map_err(|e| e.renamed("scans", "rows"))?;
+        // The spectrum's tables on the whole pool, not by the first
+        // coefficient block while the others wait.
+        crate::montecarlo::in_pool(threads, || spectrum.tabulate());
         let sequence = PistonSequence::synthesize(spectrum, &setup, &size)?;
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
