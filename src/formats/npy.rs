@@ -372,9 +372,14 @@ impl NpyRows {
             .read_exact(&mut self.buf)
             .map_err(|e| Error::file(Some(self.param), &self.path, e))?;
         push_le_f64(&self.buf, out);
-        if let Some(i) = out.iter().position(|v| !v.is_finite()) {
-            let location = at(self.done + i / self.cols + 1, i % self.cols + 1);
-            return Err(not_finite(self.param, &self.path, location, out[i]));
+        // A fold without early exit vectorizes (a quarter of the cost of
+        // `position` on the `estimate` CLI's rows); the value is looked for
+        // only in a block that holds one.
+        if !out.iter().fold(true, |finite, v| finite & v.is_finite()) {
+            if let Some(i) = out.iter().position(|v| !v.is_finite()) {
+                let location = at(self.done + i / self.cols + 1, i % self.cols + 1);
+                return Err(not_finite(self.param, &self.path, location, out[i]));
+            }
         }
         self.done += take;
         Ok(take)

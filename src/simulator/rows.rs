@@ -182,6 +182,9 @@ impl Model {
         size: &RunSize,
         layout: Layout,
     ) -> Result<PistonScans> {
+        // The spectrum's tables on the whole pool, not by the first
+        // coefficient block while the others wait.
+        crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
         let sequence = match layout {
             Layout::Named(RowLayout::Sequences) => {
                 validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
