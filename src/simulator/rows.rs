@@ -182,20 +182,23 @@ impl Model {
         size: &RunSize,
         layout: Layout,
     ) -> Result<PistonScans> {
+        match layout {
+            Layout::Explicit(..) => setup.validate()?,
+            Layout::Named(_) => {
+                validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?
+            }
+        }
         // The spectrum's tables on the whole pool, not by the first
         // coefficient block while the others wait.
         crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
         let sequence = match layout {
             Layout::Named(RowLayout::Sequences) => {
-                validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
                 PistonSequence::synthesize(spectrum, &setup, size)?
             }
             Layout::Named(RowLayout::Observation) => {
-                validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?;
                 PistonSequence::synthesize_observation(spectrum, &setup, size)?
             }
             Layout::Explicit(sequences, stride) => {
-                setup.validate()?;
                 PistonSequence::synthesize_layout(spectrum, &setup, size, (sequences, stride))?
             }
         };
