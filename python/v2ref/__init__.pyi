@@ -634,6 +634,20 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
         the target.
+    bias : {"counts", "model"}
+        Where the user's pipeline takes the photon-noise bias's counts from
+        (as ``v2ref plan --bias``): each scan's own counts (unbiased for
+        both estimators under piston) or the source model's piston-free
+        counts (off by the piston's shift of the fringe: predicted and
+        added to the bias). The predicted mean and the noise follow it.
+    verify : bool
+        Also simulate the recommended observation, n consecutive scans
+        through one atmosphere with photon and detector noise, estimated
+        with ``bias`` (as ``v2ref plan --verify``): ``verification`` holds
+        the σ(V²) and mean achieved with intervals beside the promise. A
+        run predicted to take over a minute warns first.
+    verify_observations : int
+        Observations simulated by ``verify``: 32 to 1e6.
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per
@@ -700,8 +714,10 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
     dict
         ``inputs``, ``points`` (every estimator × fringe frequency × stroke
         with each term: bandwidth and scan biases, noise and piston σ per
-        scan, piston bias, scans, time), ``best_v1``, ``best_v2``,
-        ``recommended``.
+        scan, piston bias, scans, time; the fastest of each estimator with
+        ``observation``, the error of their consecutive scans' mean),
+        ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
+        with ``verify``.
     """
     ...
 
