@@ -3,19 +3,20 @@
 //! A8): squared visibilities written as OIFITS v2 (module [`self::write`]) and read
 //! from OIFITS v1 or v2 ([`read`]).
 //!
-//! **The FITS library is cfitsio** (NASA HEASARC, the reference FITS
-//! implementation that the field's own tools build on), through the Rust
-//! crate `fitsio` and its `fitsio-src` feature: cfitsio is compiled from the
-//! source bundled in `fitsio-sys`, so a fresh machine needs a C compiler and
-//! no system library. `fitsio` creates the tables and writes the keywords
-//! and numeric columns; `fitsio_sys` (its raw binding) is called where
-//! `fitsio` has no safe equivalent: memory files, logical vector columns
-//! (`FLAG`) and reading columns with sizes checked first.
+//! **Writing goes through cfitsio** (NASA HEASARC, the reference FITS
+//! implementation), by the Rust crate `fitsio` and its `fitsio-src`
+//! feature: cfitsio is compiled from the source bundled in `fitsio-sys`,
+//! so a fresh machine needs a C compiler and no system library. `fitsio`
+//! creates the tables and writes the keywords and numeric columns;
+//! `fitsio_sys` (its raw binding) is called where `fitsio` has no safe
+//! equivalent: the memory file, logical columns (`FLAG`), checksums and a
+//! column's comment. A file is built in memory and written with the atomic
+//! pattern of [`crate::formats::atomic`], never through cfitsio's file-name
+//! parser (which reads `name[ext]` and `!name` as instructions).
 //!
-//! Files never go through cfitsio's file-name parser (which reads
-//! `name[ext]` and `!name` as instructions): a file is built in memory and
-//! written with the atomic pattern of [`crate::formats::atomic`], and read
-//! whole (its size bounds every allocation) and opened from memory.
+//! **Reading is safe Rust** ([`fits`], [`table`]), no cfitsio: every size
+//! a header announces is checked against the file's bytes before a value
+//! is read, and `CHECKSUM`/`DATASUM` are verified where present.
 //!
 //! What is written (one broadband channel: an estimate sums the band):
 //! `OI_TARGET`, `OI_ARRAY` (two stations on the baseline, east–west),
