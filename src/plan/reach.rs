@@ -74,17 +74,38 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
 }
 
 /// The σ(V²) point `p` reaches in `time_s` seconds, as the plan states it:
-/// the scans that fit (dead time included), the piston terms at the upper
-/// ends of their intervals, `√((σ²_noise + σ²_piston,upper)/n +
-/// bias²_upper)`; None when no scan fits or σ is not finite. The one
+/// the scans that fit (dead time included), n. A point solved for the
+/// mean of consecutive scans ([`PlanPoint::observation`], target mode)
+/// states its observation's σ, `√(σ²_noise/n + σ²_piston,obs,upper)`, at its
+/// own n, and elsewhere that piston variance carried as 1/n from it (as
+/// [`super::observation`] carries a measured block to a longer one); any
+/// other point `√((σ²_noise + σ²_piston,upper)/n + bias²_upper)`, its scans
+/// taken as independent. None when no scan fits or σ is not finite. The one
 /// computation behind a budget plan's `sigma_reached` and the plan's figure.
 pub fn sigma_reached_in(p: &PlanPoint, inputs: &PlanInputs, time_s: f64) -> Option<f64> {
-    let n = (time_s / (p.scan_time_s + inputs.dead_time_s)).floor();
-    let var_scan = p.sigma_noise_per_scan * p.sigma_noise_per_scan
-        + p.sigma_piston_upper * p.sigma_piston_upper;
-    let sigma = (var_scan / n + p.bias_piston_upper * p.bias_piston_upper).sqrt();
+    let scans = time_s / (p.scan_time_s + inputs.dead_time_s);
+    let n = scans.floor();
+    let sigma = match &p.observation {
+        // The planner's own time: its own promise (the division may round
+        // n·period/period just below n).
+        Some(o) if (scans - o.scans as f64).abs() <= OWN_TIME_REL * scans => Some(o.sigma),
+        Some(o) => {
+            let piston = o.sigma_piston_upper * o.sigma_piston_upper * o.scans as f64 / n;
+            let noise = o.sigma_noise_per_scan * o.sigma_noise_per_scan / n;
+            Some((noise + piston).sqrt())
+        }
+        None => {
+            let var_scan = p.sigma_noise_per_scan * p.sigma_noise_per_scan
+                + p.sigma_piston_upper * p.sigma_piston_upper;
+            Some((var_scan / n + p.bias_piston_upper * p.bias_piston_upper).sqrt())
+        }
+    }?;
     (n >= 1.0 && sigma.is_finite()).then_some(sigma)
 }
+
+/// Relative distance of a time from a point's own observation time below
+/// which it is that time (a few rounding errors of a product and a quotient).
+const OWN_TIME_REL: f64 = 1e-12;
 
 /// The figure of merit of a point: the time for the target, or the σ
 /// reached in the budget (lower is better).
