@@ -496,7 +496,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     if rows.iter().any(|p| {
         p.observation.is_none() && p.time_s.is_some() && matches!(inputs.target, Target::SigmaV2(_))
     }) {
-        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest 3 settings of each estimator only");
+        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest {} settings of each estimator (by the per-scan estimate) only", v2ref::plan::CANDIDATES);
     }
     // What a "-" in the table stands for, once per reason shown.
     let mut reasons: Vec<&str> = Vec::new();

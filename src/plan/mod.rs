@@ -24,7 +24,7 @@
 //!   with a time budget T instead, `n = T/(N t_s + dead)` and the σ reached
 //!   is `sqrt(σ²_scan/n)`;
 //! - **the observation**: consecutive scans share the atmosphere, so in
-//!   target mode the fastest [`candidates::CANDIDATES`] settings of each
+//!   target mode the fastest [`CANDIDATES`] settings of each
 //!   estimator are solved again with σ of the mean of n consecutive scans
 //!   measured on contiguous piston sequences ([`observation`], n on both
 //!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
@@ -58,6 +58,7 @@ mod reach;
 pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
+pub use candidates::CANDIDATES;
 pub use observation::ObservationError;
 pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
@@ -207,7 +208,7 @@ pub struct PlanPoint {
     /// upper end ≥ target): consecutive scans through one atmosphere when
     /// `observation` is present (the observation's own σ, n on both
     /// sides), else σ²_scan/(target² − bias²), which assumes independent
-    /// scans (the points not among the fastest [`candidates::CANDIDATES`]
+    /// scans (the points not among the fastest [`CANDIDATES`]
     /// of their estimator).
     pub scans_needed: Option<f64>,
     /// Time for them, s.
@@ -236,7 +237,7 @@ pub struct PlanPoint {
     pub why_null: Option<&'static str>,
     /// The observation of `scans_needed` consecutive scans, measured on
     /// contiguous piston sequences (target mode, the fastest
-    /// [`candidates::CANDIDATES`] points of each estimator; None elsewhere).
+    /// [`CANDIDATES`] points of each estimator; None elsewhere).
     pub observation: Option<ObservationError>,
 }
 

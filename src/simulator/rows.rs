@@ -114,7 +114,7 @@ impl Model {
 
     /// [`Model::rows`] with the piston layout given, `(sequences,
     /// stride)`: the rows are cut from that many independent sequences
-    /// (shared out as [`PistonSequence::synthesize_layout`] does) whose
+    /// (shared out as the independent-sequence layout shares them) whose
     /// scans start `stride` samples apart (the scan period: an
     /// observation's consecutive scans). The caller keeps all the sequences
     /// within [`crate::piston::series::MAX_SERIES`] samples.
