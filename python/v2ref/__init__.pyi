@@ -242,12 +242,14 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
 
     Parameters
     ----------
-    estimates : dict, structured array or array_like
+    estimates : dict, structured array, array_like or OIFITS path
         The normalized per-row estimates (dimensionless), one per row of
         the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
         :func:`estimate`), a structured array with those fields, or a 2-D
         array whose columns are named by ``columns`` (default
-        ``v1_sq,v2_sq``; a 1-D array needs one name).
+        ``v1_sq,v2_sq``; a 1-D array needs one name); or the path of an
+        OIFITS file (``.fits``, ``.oifits``, ``.fit``, each possibly
+        ``.gz``), scored as :func:`score_oifits` does.
     sidecar : dict or path
         The set's sidecar (from :func:`synthesize`, or a SET.json path):
         the truth scored against.
@@ -632,8 +634,8 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         Also write the predicted observation at the recommended setting as
         OIFITS v2 (as ``v2ref plan --oifits``): V², its predicted σ, and the
         biases left to correct in header keywords. Refused unless it ends
-        in ``.fits``, ``.oifits`` or ``.fit``, and when no setting reaches
-        the target.
+        in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
+        written when no setting reaches the target (``recommended`` null).
     bias : {"counts", "model"}
         Where the user's pipeline takes the photon-noise bias's counts from
         (as ``v2ref plan --bias``): each scan's own counts (unbiased for
@@ -772,7 +774,8 @@ def claims(*, quick: bool=False) -> list:
     """
     ...
 
-def read_oifits(path: Any) -> List[Dict[str, Any]]: ...
+def read_oifits(path: Any, *, accept_checksum_mismatch: bool = ...) -> List[Dict[str, Any]]: ...
 def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any = ..., v2_sq: Any = ..., bins: str = ..., bias: str = ...) -> None: ...
 def write_oifits_truth(path: Any, *, sidecar: Any) -> None: ...
-def read_oifits_estimates(path: Any, *, sidecar: Any, insname: Optional[str] = ..., estimator: Optional[str] = ...) -> Dict[str, Any]: ...
+def read_oifits_estimates(path: Any, *, sidecar: Any, insname: Optional[str] = ..., estimator: Optional[str] = ..., target: Optional[str] = ..., bins: str = ..., bias: str = ..., accept_checksum_mismatch: bool = ...) -> Dict[str, Any]: ...
+def score_oifits(path: Any, *, sidecar: Any, bins: str = ..., bias: str = ..., alpha: float = ..., insname: Optional[str] = ..., estimator: Optional[str] = ..., target: Optional[str] = ..., accept_checksum_mismatch: bool = ...) -> Dict[str, Any]: ...
