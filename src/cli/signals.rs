@@ -50,10 +50,9 @@ mod unix {
     }
 
     pub(super) fn install() {
-        // SAFETY: the set is initialised by sigemptyset before use; the
-        // calls only change this process's signal dispositions and this
-        // thread's mask (no thread runs yet, so every later thread inherits
-        // the mask).
+        // No thread runs yet, so every later thread inherits the mask set here.
+        // SAFETY: the set is initialised by sigemptyset before use; the calls
+        // only change this process's signal dispositions and this thread's mask.
         let set = unsafe {
             let mut set: sigset_t = std::mem::zeroed();
             libc::sigemptyset(&mut set);
