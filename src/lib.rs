@@ -147,5 +147,6 @@ pub mod record;
 pub mod reproduction;
 pub mod simulator;
 pub mod tolerance;
+pub mod words;
 
 pub use error::{Error, Result};

@@ -31,17 +31,31 @@ use std::path::PathBuf;
 
 mod table;
 
-pub use table::{Parameter, PARAMETERS};
+pub use table::{refer_to, Parameter, PARAMETERS};
 
 /// The source model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum SourceKind {
     /// Unresolved (V = 1).
     Point,
     /// Uniform disk of diameter --diameter-mas.
     Ud,
+}
+
+impl crate::words::Words for SourceKind {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "point",
+            value: SourceKind::Point,
+            help: "Unresolved (V = 1)",
+        },
+        crate::words::Word {
+            word: "ud",
+            value: SourceKind::Ud,
+            help: "Uniform disk of diameter --diameter-mas",
+        },
+    ];
 }
 
 /// Library parameter names (in errors, [`crate::Error::param`]) whose

@@ -104,7 +104,6 @@ impl SourceInput {
 /// Where the fringe packet sits in each scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum PistonReference {
     /// The piston at the time of the middle (zero-OPD) sample is removed:
     /// the scan is centred on the white-light fringe at that instant.
@@ -115,14 +114,30 @@ pub enum PistonReference {
     Absolute,
 }
 
+impl crate::words::Words for PistonReference {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "centre",
+            value: PistonReference::Centre,
+            help: "The piston at the time of the middle (zero-OPD) sample is removed: the scan is centred on the white-light fringe at that instant",
+        },
+        crate::words::Word {
+            word: "mean",
+            value: PistonReference::Mean,
+            help: "The piston averaged over the scan is removed",
+        },
+        crate::words::Word {
+            word: "absolute",
+            value: PistonReference::Absolute,
+            help: "Nothing is removed: the packet wanders with the absolute piston",
+        },
+    ];
+}
+
 impl PistonReference {
     /// Lowercase name.
     pub fn name(&self) -> &'static str {
-        match self {
-            PistonReference::Centre => "centre",
-            PistonReference::Mean => "mean",
-            PistonReference::Absolute => "absolute",
-        }
+        crate::words::Words::word(*self)
     }
 }
 

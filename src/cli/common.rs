@@ -6,17 +6,17 @@ use super::finite_f64;
 use std::path::PathBuf;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::parameters::{Parameter, Physical};
+use v2ref::words::Words;
 
 pub use v2ref::parameters::SourceKind;
 
 /// The defaults of the physical flags: the library's one declaration.
 pub const DEFAULTS: Physical = Physical::DEFAULT;
 
-/// The `--help` of the flag of the physical input `name`, from its one
+/// The `--help` of the flag of the physical input `p`, from its one
 /// declaration ([`Parameter::describe`]; other inputs named by their
 /// flags), with what leaving it unset means where it may be unset.
-pub fn help(name: &str) -> String {
-    let p = Parameter::named(name);
+pub fn help(p: &Parameter) -> String {
     let text = p.describe(&|n| super::flag_of(n));
     let text = text.trim_end_matches('.');
     match p.unset(&|n| super::flag_of(n)) {
@@ -25,29 +25,39 @@ pub fn help(name: &str) -> String {
     }
 }
 
-/// The `--help` of `--no-NAME`, the flag that turns the input `name` off.
-pub fn help_off(name: &str) -> String {
-    format!("Turns off: {}", help(name))
+/// The `--help` of `--no-NAME`, the flag that turns the input `p` off.
+pub fn help_off(p: &Parameter) -> String {
+    format!("Turns off: {}", help(p))
+}
+
+/// The parser of a choice of the library: its words ([`Words::WORDS`]),
+/// each with its help, offered as clap's possible values.
+pub fn choice<T: Words + Clone + Send + Sync>() -> impl clap::builder::TypedValueParser<Value = T> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser as _};
+    let values = T::WORDS
+        .iter()
+        .map(|w| PossibleValue::new(w.word).help(w.help));
+    PossibleValuesParser::new(values).try_map(|word| T::from_word("", &word))
 }
 
 /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ObservationArgs {
-    #[arg(long, help = help("wavelength_um"), default_value_t = DEFAULTS.wavelength_um, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::WAVELENGTH_UM), default_value_t = DEFAULTS.wavelength_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wavelength_um: f64,
-    #[arg(long, help = help("bandwidth_nm"), default_value_t = DEFAULTS.bandwidth_nm, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::BANDWIDTH_NM), default_value_t = DEFAULTS.bandwidth_nm, value_parser = finite_f64, allow_negative_numbers = true)]
     pub bandwidth_nm: f64,
-    #[arg(long, help = help("spectrum_csv"), value_name = "FILE")]
+    #[arg(long, help = help(&Parameter::SPECTRUM_CSV), value_name = "FILE")]
     pub spectrum_csv: Option<PathBuf>,
-    #[arg(long, help = help("source"), value_enum, default_value_t = DEFAULTS.source)]
+    #[arg(long, help = help(&Parameter::SOURCE), value_parser = choice::<SourceKind>(), default_value = DEFAULTS.source.word())]
     pub source: SourceKind,
-    #[arg(long, help = help("diameter_mas"), default_value_t = DEFAULTS.diameter_mas, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::DIAMETER_MAS), default_value_t = DEFAULTS.diameter_mas, value_parser = finite_f64, allow_negative_numbers = true)]
     pub diameter_mas: f64,
-    #[arg(long, help = help("spatial_freq_cpas"), value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
+    #[arg(long, help = help(&Parameter::SPATIAL_FREQ_CPAS), value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
     pub spatial_freq_cpas: Option<f64>,
-    #[arg(long, help = help("baseline_m"), value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::BASELINE_M), value_parser = finite_f64, allow_negative_numbers = true)]
     pub baseline_m: Option<f64>,
-    #[arg(long, help = help("dispersion_pp_rad"), default_value_t = DEFAULTS.dispersion_pp_rad, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::DISPERSION_PP_RAD), default_value_t = DEFAULTS.dispersion_pp_rad, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dispersion_pp_rad: f64,
 }
 
@@ -75,13 +85,13 @@ impl ObservationArgs {
 /// How the interferogram is scanned and sampled.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ScanArgs {
-    #[arg(long, help = help("stroke_um"), value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::STROKE_UM), value_parser = finite_f64, allow_negative_numbers = true)]
     pub stroke_um: Option<f64>,
-    #[arg(long, help = help("dx_um"), default_value_t = DEFAULTS.dx_um, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::DX_UM), default_value_t = DEFAULTS.dx_um, value_parser = finite_f64, allow_negative_numbers = true)]
     pub dx_um: f64,
-    #[arg(long, help = help("samples"), default_value_t = DEFAULTS.samples, value_parser = super::count_usize, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::SAMPLES), default_value_t = DEFAULTS.samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub samples: usize,
-    #[arg(long, help = help("integrating"))]
+    #[arg(long, help = help(&Parameter::INTEGRATING))]
     pub integrating: bool,
 }
 
@@ -101,26 +111,26 @@ pub struct SamplingArgs {
     #[command(flatten)]
     pub scan: ScanArgs,
     /// Fourier bins the estimators sum.
-    #[arg(long, value_enum, default_value = "positive")]
+    #[arg(long, value_parser = choice::<BinWindow>(), default_value = "positive")]
     pub bins: BinWindow,
 }
 
 /// The turbulence, the telescopes and the scans through the piston (§6).
 #[derive(Debug, Clone, clap::Args)]
 pub struct TurbulenceArgs {
-    #[arg(long, help = help("wind_mps"), default_value_t = DEFAULTS.wind_mps, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::WIND_MPS), default_value_t = DEFAULTS.wind_mps, value_parser = finite_f64, allow_negative_numbers = true)]
     pub wind_mps: f64,
-    #[arg(long, help = help("seeing_arcsec"), default_value_t = DEFAULTS.seeing_arcsec, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::SEEING_ARCSEC), default_value_t = DEFAULTS.seeing_arcsec, value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_arcsec: f64,
-    #[arg(long, help = help("seeing_wavelength_um"), value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::SEEING_WAVELENGTH_UM), value_parser = finite_f64, allow_negative_numbers = true)]
     pub seeing_wavelength_um: Option<f64>,
-    #[arg(long, help = help("aperture_m"), default_value_t = DEFAULTS.aperture_m, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::APERTURE_M), default_value_t = DEFAULTS.aperture_m, value_parser = finite_f64, allow_negative_numbers = true)]
     pub aperture_m: f64,
-    #[arg(long, help = help("outer_scale_m"), value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::OUTER_SCALE_M), value_parser = finite_f64, allow_negative_numbers = true)]
     pub outer_scale_m: Option<f64>,
-    #[arg(long, help = help("sub_samples"), default_value_t = DEFAULTS.sub_samples, value_parser = super::count_usize, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::SUB_SAMPLES), default_value_t = DEFAULTS.sub_samples, value_parser = super::count_usize, allow_negative_numbers = true)]
     pub sub_samples: usize,
-    #[arg(long, help = help("reference"), value_enum, default_value_t = DEFAULTS.reference)]
+    #[arg(long, help = help(&Parameter::REFERENCE), value_parser = choice::<v2ref::piston::PistonReference>(), default_value = DEFAULTS.reference.word())]
     pub reference: v2ref::piston::PistonReference,
 }
 
@@ -184,13 +194,13 @@ pub struct RunArgs {
 /// The light: the fringe's visibility scale, the photons, the noise.
 #[derive(Debug, Clone, clap::Args)]
 pub struct LightArgs {
-    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help(&Parameter::VISIBILITY), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_hyphen_values = true)]
     pub visibility: f64,
-    #[arg(long, help = help("photons"), default_value_t = DEFAULTS.photons, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help(&Parameter::PHOTONS), default_value_t = DEFAULTS.photons, value_parser = finite_f64, allow_hyphen_values = true)]
     pub photons: f64,
-    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[arg(long, help = help(&Parameter::READ_NOISE), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_hyphen_values = true)]
     pub read_noise: f64,
-    #[arg(long, help = help_off("photon_noise"))]
+    #[arg(long, help = help_off(&Parameter::PHOTON_NOISE))]
     pub no_photon_noise: bool,
 }
 

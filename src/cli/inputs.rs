@@ -3,14 +3,14 @@
 
 use super::common::{help, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
 use super::finite_f64;
-use v2ref::parameters::Physical;
+use v2ref::parameters::{Parameter, Physical};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::Result;
 
 /// The differential piston: on when `--fringe-hz` is given.
 #[derive(Debug, Clone, clap::Args)]
 pub struct PistonArgs {
-    #[arg(long, help = help("fringe_hz"), value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::FRINGE_HZ), value_parser = finite_f64, allow_negative_numbers = true)]
     pub fringe_hz: Option<f64>,
     #[command(flatten)]
     pub turbulence: TurbulenceArgs,

@@ -23,6 +23,8 @@ pub mod bias;
 pub mod claims;
 pub mod common;
 pub mod estimate;
+#[cfg(test)]
+mod generated;
 pub mod golden;
 pub mod grid;
 pub mod inputs;

@@ -7,7 +7,7 @@ use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref::parameters::Physical;
+use v2ref::parameters::{Parameter, Physical};
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
@@ -21,9 +21,9 @@ pub struct Args {
     /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
     #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
     samples_per_fringe: f64,
-    #[arg(long, help = help("integrating"))]
+    #[arg(long, help = help(&Parameter::INTEGRATING))]
     integrating: bool,
-    #[arg(long, help = help("visibility"), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::VISIBILITY), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
     visibility: f64,
     /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
@@ -46,9 +46,9 @@ pub struct Args {
     /// QE), 0 < T <= 1; with --magnitude.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
     throughput: Option<f64>,
-    #[arg(long, help = help("read_noise"), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help = help(&Parameter::READ_NOISE), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
     read_noise: f64,
-    #[arg(long, help = help_off("photon_noise"))]
+    #[arg(long, help = help_off(&Parameter::PHOTON_NOISE))]
     no_photon_noise: bool,
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
@@ -87,7 +87,7 @@ pub struct Args {
     /// or model (the source's piston-free counts; off by the piston's shift
     /// of the fringe, predicted and added to the bias). The predicted mean
     /// and the noise follow it.
-    #[arg(long, value_enum, default_value = "counts")]
+    #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "counts")]
     bias: BiasConvention,
     /// Also simulate the recommended observation (n consecutive scans
     /// through one atmosphere, photon and detector noise, --bias): the

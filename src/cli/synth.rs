@@ -45,7 +45,7 @@ pub struct Args {
     /// contiguous sequence, scan after scan (stride: one scan period) — the
     /// observation a plan recommends, to check its promise for the mean of
     /// n consecutive scans. The sidecar's `layout` records it.
-    #[arg(long, value_enum, default_value = "sequences")]
+    #[arg(long, value_parser = super::common::choice::<RowLayout>(), default_value = "sequences")]
     layout: RowLayout,
     /// Blocks of the truth's reference run: 0 (closed forms only), or 8 to
     /// 1000; default 16 with piston (replicates of the set, whose spread the

@@ -134,7 +134,6 @@ pub fn wide_band(obs: &Observation) -> WideBand {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum BinWindow {
     /// The positive frequencies k = 1 … ⌈N/2⌉ − 1: DC excluded, and the
     /// Nyquist bin N/2 excluded when N is even.
@@ -144,6 +143,26 @@ pub enum BinWindow {
     Band,
     /// All N bins (the Appendix's form; V2 then reads N² M_0²).
     All,
+}
+
+impl crate::words::Words for BinWindow {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "positive",
+            value: BinWindow::Positive,
+            help: "The positive frequencies k = 1 … ⌈N/2⌉ − 1: DC excluded, and the Nyquist bin N/2 excluded when N is even",
+        },
+        crate::words::Word {
+            word: "band",
+            value: BinWindow::Band,
+            help: "The positive-frequency bins whose wavenumber lies inside the spectrum's support",
+        },
+        crate::words::Word {
+            word: "all",
+            value: BinWindow::All,
+            help: "All N bins (the Appendix's form; V2 then reads N² M_0²)",
+        },
+    ];
 }
 
 /// The three windows, in the order results are reported.
@@ -165,11 +184,7 @@ impl BinWindow {
 
     /// Lowercase name, as in JSON and on the command line.
     pub fn name(&self) -> &'static str {
-        match self {
-            BinWindow::Positive => "positive",
-            BinWindow::Band => "band",
-            BinWindow::All => "all",
-        }
+        crate::words::Words::word(*self)
     }
 }
 

@@ -68,12 +68,26 @@ use serde::Serialize;
 /// confirmed by Monte Carlo.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Formula {
     /// As printed in the paper's Appendix.
     Published,
     /// Derived from the cumulants of the noise (confirmed by Monte Carlo).
     Exact,
+}
+
+impl crate::words::Words for Formula {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "published",
+            value: Formula::Published,
+            help: "As printed in the paper's Appendix",
+        },
+        crate::words::Word {
+            word: "exact",
+            value: Formula::Exact,
+            help: "Derived from the cumulants of the noise (confirmed by Monte Carlo)",
+        },
+    ];
 }
 
 /// The formulas as printed in the Appendix.

@@ -1,9 +1,11 @@
 //! [`PARAMETERS`]: each physical input's unit, accepted range and help
-//! text, written once. The CLI's `--help`, the Python docstrings (and the
-//! stub made from them) and the input table of `docs/conventions.md` are
-//! rendered from it ([`Parameter::describe`]); the tests below hold the
-//! accepted ranges to what the library's checks do and the docs' table to
-//! this one.
+//! text, written once, each one named by a constant of [`Parameter`]. The
+//! CLI's `--help` is rendered from it ([`Parameter::describe`]); the Python
+//! package's keyword arguments, their docstrings, the stub and the input
+//! table of `docs/conventions.md` are generated from it (the test
+//! `generated_files_are_the_declarations` of the binary, run by
+//! `scripts/regenerate.sh`). The tests below hold the accepted ranges to
+//! what the library's checks do.
 
 use serde::Serialize;
 
@@ -57,25 +59,13 @@ impl Parameter {
     pub fn is_flag(&self) -> bool {
         self.accepted == FLAG
     }
-
-    /// The parameter named `name`.
-    ///
-    /// # Panics
-    /// When no parameter has that name (a slip in the code, caught by the
-    /// edges' tests).
-    pub fn named(name: &str) -> &'static Parameter {
-        PARAMETERS
-            .iter()
-            .find(|p| p.name == name)
-            .unwrap_or_else(|| panic!("{name} is not a declared parameter"))
-    }
 }
 
 /// The accepted values of a flag.
 const FLAG: &str = "true or false";
 
 /// `text` with each `{name}` replaced by `refer(name)`.
-fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
+pub fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
     let mut out = String::new();
     let mut rest = text;
     while let Some(open) = rest.find('{') {
@@ -88,43 +78,49 @@ fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
     out
 }
 
-/// Every field of [`super::Physical`], in declaration order.
-pub const PARAMETERS: [Parameter; 24] = [
-    Parameter {
+/// Each physical input's declaration, named by its field of
+/// [`super::Physical`] in capitals: the edges name a parameter by these
+/// constants (a typed key, checked by the compiler), never by a string.
+impl Parameter {
+    /// `wavelength_um`.
+    pub const WAVELENGTH_UM: Parameter = Parameter {
         name: "wavelength_um",
         unit: "µm",
         accepted: "0.001 to 100000",
         what: "Centre wavelength λ0",
         note: "With {spectrum_csv} it still sets λ0 of the fringe frequency f = v/λ0, \
-               of the samples per fringe and of the seeing: give the spectrum's centre.",
+                   of the samples per fringe and of the seeing: give the spectrum's centre.",
         unset: "",
         why: "1 nm (X-rays, no fringe-scanning interferometer) to 10 cm (radio)",
-    },
-    Parameter {
+    };
+    /// `bandwidth_nm`.
+    pub const BANDWIDTH_NM: Parameter = Parameter {
         name: "bandwidth_nm",
         unit: "nm",
         accepted: "1e-12 λ0 to under 2 λ0",
         what: "Full bandwidth Δλ",
         note: "The band [λ0 − Δλ/2, λ0 + Δλ/2], flat per unit wavenumber σ = 1/λ \
-               (not per unit wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and \
-               1/(λ0 − Δλ/2)).",
+                   (not per unit wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and \
+                   1/(λ0 − Δλ/2)).",
         unset: "",
         why: "narrower is lost in the rounding of λ0 (use a line); wider reaches zero wavelength",
-    },
-    Parameter {
+    };
+    /// `spectrum_csv`.
+    pub const SPECTRUM_CSV: Parameter = Parameter {
         name: "spectrum_csv",
         unit: "",
         accepted: "a CSV file of at most 100000 rows, 16 MiB",
         what: "A tabulated S(σ)F(σ) instead of the flat band",
         note: "Header `wavelength_um,weight` or `wavenumber_per_um,weight`, the weight \
-               per unit wavenumber (`weight_per_wavenumber` says so explicitly; \
-               `weight_per_um` is per unit wavelength and is converted by λ²); a leading \
-               byte-order mark is fine.",
+                   per unit wavenumber (`weight_per_wavenumber` says so explicitly; \
+                   `weight_per_um` is per unit wavelength and is converted by λ²); a leading \
+                   byte-order mark is fine.",
         unset: "the flat band of {wavelength_um} and {bandwidth_nm}",
         why: "far more than the bias integrals need; a longer file (or `/dev/zero`) is \
-              refused at once",
-    },
-    Parameter {
+                  refused at once",
+    };
+    /// `source`.
+    pub const SOURCE: Parameter = Parameter {
         name: "source",
         unit: "",
         accepted: "point or ud",
@@ -132,8 +128,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "ud: a uniform disk of diameter {diameter_mas}; point: unresolved (V = 1).",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `diameter_mas`.
+    pub const DIAMETER_MAS: Parameter = Parameter {
         name: "diameter_mas",
         unit: "mas",
         accepted: "> 0 to 3.6e6",
@@ -141,8 +138,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "up to 1°: the visibility is that of a small source",
-    },
-    Parameter {
+    };
+    /// `spatial_freq_cpas`.
+    pub const SPATIAL_FREQ_CPAS: Parameter = Parameter {
         name: "spatial_freq_cpas",
         unit: "cycles/arcsec",
         accepted: "0 to 1e13 (and B = S/σ_eff at most 1e9 m)",
@@ -150,8 +148,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "40, the paper's 18 m baseline in K (or from {baseline_m})",
         why: "the frequency of a 1e9 m baseline at 1 nm",
-    },
-    Parameter {
+    };
+    /// `baseline_m`.
+    pub const BASELINE_M: Parameter = Parameter {
         name: "baseline_m",
         unit: "m",
         accepted: "0 to 1e9",
@@ -159,8 +158,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "Instead of {spatial_freq_cpas}.",
         unset: "from {spatial_freq_cpas}",
         why: "beyond any interferometer, space included",
-    },
-    Parameter {
+    };
+    /// `dispersion_pp_rad`.
+    pub const DISPERSION_PP_RAD: Parameter = Parameter {
         name: "dispersion_pp_rad",
         unit: "rad",
         accepted: "-1e4 to 1e4",
@@ -168,8 +168,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "the V2 quadrature follows the Fresnel 1/√P law up to here (20 % off at 3e4)",
-    },
-    Parameter {
+    };
+    /// `stroke_um`.
+    pub const STROKE_UM: Parameter = Parameter {
         name: "stroke_um",
         unit: "µm",
         accepted: "N = Δx/δx, rounded, from 2 to 2^24",
@@ -177,8 +178,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "{samples} × {dx_um}",
         why: "",
-    },
-    Parameter {
+    };
+    /// `dx_um`.
+    pub const DX_UM: Parameter = Parameter {
         name: "dx_um",
         unit: "µm",
         accepted: "> 0",
@@ -186,18 +188,20 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `samples`.
+    pub const SAMPLES: Parameter = Parameter {
         name: "samples",
         unit: "",
         accepted: "2 to 2^24",
         what: "Number of samples N",
         note: "Ignored when {stroke_um} is given. The finite scan costs about N² \
-               (N = 16384: about 10 s on two cores).",
+                   (N = 16384: about 10 s on two cores).",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `integrating`.
+    pub const INTEGRATING: Parameter = Parameter {
         name: "integrating",
         unit: "",
         accepted: FLAG,
@@ -205,8 +209,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `visibility`.
+    pub const VISIBILITY: Parameter = Parameter {
         name: "visibility",
         unit: "",
         accepted: "0 to 1",
@@ -214,8 +219,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "m_0 = n V for a point source (a source of known V: {source} point).",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `photons`.
+    pub const PHOTONS: Parameter = Parameter {
         name: "photons",
         unit: "photons per sample",
         accepted: "> 0 to 1e12",
@@ -223,8 +229,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "beyond any full well; keeps the fourth moments of the variances far from overflow",
-    },
-    Parameter {
+    };
+    /// `read_noise`.
+    pub const READ_NOISE: Parameter = Parameter {
         name: "read_noise",
         unit: "photons per sample",
         accepted: "0 to 1e12",
@@ -232,8 +239,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "as the photons",
-    },
-    Parameter {
+    };
+    /// `photon_noise`.
+    pub const PHOTON_NOISE: Parameter = Parameter {
         name: "photon_noise",
         unit: "",
         accepted: FLAG,
@@ -241,18 +249,20 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `fringe_hz`.
+    pub const FRINGE_HZ: Parameter = Parameter {
         name: "fringe_hz",
         unit: "Hz",
         accepted: "0.001 to 1e7",
         what: "Fringe frequency f = v/λ0",
         note: "Adds the differential piston of §6 (consecutive scans through one \
-               piston sequence).",
+                   piston sequence).",
         unset: "no piston",
         why: "",
-    },
-    Parameter {
+    };
+    /// `wind_mps`.
+    pub const WIND_MPS: Parameter = Parameter {
         name: "wind_mps",
         unit: "m/s",
         accepted: "0.001 to 343",
@@ -260,9 +270,10 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "Frozen flow along the baseline.",
         unset: "",
         why: "no atmospheric layer moves faster than sound; below a millimetre a second the \
-              piston's time scales leave the range where its spectrum is finite",
-    },
-    Parameter {
+                  piston's time scales leave the range where its spectrum is finite",
+    };
+    /// `seeing_arcsec`.
+    pub const SEEING_ARCSEC: Parameter = Parameter {
         name: "seeing_arcsec",
         unit: "arcsec",
         accepted: "0 to 100",
@@ -270,18 +281,20 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "Quoted at {seeing_wavelength_um}; 0: no turbulence.",
         unset: "",
         why: "r0 of 4.5 mm in K: no fringe can be tracked beyond",
-    },
-    Parameter {
+    };
+    /// `seeing_wavelength_um`.
+    pub const SEEING_WAVELENGTH_UM: Parameter = Parameter {
         name: "seeing_wavelength_um",
         unit: "µm",
         accepted: "0.3 to 30",
         what: "Wavelength at which {seeing_arcsec} is quoted",
         note: "Site monitors quote 0.5. Converted to the observing wavelength by \
-               r0 ∝ λ^(6/5).",
+                   r0 ∝ λ^(6/5).",
         unset: "the observing wavelength {wavelength_um}",
         why: "where seeing is measured, and where the λ^(-1/5) law that converts it holds",
-    },
-    Parameter {
+    };
+    /// `aperture_m`.
+    pub const APERTURE_M: Parameter = Parameter {
         name: "aperture_m",
         unit: "m",
         accepted: "0.001 to 1000",
@@ -289,9 +302,10 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "a millimetre to a kilometre; at 1e300 m or 1e-308 m the aperture filter under- \
-              or overflows and every piston statistic was undefined",
-    },
-    Parameter {
+                  or overflows and every piston statistic was undefined",
+    };
+    /// `outer_scale_m`.
+    pub const OUTER_SCALE_M: Parameter = Parameter {
         name: "outer_scale_m",
         unit: "m",
         accepted: "> 0",
@@ -299,8 +313,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "infinite",
         why: "",
-    },
-    Parameter {
+    };
+    /// `sub_samples`.
+    pub const SUB_SAMPLES: Parameter = Parameter {
         name: "sub_samples",
         unit: "",
         accepted: "1 to 64",
@@ -308,8 +323,9 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "",
-    },
-    Parameter {
+    };
+    /// `reference`.
+    pub const REFERENCE: Parameter = Parameter {
         name: "reference",
         unit: "",
         accepted: "centre, mean or absolute",
@@ -317,7 +333,35 @@ pub const PARAMETERS: [Parameter; 24] = [
         note: "",
         unset: "",
         why: "",
-    },
+    };
+}
+
+/// Every field of [`super::Physical`], in declaration order.
+pub const PARAMETERS: [Parameter; 24] = [
+    Parameter::WAVELENGTH_UM,
+    Parameter::BANDWIDTH_NM,
+    Parameter::SPECTRUM_CSV,
+    Parameter::SOURCE,
+    Parameter::DIAMETER_MAS,
+    Parameter::SPATIAL_FREQ_CPAS,
+    Parameter::BASELINE_M,
+    Parameter::DISPERSION_PP_RAD,
+    Parameter::STROKE_UM,
+    Parameter::DX_UM,
+    Parameter::SAMPLES,
+    Parameter::INTEGRATING,
+    Parameter::VISIBILITY,
+    Parameter::PHOTONS,
+    Parameter::READ_NOISE,
+    Parameter::PHOTON_NOISE,
+    Parameter::FRINGE_HZ,
+    Parameter::WIND_MPS,
+    Parameter::SEEING_ARCSEC,
+    Parameter::SEEING_WAVELENGTH_UM,
+    Parameter::APERTURE_M,
+    Parameter::OUTER_SCALE_M,
+    Parameter::SUB_SAMPLES,
+    Parameter::REFERENCE,
 ];
 
 #[cfg(test)]
@@ -352,7 +396,7 @@ mod tests {
             );
             assert_eq!(p.is_flag(), defaults[p.name].is_boolean(), "{}", p.name);
         }
-        let s = Parameter::named("spatial_freq_cpas").unset;
+        let s = Parameter::SPATIAL_FREQ_CPAS.unset;
         assert!(
             s.starts_with(&format!("{DEFAULT_SPATIAL_FREQ_CPAS}, ")),
             "{s}"
@@ -471,52 +515,6 @@ mod tests {
         assert_eq!(
             untested,
             [&words[..], &["photon_noise", "reference"]].concat()
-        );
-    }
-}
-
-#[cfg(test)]
-mod docs {
-    use super::PARAMETERS;
-    use crate::parameters::Physical;
-
-    /// The table of the physical inputs in `docs/conventions.md` (§14),
-    /// rendered from the declaration.
-    fn table() -> String {
-        let defaults = serde_json::to_value(Physical::DEFAULT).unwrap();
-        let code = |n: &str| format!("`{n}`");
-        let mut out = String::from(
-            "| Input | What | Unit | Default | Accepted | Why |\n|---|---|---|---|---|---|\n",
-        );
-        for p in &PARAMETERS {
-            let default = match &defaults[p.name] {
-                serde_json::Value::Null => p.unset(&code),
-                serde_json::Value::Number(x) => x.as_f64().unwrap().to_string(),
-                serde_json::Value::String(s) => code(s),
-                v => v.to_string(),
-            };
-            let accepted = super::refer_to(p.accepted, &code);
-            let why = super::refer_to(p.why, &code);
-            let what = super::refer_to(p.what, &code);
-            let row = [code(p.name), what, p.unit.into(), default, accepted, why];
-            out += &format!("| {} |\n", row.join(" | "));
-        }
-        out
-    }
-
-    /// The docs' table of the physical inputs is the declaration's (on a
-    /// change, paste the table this test prints between the markers).
-    #[test]
-    fn docs_table_is_the_declaration() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/conventions.md");
-        let text = std::fs::read_to_string(path).unwrap();
-        let (begin, end) = ("<!-- parameters: begin -->\n", "<!-- parameters: end -->");
-        let start = text.find(begin).expect("the begin marker") + begin.len();
-        let stop = text.find(end).expect("the end marker");
-        let want = table();
-        assert!(
-            text[start..stop] == want,
-            "docs/conventions.md, §14:\n{want}"
         );
     }
 }

@@ -110,7 +110,6 @@ pub struct PistonSpectrum {
 /// Which differential-piston spectrum the sequences are drawn from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum PistonPsdModel {
     /// The two-aperture spectral integral of this module (Kolmogorov, or von
     /// Kármán with an outer scale; any wind direction).
@@ -121,13 +120,25 @@ pub enum PistonPsdModel {
     ThreeSlope,
 }
 
+impl crate::words::Words for PistonPsdModel {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "two-aperture",
+            value: PistonPsdModel::TwoAperture,
+            help: "The two-aperture spectral integral of this module (Kolmogorov, or von Kármán with an outer scale; any wind direction)",
+        },
+        crate::words::Word {
+            word: "three-slope",
+            value: PistonPsdModel::ThreeSlope,
+            help: "The three-slope model of [`crate::piston::three_slope`] (Conan et al. 1995 asymptotes, as in Perrin 1997), normalized to the same variance; wind along the baseline only",
+        },
+    ];
+}
+
 impl PistonPsdModel {
     /// Kebab-case name, as `--psd` takes it.
     pub fn name(&self) -> &'static str {
-        match self {
-            PistonPsdModel::TwoAperture => "two-aperture",
-            PistonPsdModel::ThreeSlope => "three-slope",
-        }
+        crate::words::Words::word(*self)
     }
 }
 

@@ -51,6 +51,41 @@ pub enum Band2Mass {
     I,
 }
 
+impl crate::words::Words for Band2Mass {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "J",
+            value: Band2Mass::J,
+            help: "J, 1.235 µm",
+        },
+        crate::words::Word {
+            word: "H",
+            value: Band2Mass::H,
+            help: "H, 1.662 µm",
+        },
+        crate::words::Word {
+            word: "Ks",
+            value: Band2Mass::Ks,
+            help: "Ks, 2.159 µm",
+        },
+        crate::words::Word {
+            word: "V",
+            value: Band2Mass::V,
+            help: "Johnson V, 0.545 µm",
+        },
+        crate::words::Word {
+            word: "R",
+            value: Band2Mass::R,
+            help: "Cousins R, 0.641 µm",
+        },
+        crate::words::Word {
+            word: "I",
+            value: Band2Mass::I,
+            help: "Cousins I, 0.798 µm",
+        },
+    ];
+}
+
 /// [`Band2Mass`] under the name that says what it is now.
 pub type PhotometricBand = Band2Mass;
 

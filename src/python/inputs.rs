@@ -2,8 +2,9 @@
 //! library's [`Physical`] (its defaults, its builders: the same as the
 //! CLI's flags).
 
-use super::{parse_enum, Fail};
-use crate::parameters::{Parameter, PARAMETERS};
+use super::Fail;
+use crate::parameters::PARAMETERS;
+use crate::words::Words;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -25,23 +26,14 @@ fn item<'py, T: FromPyObject<'py>>(d: &Bound<'py, PyDict>, key: &str, default: T
     }
 }
 
-/// The choice `key` of `d` (missing or None: `default`), one of the words
-/// its declaration accepts (`point or ud`).
-fn choice<T: serde::de::DeserializeOwned>(
-    d: &Bound<'_, PyDict>,
-    key: &'static str,
-    default: T,
-) -> PyResult<T> {
+/// The choice `key` of `d` (missing or None: `default`), one of its words
+/// ([`Words::WORDS`]).
+fn choice<T: Words>(d: &Bound<'_, PyDict>, key: &'static str, default: T) -> PyResult<T> {
     let word: Option<String> = item(d, key, None)?;
-    let Some(word) = word else {
-        return Ok(default);
-    };
-    let accepted: Vec<&str> = Parameter::named(key)
-        .accepted
-        .split([',', ' '])
-        .filter(|w| !w.is_empty() && *w != "or")
-        .collect();
-    parse_enum(key, &word, &accepted).map_err(|e| e.into_py_err())
+    match word {
+        None => Ok(default),
+        Some(word) => T::from_word(key, &word).map_err(|e| e.into_py_err()),
+    }
 }
 
 impl Physical {

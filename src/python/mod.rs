@@ -63,21 +63,6 @@ pub fn ok<T>(r: crate::Result<T>) -> PyResult<T> {
     r.map_err(Fail::into_py_err)
 }
 
-/// A lowercase name parsed into one of the library's enums (their serde
-/// names), or an error listing `accepted`.
-pub fn parse_enum<T: serde::de::DeserializeOwned>(
-    param: &'static str,
-    value: &str,
-    accepted: &[&str],
-) -> crate::Result<T> {
-    serde_json::from_value(serde_json::Value::String(value.to_owned())).map_err(|_| {
-        Error::Invalid {
-            param,
-            reason: format!("'{value}' is not one of: {}", accepted.join(", ")),
-        }
-    })
-}
-
 /// Before a call predicted to take more than a minute
 /// ([`crate::commands::cost`]): a `UserWarning` naming the call, its
 /// predicted duration and how to stop it, pointing at the caller's line.

@@ -2,13 +2,14 @@
 //! (`crate::formats::oifits`) with NumPy arrays in and out. The Python
 //! wrappers (`python/v2ref/oifits.py`) check types and read sidecars.
 
-use super::{ok, parse_enum};
+use super::ok;
 use crate::conformance::estimate::BiasConvention;
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::{Sidecar, FORMAT};
 use crate::formalism::estimator::BinWindow;
 use crate::formats::oifits::{self, docs, Expected};
 use crate::simulator::Model;
+use crate::words::Words;
 use crate::Error;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -102,8 +103,8 @@ fn write_oifits(
     bins: &str,
     bias: &str,
 ) -> PyResult<()> {
-    let bins: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
-    let bias: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
+    let bins: BinWindow = ok(Words::from_word("bins", bins))?;
+    let bias: BiasConvention = ok(Words::from_word("bias", bias))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let mut columns = Vec::new();
     for (e, a) in [(Estimator::V1Sq, v1_sq), (Estimator::V2Sq, v2_sq)] {
@@ -161,8 +162,8 @@ fn read_oifits_estimates<'py>(
     bias: &str,
     accept_checksum_mismatch: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bins: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
-    let bias: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
+    let bins: BinWindow = ok(Words::from_word("bins", bins))?;
+    let bias: BiasConvention = ok(Words::from_word("bias", bias))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let est = estimator_of(estimator)?;
     let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
@@ -216,8 +217,8 @@ fn score_oifits(
     target: Option<&str>,
     accept_checksum_mismatch: bool,
 ) -> PyResult<String> {
-    let window: BinWindow = ok(parse_enum("bins", bins, &["positive", "band", "all"]))?;
-    let convention: BiasConvention = ok(parse_enum("bias", bias, &["model", "counts"]))?;
+    let window: BinWindow = ok(Words::from_word("bins", bins))?;
+    let convention: BiasConvention = ok(Words::from_word("bias", bias))?;
     ok(crate::conformance::score::critical_z(alpha, 1))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let truth = sc.truth(window, convention).ok_or_else(|| {

@@ -24,13 +24,12 @@
 //! sequence (164 000 rows at N = 102, where each of the 16 sequences of the
 //! default layout holds at most about 10 000).
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use serde::{Deserialize, Serialize};
 
 /// How the rows of a set with piston lie in time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum RowLayout {
     /// Independent sequences, scans spread out in each: the statistics of
     /// one scan (the default; the rows of every earlier version).
@@ -41,26 +40,31 @@ pub enum RowLayout {
     Observation,
 }
 
+impl crate::words::Words for RowLayout {
+    const WORDS: &'static [crate::words::Word<Self>] = &[
+        crate::words::Word {
+            word: "sequences",
+            value: RowLayout::Sequences,
+            help: "Independent sequences, scans spread out in each: the statistics of one scan (the default; the rows of every earlier version)",
+        },
+        crate::words::Word {
+            word: "observation",
+            value: RowLayout::Observation,
+            help: "One contiguous sequence, scan after scan: one observation of n consecutive scans through one atmosphere",
+        },
+    ];
+}
+
 impl RowLayout {
     /// The name `--layout` and Python's `layout=` take.
     pub fn name(&self) -> &'static str {
-        match self {
-            RowLayout::Sequences => "sequences",
-            RowLayout::Observation => "observation",
-        }
+        crate::words::Words::word(*self)
     }
 
     /// The layout named `name` (`sequences` or `observation`), refused
     /// under the parameter `layout` otherwise.
     pub fn from_name(name: &str) -> Result<RowLayout> {
-        match name {
-            "sequences" => Ok(RowLayout::Sequences),
-            "observation" => Ok(RowLayout::Observation),
-            other => Err(Error::Invalid {
-                param: "layout",
-                reason: format!("'{other}' is not one of: sequences, observation"),
-            }),
-        }
+        crate::words::Words::from_word("layout", name)
     }
 }
 

@@ -14,35 +14,29 @@ mod paper;
 mod plan;
 mod simulator;
 
-use super::{ok, parse_enum};
+use super::ok;
 use crate::conformance::estimate::BiasConvention;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
 use crate::noise::Formula;
+use crate::words::Words;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use serde::Serialize;
 
 /// The `bins` argument.
 fn window(s: &str) -> Result<BinWindow> {
-    parse_enum("bins", s, &["positive", "band", "all"])
+    BinWindow::from_word("bins", s)
 }
 
 /// The `bias` argument.
 fn convention(s: &str) -> Result<BiasConvention> {
-    parse_enum("bias", s, &["model", "counts"])
+    BiasConvention::from_word("bias", s)
 }
 
 /// The `formula` argument.
 fn formula(s: &str) -> Result<Formula> {
-    match s {
-        "published" => Ok(Formula::Published),
-        "exact" => Ok(Formula::Exact),
-        _ => Err(Error::Invalid {
-            param: "formula",
-            reason: format!("'{s}' is not one of: published, exact"),
-        }),
-    }
+    Formula::from_word("formula", s)
 }
 
 /// An answer as JSON text (the Python side parses it).

@@ -4,8 +4,9 @@ use super::{formula, json, window};
 use crate::commands::{self, cost, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok, parse_enum, warn_cost};
+use crate::python::{interruptible, ok, warn_cost};
 use crate::reproduction::cases::Effort;
+use crate::words::Words;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -60,7 +61,7 @@ pub(super) fn piston(
     psd: &str,
     wind_angle_deg: f64,
 ) -> PyResult<String> {
-    let psd: PistonPsdModel = ok(parse_enum("psd", psd, &["two-aperture", "three-slope"]))?;
+    let psd = ok(PistonPsdModel::from_word("psd", psd))?;
     let p = Physical::from_dict(physical)?;
     let req = PistonRequest {
         fringe_hz,

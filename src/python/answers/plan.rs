@@ -2,8 +2,10 @@
 
 use super::json;
 use crate::commands::{self, plan::PlanRequest};
+use crate::conformance::estimate::BiasConvention;
 use crate::python::inputs::Physical;
-use crate::python::{interruptible, ok, parse_enum, warn_cost};
+use crate::python::{interruptible, ok, warn_cost};
+use crate::words::Words;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -48,7 +50,7 @@ pub(super) fn plan(
         scans,
         seed,
         diameter_err_mas,
-        bias: ok(parse_enum("bias", bias, &["model", "counts"]))?,
+        bias: ok(BiasConvention::from_word("bias", bias))?,
     };
     let prepared = ok(commands::plan::prepare(&p, &req))?;
     warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
@@ -91,7 +93,7 @@ pub(super) fn photon_rate(
     bandwidth_nm: f64,
 ) -> PyResult<f64> {
     use crate::plan::photometry::{Band2Mass, Magnitude};
-    let band: Band2Mass = ok(parse_enum("band", band, &["J", "H", "Ks", "V", "R", "I"]))?;
+    let band = ok(Band2Mass::from_word("band", band))?;
     let m = Magnitude {
         magnitude,
         band,
