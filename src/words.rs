@@ -90,6 +90,7 @@ mod tests {
         check::<PistonReference>();
         check::<PistonPsdModel>();
         check::<RowLayout>();
+        check::<crate::plan::photometry::Band2Mass>();
         assert_eq!(BinWindow::listed(", "), "positive, band, all");
         assert_eq!(RowLayout::listed(" or "), "sequences or observation");
     }

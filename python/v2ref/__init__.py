@@ -25,8 +25,6 @@ import collections.abc as _abc
 import inspect as _inspect
 import json as _json
 import os as _os
-import textwrap as _textwrap
-import typing as _typing
 
 # The names of typing used in the signatures below; deleted at the end of the
 # module so that the namespace holds the API only (the signatures keep the
@@ -35,7 +33,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
-from . import _v2ref
+from . import _declaration, _docstrings, _v2ref
 
 __version__: str = _v2ref.__version__
 
@@ -58,13 +56,7 @@ ESTIMATE_COLUMNS = tuple(_v2ref.ESTIMATE_COLUMNS)
 
 #: The defaults of the physical inputs, from the library's one declaration
 #: (``v2ref::parameters::Physical::DEFAULT``, also the CLI's defaults).
-_DEFAULTS: Dict[str, Any] = _json.loads(_v2ref.PHYSICAL_DEFAULTS)
-
-#: The physical inputs' units, accepted ranges and help texts, from the same
-#: declaration (``v2ref::parameters::PARAMETERS``).
-_PARAMETERS: Dict[str, Dict[str, str]] = {
-    p["name"]: p for p in _json.loads(_v2ref.PHYSICAL_PARAMETERS)
-}
+_DEFAULTS: Dict[str, Any] = _declaration.DEFAULTS
 
 _PathLike = Union[str, _os.PathLike[str]]
 
@@ -125,15 +117,16 @@ def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[st
     for k, v in values.items():
         if k not in _DEFAULTS or k in exclude or v is None:
             continue
-        if k == "spectrum_csv":
+        kind = _declaration.KINDS[k]
+        if kind == "path":
             if not isinstance(v, (str, bytes, _os.PathLike)):
                 raise TypeError(f"{k}: {v!r} is not a path")
             v = _os.fsdecode(v)
-        elif k in ("source", "reference"):
+        elif kind == "word":
             v = _word(k, v)
-        elif k in ("samples", "sub_samples"):
+        elif kind == "int":
             v = _uint(k, v)
-        elif k in ("integrating", "photon_noise"):
+        elif kind == "bool":
             if not isinstance(v, (bool, _np.bool_)):
                 raise TypeError(f"{k}: {v!r} is not a bool")
             v = bool(v)
@@ -145,44 +138,14 @@ def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[st
     return out
 
 
-def _type_words(annotation: Any) -> str:
-    """The type of a docstring entry: ``float``, ``path``, ``int``, …"""
-    args = [a for a in _typing.get_args(annotation) if a is not type(None)]
-    if not args:
-        return annotation.__name__
-    if any(_typing.get_origin(a) is _os.PathLike for a in args):
-        return "path"
-    return " or ".join(a.__name__ for a in args)
-
-
-def _entry(param: _inspect.Parameter, indent: str) -> str:
-    """The docstring entry of a physical keyword argument, from its declaration."""
-    p = _PARAMETERS[param.name]
-    kind = _type_words(param.annotation)
-    if param.default is None:
-        head, text = f"{kind}, optional", f"{p['doc']} Default: {p['unset_doc']}."
-    else:
-        head, text = f"{kind}, default {param.default!r}", p["doc"]
-    body = _textwrap.fill(text, 76, initial_indent=indent + "    ", subsequent_indent=indent + "    ")
-    return f"{indent}{param.name} : {head}\n{body}"
-
-
 def _documented(*, exclude: Sequence[str] = ()):
     """Fills the ``{physical}`` line of a function's docstring with an entry
     per physical keyword argument of its signature (but ``exclude``), written
-    once in the library's declaration."""
+    once in the library's declaration (``_docstrings.fill``)."""
 
     def fill(f):
-        sig = _inspect.signature(f)
-        lines = f.__doc__.split("\n")
-        at = [l.strip() for l in lines].index("{physical}")
-        indent = lines[at][: len(lines[at]) - len(lines[at].lstrip())]
-        entries = [
-            _entry(param, indent)
-            for name, param in sig.parameters.items()
-            if name in _PARAMETERS and name not in exclude
-        ]
-        f.__doc__ = "\n".join(lines[:at] + entries + lines[at + 1 :])
+        keywords = [k for k in _inspect.signature(f).parameters if k not in exclude]
+        f.__doc__ = _docstrings.fill(_declaration, f.__doc__, keywords)
         return f
 
     return fill
@@ -245,10 +208,11 @@ def _vector(name: str, x: Any) -> _np.ndarray:
     return _contiguous(name, a, "a 1-D array (one value per row)")
 
 
-def _sidecar_text(sidecar: Any) -> Tuple[str, str]:
-    """(JSON text, name for messages) of a sidecar given as a dict or a path."""
+def _sidecar_arg(sidecar: Any) -> Tuple[Any, str]:
+    """(the sidecar as the extension takes it, name for messages) of a
+    sidecar given as a dict (passed as a dict) or a path (the file's text)."""
     if isinstance(sidecar, _abc.Mapping):
-        return _json.dumps(sidecar), "<dict>"
+        return dict(sidecar), "<dict>"
     if isinstance(sidecar, (str, bytes, _os.PathLike)):
         path = _os.fsdecode(sidecar)
         try:
@@ -274,6 +238,7 @@ def estimate(
     calibrator: Any = None,
     continuum_subtracted: Optional[bool] = None,
     threads: int = 0,
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -296,6 +261,7 @@ def estimate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    # End of the generated keyword arguments.
 ) -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
@@ -348,7 +314,7 @@ def estimate(
             raise ValueError(
                 f"{given[0]}: cannot be used with sidecar (the configuration comes from it)"
             )
-        text, name = _sidecar_text(sidecar)
+        text, name = _sidecar_arg(sidecar)
         physical: Dict[str, Any] = {}
     else:
         text, name = None, ""
@@ -378,6 +344,7 @@ def synthesize(
     layout: str = "sequences",
     out: Optional[_PathLike] = None,
     force: bool = False,
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -402,6 +369,7 @@ def synthesize(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    # End of the generated keyword arguments.
 ) -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
@@ -457,7 +425,7 @@ def synthesize(
         # The sidecar names the file in text: bytes that are not UTF-8 as
         # U+FFFD, as the CLI writes them (the file itself keeps its bytes).
         npy = _os.fsencode(_os.path.basename(out)).decode("utf-8", "replace") + ".npy"
-    data, text = _v2ref.synthesize(
+    return _v2ref.synthesize(
         physical,
         _uint("rows", rows),
         _uint("seed", seed),
@@ -466,13 +434,11 @@ def synthesize(
         bool(keep_continuum),
         npy,
         _word("layout", layout),
-    )
-    sidecar = _json.loads(text)
-    if out is not None:
         # The CLI's writers: the set checked and locked, written whole or
         # not at all, an existing file replaced only with force=True.
-        _v2ref.write_set(_os.fsdecode(out), data, text, _flag("force", force))
-    return data, sidecar
+        None if out is None else _os.fsdecode(out),
+        _flag("force", force),
+    )
 
 
 #: The keys of the mapping :func:`estimate` returns; :func:`score` reads
@@ -489,10 +455,12 @@ def _rows_claimed(a: Any) -> Optional[int]:
     return None
 
 
-def _check_rows(estimates: Any, text: str) -> None:
-    """Refuses estimates of another length than the sidecar's rows before any copy."""
+def _check_rows(estimates: Any, sidecar: Any) -> None:
+    """Refuses estimates of another length than the sidecar's rows (a dict,
+    or a file's text) before any copy."""
     try:
-        rows = int(_json.loads(text)["data"]["rows"])
+        doc = _json.loads(sidecar) if isinstance(sidecar, str) else sidecar
+        rows = int(doc["data"]["rows"])
     except (ValueError, KeyError, TypeError):
         return  # the sidecar's own check says what is wrong with it
     cols = estimates.values() if isinstance(estimates, _abc.Mapping) else [estimates]
@@ -601,22 +569,20 @@ def score(
     if is_fits_path(estimates) and columns is None:
         # An OIFITS path: read as `v2ref score --estimates FILE.fits`.
         return score_oifits(estimates, sidecar=sidecar, bins=bins, bias=bias, alpha=alpha)
-    text, name = _sidecar_text(sidecar)
+    text, name = _sidecar_arg(sidecar)
     _check_rows(estimates, text)
     v1, v2 = _estimate_columns(estimates, columns)
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
         raise TypeError(f"alpha: {alpha!r} is not a real number")
-    return _json.loads(
-        _v2ref.score(
-            v1,
-            v2,
-            text,
-            name,
-            "<array>",
-            _word("bins", bins),
-            _word("bias", bias),
-            _to_float("alpha", alpha),
-        )
+    return _v2ref.score(
+        v1,
+        v2,
+        text,
+        name,
+        "<array>",
+        _word("bins", bins),
+        _word("bias", bias),
+        _to_float("alpha", alpha),
     )
 
 
@@ -629,6 +595,7 @@ def simulate(
     bins: str = "positive",
     bias: str = "model",
     formula: str = "exact",
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -653,6 +620,7 @@ def simulate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
@@ -680,16 +648,14 @@ def simulate(
         ``seed``, ``piston``, ``piston_effect`` and every input.
     """
     values = dict(locals())
-    return _json.loads(
-        _v2ref.simulate(
-            _physical(values),
-            _word("bins", bins),
-            _word("bias", bias),
-            _word("formula", formula),
-            _uint("trials", trials),
-            _uint("seed", seed),
-            _v2ref.check_threads(_uint("threads", threads)),
-        )
+    return _v2ref.simulate(
+        _physical(values),
+        _word("bins", bins),
+        _word("bias", bias),
+        _word("formula", formula),
+        _uint("trials", trials),
+        _uint("seed", seed),
+        _v2ref.check_threads(_uint("threads", threads)),
     )
 
 
@@ -698,6 +664,7 @@ def bias(
     *,
     finite_scan: bool = False,
     bins: str = "positive",
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -710,6 +677,7 @@ def bias(
     dx_um: float = 0.5,
     samples: int = 128,
     integrating: bool = False,
+    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
 
@@ -732,9 +700,7 @@ def bias(
     values = dict(locals())
     if not isinstance(finite_scan, (bool, _np.bool_)):
         raise TypeError(f"finite_scan: {finite_scan!r} is not a bool")
-    return _json.loads(
-        _v2ref.bias(_physical(values), _word("bins", bins), bool(finite_scan))
-    )
+    return _v2ref.bias(_physical(values), _word("bins", bins), bool(finite_scan))
 
 
 @_documented()
@@ -742,6 +708,7 @@ def snr(
     *,
     bins: str = "positive",
     formula: str = "exact",
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -758,6 +725,7 @@ def snr(
     photons: float = 10.0,
     read_noise: float = 0.0,
     photon_noise: bool = True,
+    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
 
@@ -777,12 +745,10 @@ def snr(
         the exact window statistics take).
     """
     values = dict(locals())
-    return _json.loads(
-        _v2ref.snr(
-            _physical(values),
-            _word("bins", bins),
-            _word("formula", formula),
-        )
+    return _v2ref.snr(
+        _physical(values),
+        _word("bins", bins),
+        _word("formula", formula),
     )
 
 
@@ -794,6 +760,7 @@ def piston(
     seed: int = 1,
     threads: int = 0,
     bins: str = "positive",
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -813,6 +780,7 @@ def piston(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    # End of the generated keyword arguments.
     psd: str = "two-aperture",
     wind_angle_deg: float = 0.0,
 ) -> Dict[str, Any]:
@@ -855,17 +823,15 @@ def piston(
         freqs = [_to_float("fringe_hz", fringe_hz)]
     else:
         freqs = [_to_float("fringe_hz", f) for f in fringe_hz]
-    return _json.loads(
-        _v2ref.piston(
-            _physical(values, exclude=("fringe_hz",)),
-            freqs,
-            _word("bins", bins),
-            _uint("scans", scans),
-            _uint("seed", seed),
-            _v2ref.check_threads(_uint("threads", threads)),
-            _word("psd", psd),
-            _float("wind_angle_deg", wind_angle_deg),
-        )
+    return _v2ref.piston(
+        _physical(values, exclude=("fringe_hz",)),
+        freqs,
+        _word("bins", bins),
+        _uint("scans", scans),
+        _uint("seed", seed),
+        _v2ref.check_threads(_uint("threads", threads)),
+        _word("psd", psd),
+        _float("wind_angle_deg", wind_angle_deg),
     )
 
 
@@ -892,6 +858,7 @@ def plan(
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -911,6 +878,7 @@ def plan(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
+    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
@@ -978,24 +946,22 @@ def plan(
     if not isinstance(verify, bool):
         raise TypeError(f"verify: {verify!r} is not a bool")
     observations = _uint("verify_observations", verify_observations)
-    return _json.loads(
-        _v2ref.plan(
-            _physical(values, exclude=_PLAN_GRID),
-            _float("samples_per_fringe", samples_per_fringe),
-            _float("photon_rate_per_s", photon_rate_per_s),
-            _float("dead_time_s", dead_time_s),
-            [_to_float("fringe_hz", f) for f in (fringe_hz or [])],
-            [_to_float("stroke_um", s) for s in (stroke_um or [])],
-            opt("target_sigma_v2", target_sigma_v2),
-            opt("time_budget_s", time_budget_s),
-            _uint("scans", scans),
-            _uint("seed", seed),
-            _v2ref.check_threads(_uint("threads", threads)),
-            _float("diameter_err_mas", diameter_err_mas),
-            out,
-            _word("bias", bias),
-            observations if verify else None,
-        )
+    return _v2ref.plan(
+        _physical(values, exclude=_PLAN_GRID),
+        _float("samples_per_fringe", samples_per_fringe),
+        _float("photon_rate_per_s", photon_rate_per_s),
+        _float("dead_time_s", dead_time_s),
+        [_to_float("fringe_hz", f) for f in (fringe_hz or [])],
+        [_to_float("stroke_um", s) for s in (stroke_um or [])],
+        opt("target_sigma_v2", target_sigma_v2),
+        opt("time_budget_s", time_budget_s),
+        _uint("scans", scans),
+        _uint("seed", seed),
+        _v2ref.check_threads(_uint("threads", threads)),
+        _float("diameter_err_mas", diameter_err_mas),
+        out,
+        _word("bias", bias),
+        observations if verify else None,
     )
 
 
@@ -1055,7 +1021,7 @@ def claims(*, quick: bool = False) -> list:
         One entry per claim: ``id``, ``paper``, ``computed``, ``status``,
         ``note``, …
     """
-    return _json.loads(_v2ref.claims(bool(quick)))
+    return _v2ref.claims(bool(quick))
 
 
 # OIFITS (python/v2ref/oifits.py).

@@ -1,16 +1,19 @@
-"""Type stubs of the v2ref package (units in every parameter description)."""
+"""Type stubs of the v2ref package (units in every parameter description).
 
+Generated from the package's source by scripts/stub.py: do not edit.
+"""
+
+import os as _os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
-import os
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
-_PathLike = Union[str, "os.PathLike[str]"]
+import numpy as _np
+
+_PathLike = Union[str, _os.PathLike[str]]
 
 __version__: str
 ESTIMATE_COLUMNS: Tuple[str, ...]
 
-def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, NDArray[np.float64]]:
+def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
     Parameters
@@ -115,9 +118,8 @@ def estimate(interferograms: ArrayLike, *, sidecar: Union[Mapping[str, Any], _Pa
         ``v2_sq_bias`` (photons²), ``v1_sq``, ``v2_sq`` (normalized,
         dimensionless): the columns of ``v2ref estimate``.
     """
-    ...
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[NDArray[np.float64], Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -235,9 +237,8 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         (``truth`` holds what each window and bias convention must give;
         ``data.npy`` is the data file's name with ``out``, else empty).
     """
-    ...
 
-def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[Mapping[str, Any], _PathLike], *, bins: str='positive', bias: str='model', alpha: float=0.001, columns: Optional[Sequence[str]]=None) -> Dict[str, Any]:
+def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins: str='positive', bias: str='model', alpha: float=0.001, columns: Optional[Sequence[str]]=None) -> Dict[str, Any]:
     """Score a pipeline's per-row estimates against a set's truth, as ``v2ref score --json``.
 
     Parameters
@@ -273,7 +274,6 @@ def score(estimates: Union[Mapping[str, ArrayLike], ArrayLike], sidecar: Union[M
         stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
-    ...
 
 def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
@@ -374,7 +374,6 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
         expectations (None with piston), the same for V2², ``trials``,
         ``seed``, ``piston``, ``piston_effect`` and every input.
     """
-    ...
 
 def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False) -> Dict[str, Any]:
     """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
@@ -436,7 +435,6 @@ def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=
         ``spatial_freq_cpas``, ``sigma_eff_per_um`` (µm⁻¹), ``baseline_m``
         and, with a finite scan, ``finite_scan``.
     """
-    ...
 
 def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True) -> Dict[str, Any]:
     """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
@@ -507,7 +505,6 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
         ``window_factor``, and ``window_exact`` (None above the largest N
         the exact window statistics take).
     """
-    ...
 
 def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
@@ -601,9 +598,8 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         ``r0_over_v_s``, ``tau0_s``, ``piston_rms_um``, …, and ``results``: per
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
-    ...
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1e6, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1000000.0, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -721,7 +717,6 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
         with ``verify``.
     """
-    ...
 
 def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: float=0.45, wavelength_um: float=2.2, bandwidth_nm: float=400.0) -> float:
     """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
@@ -756,7 +751,6 @@ def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: f
         wavelength: W(σ) is constant between 1/(λ0 + Δλ/2) and 1/(λ0 −
         Δλ/2)).
     """
-    ...
 
 def claims(*, quick: bool=False) -> list:
     """Every claim of the paper: printed value, computed value, status, as ``v2ref claims --json``.
@@ -772,10 +766,53 @@ def claims(*, quick: bool=False) -> list:
         One entry per claim: ``id``, ``paper``, ``computed``, ``status``,
         ``note``, …
     """
-    ...
 
-def read_oifits(path: Any, *, accept_checksum_mismatch: bool = ...) -> List[Dict[str, Any]]: ...
-def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any = ..., v2_sq: Any = ..., bins: str = ..., bias: str = ...) -> None: ...
-def write_oifits_truth(path: Any, *, sidecar: Any) -> None: ...
-def read_oifits_estimates(path: Any, *, sidecar: Any, insname: Optional[str] = ..., estimator: Optional[str] = ..., target: Optional[str] = ..., bins: str = ..., bias: str = ..., accept_checksum_mismatch: bool = ...) -> Dict[str, Any]: ...
-def score_oifits(path: Any, *, sidecar: Any, bins: str = ..., bias: str = ..., alpha: float = ..., insname: Optional[str] = ..., estimator: Optional[str] = ..., target: Optional[str] = ..., accept_checksum_mismatch: bool = ...) -> Dict[str, Any]: ...
+def read_oifits(path: Any, *, accept_checksum_mismatch: bool=False) -> List[Dict[str, Any]]:
+    """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
+
+    Each is a dict: ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from
+    v2ref's ``V2R_EST`` keyword, else None), ``revn``, ``hdu``,
+    ``eff_wave_m`` (metres, one per channel) and ``vis2data``, ``vis2err``,
+    ``flag`` of shape (rows, channels). A malformed file raises ValueError;
+    so does one whose CHECKSUM or DATASUM no longer match its bytes, unless
+    ``accept_checksum_mismatch``. ``.fits.gz`` is read as well.
+    """
+
+def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, bins: str='positive', bias: str='model') -> None:
+    """Writes per-row estimates of a synth set as OIFITS v2 (``.fits``).
+
+    One ``OI_VIS2`` table per array given (INSNAME ``V2REF_V1SQ``,
+    ``V2REF_V2SQ``), one row per interferogram; ``VIS2ERR`` is the
+    closed-form standard deviation of the estimator at the set's
+    conditions. The configuration (band, baseline) comes from ``sidecar``
+    (a dict from ``synthesize()`` or a path). Written atomically.
+    """
+
+def write_oifits_truth(path: Any, *, sidecar: Any) -> None:
+    """Writes a synth set's truth (the expected V1², V2² of every row,
+    window positive, convention model) as OIFITS v2.
+    """
+
+def score_oifits(path: Any, *, sidecar: Any, bins: str='positive', bias: str='model', alpha: float=0.001, insname: Optional[str]=None, estimator: Optional[str]=None, target: Optional[str]=None, accept_checksum_mismatch: bool=False) -> Dict[str, Any]:
+    """Scores an OIFITS file of per-row estimates, as ``v2ref score
+    --estimates FILE.fits --json``: FLAGged rows left out and counted
+    (``flagged``); when fewer than half the set's rows are left, no score
+    but ``verdict`` "too few rows" and ``pass`` False. ``insname``,
+    ``estimator``, ``target`` choose tables and rows as the CLI's flags do;
+    ``accept_checksum_mismatch`` reads a file whose CHECKSUM or DATASUM no
+    longer match (refused otherwise).
+    """
+
+def read_oifits_estimates(path: Any, *, sidecar: Any, insname: Optional[str]=None, estimator: Optional[str]=None, target: Optional[str]=None, bins: str='positive', bias: str='model', accept_checksum_mismatch: bool=False) -> Dict[str, Any]:
+    """A pipeline's estimates from OIFITS, matched to a set's rows in order,
+    as ``v2ref score`` reads them.
+
+    Returns ``v1_sq`` and ``v2_sq`` (arrays of the unflagged rows, or None),
+    ``rows`` (in the file) and ``flagged`` (left out). ``insname`` chooses
+    the tables when there are several; ``estimator`` (``"v1_sq"`` or
+    ``"v2_sq"``) says what tables without v2ref's keyword hold; ``target``
+    (a TARGET name or TARGET_ID) chooses the rows when they are of several
+    targets. A table whose ``V2R_BINS`` or ``V2R_BIAS`` differs from
+    ``bins`` or ``bias`` is refused; so is a file whose checksums no
+    longer match, unless ``accept_checksum_mismatch``.
+    """

@@ -31,9 +31,9 @@ def _column(name: str, x: Any, rows: Optional[int] = None) -> Optional[_np.ndarr
 
 
 def _sidecar(sidecar: Any):
-    from . import _sidecar_text
+    from . import _sidecar_arg
 
-    return _sidecar_text(sidecar)
+    return _sidecar_arg(sidecar)
 
 
 def read_oifits(path: Any, *, accept_checksum_mismatch: bool = False) -> List[Dict[str, Any]]:
@@ -129,7 +129,7 @@ def score_oifits(
         _optional_str(n, v)
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
         raise TypeError(f"alpha: {alpha!r} is not a real number")
-    out = _v2ref.score_oifits(
+    return _v2ref.score_oifits(
         _path("path", path),
         text,
         name,
@@ -141,9 +141,6 @@ def score_oifits(
         target,
         _flag("accept_checksum_mismatch", accept_checksum_mismatch),
     )
-    import json as _json
-
-    return _json.loads(out)
 
 
 def read_oifits_estimates(

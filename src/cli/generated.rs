@@ -1,7 +1,7 @@
 //! The files written from the one declaration of the physical inputs
 //! ([`PARAMETERS`] and [`Physical::DEFAULT`]) and from the CLI's flags:
 //!
-//! - `python/v2ref/_physical.py`: the declaration as Python data (each
+//! - `python/v2ref/_declaration.py`: the declaration as Python data (each
 //!   input's kind, default and help text), which the package reads to check
 //!   its keyword arguments and to write their docstring entries;
 //! - the physical keyword arguments of each Python function's signature in
@@ -84,7 +84,7 @@ fn python(v: &Value) -> String {
     }
 }
 
-/// `python/v2ref/_physical.py`.
+/// `python/v2ref/_declaration.py`.
 fn physical_module() -> String {
     let defaults = serde_json::to_value(Physical::DEFAULT).unwrap();
     let keyword = |n: &str| format!("``{n}``");
@@ -153,14 +153,21 @@ fn signature_lines(params: &[&Parameter]) -> String {
 fn package_source(text: &str) -> String {
     let mut out = text.to_owned();
     for (function, command, not) in FUNCTIONS {
-        let def = out
-            .find(&format!("\ndef {function}("))
-            .unwrap_or_else(|| panic!("__init__.py: no def {function}"));
-        let begin = def + out[def..].find(BEGIN).expect("the begin marker") + BEGIN.len();
-        let end = begin + out[begin..].find(END).expect("the end marker");
-        let lines = signature_lines(&keywords(command, not));
-        out.replace_range(begin..end, &lines);
+        out = with_keywords(&out, function, &keywords(command, not));
     }
+    out
+}
+
+/// `text` with the generated keyword arguments of `def function(` made
+/// anew: `params`.
+fn with_keywords(text: &str, function: &str, params: &[&Parameter]) -> String {
+    let def = text
+        .find(&format!("\ndef {function}("))
+        .unwrap_or_else(|| panic!("__init__.py: no def {function}"));
+    let begin = def + text[def..].find(BEGIN).expect("the begin marker") + BEGIN.len();
+    let end = begin + text[begin..].find(END).expect("the end marker");
+    let mut out = text.to_owned();
+    out.replace_range(begin..end, &signature_lines(params));
     out
 }
 
@@ -197,7 +204,7 @@ fn conventions(text: &str) -> String {
 /// given what it holds now.
 fn files() -> Vec<(&'static str, fn(&str) -> String)> {
     vec![
-        ("python/v2ref/_physical.py", |_| physical_module()),
+        ("python/v2ref/_declaration.py", |_| physical_module()),
         ("python/v2ref/__init__.py", package_source),
         ("docs/conventions.md", conventions),
     ]
@@ -232,13 +239,13 @@ fn generated_files_are_the_declarations() {
 #[test]
 fn a_changed_declaration_changes_the_files() {
     let source = "\ndef bias(\n    *,\n".to_owned() + BEGIN + END + ") -> None:\n";
-    let made = package_source(&source);
+    let made = with_keywords(&source, "bias", &keywords("bias", &[]));
     assert!(made.contains("    wavelength_um: float = 2.2,\n"), "{made}");
     assert!(made.contains("    spectrum_csv: Optional[_PathLike] = None,\n"));
     assert!(made.contains("    source: str = \"ud\",\n    diameter_mas"));
     assert!(made.contains("    samples: int = 128,\n"));
     assert!(!made.contains("photons"), "bias takes no light: {made}");
-    assert_eq!(package_source(&made), made);
+    assert_eq!(with_keywords(&made, "bias", &keywords("bias", &[])), made);
     let piston = keywords("piston", &["fringe_hz"]);
     assert!(piston.iter().any(|p| p.name == "wind_mps"));
     assert!(!piston

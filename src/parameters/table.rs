@@ -403,6 +403,24 @@ mod tests {
         );
     }
 
+    /// A choice's accepted values in words are its words
+    /// ([`crate::words::Words`]), as the edges accept them.
+    #[test]
+    fn a_choice_accepts_its_words() {
+        use crate::words::Words;
+        fn listed<T: Words>() -> String {
+            let words: Vec<&str> = T::WORDS.iter().map(|w| w.word).collect();
+            let (last, rest) = words.split_last().unwrap();
+            format!("{} or {last}", rest.join(", "))
+        }
+        assert_eq!(
+            Parameter::SOURCE.accepted,
+            listed::<super::super::SourceKind>()
+        );
+        let reference = listed::<crate::piston::PistonReference>();
+        assert_eq!(Parameter::REFERENCE.accepted, reference);
+    }
+
     /// The bounds of `accepted` in words: (low, low included, high, high
     /// included) for `[> ]A[ λ0] to [under ]B[ λ0][ (…)]`
     /// and `> 0`, with λ0 the default's, in nm (the bandwidth's); None for

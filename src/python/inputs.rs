@@ -2,10 +2,10 @@
 //! library's [`Physical`] (its defaults, its builders: the same as the
 //! CLI's flags).
 
+use super::values::to_py;
 use super::Fail;
 use crate::parameters::PARAMETERS;
 use crate::words::Words;
-use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -83,14 +83,16 @@ impl Physical {
 }
 
 /// Adds the one declaration of the physical inputs to the module:
-/// `PHYSICAL_KEYWORDS` (their names, in order), `PHYSICAL_DEFAULTS` and
-/// `PHYSICAL_PARAMETERS` (JSON: [`PARAMETERS`], each with its help text
-/// `doc` and what leaving it unset means, `unset_doc`, other inputs named
-/// ``` ``name`` ```, for the docstrings).
+/// `PHYSICAL_KEYWORDS` (their names, in order), `PHYSICAL_DEFAULTS` (a dict)
+/// and `PHYSICAL_PARAMETERS` (a list of dicts: [`PARAMETERS`], each with its
+/// help text `doc` and what leaving it unset means, `unset_doc`, other
+/// inputs named ``` ``name`` ```). The package reads the same declaration
+/// from `_declaration.py`, generated from it.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
     let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
     m.add("PHYSICAL_KEYWORDS", names)?;
-    m.add("PHYSICAL_DEFAULTS", json(&Physical::default())?)?;
+    m.add("PHYSICAL_DEFAULTS", to_py(py, &Physical::default())?)?;
     let keyword = |n: &str| format!("``{n}``");
     let table: Vec<serde_json::Value> = PARAMETERS
         .iter()
@@ -101,10 +103,5 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
             v
         })
         .collect();
-    m.add("PHYSICAL_PARAMETERS", json(&table)?)
-}
-
-/// `v` as JSON text.
-fn json<T: serde::Serialize>(v: &T) -> PyResult<String> {
-    serde_json::to_string(v).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    m.add("PHYSICAL_PARAMETERS", to_py(py, &table)?)
 }

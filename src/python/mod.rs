@@ -1,8 +1,9 @@
 //! Python bindings (feature `python`): the extension module `v2ref._v2ref`
 //! that the Python package `v2ref` (`python/v2ref/`) wraps. A thin layer:
 //! convert, call the library, convert back. Answers that the CLI prints as
-//! JSON come back as JSON text built from the same fields (the Python side
-//! parses it), per-row estimates and interferograms as NumPy arrays.
+//! JSON come back as Python objects made from the same fields (dicts and
+//! lists, [`values`]; no JSON text in between), per-row estimates and
+//! interferograms as NumPy arrays.
 //!
 //! Long calls release the GIL and run on worker threads; the calling
 //! thread checks for signals every 100 ms and, on Ctrl-C, raises
@@ -12,7 +13,8 @@
 mod answers;
 mod inputs;
 mod oifits;
-mod output;
+pub mod output;
+pub mod values;
 
 use crate::cancel::{checkpoint, run_cancellable, Cancelled, Token};
 use crate::error::Error;
@@ -185,7 +187,6 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
         crate::commands::ESTIMATE_COLUMNS.to_vec(),
     )?;
     oifits::register(m)?;
-    output::register(m)?;
     // A daemon thread still in a call at exit must not take the GIL back
     // (Python would end it by unwinding through Rust: an abort).
     let atexit = m.py().import("atexit")?;

@@ -3,6 +3,7 @@
 //! wrappers (`python/v2ref/oifits.py`) check types and read sidecars.
 
 use super::ok;
+use super::values::{to_py, SidecarArg};
 use crate::conformance::estimate::BiasConvention;
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::{Sidecar, FORMAT};
@@ -35,8 +36,13 @@ fn renamed(e: Error, from: &str, to: &'static str) -> Error {
     }
 }
 
-fn sidecar_of(text: &str, name: &str) -> PyResult<Sidecar> {
-    let sc: Sidecar = serde_json::from_str(text)
+/// A sidecar from a file's text or a dict (`name`: where it came from).
+fn sidecar_of(sidecar: &Bound<'_, PyAny>, name: &str) -> PyResult<Sidecar> {
+    let parsed = match SidecarArg::of(sidecar)? {
+        SidecarArg::Text(text) => serde_json::from_str(&text),
+        SidecarArg::Value(v) => serde_json::from_value(v),
+    };
+    let sc: Sidecar = parsed
         .map_err(|e| PyValueError::new_err(format!("sidecar: {name}: not a v2ref sidecar: {e}")))?;
     if sc.format != FORMAT {
         return Err(PyValueError::new_err(format!(
@@ -98,7 +104,7 @@ fn write_oifits(
     path: &str,
     v1_sq: Option<PyReadonlyArray1<'_, f64>>,
     v2_sq: Option<PyReadonlyArray1<'_, f64>>,
-    sidecar: &str,
+    sidecar: &Bound<'_, PyAny>,
     sidecar_name: &str,
     bins: &str,
     bias: &str,
@@ -134,7 +140,7 @@ fn write_oifits(
 
 /// A synth set's truth (window positive, convention model) as OIFITS v2.
 #[pyfunction]
-fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult<()> {
+fn write_oifits_truth(path: &str, sidecar: &Bound<'_, PyAny>, sidecar_name: &str) -> PyResult<()> {
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let doc = ok(docs::truth_doc(
         &sc,
@@ -153,7 +159,7 @@ fn write_oifits_truth(path: &str, sidecar: &str, sidecar_name: &str) -> PyResult
 fn read_oifits_estimates<'py>(
     py: Python<'py>,
     path: &str,
-    sidecar: &str,
+    sidecar: &Bound<'py, PyAny>,
     sidecar_name: &str,
     insname: Option<&str>,
     estimator: Option<&str>,
@@ -206,8 +212,9 @@ fn read_oifits_estimates<'py>(
 #[pyo3(signature = (path, sidecar, sidecar_name, bins, bias, alpha, insname, estimator, target, accept_checksum_mismatch))]
 #[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
 fn score_oifits(
+    py: Python<'_>,
     path: &str,
-    sidecar: &str,
+    sidecar: &Bound<'_, PyAny>,
     sidecar_name: &str,
     bins: &str,
     bias: &str,
@@ -216,7 +223,7 @@ fn score_oifits(
     estimator: Option<&str>,
     target: Option<&str>,
     accept_checksum_mismatch: bool,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let window: BinWindow = ok(Words::from_word("bins", bins))?;
     let convention: BiasConvention = ok(Words::from_word("bias", bias))?;
     ok(crate::conformance::score::critical_z(alpha, 1))?;
@@ -276,7 +283,7 @@ fn score_oifits(
             .map_err(|e| PyValueError::new_err(format!("cannot serialize the answer: {e}")))?;
         answer.extend(report.as_object().cloned().unwrap_or_default());
     }
-    Ok(serde_json::Value::Object(answer).to_string())
+    to_py(py, &serde_json::Value::Object(answer))
 }
 
 fn estimator_of(estimator: Option<&str>) -> PyResult<Option<Estimator>> {

@@ -3,8 +3,8 @@
 //! existing file replaced only with `force=True`, never through a link.
 
 use super::ok;
+use crate::conformance::sidecar::Sidecar;
 use crate::formats::{write_text_atomic, NpyRowWriter, OutputSet};
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods as _};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -15,15 +15,14 @@ fn with_ext(out: &Path, ext: &str) -> PathBuf {
     out.with_file_name(name)
 }
 
-/// Writes a set from `synthesize(out=...)`: OUT.npy (the rows) and
-/// OUT.json (the sidecar's text), as `v2ref synth --out OUT` does.
-#[pyfunction]
-#[pyo3(signature = (out, data, sidecar, force))]
-pub(super) fn write_set(
+/// Writes a set from `synthesize(out=...)`: OUT.npy (the rows, `values`
+/// of `cols` columns) and OUT.json (the sidecar, pretty), as `v2ref synth
+/// --out OUT` does.
+pub fn write_set(
     py: Python<'_>,
-    out: PathBuf,
-    data: PyReadonlyArray2<'_, f64>,
-    sidecar: String,
+    out: &Path,
+    (values, cols): (&[f64], usize),
+    sidecar: &Sidecar,
     force: bool,
 ) -> PyResult<()> {
     if out.file_name().filter(|n| !n.is_empty()).is_none() {
@@ -32,21 +31,19 @@ pub(super) fn write_set(
             out.display()
         )));
     }
-    let (npy, json) = (with_ext(&out, ".npy"), with_ext(&out, ".json"));
+    // Pretty, as `v2ref synth` writes OUT.json.
+    let text = serde_json::to_string_pretty(sidecar).map_err(|e| {
+        pyo3::exceptions::PyValueError::new_err(format!("cannot serialize the sidecar: {e}"))
+    })?;
+    let (npy, json) = (with_ext(out, ".npy"), with_ext(out, ".json"));
     let set = ok(OutputSet::begin(&[(&npy, "out"), (&json, "out")], force))?;
-    let (rows, cols) = (data.shape()[0], data.shape()[1]);
-    let values = data.as_slice()?;
+    let rows = values.len() / cols.max(1);
     ok(py.allow_threads(|| {
         set.write(|| {
             let mut w = NpyRowWriter::create(&npy, rows as u64, cols, "out")?;
             w.write_rows(values)?;
             w.finish()?;
-            write_text_atomic(&json, &(sidecar + "\n"))
+            write_text_atomic(&json, &(text + "\n"))
         })
     }))
-}
-
-/// Registers the writers.
-pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(write_set, m)?)
 }

@@ -2,6 +2,7 @@
 //! argument and where in it the value is unusable.
 
 use crate::conformance::sidecar::Sidecar;
+use crate::python::values::SidecarArg;
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -39,9 +40,34 @@ pub(super) fn matrix<'a>(
     Ok((rows, cols, data))
 }
 
-/// A sidecar from its JSON text (`name`: where it came from, for messages).
-pub(super) fn parse_sidecar(text: &str, name: &str) -> PyResult<Sidecar> {
-    crate::python::ok(Sidecar::from_json(text, std::path::Path::new(name)))
+/// A sidecar from a file's text or a dict (`name`: where it came from,
+/// for messages): the format checked first, as [`Sidecar::from_json`] does.
+pub(super) fn parse_sidecar(sidecar: &Bound<'_, PyAny>, name: &str) -> PyResult<Sidecar> {
+    use crate::conformance::sidecar::FORMAT;
+    use crate::error::Error;
+    use serde_json::Value;
+    let path = std::path::Path::new(name);
+    let value = match SidecarArg::of(sidecar)? {
+        SidecarArg::Text(text) => return crate::python::ok(Sidecar::from_json(&text, path)),
+        SidecarArg::Value(v) => v,
+    };
+    let format = match value.get("format") {
+        Some(Value::String(f)) if f == FORMAT => {
+            let sc = serde_json::from_value::<Sidecar>(value).map_err(|e| {
+                Error::data(
+                    "sidecar",
+                    path,
+                    "fields",
+                    format!("not a v2ref sidecar: {e}"),
+                )
+            });
+            return crate::python::ok(sc);
+        }
+        Some(f) => f.to_string(),
+        None => "missing".to_owned(),
+    };
+    let reason = format!("{format}; \"{FORMAT}\" is needed");
+    crate::python::ok(Err(Error::data("sidecar", path, "field format", reason)))
 }
 
 /// The estimates of column `name` (`v1_sq` or `v2_sq`) given to `score`:

@@ -7,7 +7,7 @@
 //! simulator and the conformance kit (`simulate`, `synthesize`, `estimate`,
 //! `score`); `plan.rs` the planner (`plan`, `photon_rate`); `data.rs`
 //! checks the arrays and sidecars they are given. The enum arguments and
-//! the JSON text of the answers are parsed and built here.
+//! the answers are parsed and built here.
 
 mod data;
 mod paper;
@@ -20,9 +20,7 @@ use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
 use crate::noise::Formula;
 use crate::words::Words;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use serde::Serialize;
 
 /// The `bins` argument.
 fn window(s: &str) -> Result<BinWindow> {
@@ -37,12 +35,6 @@ fn convention(s: &str) -> Result<BiasConvention> {
 /// The `formula` argument.
 fn formula(s: &str) -> Result<Formula> {
     Formula::from_word("formula", s)
-}
-
-/// An answer as JSON text (the Python side parses it).
-fn json<T: Serialize>(value: &T) -> PyResult<String> {
-    serde_json::to_string(value)
-        .map_err(|e| PyValueError::new_err(format!("cannot serialize the answer: {e}")))
 }
 
 /// `check_threads`: a thread count checked as `--threads` is (0 to

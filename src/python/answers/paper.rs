@@ -1,9 +1,10 @@
 //! The paper's effects one at a time: `bias`, `snr`, `piston`, `claims`.
 
-use super::{formula, json, window};
+use super::{formula, window};
 use crate::commands::{self, cost, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::python::inputs::Physical;
+use crate::python::values::to_py;
 use crate::python::{interruptible, ok, warn_cost};
 use crate::reproduction::cases::Effort;
 use crate::words::Words;
@@ -18,13 +19,12 @@ pub(super) fn bias(
     physical: &Bound<'_, PyDict>,
     bins: &str,
     finite_scan: bool,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     warn_cost(py, "bias", &ok(cost::bias(&p, finite_scan))?)?;
-    json(&interruptible(py, |_| {
-        commands::bias::answer(&p, window, finite_scan)
-    })?)
+    let answer = interruptible(py, |_| commands::bias::answer(&p, window, finite_scan))?;
+    to_py(py, &answer)
 }
 
 /// `snr`: `v2ref snr --json`.
@@ -35,14 +35,13 @@ pub(super) fn snr(
     physical: &Bound<'_, PyDict>,
     bins: &str,
     formula: &str,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let p = Physical::from_dict(physical)?;
     let window = ok(window(bins))?;
     let formula = ok(self::formula(formula))?;
     warn_cost(py, "snr", &ok(cost::snr(&p))?)?;
-    json(&interruptible(py, |_| {
-        commands::snr::answer(&p, window, formula)
-    })?)
+    let answer = interruptible(py, |_| commands::snr::answer(&p, window, formula))?;
+    to_py(py, &answer)
 }
 
 /// `piston`: `v2ref piston --json` (`physical` without `fringe_hz`; `psd`
@@ -60,7 +59,7 @@ pub(super) fn piston(
     threads: usize,
     psd: &str,
     wind_angle_deg: f64,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let psd = ok(PistonPsdModel::from_word("psd", psd))?;
     let p = Physical::from_dict(physical)?;
     let req = PistonRequest {
@@ -78,14 +77,14 @@ pub(super) fn piston(
     let answer = interruptible(py, |tick| {
         commands::piston::run(&prepared, &p, &req, Some(tick))
     })?;
-    json(&answer)
+    to_py(py, &answer)
 }
 
 /// `claims`: `v2ref claims --json` (`quick`: `--quick`).
 #[pyfunction]
 #[pyo3(signature = (quick))]
-pub(super) fn claims(py: Python<'_>, quick: bool) -> PyResult<String> {
+pub(super) fn claims(py: Python<'_>, quick: bool) -> PyResult<PyObject> {
     let effort = if quick { Effort::Quick } else { Effort::Full };
     let results = interruptible(py, |_| Ok(crate::reproduction::claims::evaluate(effort)))?;
-    json(&results)
+    to_py(py, &results)
 }

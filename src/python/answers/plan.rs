@@ -1,9 +1,9 @@
 //! The planner: `plan`, `photon_rate`.
 
-use super::json;
 use crate::commands::{self, plan::PlanRequest};
 use crate::conformance::estimate::BiasConvention;
 use crate::python::inputs::Physical;
+use crate::python::values::to_py;
 use crate::python::{interruptible, ok, warn_cost};
 use crate::words::Words;
 use pyo3::prelude::*;
@@ -33,7 +33,7 @@ pub(super) fn plan(
     oifits: Option<PathBuf>,
     bias: &str,
     verify_observations: Option<u64>,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::check_fits_extension(path, "oifits"))?;
     }
@@ -77,7 +77,7 @@ pub(super) fn plan(
             &answer.plan,
         ))?;
     }
-    json(&answer)
+    to_py(py, &answer)
 }
 
 /// `photon_rate`: the photon rate at the detector from a magnitude (2MASS

@@ -2,7 +2,7 @@
 //! `synthesize`, `estimate`, `score`.
 
 use super::data::{data_error, estimate_column, matrix, parse_sidecar};
-use super::{convention, formula, json, window};
+use super::{convention, formula, window};
 use crate::commands::cost::{self, SetOutput};
 use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
 use crate::commands::synth::{self as synth_set, SetSize};
@@ -12,6 +12,7 @@ use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::Trials;
 use crate::python::inputs::Physical;
+use crate::python::values::to_py;
 use crate::python::{interruptible, ok, warn_cost};
 use crate::simulator::report::{check_trials, Estimation, SimulateReport};
 use crate::simulator::{simulate as run_simulation, Model};
@@ -25,7 +26,8 @@ use crate::commands::ESTIMATE_COLUMNS;
 
 /// `estimate`: per-row V1², V2² (raw, bias, normalized), as `v2ref
 /// estimate`. `physical` holds only the keyword arguments given;
-/// `sidecar` is a sidecar's JSON text, `sidecar_name` where it came from.
+/// `sidecar` is a sidecar (a file's text or a dict), `sidecar_name` where
+/// it came from.
 #[pyfunction]
 #[pyo3(signature = (interferograms, physical, sidecar, sidecar_name, continuum_subtracted, bins, bias, calibrator, threads))]
 #[allow(clippy::too_many_arguments)]
@@ -33,7 +35,7 @@ pub(super) fn estimate<'py>(
     py: Python<'py>,
     interferograms: PyReadonlyArray2<'py, f64>,
     physical: &Bound<'py, PyDict>,
-    sidecar: Option<&str>,
+    sidecar: Option<Bound<'py, PyAny>>,
     sidecar_name: &str,
     continuum_subtracted: Option<bool>,
     bins: &str,
@@ -46,7 +48,7 @@ pub(super) fn estimate<'py>(
     let (rows, cols, data) = matrix("interferograms", &interferograms)?;
     let given = Given {
         physical,
-        sidecar: sidecar.map(|text| (text, sidecar_name)),
+        sidecar: sidecar.as_ref().map(|s| (s, sidecar_name)),
         continuum_subtracted,
     };
     let config = configuration(given)?;
@@ -103,14 +105,14 @@ const INTERFEROGRAMS: RowsName<'static> = RowsName {
 /// keyword may be given).
 struct Given<'a, 'py> {
     physical: &'a Bound<'py, PyDict>,
-    sidecar: Option<(&'a str, &'a str)>,
+    sidecar: Option<(&'a Bound<'py, PyAny>, &'a str)>,
     continuum_subtracted: Option<bool>,
 }
 
 /// The configuration of `estimate`: a sidecar's (its set's rows), or the
 /// keyword arguments' (N from the rows).
 fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
-    let Some((text, sidecar_name)) = given.sidecar else {
+    let Some((sidecar, sidecar_name)) = given.sidecar else {
         let p = Physical::from_dict(given.physical)?;
         let cs = given.continuum_subtracted.unwrap_or(true);
         return ok(Configuration::from_physical(&p, cs));
@@ -126,7 +128,7 @@ fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
         ));
     }
     Ok(Configuration::from_sidecar(parse_sidecar(
-        text,
+        sidecar,
         sidecar_name,
     )?))
 }
@@ -146,10 +148,12 @@ fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Boun
     Ok(out)
 }
 
-/// `synthesize`: a set's rows (2-D array) and its sidecar (JSON text), as
-/// `v2ref synth` writes them; `npy` is the data file name recorded.
+/// `synthesize`: a set's rows (2-D array) and its sidecar (a dict), as
+/// `v2ref synth` writes them; `npy` is the data file name recorded. With
+/// `out`, also writes the set as `v2ref synth --out OUT` does
+/// ([`super::super::output::write_set`]).
 #[pyfunction]
-#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout))]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn synthesize<'py>(
     py: Python<'py>,
@@ -161,7 +165,9 @@ pub(super) fn synthesize<'py>(
     keep_continuum: bool,
     npy: String,
     layout: &str,
-) -> PyResult<(Bound<'py, PyAny>, String)> {
+    out: Option<std::path::PathBuf>,
+    force: bool,
+) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
     let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
     // None: sized by what the truth needs (`default_reference_blocks`).
@@ -200,11 +206,11 @@ pub(super) fn synthesize<'py>(
         let sidecar = synth_set::synthesize(&model, &size, (npy, None), &mut sink, tick)?;
         Ok((data, sidecar))
     })?;
+    if let Some(out) = out {
+        crate::python::output::write_set(py, &out, (&data, n), &sidecar, force)?;
+    }
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
-    // Pretty, as `v2ref synth` writes OUT.json (`write_set` writes this text).
-    let text = serde_json::to_string_pretty(&sidecar)
-        .map_err(|e| PyValueError::new_err(format!("cannot serialize the sidecar: {e}")))?;
-    Ok((array.into_any(), text))
+    Ok((array.into_any(), to_py(py, &sidecar)?))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.
@@ -220,7 +226,7 @@ pub(super) fn simulate(
     trials: u64,
     seed: u64,
     threads: usize,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let (window, bias, formula) = (
         ok(window(bins))?,
         ok(convention(bias))?,
@@ -247,7 +253,7 @@ pub(super) fn simulate(
         bias,
         formula,
     };
-    json(&SimulateReport::new(inputs, estimation, size, &run))
+    to_py(py, &SimulateReport::new(inputs, estimation, size, &run))
 }
 
 #[derive(Serialize)]
@@ -267,15 +273,16 @@ struct ScoreAnswer<'a> {
 #[pyo3(signature = (v1_sq, v2_sq, sidecar, sidecar_name, estimates_name, bins, bias, alpha))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn score(
+    py: Python<'_>,
     v1_sq: Option<PyReadonlyArray1<'_, f64>>,
     v2_sq: Option<PyReadonlyArray1<'_, f64>>,
-    sidecar: &str,
+    sidecar: &Bound<'_, PyAny>,
     sidecar_name: &str,
     estimates_name: &str,
     bins: &str,
     bias: &str,
     alpha: f64,
-) -> PyResult<String> {
+) -> PyResult<PyObject> {
     let window = ok(window(bins))?;
     let bias = ok(convention(bias))?;
     let sc = parse_sidecar(sidecar, sidecar_name)?;
@@ -304,12 +311,15 @@ pub(super) fn score(
     }
     let rows = sc.data.rows;
     let report = ok(score_report(slices[0], slices[1], truth, rows, alpha))?;
-    json(&ScoreAnswer {
-        sidecar: sidecar_name,
-        estimates: estimates_name,
-        bins: window,
-        bias,
-        rows,
-        report: &report,
-    })
+    to_py(
+        py,
+        &ScoreAnswer {
+            sidecar: sidecar_name,
+            estimates: estimates_name,
+            bins: window,
+            bias,
+            rows,
+            report: &report,
+        },
+    )
 }

@@ -1,0 +1,132 @@
+"""Writes python/v2ref/__init__.pyi, the package's stub, from its source.
+
+Each public function of ``python/v2ref/__init__.py`` and
+``python/v2ref/oifits.py`` (those in ``__all__``) gets its signature as
+written in the source and the docstring ``help()`` shows: the physical
+keyword arguments' entries are filled in from the declaration
+(``_declaration.py``, generated from the library's) as the package does at
+import (``_docstrings.fill``). Needs only the standard library, not the
+built package. ``scripts/regenerate.sh`` runs it; ``--check`` exits 1
+(printing a diff) when the stub is not what the source makes, as
+``tests/python/test_parameters.py`` does.
+"""
+
+import ast
+import difflib
+import importlib.util
+import inspect
+import pathlib
+import sys
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "python" / "v2ref"
+STUB = PACKAGE / "__init__.pyi"
+
+HEADER = '''"""Type stubs of the v2ref package (units in every parameter description).
+
+Generated from the package's source by scripts/stub.py: do not edit.
+"""
+
+import os as _os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as _np
+
+_PathLike = Union[str, _os.PathLike[str]]
+
+__version__: str
+ESTIMATE_COLUMNS: Tuple[str, ...]
+'''
+
+
+def load(name):
+    """The module ``PACKAGE/name.py``, loaded by path (not through the package)."""
+    spec = importlib.util.spec_from_file_location(name, PACKAGE / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def exclusions(tree, node):
+    """The names ``@_documented(exclude=...)`` leaves out of ``node``'s entries."""
+    constants = {
+        t.id: s.value
+        for s in tree.body
+        if isinstance(s, ast.Assign)
+        for t in s.targets
+        if isinstance(t, ast.Name)
+    }
+    for d in node.decorator_list:
+        if isinstance(d, ast.Call) and getattr(d.func, "id", None) == "_documented":
+            for k in d.keywords:
+                value = constants.get(getattr(k.value, "id", None), k.value)
+                return set(ast.literal_eval(value))
+            return set()
+    return None
+
+
+def docstring(text):
+    """A docstring's lines in the stub, indented as a function body."""
+    lines = text.split("\n")
+    return ['    """' + lines[0]] + [("    " + l).rstrip() for l in lines[1:]] + ['    """']
+
+
+def functions(path, public, declaration, docstrings):
+    """The stub's lines of each function of ``path`` named in ``public``."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    out = []
+    for node in tree.body:
+        if not isinstance(node, ast.FunctionDef) or node.name not in public:
+            continue
+        returns = f" -> {ast.unparse(node.returns)}" if node.returns else ""
+        out += ["", f"def {node.name}({ast.unparse(node.args)}){returns}:"]
+        doc = ast.get_docstring(node, clean=False)
+        if doc is None:
+            out[-1] += " ..."
+            continue
+        excluded = exclusions(tree, node)
+        if excluded is not None:
+            a = node.args
+            keywords = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs]
+            doc = docstrings.fill(declaration, doc, [k for k in keywords if k not in excluded])
+        out += docstring(inspect.cleandoc(doc))
+    return out
+
+
+def public_names():
+    """``__all__`` of the package: its list, and the names added to it."""
+    tree = ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))
+    names = []
+    for s in tree.body:
+        target = getattr(s, "target", None) or (getattr(s, "targets", None) or [None])[0]
+        if getattr(target, "id", None) == "__all__":
+            names += ast.literal_eval(s.value)
+    return set(names)
+
+
+def stub():
+    """The stub's text."""
+    declaration, docstrings = load("_declaration"), load("_docstrings")
+    public = public_names()
+    lines = HEADER.rstrip("\n").split("\n")
+    for name in ("__init__.py", "oifits.py"):
+        lines += functions(PACKAGE / name, public, declaration, docstrings)
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    want = stub()
+    if sys.argv[1:] == ["--check"]:
+        now = STUB.read_text(encoding="utf-8")
+        if now != want:
+            sys.stdout.writelines(
+                difflib.unified_diff(now.splitlines(True), want.splitlines(True), str(STUB), "made")
+            )
+            print(f"{STUB} is out of date: run scripts/regenerate.sh", file=sys.stderr)
+            sys.exit(1)
+        return
+    STUB.write_text(want, encoding="utf-8")
+    print(f"{STUB}: written")
+
+
+if __name__ == "__main__":
+    main()
