@@ -56,7 +56,7 @@
 //! so that each can be read, tested and changed with only what is under it
 //! in mind:
 //!
-//! 1. foundation: [`error`], [`tolerance`], [`bounds`], [`cleanup`], [`math`], [`montecarlo`];
+//! 1. foundation: [`error`], [`tolerance`], [`bounds`], [`cleanup`], [`math`], [`montecarlo`], [`words`] (the words that name each choice);
 //! 2. [`formalism`];
 //! 3. [`record`] (the inputs of a computation as plain values, and the record of them an answer carries);
 //! 4. [`bias`];

@@ -16,6 +16,7 @@ const LEVELS: &[&[&str]] = &[
         "cleanup",
         "math",
         "montecarlo",
+        "words",
     ],
     &["formalism"],
     &["record"],

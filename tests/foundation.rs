@@ -917,3 +917,48 @@ fn mean_counts_are_continuum_plus_modulation() {
     };
     assert_eq!(ifg.mean_counts(), [12.5, 6.0, 10.0]);
 }
+
+/// The words of each choice of the library (`src/words.rs`).
+mod words {
+    use v2ref::conformance::estimate::BiasConvention;
+    use v2ref::formalism::estimator::BinWindow;
+    use v2ref::noise::Formula;
+    use v2ref::parameters::SourceKind;
+    use v2ref::piston::spectrum::PistonPsdModel;
+    use v2ref::piston::PistonReference;
+    use v2ref::simulator::RowLayout;
+    use v2ref::words::Words;
+
+    /// Each word is its value's serde name (what JSON writes), once, and
+    /// names that value back; a word not listed is refused naming the
+    /// parameter and the words.
+    fn check<T: Words + serde::Serialize + std::fmt::Debug>() {
+        let mut seen = Vec::new();
+        for w in T::WORDS {
+            assert_eq!(serde_json::to_value(w.value).unwrap(), w.word, "{w:?}");
+            assert_eq!(w.value.word(), w.word);
+            assert_eq!(T::from_word("p", w.word).unwrap(), w.value);
+            assert!(!w.help.is_empty() && !seen.contains(&w.word), "{w:?}");
+            seen.push(w.word);
+        }
+        let e = T::from_word("p", "nope").unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("'nope' is not one of: {}", T::listed(", "))),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn words_are_the_serde_names() {
+        check::<BinWindow>();
+        check::<BiasConvention>();
+        check::<Formula>();
+        check::<SourceKind>();
+        check::<PistonReference>();
+        check::<PistonPsdModel>();
+        check::<RowLayout>();
+        check::<v2ref::plan::photometry::Band2Mass>();
+        assert_eq!(BinWindow::listed(", "), "positive, band, all");
+        assert_eq!(RowLayout::listed(" or "), "sequences or observation");
+    }
+}
