@@ -200,9 +200,11 @@ fn conventions(text: &str) -> String {
     format!("{}{}{}", &text[..start], docs_table(), &text[stop..])
 }
 
-/// Each generated file: its path in the repository and what it should hold
-/// given what it holds now.
-fn files() -> Vec<(&'static str, fn(&str) -> String)> {
+/// What a generated file should hold, given what it holds now.
+type Make = fn(&str) -> String;
+
+/// Each generated file: its path in the repository and how it is made.
+fn files() -> Vec<(&'static str, Make)> {
     vec![
         ("python/v2ref/_declaration.py", |_| physical_module()),
         ("python/v2ref/__init__.py", package_source),

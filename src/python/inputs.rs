@@ -4,7 +4,7 @@
 
 use super::values::to_py;
 use super::Fail;
-use crate::parameters::PARAMETERS;
+use crate::parameters::{Parameter, PARAMETERS};
 use crate::words::Words;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -52,30 +52,34 @@ impl Physical {
         }
         let d0 = Physical::default();
         let p = Physical {
-            wavelength_um: item(d, "wavelength_um", d0.wavelength_um)?,
-            bandwidth_nm: item(d, "bandwidth_nm", d0.bandwidth_nm)?,
-            spectrum_csv: item(d, "spectrum_csv", d0.spectrum_csv)?,
-            source: choice(d, "source", d0.source)?,
-            diameter_mas: item(d, "diameter_mas", d0.diameter_mas)?,
-            spatial_freq_cpas: item(d, "spatial_freq_cpas", d0.spatial_freq_cpas)?,
-            baseline_m: item(d, "baseline_m", d0.baseline_m)?,
-            dispersion_pp_rad: item(d, "dispersion_pp_rad", d0.dispersion_pp_rad)?,
-            stroke_um: item(d, "stroke_um", d0.stroke_um)?,
-            dx_um: item(d, "dx_um", d0.dx_um)?,
-            samples: item(d, "samples", d0.samples)?,
-            integrating: item(d, "integrating", d0.integrating)?,
-            visibility: item(d, "visibility", d0.visibility)?,
-            photons: item(d, "photons", d0.photons)?,
-            read_noise: item(d, "read_noise", d0.read_noise)?,
-            photon_noise: item(d, "photon_noise", d0.photon_noise)?,
-            fringe_hz: item(d, "fringe_hz", d0.fringe_hz)?,
-            wind_mps: item(d, "wind_mps", d0.wind_mps)?,
-            seeing_arcsec: item(d, "seeing_arcsec", d0.seeing_arcsec)?,
-            seeing_wavelength_um: item(d, "seeing_wavelength_um", d0.seeing_wavelength_um)?,
-            aperture_m: item(d, "aperture_m", d0.aperture_m)?,
-            outer_scale_m: item(d, "outer_scale_m", d0.outer_scale_m)?,
-            sub_samples: item(d, "sub_samples", d0.sub_samples)?,
-            reference: choice(d, "reference", d0.reference)?,
+            wavelength_um: item(d, Parameter::WAVELENGTH_UM.name, d0.wavelength_um)?,
+            bandwidth_nm: item(d, Parameter::BANDWIDTH_NM.name, d0.bandwidth_nm)?,
+            spectrum_csv: item(d, Parameter::SPECTRUM_CSV.name, d0.spectrum_csv)?,
+            source: choice(d, Parameter::SOURCE.name, d0.source)?,
+            diameter_mas: item(d, Parameter::DIAMETER_MAS.name, d0.diameter_mas)?,
+            spatial_freq_cpas: item(d, Parameter::SPATIAL_FREQ_CPAS.name, d0.spatial_freq_cpas)?,
+            baseline_m: item(d, Parameter::BASELINE_M.name, d0.baseline_m)?,
+            dispersion_pp_rad: item(d, Parameter::DISPERSION_PP_RAD.name, d0.dispersion_pp_rad)?,
+            stroke_um: item(d, Parameter::STROKE_UM.name, d0.stroke_um)?,
+            dx_um: item(d, Parameter::DX_UM.name, d0.dx_um)?,
+            samples: item(d, Parameter::SAMPLES.name, d0.samples)?,
+            integrating: item(d, Parameter::INTEGRATING.name, d0.integrating)?,
+            visibility: item(d, Parameter::VISIBILITY.name, d0.visibility)?,
+            photons: item(d, Parameter::PHOTONS.name, d0.photons)?,
+            read_noise: item(d, Parameter::READ_NOISE.name, d0.read_noise)?,
+            photon_noise: item(d, Parameter::PHOTON_NOISE.name, d0.photon_noise)?,
+            fringe_hz: item(d, Parameter::FRINGE_HZ.name, d0.fringe_hz)?,
+            wind_mps: item(d, Parameter::WIND_MPS.name, d0.wind_mps)?,
+            seeing_arcsec: item(d, Parameter::SEEING_ARCSEC.name, d0.seeing_arcsec)?,
+            seeing_wavelength_um: item(
+                d,
+                Parameter::SEEING_WAVELENGTH_UM.name,
+                d0.seeing_wavelength_um,
+            )?,
+            aperture_m: item(d, Parameter::APERTURE_M.name, d0.aperture_m)?,
+            outer_scale_m: item(d, Parameter::OUTER_SCALE_M.name, d0.outer_scale_m)?,
+            sub_samples: item(d, Parameter::SUB_SAMPLES.name, d0.sub_samples)?,
+            reference: choice(d, Parameter::REFERENCE.name, d0.reference)?,
         };
         p.check().map_err(|e| e.into_py_err())?;
         Ok(p)
