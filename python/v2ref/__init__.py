@@ -971,9 +971,11 @@ def photon_rate(
     *,
     band: str,
     throughput: float,
+    # The physical keyword arguments, generated (scripts/regenerate.sh).
     aperture_m: float = 0.45,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
+    # End of the generated keyword arguments.
 ) -> float:
     """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 

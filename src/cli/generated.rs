@@ -6,7 +6,8 @@
 //!   its keyword arguments and to write their docstring entries;
 //! - the physical keyword arguments of each Python function's signature in
 //!   `python/v2ref/__init__.py` (between the marker comments): those of the
-//!   CLI command it answers as ([`FUNCTIONS`]), in declaration order;
+//!   CLI command it answers as ([`FUNCTIONS`]), in declaration order, and
+//!   those of `photon_rate` ([`PHOTON_RATE`]);
 //! - the table of the inputs in `docs/conventions.md` (§14).
 //!
 //! `V2REF_REGENERATE=1 cargo test --release --bin v2ref generated` writes
@@ -33,6 +34,14 @@ const FUNCTIONS: [(&str, &str, &[&str]); 7] = [
     ("piston", "piston", &["fringe_hz"]),
     // The grid of fringe frequencies and strokes.
     ("plan", "plan", &["fringe_hz", "stroke_um"]),
+];
+
+/// The physical keyword arguments of `photon_rate` (the photometry's
+/// inputs, no command's flags), in its signature's order.
+const PHOTON_RATE: [&Parameter; 3] = [
+    &Parameter::APERTURE_M,
+    &Parameter::WAVELENGTH_UM,
+    &Parameter::BANDWIDTH_NM,
 ];
 
 /// Where the generated keyword arguments of a signature begin and end.
@@ -155,7 +164,7 @@ fn package_source(text: &str) -> String {
     for (function, command, not) in FUNCTIONS {
         out = with_keywords(&out, function, &keywords(command, not));
     }
-    out
+    with_keywords(&out, "photon_rate", &PHOTON_RATE)
 }
 
 /// `text` with the generated keyword arguments of `def function(` made
