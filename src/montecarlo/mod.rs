@@ -4,7 +4,7 @@
 //! bit-identical whatever the number of threads.
 //!
 //! Generators are `rand_pcg::Pcg64Mcg` (crate version pinned exactly in
-//! `Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
+//! `lib/Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
 //! neighbouring units get unrelated streams.
 
 pub mod pool;

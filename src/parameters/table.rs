@@ -508,7 +508,7 @@ mod docs {
     /// change, paste the table this test prints between the markers).
     #[test]
     fn docs_table_is_the_declaration() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/conventions.md");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/conventions.md");
         let text = std::fs::read_to_string(path).unwrap();
         let (begin, end) = ("<!-- parameters: begin -->\n", "<!-- parameters: end -->");
         let start = text.find(begin).expect("the begin marker") + begin.len();
