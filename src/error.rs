@@ -105,6 +105,10 @@ pub enum Error {
         /// The system's error (shared so that `Error` stays `Clone`).
         source: Arc<std::io::Error>,
     },
+    /// The computation was cancelled from outside it ([`crate::cancel`]):
+    /// nothing of it is returned.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// `location: `, or nothing for an empty location (a [`Error::Data`]
@@ -163,7 +167,7 @@ impl Error {
             Error::SpectrumTable { .. } => Some("spectrum"),
             Error::Io { param, .. } => *param,
             Error::Data { param, .. } => Some(param),
-            Error::Output { .. } => None,
+            Error::Output { .. } | Error::Cancelled => None,
         }
     }
 
@@ -250,6 +254,7 @@ impl PartialEq for Error {
                     reason: y,
                 },
             ) => a == b && p == q && l == m && x == y,
+            (Cancelled, Cancelled) => true,
             _ => false,
         }
     }

@@ -148,18 +148,18 @@ impl ContiguousScans {
                 0,
                 |_, block| {
                     let mut steps = Steps::new(progress, n);
-                    let out: Vec<ScanValues> = block
+                    let out = block
                         .chunks_exact(n)
                         .map(|row| {
-                            steps.step();
-                            scan_values(&est, pair.as_ref(), row)
+                            steps.step()?;
+                            Ok(scan_values(&est, pair.as_ref(), row))
                         })
-                        .collect();
-                    steps.finish();
-                    out
+                        .collect::<Result<Vec<ScanValues>>>()?;
+                    steps.finish()?;
+                    Ok(out)
                 },
                 |block: Vec<ScanValues>| values.extend(block),
-            );
+            )?;
         }
         Ok(ContiguousScans {
             sequences: values.chunks(per_sequence).map(<[_]>::to_vec).collect(),

@@ -14,7 +14,7 @@ mod inputs;
 mod oifits;
 mod output;
 
-use crate::cancel::{checkpoint, run_cancellable, Cancelled, Token};
+use crate::cancel::{run_cancellable, Token};
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -53,6 +53,7 @@ impl Fail for Error {
     fn into_py_err(self) -> PyErr {
         match &self {
             Error::Io { .. } => pyo3::exceptions::PyOSError::new_err(message(&self)),
+            Error::Cancelled => PyKeyboardInterrupt::new_err("interrupted"),
             _ => PyValueError::new_err(message(&self)),
         }
     }
@@ -103,8 +104,9 @@ pub fn interruptible<T: Send>(
     work: impl FnOnce(&(dyn Fn(u64) + Sync)) -> crate::Result<T> + Send,
 ) -> PyResult<T> {
     let token = Token::new();
-    // Each progress report is also a checkpoint.
-    let tick = |_: u64| checkpoint();
+    // The loops check the token themselves after each progress report
+    // (crate::montecarlo::Steps).
+    let tick = |_: u64| {};
     let finished = (Mutex::new(false), Condvar::new());
     std::thread::scope(|s| {
         let handle = s.spawn(|| {
@@ -148,10 +150,8 @@ pub fn interruptible<T: Send>(
         };
         match (interrupted, out) {
             (Some(e), _) => Err(e),
+            // A cancelled run (the interpreter ending) is a KeyboardInterrupt.
             (None, Ok(r)) => ok(r),
-            (None, Err(p)) if p.is::<Cancelled>() => {
-                Err(PyKeyboardInterrupt::new_err("interrupted"))
-            }
             (None, Err(p)) => {
                 let what = p
                     .downcast_ref::<String>()
