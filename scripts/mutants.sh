@@ -98,8 +98,10 @@ for area in "${areas[@]}"; do
     # --cargo-arg, not "-- --test": cargo-mutants passes arguments after
     # "--" to the test run only, and would also build the library's unit
     # tests and the examples. The suite needs the binary (the default
-    # features) as some of its files run it.
-    tests=(--cargo-arg=--test=suite)
+    # features) as some of its files run it. The mutated files are the
+    # library's (package v2ref, lib/Cargo.toml), the suite the root
+    # package's (v2ref-cli): mutate the workspace, test the workspace.
+    tests=(--workspace --test-workspace=true --cargo-arg=--test=suite)
     for t in ${spec##*|}; do filters+=("$t::"); done
     echo "== $area: ${spec%%|*} with ${spec##*|}"
     out="mutants.out/$area"

@@ -2,27 +2,47 @@
 //! fraction of a second, however large the request.
 //!
 //! A caller that may need to stop a computation runs it under a token
-//! ([`run_cancellable`]); the library's long loops call [`checkpoint`] every
-//! [`WORK_PER_CHECKPOINT`] elementary operations or so (a few milliseconds
-//! of one core), and the first checkpoint after [`Token::cancel`] unwinds
-//! the computation with the payload [`Cancelled`], which the caller catches.
-//! Nothing is returned half done: the unwind drops every partial result.
+//! ([`run_cancellable`]) and gets [`Error::Cancelled`] back when it was
+//! cancelled: nothing is returned half done.
+//!
+//! The library's loops look at the token every [`WORK_PER_CHECKPOINT`]
+//! elementary operations or so (a few milliseconds of one core), in two
+//! ways:
+//! - the Monte Carlo loops (trials, rows, scans: [`crate::montecarlo::Steps`])
+//!   and the loops of a function that returns a [`Result`] call [`check`],
+//!   which returns [`Error::Cancelled`] through their `Result`: no unwinding,
+//!   so cancellation works the same in a build with `panic = "abort"`;
+//! - the deterministic numerics that return no `Result` (a spectral grid,
+//!   an interferogram, an FFT, the exact window statistics) call
+//!   [`checkpoint`], which unwinds with the payload [`Cancelled`] where
+//!   panics unwind (the Python package, the CLI), caught by
+//!   [`run_cancellable`]. Built with `panic = "abort"`, a checkpoint does
+//!   nothing: such a computation runs to its end, and the cancellation is
+//!   returned at the next [`check`] or by [`run_cancellable`].
 //!
 //! The token is held per thread, so that two computations started from two
 //! threads stop independently: [`run_cancellable`] runs the work on a
 //! thread pool whose every thread holds the token, and
 //! [`crate::montecarlo::in_pool`] hands the token of its caller to the
 //! threads of any pool it builds. Without a token (the CLI, whose Ctrl-C
-//! ends the process; a call from Rust) a checkpoint is a thread-local read.
+//! ends the process; a call from Rust) a check is a thread-local read.
 
+use crate::{Error, Result};
 use std::cell::RefCell;
-use std::panic::resume_unwind;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-/// The unwind payload of a cancelled computation.
+/// The unwind payload of a [`checkpoint`] of a cancelled computation
+/// (never seen by a caller of [`run_cancellable`], which returns
+/// [`Error::Cancelled`] instead).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Cancelled;
+
+impl From<Cancelled> for Error {
+    fn from(_: Cancelled) -> Error {
+        Error::Cancelled
+    }
+}
 
 /// Elementary operations (a multiply-add, a sine, a random draw) between
 /// two checkpoints of a loop: 2^20 of them take 1 to 20 ms on one core, so
@@ -75,35 +95,76 @@ pub fn hold(token: Option<Token>) {
     CURRENT.with(|c| *c.borrow_mut() = token);
 }
 
-/// Unwinds with [`Cancelled`] when the calling thread's computation was
-/// cancelled; otherwise returns at once.
+/// Whether the calling thread's computation was cancelled.
+fn cancelled() -> bool {
+    CURRENT.with(|c| c.borrow().as_ref().is_some_and(Token::is_cancelled))
+}
+
+/// [`Error::Cancelled`] when the calling thread's computation was
+/// cancelled; otherwise `Ok` at once. For loops that return a [`Result`].
+pub fn check() -> Result<()> {
+    if cancelled() {
+        Err(Error::Cancelled)
+    } else {
+        Ok(())
+    }
+}
+
+/// For loops that return no [`Result`]: unwinds with [`Cancelled`] (caught
+/// by [`run_cancellable`]) when the calling thread's computation was
+/// cancelled, where panics unwind; does nothing in a build with
+/// `panic = "abort"` (the computation then runs to its end).
 pub fn checkpoint() {
-    let cancelled = CURRENT.with(|c| c.borrow().as_ref().is_some_and(Token::is_cancelled));
-    if cancelled {
-        resume_unwind(Box::new(Cancelled));
+    #[cfg(panic = "unwind")]
+    if cancelled() {
+        std::panic::resume_unwind(Box::new(Cancelled));
     }
 }
 
 /// Runs `job` on a thread pool ([`crate::montecarlo::pool::default_threads`]
 /// threads, fewer when the system refuses them) whose every thread holds
-/// `token`, and returns its result; a cancelled job unwinds with
-/// [`Cancelled`] out of this call. When no pool can be built at all, `job`
-/// runs on the calling thread holding the token.
-pub fn run_cancellable<T: Send>(token: &Token, job: impl FnOnce() -> T + Send) -> T {
+/// `token`, and returns its result, or [`Error::Cancelled`] when `token`
+/// was cancelled (whatever the job returned: nothing half done). When no
+/// pool can be built at all, `job` runs on the calling thread holding the
+/// token. A panic of the job other than a [`checkpoint`]'s goes on.
+pub fn run_cancellable<T: Send>(
+    token: &Token,
+    job: impl FnOnce() -> Result<T> + Send,
+) -> Result<T> {
     let for_pool = token.clone();
     let start: crate::montecarlo::pool::StartHandler =
         Arc::new(move |_| hold(Some(for_pool.clone())));
-    match crate::montecarlo::pool::build_pool(0, Some(start)) {
-        Some(pool) => pool.install(job),
+    let out = match crate::montecarlo::pool::build_pool(0, Some(start)) {
+        Some(pool) => pool.install(|| catch_checkpoint(job)),
         None => {
             let before = current();
             hold(Some(token.clone()));
             let restore = Restore(before);
-            let out = job();
+            let out = catch_checkpoint(job);
             drop(restore);
             out
         }
+    };
+    if token.is_cancelled() {
+        return Err(Error::Cancelled);
     }
+    out
+}
+
+/// `job`'s result, or [`Error::Cancelled`] when a [`checkpoint`] unwound it.
+fn catch_checkpoint<T>(job: impl FnOnce() -> Result<T>) -> Result<T> {
+    #[cfg(panic = "unwind")]
+    {
+        use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+        // The job's state is dropped with the unwind: nothing of it is used.
+        match catch_unwind(AssertUnwindSafe(job)) {
+            Ok(out) => out,
+            Err(payload) if payload.is::<Cancelled>() => Err(Error::Cancelled),
+            Err(payload) => resume_unwind(payload),
+        }
+    }
+    #[cfg(not(panic = "unwind"))]
+    job()
 }
 
 /// Gives the calling thread back its former token when dropped (also on
@@ -119,23 +180,40 @@ impl Drop for Restore {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::panic::catch_unwind;
 
     #[test]
-    fn a_checkpoint_unwinds_only_a_cancelled_computation() {
+    fn a_cancelled_computation_returns_the_error() {
         checkpoint(); // no token: nothing happens
+        assert_eq!(check(), Ok(()));
         let token = Token::new();
         let finished = run_cancellable(&token, || {
             checkpoint();
-            current().is_some()
+            check()?;
+            Ok(current().is_some())
         });
-        assert!(finished);
+        assert_eq!(finished, Ok(true));
         token.cancel();
-        let stopped = catch_unwind(|| run_cancellable(&token, checkpoint));
-        let payload = stopped.expect_err("the cancelled job unwinds");
-        assert!(payload.is::<Cancelled>());
+        // Through a check (a Result), and through a checkpoint (caught).
+        assert_eq!(run_cancellable(&token, check), Err(Error::Cancelled));
+        let unwound = run_cancellable(&token, || {
+            checkpoint();
+            Ok(())
+        });
+        assert_eq!(unwound, Err(Error::Cancelled));
+        // Cancelled, a job that ended well returns the error all the same.
+        assert_eq!(run_cancellable(&token, || Ok(1)), Err(Error::Cancelled));
         // The calling thread was never given the token.
         assert!(current().is_none());
+    }
+
+    #[test]
+    fn other_panics_of_a_cancellable_computation_go_on() {
+        let token = Token::new();
+        let out = std::panic::catch_unwind(|| {
+            run_cancellable(&token, || -> Result<()> { panic!("a bug") })
+        });
+        let payload = out.expect_err("the panic goes on");
+        assert_eq!(payload.downcast_ref::<&str>(), Some(&"a bug"));
     }
 
     #[test]
@@ -143,12 +221,12 @@ mod tests {
         use rayon::prelude::*;
         let token = Token::new();
         let held = run_cancellable(&token, || {
-            (0..64)
+            Ok((0..64)
                 .into_par_iter()
                 .map(|_| current().is_some())
-                .collect::<Vec<_>>()
+                .collect::<Vec<_>>())
         });
-        assert!(held.iter().all(|&h| h));
+        assert!(held.unwrap().iter().all(|&h| h));
     }
 
     #[test]

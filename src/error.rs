@@ -18,9 +18,14 @@ use std::sync::Arc;
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// What went wrong with an input, and what would have been accepted.
-#[derive(Debug, Clone)]
+///
+/// Each variant's message is its `#[error]` attribute: the parameter, `: `,
+/// then the detail ([`Error::detail`]), or the detail alone where there is
+/// no parameter ([`Error::param`]).
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum Error {
     /// A number was NaN or infinite.
+    #[error("{param}: {value} is not a finite number")]
     NotFinite {
         /// Library parameter name (Rust name, snake_case).
         param: &'static str,
@@ -28,6 +33,7 @@ pub enum Error {
         value: f64,
     },
     /// A number was outside the accepted range.
+    #[error("{param}: {} is out of range; accepted: {accepted}", number(*value))]
     OutOfRange {
         /// Library parameter name (Rust name, snake_case).
         param: &'static str,
@@ -38,6 +44,11 @@ pub enum Error {
     },
     /// The sample spacing `dx_um` is too coarse for the band: the shortest
     /// wavelength is sampled with fewer than two samples per fringe.
+    #[error(
+        "dx_um: {} um aliases the band; accepted: 0 < spacing < {} um (half the shortest wavelength)",
+        number(*dx_um),
+        significant(*max_dx_um)
+    )]
     Aliasing {
         /// The requested sample spacing, µm.
         dx_um: f64,
@@ -45,11 +56,13 @@ pub enum Error {
         max_dx_um: f64,
     },
     /// A tabulated spectrum (parameter `spectrum`) could not be used.
+    #[error("spectrum: {reason}")]
     SpectrumTable {
         /// Why the table was refused (with its line number where there is one).
         reason: String,
     },
     /// Two parameters that cannot be given together, or a missing one.
+    #[error("{param}: {reason}")]
     Invalid {
         /// Library parameter name (Rust name, snake_case).
         param: &'static str,
@@ -60,6 +73,7 @@ pub enum Error {
     /// no system error behind it (a table that does not parse, a plot that
     /// cannot be drawn, an answer that cannot be serialized). Failures of
     /// the system are [`Error::Io`].
+    #[error("{path}: {reason}")]
     Output {
         /// The file (or what was being produced).
         path: String,
@@ -69,6 +83,7 @@ pub enum Error {
     /// A data file (interferograms, estimates, a sidecar) was read but its
     /// content is unusable: wrong type or shape, a non-finite value, a size
     /// that does not match its sidecar.
+    #[error("{param}: {path}: {}{reason}", located(location))]
     Data {
         /// The library parameter that named the file.
         param: &'static str,
@@ -80,7 +95,8 @@ pub enum Error {
         reason: String,
     },
     /// Reading or writing a file failed; keeps the system's error as
-    /// [`std::error::Error::source`].
+    /// [`std::error::Error::source`] (the shared `Arc<std::io::Error>`).
+    #[error("{}{path}: {source}", prefix(*param))]
     Io {
         /// The library parameter that named the file, where there is one.
         param: Option<&'static str>,
@@ -89,6 +105,25 @@ pub enum Error {
         /// The system's error (shared so that `Error` stays `Clone`).
         source: Arc<std::io::Error>,
     },
+    /// The computation was cancelled from outside it ([`crate::cancel`]):
+    /// nothing of it is returned.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+/// `location: `, or nothing for an empty location (a [`Error::Data`]
+/// message).
+fn located(location: &str) -> String {
+    if location.is_empty() {
+        String::new()
+    } else {
+        format!("{location}: ")
+    }
+}
+
+/// `param: `, or nothing without a parameter (an [`Error::Io`] message).
+fn prefix(param: Option<&'static str>) -> String {
+    param.map_or_else(String::new, |p| format!("{p}: "))
 }
 
 impl Error {
@@ -132,56 +167,20 @@ impl Error {
             Error::SpectrumTable { .. } => Some("spectrum"),
             Error::Io { param, .. } => *param,
             Error::Data { param, .. } => Some(param),
-            Error::Output { .. } => None,
+            Error::Output { .. } | Error::Cancelled => None,
         }
     }
 
     /// The message without the parameter prefix (what follows `param: `
     /// in `Display`).
     pub fn detail(&self) -> String {
-        match self {
-            Error::NotFinite { value, .. } => format!("{value} is not a finite number"),
-            Error::OutOfRange {
-                value, accepted, ..
-            } => format!("{} is out of range; accepted: {accepted}", number(*value)),
-            Error::Aliasing { dx_um, max_dx_um } => format!(
-                "{} um aliases the band; accepted: 0 < spacing < {} um (half the shortest wavelength)",
-                number(*dx_um),
-                significant(*max_dx_um)
-            ),
-            Error::SpectrumTable { reason } | Error::Invalid { reason, .. } => reason.clone(),
-            Error::Output { path, reason } => format!("{path}: {reason}"),
-            Error::Io { path, source, .. } => format!("{}: {source}", path.display()),
-            Error::Data {
-                path,
-                location,
-                reason,
-                ..
-            } if location.is_empty() => format!("{}: {reason}", path.display()),
-            Error::Data {
-                path,
-                location,
-                reason,
-                ..
-            } => format!("{}: {location}: {reason}", path.display()),
-        }
-    }
-}
-
-impl std::fmt::Display for Error {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let message = self.to_string();
         match self.param() {
-            Some(p) => write!(f, "{p}: {}", self.detail()),
-            None => f.write_str(&self.detail()),
-        }
-    }
-}
-
-impl std::error::Error for Error {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Error::Io { source, .. } => Some(source.as_ref()),
-            _ => None,
+            Some(p) => message
+                .strip_prefix(p)
+                .and_then(|rest| rest.strip_prefix(": "))
+                .map_or_else(|| message.clone(), str::to_owned),
+            None => message,
         }
     }
 }
@@ -255,6 +254,7 @@ impl PartialEq for Error {
                     reason: y,
                 },
             ) => a == b && p == q && l == m && x == y,
+            (Cancelled, Cancelled) => true,
             _ => false,
         }
     }

@@ -80,13 +80,15 @@ fn noise_only_rows_are_simulates_draws() {
     let trials = 10_000;
     let set = model.rows(trials, 5, 2).unwrap();
     let est = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
-    let parts = set.map_units(0..set.units(), 2, |_, block| {
-        let mut s = v2ref::montecarlo::RunningStats::default();
-        for row in block.chunks_exact(32) {
-            s.push(est.estimate(row).v1_sq_raw);
-        }
-        s
-    });
+    let parts = set
+        .map_units(0..set.units(), 2, |_, block| {
+            let mut s = v2ref::montecarlo::RunningStats::default();
+            for row in block.chunks_exact(32) {
+                s.push(est.estimate(row).v1_sq_raw);
+            }
+            Ok(s)
+        })
+        .unwrap();
     let mut mine = v2ref::montecarlo::RunningStats::default();
     parts.iter().for_each(|p| mine.merge(p));
     let spec = NoisySpec {

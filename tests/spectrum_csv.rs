@@ -98,7 +98,10 @@ fn a_missing_file_keeps_the_system_error_as_source() {
     let e = Spectrum::from_csv_path(path).unwrap_err();
     assert_eq!(e.param(), Some("spectrum"));
     let source = e.source().expect("the io::Error is kept");
-    let io = source.downcast_ref::<std::io::Error>().unwrap();
+    // The system's error, shared (`Arc`) so that the error stays `Clone`.
+    let io = source
+        .downcast_ref::<std::sync::Arc<std::io::Error>>()
+        .unwrap();
     assert_eq!(io.kind(), std::io::ErrorKind::NotFound);
     assert!(
         e.detail().starts_with("/nonexistent/spectrum.csv: "),

@@ -17,6 +17,7 @@ mod bias_finite_scan;
 mod bias_line;
 mod bias_normalization;
 mod bias_snapshots;
+mod cancel;
 mod claims;
 mod cli;
 mod cli_noise;

@@ -160,6 +160,7 @@ pub fn prepare(p: &Physical, req: &PistonRequest) -> Result<Prepared> {
 
 impl Prepared {
     /// The predicted cost of the run of `req` ([`crate::commands::cost`]).
+    #[cfg(any(feature = "cli", feature = "python"))]
     pub fn cost(&self, req: &PistonRequest) -> crate::commands::cost::Cost {
         crate::commands::cost::piston(
             self.sampling.samples(),

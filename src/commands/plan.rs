@@ -104,6 +104,7 @@ impl Prepared {
     /// The predicted cost of the run on `threads` threads
     /// ([`crate::commands::cost`]); a grid point's samples depend on its
     /// stroke only.
+    #[cfg(any(feature = "cli", feature = "python"))]
     pub fn cost(&self, threads: usize) -> Result<crate::commands::cost::Cost> {
         let inputs = &self.inputs;
         let obs = inputs.instrument.observation()?;

@@ -65,7 +65,8 @@ pub fn synthesize(
         };
         sink(rows)?;
         progress((block.len() / inputs.samples) as u64);
-        Ok(())
+        crate::cancel::check()?;
+        Ok::<(), crate::Error>(())
     })?;
     Ok(Sidecar {
         format: FORMAT.to_owned(),

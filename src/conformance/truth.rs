@@ -209,11 +209,11 @@ fn reference_run(
                         sc[1].push(r.v2_sq);
                     }
                 }
-                steps.step();
+                steps.step()?;
             }
-            steps.finish();
-            s
-        });
+            steps.finish()?;
+            Ok(s)
+        })?;
         for (wi, aw) in acc.iter_mut().enumerate() {
             for (ci, ac) in aw.iter_mut().enumerate() {
                 for (k, moments) in ac.iter_mut().enumerate() {

@@ -4,7 +4,7 @@
 //! bit-identical whatever the number of threads.
 //!
 //! Generators are `rand_pcg::Pcg64Mcg` (crate version pinned exactly in
-//! `Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
+//! `lib/Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
 //! neighbouring units get unrelated streams.
 
 pub mod pool;
@@ -67,8 +67,8 @@ where
     in_pool(threads, || {
         range
             .into_par_iter()
-            // A panic in `work` (a progress callback that cancels the run)
-            // stops the other units at once rather than after every
+            // A panic in `work` (a cancellation checkpoint where panics
+            // unwind) stops the other units at once rather than after every
             // pending split has run one unit; no effect on the answer.
             .panic_fuse()
             .map(|u| {
@@ -79,10 +79,36 @@ where
     })
 }
 
+/// [`run_unit_range`] for work that may fail (a cancelled run:
+/// [`Steps::step`]): the results in unit order, or the error of a unit
+/// (the other units stop at once).
+pub fn try_run_unit_range<T, F>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+) -> crate::Result<Vec<T>>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
+{
+    in_pool(threads, || {
+        range
+            .into_par_iter()
+            .panic_fuse()
+            .map(|u| {
+                let mut rng = unit_rng(seed, u);
+                work(u, &mut rng)
+            })
+            .collect::<crate::Result<Vec<T>>>()
+    })
+}
+
 /// Reports the steps of a loop (trials, rows, scans) to a progress
 /// callback in batches, each batch about [`crate::cancel::WORK_PER_CHECKPOINT`]
 /// operations (a call per step would cost more than a short step), with a
-/// cancellation checkpoint after each; [`Steps::finish`] reports the rest.
+/// cancellation check after each; [`Steps::finish`] reports the rest and
+/// checks again.
 pub struct Steps<'a> {
     progress: &'a (dyn Fn(u64) + Sync),
     every: u64,
@@ -100,21 +126,26 @@ impl<'a> Steps<'a> {
         }
     }
 
-    /// One more step done.
-    pub fn step(&mut self) {
+    /// One more step done; [`crate::Error::Cancelled`] when the run was
+    /// cancelled ([`crate::cancel::check`]), for the loop to return.
+    pub fn step(&mut self) -> crate::Result<()> {
         self.pending += 1;
         if self.pending >= self.every {
             (self.progress)(self.pending);
             self.pending = 0;
-            crate::cancel::checkpoint();
+            crate::cancel::check()?;
         }
+        Ok(())
     }
 
-    /// Reports the steps not yet reported.
-    pub fn finish(self) {
+    /// Reports the steps not yet reported; [`crate::Error::Cancelled`]
+    /// when the run was cancelled (a loop shorter than a batch of steps
+    /// is checked here only).
+    pub fn finish(self) -> crate::Result<()> {
         if self.pending > 0 {
             (self.progress)(self.pending);
         }
+        crate::cancel::check()
     }
 }
 
@@ -128,16 +159,18 @@ pub const FOLD_BATCH_UNITS: u64 = 1024;
 /// [`FOLD_BATCH_UNITS`] units at a time. Memory is that of one batch of
 /// results however many units there are; the answer is the fold of
 /// [`run_unit_range`]'s results in unit order, bit for bit, whatever the
-/// thread count.
+/// thread count. The first error of a unit (a cancelled run) stops the run
+/// and is returned.
 pub fn fold_units<T, F, M>(
     seed: u64,
     range: std::ops::Range<u64>,
     threads: usize,
     work: F,
     merge: M,
-) where
+) -> crate::Result<()>
+where
     T: Send,
-    F: Fn(u64, &mut Rng) -> T + Sync + Send,
+    F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
     M: FnMut(T) + Send,
 {
     let mut merge = merge;
@@ -149,10 +182,11 @@ pub fn fold_units<T, F, M>(
                 .into_par_iter()
                 .panic_fuse()
                 .map(|u| work(u, &mut unit_rng(seed, u)))
-                .collect();
+                .collect::<crate::Result<Vec<T>>>()?;
             batch.into_iter().for_each(&mut merge);
             first = last;
         }
+        Ok(())
     })
 }
 

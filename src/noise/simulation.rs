@@ -450,15 +450,15 @@ pub fn simulate_noisy(
             let r = est.raw(&buf, &mut scratch);
             run.v1_sq.push(r.v1_sq);
             run.v2_sq.push(r.v2_sq);
-            steps.step();
+            steps.step()?;
         }
-        steps.finish();
-        run
+        steps.finish()?;
+        Ok(run)
     };
     fold_units(seed, 0..units, threads, work, |p: NoisyRun| {
         total.v1_sq.merge(&p.v1_sq);
         total.v2_sq.merge(&p.v2_sq);
-    });
+    })?;
     Ok(total)
 }
 
@@ -520,12 +520,12 @@ pub fn sample_moments(
                 a.push(p);
             }
         }
-        acc
+        Ok(acc)
     };
     fold_units(seed, 0..units, threads, work, |p: [RunningStats; 4]| {
         for (t, a) in total.iter_mut().zip(&p) {
             t.merge(a);
         }
-    });
+    })?;
     Ok(total)
 }

@@ -82,7 +82,7 @@ impl FringeTable {
         let every = crate::cancel::stride(n);
         for (j, (&s, &a)) in nodes.sigma_per_um.iter().zip(&nodes.amplitude).enumerate() {
             if j % every == 0 {
-                crate::cancel::checkpoint();
+                crate::cancel::check()?;
             }
             let d = s - sigma_c;
             let w = 2.0 * PI * d;

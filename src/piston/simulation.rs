@@ -21,7 +21,8 @@ use crate::formalism::estimator::{BinWindow, Pair, BIN_WINDOWS};
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
 use crate::montecarlo::{
-    derive_seed, effective_count, replicated_summary, run_units, RunningStats, Steps, Summary,
+    derive_seed, effective_count, replicated_summary, try_run_unit_range, RunningStats, Steps,
+    Summary,
 };
 use crate::piston::calibration::{Calibration, ScanContext, Workspace};
 use crate::piston::fringe_table::MAX_OPD_UM;
@@ -188,7 +189,7 @@ fn scan_all(
     calibrations: &[Calibration],
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
-) -> Vec<DifferenceStats> {
+) -> Result<Vec<DifferenceStats>> {
     // The scans draw no random numbers (all the randomness is in the
     // sequences): the units' generators are unused, their seed is a label.
     let unit_seed = derive_seed(size.seed, "piston-scans", &[]);
@@ -196,16 +197,16 @@ fn scan_all(
     // A scan: its samples (and sub-samples) through each detector, a few
     // operations each.
     let scan_work = 16 * ctx.setup.samples * calibrations.len();
-    run_units(unit_seed, units, size.threads, |unit, _rng| {
+    try_run_unit_range(unit_seed, 0..units, size.threads, |unit, _rng| {
         let mut ws = Workspace::new(ctx.setup.samples);
         let mut stats = DifferenceStats::new(calibrations.len());
         let mut steps = Steps::new(progress.unwrap_or(&|_| {}), scan_work);
         for s in sequence.scans_of(unit as usize) {
             scan((ctx, sequence, calibrations), s, &mut ws, &mut stats);
-            steps.step();
+            steps.step()?;
         }
-        steps.finish();
-        stats
+        steps.finish()?;
+        Ok(stats)
     })
 }
 
@@ -350,7 +351,7 @@ fn simulate_through(
         .iter()
         .map(|&d| Calibration::new(&ctx, d, &mut ws))
         .collect::<Result<Vec<_>>>()?;
-    let stats = scan_all(&ctx, &sequence, &calibrations, size, progress);
+    let stats = scan_all(&ctx, &sequence, &calibrations, size, progress)?;
     let facts = SequenceFacts {
         sequences: sequence.sequences(),
         span_correlation_times: sequence.span_samples() as f64 * setup.sample_time_s()

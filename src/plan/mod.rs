@@ -500,6 +500,7 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
             .map(|&(f, s)| {
                 let r = grid_point(inputs, &sky, f, s);
                 progress(1);
+                crate::cancel::check()?;
                 r
             })
             .collect::<Result<Vec<_>>>()

@@ -81,8 +81,8 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 pub const BLOCKS_PER_SEQUENCE: u64 = 4;
 
 /// Most samples (scans × N) one observation Monte Carlo of the plan
-/// simulates: 2^24, about 1.5 core-seconds
-/// ([`crate::commands::cost::SCAN_S_PER_SAMPLE`]); beyond, fewer blocks
+/// simulates: 2^24, about 1.5 core-seconds (the cost law
+/// `commands::cost::SCAN_S_PER_SAMPLE`); beyond, fewer blocks
 /// per sequence (wider intervals), but always at least n scans.
 pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
 
@@ -148,18 +148,18 @@ impl ContiguousScans {
                 0,
                 |_, block| {
                     let mut steps = Steps::new(progress, n);
-                    let out: Vec<ScanValues> = block
+                    let out = block
                         .chunks_exact(n)
                         .map(|row| {
-                            steps.step();
-                            scan_values(&est, pair.as_ref(), row)
+                            steps.step()?;
+                            Ok(scan_values(&est, pair.as_ref(), row))
                         })
-                        .collect();
-                    steps.finish();
-                    out
+                        .collect::<Result<Vec<ScanValues>>>()?;
+                    steps.finish()?;
+                    Ok(out)
                 },
                 |block: Vec<ScanValues>| values.extend(block),
-            );
+            )?;
         }
         Ok(ContiguousScans {
             sequences: values.chunks(per_sequence).map(<[_]>::to_vec).collect(),

@@ -16,7 +16,7 @@ mod oifits;
 pub mod output;
 pub mod values;
 
-use crate::cancel::{checkpoint, run_cancellable, Cancelled, Token};
+use crate::cancel::{run_cancellable, Token};
 use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -55,6 +55,7 @@ impl Fail for Error {
     fn into_py_err(self) -> PyErr {
         match &self {
             Error::Io { .. } => pyo3::exceptions::PyOSError::new_err(message(&self)),
+            Error::Cancelled => PyKeyboardInterrupt::new_err("interrupted"),
             _ => PyValueError::new_err(message(&self)),
         }
     }
@@ -90,8 +91,9 @@ pub fn interruptible<T: Send>(
     work: impl FnOnce(&(dyn Fn(u64) + Sync)) -> crate::Result<T> + Send,
 ) -> PyResult<T> {
     let token = Token::new();
-    // Each progress report is also a checkpoint.
-    let tick = |_: u64| checkpoint();
+    // The loops check the token themselves after each progress report
+    // (crate::montecarlo::Steps).
+    let tick = |_: u64| {};
     let finished = (Mutex::new(false), Condvar::new());
     std::thread::scope(|s| {
         let handle = s.spawn(|| {
@@ -135,10 +137,8 @@ pub fn interruptible<T: Send>(
         };
         match (interrupted, out) {
             (Some(e), _) => Err(e),
+            // A cancelled run (the interpreter ending) is a KeyboardInterrupt.
             (None, Ok(r)) => ok(r),
-            (None, Err(p)) if p.is::<Cancelled>() => {
-                Err(PyKeyboardInterrupt::new_err("interrupted"))
-            }
             (None, Err(p)) => {
                 let what = p
                     .downcast_ref::<String>()

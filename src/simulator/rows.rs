@@ -22,7 +22,7 @@
 //! the rows are those of `v2ref piston` at the same seed.
 
 use crate::error::{Error, Result};
-use crate::montecarlo::{fold_units, run_unit_range, Rng};
+use crate::montecarlo::{fold_units, run_unit_range, try_run_unit_range, Rng};
 use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
 use crate::piston::fringe_table::FringeTable;
 use crate::piston::scan::{fill_scan, ScanSetup};
@@ -349,14 +349,15 @@ impl Rows<'_> {
     }
 
     /// `work(u, rows of unit u)` for each unit of `range`, in parallel on
-    /// `threads` threads, results in unit order.
+    /// `threads` threads, results in unit order; the first error of `work`
+    /// (a cancelled run) stops the others and is returned.
     pub fn map_units<T: Send>(
         &self,
         range: std::ops::Range<u64>,
         threads: usize,
-        work: impl Fn(u64, &[f64]) -> T + Sync + Send,
-    ) -> Vec<T> {
-        run_unit_range(self.seed, range, threads, |u, rng| {
+        work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
+    ) -> Result<Vec<T>> {
+        try_run_unit_range(self.seed, range, threads, |u, rng| {
             let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
             self.fill_unit(u, rng, &mut rows);
             work(u, &rows)
@@ -366,18 +367,19 @@ impl Rows<'_> {
     /// `work(rows of unit u)` for every unit, in parallel on `threads`
     /// threads, each result handed to `merge` in unit order; memory stays
     /// at one batch of units ([`fold_units`]) however many rows there are.
+    /// The first error of `work` (a cancelled run) stops the run.
     pub fn fold_units<T: Send>(
         &self,
         threads: usize,
-        work: impl Fn(u64, &[f64]) -> T + Sync + Send,
+        work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
         merge: impl FnMut(T) + Send,
-    ) {
+    ) -> Result<()> {
         let unit = |u, rng: &mut Rng| {
             let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
             self.fill_unit(u, rng, &mut rows);
             work(u * ROWS_PER_UNIT, &rows)
         };
-        fold_units(self.seed, 0..self.units(), threads, unit, merge);
+        fold_units(self.seed, 0..self.units(), threads, unit, merge)
     }
 
     /// Hands every row to `sink` in row order, `batch` units at a time

@@ -103,7 +103,7 @@ pub fn simulate(
         (run.v1_sq, run.v2_sq, None)
     } else {
         let est = RowEstimator::new(model, window, bias, true)?;
-        reduce_rows(&rows, &est, size.threads, progress)
+        reduce_rows(&rows, &est, size.threads, progress)?
     };
     Ok(SimulationRun {
         window,
@@ -135,7 +135,7 @@ fn reduce_rows(
     est: &RowEstimator,
     threads: usize,
     progress: &(dyn Fn(u64) + Sync),
-) -> (Summary, Summary, Option<PistonEffect>) {
+) -> Result<(Summary, Summary, Option<PistonEffect>)> {
     let noiseless = !rows_noisy(rows);
     let piston_free = est.estimate(&rows.piston_free_row());
     let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
@@ -153,10 +153,10 @@ fn reduce_rows(
             acc.v2_sq.push(e.v2_sq);
             acc.v1.push(e.v1_sq.sqrt() - v0.0);
             acc.v2.push(e.v2_sq.sqrt() - v0.1);
-            steps.step();
+            steps.step()?;
         }
-        steps.finish();
-        s
+        steps.finish()?;
+        Ok(s)
     };
     rows.fold_units(threads, work, |p: Vec<UnitStats>| {
         for (t, p) in total.iter_mut().zip(&p) {
@@ -165,7 +165,7 @@ fn reduce_rows(
             t.v1.merge(&p.v1);
             t.v2.merge(&p.v2);
         }
-    });
+    })?;
     let summary = |pick: fn(&UnitStats) -> RunningStats| {
         let groups: Vec<RunningStats> = total.iter().map(pick).collect();
         if groups.len() > 1 {
@@ -180,7 +180,7 @@ fn reduce_rows(
         v1: summary(|s| s.v1),
         v2: summary(|s| s.v2),
     });
-    (summary(|s| s.v1_sq), summary(|s| s.v2_sq), effect)
+    Ok((summary(|s| s.v1_sq), summary(|s| s.v2_sq), effect))
 }
 
 fn rows_noisy(rows: &Rows) -> bool {
