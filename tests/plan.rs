@@ -456,7 +456,7 @@ fn every_null_of_a_plan_has_its_reason_in_words() {
 
 // --- The plan's figure (`plan --svg`) draws the planner's numbers --------
 
-use v2ref::plan::figure::{figure_time_s, sigma_curve};
+use v2ref::plan::figure::{drawn_as, figure_time_s, sigma_curve, Drawn};
 use v2ref::plan::sigma_reached_in;
 
 /// One computation for the figure and the table. With a time budget the
@@ -484,7 +484,7 @@ fn the_plan_figure_draws_the_planners_numbers() {
     let time_s = figure_time_s(&result, &budget);
     assert_eq!(time_s, 60.0);
     for e in [Estimator::V1, Estimator::V2] {
-        let curve = sigma_curve(&result, &budget, e, time_s);
+        let curve = sigma_curve(&result, &budget, (e, Drawn::Promise), time_s);
         assert_eq!(curve.len(), 3, "{e:?}");
         for (f, sigma) in curve {
             let table = result
@@ -517,10 +517,37 @@ fn the_plan_figure_draws_the_planners_numbers() {
         None => assert!(at(n - 1.0) > target, "{} in {} scans", at(n - 1.0), n - 1.0),
     }
     let time_s = figure_time_s(&result, &aimed);
-    let curve = sigma_curve(&result, &aimed, rec.estimator, time_s);
+    let curve = sigma_curve(&result, &aimed, (rec.estimator, Drawn::Promise), time_s);
     let (_, drawn) = curve.iter().find(|(f, _)| *f == rec.fringe_hz).unwrap();
     assert!(
         *drawn <= at(n),
         "the figure draws {drawn} at the recommendation"
+    );
+    // The promise is drawn only from settings solved for the observation,
+    // the others apart (open circles).
+    let solved = |e: Estimator, f: f64| {
+        result
+            .points
+            .iter()
+            .any(|p| p.estimator == e && p.fringe_hz == f && p.observation.is_some())
+    };
+    for e in [Estimator::V1, Estimator::V2] {
+        let promise = sigma_curve(&result, &aimed, (e, Drawn::Promise), time_s);
+        assert!(
+            promise.iter().all(|&(f, _)| solved(e, f)),
+            "{e:?}: {promise:?}"
+        );
+    }
+    let apart = |e| sigma_curve(&result, &aimed, (e, Drawn::IndependentScans), time_s);
+    assert!(
+        !apart(Estimator::V1).is_empty() && !apart(Estimator::V2).is_empty(),
+        "every setting solved: nothing drawn apart"
+    );
+    assert!(
+        result
+            .points
+            .iter()
+            .all(|p| (drawn_as(p, &aimed) == Drawn::Promise) == p.observation.is_some()),
+        "a setting not solved for the observation drawn as the promise"
     );
 }

@@ -113,33 +113,56 @@ const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
 /// Whether the run's cost was announced before it started ([`announce`]).
 static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// Longest a run's set-up (no step done yet) is waited for before the
+/// watcher gives up on predicting it.
+const SETUP_WAIT: std::time::Duration = std::time::Duration::from_secs(600);
+
 /// Where no bar is drawn (stderr not a terminal) and the run was not
-/// announced before it started (its cost law under-predicted it): after
-/// [`COST_PROBE`], predicts the run's duration from the steps done so far
-/// (linear in its steps: trials, rows, grid points) and, when it exceeds
-/// [`NOTICE_S`], says so once on stderr, with how to stop it. Nothing is
-/// said of a run that ends sooner.
+/// announced before it started (its cost law under-predicted it): predicts
+/// the run's duration from its rate (linear in its steps: trials, rows,
+/// grid points) and, when it exceeds [`NOTICE_S`], says so once on stderr,
+/// with how to stop it. The rate is measured over [`COST_PROBE`] from the
+/// first step done, not from the start: a set-up that reports no step (the
+/// piston sequences `plan --verify` synthesizes before its first scan)
+/// says nothing of the rate, and counting it as one step predicted days.
+/// Nothing is said of a run that ends sooner, nor when no step is done
+/// within the probe (no rate).
 pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
     let (bar, what) = (bar.clone(), what.to_owned());
     let start = std::time::Instant::now();
     // Under a process limit there may be no thread for it: then no note.
     let _ = std::thread::Builder::new().spawn(move || {
         std::thread::sleep(COST_PROBE);
-        let (done, len) = (bar.position(), bar.length().unwrap_or(0));
-        if bar.is_finished() || len == 0 || ANNOUNCED.load(Ordering::Relaxed) {
+        while bar.position() == 0 && !bar.is_finished() && start.elapsed() < SETUP_WAIT {
+            std::thread::sleep(COST_PROBE / 4);
+        }
+        let first = (start.elapsed().as_secs_f64(), bar.position());
+        std::thread::sleep(COST_PROBE);
+        let second = (start.elapsed().as_secs_f64(), bar.position());
+        let len = bar.length().unwrap_or(0);
+        if bar.is_finished() || ANNOUNCED.load(Ordering::Relaxed) {
             return;
         }
-        let elapsed = start.elapsed().as_secs_f64();
-        // Nothing done yet: at least the probe per step.
-        let per_step = elapsed / done.max(1) as f64;
-        let left = per_step * (len.saturating_sub(done)) as f64;
-        if left > NOTICE_S {
-            write_stderr_line(format_args!(
-                "note: {what}: about {} left at the present rate ({done} of {len} steps in {elapsed:.0} s); Ctrl-C stops it and leaves no partial output",
-                duration_words(left)
-            ));
+        match seconds_left(first, second, len) {
+            Some(left) if left > NOTICE_S => write_stderr_line(format_args!(
+                "note: {what}: about {} left at the present rate ({} of {len} steps done); Ctrl-C stops it and leaves no partial output",
+                duration_words(left),
+                second.1
+            )),
+            _ => {}
         }
     });
+}
+
+/// Seconds left of a run of `len` steps at the rate between two readings
+/// of (seconds since the start, steps done); None without a rate: no step
+/// done at the first reading (the run's set-up is no step) or none between
+/// the readings.
+fn seconds_left(first: (f64, u64), second: (f64, u64), len: u64) -> Option<f64> {
+    let steps = second.1.checked_sub(first.1).filter(|&d| d > 0)?;
+    let seconds = second.0 - first.0;
+    (first.1 > 0 && seconds > 0.0)
+        .then(|| len.saturating_sub(second.1) as f64 * seconds / steps as f64)
 }
 
 /// Before any work of the command `what`: when its predicted `cost`
@@ -195,7 +218,21 @@ pub fn is_broken_pipe(e: &Error) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{exit_status, EXIT_WRITE_FAILED};
+    use super::{exit_status, seconds_left, EXIT_WRITE_FAILED};
+
+    /// The stall watcher's estimate: from the rate between two readings
+    /// once steps are done; silent over a set-up that counts no step (a
+    /// rate taken from the start counted 2 s of piston synthesis as one
+    /// scan of 100 000: 2.3 days for a run of seconds).
+    #[test]
+    fn the_time_left_is_taken_from_the_rate_after_the_first_step() {
+        // 200 steps in 2 s, 99 700 left: 997 s.
+        assert_eq!(seconds_left((10.0, 100), (12.0, 300), 100_000), Some(997.0));
+        // Nothing done at the first reading, or between the readings.
+        assert_eq!(seconds_left((2.0, 0), (4.0, 5), 100_000), None);
+        assert_eq!(seconds_left((2.0, 7), (4.0, 7), 100_000), None);
+    }
+
     use v2ref::Error;
 
     fn io(param: Option<&'static str>, errno: i32) -> Error {

@@ -110,7 +110,9 @@ pub struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
-    /// Also write the figure of σ(V²) reached against fringe frequency (SVG).
+    /// Also write the figure of σ(V²) reached against fringe frequency (SVG):
+    /// the promise as lines, settings not solved for consecutive scans as open
+    /// circles (σ_scan/√n, no promise).
     #[arg(long, value_name = "FILE")]
     svg: Option<std::path::PathBuf>,
     /// Also write the predicted observation at the recommended setting as

@@ -1,10 +1,13 @@
 //! The planner's figure: the σ(V²) each estimator reaches against fringe
 //! frequency (best stroke at each), in the plan's time, with the target;
 //! its numbers are the planner's ([`v2ref::plan::figure`]), only drawn here.
+//! The promise is drawn as lines through filled points; settings not solved
+//! for consecutive scans as open circles at the other frequencies, with
+//! their own legend line.
 
 use plotters::prelude::*;
 use std::path::Path;
-use v2ref::plan::figure::{figure_time_s, sigma_curve};
+use v2ref::plan::figure::{figure_time_s, sigma_curve, Drawn};
 use v2ref::plan::{Estimator, Plan, PlanInputs, Target};
 use v2ref::{Error, Result};
 
@@ -19,9 +22,24 @@ fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
 pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
     // The planner's own numbers (upper ends of the piston intervals).
     let time_s = figure_time_s(plan, inputs);
-    let v1 = sigma_curve(plan, inputs, Estimator::V1, time_s);
-    let v2 = sigma_curve(plan, inputs, Estimator::V2, time_s);
-    let all: Vec<f64> = v1.iter().chain(&v2).map(|p| p.1).collect();
+    let curve = |e, drawn| sigma_curve(plan, inputs, (e, drawn), time_s);
+    let v1 = curve(Estimator::V1, Drawn::Promise);
+    let v2 = curve(Estimator::V2, Drawn::Promise);
+    // The open circles where the estimator has no promise at that
+    // frequency (elsewhere they are other strokes, slower by the per-scan
+    // estimate, and would only crowd the line).
+    let apart = |e, promise: &[(f64, f64)]| {
+        let mut points = curve(e, Drawn::IndependentScans);
+        points.retain(|(f, _)| promise.iter().all(|(g, _)| g != f));
+        points
+    };
+    let v1_independent = apart(Estimator::V1, &v1);
+    let v2_independent = apart(Estimator::V2, &v2);
+    let all: Vec<f64> = [&v1, &v2, &v1_independent, &v2_independent]
+        .into_iter()
+        .flatten()
+        .map(|p| p.1)
+        .collect();
     let target = match inputs.target {
         Target::SigmaV2(s) => Some(s),
         Target::TimeBudgetS(_) => None,
@@ -89,6 +107,24 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             chart
                 .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
                 .map_err(|e| fail(path, e))?;
+        }
+        // Not promised: open circles, one legend line for both estimators.
+        for (points, colour, labelled) in [
+            (&v1_independent, blue, true),
+            (&v2_independent, orange, false),
+        ] {
+            let series = chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&p| Circle::new(p, 4, colour.stroke_width(1))),
+                )
+                .map_err(|e| fail(path, e))?;
+            if labelled && !(v1_independent.is_empty() && v2_independent.is_empty()) {
+                series
+                    .label("open: not solved for consecutive scans (σ_scan/√n, no promise)")
+                    .legend(|(x, y)| Circle::new((x + 10, y), 4, BLACK.stroke_width(1)));
+            }
         }
         if let Some(t) = target {
             chart
