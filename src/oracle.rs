@@ -24,10 +24,11 @@
 //!    estimator's mean or variance.
 //!
 //! ```
-//! use v2ref::oracle::{BiasConvention, BinWindow, Inputs, Set};
+//! use v2ref::oracle::{BiasConvention, BinWindow, Inputs, Set, SourceInput};
 //!
-//! // 2000 scans of 32 samples of a V = 0.6 point source, photon noise only.
-//! let inputs = Inputs { samples: 32, visibility: 0.6, photons: 50.0, ..Inputs::default() };
+//! // 2000 scans of 32 samples of a V = 0.6 point source in K, photon noise only.
+//! let source = SourceInput::Point;
+//! let inputs = Inputs { samples: 32, source, visibility: 0.6, photons: 50.0, ..Inputs::default() };
 //! let set = Set::synthesize(&inputs, 2000, 7)?;
 //!
 //! // The pipeline under test: here v2ref's own estimator stands in for it.
@@ -37,9 +38,10 @@
 //! let v2_sq: Vec<f64> = rows.iter().map(|r| r.v2_sq).collect();
 //!
 //! let report = set.score(window, bias, Some(&v1_sq), Some(&v2_sq))?;
-//! assert!(report.pass);
+//! assert!(report.pass, "{report:?}");
 //! // The power of this set: the smallest relative error of the mean of V1² it catches.
-//! assert!(report.estimators[0].score.min_detectable_rel_bias_mean < 0.05);
+//! let power = report.estimators[0].score.min_detectable_rel_bias_mean;
+//! assert!(power < 0.05, "{power}");
 //!
 //! // A pipeline that forgets the photon-noise bias is rejected.
 //! let divisor = set.closed_form(window)?.calibration.v1_sq;
