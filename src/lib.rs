@@ -87,7 +87,7 @@
 //! 6. [`simulator`], [`parameters`] (the physical inputs declared once, and the objects they build);
 //! 7. [`conformance`];
 //! 8. [`plan`], [`reproduction`], [`commands`] (each command's answer, built once for the CLI and Python);
-//! 9. the edges: [`prelude`], the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
+//! 9. the edges: [`prelude`], [`oracle`] (a pipeline's `cargo test`), the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
 //!
 //! ## Units and conventions
 //!
