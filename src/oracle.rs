@@ -96,8 +96,8 @@ const POWERED_REFERENCE_BLOCKS: u64 = 8;
 /// truth falls as `1/√rows` from here on.
 const PILOT_ROWS: u64 = POOLED_MIN_ROWS / POWERED_REFERENCE_BLOCKS;
 
-/// Rows of a powered set are a multiple of this (whole blocks of the
-/// row generator, and a round number to read).
+/// Rows of a powered set are a multiple of this (a round number to read
+/// in the vectors' README).
 const POWERED_ROWS_STEP: u64 = 1024;
 
 /// A synth set in memory: the model, the rows and the sidecar (inputs,
