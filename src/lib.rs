@@ -30,6 +30,29 @@
 //! # Ok::<(), v2ref::Error>(())
 //! ```
 //!
+//! ## A pipeline's `cargo test`: the oracle route
+//!
+//! A pipeline with its own V1²/V2² estimator holds it to v2ref from its
+//! own tests through [`oracle`], in memory (a dev-dependency with
+//! `default-features = false`: no file format, no C compiler): a set of
+//! noisy rows and its truth, the closed forms, the score of the pipeline's
+//! per-row estimates with the test's power, and the golden vectors
+//! regenerated bit for bit.
+//!
+//! ```
+//! use v2ref::oracle::{BiasConvention, BinWindow, Set};
+//!
+//! let set = Set::golden("noise_gaussian")?;       // golden/vectors/noise_gaussian, in memory
+//! let (window, bias) = (BinWindow::Positive, BiasConvention::Model);
+//! let mine: Vec<f64> = set                       // the pipeline's V1² of each row
+//!     .reference_estimates(window, bias)?
+//!     .iter()
+//!     .map(|r| r.v1_sq)
+//!     .collect();
+//! assert!(set.score(window, bias, Some(&mine), None)?.pass);
+//! # Ok::<(), v2ref::Error>(())
+//! ```
+//!
 //! [`prelude`] gathers the dozen items a user calls first; the folders below
 //! follow the paper's table of contents.
 //!
@@ -64,7 +87,7 @@
 //! 6. [`simulator`], [`parameters`] (the physical inputs declared once, and the objects they build);
 //! 7. [`conformance`];
 //! 8. [`plan`], [`reproduction`], [`commands`] (each command's answer, built once for the CLI and Python);
-//! 9. the edges: [`prelude`], the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
+//! 9. the edges: [`prelude`], [`oracle`] (a pipeline's `cargo test`), the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
 //!
 //! ## Units and conventions
 //!
@@ -137,6 +160,7 @@ pub mod formats;
 pub mod math;
 pub mod montecarlo;
 pub mod noise;
+pub mod oracle;
 pub mod parameters;
 pub mod piston;
 pub mod plan;

@@ -25,7 +25,9 @@ const LEVELS: &[&[&str]] = &[
     &["simulator", "parameters"],
     &["conformance"],
     &["plan", "reproduction", "commands"],
-    &["prelude", "formats", "python", "cli", "main", "lib"],
+    &[
+        "prelude", "oracle", "formats", "python", "cli", "main", "lib",
+    ],
 ];
 
 /// The level of the top module `name`.

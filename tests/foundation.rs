@@ -821,6 +821,65 @@ fn bin_windows_hold_the_bins_of_their_definition() {
     assert_eq!(BinWindow::All.bins(5, 0.5, &k_band), vec![0, 1, 2, 3, 4]);
 }
 
+/// The band window's tie rule (`band_bins`): a bin exactly on an edge is
+/// kept, whatever the rounding. Bands and spacings are decimals on a
+/// 0.05 µm grid (λ0 1.0–2.5 µm, Δλ 0.1–1.0 µm, δx 0.1–1.0 µm, N 2–96),
+/// where bin k lies in the band exactly when `k λ_min ≤ N δx ≤ k λ_max`,
+/// compared in integers (units of 0.025 µm): every window must equal that.
+/// The grid holds thousands of bins exactly on an edge; the two float
+/// forms of the edge test the rule replaces, `k/(N δx)` (the conventions'
+/// words) and `k · (1/(N δx))` (the former code), each disagree with the
+/// exact windows on some of them, which shows the test can fail.
+#[test]
+fn band_windows_keep_bins_exactly_on_an_edge() {
+    use v2ref::formalism::estimator::{band_bins, positive_bins};
+    let (mut windows, mut ties, mut quotient_wrong, mut product_wrong) = (0, 0, 0, 0);
+    for centre in 20..=50u64 {
+        for width in 2..=20u64 {
+            let band = Band::new(centre as f64 / 20.0, width as f64 / 20.0).unwrap();
+            let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
+            // λ_min, λ_max and N δx in units of 0.025 µm.
+            let (lambda_min, lambda_max) = (2 * centre - width, 2 * centre + width);
+            for step in 2..=20u64 {
+                let dx_um = step as f64 / 20.0;
+                for n in 2..=96usize {
+                    let scan = n as u64 * 2 * step;
+                    let exact: Vec<usize> = positive_bins(n)
+                        .into_iter()
+                        .filter(|&k| k as u64 * lambda_min <= scan && scan <= k as u64 * lambda_max)
+                        .collect();
+                    ties += positive_bins(n)
+                        .into_iter()
+                        .filter(|&k| k as u64 * lambda_min == scan || scan == k as u64 * lambda_max)
+                        .count();
+                    let float_window = |wavenumber: &dyn Fn(usize) -> f64| {
+                        positive_bins(n)
+                            .into_iter()
+                            .filter(|&k| (lo..=hi).contains(&wavenumber(k)))
+                            .collect::<Vec<_>>()
+                    };
+                    let step_per_um = 1.0 / (n as f64 * dx_um);
+                    quotient_wrong +=
+                        usize::from(float_window(&|k| k as f64 / (n as f64 * dx_um)) != exact);
+                    product_wrong +=
+                        usize::from(float_window(&|k| k as f64 * step_per_um) != exact);
+                    assert_eq!(
+                        band_bins(n, dx_um, lo, hi),
+                        exact,
+                        "N = {n}, δx = {dx_um} µm, band {lo}–{hi} µm⁻¹"
+                    );
+                    windows += 1;
+                }
+            }
+        }
+    }
+    println!(
+        "{windows} windows, {ties} bins on an edge; k/(N δx) wrong in {quotient_wrong}, k·(1/(N δx)) in {product_wrong}"
+    );
+    assert!(ties > 1000, "{ties} ties: the grid must put bins on edges");
+    assert!(quotient_wrong > 0 && product_wrong > 0);
+}
+
 /// `dft_phase(i, k, N)` is the angle −2π (i k mod N)/N itself, reduced to
 /// (−2π, 0] (its doc): 3 · 5 = 15 ≡ 7 (mod 8) gives −7π/4, and with
 /// N = 2²⁰, (N − 1)² ≡ 1 gives −2π/N, not a multiple of turns away (the

@@ -40,6 +40,7 @@ mod oifits;
 mod oifits_fuzz;
 mod oifits_robustness;
 mod oifits_rules;
+mod oracle;
 mod piston;
 mod piston_claims;
 mod piston_errors;

@@ -24,7 +24,7 @@ over the window K of bins (``--bins``):
 
     positive   k = 1 … ⌈N/2⌉ − 1
     all        k = 0 … N − 1
-    band       the positive bins with σ_min ≤ k/(N δx) ≤ σ_max
+    band       the positive bins with σ_min ≤ k/(N δx) ≤ σ_max (edges kept)
 
 The additive-noise bias is subtracted with v_i the noise variance of sample i:
 
@@ -219,8 +219,10 @@ def window_bins(n, window, dx, band):
     if window == "all":
         return np.arange(n)
     if window == "band":
-        sigma = positive / (n * dx)
-        return positive[(sigma >= band[0]) & (sigma <= band[1])]
+        # The edges in units of bins, each widened by 1e-9 of itself: a bin
+        # exactly on an edge is kept whatever the rounding (conventions §6).
+        lo, hi = n * dx * band[0], n * dx * band[1]
+        return positive[(positive >= lo - 1e-9 * abs(lo)) & (positive <= hi + 1e-9 * abs(hi))]
     raise ValueError(f"unknown window {window!r}")
 
 

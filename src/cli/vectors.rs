@@ -6,9 +6,13 @@ use super::synth::{write_set, SetSpec};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref::conformance::sidecar::Sidecar;
+use v2ref::conformance::score::{
+    critical_z, min_detectable_rel_bias, DEFAULT_ALPHA, TESTS_PER_ESTIMATOR,
+};
+use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
 use v2ref::conformance::vectors::{catalogue, Vector, VECTOR_REFERENCE_BLOCKS, VECTOR_ROWS};
 use v2ref::formalism::estimator::BinWindow;
+use v2ref::oracle::{powered_rows, POWERED_REL_ERROR};
 use v2ref::reproduction::golden::replace_dir_atomically;
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
@@ -41,7 +45,7 @@ fn write_all(dir: &Path) -> Result<Vec<String>> {
         let sidecar = write_set(&model, &spec(&v), &dir.join(v.name), &|_| {})?;
         files.push(format!("{}.npy", v.name));
         files.push(format!("{}.json", v.name));
-        table.push(readme_line(&v, &sidecar));
+        table.push(readme_line(&v, &sidecar)?);
     }
     let readme = dir.join("README.md");
     std::fs::write(&readme, readme_text(&table))
@@ -50,8 +54,8 @@ fn write_all(dir: &Path) -> Result<Vec<String>> {
     Ok(files)
 }
 
-fn readme_line(v: &Vector, s: &Sidecar) -> String {
-    let rel = |t: Option<&v2ref::conformance::sidecar::ConventionTruth>| {
+fn readme_line(v: &Vector, s: &Sidecar) -> Result<String> {
+    let rel = |t: Option<&ConventionTruth>| {
         t.map_or("-".to_owned(), |t| {
             format!(
                 "{:.2} %, {:.2} %",
@@ -64,15 +68,35 @@ fn readme_line(v: &Vector, s: &Sidecar) -> String {
     let means = truth.map_or("-".to_owned(), |t| {
         format!("{:.5}, {:.5}", t.v1_sq.mean, t.v2_sq.mean)
     });
-    format!(
-        "| `{}` | {} | {} | {} | {} | {} |",
+    let power = truth.map_or(Ok("-".to_owned()), min_detectable_cells)?;
+    let powered = match v.inputs.piston {
+        Some(_) => "- (piston)".to_owned(),
+        None => powered_rows(v)?.to_string(),
+    };
+    Ok(format!(
+        "| `{}` | {} | {} | {} | {} | {} | {} | {} |",
         v.name,
         s.data.samples,
         s.data.rows,
         v.tests,
         means,
-        rel(truth)
-    )
+        rel(truth),
+        power,
+        powered
+    ))
+}
+
+/// The smallest relative error of the mean and of the variance of V1² and
+/// V2² that a score of both estimators catches with probability 0.9 at
+/// the default alpha (the score's own power figures).
+fn min_detectable_cells(t: &ConventionTruth) -> Result<String> {
+    let z_crit = critical_z(DEFAULT_ALPHA, 2 * TESTS_PER_ESTIMATOR)?;
+    let cell = |e: &v2ref::conformance::sidecar::EstimatorTruth| {
+        min_detectable_rel_bias(e, z_crit).map_or("-".to_owned(), |(mean, var)| {
+            format!("{:.1} % / {:.1} %", 100.0 * mean, 100.0 * var)
+        })
+    };
+    Ok(format!("{}; {}", cell(&t.v1_sq), cell(&t.v2_sq)))
 }
 
 fn readme_text(lines: &[String]) -> String {
@@ -87,10 +111,17 @@ fn readme_text(lines: &[String]) -> String {
          (every input and the truth). Score a pipeline's estimates with\n\
          `v2ref score --sidecar NAME.json --estimates EST.csv`.\n\n\
          The truth columns are for the positive window and the `model` bias convention:\n\
-         the expected normalized V1², V2², and the standard deviation of a set's mean relative\n\
-         to it (a set of this size tests the mean to a few times that).\n\n\
-         | set | N | rows | what it tests | expected V1², V2² | 1σ of a set's mean (V1², V2²) |\n\
-         |---|---|---|---|---|---|"
+         the expected normalized V1², V2², the standard deviation of a set's mean relative\n\
+         to it, and the set's power: the smallest relative error of the mean / of the variance\n\
+         of each estimator that `score` (both estimators, alpha = 10⁻³) catches with\n\
+         probability 0.9. These 1000-row sets test the conventions row by row and the larger\n\
+         errors; to catch a {pct} % error of either estimator's mean or variance under every\n\
+         window and convention, the last column's rows are needed: `v2ref::oracle::Set::powered`\n\
+         makes that set of a piston-free vector in memory (same inputs and seed), and\n\
+         `synth` with the sidecar's inputs and `--rows` writes it.\n\n\
+         | set | N | rows | what it tests | expected V1², V2² | 1σ of a set's mean (V1², V2²) | smallest error caught, mean / variance (V1²; V2²) | rows for {pct} % |\n\
+         |---|---|---|---|---|---|---|---|",
+        pct = 100.0 * POWERED_REL_ERROR
     );
     for l in lines {
         let _ = writeln!(t, "{l}");

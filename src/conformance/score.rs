@@ -302,12 +302,37 @@ pub fn score_with_threshold(
         z_var,
         dof,
         z_crit,
-        min_detectable_rel_bias_mean: reach(z_crit, dof) * se_mean / truth.mean.abs(),
-        min_detectable_rel_bias_var: reach(z_crit, var_dof) * se_var / truth.var.abs(),
+        min_detectable_rel_bias_mean: min_detectable(z_crit, dof, se_mean, truth.mean),
+        min_detectable_rel_bias_var: min_detectable(z_crit, var_dof, se_var, truth.var),
         pass_mean,
         pass_var,
         pass: pass_mean && pass_var,
     })
+}
+
+/// The smallest relative error of a value `expected` whose test divides by
+/// `se` that is caught with probability [`POWER`] at `z_crit`:
+/// `reach · se/|expected|` (infinite when `expected` is 0).
+fn min_detectable(z_crit: f64, dof: Option<u64>, se: f64, expected: f64) -> f64 {
+    reach(z_crit, dof) * se / expected.abs()
+}
+
+/// The power of a set before any estimate is made: the smallest relative
+/// error of the mean and of the variance of one estimator that its
+/// `truth` lets a score at `z_crit` catch with probability [`POWER`] —
+/// [`EstimatorScore::min_detectable_rel_bias_mean`] and
+/// [`EstimatorScore::min_detectable_rel_bias_var`], which a score reports
+/// with the same numbers. Needs the truth's `set_stderr_var` (a set whose
+/// truth has none takes the variance's error from its estimates, and its
+/// power is known only once scored): None without it.
+pub fn min_detectable_rel_bias(truth: &EstimatorTruth, z_crit: f64) -> Option<(f64, f64)> {
+    let se_mean = truth.set_stderr_mean.hypot(truth.stderr_mean);
+    let se_var = truth.set_stderr_var?.hypot(truth.stderr_var);
+    let dof = truth.stderr_dof;
+    Some((
+        min_detectable(z_crit, dof, se_mean, truth.mean),
+        min_detectable(z_crit, dof, se_var, truth.var),
+    ))
 }
 
 /// Scores one estimator alone (2 tests: `z_crit = Φ⁻¹(1 − alpha/4)`); see

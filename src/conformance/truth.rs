@@ -47,7 +47,7 @@ use crate::error::Result;
 use crate::formalism::estimator::{
     dft, noise_bias, raw_estimates, wide_band, BinWindow, Pair, BIN_WINDOWS,
 };
-use crate::montecarlo::{derive_seed, RunningStats, Steps};
+use crate::montecarlo::{derive_seed, variance_stderr, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
 use crate::simulator::{Model, RowLayout};
@@ -328,12 +328,7 @@ fn pooled_truth(
         None => return None,
     };
     let n = rows as f64;
-    let set_stderr_var = have_pool.then(|| {
-        let mu4 = pool.m4 / pool.count as f64;
-        ((mu4 - (n - 3.0) / (n - 1.0) * var * var) / n)
-            .max(0.0)
-            .sqrt()
-    });
+    let set_stderr_var = have_pool.then(|| variance_stderr(pool.m4 / pool.count as f64, var, rows));
     Some(EstimatorTruth {
         mean,
         var,

@@ -34,6 +34,7 @@ use crate::error::{Error, Result};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::formalism::spectrum::Spectrum;
+use crate::tolerance::BAND_EDGE_REL;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
 use serde::Serialize;
@@ -200,14 +201,33 @@ pub fn all_bins(n: usize) -> Vec<usize> {
 
 /// The positive bins ([`positive_bins`]) whose wavenumber k/(N δx) lies in
 /// [`lo_per_um`, `hi_per_um`] (µm⁻¹, bounds included).
+///
+/// **Ties.** A bin on an edge is kept, and "on" does not depend on how the
+/// edge and the bin's wavenumber were rounded: the edges are taken in
+/// units of bins, `N δx σ`, and each is widened outward by
+/// [`BAND_EDGE_REL`] of itself, so bin k is kept when
+/// `N δx σ_min (1 − ε) ≤ k ≤ N δx σ_max (1 + ε)`. Computed as
+/// `k/(N δx)` or as `k · (1/(N δx))`, a bin that sits on an edge in exact
+/// arithmetic (the K band's 1/2.4 µm⁻¹ reached by N δx = 2.4 k µm) lands
+/// within a few ulps of it on either side; the slack keeps it either way.
+///
+/// ```
+/// use v2ref::formalism::estimator::band_bins;
+/// use v2ref::formalism::spectrum::Band;
+/// // N δx = 8 × 0.3 µm = 2.4 µm: bin 1 sits exactly on the K band's long edge (2.4 µm).
+/// let k = Band::k();
+/// assert_eq!(band_bins(8, 0.3, k.sigma_min_per_um(), k.sigma_max_per_um()), vec![1]);
+/// ```
 pub fn band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64) -> Vec<usize> {
-    let dsigma = 1.0 / (n as f64 * dx_um);
+    let scan_um = n as f64 * dx_um;
+    let (lo_bin, hi_bin) = (lo_per_um * scan_um, hi_per_um * scan_um);
+    let (lo_kept, hi_kept) = (
+        lo_bin - BAND_EDGE_REL * lo_bin.abs(),
+        hi_bin + BAND_EDGE_REL * hi_bin.abs(),
+    );
     positive_bins(n)
         .into_iter()
-        .filter(|&k| {
-            let s = k as f64 * dsigma;
-            s >= lo_per_um && s <= hi_per_um
-        })
+        .filter(|&k| (lo_kept..=hi_kept).contains(&(k as f64)))
         .collect()
 }
 

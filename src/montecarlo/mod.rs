@@ -11,7 +11,8 @@ pub mod pool;
 pub mod statistics;
 
 pub use statistics::{
-    effective_count, replicated_summary, replicated_t_quantile, RunningStats, Summary,
+    effective_count, replicated_summary, replicated_t_quantile, variance_stderr, RunningStats,
+    Summary,
 };
 
 use rand::SeedableRng;

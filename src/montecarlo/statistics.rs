@@ -88,11 +88,7 @@ impl RunningStats {
             return f64::NAN;
         }
         let n = self.count as f64;
-        let s2 = self.variance();
-        let mu4 = self.m4 / n;
-        ((mu4 - (n - 3.0) / (n - 1.0) * s2 * s2) / n)
-            .max(0.0)
-            .sqrt()
+        variance_stderr(self.m4 / n, self.variance(), self.count)
     }
 
     /// The statistics of `a·x + b` (exact for the mean and central moments).
@@ -145,6 +141,23 @@ impl RunningStats {
             stderr_std: self.stderr_std(),
         }
     }
+}
+
+/// The standard error of the unbiased sample variance of `n` independent
+/// values whose variance is `var` (σ²) and fourth central moment `mu4`
+/// (μ4): `√((μ4 − (n−3)/(n−1) σ⁴)/n)`, exact for any distribution
+/// (clamped at 0 where a sample's moments make it negative).
+///
+/// The one formula for both of its uses: a sample's own error
+/// ([`RunningStats::stderr_variance`], with its own μ4 and s²) and the
+/// scatter a conformance set of `n` rows is stated to have
+/// ([`crate::conformance::truth`], with μ4 from the reference run's pool
+/// and the truth's σ²).
+pub fn variance_stderr(mu4: f64, var: f64, n: u64) -> f64 {
+    let n = n as f64;
+    ((mu4 - (n - 3.0) / (n - 1.0) * var * var) / n)
+        .max(0.0)
+        .sqrt()
 }
 
 /// What a Monte Carlo reports of one quantity: its mean, variance and

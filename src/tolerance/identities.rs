@@ -25,6 +25,17 @@ pub const ROUNDING_REL: f64 = 1e-14;
 /// 1e-9 (the computation itself is good to [`ROUNDING_REL`]).
 pub const HAND_10_DIGITS_REL: f64 = 1e-9;
 
+/// The slack of a band window's edges ([`band_bins`](crate::formalism::estimator::band_bins)),
+/// relative to the edge in units of bins (`N δx σ`): a bin within 1e-9 of
+/// an edge is on it and kept. An edge and a bin's wavenumber computed from
+/// decimal inputs (λ0 ± Δλ/2, N δx) carry a few roundings, ~1e-15
+/// relative: the slack is a million times that, so no rounding decides a
+/// tie. A bin that misses an edge by less than 1e-9 of it in exact
+/// arithmetic is counted on it too: inputs stated to fewer than nine
+/// significant digits cannot put a bin that close without putting it on
+/// the edge.
+pub const BAND_EDGE_REL: f64 = 1e-9;
+
 /// Scale floor of relative comparisons of V² (a relative tolerance is
 /// applied to max(V², 1e-3)): near a null V² is a difference of O(1)
 /// spectral integrals, so its absolute rounding does not fall with it;

@@ -20,7 +20,7 @@
 //!   [`PATHS_AGREE_ABS`], [`BIN_ORACLE_ABS`], [`GAMMA_REL`],
 //!   [`IDENTITY_REL`], [`IDENTITY_ABS`], [`CANCELLATION_ABS`],
 //!   [`STREAMING_M3_REL`], [`STREAMING_M3_FLOOR`], [`STREAMING_LARGE_MEAN_REL`],
-//!   [`NONNEGATIVE_REL`],
+//!   [`NONNEGATIVE_REL`], [`BAND_EDGE_REL`],
 //!   [`GOLDEN_REL`], [`GOLDEN_ABS`], [`EXAMPLE_GOLDEN_ABS`],
 //!   [`VISIBILITY_SCALING_REL`], [`VISIBILITY_SCALING_ABS`];
 //! * quadrature and special functions (convergence targets, finite
