@@ -39,6 +39,7 @@ mod oifits;
 mod oifits_fuzz;
 mod oifits_robustness;
 mod oifits_rules;
+mod oifits_setting;
 mod piston;
 mod piston_claims;
 mod piston_errors;
