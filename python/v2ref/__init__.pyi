@@ -636,6 +636,10 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
         written when no setting reaches the target (``recommended`` null).
+    target_name, ra_deg, dec_deg, date, site, site_lon_deg, site_lat_deg, site_height_m : optional
+        Where and when the ``oifits`` file says the observation is made,
+        as :func:`v2ref.oifits.write_oifits` takes them (refused without
+        ``oifits``).
     bias : {"counts", "model"}
         Where the user's pipeline takes the photon-noise bias's counts from
         (as ``v2ref plan --bias``): each scan's own counts (unbiased for

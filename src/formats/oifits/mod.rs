@@ -32,6 +32,8 @@ mod mem;
 pub mod observing;
 mod order;
 pub mod read;
+#[cfg(test)]
+mod reader_tests;
 mod select;
 pub mod setting;
 pub mod table;
