@@ -70,11 +70,6 @@ pub struct ObservingSpec {
 }
 
 impl ObservingSpec {
-    /// True when nothing is given (every default kept).
-    pub fn is_empty(&self) -> bool {
-        *self == ObservingSpec::default()
-    }
-
     /// The parameter of the first value given, in declaration order.
     pub fn first_given(&self) -> Option<&'static str> {
         let given = [
