@@ -66,42 +66,44 @@ pub fn check_estimates_out(out: Option<&Path>) -> Result<()> {
     }
 }
 
+/// The heading of [`ObservingArgs`] in `--help`.
+const HEADING: &str = "OIFITS: target, date, site";
+
 /// Where and when an OIFITS file says the observation was made: flags of
 /// the commands that write one (`estimate --out FILE.fits`,
 /// `synth --oifits`, `plan --oifits`), refused without such a file.
 #[derive(Debug, Clone, Default, clap::Args)]
-#[command(next_help_heading = "OIFITS: target, date, site")]
 pub struct ObservingArgs {
     /// The target's name (TARGET, OBJECT): 1 to 16 printable ASCII
     /// characters [default: V2REF_MODEL].
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, help_heading = HEADING, value_name = "NAME")]
     target_name: Option<String>,
     /// The target's right ascension (J2000), degrees, 0 to 360 (with
     /// --dec-deg) [default: 0].
-    #[arg(long, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     ra_deg: Option<f64>,
     /// The target's declination (J2000), degrees, -90 to 90 (with
     /// --ra-deg) [default: 0].
-    #[arg(long, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     dec_deg: Option<f64>,
     /// When the first row starts (DATE-OBS, UTC): YYYY-MM-DD or
     /// YYYY-MM-DDThh:mm:ss[.s], from 1858-11-17 [default: 2000-01-01].
-    #[arg(long, value_name = "DATE")]
+    #[arg(long, help_heading = HEADING, value_name = "DATE")]
     date: Option<String>,
     /// The array: iota, vlti or chara (their sites), or the name (1 to 16
     /// characters) of the site --site-lon-deg, --site-lat-deg and
     /// --site-height-m place [default: iota].
-    #[arg(long, value_name = "NAME")]
+    #[arg(long, help_heading = HEADING, value_name = "NAME")]
     site: Option<String>,
     /// The site's east longitude, degrees, -180 to 180 (WGS84; with --site).
-    #[arg(long, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     site_lon_deg: Option<f64>,
     /// The site's geodetic latitude, degrees, -90 to 90 (WGS84; with --site).
-    #[arg(long, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     site_lat_deg: Option<f64>,
     /// The site's height above the WGS84 ellipsoid, m, -500 to 6000 (with
     /// --site).
-    #[arg(long, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     site_height_m: Option<f64>,
 }
 
