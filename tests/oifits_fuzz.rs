@@ -193,11 +193,14 @@ fn the_mutations_reach_the_reader_they_aim_at() {
     let bytes = good();
     let last_naxis2 = cards(bytes, "NAXIS2").len() - 1;
     let rows_past = with_card(bytes, "NAXIS2", last_naxis2, "41");
-    let err = parse_oifits(&rows_past, UNCHECKED);
-    // 41 rows of 63 bytes still fit the padding of the last block: read,
-    // with one row more; the row count then differs from the set's.
-    if let Ok(file) = &err {
-        assert_eq!(file.tables.last().unwrap().rows, 41);
+    // 41 rows of 63 bytes still fit the last block, whose padding is part
+    // of the file: nothing tells the 41st row from a real one but the
+    // checksums (below). With them ignored, refused or read, the table no
+    // longer has the set's 40 rows, which every score refuses: no verdict
+    // rests on the header's word.
+    if let Ok(file) = parse_oifits(&rows_past, UNCHECKED) {
+        consistent(&file);
+        assert_ne!(file.tables.last().unwrap().rows, 40);
     }
     let wide = with_card(bytes, "NAXIS1", last_naxis2, "630000");
     let r = parse_oifits(&wide, UNCHECKED).unwrap_err();

@@ -41,6 +41,7 @@ mod oifits_fuzz;
 mod oifits_robustness;
 mod oifits_rules;
 mod oracle;
+mod oifits_setting;
 mod piston;
 mod piston_claims;
 mod piston_errors;

@@ -855,6 +855,14 @@ def plan(
     threads: int = 0,
     diameter_err_mas: float = 0.0,
     oifits: Optional[_PathLike] = None,
+    target_name: Optional[str] = None,
+    ra_deg: Optional[float] = None,
+    dec_deg: Optional[float] = None,
+    date: Optional[str] = None,
+    site: Optional[str] = None,
+    site_lon_deg: Optional[float] = None,
+    site_lat_deg: Optional[float] = None,
+    site_height_m: Optional[float] = None,
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
@@ -912,6 +920,10 @@ def plan(
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
         written when no setting reaches the target (``recommended`` null).
+    target_name, ra_deg, dec_deg, date, site, site_lon_deg, site_lat_deg, site_height_m : optional
+        Where and when the ``oifits`` file says the observation is made,
+        as :func:`v2ref.oifits.write_oifits` takes them (refused without
+        ``oifits``).
     bias : {"counts", "model"}
         Where the user's pipeline takes the photon-noise bias's counts from
         (as ``v2ref plan --bias``): each scan's own counts (unbiased for
@@ -939,6 +951,9 @@ def plan(
         with ``verify``.
     """
     values = dict(locals())
+    from .oifits import _observing
+
+    observing = _observing(values)
     out = None if oifits is None else _os.fspath(oifits)
     if out is not None and not isinstance(out, str):
         raise TypeError(f"oifits: {oifits!r} is not a path")
@@ -962,6 +977,7 @@ def plan(
         out,
         _word("bias", bias),
         observations if verify else None,
+        observing,
     )
 
 

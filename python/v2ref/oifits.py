@@ -36,6 +36,57 @@ def _sidecar(sidecar: Any):
     return _sidecar_arg(sidecar)
 
 
+#: The keywords that say where and when an OIFITS file's observation was
+#: made, as ``--target-name`` ... ``--site-height-m`` of the CLI.
+OBSERVING_KEYWORDS = (
+    "target_name",
+    "ra_deg",
+    "dec_deg",
+    "date",
+    "site",
+    "site_lon_deg",
+    "site_lat_deg",
+    "site_height_m",
+)
+_OBSERVING_TEXT = ("target_name", "date", "site")
+
+
+def _observing(values: Dict[str, Any]) -> Optional[tuple]:
+    """The observing keywords of ``values`` (types checked) as the Rust
+    functions take them; None when none is given (every default)."""
+    out = []
+    for name in OBSERVING_KEYWORDS:
+        v = values.get(name)
+        if v is None:
+            out.append(None)
+        elif name in _OBSERVING_TEXT:
+            if not isinstance(v, str):
+                raise TypeError(f"{name}: {v!r} is not a string")
+            out.append(v)
+        elif isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)):
+            raise TypeError(f"{name}: {v!r} is not a number")
+        else:
+            try:
+                out.append(float(v))
+            except OverflowError:
+                raise ValueError(f"{name}: {v} is out of range") from None
+    return None if all(v is None for v in out) else tuple(out)
+
+
+_OBSERVING_DOC = """
+    Where and when the file says the observation was made (each left out
+    keeps the default): ``target_name`` (TARGET, 1 to 16 printable ASCII
+    characters; ``V2REF_MODEL``), ``ra_deg`` and ``dec_deg`` together (the
+    target's J2000 position, degrees: 0 to 360 and -90 to 90; 0, 0),
+    ``date`` (DATE-OBS, UTC, when the first row starts: ``YYYY-MM-DD`` or
+    ``YYYY-MM-DDThh:mm:ss[.s]`` from 1858-11-17; ``2000-01-01``), ``site``
+    (``"iota"``, ``"vlti"``, ``"chara"``, or the name of the site that
+    ``site_lon_deg``, ``site_lat_deg`` (degrees, WGS84) and ``site_height_m``
+    (m above the ellipsoid, -500 to 6000) place; ``"iota"``). A bad value
+    raises ValueError naming the keyword, as the CLI's flags do.
+"""
+
+
 def read_oifits(path: Any, *, accept_checksum_mismatch: bool = False) -> List[Dict[str, Any]]:
     """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
 
@@ -57,6 +108,14 @@ def write_oifits(
     v2_sq: Any = None,
     bins: str = "positive",
     bias: str = "model",
+    target_name: Optional[str] = None,
+    ra_deg: Optional[float] = None,
+    dec_deg: Optional[float] = None,
+    date: Optional[str] = None,
+    site: Optional[str] = None,
+    site_lon_deg: Optional[float] = None,
+    site_lat_deg: Optional[float] = None,
+    site_height_m: Optional[float] = None,
 ) -> None:
     """Writes per-row estimates of a synth set as OIFITS v2 (``.fits``).
 
@@ -66,6 +125,7 @@ def write_oifits(
     conditions. The configuration (band, baseline) comes from ``sidecar``
     (a dict from ``synthesize()`` or a path). Written atomically.
     """
+    observing = _observing(locals())
     text, name = _sidecar(sidecar)
     a1 = _column("v1_sq", v1_sq)
     a2 = _column("v2_sq", v2_sq)
@@ -73,14 +133,31 @@ def write_oifits(
         raise TypeError(f"bins: {bins!r} is not a string")
     if not isinstance(bias, str):
         raise TypeError(f"bias: {bias!r} is not a string")
-    _v2ref.write_oifits(_path("path", path), a1, a2, text, name, bins, bias)
+    _v2ref.write_oifits(_path("path", path), a1, a2, text, name, bins, bias, observing)
 
 
-def write_oifits_truth(path: Any, *, sidecar: Any) -> None:
+def write_oifits_truth(
+    path: Any,
+    *,
+    sidecar: Any,
+    target_name: Optional[str] = None,
+    ra_deg: Optional[float] = None,
+    dec_deg: Optional[float] = None,
+    date: Optional[str] = None,
+    site: Optional[str] = None,
+    site_lon_deg: Optional[float] = None,
+    site_lat_deg: Optional[float] = None,
+    site_height_m: Optional[float] = None,
+) -> None:
     """Writes a synth set's truth (the expected V1², V2² of every row,
     window positive, convention model) as OIFITS v2."""
+    observing = _observing(locals())
     text, name = _sidecar(sidecar)
-    _v2ref.write_oifits_truth(_path("path", path), text, name)
+    _v2ref.write_oifits_truth(_path("path", path), text, name, observing)
+
+
+write_oifits.__doc__ = (write_oifits.__doc__ or "") + _OBSERVING_DOC
+write_oifits_truth.__doc__ = (write_oifits_truth.__doc__ or "") + _OBSERVING_DOC
 
 
 def _optional_str(name: str, value: Any) -> None:

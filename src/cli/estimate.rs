@@ -56,6 +56,8 @@ pub struct Args {
     /// With --out FILE.fits: the estimators written, one INSNAME each.
     #[arg(long, value_enum, default_value = "both")]
     oifits_estimator: super::oifits::Which,
+    #[command(flatten)]
+    observing: super::oifits::ObservingArgs,
     /// Replace an existing output file (never a link, folder or device).
     #[arg(long)]
     force: bool,
@@ -88,12 +90,21 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let targets: Vec<_> = args.out.iter().map(|p| (p.as_path(), "out")).collect();
     let set = OutputSet::begin(&targets, args.force)?;
     super::oifits::check_estimates_out(args.out.as_deref())?;
-    set.write(|| estimate_and_write(&args, &source))
+    let fits = args
+        .out
+        .as_deref()
+        .is_some_and(v2ref::formats::oifits::is_fits_path);
+    let observing = args.observing.resolve(fits, "--out FILE.fits")?;
+    set.write(|| estimate_and_write(&args, &source, &observing))
 }
 
 /// Estimates every row of the input and writes the answer to `--out` (or
 /// standard output).
-fn estimate_and_write(args: &Args, source: &Source) -> Result<ExitCode> {
+fn estimate_and_write(
+    args: &Args,
+    source: &Source,
+    observing: &v2ref::formats::oifits::ObservingContext,
+) -> Result<ExitCode> {
     let (rows, cols) = match NpyRows::open(&source.input, "input")? {
         Some(mut stream) => {
             // The answer is held whole (6 values a row): refused from the
@@ -125,14 +136,8 @@ fn estimate_and_write(args: &Args, source: &Source) -> Result<ExitCode> {
         .filter(|p| v2ref::formats::oifits::is_fits_path(p))
     {
         let inputs = source.config.inputs_for(source.name(), rows.len(), cols)?;
-        super::oifits::write_estimates(
-            p,
-            &inputs,
-            &rows,
-            args.bins,
-            args.bias,
-            args.oifits_estimator,
-        )?;
+        let what = (args.bins, args.bias, args.oifits_estimator);
+        super::oifits::write_estimates(p, &inputs, &rows, what, observing)?;
         return Ok(ExitCode::SUCCESS);
     }
     write(&args.out, &rows)?;

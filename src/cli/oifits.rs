@@ -7,7 +7,7 @@ use v2ref::conformance::estimate::{BiasConvention, RowEstimate};
 use v2ref::conformance::score::Estimator;
 use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::oifits::{self, docs, Expected};
+use v2ref::formats::oifits::{self, docs, Expected, ObservingContext, ObservingSpec};
 use v2ref::formats::{read_estimates, Estimates};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
@@ -66,18 +66,81 @@ pub fn check_estimates_out(out: Option<&Path>) -> Result<()> {
     }
 }
 
-/// Writes `estimate`'s rows as OIFITS v2.
+/// The heading of [`ObservingArgs`] in `--help`.
+const HEADING: &str = "OIFITS: target, date, site";
+
+/// Where and when an OIFITS file says the observation was made: flags of
+/// the commands that write one (`estimate --out FILE.fits`,
+/// `synth --oifits`, `plan --oifits`), refused without such a file.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ObservingArgs {
+    /// The target's name (TARGET, OBJECT): 1 to 16 printable ASCII
+    /// characters [default: V2REF_MODEL].
+    #[arg(long, help_heading = HEADING, value_name = "NAME")]
+    target_name: Option<String>,
+    /// The target's right ascension (J2000), degrees, 0 to 360 (with
+    /// --dec-deg) [default: 0].
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    ra_deg: Option<f64>,
+    /// The target's declination (J2000), degrees, -90 to 90 (with
+    /// --ra-deg) [default: 0].
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    dec_deg: Option<f64>,
+    /// When the first row starts (DATE-OBS, UTC): YYYY-MM-DD or
+    /// YYYY-MM-DDThh:mm:ss[.s], from 1858-11-17 [default: 2000-01-01].
+    #[arg(long, help_heading = HEADING, value_name = "DATE")]
+    date: Option<String>,
+    /// The array: iota, vlti or chara (their sites), or the name (1 to 16
+    /// characters) of the site --site-lon-deg, --site-lat-deg and
+    /// --site-height-m place [default: iota].
+    #[arg(long, help_heading = HEADING, value_name = "NAME")]
+    site: Option<String>,
+    /// The site's east longitude, degrees, -180 to 180 (WGS84; with --site).
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    site_lon_deg: Option<f64>,
+    /// The site's geodetic latitude, degrees, -90 to 90 (WGS84; with --site).
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    site_lat_deg: Option<f64>,
+    /// The site's height above the WGS84 ellipsoid, m, -500 to 6000 (with
+    /// --site).
+    #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
+    site_height_m: Option<f64>,
+}
+
+impl ObservingArgs {
+    /// What the flags say.
+    pub fn spec(&self) -> ObservingSpec {
+        ObservingSpec {
+            target_name: self.target_name.clone(),
+            ra_deg: self.ra_deg,
+            dec_deg: self.dec_deg,
+            date: self.date.clone(),
+            site: self.site.clone(),
+            site_lon_deg: self.site_lon_deg,
+            site_lat_deg: self.site_lat_deg,
+            site_height_m: self.site_height_m,
+        }
+    }
+
+    /// The observation the flags describe, checked; when no OIFITS file is
+    /// written (`writes` false) any of them is refused, `file_flag` saying
+    /// what writes one.
+    pub fn resolve(&self, writes: bool, file_flag: &str) -> Result<ObservingContext> {
+        self.spec().resolve_for(writes, file_flag)
+    }
+}
+
+/// Writes `estimate`'s rows as OIFITS v2, where and when `observing` says.
 pub fn write_estimates(
     path: &Path,
     inputs: &Inputs,
     rows: &[RowEstimate],
-    bins: BinWindow,
-    bias: BiasConvention,
-    which: Which,
+    (bins, bias, which): (BinWindow, BiasConvention, Which),
+    observing: &ObservingContext,
 ) -> Result<()> {
     let model = Model::new(inputs)?;
     let columns = docs::columns_of(rows, which.estimators());
-    let doc = docs::estimates_doc(&model, &columns, bins, bias)?;
+    let doc = docs::estimates_doc(&model, &columns, (bins, bias), observing)?;
     oifits::write_oifits(path, "out", &doc)
 }
 
@@ -170,8 +233,10 @@ pub fn read_for_score(
     })
 }
 
-/// Writes a synth set's truth (window `positive`, convention `model`).
-pub fn write_truth(path: &Path, sidecar: &Sidecar) -> Result<()> {
-    let doc = docs::truth_doc(sidecar, BinWindow::Positive, BiasConvention::Model)?;
+/// Writes a synth set's truth (window `positive`, convention `model`),
+/// where and when `observing` says.
+pub fn write_truth(path: &Path, sidecar: &Sidecar, observing: &ObservingContext) -> Result<()> {
+    let window = (BinWindow::Positive, BiasConvention::Model);
+    let doc = docs::truth_doc(sidecar, window, observing)?;
     oifits::write_oifits(path, "oifits", &doc)
 }

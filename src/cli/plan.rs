@@ -119,6 +119,8 @@ pub struct Args {
     /// OIFITS v2 (V², predicted σ, the biases to correct as keywords).
     #[arg(long, value_name = "FILE.fits")]
     oifits: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    observing: super::oifits::ObservingArgs,
     /// Replace an existing output file (never a link, folder or device).
     #[arg(long)]
     force: bool,
@@ -198,6 +200,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if let Some(p) = &args.oifits {
         v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
     }
+    let observing = args.observing.resolve(args.oifits.is_some(), "--oifits")?;
     // Both files checked and locked before any work, written together.
     let svg = args.svg.iter().map(|p| (p.as_path(), "svg"));
     let targets: Vec<_> = svg
@@ -234,7 +237,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
             super::plan_svg::write(path, &answer.plan, &answer.inputs)?;
         }
         if let Some(path) = &args.oifits {
-            if !v2ref::formats::oifits::write_plan(path, "oifits", &answer.inputs, &answer.plan)? {
+            let plan = (&answer.inputs, &answer.plan);
+            if !v2ref::formats::oifits::write_plan(path, "oifits", plan, &observing)? {
                 errln!(
                     "note: --oifits: no setting reaches the target, so no observation is predicted; {} not written",
                     path.display()

@@ -35,6 +35,8 @@ pub struct Args {
     /// positive, convention model) as OIFITS v2: OUT.truth.fits.
     #[arg(long)]
     oifits: bool,
+    #[command(flatten)]
+    observing: super::oifits::ObservingArgs,
     /// Write the counts I_i instead of the modulated samples M_i = I_i − c_i.
     #[arg(long)]
     keep_continuum: bool,
@@ -67,6 +69,7 @@ pub struct Args {
 /// Runs `synth`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
+    let observing = args.observing.resolve(args.oifits, "--oifits")?;
     let reference_blocks = args
         .reference_blocks
         .unwrap_or_else(|| default_reference_blocks(inputs.piston.is_some()));
@@ -109,7 +112,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
         bar.finish_and_clear();
         if args.oifits {
-            super::oifits::write_truth(&fits, &sidecar)?;
+            super::oifits::write_truth(&fits, &sidecar, &observing)?;
         }
         Ok(())
     })?;

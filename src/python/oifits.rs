@@ -8,7 +8,7 @@ use crate::conformance::estimate::BiasConvention;
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::{Sidecar, FORMAT};
 use crate::formalism::estimator::BinWindow;
-use crate::formats::oifits::{self, docs, Expected};
+use crate::formats::oifits::{self, docs, Expected, ObservingContext, ObservingSpec};
 use crate::simulator::Model;
 use crate::words::Words;
 use crate::Error;
@@ -51,6 +51,44 @@ fn sidecar_of(sidecar: &Bound<'_, PyAny>, name: &str) -> PyResult<Sidecar> {
         )));
     }
     Ok(sc)
+}
+
+/// The keywords `target_name`, `ra_deg`, `dec_deg`, `date`, `site`,
+/// `site_lon_deg`, `site_lat_deg`, `site_height_m` in that order, as the
+/// Python wrappers pass them (types checked there).
+pub(crate) type ObservingKeywords = (
+    Option<String>,
+    Option<f64>,
+    Option<f64>,
+    Option<String>,
+    Option<String>,
+    Option<f64>,
+    Option<f64>,
+    Option<f64>,
+);
+
+/// Where and when an OIFITS file says (None: every default), checked by
+/// the library (ValueError naming the keyword); any given is refused when
+/// no file is written (`writes` false; `what_writes` says what would).
+pub(crate) fn observing_of(
+    keywords: Option<ObservingKeywords>,
+    writes: bool,
+    what_writes: &str,
+) -> PyResult<ObservingContext> {
+    let Some((target_name, ra_deg, dec_deg, date, site, lon, lat, height)) = keywords else {
+        return Ok(ObservingContext::default());
+    };
+    let spec = ObservingSpec {
+        target_name,
+        ra_deg,
+        dec_deg,
+        date,
+        site,
+        site_lon_deg: lon,
+        site_lat_deg: lat,
+        site_height_m: height,
+    };
+    ok(spec.resolve_for(writes, what_writes))
 }
 
 fn estimator_name(e: Estimator) -> &'static str {
@@ -97,9 +135,11 @@ fn read_oifits<'py>(
 }
 
 /// Per-row estimates of a synth set written as OIFITS v2 (one table per
-/// array given), the configuration from the sidecar.
+/// array given), the configuration from the sidecar, where and when
+/// `observing` says.
 #[pyfunction]
-#[pyo3(signature = (path, v1_sq, v2_sq, sidecar, sidecar_name, bins, bias))]
+#[pyo3(signature = (path, v1_sq, v2_sq, sidecar, sidecar_name, bins, bias, observing=None))]
+#[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
 fn write_oifits(
     path: &str,
     v1_sq: Option<PyReadonlyArray1<'_, f64>>,
@@ -108,9 +148,11 @@ fn write_oifits(
     sidecar_name: &str,
     bins: &str,
     bias: &str,
+    observing: Option<ObservingKeywords>,
 ) -> PyResult<()> {
     let bins: BinWindow = ok(Words::from_word("bins", bins))?;
     let bias: BiasConvention = ok(Words::from_word("bias", bias))?;
+    let observing = observing_of(observing, true, "path")?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let mut columns = Vec::new();
     for (e, a) in [(Estimator::V1Sq, v1_sq), (Estimator::V2Sq, v2_sq)] {
@@ -134,19 +176,29 @@ fn write_oifits(
         return Err(PyValueError::new_err("v1_sq: give v1_sq, v2_sq or both"));
     }
     let model = ok(Model::new(&sc.inputs))?;
-    let doc = ok(docs::estimates_doc(&model, &columns, bins, bias))?;
+    let doc = ok(docs::estimates_doc(
+        &model,
+        &columns,
+        (bins, bias),
+        &observing,
+    ))?;
     ok(oifits::write_oifits(Path::new(path), "path", &doc))
 }
 
-/// A synth set's truth (window positive, convention model) as OIFITS v2.
+/// A synth set's truth (window positive, convention model) as OIFITS v2,
+/// where and when `observing` says.
 #[pyfunction]
-fn write_oifits_truth(path: &str, sidecar: &Bound<'_, PyAny>, sidecar_name: &str) -> PyResult<()> {
+#[pyo3(signature = (path, sidecar, sidecar_name, observing=None))]
+fn write_oifits_truth(
+    path: &str,
+    sidecar: &Bound<'_, PyAny>,
+    sidecar_name: &str,
+    observing: Option<ObservingKeywords>,
+) -> PyResult<()> {
+    let observing = observing_of(observing, true, "path")?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
-    let doc = ok(docs::truth_doc(
-        &sc,
-        BinWindow::Positive,
-        BiasConvention::Model,
-    ))?;
+    let window = (BinWindow::Positive, BiasConvention::Model);
+    let doc = ok(docs::truth_doc(&sc, window, &observing))?;
     ok(oifits::write_oifits(Path::new(path), "path", &doc))
 }
 

@@ -280,24 +280,6 @@ def test_bad_files_raise_value_errors_naming_the_argument(set_dir, tmp_path):
         v2ref.read_oifits_estimates(wrong, sidecar=set_dir / "set.json", estimator="v3")
 
 
-@pytest.mark.slow  # oimodeler and its 40 dependencies: requirements-slow.txt
-def test_plan_and_estimates_load_in_a_fitting_package(set_dir):
-    """oimodeler (a model-fitting package) loads the files and computes a
-    model's chi² against them. (PMOIRED 26.10 refuses one-channel files:
-    its loader takes a numerical gradient of the wavelengths.) The slow
-    tier installs it (tests/python/requirements-slow.txt); a missing
-    oimodeler fails there, it is not skipped."""
-    import oimodeler as oim
-
-    for name in ("plan.fits", "est.fits", "set.truth.fits"):
-        d = oim.oimData(str(set_dir / name))
-        d.prepareData()
-        assert int(np.ravel(d.struct_nwl)[0]) == 1, name
-        sim = oim.oimSimulator(data=d, model=oim.oimModel(oim.oimUD(d=1)))
-        sim.compute(computeChi2=True)
-        assert np.isfinite(sim.chi2), name
-
-
 def test_python_plan_writes_the_cli_plan_file(set_dir, tmp_path):
     """``plan(oifits=...)`` writes, through the same library code, the file
     ``v2ref plan --oifits`` writes for the same inputs: byte for byte but
@@ -342,3 +324,55 @@ def test_score_of_a_flagged_oifits_path(set_dir, tmp_path):
             assert "verdict" not in got and got["estimators"][0]["estimator"] == "v2_sq"
     with pytest.raises(ValueError, match="^bins"):
         v2ref.score(set_dir / "est.fits", sidecar, bins="band")
+
+
+def test_the_keywords_say_where_and_when(set_dir, tmp_path):
+    """``target_name``, ``ra_deg``/``dec_deg``, ``date`` and ``site`` (a known
+    array, or a name with coordinates) reach the file as the CLI's flags do;
+    a bad value raises ValueError naming the keyword, a wrong type TypeError,
+    and nothing is written; ``plan`` refuses them without ``oifits``."""
+    sidecar = set_dir / "set.json"
+    v2 = v2ref.read_oifits(set_dir / "v2.fits")[0]["vis2data"][:, 0]
+    out = tmp_path / "where.fits"
+    v2ref.write_oifits(out, sidecar=sidecar, v2_sq=v2, target_name="HD 12345", ra_deg=37.95,
+                       dec_deg=89.26, date="2026-11-26T03:00:00", site="Mine",
+                       site_lon_deg=10, site_lat_deg=45, site_height_m=100.0)
+    truth = tmp_path / "truth.fits"
+    v2ref.write_oifits_truth(truth, sidecar=sidecar, site="chara", date="2024-02-29")
+    plan = tmp_path / "plan.fits"
+    v2ref.plan(fringe_hz=[300], stroke_um=[32], scans=64, oifits=plan, target_name="STAR", site="vlti")
+    with fits.open(out) as h:
+        assert h[0].header["OBJECT"] == "HD 12345" and h[0].header["DATE-OBS"] == "2026-11-26T03:00:00"
+        t = h["OI_TARGET"].data
+        assert (t["TARGET"][0], t["RAEP0"][0], t["DECEP0"][0]) == ("HD 12345", 37.95, 89.26)
+        a = h["OI_ARRAY"].header
+        # astropy's EarthLocation.from_geodetic(10, 45, 100) (WGS84), m.
+        assert a["ARRNAME"] == "Mine"
+        np.testing.assert_allclose([a["ARRAYX"], a["ARRAYY"], a["ARRAYZ"]],
+                                   [4449028.159, 784483.702, 4487419.120], atol=1e-3)
+        # 2026-11-26 03:00 UTC is MJD 61370.125; the first row starts there.
+        mjd = h["OI_VIS2"].data["MJD"]
+        assert 61370.125 < mjd[0] < 61370.125 + 1 / 24
+    with fits.open(truth) as h:
+        assert h["OI_ARRAY"].header["ARRNAME"] == "CHARA" and h[0].header["DATE-OBS"] == "2024-02-29"
+        assert h["OI_TARGET"].data["TARGET"][0] == "V2REF_MODEL"
+    with fits.open(plan) as h:
+        assert h["OI_ARRAY"].header["ARRNAME"] == "VLTI" and h[0].header["OBJECT"] == "STAR"
+    bad = tmp_path / "bad.fits"
+    for kw, match in [
+        (dict(date="2023-02-29"), "^date: .*YYYY-MM-DD"),
+        (dict(ra_deg=360.0, dec_deg=0.0), "^ra_deg: .*0 to 360"),
+        (dict(ra_deg=10.0), "^dec_deg"),
+        (dict(target_name="x" * 17), "^target_name: .*1 to 16"),
+        (dict(site="paranal"), "^site: .*iota, vlti, chara"),
+        (dict(site="X", site_lon_deg=1.0, site_lat_deg=1.0, site_height_m=7000.0), "^site_height_m: .*-500 to 6000"),
+    ]:
+        with pytest.raises(ValueError, match=match):
+            v2ref.write_oifits(bad, sidecar=sidecar, v2_sq=v2, **kw)
+        assert not bad.exists(), kw
+    with pytest.raises(TypeError, match="^ra_deg"):
+        v2ref.write_oifits(bad, sidecar=sidecar, v2_sq=v2, ra_deg="10", dec_deg=0.0)
+    with pytest.raises(TypeError, match="^site"):
+        v2ref.write_oifits_truth(bad, sidecar=sidecar, site=3)
+    with pytest.raises(ValueError, match="^target_name: applies when an OIFITS file is written"):
+        v2ref.plan(fringe_hz=[300], stroke_um=[32], scans=64, target_name="STAR")

@@ -3,6 +3,7 @@
 //! observation (`plan`). The front ends only choose a path and call
 //! [`super::write_oifits`].
 
+use super::observing::ObservingContext;
 use super::setting::Setting;
 use super::write::{Key, KeyValue, OifitsDoc, Vis2Out};
 use super::{default_insname, KEY_BIAS, KEY_BINS};
@@ -33,9 +34,6 @@ use crate::plan::{PlanInputs, PlanPoint};
 use crate::simulator::Model;
 use crate::{Error, Result};
 
-/// `TARGET` of a configuration's source.
-pub const TARGET: &str = "V2REF_MODEL";
-
 /// Both estimators, in order.
 pub const BOTH: [Estimator; 2] = [Estimator::V1Sq, Estimator::V2Sq];
 
@@ -51,12 +49,13 @@ fn window_keys(bins: BinWindow, bias: BiasConvention) -> Vec<Key> {
 /// of the calibrated estimator at the configuration's conditions (the
 /// exact variance of the `model` convention, piston-free, with the
 /// model's calibration), the same for every row; NaN where it has no
-/// closed form (more than 4096 samples). Nothing is flagged.
+/// closed form (more than 4096 samples). Nothing is flagged. Target,
+/// date and site: `observing`'s.
 pub fn estimates_doc(
     model: &Model,
     columns: &[(Estimator, Vec<f64>)],
-    bins: BinWindow,
-    bias: BiasConvention,
+    (bins, bias): (BinWindow, BiasConvention),
+    observing: &ObservingContext,
 ) -> Result<OifitsDoc> {
     let closed = expectation(&model.calibrated_setup(bins), &model.noise, Formula::Exact)?;
     let sd = |v: Option<f64>| v.map_or(f64::NAN, f64::sqrt);
@@ -87,7 +86,7 @@ pub fn estimates_doc(
         })
         .collect();
     Ok(OifitsDoc {
-        setting: Setting::from_inputs(&model.inputs, TARGET)?,
+        setting: Setting::from_inputs(&model.inputs, observing)?,
         tables,
         keywords: vec![Key::str(
             "V2R_KIND",
@@ -100,7 +99,12 @@ pub fn estimates_doc(
 /// A synth set's truth as OIFITS: per row, the expected V1² and V2² of
 /// the window `bins` and convention `bias` (`VIS2DATA`) and their
 /// standard deviation over rows (`VIS2ERR`), from the sidecar's truth.
-pub fn truth_doc(sidecar: &Sidecar, bins: BinWindow, bias: BiasConvention) -> Result<OifitsDoc> {
+/// Target, date and site: `observing`'s.
+pub fn truth_doc(
+    sidecar: &Sidecar,
+    (bins, bias): (BinWindow, BiasConvention),
+    observing: &ObservingContext,
+) -> Result<OifitsDoc> {
     let truth = sidecar.truth(bins, bias).ok_or_else(|| Error::Invalid {
         param: "bins",
         reason: format!("the set has no truth for {} / {}", bins.name(), bias.name()),
@@ -132,7 +136,7 @@ pub fn truth_doc(sidecar: &Sidecar, bins: BinWindow, bias: BiasConvention) -> Re
         })
         .collect();
     Ok(OifitsDoc {
-        setting: Setting::from_inputs(&sidecar.inputs, TARGET)?,
+        setting: Setting::from_inputs(&sidecar.inputs, observing)?,
         tables,
         keywords: vec![
             Key::str(
@@ -156,8 +160,13 @@ pub fn truth_doc(sidecar: &Sidecar, bins: BinWindow, bias: BiasConvention) -> Re
 /// (`V2R_BBW` bandwidth and dispersion, `V2R_BSCN` scan and detector,
 /// `V2R_BPST` piston and `V2R_EPST` its standard error), with the V² error
 /// from the diameter's (`V2R_VDIA`), the window and the bias convention,
-/// and a note on the `VIS2DATA` column.
-pub fn plan_doc(inputs: &PlanInputs, point: &PlanPoint) -> Result<OifitsDoc> {
+/// and a note on the `VIS2DATA` column. Target, date and site:
+/// `observing`'s.
+pub fn plan_doc(
+    inputs: &PlanInputs,
+    point: &PlanPoint,
+    observing: &ObservingContext,
+) -> Result<OifitsDoc> {
     let scans = point.scans_needed.unwrap_or(0.0).ceil().max(1.0);
     let sigma = point
         .sigma_reached
@@ -166,8 +175,11 @@ pub fn plan_doc(inputs: &PlanInputs, point: &PlanPoint) -> Result<OifitsDoc> {
         crate::plan::Estimator::V1 => Estimator::V1Sq,
         crate::plan::Estimator::V2 => Estimator::V2Sq,
     };
-    let mut setting = Setting::from_inputs(&inputs.instrument, TARGET)?;
+    let mut setting = Setting::from_inputs(&inputs.instrument, observing)?;
     setting.scan_s = point.time_s.or(Some(point.scan_time_s * scans));
+    // The instrument's piston is set per grid point: the telescopes are
+    // the atmosphere's apertures.
+    setting.diameter_m = inputs.atmosphere.aperture_m;
     let keywords = vec![
         Key::f64(
             "V2R_VMON",

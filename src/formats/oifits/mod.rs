@@ -29,13 +29,17 @@
 pub mod docs;
 pub mod fits;
 mod mem;
+pub mod observing;
 mod order;
 pub mod read;
+#[cfg(test)]
+mod reader_tests;
 mod select;
 pub mod setting;
 pub mod table;
 pub mod write;
 
+pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
     min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
     truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
@@ -126,18 +130,19 @@ pub(crate) fn status_text(status: i32) -> String {
 }
 
 /// Writes a plan's predicted observation at its recommended setting
-/// (`plan --oifits`, Python's `plan(oifits=...)`); `param` names the file.
-/// False, and nothing written, when no setting reaches the target: the
-/// plan itself says so, and is no less an answer (same exit status).
+/// (`plan --oifits`, Python's `plan(oifits=...)`), where and when
+/// `observing` says; `param` names the file. False, and nothing written,
+/// when no setting reaches the target: the plan itself says so, and is no
+/// less an answer (same exit status).
 pub fn write_plan(
     path: &Path,
     param: &'static str,
-    inputs: &crate::plan::PlanInputs,
-    plan: &crate::plan::Plan,
+    (inputs, plan): (&crate::plan::PlanInputs, &crate::plan::Plan),
+    observing: &ObservingContext,
 ) -> Result<bool> {
     let Some(point) = plan.recommended.as_ref() else {
         return Ok(false);
     };
-    write_oifits(path, param, &docs::plan_doc(inputs, point)?)?;
+    write_oifits(path, param, &docs::plan_doc(inputs, point, observing)?)?;
     Ok(true)
 }

@@ -2,15 +2,11 @@
 //! effective wavelength and width of the band, the baseline, the time of
 //! each scan.
 
+use super::observing::{mjd_of_date, ObservingContext};
 use crate::formalism::spectrum::Spectrum;
 use crate::simulator::Inputs;
 use crate::Result;
 
-/// MJD at the start of the rows by default: 2000-01-01T00:00 UTC. The rows are a
-/// model's, not a night's: a fixed, recognisable epoch.
-pub const MJD0: f64 = 51_544.0;
-/// `DATE-OBS` of [`MJD0`].
-pub const DATE_OBS: &str = "2000-01-01";
 /// Row spacing, s, where the configuration has no scan speed (no piston).
 pub const NOMINAL_ROW_S: f64 = 1.0;
 
@@ -68,7 +64,8 @@ pub struct Setting {
     pub target: String,
     /// The target's right ascension and declination (J2000), degrees.
     pub target_radec_deg: (f64, f64),
-    /// `DATE-OBS`, `YYYY-MM-DD`: the night of the first row (at 00:00 UTC).
+    /// `DATE-OBS`: when the first row starts (UTC), `YYYY-MM-DD` (at
+    /// 00:00) or `YYYY-MM-DDThh:mm:ss[.s]`.
     pub date_obs: String,
     /// The array's site; its two stations stand on the baseline, east–west.
     pub site: Site,
@@ -90,8 +87,8 @@ pub struct Setting {
 }
 
 impl Setting {
-    /// The setting of a configuration (`target` names the source).
-    pub fn from_inputs(inputs: &Inputs, target: &str) -> Result<Setting> {
+    /// The setting of a configuration, where and when `observing` says.
+    pub fn from_inputs(inputs: &Inputs, observing: &ObservingContext) -> Result<Setting> {
         let spectrum = inputs.spectrum.spectrum()?;
         let (eff_wave_m, eff_band_m) = wavelengths(&spectrum);
         // The scan runs N δx of OPD at v = f λ0 (µm/s).
@@ -100,10 +97,10 @@ impl Setting {
             .as_ref()
             .map(|p| inputs.samples as f64 * inputs.dx_um / (p.fringe_hz * p.wavelength_um));
         Ok(Setting {
-            target: target.to_owned(),
-            target_radec_deg: (0.0, 0.0),
-            date_obs: DATE_OBS.to_owned(),
-            site: iota(),
+            target: observing.target_name.clone(),
+            target_radec_deg: observing.radec_deg,
+            date_obs: observing.date.clone(),
+            site: observing.site.clone(),
             diameter_m: inputs.piston.as_ref().map_or(0.0, |p| p.aperture_m),
             baseline_m: inputs.baseline_m,
             eff_wave_m,
@@ -118,27 +115,11 @@ impl Setting {
     }
 
     /// The MJD of the middle of row `r` (0-based): rows follow one
-    /// another from 00:00 UTC of [`Setting::date_obs`].
+    /// another from [`Setting::date_obs`] (checked when it was given: a
+    /// date that is none counts from MJD 0).
     pub fn mjd(&self, r: usize) -> f64 {
-        mjd_of_date(&self.date_obs).unwrap_or(MJD0) + (r as f64 + 0.5) * self.row_s() / 86_400.0
+        mjd_of_date(&self.date_obs).unwrap_or(0.0) + (r as f64 + 0.5) * self.row_s() / 86_400.0
     }
-}
-
-/// The MJD of 00:00 UTC of a `YYYY-MM-DD` date (None when it is not one).
-pub fn mjd_of_date(date: &str) -> Option<f64> {
-    let mut parts = date.splitn(3, '-').map(|p| p.parse::<i64>().ok());
-    let (y, m, d) = (parts.next()??, parts.next()??, parts.next()??);
-    if date.len() != 10 || !(1..=12).contains(&m) || !(1..=31).contains(&d) {
-        return None;
-    }
-    // Days from the civil date (Hinnant's days_from_civil), then MJD.
-    let y = if m <= 2 { y - 1 } else { y };
-    let era = y.div_euclid(400);
-    let yoe = y - era * 400;
-    let doy = (153 * (if m > 2 { m - 3 } else { m + 9 }) + 2) / 5 + d - 1;
-    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    let days_since_1970 = era * 146_097 + doe - 719_468;
-    Some(days_since_1970 as f64 + 40_587.0)
 }
 
 /// `EFF_WAVE` and `EFF_BAND` of a spectrum, m.

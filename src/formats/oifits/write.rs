@@ -113,8 +113,18 @@ pub fn write_oifits(path: &Path, param: &'static str, doc: &OifitsDoc) -> Result
     temp.persist()
 }
 
-/// Tables present, each with one value per row in every column.
+/// Tables present, each with one value per row in every column; a date
+/// the rows' MJD can be counted from.
 fn check_doc(doc: &OifitsDoc, param: &'static str) -> Result<()> {
+    if super::observing::mjd_of_date(&doc.setting.date_obs).is_none() {
+        return Err(Error::Invalid {
+            param: "date",
+            reason: format!(
+                "{:?}: not a UTC date YYYY-MM-DD[Thh:mm:ss[.s]] from 1858-11-17",
+                doc.setting.date_obs
+            ),
+        });
+    }
     if doc.tables.is_empty() {
         return Err(Error::Invalid {
             param,

@@ -12,9 +12,10 @@ use std::path::PathBuf;
 
 /// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
 /// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3);
-/// `oifits`: `--oifits`.
+/// `oifits`: `--oifits`; `observing`: its target, date and site (the
+/// wrapper's keywords, as `--target-name` ... `--site-height-m`).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -33,10 +34,12 @@ pub(super) fn plan(
     oifits: Option<PathBuf>,
     bias: &str,
     verify_observations: Option<u64>,
+    observing: Option<crate::python::oifits::ObservingKeywords>,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::check_fits_extension(path, "oifits"))?;
     }
+    let observing = crate::python::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
     let p = Physical::from_dict(physical)?;
     let req = PlanRequest {
         samples_per_fringe,
@@ -73,8 +76,8 @@ pub(super) fn plan(
         ok(crate::formats::oifits::write_plan(
             path,
             "oifits",
-            &answer.inputs,
-            &answer.plan,
+            (&answer.inputs, &answer.plan),
+            &observing,
         ))?;
     }
     to_py(py, &answer)
