@@ -130,6 +130,7 @@ pub mod cancel;
 pub mod cleanup;
 pub mod commands;
 pub mod conformance;
+pub(crate) mod csv_lines;
 pub mod error;
 pub mod formalism;
 #[cfg(feature = "files")]

@@ -14,6 +14,7 @@ const LEVELS: &[&[&str]] = &[
         "bounds",
         "cancel",
         "cleanup",
+        "csv_lines",
         "math",
         "montecarlo",
     ],

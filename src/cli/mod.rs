@@ -26,6 +26,7 @@ pub mod estimate;
 pub mod golden;
 pub mod grid;
 pub mod inputs;
+pub mod memory;
 pub mod oifits;
 pub mod output;
 pub mod piston;
