@@ -124,6 +124,7 @@
 
 #![warn(missing_docs)]
 
+pub mod atomic;
 pub mod bias;
 pub mod bounds;
 pub mod cancel;

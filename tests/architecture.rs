@@ -14,6 +14,7 @@ const LEVELS: &[&[&str]] = &[
         "bounds",
         "cancel",
         "cleanup",
+        "atomic",
         "csv_lines",
         "math",
         "montecarlo",

@@ -1,8 +1,8 @@
 //! File formats of the conformance kit and the command line: matrices and
 //! estimates read from `.npy` or `.csv` ([`npy`], [`csv`]), and atomic,
-//! streaming writers ([`atomic`]: a temporary file renamed onto the target
-//! only when complete, so that a failed or interrupted write leaves the
-//! target as it was).
+//! streaming writers (over the crate's one atomic writer, [`crate::atomic`]:
+//! a temporary file renamed onto the target only when complete, so that a
+//! failed or interrupted write leaves the target as it was).
 //!
 //! Every refusal is an [`Error::Data`] naming the file, where in it (`row i,
 //! column j` counted from 1, or `header`) and what is accepted; a file that
@@ -15,15 +15,13 @@
 //! This module is the edge's (feature `files`, on with `cli`): the
 //! numerical core reads and writes no file.
 
-pub mod atomic;
+pub use crate::atomic;
+pub use crate::atomic::{set, target};
 pub mod budget;
 pub mod csv;
-pub(crate) mod lock;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
-pub mod set;
-pub mod target;
 
 pub use atomic::write_text_atomic;
 pub use budget::{check_budget, memory_budget};
