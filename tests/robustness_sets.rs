@@ -330,3 +330,26 @@ fn a_folder_has_one_writer_at_a_time() {
     assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "first");
     assert_eq!(names(tmp.path()), [OsString::from("out")]);
 }
+
+/// `golden --check` regenerates the vectors in a scratch folder of the one
+/// atomic writer: SIGTERM during the check leaves nothing in the
+/// temporary folder (before, its `v2ref-vectors-PID` folder stayed, and no
+/// later run removed it).
+#[test]
+fn a_stopped_golden_check_leaves_no_scratch_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("golden");
+    let child = v2ref(tmp.path())
+        .env("TMPDIR", tmp.path())
+        .args(["golden", "--check", "--only", "vectors", "--dir"])
+        .arg(&golden)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The scratch folder, whatever its name, appears at the check's start.
+    wait_for(tmp.path(), "");
+    let (code, err) = stop(child, "TERM");
+    assert_eq!(code, Some(143), "{err}");
+    assert_eq!(names(tmp.path()), Vec::<OsString>::new());
+}

@@ -72,7 +72,6 @@ impl TempFolder {
                 reason: "not a folder name".into(),
             })?;
         let path = free_name(target, &name, 0).map_err(|e| Error::file(param, target, e))?;
-        crate::cleanup::register(&path);
         let folder = TempFolder {
             target: target.to_path_buf(),
             path,
@@ -127,17 +126,44 @@ impl Drop for TempFolder {
     }
 }
 
-/// Makes the first free temporary folder for `name` beside `target`, from
-/// the `first`-th name on.
+/// Makes (and registers) the first free temporary folder for `name`
+/// beside `target`, from the `first`-th name on.
 fn free_name(target: &Path, name: &[u8], first: u32) -> std::io::Result<PathBuf> {
     let dir = parent_of(target);
     let mut k = first;
     loop {
         let path = dir.join(temp_name(name, k));
+        // Registered first: a signal that comes as it is made removes it.
+        crate::cleanup::register(&path);
         match std::fs::create_dir(&path) {
             Ok(()) => return Ok(path),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && k < first + 1000 => k += 1,
-            Err(e) => return Err(e),
+            Err(e) => {
+                crate::cleanup::unregister(&path);
+                match e.kind() {
+                    std::io::ErrorKind::AlreadyExists if k < first + 1000 => k += 1,
+                    _ => return Err(e),
+                }
+            }
         }
+    }
+}
+
+/// A folder of scratch files, a temporary of the one writer that is never
+/// placed: named for `target` beside it, registered (a terminating signal
+/// removes it), removed on drop; a dead process's is removed by a later
+/// run beside it.
+pub struct ScratchFolder(TempFolder);
+
+impl ScratchFolder {
+    /// Makes the scratch folder for `target` (in `target`'s folder, which
+    /// must exist); errors name `param`.
+    pub fn create(target: &Path, param: Option<&'static str>) -> Result<ScratchFolder> {
+        remove_stale_temporaries(&parent_of(target));
+        TempFolder::create(target, param).map(ScratchFolder)
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.0.path
     }
 }

@@ -18,7 +18,7 @@ pub mod target;
 mod folder;
 
 use crate::{Error, Result};
-pub use folder::{check_folder_parent, replace_folder};
+pub use folder::{check_folder_parent, replace_folder, ScratchFolder};
 use lock::{name_bytes, temp_name};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
