@@ -190,7 +190,7 @@ pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar
         bar.set_style(style.progress_chars("=> "));
     }
     bar.set_message(what.to_owned());
-    bar.enable_steady_tick(std::time::Duration::from_millis(150));
+    output::steady_tick(&bar, std::time::Duration::from_millis(150));
     bar
 }
 
@@ -206,7 +206,7 @@ pub fn spinner(quiet: bool, what: &str) -> indicatif::ProgressBar {
         bar.set_style(style);
     }
     bar.set_message(what.to_owned());
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    output::steady_tick(&bar, std::time::Duration::from_millis(120));
     bar
 }
 

@@ -113,6 +113,24 @@ const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
 /// Whether the run's cost was announced before it started ([`announce`]).
 static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// Redraws `bar` every `interval` from a thread of its own, as indicatif's
+/// `enable_steady_tick` does; but where the system refuses the thread (a
+/// process limit, `RLIMIT_NPROC`) the bar is redrawn only as it advances,
+/// where `enable_steady_tick` panics. The thread ends with the bar.
+pub fn steady_tick(bar: &indicatif::ProgressBar, interval: std::time::Duration) {
+    let bar = bar.downgrade();
+    let _ = std::thread::Builder::new().spawn(move || {
+        while let Some(bar) = bar.upgrade() {
+            if bar.is_finished() {
+                return;
+            }
+            bar.tick();
+            drop(bar);
+            std::thread::sleep(interval);
+        }
+    });
+}
+
 /// Where no bar is drawn (stderr not a terminal) and the run was not
 /// announced before it started (its cost law under-predicted it): after
 /// [`COST_PROBE`], predicts the run's duration from the steps done so far
