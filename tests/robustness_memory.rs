@@ -235,6 +235,50 @@ fn estimate_streams_a_csv() {
     );
 }
 
+/// A streamed CSV is refused at its fault as a CSV read whole is: a word
+/// in the third block names its row and line (the header counted), a
+/// short row after it is not reached, and a short row before a word is
+/// named first (from the shape, before any value is read).
+#[test]
+fn a_streamed_csv_is_refused_at_its_first_fault() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let row = vec!["1.5"; 16].join(",");
+    let mut lines: Vec<String> = vec![
+        "# rows".into(),
+        (0..16)
+            .map(|i| format!("s{i}"))
+            .collect::<Vec<_>>()
+            .join(","),
+    ];
+    lines.extend((0..20_000).map(|_| row.clone()));
+    lines[2 + 18_000] = row.replacen("1.5", "abc", 1);
+    std::fs::write(d.join("word.csv"), lines.join("\n")).unwrap();
+    let estimate = |file: &str| {
+        let out = v2ref(d, &[], &["estimate", "--input", file, "--out", "e.csv"]);
+        assert_eq!(out.status.code(), Some(2));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let err = estimate("word.csv");
+    assert!(
+        err.contains("--input")
+            && err.contains("row 18001, column 1 (1-based, line 18003)")
+            && err.contains("\"abc\" is not a number"),
+        "{err}"
+    );
+    lines[2 + 19_000] = "1.5,2".into();
+    std::fs::write(d.join("word_then_short.csv"), lines.join("\n")).unwrap();
+    assert!(estimate("word_then_short.csv").contains("row 18001, column 1"));
+    lines[2 + 100] = "1.5,2".into();
+    std::fs::write(d.join("short_then_word.csv"), lines.join("\n")).unwrap();
+    let err = estimate("short_then_word.csv");
+    assert!(
+        err.contains("row 101 (1-based, line 103)") && err.contains("2 columns"),
+        "{err}"
+    );
+    assert!(!d.join("e.csv").exists());
+}
+
 /// Waits for `child`; its exit status and its peak resident memory, the
 /// largest `VmHWM` of /proc/PID/status read every 2 ms once it runs v2ref
 /// (before its exec the child shares this process's memory, whose peak
