@@ -4,10 +4,10 @@
 //! [`crate::cleanup`], so that a terminating signal removes it), which
 //! takes the target's place only once it is complete and synced, alone or
 //! with the rest of its set ([`set`]). Targets are checked ([`target`])
-//! and locked for the run ([`lock`]); temporaries of processes that no
+//! and locked for the run (`src/atomic/lock.rs`); temporaries of processes that no
 //! longer run are removed by the next run that writes beside them.
 //!
-//! - A file: [`TempTarget`] under every writer of [`crate::formats`]
+//! - A file: a temporary file under every writer of [`crate::formats`]
 //!   (`.npy`, CSV, OIFITS, text: [`write_text_atomic`]).
 //! - A folder: [`replace_folder`] (`reproduce --out`, `golden --update`).
 
