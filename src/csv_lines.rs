@@ -13,6 +13,8 @@ use std::io::{self, BufRead, Read};
 
 /// Why a line could not be read.
 #[derive(Debug)]
+// Told apart by the file readers of `formats` (feature `files`) only.
+#[cfg_attr(not(feature = "files"), allow(dead_code))]
 pub(crate) enum LineFault {
     /// Not UTF-8 text.
     NotUtf8,

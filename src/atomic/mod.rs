@@ -21,7 +21,9 @@ use crate::{Error, Result};
 pub use folder::{check_folder_parent, replace_folder, ScratchFolder};
 use lock::{name_bytes, temp_name};
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+#[cfg(feature = "files")]
+use std::io::BufWriter;
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// A temporary file next to a target, removed on drop unless persisted.
@@ -150,9 +152,11 @@ impl Drop for TempTarget {
     }
 }
 
+#[cfg(feature = "files")]
 pub(crate) const WRITE_BUFFER: usize = 1 << 20;
 
 /// Checks the row count, flushes, syncs, closes and renames.
+#[cfg(feature = "files")]
 pub(crate) fn finish_file(
     out: BufWriter<File>,
     temp: TempTarget,
@@ -168,6 +172,7 @@ pub(crate) fn finish_file(
     temp.persist()
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn whole_rows(len: usize, cols: usize, temp: &TempTarget) -> Result<u64> {
     if cols == 0 || len % cols != 0 {
         return Err(Error::Output {
@@ -178,6 +183,7 @@ pub(crate) fn whole_rows(len: usize, cols: usize, temp: &TempTarget) -> Result<u
     Ok((len / cols) as u64)
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn too_many(temp: &TempTarget, rows: u64) -> Error {
     Error::Output {
         path: temp.target.display().to_string(),
@@ -185,6 +191,7 @@ pub(crate) fn too_many(temp: &TempTarget, rows: u64) -> Error {
     }
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn row_count(temp: &TempTarget, rows: u64, written: u64) -> Error {
     Error::Output {
         path: temp.target.display().to_string(),
