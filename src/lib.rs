@@ -147,12 +147,14 @@
 
 #![warn(missing_docs)]
 
+pub mod atomic;
 pub mod bias;
 pub mod bounds;
 pub mod cancel;
 pub mod cleanup;
 pub mod commands;
 pub mod conformance;
+pub(crate) mod csv_lines;
 pub mod error;
 pub mod formalism;
 #[cfg(feature = "files")]

@@ -14,6 +14,8 @@ const LEVELS: &[&[&str]] = &[
         "bounds",
         "cancel",
         "cleanup",
+        "atomic",
+        "csv_lines",
         "math",
         "montecarlo",
         "words",

@@ -12,7 +12,7 @@ fn quick_reproduction_writes_every_expected_file() {
     std::fs::create_dir(&out).unwrap();
     std::fs::write(out.join(".v2ref-output"), "written by v2ref\n").unwrap();
     std::fs::write(out.join("old.csv"), "stale\n").unwrap();
-    let stale = dir.path().join(".repro.tmp-4000000000");
+    let stale = dir.path().join(".v2ref-tmp-4000000000-0-repro");
     std::fs::create_dir(&stale).unwrap();
     std::fs::write(
         stale.join(".v2ref-temporary"),
@@ -21,7 +21,7 @@ fn quick_reproduction_writes_every_expected_file() {
     .unwrap();
     // Named as a killed run's temporary, of a process that is gone, but
     // without v2ref's marker inside: the user's, kept.
-    let users = dir.path().join(".repro.tmp-4000000001");
+    let users = dir.path().join(".v2ref-tmp-4000000001-0-repro");
     std::fs::create_dir(&users).unwrap();
     std::fs::write(users.join("thesis.tex"), "mine\n").unwrap();
     let run = Command::new(env!("CARGO_BIN_EXE_v2ref"))
@@ -139,7 +139,7 @@ fn quick_reproduction_writes_every_expected_file() {
     leftovers.sort();
     assert_eq!(
         leftovers,
-        [".repro.tmp-4000000001", "repro"],
+        [".v2ref-tmp-4000000001-0-repro", "repro"],
         "{leftovers:?}"
     );
 }

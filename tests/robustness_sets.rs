@@ -295,3 +295,61 @@ fn golden_update_rewrites_its_own_folder() {
     );
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// A folder is written by the one atomic writer, as a file is: a second
+/// writer of the same folder (here a call inside the first, as a second
+/// thread or process would be) is refused, naming the writer, and leaves
+/// the first one's folder whole; a failed fill leaves the old folder and
+/// no temporary. (Before, folders had their own writer, without a lock:
+/// both calls succeeded, one replacing the other.)
+#[test]
+fn a_folder_has_one_writer_at_a_time() {
+    use v2ref::reproduction::golden::replace_dir_atomically;
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    let write = |d: &Path, text: &str| {
+        std::fs::write(d.join("a.txt"), text).map_err(|e| v2ref::Error::file(None, d, e))
+    };
+    replace_dir_atomically(&dir, |d| write(d, "old")).unwrap();
+    let inner = replace_dir_atomically(&dir, |d| {
+        write(d, "first")?;
+        Ok(replace_dir_atomically(&dir, |d2| write(d2, "second")))
+    })
+    .unwrap();
+    let err = inner.expect_err("a second writer of the folder was let in");
+    assert!(err.to_string().contains("is writing it now"), "{err}");
+    assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "first");
+    let failed = replace_dir_atomically(&dir, |d| {
+        write(d, "half")?;
+        Err::<(), _>(v2ref::Error::Invalid {
+            param: "test",
+            reason: "fails".into(),
+        })
+    });
+    assert!(failed.is_err());
+    assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "first");
+    assert_eq!(names(tmp.path()), [OsString::from("out")]);
+}
+
+/// `golden --check` regenerates the vectors in a scratch folder of the one
+/// atomic writer: SIGTERM during the check leaves nothing in the
+/// temporary folder (before, its `v2ref-vectors-PID` folder stayed, and no
+/// later run removed it).
+#[test]
+fn a_stopped_golden_check_leaves_no_scratch_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("golden");
+    let child = v2ref(tmp.path())
+        .env("TMPDIR", tmp.path())
+        .args(["golden", "--check", "--only", "vectors", "--dir"])
+        .arg(&golden)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The scratch folder, whatever its name, appears at the check's start.
+    wait_for(tmp.path(), "");
+    let (code, err) = stop(child, "TERM");
+    assert_eq!(code, Some(143), "{err}");
+    assert_eq!(names(tmp.path()), Vec::<OsString>::new());
+}

@@ -11,7 +11,7 @@ use v2ref::commands::estimate::{
 };
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, NpyRows, OutputSet};
+use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, OutputSet, RowStream};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.
@@ -61,6 +61,8 @@ pub struct Args {
     /// Replace an existing output file (never a link, folder or device).
     #[arg(long)]
     force: bool,
+    #[command(flatten)]
+    memory: super::memory::MemoryArgs,
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     threads: usize,
@@ -84,6 +86,7 @@ impl Source {
 
 /// Runs `estimate`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    args.memory.apply()?;
     let source = source(&args)?;
     // What is at the path first (a device, a link, a folder, a user's file),
     // then the format its extension names.
@@ -105,20 +108,20 @@ fn estimate_and_write(
     source: &Source,
     observing: &v2ref::formats::oifits::ObservingContext,
 ) -> Result<ExitCode> {
-    let (rows, cols) = match NpyRows::open(&source.input, "input")? {
+    let (rows, cols) = match RowStream::open(&source.input, "input")? {
         Some(mut stream) => {
             // The answer is held whole (6 values a row): refused from the
             // header when it cannot fit.
-            let answer_bytes = stream.rows as u64 * std::mem::size_of::<RowEstimate>() as u64;
+            let answer_bytes = stream.rows() as u64 * std::mem::size_of::<RowEstimate>() as u64;
             v2ref::formats::check_budget(answer_bytes, "input", &source.input)?;
-            let est = estimator(args, source, stream.rows, stream.cols)?;
-            let mut out = Vec::with_capacity(stream.rows);
+            let est = estimator(args, source, stream.rows(), stream.cols())?;
+            let mut out = Vec::with_capacity(stream.rows());
             let mut block = Vec::new();
             while stream.next_block(STREAM_ROWS, &mut block)? > 0 {
                 let at = (block.as_slice(), out.len());
                 out.extend(estimate_rows(&est, source.name(), at, args.threads)?);
             }
-            (out, stream.cols)
+            (out, stream.cols())
         }
         None => {
             let data = read_matrix(&source.input, "input")?;
@@ -205,12 +208,22 @@ fn source(args: &Args) -> Result<Source> {
     }
 }
 
+/// Writes `rows` to `--out` (`.npy` or CSV) or standard output, a block of
+/// rows at a time (no second copy of the answer).
 fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
-    let flat: Vec<f64> = rows.iter().flat_map(RowEstimate::values).collect();
+    let mut flat = Vec::new();
+    let mut each_block = |write_rows: &mut dyn FnMut(&[f64]) -> Result<()>| {
+        for block in rows.chunks(STREAM_ROWS) {
+            flat.clear();
+            flat.extend(block.iter().flat_map(RowEstimate::values));
+            write_rows(&flat)?;
+        }
+        Ok::<(), Error>(())
+    };
     match out {
         Some(p) if p.extension().is_some_and(|e| e == "npy") => {
             let mut w = NpyRowWriter::create(p, rows.len() as u64, COLUMNS.len(), "out")?;
-            w.write_rows(&flat)?;
+            each_block(&mut |v| w.write_rows(v))?;
             w.finish()
         }
         Some(p) => {
@@ -221,7 +234,7 @@ fn write(out: &Option<PathBuf>, rows: &[RowEstimate]) -> Result<()> {
                 Some(&COLUMNS.join(",")),
                 "out",
             )?;
-            w.write_rows(&flat)?;
+            each_block(&mut |v| w.write_rows(v))?;
             w.finish()
         }
         None => {

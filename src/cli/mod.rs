@@ -28,6 +28,7 @@ mod generated;
 pub mod golden;
 pub mod grid;
 pub mod inputs;
+pub mod memory;
 pub mod oifits;
 pub mod output;
 pub mod piston;
@@ -191,7 +192,7 @@ pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar
         bar.set_style(style.progress_chars("=> "));
     }
     bar.set_message(what.to_owned());
-    bar.enable_steady_tick(std::time::Duration::from_millis(150));
+    output::steady_tick(&bar, std::time::Duration::from_millis(150));
     bar
 }
 
@@ -207,7 +208,7 @@ pub fn spinner(quiet: bool, what: &str) -> indicatif::ProgressBar {
         bar.set_style(style);
     }
     bar.set_message(what.to_owned());
-    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    output::steady_tick(&bar, std::time::Duration::from_millis(120));
     bar
 }
 

@@ -117,6 +117,24 @@ static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool:
 /// watcher gives up on predicting it.
 const SETUP_WAIT: std::time::Duration = std::time::Duration::from_secs(600);
 
+/// Redraws `bar` every `interval` from a thread of its own, as indicatif's
+/// `enable_steady_tick` does; but where the system refuses the thread (a
+/// process limit, `RLIMIT_NPROC`) the bar is redrawn only as it advances,
+/// where `enable_steady_tick` panics. The thread ends with the bar.
+pub fn steady_tick(bar: &indicatif::ProgressBar, interval: std::time::Duration) {
+    let bar = bar.downgrade();
+    let _ = std::thread::Builder::new().spawn(move || {
+        while let Some(bar) = bar.upgrade() {
+            if bar.is_finished() {
+                return;
+            }
+            bar.tick();
+            drop(bar);
+            std::thread::sleep(interval);
+        }
+    });
+}
+
 /// Where no bar is drawn (stderr not a terminal) and the run was not
 /// announced before it started (its cost law under-predicted it): predicts
 /// the run's duration from its rate (linear in its steps: trials, rows,

@@ -56,6 +56,8 @@ pub struct Args {
     /// tests made).
     #[arg(long, default_value_t = DEFAULT_ALPHA, value_parser = super::finite_f64)]
     alpha: f64,
+    #[command(flatten)]
+    memory: super::memory::MemoryArgs,
     /// Print one JSON document instead of a table.
     #[arg(long)]
     json: bool,
@@ -104,6 +106,7 @@ pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
 
 /// Runs `score`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    args.memory.apply()?;
     v2ref::conformance::score::critical_z(args.alpha, 1)?;
     let sc = read_sidecar(&args.sidecar)?;
     let truth = sc.truth(args.bins, args.bias).ok_or_else(|| {

@@ -5,6 +5,7 @@
 use super::synth::{write_set, SetSpec};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use v2ref::atomic::ScratchFolder;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::score::{
     critical_z, min_detectable_rel_bias, DEFAULT_ALPHA, TESTS_PER_ESTIMATOR,
@@ -149,10 +150,11 @@ pub struct Mismatch {
 /// mismatches.
 pub fn check(golden: &Path) -> Result<(usize, Vec<Mismatch>)> {
     let dir = golden.join(VECTORS_DIR);
-    let tmp = std::env::temp_dir().join(format!("v2ref-vectors-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    std::fs::create_dir_all(&tmp).map_err(|e| Error::file(Some("dir"), &tmp, e))?;
-    let written = write_all(&tmp);
+    // A temporary of the one atomic writer: a terminating signal removes
+    // it, as a dead process's is removed by a later check.
+    let scratch = ScratchFolder::create(&std::env::temp_dir().join("v2ref-vectors"), Some("dir"))?;
+    let tmp = scratch.path();
+    let written = write_all(tmp);
     let result = written.map(|files| {
         let mut bad = Vec::new();
         for f in &files {
@@ -175,6 +177,6 @@ pub fn check(golden: &Path) -> Result<(usize, Vec<Mismatch>)> {
         }
         (files.len(), bad)
     });
-    let _ = std::fs::remove_dir_all(&tmp);
+    drop(scratch);
     result
 }

@@ -245,20 +245,17 @@ impl Spectrum {
 
     /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
-        // Spreadsheets start their CSV with a UTF-8 byte-order mark.
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         // Some((wavelength axis, weight per unit wavelength)).
         let mut axis: Option<(bool, bool)> = None;
         let (mut xs, mut ws) = (Vec::new(), Vec::new());
-        for (n, raw) in text.lines().enumerate() {
-            let line = raw.trim();
-            if line.is_empty() || line.starts_with('#') {
-                continue;
-            }
+        // Text in memory: every line can be read (no limit, no I/O).
+        let mut lines = crate::csv_lines::CsvLines::new(text.as_bytes(), u64::MAX);
+        while let Some((n, cells)) = lines.next_record().map_err(|e| Error::SpectrumTable {
+            reason: format!("line {}: cannot be read ({:?})", e.line, e.fault),
+        })? {
             let at = |reason: String| Error::SpectrumTable {
-                reason: format!("line {}: {reason}", n + 1),
+                reason: format!("line {n}: {reason}"),
             };
-            let cells: Vec<&str> = line.split(',').map(str::trim).collect();
             if cells.len() != 2 {
                 return Err(at(format!("{} columns; expected 2", cells.len())));
             }

@@ -2,22 +2,78 @@
 //! `.npy` read whole, the columns of an estimates file, the per-row answer
 //! of `estimate`) is refused from the file's header when it would exceed
 //! it, before anything is read or allocated.
+//!
+//! The budget is, first found: what the process set
+//! ([`set_memory_budget_gib`]: the CLI's `--max-memory-gib`), the
+//! environment's `V2REF_MAX_MEMORY_GIB`, or half the physical memory.
 
 use crate::{Error, Result};
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The most memory a reader may hold, bytes: half the machine's
-/// physical memory, or `V2REF_MAX_MEMORY_GIB` GiB when set (to raise it, or
-/// lower it under a memory limit).
-pub fn memory_budget() -> u64 {
-    if let Some(gib) = std::env::var("V2REF_MAX_MEMORY_GIB")
-        .ok()
-        .and_then(|v| v.trim().parse::<f64>().ok())
-        .filter(|g| g.is_finite() && *g > 0.0)
-    {
-        return (gib * (1u64 << 30) as f64) as u64;
+/// The environment variable that sets the budget, GiB.
+pub const MEMORY_BUDGET_ENV: &str = "V2REF_MAX_MEMORY_GIB";
+
+/// The largest budget that may be set, GiB (1 PiB: beyond any machine's
+/// memory, far below 2^64 bytes).
+pub const MAX_MEMORY_GIB: f64 = 1048576.0;
+
+/// The budget the process set, bytes; 0 when it set none.
+static SET_BUDGET_BYTES: AtomicU64 = AtomicU64::new(0);
+
+const GIB: f64 = (1u64 << 30) as f64;
+
+/// What a budget is, in words.
+const ACCEPTED: &str = "a number of GiB above 0 and at most 1048576";
+
+/// Checks a budget of `gib` GiB: a number above 0 and at most
+/// [`MAX_MEMORY_GIB`]; returns it in bytes (at least 1).
+pub fn budget_bytes_of_gib(gib: f64) -> Result<u64> {
+    if !(gib.is_finite() && gib > 0.0 && gib <= MAX_MEMORY_GIB) {
+        return Err(Error::Invalid {
+            param: "max_memory_gib",
+            reason: format!("{gib} GiB; the memory budget is {ACCEPTED}"),
+        });
     }
-    physical_memory().map_or(u64::MAX, |m| m / 2)
+    Ok(((gib * GIB) as u64).max(1))
+}
+
+/// Sets the budget of this process to `gib` GiB (in place of
+/// `V2REF_MAX_MEMORY_GIB` and of the default), checked as
+/// [`budget_bytes_of_gib`] does.
+pub fn set_memory_budget_gib(gib: f64) -> Result<()> {
+    SET_BUDGET_BYTES.store(budget_bytes_of_gib(gib)?, Ordering::Relaxed);
+    Ok(())
+}
+
+/// The most memory a reader may hold, bytes (see the module doc). A
+/// `V2REF_MAX_MEMORY_GIB` that is not a budget is refused, naming it.
+pub fn memory_budget() -> Result<u64> {
+    match SET_BUDGET_BYTES.load(Ordering::Relaxed) {
+        0 => {}
+        set => return Ok(set),
+    }
+    if let Some(text) = std::env::var_os(MEMORY_BUDGET_ENV) {
+        let gib = text.to_str().and_then(|t| t.trim().parse::<f64>().ok());
+        return gib
+            .and_then(|g| budget_bytes_of_gib(g).ok())
+            .ok_or_else(|| Error::Invalid {
+                param: "max_memory_gib",
+                reason: format!("{MEMORY_BUDGET_ENV}={text:?} is not a memory budget; {ACCEPTED}"),
+            });
+    }
+    Ok(physical_memory().map_or(u64::MAX, |m| m / 2))
+}
+
+/// Where the budget in force comes from, in words (for a refusal).
+fn budget_source() -> &'static str {
+    if SET_BUDGET_BYTES.load(Ordering::Relaxed) != 0 {
+        "as set by --max-memory-gib"
+    } else if std::env::var_os(MEMORY_BUDGET_ENV).is_some() {
+        "as set by V2REF_MAX_MEMORY_GIB"
+    } else {
+        "half the physical memory"
+    }
 }
 
 #[cfg(unix)]
@@ -41,19 +97,20 @@ fn physical_memory() -> Option<u64> {
 /// Refuses, from a header, `need` bytes of answer or data of the file
 /// `path` that would not fit in [`memory_budget`].
 pub fn check_budget(need: u64, param: &'static str, path: &Path) -> Result<()> {
-    let budget = memory_budget();
+    let budget = memory_budget()?;
     if need <= budget {
         return Ok(());
     }
-    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    let gib = |b: u64| b as f64 / GIB;
     Err(Error::data(
         param,
         path,
         "header",
         format!(
-            "reading it takes {:.2} GiB, more than the memory budget of {:.2} GiB (half the physical memory); raise it with V2REF_MAX_MEMORY_GIB",
+            "reading it takes {:.2} GiB, more than the memory budget of {:.2} GiB ({}); raise it with --max-memory-gib (or V2REF_MAX_MEMORY_GIB)",
             gib(need),
-            gib(budget)
+            gib(budget),
+            budget_source()
         ),
     ))
 }

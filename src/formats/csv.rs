@@ -2,67 +2,59 @@
 //! lines skipped, a header row recognised), rows written atomically.
 
 use super::atomic::{finish_file, too_many, whole_rows, TempTarget, WRITE_BUFFER};
-use super::{not_finite, open, Estimates, Matrix};
+use super::{kind_of, not_finite, open, Estimates, Kind, Matrix};
+use crate::csv_lines::{CsvLines, LineError, LineFault};
 use crate::{Error, Result};
 use std::fs::File;
-use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
-use std::path::Path;
+use std::io::{BufReader, BufWriter, Write};
+use std::path::{Path, PathBuf};
 
 /// Longest line of a CSV file read, bytes: room for a row of 100000
 /// numbers at full precision.
 pub const MAX_CSV_LINE_BYTES: u64 = 4 << 20;
 
+/// The content lines of the CSV file `path` ([`crate::csv_lines`]).
+fn lines_of(path: &Path, param: &'static str) -> Result<CsvLines<BufReader<File>>> {
+    let file = BufReader::new(open(path, param)?);
+    Ok(CsvLines::new(file, MAX_CSV_LINE_BYTES))
+}
+
+/// The refusal of a line of `path` that could not be read.
+fn line_error(param: &'static str, path: &Path, e: LineError) -> Error {
+    let at = format!("line {}", e.line);
+    match e.fault {
+        LineFault::NotUtf8 => Error::data(
+            param,
+            path,
+            at,
+            "not UTF-8 text; a comma-separated text file is needed",
+        ),
+        LineFault::TooLong(max) => Error::data(
+            param,
+            path,
+            at,
+            format!("longer than {max} bytes; rows of comma-separated numbers are needed"),
+        ),
+        LineFault::Io(e) => Error::file(Some(param), path, e),
+    }
+}
+
 /// Hands each content line of a CSV file to `each` (its 1-based line
-/// number and its fields, trimmed), comments and blank lines skipped, one
-/// line at a time: nothing of the file is held but the line being read.
-/// Refused when there is no content line.
+/// number and its fields, trimmed), one line at a time: nothing of the
+/// file is held but the line being read. Refused when there is no content
+/// line.
 fn each_record(
     path: &Path,
     param: &'static str,
     mut each: impl FnMut(usize, &[&str]) -> Result<()>,
 ) -> Result<()> {
-    let mut reader = BufReader::new(open(path, param)?);
+    let mut lines = lines_of(path, param)?;
     let mut records = 0usize;
-    let mut line = String::new();
-    for i in 0.. {
-        line.clear();
-        // One byte more than the limit tells a long line from one at it
-        // (and stops an endless one, such as /dev/zero, at once).
-        let read = (&mut reader)
-            .take(MAX_CSV_LINE_BYTES + 1)
-            .read_line(&mut line)
-            .map_err(|e| match e.kind() {
-                io::ErrorKind::InvalidData => Error::data(
-                    param,
-                    path,
-                    format!("line {}", i + 1),
-                    "not UTF-8 text; a comma-separated text file is needed",
-                ),
-                _ => Error::file(Some(param), path, e),
-            })?;
-        if read == 0 {
-            break;
-        }
-        if read as u64 > MAX_CSV_LINE_BYTES {
-            return Err(Error::data(
-                param,
-                path,
-                format!("line {}", i + 1),
-                format!("longer than {MAX_CSV_LINE_BYTES} bytes; rows of comma-separated numbers are needed"),
-            ));
-        }
-        // Spreadsheets start their CSV with a UTF-8 byte-order mark.
-        let text = if i == 0 {
-            line.strip_prefix('\u{feff}').unwrap_or(&line)
-        } else {
-            &line
-        };
-        let t = text.trim();
-        if t.is_empty() || t.starts_with('#') {
-            continue;
-        }
-        let fields: Vec<&str> = t.split(',').map(str::trim).collect();
-        each(i + 1, &fields)?;
+    while let Some((line, fields)) = lines
+        .next_record()
+        .map_err(|e| line_error(param, path, e))?
+    {
+        each(line, &fields)?;
         records += 1;
     }
     if records == 0 {
@@ -120,42 +112,149 @@ fn parse_value(
 }
 
 pub(crate) fn read_csv_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
-    let (mut rows, mut cols) = (0usize, None);
     let mut data = Vec::new();
+    let (rows, cols) = scan_matrix(path, param, Some(&mut data))?;
+    Ok(Matrix { rows, cols, data })
+}
+
+/// Reads the rows of numbers of a CSV file, onto `data` when given (only
+/// checked otherwise); returns the rows and columns. The first lines that
+/// hold no number are a header.
+fn scan_matrix(
+    path: &Path,
+    param: &'static str,
+    mut data: Option<&mut Vec<f64>>,
+) -> Result<(usize, usize)> {
+    let (mut rows, mut cols) = (0usize, None);
     each_record(path, param, |line, fields| {
-        let Some(cols) = cols else {
-            cols = Some(fields.len());
-            // A first row that holds no number is a header.
-            if fields.iter().all(|f| f.parse::<f64>().is_err()) {
-                cols = None;
-                return Ok(());
-            }
-            return push_row(param, path, (line, rows), fields, &mut data).map(|()| rows += 1);
+        let want = match cols {
+            None if is_header(fields) => return Ok(()),
+            None => *cols.insert(fields.len()),
+            Some(c) => c,
         };
-        check_width(param, path, line, rows + 1, fields.len(), cols)?;
-        push_row(param, path, (line, rows), fields, &mut data)?;
+        check_width(param, path, line, rows + 1, fields.len(), want)?;
+        for (c, f) in fields.iter().enumerate() {
+            let v = parse_value(param, path, line, rows + 1, c + 1, f)?;
+            if let Some(d) = data.as_mut() {
+                d.push(v);
+            }
+        }
         rows += 1;
         Ok(())
     })?;
-    Ok(Matrix {
-        rows,
-        cols: cols.unwrap_or(0),
-        data,
-    })
+    Ok((rows, cols.unwrap_or(0)))
 }
 
-/// Parses the fields of row `row` (0-based, at `line`) onto `data`.
-fn push_row(
+/// Whether the fields of a line before the first row hold no number (a
+/// header).
+fn is_header(fields: &[&str]) -> bool {
+    fields.iter().all(|f| f.parse::<f64>().is_err())
+}
+
+/// The rows, columns and header lines of a CSV file of numbers, from its
+/// structure alone (each row as wide as the first; the values are parsed
+/// by [`CsvRows::next_block`]).
+fn shape_of(path: &Path, param: &'static str) -> Result<(usize, usize, usize)> {
+    let (mut rows, mut cols, mut headers) = (0usize, None, 0usize);
+    each_record(path, param, |line, fields| {
+        let want = match cols {
+            None if is_header(fields) => {
+                headers += 1;
+                return Ok(());
+            }
+            None => *cols.insert(fields.len()),
+            Some(c) => c,
+        };
+        check_width(param, path, line, rows + 1, fields.len(), want)?;
+        rows += 1;
+        Ok(())
+    })?;
+    Ok((rows, cols.unwrap_or(0), headers))
+}
+
+/// A CSV file of numbers read a block of rows at a time, each value
+/// checked finite, as [`super::NpyRows`] reads a `.npy` file: memory stays
+/// at one block however large the file. The file is read twice: once for
+/// its shape (the rows and columns, each row as wide as the first), then
+/// block by block for its values.
+pub struct CsvRows {
+    lines: CsvLines<BufReader<File>>,
+    path: PathBuf,
     param: &'static str,
-    path: &Path,
-    (line, row): (usize, usize),
-    fields: &[&str],
-    data: &mut Vec<f64>,
-) -> Result<()> {
-    for (c, f) in fields.iter().enumerate() {
-        data.push(parse_value(param, path, line, row + 1, c + 1, f)?);
+    /// Rows in the file.
+    pub rows: usize,
+    /// Values per row.
+    pub cols: usize,
+    headers: usize,
+    done: usize,
+}
+
+impl CsvRows {
+    /// Opens `path` when it is a `.csv` file of at least one row and one
+    /// column; None for any other file, which [`super::read_matrix`] reads
+    /// (and refuses with its own message when it must). A file whose
+    /// shape is wrong is refused as [`super::read_matrix`] refuses it, at
+    /// its first fault.
+    pub fn open(path: &Path, param: &'static str) -> Result<Option<CsvRows>> {
+        if !matches!(kind_of(path, param)?, Kind::Csv) {
+            return Ok(None);
+        }
+        let (rows, cols, headers) = match shape_of(path, param) {
+            Ok(shape) => shape,
+            // A value before the fault is refused first, as in a whole read.
+            Err(fault) => return Err(scan_matrix(path, param, None).err().unwrap_or(fault)),
+        };
+        if rows == 0 || cols == 0 {
+            return Ok(None);
+        }
+        Ok(Some(CsvRows {
+            lines: lines_of(path, param)?,
+            path: path.to_path_buf(),
+            param,
+            rows,
+            cols,
+            headers,
+            done: 0,
+        }))
     }
-    Ok(())
+
+    /// Replaces `out` with the next block of at most `max_rows` rows
+    /// (row-major); returns the number of rows, 0 at the end.
+    pub fn next_block(&mut self, max_rows: usize, out: &mut Vec<f64>) -> Result<usize> {
+        let (param, path) = (self.param, self.path.as_path());
+        let take = max_rows.max(1).min(self.rows - self.done);
+        out.clear();
+        let mut taken = 0;
+        while taken < take {
+            let Some((line, fields)) = self
+                .lines
+                .next_record()
+                .map_err(|e| line_error(param, path, e))?
+            else {
+                return Err(Error::data(
+                    param,
+                    path,
+                    "",
+                    format!(
+                        "{} rows, then {}: the file changed while it was read; give a file that stays",
+                        self.rows, self.done + taken
+                    ),
+                ));
+            };
+            if self.headers > 0 {
+                self.headers -= 1;
+                continue;
+            }
+            let row = self.done + taken + 1;
+            check_width(param, path, line, row, fields.len(), self.cols)?;
+            for (c, f) in fields.iter().enumerate() {
+                out.push(parse_value(param, path, line, row, c + 1, f)?);
+            }
+            taken += 1;
+        }
+        self.done += take;
+        Ok(take)
+    }
 }
 
 pub(crate) fn read_estimates_csv(path: &Path) -> Result<Estimates> {

@@ -1,8 +1,8 @@
 //! File formats of the conformance kit and the command line: matrices and
 //! estimates read from `.npy` or `.csv` ([`npy`], [`csv`]), and atomic,
-//! streaming writers ([`atomic`]: a temporary file renamed onto the target
-//! only when complete, so that a failed or interrupted write leaves the
-//! target as it was).
+//! streaming writers (over the crate's one atomic writer, [`crate::atomic`]:
+//! a temporary file renamed onto the target only when complete, so that a
+//! failed or interrupted write leaves the target as it was).
 //!
 //! Every refusal is an [`Error::Data`] naming the file, where in it (`row i,
 //! column j` counted from 1, or `header`) and what is accepted; a file that
@@ -15,19 +15,17 @@
 //! This module is the edge's (feature `files`, on with `cli`): the
 //! numerical core reads and writes no file.
 
-pub mod atomic;
+pub use crate::atomic;
+pub use crate::atomic::{set, target};
 pub mod budget;
 pub mod csv;
-pub(crate) mod lock;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
-pub mod set;
-pub mod target;
 
 pub use atomic::write_text_atomic;
 pub use budget::{check_budget, memory_budget};
-pub use csv::{CsvRowWriter, MAX_CSV_LINE_BYTES};
+pub use csv::{CsvRowWriter, CsvRows, MAX_CSV_LINE_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
 pub use set::OutputSet;
 pub use target::{check_output_file, check_parent};
@@ -112,6 +110,51 @@ pub(crate) fn not_finite(param: &'static str, path: &Path, location: String, v: 
         location,
         format!("{v} is not a finite number; every value must be finite"),
     )
+}
+
+/// A file of rows read a block of rows at a time, each value checked
+/// finite: a `.npy` ([`NpyRows`]) or a `.csv` ([`CsvRows`]) file.
+pub enum RowStream {
+    /// A `.npy` file.
+    Npy(NpyRows),
+    /// A `.csv` file.
+    Csv(CsvRows),
+}
+
+impl RowStream {
+    /// Opens `path` when its rows can be streamed; None for a file that
+    /// [`read_matrix`] reads whole (or refuses with its own message).
+    pub fn open(path: &Path, param: &'static str) -> Result<Option<RowStream>> {
+        Ok(match kind_of(path, param)? {
+            Kind::Npy => NpyRows::open(path, param)?.map(RowStream::Npy),
+            Kind::Csv => CsvRows::open(path, param)?.map(RowStream::Csv),
+        })
+    }
+
+    /// Rows in the file.
+    pub fn rows(&self) -> usize {
+        match self {
+            RowStream::Npy(s) => s.rows,
+            RowStream::Csv(s) => s.rows,
+        }
+    }
+
+    /// Values per row.
+    pub fn cols(&self) -> usize {
+        match self {
+            RowStream::Npy(s) => s.cols,
+            RowStream::Csv(s) => s.cols,
+        }
+    }
+
+    /// Replaces `out` with the next block of at most `max_rows` rows
+    /// (row-major); returns the number of rows, 0 at the end.
+    pub fn next_block(&mut self, max_rows: usize, out: &mut Vec<f64>) -> Result<usize> {
+        match self {
+            RowStream::Npy(s) => s.next_block(max_rows, out),
+            RowStream::Csv(s) => s.next_block(max_rows, out),
+        }
+    }
 }
 
 /// Reads a matrix of float64 from a `.npy` (2-D, `<f8`) or `.csv` file.

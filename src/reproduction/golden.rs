@@ -232,109 +232,17 @@ pub fn write_figure_files(dir: &Path, figures: &[Figure], generator: &str) -> Re
 /// Replaces the directory `dir` as a whole: `fill` writes into a fresh
 /// temporary sibling, which then takes `dir`'s place by rename. If `fill`
 /// fails, or the rename does, the old `dir` is left as it was and nothing
-/// half-written remains.
-///
-/// Temporary siblings left by an earlier run that was killed (`.NAME.tmp-PID`,
-/// `.NAME.old-PID` of a process that no longer runs) are removed first.
+/// half-written remains. The crate's one atomic writer
+/// ([`crate::atomic::replace_folder`]: `dir` locked for the run, the
+/// temporaries of dead processes removed first).
 pub fn replace_dir_atomically<T>(dir: &Path, fill: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
-    let (parent, stem) = parent_and_name(dir)?;
-    std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
-    remove_stale_siblings(&parent, &stem);
-    let pid = std::process::id();
-    let tmp = parent.join(format!(".{stem}.tmp-{pid}"));
-    let old = parent.join(format!(".{stem}.old-{pid}"));
-    let _ = std::fs::remove_dir_all(&tmp);
-    crate::cleanup::register(&tmp);
-    let filled = std::fs::create_dir_all(&tmp)
-        .and_then(|()| std::fs::write(tmp.join(TEMP_MARKER), TEMP_MARKER_TEXT))
-        .map_err(|e| io(&tmp, e))
-        .and_then(|()| fill(&tmp));
-    let value = match filled {
-        Ok(v) => v,
-        Err(e) => {
-            let _ = std::fs::remove_dir_all(&tmp);
-            crate::cleanup::unregister(&tmp);
-            return Err(e);
-        }
-    };
-    if dir.exists() {
-        std::fs::rename(dir, &old).map_err(|e| io(dir, e))?;
-    }
-    if let Err(e) = std::fs::rename(&tmp, dir) {
-        // Put the old data back.
-        let _ = std::fs::rename(&old, dir);
-        let _ = std::fs::remove_dir_all(&tmp);
-        crate::cleanup::unregister(&tmp);
-        return Err(io(dir, e));
-    }
-    crate::cleanup::unregister(&tmp);
-    let _ = std::fs::remove_file(dir.join(TEMP_MARKER));
-    let _ = std::fs::remove_dir_all(&old);
-    Ok(value)
-}
-
-/// The folder that holds `dir` (`.` for a bare name) and `dir`'s own name.
-fn parent_and_name(dir: &Path) -> Result<(PathBuf, String)> {
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let stem = dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| output(dir, "not a directory name"))?;
-    Ok((parent, stem))
+    crate::atomic::replace_folder(dir, None, fill)
 }
 
 /// Checks, before any work, that [`replace_dir_atomically`] can write next
-/// to `dir`: creates its parent and a probe file there, then removes it.
+/// to `dir` ([`crate::atomic::check_folder_parent`]).
 pub fn check_parent_writable(dir: &Path) -> Result<()> {
-    let (parent, stem) = parent_and_name(dir)?;
-    std::fs::create_dir_all(&parent).map_err(|e| io(&parent, e))?;
-    let probe = parent.join(format!(".{stem}.probe-{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(|e| io(&parent, e))?;
-    std::fs::remove_file(&probe).map_err(|e| io(&probe, e))
-}
-
-/// The file [`replace_dir_atomically`] puts first into its temporary
-/// folder: a stale sibling is removed only when it holds this file with
-/// this content (a user's folder that merely has the name stays).
-const TEMP_MARKER: &str = ".v2ref-temporary";
-const TEMP_MARKER_TEXT: &str = "a temporary folder of v2ref; removed when its run is gone\n";
-
-/// Whether `path` is a folder [`replace_dir_atomically`] made (its
-/// [`TEMP_MARKER`] inside), or the old folder it moved aside (which held
-/// golden data or the `.v2ref-output` marker).
-fn is_own_temporary(path: &Path) -> bool {
-    let marked =
-        std::fs::read_to_string(path.join(TEMP_MARKER)).is_ok_and(|t| t == TEMP_MARKER_TEXT);
-    marked || path.join(".v2ref-output").is_file()
-}
-
-/// Removes `.{stem}.tmp-PID` and `.{stem}.old-PID` folders in `parent`
-/// whose process is gone (on systems with `/proc`; elsewhere a process
-/// cannot be told alive, and nothing is removed). Failures are ignored: the
-/// run goes on with its own fresh names.
-fn remove_stale_siblings(parent: &Path, stem: &str) {
-    let proc_fs = Path::new("/proc/self");
-    if !proc_fs.exists() {
-        return;
-    }
-    let Ok(entries) = std::fs::read_dir(parent) else {
-        return;
-    };
-    let prefixes = [format!(".{stem}.tmp-"), format!(".{stem}.old-")];
-    for entry in entries.flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        let pid = prefixes
-            .iter()
-            .find_map(|p| name.strip_prefix(p.as_str()))
-            .and_then(|rest| rest.parse::<u32>().ok());
-        let gone = pid.is_some_and(|pid| !Path::new("/proc").join(pid.to_string()).exists());
-        if gone && is_own_temporary(&entry.path()) {
-            let _ = std::fs::remove_dir_all(entry.path());
-        }
-    }
+    crate::atomic::check_folder_parent(dir, None)
 }
 
 /// Writes `figures` into `dir` atomically ([`replace_dir_atomically`]).

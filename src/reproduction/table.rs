@@ -63,29 +63,35 @@ impl Table {
         out
     }
 
-    /// Parses CSV text written by [`Table::to_csv`].
+    /// Parses CSV text written by [`Table::to_csv`] (read as every CSV of
+    /// the crate is: `#` comments and blank lines skipped, cells trimmed).
     pub fn from_csv(name: &str, text: &str) -> Result<Table> {
         let bad = |reason: String| Error::Output {
             path: format!("{name}.csv"),
             reason,
         };
-        let mut lines = text.lines();
-        let header = lines.next().ok_or_else(|| bad("empty file".into()))?;
+        // Text in memory: every line can be read (no limit, no I/O).
+        let mut lines = crate::csv_lines::CsvLines::new(text.as_bytes(), u64::MAX);
+        let unreadable = |e: crate::csv_lines::LineError| {
+            bad(format!("line {}: cannot be read ({:?})", e.line, e.fault))
+        };
+        let Some((_, header)) = lines.next_record().map_err(unreadable)? else {
+            return Err(bad("empty file".into()));
+        };
         let columns: Vec<Column> = header
-            .split(',')
+            .iter()
             .map(|h| match h.split_once(" [") {
                 Some((n, u)) => Column::new(n, u.trim_end_matches(']')),
                 None => Column::new(h, ""),
             })
             .collect();
         let mut rows = Vec::new();
-        for (i, line) in lines.enumerate() {
-            let row: std::result::Result<Vec<f64>, _> = line.split(',').map(str::parse).collect();
-            let row = row.map_err(|e| bad(format!("line {}: {e}", i + 2)))?;
+        while let Some((line, cells)) = lines.next_record().map_err(unreadable)? {
+            let row: std::result::Result<Vec<f64>, _> = cells.iter().map(|c| c.parse()).collect();
+            let row = row.map_err(|e| bad(format!("line {line}: {e}")))?;
             if row.len() != columns.len() {
                 return Err(bad(format!(
-                    "line {}: {} cells for {} columns",
-                    i + 2,
+                    "line {line}: {} cells for {} columns",
                     row.len(),
                     columns.len()
                 )));

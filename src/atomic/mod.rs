@@ -1,13 +1,29 @@
-//! Atomic writes: each output goes to a temporary file beside its target
+//! The one atomic writer of the crate: an output (a file, or a folder
+//! written as a whole) is made as a temporary beside its target
 //! (`.v2ref-tmp-PID-K-NAME`, at most 255 bytes; registered with
 //! [`crate::cleanup`], so that a terminating signal removes it), which
 //! takes the target's place only once it is complete and synced, alone or
-//! with the rest of its set ([`super::set`]).
+//! with the rest of its set ([`set`]). Targets are checked ([`target`])
+//! and locked for the run (`src/atomic/lock.rs`); temporaries of processes that no
+//! longer run are removed by the next run that writes beside them.
+//!
+//! - A file: a temporary file under every writer of [`crate::formats`]
+//!   (`.npy`, CSV, OIFITS, text: [`write_text_atomic`]).
+//! - A folder: [`replace_folder`] (`reproduce --out`, `golden --update`).
 
-use super::lock::{name_bytes, temp_name};
+pub(crate) mod lock;
+pub mod set;
+pub mod target;
+
+mod folder;
+
 use crate::{Error, Result};
+pub use folder::{check_folder_parent, replace_folder, ScratchFolder};
+use lock::{name_bytes, temp_name};
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+#[cfg(feature = "files")]
+use std::io::BufWriter;
+use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
 /// A temporary file next to a target, removed on drop unless persisted.
@@ -20,9 +36,9 @@ pub(crate) struct TempTarget {
 
 impl TempTarget {
     pub(crate) fn create(target: &Path, param: Option<&'static str>) -> Result<(TempTarget, File)> {
-        super::target::check_parent(target, param)?;
-        super::target::check_replaceable(target, param)?;
-        let dir = super::target::parent_of(target);
+        target::check_parent(target, param)?;
+        target::check_replaceable(target, param)?;
+        let dir = target::parent_of(target);
         let name = target.file_name().map(name_bytes).unwrap_or_default();
         let mut k = 0u32;
         loop {
@@ -55,10 +71,10 @@ impl TempTarget {
     }
 
     /// Puts the finished temporary file at its target: at once, or, when
-    /// this thread writes a set ([`super::set::OutputSet::write`]), with the
+    /// this thread writes a set ([`set::OutputSet::write`]), with the
     /// rest of the set.
     pub(crate) fn persist(self) -> Result<()> {
-        match super::set::stage(self) {
+        match set::stage(self) {
             None => Ok(()),
             Some(temp) => temp.place(true).map(drop),
         }
@@ -70,7 +86,7 @@ impl TempTarget {
     /// target.
     pub(crate) fn place(mut self, replace: bool) -> Result<PathBuf> {
         // Checked again: a link or a device put there meanwhile stays.
-        super::target::check_replaceable(&self.target, self.param)?;
+        target::check_replaceable(&self.target, self.param)?;
         if replace {
             std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
         } else {
@@ -111,7 +127,7 @@ impl TempTarget {
         if !std::fs::symlink_metadata(&self.target).is_ok_and(|m| m.is_file()) {
             return Ok(None);
         }
-        let dir = super::target::parent_of(&self.target);
+        let dir = target::parent_of(&self.target);
         let name = self.target.file_name().map(name_bytes).unwrap_or_default();
         for k in 1000..2000 {
             let old = dir.join(temp_name(&name, k));
@@ -136,9 +152,11 @@ impl Drop for TempTarget {
     }
 }
 
+#[cfg(feature = "files")]
 pub(crate) const WRITE_BUFFER: usize = 1 << 20;
 
 /// Checks the row count, flushes, syncs, closes and renames.
+#[cfg(feature = "files")]
 pub(crate) fn finish_file(
     out: BufWriter<File>,
     temp: TempTarget,
@@ -154,6 +172,7 @@ pub(crate) fn finish_file(
     temp.persist()
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn whole_rows(len: usize, cols: usize, temp: &TempTarget) -> Result<u64> {
     if cols == 0 || len % cols != 0 {
         return Err(Error::Output {
@@ -164,6 +183,7 @@ pub(crate) fn whole_rows(len: usize, cols: usize, temp: &TempTarget) -> Result<u
     Ok((len / cols) as u64)
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn too_many(temp: &TempTarget, rows: u64) -> Error {
     Error::Output {
         path: temp.target.display().to_string(),
@@ -171,6 +191,7 @@ pub(crate) fn too_many(temp: &TempTarget, rows: u64) -> Error {
     }
 }
 
+#[cfg(feature = "files")]
 pub(crate) fn row_count(temp: &TempTarget, rows: u64, written: u64) -> Error {
     Error::Output {
         path: temp.target.display().to_string(),

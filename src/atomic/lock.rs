@@ -201,8 +201,8 @@ pub(crate) fn is_alive(_: u32) -> bool {
     true
 }
 
-/// Removes, in `dir`, the temporary files of v2ref processes that no
-/// longer run (killed before they could clean up: SIGKILL, a power cut);
+/// Removes, in `dir`, the temporary files (and folders holding v2ref's
+/// marker) of v2ref processes that no longer run (killed before they could clean up: SIGKILL, a power cut);
 /// returns how many. Failures are ignored: the run goes on with its own
 /// fresh names.
 pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
@@ -214,10 +214,19 @@ pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
         let Some(pid) = temp_pid(&name_bytes(&entry.file_name())) else {
             continue;
         };
-        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        if is_file && pid != std::process::id() && !is_alive(pid) {
-            removed += usize::from(std::fs::remove_file(entry.path()).is_ok());
+        if pid == std::process::id() || is_alive(pid) {
+            continue;
         }
+        let path = entry.path();
+        let gone = match entry.file_type() {
+            Ok(t) if t.is_file() => std::fs::remove_file(&path).is_ok(),
+            // A folder only when it is v2ref's own (its marker inside).
+            Ok(t) if t.is_dir() && super::folder::is_own_folder(&path) => {
+                std::fs::remove_dir_all(&path).is_ok()
+            }
+            _ => false,
+        };
+        removed += usize::from(gone);
     }
     removed
 }

@@ -3,7 +3,7 @@
 //!
 //! [`OutputSet::begin`] checks every target before any work (distinct
 //! paths, each writable and replaceable, an existing file only with
-//! `force`), takes each target's lock (`src/formats/lock.rs`: a second run on
+//! `force`), takes each target's lock (`src/atomic/lock.rs`: a second run on
 //! the same outputs is refused, naming the process that writes them) and
 //! removes the temporaries of dead processes beside them.
 //! [`OutputSet::write`] runs the writers: each finished file waits, complete
@@ -17,8 +17,8 @@
 //! never replaced, the run is refused instead. With `force`, the old file
 //! is kept as a hard link until the whole set is placed.
 
-use super::atomic::TempTarget;
 use super::lock::OutputLock;
+use super::TempTarget;
 use crate::{Error, Result};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,169 @@
+//! A folder written as a whole: filled as a temporary folder beside its
+//! target, which then takes the target's place by rename, the old folder
+//! moved aside first and removed last (put back if the rename fails).
+
+use super::lock::{name_bytes, remove_stale_temporaries, temp_name, OutputLock};
+use super::target::parent_of;
+use crate::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// The file a temporary folder holds from its start: a stale temporary
+/// folder is removed only when it holds this file with this text, or is an
+/// old folder moved aside that held `reproduce`'s `.v2ref-output` (a
+/// user's folder that merely has such a name stays).
+pub(crate) const FOLDER_MARKER: &str = ".v2ref-temporary";
+const FOLDER_MARKER_TEXT: &str = "a temporary folder of v2ref; removed when its run is gone\n";
+
+/// Whether `path` is a folder [`replace_folder`] made, or moved aside.
+pub(crate) fn is_own_folder(path: &Path) -> bool {
+    let marked =
+        std::fs::read_to_string(path.join(FOLDER_MARKER)).is_ok_and(|t| t == FOLDER_MARKER_TEXT);
+    marked || path.join(".v2ref-output").is_file()
+}
+
+/// Replaces the folder `dir` as a whole (its parent created if needed):
+/// `fill` writes into a fresh temporary folder beside it, which takes
+/// `dir`'s place once `fill` succeeds. The folder is locked for the run (a
+/// second writer is refused, naming the process), and the temporaries of
+/// dead processes beside it are removed first. If `fill` fails, or the
+/// rename does, `dir` is left as it was and nothing half-written remains;
+/// a terminating signal waits for the renames. Errors name `param`.
+pub fn replace_folder<T>(
+    dir: &Path,
+    param: Option<&'static str>,
+    fill: impl FnOnce(&Path) -> Result<T>,
+) -> Result<T> {
+    let parent = parent_of(dir);
+    std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    let _lock = OutputLock::acquire(dir, param.unwrap_or("out"))?;
+    remove_stale_temporaries(&parent);
+    let temp = TempFolder::create(dir, param)?;
+    let value = fill(&temp.path)?;
+    temp.place()?;
+    Ok(value)
+}
+
+/// Checks, before any work, that [`replace_folder`] can write next to
+/// `dir`: creates its parent and a probe file there, then removes it.
+pub fn check_folder_parent(dir: &Path, param: Option<&'static str>) -> Result<()> {
+    let parent = parent_of(dir);
+    std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    let name = dir.file_name().map(name_bytes).unwrap_or_default();
+    let probe = parent.join(temp_name(&name, 3000));
+    std::fs::write(&probe, b"").map_err(|e| Error::file(param, &parent, e))?;
+    std::fs::remove_file(&probe).map_err(|e| Error::file(param, &probe, e))
+}
+
+/// A temporary folder beside a target, removed on drop unless placed.
+struct TempFolder {
+    target: PathBuf,
+    path: PathBuf,
+    param: Option<&'static str>,
+    placed: bool,
+}
+
+impl TempFolder {
+    fn create(target: &Path, param: Option<&'static str>) -> Result<TempFolder> {
+        let name = target
+            .file_name()
+            .map(name_bytes)
+            .ok_or_else(|| Error::Output {
+                path: target.display().to_string(),
+                reason: "not a folder name".into(),
+            })?;
+        let path = free_name(target, &name, 0).map_err(|e| Error::file(param, target, e))?;
+        let folder = TempFolder {
+            target: target.to_path_buf(),
+            path,
+            param,
+            placed: false,
+        };
+        std::fs::write(folder.path.join(FOLDER_MARKER), FOLDER_MARKER_TEXT)
+            .map_err(|e| Error::file(param, &folder.path, e))?;
+        Ok(folder)
+    }
+
+    /// Puts the folder at its target: the old folder (if any) moved aside
+    /// under a temporary name, this one renamed in, the old one removed.
+    fn place(mut self) -> Result<()> {
+        let io = |e| Error::file(self.param, &self.target, e);
+        let signals_wait = crate::cleanup::hold_commit();
+        let old = match std::fs::symlink_metadata(&self.target) {
+            Ok(_) => {
+                let name = self.target.file_name().map(name_bytes).unwrap_or_default();
+                let old = parent_of(&self.target).join(temp_name(&name, 2000));
+                std::fs::rename(&self.target, &old).map_err(io)?;
+                crate::cleanup::register(&old);
+                Some(old)
+            }
+            Err(_) => None,
+        };
+        if let Err(e) = std::fs::rename(&self.path, &self.target) {
+            if let Some(old) = &old {
+                let _ = std::fs::rename(old, &self.target);
+                crate::cleanup::unregister(old);
+            }
+            return Err(io(e));
+        }
+        crate::cleanup::unregister(&self.path);
+        self.placed = true;
+        drop(signals_wait);
+        let _ = std::fs::remove_file(self.target.join(FOLDER_MARKER));
+        if let Some(old) = old {
+            let _ = std::fs::remove_dir_all(&old);
+            crate::cleanup::unregister(&old);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        if !self.placed {
+            let _ = std::fs::remove_dir_all(&self.path);
+            crate::cleanup::unregister(&self.path);
+        }
+    }
+}
+
+/// Makes (and registers) the first free temporary folder for `name`
+/// beside `target`, from the `first`-th name on.
+fn free_name(target: &Path, name: &[u8], first: u32) -> std::io::Result<PathBuf> {
+    let dir = parent_of(target);
+    let mut k = first;
+    loop {
+        let path = dir.join(temp_name(name, k));
+        // Registered first: a signal that comes as it is made removes it.
+        crate::cleanup::register(&path);
+        match std::fs::create_dir(&path) {
+            Ok(()) => return Ok(path),
+            Err(e) => {
+                crate::cleanup::unregister(&path);
+                match e.kind() {
+                    std::io::ErrorKind::AlreadyExists if k < first + 1000 => k += 1,
+                    _ => return Err(e),
+                }
+            }
+        }
+    }
+}
+
+/// A folder of scratch files, a temporary of the one writer that is never
+/// placed: named for `target` beside it, registered (a terminating signal
+/// removes it), removed on drop; a dead process's is removed by a later
+/// run beside it.
+pub struct ScratchFolder(TempFolder);
+
+impl ScratchFolder {
+    /// Makes the scratch folder for `target` (in `target`'s folder, which
+    /// must exist); errors name `param`.
+    pub fn create(target: &Path, param: Option<&'static str>) -> Result<ScratchFolder> {
+        remove_stale_temporaries(&parent_of(target));
+        TempFolder::create(target, param).map(ScratchFolder)
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.0.path
+    }
+}
