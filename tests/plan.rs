@@ -83,6 +83,7 @@ fn validate(case: &str, inputs: &PlanInputs, p: &PlanPoint) {
         p.estimator, p.fringe_hz, p.sigma_per_scan, s.std, 100.0 * rel, p.bias_piston, p.bias_piston_stderr, bias, s.stderr_mean
     );
     assert!(
+        // tol: the simulated σ of a few hundred scans carries a few percent of standard error; 10 % is its allowance, and a planner off by the 90 % upper end would miss it.
         rel.abs() < 0.10,
         "{case}: sigma off by {:.1} %",
         100.0 * rel
@@ -147,6 +148,7 @@ fn resolved_disk_near_a_null() {
     );
     let result = plan(&i, 0, &|_| {}).unwrap();
     let p = result.recommended.expect("a setting reaches the target");
+    // tol: not a tolerance: the recommended point sits near the null (V² below a tenth of its peak).
     assert!(p.v_sq_sampled < 0.1, "near the null: {}", p.v_sq_sampled);
     validate("disk near a null", &i, &p);
 }
