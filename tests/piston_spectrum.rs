@@ -305,7 +305,7 @@ fn along_the_baseline_p_is_the_baseline_factor_times_g_over_v() {
         }
         // Zero at ν = 0 (not 0 · ∞), and at the baseline factor's zeros.
         assert_eq!(s.psd_um2_per_hz(0.0), 0.0);
-        // tol: a zero of the baseline factor 2[1 - cos], rounded: ~1e-32 of the spectrum half-way, 1e-25 leaves room while a missing factor gives O(1).
+        // tol: a zero of the baseline factor 2[1 - cos], rounded: ~1e-31 of the spectrum half-way, 1e-25 leaves room while a missing factor gives O(1).
         assert!(s.psd_um2_per_hz(v / b) < 1e-25 * s.psd_um2_per_hz(0.5 * v / b));
     }
     let zero_baseline = along(0.0);
