@@ -74,6 +74,7 @@ fn the_golden_grid_resolves_the_curves() {
     for (i, m) in at_mid.iter().enumerate() {
         let near_null = [28.364, 51.933, 75.31]
             .iter()
+            // tol: not a tolerance: the neighbourhood of a null (half a cycle/arcsec, where V changes sign) whose midpoints are told apart from the rest.
             .any(|n| (mids[i] - n).abs() < 0.5);
         if near_null {
             continue;
@@ -168,6 +169,7 @@ fn locate_max_finds_known_maxima_inside_and_at_the_ends() {
 fn locate_max_keeps_the_best_grid_point_when_refinement_finds_less() {
     // A spike on one grid point: the golden-section search around it never
     // lands on it, so the grid point (0.5, 1) must be returned.
+    // tol: not a tolerance: picks the one grid point x = 0.5, which the grid holds to rounding.
     let spike = |x: f64| if (x - 0.5).abs() < 1e-12 { 1.0 } else { 0.0 };
     let (x, fx) = locate_max(spike, 0.0, 1.0, 11);
     assert!((x - 0.5).abs() < ARGMAX_ABS, "argmax {x}");

@@ -94,6 +94,7 @@ fn residual_phase_of_polynomial_indices_has_its_closed_form() {
         RESIDUAL_CUBIC_REL
     );
     // A constant index leaves nothing beyond the linear term (rounding only).
+    // tol: a constant index leaves a linear phase, removed to the rounding of phases of order 2π n l σ; 1e-6 rad is far below the residuals compared elsewhere (tenths of a rad) and above that rounding.
     assert!(dispersion::residual_peak_to_peak(|_| 1.5, lo, hi, l) < 1e-6);
 }
 
@@ -191,6 +192,7 @@ fn dispersion_lowers_v2_monotonically_in_the_figure_range() {
     // V2 of an unresolved source always loses to dispersion (|mean of a
     // unit phasor| < 1), by the numerical path as well.
     for p in [0.5, -0.5, 3.0] {
+        // tol: a margin, not a rounding: a loss of V2² above 1e-3 tells dispersion's loss (several percent at 0.5 rad) from V2² = 1 up to rounding.
         assert!(numerical_point_v2_sq(p) < 1.0 - 1e-3);
     }
     // Small-P expansion: V2² ≈ 1 − 4P²/45.

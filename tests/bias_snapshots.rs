@@ -114,6 +114,7 @@ fn agrees_with_golden(computed: &Table, golden: &Table) -> usize {
         let Some(g) = golden
             .rows
             .iter()
+            // tol: not a tolerance on a result: matches a row by its grid coordinate (printed to 12 or more digits); grid points differ by far more than 1e-9 relative.
             .find(|g| (g[0] - row[0]).abs() <= 1e-9 * row[0].abs().max(1.0))
         else {
             panic!("{}: x = {} not on the golden grid", computed.name, row[0]);

@@ -482,6 +482,7 @@ fn plan_json_echoes_what_it_used() {
     let converted = inputs["atmosphere"]["seeing_at_observing_arcsec"]
         .as_f64()
         .unwrap();
+    // tol: one power and two products of order-one numbers, read back from JSON printed to 17 digits: a few roundings.
     assert!((converted - 0.8 * (2.2f64 / 0.5).powf(-0.2)).abs() < 1e-12);
     assert_eq!(json["confidence"].as_f64(), Some(0.9));
 }

@@ -198,12 +198,15 @@ fn the_answer_names_the_spectrum_model_and_the_source_visibility() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["psd"], "three-slope");
     let corners = v["psd_corners_hz"].as_array().unwrap();
+    // tol: the same products of the inputs, printed to 17 digits: rounding only, on values of order 0.1 to 10.
     assert_abs_eq!(corners[0].as_f64().unwrap(), 0.2 * 10.0 / 18.0, 1e-9);
+    // tol: as above.
     assert_abs_eq!(corners[1].as_f64().unwrap(), 0.3 * 10.0 / 0.45, 1e-9);
     let z = std::f64::consts::PI * 2e-3 / 206_264.806_247 * 18.0 / 2.2e-6;
     let vis = v["visibility"].as_f64().unwrap();
     // σ_eff of the flat 2.0-2.4 um band is near 1/2.2 um: V to 1e-3.
     let jinc = 1.0 - z * z / 8.0 + z.powi(4) / 192.0 - z.powi(6) / 9216.0;
+    // tol: σ_eff of the flat band is 1/2.2 µm only to ~1e-3 relative, and the series stops at z^6.
     assert_abs_eq!(vis, jinc, 1e-3);
     // The human table prints V beside the bias and scatter.
     let mut args = SMALL.to_vec();

@@ -169,7 +169,9 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
         let row = &data[r * 64..(r + 1) * 64];
         let oracle = estimate_row_oracle(row, &bins, &variance, by_model.calibration());
         assert!(
+            // tol: the oracle sums the same products over 64 samples in another order (~1e-14 relative); 1e-9 is a margin a wrong bin or bias, O(1) relative, cannot pass.
             (e.v1_sq - oracle.v1_sq).abs() <= 1e-9 * oracle.v1_sq.abs()
+                // tol: as above.
                 && (e.v2_sq - oracle.v2_sq).abs() <= 1e-9 * oracle.v2_sq.abs(),
             "row {r}: {e:?} against {oracle:?}"
         );
@@ -203,7 +205,9 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
     }
     let c = by_cal.calibration();
     assert!(
+        // tol: the oracle sums the same products over 64 samples in another order (~1e-14 relative); 1e-9 is a margin a wrong bin or bias, O(1) relative, cannot pass.
         (c.v1_sq - expected.v1_sq).abs() <= 1e-9 * expected.v1_sq
+            // tol: as above.
             && (c.v2_sq - expected.v2_sq).abs() <= 1e-9 * expected.v2_sq,
         "{c:?} against {expected:?}"
     );
@@ -212,6 +216,7 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
         let row = &data[r * 64..(r + 1) * 64];
         let oracle = estimate_row_oracle(row, &bins, &variance, expected);
         assert!(
+            // tol: the oracle sums the same products over 64 samples in another order (~1e-14 relative); 1e-9 is a margin a wrong bin or bias, O(1) relative, cannot pass.
             (e.v1_sq - oracle.v1_sq).abs() <= 1e-9 * oracle.v1_sq.abs(),
             "row {r}: {e:?} against {oracle:?}"
         );

@@ -154,9 +154,11 @@ fn same_files_whatever_the_thread_count_and_continuum_convention() {
     let e1 = columns(&ok(&["estimate", "--sidecar", &two]));
     let e2 = columns(&ok(&["estimate", "--sidecar", &kept]));
     for (p, q) in e1.iter().zip(&e2) {
-        // (M + c) − c rounds at 1 ulp of c per sample.
+        // tol: (M + c) − c rounds at 1 ulp of c per sample.
         v2ref::assert_rel_eq!(q[0], p[0], 1e-12);
+        // tol: the bias-corrected columns: the same rounding of (M + c) - c, summed over the row's bins, absolute on columns of order one.
         v2ref::assert_abs_eq!(q[4], p[4], 1e-10);
+        // tol: as above.
         v2ref::assert_abs_eq!(q[5], p[5], 1e-10);
     }
 }
@@ -218,7 +220,7 @@ fn estimate_without_a_sidecar_and_with_a_calibrator_file() {
     let mean = |r: &[[f64; 6]], k: usize| r.iter().map(|x| x[k]).sum::<f64>() / r.len() as f64;
     for k in [4, 5] {
         let ratio = mean(&measured, k) / mean(&model, k);
-        // 20 000 calibrator rows: the calibration is known to ~0.3 % (V1²) and
+        // tol: 20 000 calibrator rows: the calibration is known to ~0.3 % (V1²) and
         // ~1 % (V2²) at 1σ; 5σ allowed.
         assert!((ratio - 1.0).abs() < 0.05, "column {k}: ratio {ratio}");
         assert!(
@@ -316,6 +318,7 @@ fn every_effect_at_once_passes_its_own_score() {
     let mut csv = String::from("wavelength_um,weight\n");
     for j in 0..=30 {
         let wl = 1.5 + 0.01 * j as f64;
+        // tol: not a tolerance: the half-width of the test spectrum's absorption dip, µm.
         let dip = if (wl - 1.65_f64).abs() < 0.025 {
             0.4
         } else {

@@ -193,6 +193,7 @@ fn score_passes_and_fails_with_its_exit_status() {
     assert_eq!(j["estimators"][0]["estimator"], "v1_sq");
     // z_mean = (2.5 − 2)/0.5 = 1 for V1².
     let z = j["estimators"][0]["z_mean"].as_f64().unwrap();
+    // tol: three roundings of order-one numbers, printed to 17 digits.
     assert!((z - 1.0).abs() < 1e-12, "{z}");
 
     // V1² shifted by +2.5: z_mean = 6 > 3.66.

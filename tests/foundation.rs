@@ -251,6 +251,7 @@ fn bandwidth_bias_vanishes_as_the_band_narrows_with_the_square_of_its_width() {
             assert_rel_eq!(r1, 4.0, SQUARE_LAW_REL, "S = {s}: V1 ratio");
             assert_rel_eq!(r2, 4.0, SQUARE_LAW_REL, "S = {s}: V2 ratio");
         }
+        // tol: the 25 nm band's deviations are ~(25/400)² of the 400 nm band's ~4e-2 (the ledger's bandwidth claims), ~2e-4; a law linear in the width would give ~3e-3.
         assert!(d[2].0.abs() < 1e-3 && d[2].1.abs() < 1e-3);
     }
 }
@@ -478,6 +479,7 @@ fn white_light_fringe_of_a_point_source_is_the_continuum() {
     assert!(ifg
         .modulated
         .iter()
+        // tol: not a tolerance: 10 is the fringe amplitude n V; QUADRATURE_REL is the tolerance.
         .all(|m| m.abs() <= 10.0 * (1.0 + QUADRATURE_REL)));
     assert_eq!(ifg.continuum, vec![10.0; 128]);
     // An OPD perturbation equal to a whole scan shift moves the fringe.

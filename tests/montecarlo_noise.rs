@@ -24,6 +24,7 @@ fn moments4_matches_two_pass_and_merges() {
     assert_abs_eq!(
         acc.m3,
         c(3),
+        // tol: 1.5 is an exponent: the floor is in the unit of a third cumulant, c2^(3/2).
         STREAMING_M3_FLOOR * c(2).powf(1.5) + STREAMING_M3_REL * (c(3)).abs()
     );
     assert_rel_eq!(acc.m4, c(4), IDENTITY_REL);
@@ -188,6 +189,7 @@ fn the_alias_table_leaves_out_less_than_1e_minus_30_of_the_poisson_mass() {
             k -= 1.0;
         }
         assert!(
+            // tol: the Poisson mass outside the range must be negligible: 1e-30 is far below the rounding of a probability of order one and far above the 1e-45 at which the sums stop.
             out < 1e-30,
             "λ = {lambda}: {out:e} of the mass outside {lo} ..= {hi}"
         );

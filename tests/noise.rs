@@ -150,7 +150,7 @@ fn worked_examples_follow_from_sum_m2() {
     assert_rel_eq!(w.photon.1, 100.0 / (20.0_f64 * 1721.0).sqrt(), IDENTITY_REL);
     let e = worked_example(&appendix_setup(), Formula::Exact).unwrap();
     assert_rel_eq!(e.photon.1, 100.0 / 9620.0_f64.sqrt(), IDENTITY_REL);
-    // Σ m²/n² of a flat band: ≈ 1/(2 δx Δσ) = 12 less the truncated tails.
+    // tol: Σ m²/n² of a flat band: ≈ 1/(2 δx Δσ) = 12 less the truncated tails.
     assert!(s > 11.0 && s < 12.0, "{s}");
     // The one-sided scan holds about half the fringe power.
     let z = worked_example(
@@ -161,6 +161,7 @@ fn worked_examples_follow_from_sum_m2() {
         Formula::Published,
     )
     .unwrap();
+    // tol: a zero-start scan keeps about half the fringe power of a centred one (0.55 with the packet's edge): 0.05 is the margin of this rough fraction, not a rounding.
     assert!((z.sum_m2_over_n2 / s - 0.55).abs() < 0.05);
 }
 
@@ -268,8 +269,9 @@ fn white_noise_window_factor_holds_only_without_signal() {
     .unwrap();
     let b = window_stats(&ifg.modulated, &ifg.mean_counts(), &gauss(2.0), &w2).unwrap();
     let factor = 128.0 / w2.len() as f64;
+    // tol: a margin on the window's gain, not a rounding: the white-noise argument divides the variance by the factor; at least a fifth of that gain must remain.
     assert!(a.var_v1_sq / b.var_v1_sq < 0.2 * factor);
-    // the window keeps nearly all of the fringe
+    // tol: the window keeps nearly all of the fringe
     assert!((b.signal_v1_sq / a.signal_v1_sq - 1.0).abs() < 0.01);
 }
 

@@ -214,6 +214,7 @@ fn rows_of_several_targets_need_one_chosen() {
     let j: serde_json::Value = serde_json::from_str(&out_name).unwrap();
     let mean = v2.iter().sum::<f64>() / v2.len() as f64;
     let got = j["estimators"][0]["mean"].as_f64().unwrap();
+    // tol: a mean of at most a few hundred values, through the FITS double column and JSON's 17 digits: ~1e-13 relative.
     assert!((got - mean).abs() <= 1e-12 * mean.abs(), "{got} {mean}");
 }
 
@@ -359,6 +360,7 @@ fn a_row_written_as_nan_is_flagged() {
     // The date and the rows' times: MJD 60370 is 2024-03-01, rows 1 s apart.
     let mjd = &file.tables[0].mjd;
     assert!(
+        // tol: an MJD near 6e4 days holds to 7e-12 day in a double; 1e-9 day (86 µs) is far below the 1 s between rows.
         (mjd[0] - (60_370.0 + 0.5 / 86_400.0)).abs() < 1e-9,
         "{mjd:?}"
     );

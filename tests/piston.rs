@@ -539,6 +539,7 @@ fn sequence_length_is_even_smooth_and_short() {
         }
         assert_eq!(r, 1, "{len} -> {m} has a prime factor above 5");
         if len >= 1000 {
+            // tol: not a tolerance: 5-smooth lengths above 1000 lie less than 10% apart, so the padding stays within 10%.
             assert!((m as f64) < 1.1 * len as f64, "{len} -> {m}");
         }
     }

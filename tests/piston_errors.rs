@@ -106,6 +106,7 @@ fn bounds() -> (f64, f64) {
 #[test]
 fn stated_errors_match_the_spread_over_seeds_and_naive_ones_do_not() {
     let (lo, hi) = bounds();
+    // tol: a bracket of the chi-squared bounds themselves (not a tolerance): with these seeds they must be neither degenerate nor so wide that the test has no power.
     assert!(lo > 0.15 && hi < 3.0, "bounds [{lo}, {hi}]");
     let (obs, spectrum, setup) = chara_like();
     let size = |seed| RunSize {
@@ -146,20 +147,23 @@ fn replicated_errors_by_hand() {
     ];
     let s = replicated_summary(&groups);
     assert_eq!(s.count, 5);
-    assert!((s.mean - 5.0).abs() < 1e-15);
+    assert!((s.mean - 5.0).abs() < v2ref::tolerance::ULPS);
     // K/(K−1) Σ w²(m − m̄)² = 2 [(0.4·−3)² + (0.6·2)²] = 2 (1.44 + 1.44).
-    assert!((s.stderr_mean - (2.0f64 * 2.88).sqrt()).abs() < 1e-14);
+    assert!((s.stderr_mean - (2.0f64 * 2.88).sqrt()).abs() < v2ref::tolerance::ROUNDING_REL);
     // q_j about the pooled mean: group 1: (16 + 4)/2 = 10; group 2:
     // (0 + 4 + 16)/3 = 20/3; q̄ = 0.4·10 + 0.6·20/3 = 8; var = 8·5/4 = 10.
+    // tol: a variance of a few small integers, tens of roundings of numbers up to 100.
     assert!((s.var - 10.0).abs() < 1e-13);
     let se_var = (2.0f64 * ((0.4f64 * 2.0).powi(2) + (0.6f64 * (20.0 / 3.0 - 8.0)).powi(2))).sqrt()
         * 5.0
         / 4.0;
     assert!(
+        // tol: a variance of a few small integers, tens of roundings of numbers up to 100.
         (s.stderr_var - se_var).abs() < 1e-13,
         "{} {se_var}",
         s.stderr_var
     );
+    // tol: a variance of a few small integers, tens of roundings of numbers up to 100.
     assert!((s.stderr_std - se_var / (2.0 * 10f64.sqrt())).abs() < 1e-13);
     // One group: no spread to measure.
     assert!(replicated_summary(&groups[..1]).stderr_mean.is_nan());

@@ -168,6 +168,7 @@ fn a_power_law_is_reproduced_everywhere_and_extended() {
         -50.0, -0.5, 0.0, 0.3, 1.7, 359.4, 718.6, 719.5, 720.0, 725.0, 900.0,
     ] {
         let fx = fx_at(pos);
+        // tol: the table's cubic interpolation of a smooth power law, exact to rounding amplified by the ~10³ dynamic range of the table's steps.
         assert_rel_eq!(tab.g(fx), power(fx), 1e3 * ROUNDING_REL);
     }
 }
@@ -180,6 +181,7 @@ fn beyond_its_ends_the_table_continues_its_end_slopes() {
         assert_abs_eq!(
             tab.g(fx_at(pos)).ln(),
             hermite_oracle(&y, pos),
+            // tol: the oracle recomputes the Hermite cubic in another order: a hundred times the table's own rounding.
             TABLE_LN_ABS * 1e2
         );
     }
@@ -281,6 +283,7 @@ fn at_angle(baseline_m: f64, angle_deg: f64) -> PistonSpectrum {
 /// `2[1 − cos x]`, from its series `x² − x⁴/12 + x⁶/360` below x = 10⁻²
 /// (where 1 − cos would lose ~log10(2/x²) digits).
 fn two_one_minus_cos(x: f64) -> f64 {
+    // tol: not a tolerance: the switch to the series, below which 1 - cos x loses ~log10(2/x²) digits (doc above).
     if x.abs() < 1e-2 {
         x * x * (1.0 - x * x / 12.0 + x.powi(4) / 360.0)
     } else {
@@ -302,6 +305,7 @@ fn along_the_baseline_p_is_the_baseline_factor_times_g_over_v() {
         }
         // Zero at ν = 0 (not 0 · ∞), and at the baseline factor's zeros.
         assert_eq!(s.psd_um2_per_hz(0.0), 0.0);
+        // tol: a zero of the baseline factor 2[1 - cos], rounded: ~1e-31 of the spectrum half-way, 1e-25 leaves room while a missing factor gives O(1).
         assert!(s.psd_um2_per_hz(v / b) < 1e-25 * s.psd_um2_per_hz(0.5 * v / b));
     }
     let zero_baseline = along(0.0);
@@ -346,6 +350,7 @@ fn across_the_baseline_p_combines_g_and_s() {
         assert_rel_eq!(
             across.psd_um2_per_hz(nu),
             2.0 * s_law(nu / 10.0) / 10.0,
+            // tol: two evaluations of one power law a few operations apart: ten roundings.
             ULPS * 10.0
         );
     }
@@ -535,10 +540,12 @@ fn the_aperture_filter_is_the_squared_airy_amplitude() {
     assert_rel_eq!(
         aperture_filter(1.0 / (PI * D), D),
         (2.0 * j1_of_1).powi(2),
+        // tol: J1(1) to the 16 digits typed, squared and scaled: ten roundings.
         10.0 * ULPS
     );
     // Zero at the first zero of J1, j₁,₁ = 3.83170597020751231561 (A&S 9.5).
     let first_zero = 3.831_705_970_207_512 / (PI * D);
+    // tol: the squared J1 at its tabulated zero, typed to 16 digits: (~1e-16)², far below 1e-28, while a wrong argument gives O(1e-2).
     assert!(aperture_filter(first_zero, D) < 1e-28);
     // A function of D f only.
     assert_rel_eq!(
@@ -566,12 +573,14 @@ fn two_one_minus_j0_is_its_series_and_the_bessel_function() {
     }
     // From J0: 1 − J0 is ~z²/4, so J0's absolute error is its error.
     for z in [1e-2, 0.05, 0.5, 1.0] {
+        // tol: 2(1 - J0): twice J0's absolute error.
         assert_abs_eq!(two_one_minus_j0(z), series(z), 2.0 * BESSEL_ABS);
     }
     // J0(10) = −0.245935764451348335 (A&S Table 9.1).
     assert_abs_eq!(
         two_one_minus_j0(10.0),
         2.0 * (1.0 + 0.245_935_764_451_348_3),
+        // tol: 2(1 - J0): twice J0's absolute error.
         2.0 * BESSEL_ABS
     );
     assert_eq!(two_one_minus_j0(0.0), 0.0);
@@ -660,5 +669,6 @@ fn across_the_wind_the_low_asymptote_is_raised_by_cos2_plus_three_halves_sin2() 
     let nu = r * along.corner_low_hz();
     let v = t.wind_mps();
     let p = 2.0 * crosswind_integral(&t, D, nu / v, 18.0) / v;
+    // tol: 10 r: the relative error falls as ν/corner = r; LOW_FREQ_VALUE_COEFF is its coefficient and 10 its margin.
     assert_rel_eq!(p, across.asymptote_low(nu), LOW_FREQ_VALUE_COEFF * 10.0 * r);
 }

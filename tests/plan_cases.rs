@@ -216,6 +216,7 @@ fn seed_stable_recommendation_on_a_short_observation() {
 /// (composite Simpson, 2000 intervals: smooth periodic integrand, error far
 /// below 1e-12 for x < 30).
 fn jinc(x: f64) -> f64 {
+    // tol: not a tolerance: the limit x → 0 of 2J1(x)/x, taken where the integral's 0/0 would round.
     if x.abs() < 1e-8 {
         return 1.0 - x * x / 8.0;
     }
@@ -278,6 +279,7 @@ fn bandwidth_bias_of_the_pionier_like_disk_is_the_independent_integral() {
             Estimator::V2 => v2,
         };
         assert!(
+            // tol: a bias from the same quadratures in another order, relative to max(|bias|, 1e-3) (the bias's scale): ~1e-13, 1e-9 a margin.
             (p.bias_bandwidth_dispersion - want).abs() < 1e-9 * want.abs().max(1e-3),
             "{:?}: {} vs {want}",
             p.estimator,

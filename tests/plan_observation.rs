@@ -166,6 +166,7 @@ fn assert_kept(v: &Verification) {
         "achieved sigma above the promise: {v:?}"
     );
     assert!(
+        // tol: the promise is an upper end, not more than half again the achieved σ: a promise that loose would be of no use.
         v.promised_sigma < 1.5 * v.achieved_sigma,
         "the promise is far above the achieved sigma: {v:?}"
     );
@@ -201,6 +202,7 @@ fn piston_dominated_v2_keeps_the_promise_the_independent_formula_does_not() {
 #[test]
 fn noise_dominated_v1_keeps_the_promise() {
     let (p, v) = verified(&FAINT, Estimator::V1, 256);
+    // tol: not a tolerance: the regime; piston below half the noise is noise-dominated.
     assert!(piston_over_noise(&p) < 0.5, "{p:?}");
     assert_kept(&v);
 }
@@ -208,6 +210,7 @@ fn noise_dominated_v1_keeps_the_promise() {
 #[test]
 fn noise_dominated_v2_keeps_the_promise() {
     let (p, v) = verified(&FAINT, Estimator::V2, 256);
+    // tol: not a tolerance: the regime; piston below half the noise is noise-dominated.
     assert!(piston_over_noise(&p) < 0.5, "{p:?}");
     assert_kept(&v);
 }

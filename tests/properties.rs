@@ -84,6 +84,7 @@ proptest! {
         let slack = QUADRATURE_REL;
         prop_assert!(v2 >= 0.0);
         prop_assert!(v2 <= v1 + slack, "V2² {} > V1² {}", v2, v1);
+        // tol: 1.0 is V1²'s bound, not a tolerance; slack is the quadrature's.
         prop_assert!(v1 <= 1.0 + slack);
     }
 

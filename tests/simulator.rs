@@ -62,6 +62,7 @@ fn row_estimator_matches_its_oracle() {
                         (got.v2_sq_bias, want.v2_sq_bias),
                         (got_kept.v1_sq_raw, want.v1_sq_raw),
                     ] {
+                        // tol: the two routes sum the same terms in different orders over N ≤ 512 samples: far below 1e-10.
                         assert_rel_eq!(g, w, 1e-10, "N = {n}, {window:?}, {bias:?}");
                     }
                     assert_abs_eq!(got.v1_sq, want.v1_sq, PATHS_AGREE_ABS);
@@ -99,7 +100,9 @@ fn noise_only_rows_are_simulates_draws() {
     };
     let theirs = simulate_noisy(&spec, trials, 5, 1, &|_| {}).unwrap();
     assert_eq!(mine.count, theirs.v1_sq.count);
+    // tol: the same draws summed by two routes: rounding of a mean of order one, far below 1e-12.
     assert_rel_eq!(mine.mean, theirs.v1_sq.mean, 1e-12);
+    // tol: a variance of the same values in another order: cancellation in the variance costs a few digits more than the mean.
     assert_rel_eq!(mine.variance(), theirs.v1_sq.variance(), 1e-10);
 }
 
@@ -136,7 +139,9 @@ fn general_path_agrees_with_the_fast_path() {
         &|_| {},
     )
     .unwrap();
+    // tol: the general and the fast paths compute the same estimates with other sums: rounding, far below 1e-10.
     assert_rel_eq!(general.v1_sq.mean, fast.v1_sq.mean, 1e-10);
+    // tol: the variance, a difference of moments, loses two more digits than the mean.
     assert_rel_eq!(general.v2_sq.var, fast.v2_sq.var, 1e-8);
     let e = fast.expected.unwrap();
     assert_within_sigmas!(fast.v1_sq.mean, e.mean_v1_sq, fast.v1_sq.stderr_mean);
@@ -191,11 +196,14 @@ fn piston_only_reproduces_the_piston_monte_carlo() {
     )
     .unwrap();
     let w = theirs[0].window(BinWindow::Positive);
-    // Same rows; the estimators differ only in rounding (FFT against the
+    // tol: Same rows; the estimators differ only in rounding (FFT against the
     // windowed sums, and the calibrators' quadratures, ~1e-12 relative).
     assert_abs_eq!(effect.v1.mean, w.v1.mean, 1e-9);
+    // tol: as above.
     assert_abs_eq!(effect.v2.mean, w.v2.mean, 1e-9);
+    // tol: the scatter, a square root of a variance of rows that agree to ~1e-12: 1e-6 relative is a margin over the cancellation in the variance.
     assert_rel_eq!(effect.v1.std, w.v1.std, 1e-6);
+    // tol: as above.
     assert_rel_eq!(effect.v2.std, w.v2.std, 1e-6);
     assert!(
         w.v1.std > 1e-3 && w.v2.std > 0.0,

@@ -56,6 +56,7 @@ fn bessel_j1_trapezoid(z: f64) -> f64 {
 /// |z| = 1 (terms fall by ≥ 8 each, 14 terms reach rounding), Bessel's
 /// integral above.
 fn jinc_reference(z: f64) -> f64 {
+    // tol: not a tolerance: the switch from the power series to Bessel's integral (doc above).
     if z.abs() < 1.0 {
         let q = 0.25 * z * z;
         let (mut term, mut sum) = (1.0, 1.0);
@@ -350,6 +351,7 @@ fn v1_sq_of_a_band_whose_w_doubles_across_k_is_the_w2_weighted_mean() {
     assert_rel_eq!(wb.v2_sq, r.v2_sq, REFERENCE_QUADRATURE_REL);
     assert_rel_eq!(wb.v_mono, r.v_mono, REFERENCE_QUADRATURE_REL);
     assert_rel_eq!(v_mono(&obs), r.v_mono, REFERENCE_QUADRATURE_REL);
+    // tol: a square against its computed square: two roundings, four ε.
     assert_rel_eq!(wb.v1 * wb.v1, wb.v1_sq, 4.0 * f64::EPSILON);
 
     // The sampled path, built by hand: a 1024 µm scan, the positive bins,

@@ -196,6 +196,7 @@ fn weight_per_um_is_converted_by_the_jacobian() {
         .join("\n");
     let a = Spectrum::from_csv_str(&per_um).unwrap();
     let b = Spectrum::from_csv_str(&per_sigma).unwrap();
+    // tol: the same σ_eff from two tables converted by λ² factors: tens of roundings of an order-one value.
     assert!((a.sigma_eff_per_um() - b.sigma_eff_per_um()).abs() < 1e-14);
     // Without the Jacobian the effective wavenumber moves measurably.
     let plain = per_um.replace("weight_per_um", "weight");

@@ -19,6 +19,7 @@ mod bias_normalization;
 mod bias_snapshots;
 mod cancel;
 mod claims;
+mod claims_notes;
 mod cli;
 mod cli_noise;
 mod cli_piston;
@@ -66,6 +67,7 @@ mod special;
 mod spectral_estimators;
 mod spectrum_csv;
 mod synth_layout;
+mod tolerance_literals;
 mod turbulence;
 
 /// Cargo builds only this binary (`autotests = false` in Cargo.toml): a

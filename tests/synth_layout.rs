@@ -61,7 +61,9 @@ fn the_sidecar_records_the_layout() {
     assert_eq!(obs["rows_per_sequence"], serde_json::json!([40]));
     assert_eq!(obs["stride_samples"], 32);
     let rel = |a: &serde_json::Value, b: f64| (a.as_f64().unwrap() - b).abs() / b;
+    // tol: a time printed to 17 digits in the sidecar's JSON: a few roundings.
     assert!(rel(&obs["scan_time_s"], scan_time_s) < 1e-12, "{obs}");
+    // tol: a time printed to 17 digits in the sidecar's JSON: a few roundings.
     assert!(rel(&obs["stride_s"], scan_time_s) < 1e-12, "{obs}");
 
     let seq = with("seq", &[]);
@@ -91,6 +93,7 @@ fn row_starts_follow_from_the_layout() {
             assert_eq!(j, rows.sequence_of(r), "row {r}");
             let first: u64 = set.rows_per_sequence[..j].iter().sum();
             let expected = (r - first) as f64 * set.stride_s;
+            // tol: a row's start, a product of integers and the stride: a few roundings.
             assert!((start_s - expected).abs() <= 1e-12 * expected, "row {r}");
         }
         assert_eq!(set.row_start(100), None);

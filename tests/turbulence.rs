@@ -288,6 +288,7 @@ fn asymptotes_slopes_and_corners() {
     for fd in [10.0, 30.0, 100.0, 300.0] {
         let fx = fd / D;
         let e = rel(g(fx), high_g(fx));
+        // tol: not a fixed tolerance: the relative amplitude ~ (f D)^{-1/2} of the oscillating term (comment above).
         assert!(e < 1.0 / fd.sqrt(), "high at fD {fd}: {e}");
         assert!(e < last, "high-frequency error does not fall at fD {fd}");
         last = e;
@@ -345,7 +346,7 @@ fn von_karman_outer_scale_reduces_and_saturates_the_piston() {
     let rms = |t: Turbulence, b: f64| PistonSpectrum::new(t, D, b).unwrap().rms_um();
     assert!(rel(rms(huge, 18.0), rms(k, 18.0)) < ASYMPTOTIC_LIMIT_REL);
     assert!(rms(vk, 18.0) < rms(k, 18.0));
-    // Saturation: from 50 to 100 m the von Kármán piston grows by < 1 %,
+    // tol: Saturation: from 50 to 100 m the von Kármán piston grows by < 1 %,
     // the Kolmogorov one by 2^{5/6} roughly.
     assert!(rms(vk, 100.0) / rms(vk, 50.0) < 1.01);
     assert!(rms(k, 100.0) / rms(k, 50.0) > 1.7);
@@ -446,7 +447,9 @@ fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
     // asymptote crossings of the two-aperture integral (0.225 v/B, 0.299 v/D).
     assert!(rel(m.corner_low_hz(), 0.2 * 10.0 / 18.0) < ULPS);
     assert!(rel(m.corner_high_hz(), 0.3 * 10.0 / D) < ULPS);
+    // tol: the three-slope corners are rounded (0.2 v/B against the integral's 0.225 v/B, comment above): 11 % apart.
     assert!(rel(m.corner_low_hz(), two.corner_low_hz()) < 0.15);
+    // tol: 0.3 v/D against the integral's 0.299 v/D: 0.3 % apart.
     assert!(rel(m.corner_high_hz(), two.corner_high_hz()) < 0.01);
     // Log-slopes inside each segment, and continuity at the corners.
     let p = |nu: f64| s.psd_um2_per_hz(nu);
@@ -457,9 +460,11 @@ fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
         (1.01 * n1, 0.99 * n2, -8.0 / 3.0),
         (1.01 * n2, 1e3 * n2, -17.0 / 3.0),
     ] {
+        // tol: a log-log slope of a pure power law: rounding of two logarithms.
         assert_abs_eq!(slope(a, b), want, 1e-12);
     }
     for c in [n1, n2] {
+        // tol: continuity across a corner: a step of 1e-12 moves a smooth function by ~1e-12 relative; 1e-10 catches a jump.
         assert!(rel(p(c * (1.0 - 1e-12)), p(c)) < 1e-10, "jump at {c}");
     }
     // ∫P dν = the two-aperture variance, by quadrature and by the closed form.
@@ -475,6 +480,7 @@ fn three_slope_model_has_its_slopes_corners_and_the_two_aperture_variance() {
     .unwrap()
     .with_model(PistonPsdModel::ThreeSlope)
     .unwrap();
+    // tol: a margin, not a rounding: a finite outer scale must lower the piston variance by at least a tenth.
     assert!(l0.three_slope().unwrap().variance_um2() < 0.9 * m.variance_um2());
     assert_eq!(l0.three_slope().unwrap().corner_low_hz(), n1);
     // The wind speed moves the corners with v.
@@ -539,6 +545,7 @@ fn wind_across_the_baseline_keeps_the_variance_and_raises_the_low_asymptote() {
         }
         let nu = (along.corner_low_hz() * along.corner_high_hz()).sqrt();
         assert!(
+            // tol: the mid-range asymptote at the geometric mean of the corners: within 5 % there, where both neighbours' terms are smallest.
             rel(p(nu), along.asymptote_mid(nu)) < 0.05,
             "{angle} deg mid"
         );

@@ -37,13 +37,16 @@ pub const DIAMETER_MAS: f64 = 43.0;
 pub const WAVELENGTH_UM: f64 = 2.2;
 /// The bandwidths of Fig. 1, nm.
 pub const BANDWIDTHS_NM: [f64; 6] = [12.5, 25.0, 50.0, 100.0, 200.0, 400.0];
+/// Smallest spatial frequency of Figs. 1–3 (zero baseline), cycles/arcsec.
+pub const S_MIN_CPAS: f64 = 0.0;
 /// Largest spatial frequency of Figs. 1–3, cycles/arcsec.
 pub const S_MAX_CPAS: f64 = 80.0;
 
-/// The grid 0, step, 2 step, …, [`S_MAX_CPAS`] (cycles/arcsec).
+/// The grid [`S_MIN_CPAS`] = 0, step, 2 step, …, [`S_MAX_CPAS`]
+/// (cycles/arcsec).
 pub fn s_grid(step_cpas: f64) -> Vec<f64> {
-    let n = (S_MAX_CPAS / step_cpas).round() as usize;
-    (0..=n).map(|i| i as f64 * step_cpas).collect()
+    let n = ((S_MAX_CPAS - S_MIN_CPAS) / step_cpas).round() as usize;
+    (0..=n).map(|i| S_MIN_CPAS + i as f64 * step_cpas).collect()
 }
 
 /// The paper's flat K band (2.0–2.4 µm, flat in wavenumber) of Figs. 0–3.

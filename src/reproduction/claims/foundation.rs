@@ -45,20 +45,32 @@ fn fringe_count_claim() -> Computed {
     )
 }
 
+/// The scalings the dynamic-range laws are checked with: the number of
+/// visibilities times 4 (the range times √4 = 2), the error times 2 (the
+/// range over 2), and a modulus and a phase error of 3 and 4 times dv
+/// (5 dv in quadrature: the range over 5).
+const MORE_VISIBILITIES: f64 = 4.0;
+const LARGER_ERROR: f64 = 2.0;
+const QUADRATURE_PAIR: (f64, f64) = (3.0, 4.0);
+
 /// `dynamic_range.formula`: the formula sqrt(N_vis / ((dV/V)² + dφ²))
 /// holds its three laws (√N_vis, 1/error, errors in quadrature),
 /// evaluated at 100 visibilities and a 1e-5 visibility accuracy.
 fn dynamic_range_claim() -> Computed {
     let (n_vis, dv, dphi) = (100.0, 1e-5, 0.0);
+    let (q1, q2) = QUADRATURE_PAIR;
+    // What the laws say: the range grows by √4 and shrinks by the error's
+    // factor, 2, and by the quadrature sum, 5.
+    let (growth, shrink_error, shrink_quadrature) =
+        (MORE_VISIBILITIES.sqrt(), LARGER_ERROR, q1.hypot(q2));
     let laws = || -> crate::Result<(f64, [f64; 3])> {
         let dr = dynamic_range(n_vis, dv, dphi)?;
         Ok((
             dr,
             [
-                dynamic_range(4.0 * n_vis, dv, dphi)? / dr / 2.0,
-                dynamic_range(n_vis, 2.0 * dv, dphi)? / dr * 2.0,
-                // dV/V = 3 dv and dphi = 4 dv add to 5 dv in quadrature.
-                dynamic_range(n_vis, 3.0 * dv, 4.0 * dv)? / dr * 5.0,
+                dynamic_range(MORE_VISIBILITIES * n_vis, dv, dphi)? / dr / growth,
+                dynamic_range(n_vis, LARGER_ERROR * dv, dphi)? / dr * shrink_error,
+                dynamic_range(n_vis, q1 * dv, q2 * dv)? / dr * shrink_quadrature,
             ],
         ))
     };
@@ -70,7 +82,10 @@ fn dynamic_range_claim() -> Computed {
                 Some(dr),
                 holds,
                 format!(
-                    "dynamic_range::dynamic_range: {n_vis} visibilities at dV/V = {dv:e} and dphi = {dphi} give {dr:.3e}; 4x the visibilities, 2x the error and errors (3, 4) x dv in quadrature scale it by the law's 2, 1/2 and 1/5 to {:.1e}, {:.1e}, {:.1e} (relative)",
+                    "dynamic_range::dynamic_range: {n_vis} visibilities at dV/V = {dv:e} and dphi = {dphi} give {dr:.3e}; {MORE_VISIBILITIES}x the visibilities, {LARGER_ERROR}x the error and errors ({q1}, {q2}) x dv in quadrature scale it by the law's {}, 1/{} and 1/{} to {:.1e}, {:.1e}, {:.1e} (relative)",
+                    growth,
+                    shrink_error,
+                    shrink_quadrature,
                     ratios[0] - 1.0,
                     ratios[1] - 1.0,
                     ratios[2] - 1.0

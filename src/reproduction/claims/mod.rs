@@ -272,6 +272,13 @@ pub fn judge(specs: &[ClaimSpec], computed: &[Computed]) -> Vec<ClaimResult> {
         .collect()
 }
 
+/// `lo-hi um`, the wavelengths of the support of `spectrum` (held in
+/// wavenumber, µm⁻¹) to the 0.1 µm the notes show.
+fn band_text(spectrum: &crate::formalism::spectrum::Spectrum) -> String {
+    let (lo_per_um, hi_per_um) = spectrum.support();
+    format!("{:.1}-{:.1} um", 1.0 / hi_per_um, 1.0 / lo_per_um)
+}
+
 /// Looks a spec up by id; providers receive one of these.
 pub type Find<'a> = dyn Fn(&str) -> Option<&'a ClaimSpec> + 'a;
 

@@ -89,8 +89,18 @@ pub fn fig4(effort: Effort) -> Result<Figure> {
     cached("fig4", effort, || make_fig4(effort))
 }
 
+/// Fig. 4's lower fringe frequency, Hz.
+pub const FIG4_LOW_HZ: f64 = 300.0;
+/// Fig. 4's higher fringe frequency, Hz.
+pub const FIG4_HIGH_HZ: f64 = 1000.0;
+
 /// The Fig. 4 cases: (disk diameter, mas; fringe frequency, Hz).
-const FIG4_CASES: [(f64, f64); 4] = [(43.0, 300.0), (43.0, 1000.0), (10.0, 300.0), (10.0, 1000.0)];
+const FIG4_CASES: [(f64, f64); 4] = [
+    (43.0, FIG4_LOW_HZ),
+    (43.0, FIG4_HIGH_HZ),
+    (10.0, FIG4_LOW_HZ),
+    (10.0, FIG4_HIGH_HZ),
+];
 
 fn fig4_columns() -> Vec<Column> {
     let mut columns = vec![

@@ -6,7 +6,7 @@
 //! [`crate::bias::normalization`], [`crate::bias::integration`], [`crate::bias::line`],
 //! [`crate::bias::dispersion`], [`crate::math::special::fresnel`]).
 
-use super::{settle, Check, Computed, Find};
+use super::{band_text, settle, Check, Computed, Find};
 use crate::bias::bandwidth::locate_max;
 use crate::bias::dispersion;
 use crate::bias::finite_scan::{self, Method};
@@ -17,14 +17,15 @@ use crate::formalism::estimator::{v1_sq, v2_sq, wide_band, WideBand};
 use crate::formalism::interferogram::{sinc, Sampling};
 use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
-use crate::formalism::source::Source;
+use crate::formalism::source::{Source, SPEED_OF_LIGHT_KM_S};
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::math::special::fresnel::point_source_v2_sq;
 use crate::math::special::{bessel_j1_zero, jinc};
 use crate::reproduction::cases::{disk, k_band, Effort};
 use crate::reproduction::cases::{ABCD_DX_UM, DISPERSIONS_RAD, FIG0_INDICES, FIG0_MAX_SAMPLES};
-use crate::reproduction::cases::{ACCURACY, DX_UM, STROKES_UM};
-use crate::reproduction::cases::{BANDWIDTHS_NM, DIAMETER_MAS, S_MAX_CPAS, WAVELENGTH_UM};
+use crate::reproduction::cases::{ACCURACY, DX_UM, FIG0_EDGE_PER_UM, STROKES_UM};
+use crate::reproduction::cases::{BANDWIDTHS_NM, DIAMETER_MAS, WAVELENGTH_UM};
+use crate::reproduction::cases::{S_MAX_CPAS, S_MIN_CPAS};
 use crate::reproduction::table::Table;
 use crate::tolerance::{CLOSED_FORM_VS_NUMERICAL, IDENTITY_ABS, IDENTITY_REL};
 use std::f64::consts::PI;
@@ -36,11 +37,11 @@ use scan_length::scanlength_claims;
 pub(super) fn claims(find: &Find<'_>, effort: Effort) -> Vec<Computed> {
     let mut out = Vec::new();
     integration_claims(&mut out);
-    line_claims(&mut out);
+    line_claims(find, &mut out);
     bandwidth_claims(&mut out);
     dispersion_claims(find, &mut out);
     scanlength_claims(effort, &mut out);
-    normalization_claims(&mut out);
+    normalization_claims(find, &mut out);
     out
 }
 
@@ -58,14 +59,21 @@ fn observe(
         .expect("valid observation")
 }
 
+/// The Nyquist frequency, σ δx: two samples per fringe.
+const NYQUIST_SIGMA_DX: f64 = 0.5;
+/// The sampling of the integrating-detector ratio: 4 samples per fringe,
+/// where the paper's π²/8 is exact.
+const SAMPLES_PER_FRINGE: f64 = 4.0;
+
 fn integration_claims(out: &mut Vec<Computed>) {
-    let nyquist = sinc(0.5);
+    let nyquist = sinc(NYQUIST_SIGMA_DX);
     out.push(
         Computed::number(
             "integration.sinc_min_nyquist",
             nyquist,
             format!(
-                "sinc(sigma dx) at the Nyquist frequency sigma dx = 1/2: {nyquist:.6} (2/pi = {:.6})",
+                "sinc(sigma dx) at the Nyquist frequency sigma dx = 1/{}: {nyquist:.6} (2/pi = {:.6})",
+                1.0 / NYQUIST_SIGMA_DX,
                 2.0 / PI
             ),
         )
@@ -76,7 +84,7 @@ fn integration_claims(out: &mut Vec<Computed>) {
     );
     // Measured on synthesized interferograms (sampling vs integrating
     // detector), monochromatic 2.2 um, 4 samples per fringe.
-    let measured = integrating_contrast_loss(4.0);
+    let measured = integrating_contrast_loss(SAMPLES_PER_FRINGE);
     // Wide band: the two estimators lose differently.
     let obs = observe(&k_band(), &Source::Point, 0.0, &SpectralPhase::zero());
     let loss = integration::wide_band_loss(&obs, DX_UM);
@@ -95,8 +103,9 @@ fn integration_claims(out: &mut Vec<Computed>) {
         "integration.norm_factor_4spf",
         measured,
         format!(
-            "ratio of V1^2 from a sampling and an integrating detector, synthesized monochromatic 2.2 um interferogram, 4 samples per fringe: {measured:.6} (pi^2/8 = {:.6}). Flat 2.0-2.4 um band, dx = 0.55 um: the normalization factor is {:.6} for V1^2 and {:.6} for V2^2 (they weight the band by W^2 and W); calibrated on a point source seen by the same detector, the 43 mas disk's V1 and V2 move by at most {:.1e} and {:.1e} over 0-80 cycles/arcsec",
+            "ratio of V1^2 from a sampling and an integrating detector, synthesized monochromatic {WAVELENGTH_UM} um interferogram, {SAMPLES_PER_FRINGE} samples per fringe: {measured:.6} (pi^2/8 = {:.6}). Flat {} band, dx = {DX_UM} um: the normalization factor is {:.6} for V1^2 and {:.6} for V2^2 (they weight the band by W^2 and W); calibrated on a point source seen by the same detector, the {DIAMETER_MAS} mas disk's V1 and V2 move by at most {:.1e} and {:.1e} over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec",
             PI * PI / 8.0,
+            band_text(&k_band()),
             1.0 / loss.v1_sq,
             1.0 / loss.v2_sq,
             worst.0,
@@ -128,28 +137,52 @@ fn integrating_contrast_loss(samples_per_fringe: f64) -> f64 {
     v1(false) / v1(true)
 }
 
-fn line_claims(out: &mut Vec<Computed>) {
-    let stroke = Sampling::from_stroke(100.0, 0.5, false).expect("valid sampling");
-    let sigma = 1.0 / 2.0;
+/// The paper's Fourier-transform spectrometer: a 100 µm stroke at 2 µm
+/// (R = 50), the scan of its spectral-line example.
+const FTS_STROKE_UM: f64 = 100.0;
+/// The wavelength of the spectrometer and line examples, µm.
+const FTS_WAVELENGTH_UM: f64 = 2.0;
+/// The line's velocity width in the paper's example, km/s.
+const LINE_WIDTH_KM_S: f64 = 10.0;
+/// The speed of light the paper's 1/600 implies, km/s.
+const PAPER_SPEED_OF_LIGHT_KM_S: f64 = 3e5;
+
+fn line_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
+    let stroke = Sampling::from_stroke(FTS_STROKE_UM, 0.5, false).expect("valid sampling");
+    let sigma = 1.0 / FTS_WAVELENGTH_UM;
     let r = sigma * stroke.stroke_um();
     out.push(Computed::number(
         "resolution.fts_100um_2um",
         r,
-        format!("R = sigma * stroke = {r} for a 100 um stroke at 2 um"),
+        format!(
+            "R = sigma * stroke = {r} for a {} um stroke at {FTS_WAVELENGTH_UM} um",
+            stroke.stroke_um()
+        ),
     ));
-    let case = LineCase::paper();
+    let case = LineCase {
+        width_elements: line::width_in_elements(FTS_WAVELENGTH_UM, LINE_WIDTH_KM_S, FTS_STROKE_UM),
+        ..LineCase::paper()
+    };
     let width = case.width_elements;
+    let paper_elements = spec(find, "line.width_in_elements")
+        .paper
+        .map_or_else(|| "-".to_owned(), |w| format!("{:.0}", 1.0 / w));
     out.push(Computed::number(
         "line.width_in_elements",
         width,
-        format!("10 km/s at 2 um is sigma v/c = {:.4e} per um; one spectral element is 1/stroke = 0.01 per um: 1/{:.1} of an element (c = 299792.458 km/s; the paper's 1/600 takes c = 3e5)", width / 100.0, 1.0 / width),
+        format!(
+            "{LINE_WIDTH_KM_S} km/s at {FTS_WAVELENGTH_UM} um is sigma v/c = {:.4e} per um; one spectral element is 1/stroke = {} per um: 1/{:.1} of an element (c = {SPEED_OF_LIGHT_KM_S} km/s; the paper's 1/{paper_elements} takes c = {PAPER_SPEED_OF_LIGHT_KM_S:e})",
+            width / FTS_STROKE_UM,
+            1.0 / FTS_STROKE_UM,
+            1.0 / width
+        ),
     ));
     let v = line::channel_visibility(&case).expect("valid line case");
     let mut sinc_case = case;
     sinc_case.channel = line::Channel::Sinc;
     let vs = line::channel_visibility(&sinc_case).expect("valid line case");
     let note = format!(
-        "continuum V = {}, unresolved line emitter V = {} with {} times the continuum's flux density inside a top-hat 10 km/s line, 100 um scan at 2 um (line 1/{:.1} of an element). Unweighted linear average of V(sigma) over the element (the paper's reading: it leaves the line's photons out of the normalization): {:.6}. Channel visibility of the paper's own formalism, integral of W V with W including the line's flux: {:.6}. With the FTS sinc response instead of a top-hat element: {:.6} / {:.6}",
+        "continuum V = {}, unresolved line emitter V = {} with {} times the continuum's flux density inside a top-hat {LINE_WIDTH_KM_S} km/s line, {FTS_STROKE_UM} um scan at {FTS_WAVELENGTH_UM} um (line 1/{:.1} of an element). Unweighted linear average of V(sigma) over the element (the paper's reading: it leaves the line's photons out of the normalization): {:.6}. Channel visibility of the paper's own formalism, integral of W V with W including the line's flux: {:.6}. With the FTS sinc response instead of a top-hat element: {:.6} / {:.6}",
         case.continuum_visibility, case.line_visibility, case.flux_ratio, 1.0 / width, v.unweighted, v.flux_weighted, vs.unweighted, vs.flux_weighted
     );
     out.push(Computed::formula(
@@ -236,7 +269,7 @@ fn v1_max_claim() -> Computed {
         "bandwidth.v1_max_diff_400nm",
         d1,
         format!(
-            "max |V1 - V_mono| over 0-80 cycles/arcsec = {d1:.5} at S = {s1:.3} cycles/arcsec; the nulls of the 43 mas disk are at {:.3}, {:.3}, {:.3}",
+            "max |V1 - V_mono| over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec = {d1:.5} at S = {s1:.3} cycles/arcsec; the nulls of the {DIAMETER_MAS} mas disk are at {:.3}, {:.3}, {:.3}",
             nulls[0], nulls[1], nulls[2]
         ),
     )
@@ -333,7 +366,7 @@ fn narrow_band_claim() -> crate::Result<Vec<Computed>> {
         Some(widest.1),
         holds,
         format!(
-            "max over 0-{S_MAX_CPAS} cycles/arcsec of |V1 - V_mono| / |V2 - V_mono| per bandwidth: {} (growing with the bandwidth: {shrinking}; between the two widest bands as the bandwidth to the power {:.2} for V1, {:.2} for V2); above the {ACCURACY} accuracy from {} for V1 and from {} for V2",
+            "max over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec of |V1 - V_mono| / |V2 - V_mono| per bandwidth: {} (growing with the bandwidth: {shrinking}; between the two widest bands as the bandwidth to the power {:.2} for V1, {:.2} for V2); above the {ACCURACY} accuracy from {} for V1 and from {} for V2",
             rows.iter()
                 .map(|(bw, a, b)| format!("{bw} nm {a:.2e}/{b:.2e}"))
                 .collect::<Vec<_>>()
@@ -346,9 +379,18 @@ fn narrow_band_claim() -> crate::Result<Vec<Computed>> {
     )])
 }
 
+/// The paper's fibre example: a temperature step of 1 K over 1 km of
+/// fibre, which it turns into 10 mm of glass (its intermediate, the length
+/// computed with).
+const FIBRE_STEP_K: f64 = 1.0;
+const FIBRE_KM: f64 = 1.0;
+const FIBRE_GLASS_MM: f64 = 10.0;
+
 fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
     // Fig. 2 shows V2 only; V1 under dispersion is computed here.
     let band = k_band();
+    // V1 without dispersion and with the largest of Fig. 2.
+    let (none_rad, most_rad) = (0.0, DISPERSIONS_RAD[DISPERSIONS_RAD.len() - 1]);
     let mut worst_v1 = 0.0_f64;
     for k in 0..=80 {
         let s = k as f64;
@@ -360,14 +402,14 @@ fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
                 &SpectralPhase::dispersion_peak_to_peak(&band, pp).expect("finite"),
             )
         };
-        worst_v1 = worst_v1.max((v1_sq(&with(2.0)) - v1_sq(&with(0.0))).abs());
+        worst_v1 = worst_v1.max((v1_sq(&with(most_rad)) - v1_sq(&with(none_rad))).abs());
     }
     // "Exactly insensitive": equal to rounding (V1² is O(1)).
     out.push(Computed::statement(
         "dispersion.v1_invariant",
         Some(worst_v1),
         worst_v1 <= IDENTITY_ABS,
-        format!("max |V1^2(2 rad) - V1^2(0)| over 0-{S_MAX_CPAS} cycles/arcsec, 43 mas disk, infinite scan: {worst_v1:.1e}, rounding at most {IDENTITY_ABS:e} (V1^2 weights |V|^2 only, so the phase cancels exactly)"),
+        format!("max |V1^2({most_rad} rad) - V1^2({none_rad})| over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec, {DIAMETER_MAS} mas disk, infinite scan: {worst_v1:.1e}, rounding at most {IDENTITY_ABS:e} (V1^2 weights |V|^2 only, so the phase cancels exactly)"),
     ));
     let ids = [
         "dispersion.v2_point_1rad",
@@ -387,7 +429,7 @@ fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
             Computed::number(
                 id,
                 closed,
-                format!("V2 of a point source, flat 400 nm band at 2.2 um, {pp} rad peak-to-peak: {closed:.9} by the Fresnel closed form (C^2+S^2)/T^2, T = sqrt(2P/pi); {numerical:.9} by quadrature; a bias of {:.4}", 1.0 - closed),
+                format!("V2 of a point source, flat {:.0} nm band at {} um, {pp} rad peak-to-peak: {closed:.9} by the Fresnel closed form (C^2+S^2)/T^2, T = sqrt(2P/pi); {numerical:.9} by quadrature; a bias of {:.4}", 1e3 * Band::k().width_um(), Band::k().centre_um(), 1.0 - closed),
             )
             .checked(Check::Route {
                 value: numerical,
@@ -397,7 +439,7 @@ fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
     }
     // The fibre example: 10 mm of ZBLAN glass (the paper's intermediate).
     let (lo, hi) = (band.support().0, band.support().1);
-    let length_um = 1e4;
+    let length_um = 1e3 * FIBRE_GLASS_MM;
     let p = dispersion::zblan_peak_to_peak_rad(lo, hi, length_um).expect("valid");
     let full = dispersion::residual_peak_to_peak(dispersion::zblan_index, lo, hi, length_um);
     let n = dispersion::zblan_index(0.5 * (lo + hi));
@@ -406,18 +448,19 @@ fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
         "dispersion.fiber_1K_1km_rad",
         p,
         format!(
-            "10 mm of ZBLAN (Gan 1995 Sellmeier, n = {n:.4} at the band centre) over the flat 2.0-2.4 um band: quadratic peak-to-peak {p:.3} rad ({full:.3} rad with all orders beyond the linear one); {:.3} rad if the 10 mm is optical path (10 mm / n of glass). The paper's {} rad would need {:.1} mm of bulk glass; the fibre's waveguide dispersion and the wavelength dependence of dn/dT are not included. The thermal step (1 K over 1 km -> 10 mm) needs dn/dT and the expansion coefficient of the fibre, for which no citable data was at hand (unavailable); 10 mm is the paper's number",
+            "{FIBRE_GLASS_MM} mm of ZBLAN (Gan 1995 Sellmeier, n = {n:.4} at the band centre) over the flat {} band: quadratic peak-to-peak {p:.3} rad ({full:.3} rad with all orders beyond the linear one); {:.3} rad if the {FIBRE_GLASS_MM} mm is optical path ({FIBRE_GLASS_MM} mm / n of glass). The paper's {} rad would need {:.1} mm of bulk glass; the fibre's waveguide dispersion and the wavelength dependence of dn/dT are not included. The thermal step ({FIBRE_STEP_K} K over {FIBRE_KM} km -> {FIBRE_GLASS_MM} mm) needs dn/dT and the expansion coefficient of the fibre, for which no citable data was at hand (unavailable); {FIBRE_GLASS_MM} mm is the paper's number",
+            band_text(&band),
             p / n,
             printed.map_or_else(|| "-".to_owned(), |x| x.to_string()),
-            printed.map_or(f64::NAN, |x| 10.0 * x / p)
+            printed.map_or(f64::NAN, |x| FIBRE_GLASS_MM * x / p)
         ),
     ));
 }
 
-fn normalization_claims(out: &mut Vec<Computed>) {
+fn normalization_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
     out.extend(settle(
         &["normalization.stroke_flat_um"],
-        stroke_flat_claim(),
+        stroke_flat_claim(spec(find, "normalization.stroke_flat_um").paper),
     ));
     out.push(Computed::unavailable(
         "normalization.stroke_g5iii_um",
@@ -433,11 +476,15 @@ fn figure_column(table: &Table, name: &str) -> crate::Result<Vec<f64>> {
     })
 }
 
+/// The round sample spacing the paper may have used instead of δx = λ/4,
+/// µm: its threshold is shown beside δx's.
+const ROUND_DX_UM: f64 = 0.5;
+
 /// `normalization.stroke_flat_um`: the strokes from which the deviation
 /// stays below 0.2%, read from Fig. 0's curves (the same strokes, spectra
 /// and δx); the δx = 0.5 µm variant is not in the figure and is computed
-/// here.
-fn stroke_flat_claim() -> crate::Result<Vec<Computed>> {
+/// here. `printed_um` is the ledger's value.
+fn stroke_flat_claim(printed_um: Option<f64>) -> crate::Result<Vec<Computed>> {
     let fig = crate::reproduction::figures::bias::fig0()?;
     let table = &fig.tables[0];
     let strokes = figure_column(table, "stroke")?;
@@ -456,14 +503,20 @@ fn stroke_flat_claim() -> crate::Result<Vec<Computed>> {
             |(bs, bm), (&s, &d)| if d > bm { (s, d) } else { (bs, bm) },
         );
     let samples: Vec<usize> = (2..=FIG0_MAX_SAMPLES).collect();
-    let dx_half: Vec<f64> = samples.iter().map(|&n| n as f64 * 0.5).collect();
+    let dx_half: Vec<f64> = samples.iter().map(|&n| n as f64 * ROUND_DX_UM).collect();
     let t_dx_half = normalization::threshold_stroke(
         &dx_half,
-        &normalization::deviation_curve(&k_band(), 0.5, &samples)?,
+        &normalization::deviation_curve(&k_band(), ROUND_DX_UM, &samples)?,
         ACCURACY,
     );
-    let fmt =
-        |t: Option<f64>| t.map_or_else(|| "beyond 511 um".to_owned(), |t| format!("{t:.2} um"));
+    // The longest stroke of the figure, to the whole µm below.
+    let longest_um = strokes.iter().fold(0.0_f64, |m, &s| m.max(s)).floor();
+    let fmt = |t: Option<f64>| {
+        t.map_or_else(
+            || format!("beyond {longest_um} um"),
+            |t| format!("{t:.2} um"),
+        )
+    };
     let t_flat = threshold("dev_v2_flat")?;
     let t_flat_sq = threshold("dev_v2sq_flat")?;
     let slopes: Vec<String> = FIG0_INDICES
@@ -477,9 +530,13 @@ fn stroke_flat_claim() -> crate::Result<Vec<Computed>> {
         })
         .collect::<crate::Result<_>>()?;
     let t_smooth = threshold("dev_v2_smooth_edges")?;
+    let accuracy_pct = 100.0 * ACCURACY;
     let note = format!(
-        "|V2 normalized - V2 unnormalized| = |1 - u|, u the V2 of a 100% visibility source from the positive-frequency bins without the factor, flat 2.0-2.4 um band, dx = 0.55 um, strokes N dx up to 511 um: below 0.2% from {} on (the curve oscillates with the stroke; beyond that it still comes up to {beyond_max:.2e} at {beyond_s:.2} um, close to the limit up to about 60 um; with dx = 0.5 um the threshold is {}). Reading the estimator as V2^2 (|1 - u^2|): {}. Spectral slope S F ~ sigma^index: {}; raised-cosine band edges 0.02 per um wide: {}. Reading the factor as a Riemann sum of the unconvolved W gives errors still above 0.2% at 511 um (they fall only like dsigma over the band width), so that cannot be the paper's computation",
+        "|V2 normalized - V2 unnormalized| = |1 - u|, u the V2 of a 100% visibility source from the positive-frequency bins without the factor, flat {} band, dx = {DX_UM} um, strokes N dx up to {longest_um} um: below {accuracy_pct}% from {} on (the curve oscillates with the stroke; beyond that it still comes up to {beyond_max:.2e} at {beyond_s:.2} um, close to the limit{}; with dx = {ROUND_DX_UM} um the threshold is {}). Reading the estimator as V2^2 (|1 - u^2|): {}. Spectral slope S F ~ sigma^index: {}; raised-cosine band edges {FIG0_EDGE_PER_UM} per um wide: {}. Reading the factor as a Riemann sum of the unconvolved W gives errors still above {accuracy_pct}% at {longest_um} um (they fall only like dsigma over the band width), so that cannot be the paper's computation",
+        band_text(&k_band()),
         fmt(t_flat),
+        // Up to the paper's threshold: why it may have read 60 um.
+        printed_um.map_or_else(String::new, |p| format!(" up to about {p} um")),
         fmt(t_dx_half),
         fmt(t_flat_sq),
         slopes.join(", "),

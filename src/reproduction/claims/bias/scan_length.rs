@@ -94,7 +94,7 @@ fn v1_stroke_claim(rows: &[ScanRow]) -> Computed {
         Some(t) => Computed::number(
             "scanlength.v1_stroke_02pct_um",
             t,
-            format!("max |V1 finite - V1 infinite| over 0-{S_MAX_CPAS} cycles/arcsec (positive-frequency bins, calibrated on a point source, dx = {DX_UM} um): {table}; the largest bias sits near the first null ({first_null:.2})"),
+            format!("max |V1 finite - V1 infinite| over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec (positive-frequency bins, calibrated on a point source, dx = {DX_UM} um): {table}; the largest bias sits near the first null ({first_null:.2})"),
         ),
         // No stroke keeps V1 within the accuracy: the statement fails.
         None => Computed::statement(
@@ -131,7 +131,7 @@ fn v2_negligible_claim(rows: &[ScanRow]) -> Computed {
         "scanlength.v2_negligible",
         Some(shown.map_or(f64::NAN, |r| r.2.v2)),
         long_ok,
-        format!("max |V2 finite - V2 infinite| over 0-{S_MAX_CPAS} cycles/arcsec: {table2} (value: {SHOWN_STROKE_UM} um); from {VERY_SHORT_BELOW_UM} um up at most {:.2e} (below {NEGLIGIBLE_BIAS:e}: {long_ok}) and at least {smallest_ratio:.1} times below V1's, up to {:.2e} for shorter strokes. With all N bins instead of the positive half, V2^2 = N^2 m_0^2 does not depend on the stroke at all", worst(&long), worst(&short)),
+        format!("max |V2 finite - V2 infinite| over {S_MIN_CPAS}-{S_MAX_CPAS} cycles/arcsec: {table2} (value: {SHOWN_STROKE_UM} um); from {VERY_SHORT_BELOW_UM} um up at most {:.2e} (below {NEGLIGIBLE_BIAS:e}: {long_ok}) and at least {smallest_ratio:.1} times below V1's, up to {:.2e} for shorter strokes. With all N bins instead of the positive half, V2^2 = N^2 m_0^2 does not depend on the stroke at all", worst(&long), worst(&short)),
     )
 }
 
@@ -149,11 +149,12 @@ fn abcd_scan_claim(points: usize) -> Computed {
         Some(abcd.samples() as f64),
         holds,
         format!(
-            "{} um / {} um = {} samples, one positive-frequency bin ({:?}, at sigma = 1/(N dx) = 0.5 per um): V1 = V2 = |B_1|/|B_1,cal|, the ABCD estimator; its bias against the infinite scan reaches {:.2e} for V1 (at {:.2}) and {:.2e} for V2",
+            "{} um / {} um = {} samples, one positive-frequency bin ({:?}, at sigma = 1/(N dx) = {} per um): V1 = V2 = |B_1|/|B_1,cal|, the ABCD estimator; its bias against the infinite scan reaches {:.2e} for V1 (at {:.2}) and {:.2e} for V2",
             abcd.stroke_um(),
             abcd.dx_um(),
             abcd.samples(),
             bins,
+            abcd.delta_sigma_per_um(),
             m.v1,
             m.s_v1,
             m.v2

@@ -241,7 +241,7 @@ fn all_bins_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comp
         expectation_v2_claim(&a, case),
         photon_bias_claim(&a),
         detector_variance_claim(&a),
-        photon_variance_claim(&a),
+        photon_variance_claim(&a, case),
     ])
 }
 
@@ -342,7 +342,7 @@ fn detector_variance_claim(a: &AllBins) -> Computed {
         Some(rv1),
         holds,
         format!(
-                    "printed forms equal to the exact ones: {printed_exact}; Monte Carlo ({} interferograms, s = 0.2 n): var V1^2 / (2 N^2 s^2 [2 sum m^2 + N s^2]) = {}, var V2^2 / (2 N^4 s^2 [2 m_0^2 + s^2]) = {}",
+                    "printed forms equal to the exact ones: {printed_exact}; Monte Carlo ({} interferograms, s = {APPENDIX_READ_NOISE_PER_PHOTON} n): var V1^2 / (2 N^2 s^2 [2 sum m^2 + N s^2]) = {}, var V2^2 / (2 N^4 s^2 [2 m_0^2 + s^2]) = {}",
             a.trials,
                     versus(rv1, d1.stderr_variance() / ed.var_v1_sq, 1.0),
                     versus(rv2, d2.stderr_variance() / ed.var_v2_sq, 1.0),
@@ -350,7 +350,7 @@ fn detector_variance_claim(a: &AllBins) -> Computed {
     )
 }
 
-fn photon_variance_claim(a: &AllBins) -> Computed {
+fn photon_variance_claim(a: &AllBins, case: &Case) -> Computed {
     let ((p1, p2), ep, pp) = (&a.phot, &a.ep, &a.pp);
     let pv1 = p1.variance();
     let pv2 = p2.variance();
@@ -359,8 +359,9 @@ fn photon_variance_claim(a: &AllBins) -> Computed {
         ep.var_v1_sq,
         pp.var_v1_sq,
         format!(
-                    "printed N^2 sum n_i(4n_i^2+6n_i+1) is N^2 sum var(I_i^2) of the total count; the estimator uses M = I - c: var V1^2 = N^2 sum (4 m_i^2 n_i + 4 m_i n_i + 2 n_i^2 + n_i), var V2^2 = N^4 (4 m_0^2 n_0 + 4 m_0 n_0 + 2 n_0^2 + n_0). Monte Carlo ({} interferograms, Appendix case, n = 10): var V1^2 = {} (exact), printed {:.4e} ({:.0} se away); var V2^2 = {} (exact), printed {:.4e} ({:.0} se away)",
+                    "printed N^2 sum n_i(4n_i^2+6n_i+1) is N^2 sum var(I_i^2) of the total count; the estimator uses M = I - c: var V1^2 = N^2 sum (4 m_i^2 n_i + 4 m_i n_i + 2 n_i^2 + n_i), var V2^2 = N^4 (4 m_0^2 n_0 + 4 m_0 n_0 + 2 n_0^2 + n_0). Monte Carlo ({} interferograms, Appendix case, n = {}): var V1^2 = {} (exact), printed {:.4e} ({:.0} se away); var V2^2 = {} (exact), printed {:.4e} ({:.0} se away)",
             a.trials,
+            case.setup.photons,
                     versus(pv1, p1.stderr_variance(), ep.var_v1_sq),
                     pp.var_v1_sq,
                     (pv1 - pp.var_v1_sq) / p1.stderr_variance(),
@@ -413,7 +414,8 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
         ratio1,
         factor * factor,
         format!(
-                "exact quadratic-form variances, detector case (s = 0.2 n), 128 samples: the band covers {} positive bins ({} with their mirror images, which a window must keep to keep the whole fringe of a real signal). Paper factor (1/dx)/delta-sigma_0 = {:.2}. Exact var(all bins)/var(two-sided band window): V1^2 {ratio1:.3}, V2^2 {ratio2:.3} (the white-noise argument divides only the noise x noise term; the signal x noise term of V1^2 lies inside the window and stays). SNR gain: V1 {:.3}, V2 {:.3} vs the paper's sqrt = {factor:.3}; positive-band-only window: SNR1 {:.3}, SNR2 {:.3} (all bins: {:.3}, {:.3}){mc_note}",
+                "exact quadratic-form variances, detector case (s = {APPENDIX_READ_NOISE_PER_PHOTON} n), {} samples: the band covers {} positive bins ({} with their mirror images, which a window must keep to keep the whole fringe of a real signal). Paper factor (1/dx)/delta-sigma_0 = {:.2}. Exact var(all bins)/var(two-sided band window): V1^2 {ratio1:.3}, V2^2 {ratio2:.3} (the white-noise argument divides only the noise x noise term; the signal x noise term of V1^2 lies inside the window and stays). SNR gain: V1 {:.3}, V2 {:.3} vs the paper's sqrt = {factor:.3}; positive-band-only window: SNR1 {:.3}, SNR2 {:.3} (all bins: {:.3}, {:.3}){mc_note}",
+                setup.samples,
                 window1.len(),
                 window2.len(),
                 factor * factor,

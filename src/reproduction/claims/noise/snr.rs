@@ -25,8 +25,10 @@ pub(super) fn worked_example_claims(
             )
         });
     let why = format!(
-        "project interferogram: {} samples, dx = {} um, flat 2.0-2.4 um band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}{fringe_power}",
-        setup.samples, setup.dx_um
+        "project interferogram: {} samples, dx = {} um, flat {} band (flat in wavenumber), centred scan, sampling detector, c = n, m_0 = n (Interferogram::synthesize). Alternatives with the printed formulas: {table}{fringe_power}",
+        setup.samples,
+        setup.dx_um,
+        super::super::band_text(&noise::example_observation().spectrum)
     );
     let r = APPENDIX_READ_NOISE_PER_PHOTON;
     let out = vec![
@@ -114,9 +116,13 @@ fn variants_table(setup: &ExampleSetup) -> Result<String> {
     Ok(table.join("; "))
 }
 
-/// The paper's "a factor 2 to 3": ratios that round to 2 or 3 at one
-/// significant digit lie in this range.
-const FACTOR_2_TO_3: std::ops::Range<f64> = 1.5..3.5;
+/// The paper's "a factor 2 to 3".
+const PAPER_FACTOR: [f64; 2] = [2.0, 3.0];
+/// Half a unit of the paper's one significant digit.
+const ONE_DIGIT_HALF_WIDTH: f64 = 0.5;
+/// The ratios that round to 2 or 3 at one significant digit.
+const FACTOR_2_TO_3: std::ops::Range<f64> =
+    PAPER_FACTOR[0] - ONE_DIGIT_HALF_WIDTH..PAPER_FACTOR[1] + ONE_DIGIT_HALF_WIDTH;
 
 /// `snr.photon_v1`, `snr.photon_v2` and `sensitivity.v1_over_v2` from the
 /// worked example in the printed (`p`) and exact (`e`) formulas.
@@ -168,8 +174,14 @@ fn photon_snr_claims(
             Some(ratios[0]),
             holds,
             format!(
-                "SNR1/SNR2 in the Appendix case, all bins: detector noise {:.2}; photon noise {:.2} with the printed variances, {:.2} with the exact ones. In {}-{} (a factor 2 to 3 at one digit) for the printed formulas: {holds}",
-                ratios[0], ratios[1], ratios[2], FACTOR_2_TO_3.start, FACTOR_2_TO_3.end
+                "SNR1/SNR2 in the Appendix case, all bins: detector noise {:.2}; photon noise {:.2} with the printed variances, {:.2} with the exact ones. In {}-{} (a factor {} to {} at one digit) for the printed formulas: {holds}",
+                ratios[0],
+                ratios[1],
+                ratios[2],
+                FACTOR_2_TO_3.start,
+                FACTOR_2_TO_3.end,
+                PAPER_FACTOR[0],
+                PAPER_FACTOR[1]
             ),
         ),
     ]
@@ -245,10 +257,11 @@ pub(super) fn abcd_claims(sz: &Sizes) -> Result<Vec<Computed>> {
             Some(z.variance() / exact),
             holds,
             format!(
-                "ABCD estimator (A-C)^2 + (B-D)^2 = |B_1|^2 of the 4-sample DFT, <N> = {total} photons, V = {vis}, s = {sig}, sampling detector: Monte Carlo ({} trials) variance {}; Colavita's 16 s^4 = {colavita} alone is {:.0} se away. The paper's extra term is right: {holds}",
+                "ABCD estimator (A-C)^2 + (B-D)^2 = |B_1|^2 of the {samples}-sample DFT, <N> = {total} photons, V = {vis}, s = {sig}, sampling detector: Monte Carlo ({} trials) variance {}; Colavita's 16 s^4 = {colavita} alone is {:.0} se away. The paper's extra term is right: {holds}",
                 sz.scalar,
                 versus(z.variance(), z.stderr_variance(), exact),
-                (z.variance() - colavita) / z.stderr_variance()
+                (z.variance() - colavita) / z.stderr_variance(),
+                samples = spec_abcd.modulated.len(),
             ),
     )])
 }

@@ -1,8 +1,9 @@
 //! Claims read from the Fig. 4 and Fig. 5 tables (the cached figures of
 //! [`crate::reproduction::figures::piston`]).
 
-use super::sensitivity::{self, Sensitivity};
+use super::sensitivity::{self, Sensitivity, BIASED_LEVEL, V2_UNBIASED_LEVEL};
 use super::*;
+use crate::reproduction::figures::piston::{FIG4_HIGH_HZ, FIG4_LOW_HZ};
 
 /// The claims read from the Fig. 4 tables.
 pub(super) const FIG4_IDS: [&str; 4] = [
@@ -84,7 +85,7 @@ fn fig4_v1_bias_300(c: &Fig4Columns) -> Computed {
         "piston.fig4_v1_bias_300hz",
         Some(v1_300),
         below == n300 && 2 * sig_v1 <= n300,
-        format!("at 300 Hz over both disks and all {n300} spatial frequencies: largest |bias V1| {v1_300:.2e}; {below} points consistent with |bias| < {V1_BIAS_300HZ_BOUND:e} at {SIGNIFICANCE_SIGMAS} standard errors; {sig_v1} points differ from zero by more than {SIGNIFICANCE_SIGMAS} standard errors (zero-mean noise otherwise)"),
+        format!("at {FIG4_LOW_HZ} Hz over both disks and all {n300} spatial frequencies: largest |bias V1| {v1_300:.2e}; {below} points consistent with |bias| < {V1_BIAS_300HZ_BOUND:e} at {SIGNIFICANCE_SIGMAS} standard errors; {sig_v1} points differ from zero by more than {SIGNIFICANCE_SIGMAS} standard errors (zero-mean noise otherwise)"),
     )
 }
 
@@ -98,7 +99,7 @@ fn fig4_v2_biased_300(c: &Fig4Columns) -> Computed {
         "piston.fig4_v2_biased_300hz",
         Some(v2_300),
         sig_v2 > sig_v1 && 2 * sig_v2 >= n300 - 2,
-        format!("at 300 Hz {sig_v2} of {n300} points have |bias V2| > 3 standard errors (V1: {sig_v1}); largest |bias V2| = {v2_300:.2e}, largest |bias V1| = {v1_300:.2e}"),
+        format!("at {FIG4_LOW_HZ} Hz {sig_v2} of {n300} points have |bias V2| > {SIGNIFICANCE_SIGMAS} standard errors (V1: {sig_v1}); largest |bias V2| = {v2_300:.2e}, largest |bias V1| = {v1_300:.2e}"),
     )
 }
 
@@ -113,7 +114,7 @@ fn fig4_v2_1000(c: &Fig4Columns) -> Computed {
         Some(under as f64 / b1000.len().max(1) as f64),
         2 * under > b1000.len(),
         format!(
-            "at 1000 Hz {under} of {} points have |bias V2| < {V2_BIAS_1000HZ_BOUND:e} (largest {:.2e})",
+            "at {FIG4_HIGH_HZ} Hz {under} of {} points have |bias V2| < {V2_BIAS_1000HZ_BOUND:e} (largest {:.2e})",
             b1000.len(),
             max_abs(b1000)
         ),
@@ -151,7 +152,24 @@ pub(super) const FIG5_IDS: [&str; 6] = [
     "piston.scatter_1000_scans",
 ];
 
-const MODEL_NOTE: &str = "Model: two-aperture Kolmogorov piston PSD with wind along the baseline, packet centred on the scan-mean piston, positive-frequency bins, 128 x 0.5 um; the paper's Perrin (1997) sequences, its packet centring and bin window are not described.";
+/// The model of the Fig. 5 claims, in words, with the scan of
+/// [`ScanSetup::paper`].
+fn model_note() -> String {
+    let scan = ScanSetup::paper(FIG4_LOW_HZ);
+    format!(
+        "Model: two-aperture Kolmogorov piston PSD with wind along the baseline, packet centred on the scan-mean piston, positive-frequency bins, {} x {} um; the paper's Perrin (1997) sequences, its packet centring and bin window are not described.",
+        scan.samples, scan.dx_um
+    )
+}
+
+/// The level of |bias V1| the paper calls negligible above its
+/// "unbiased from" frequency (0.1 %).
+const V1_SMALL_BIAS_LEVEL: f64 = 1e-3;
+
+/// `level` in percent, for the notes.
+fn pct(level: f64) -> f64 {
+    100.0 * level
+}
 
 /// The evidence of the sensitivity table for threshold `i` (in
 /// [`sensitivity::THRESHOLD_NAMES`] order), or why it is missing.
@@ -244,30 +262,31 @@ pub(super) fn fig5_claims<'a>(
 
 fn fig5_v1_biased_below<'a>(spec: &Spec<'a>, samp: &Table, evidence: &str) -> Result<Computed> {
     let id = "piston.fig5_v1_biased_below_hz";
-    let l = locate(samp, "bias_v1", 0.01)?;
+    let l = locate(samp, "bias_v1", BIASED_LEVEL)?;
     Ok(threshold_claim(
         id,
         spec(id).paper,
         &l,
-        "|bias V1| > 1% below",
-        &format!("{MODEL_NOTE} {evidence}"),
+        &format!("|bias V1| > {}% below", pct(BIASED_LEVEL)),
+        &format!("{} {evidence}", model_note()),
     ))
 }
 
 fn fig5_v2_biased_below<'a>(spec: &Spec<'a>, samp: &Table, evidence: &str) -> Result<Computed> {
     let id = "piston.fig5_v2_biased_below_hz";
-    let l2 = locate(samp, "bias_v2", 0.01)?;
-    let band = locate(samp, "bias_v2_band", 0.01)?;
-    let all = locate(samp, "bias_v2_all", 0.01)?;
+    let l2 = locate(samp, "bias_v2", BIASED_LEVEL)?;
+    let band = locate(samp, "bias_v2_band", BIASED_LEVEL)?;
+    let all = locate(samp, "bias_v2_all", BIASED_LEVEL)?;
     Ok(threshold_claim(
         id,
         spec(id).paper,
         &l2,
-        "|bias V2| > 1% below",
+        &format!("|bias V2| > {}% below", pct(BIASED_LEVEL)),
         &format!(
-            "With the in-band window the same crossing is {}, with all bins {}. {MODEL_NOTE} {evidence}",
+            "With the in-band window the same crossing is {}, with all bins {}. {} {evidence}",
             crossing_text(band.crossing),
-            crossing_text(all.crossing)
+            crossing_text(all.crossing),
+            model_note()
         ),
     ))
 }
@@ -282,7 +301,7 @@ fn fig5_v1_unbiased_above<'a>(
     let id = "piston.fig5_v1_unbiased_above_hz";
     let freqs = &c.freqs;
     let (unb, unb_lo) = unbiased_from(freqs, &c.b1, &c.se1);
-    let l_1e3 = locate(samp, "bias_v1", 1e-3)?;
+    let l_1e3 = locate(samp, "bias_v1", V1_SMALL_BIAS_LEVEL)?;
     // The interval: from the last significant point up to the first
     // unbiased one, widened by one frequency step either way.
     let step = freqs[1] / freqs[0];
@@ -298,8 +317,10 @@ fn fig5_v1_unbiased_above<'a>(
             resolved: unb.is_finite(),
         },
         note: format!(
-            "every |bias V1| is within {SIGNIFICANCE_SIGMAS} standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < 0.1% above {}{paper}. {MODEL_NOTE} {evidence}",
-            crossing_text(l_1e3.crossing)
+            "every |bias V1| is within {SIGNIFICANCE_SIGMAS} standard errors of zero from {unb:.0} Hz up (last significant point {unb_lo:.0} Hz); |bias V1| < {}% above {}{paper}. {} {evidence}",
+            pct(V1_SMALL_BIAS_LEVEL),
+            crossing_text(l_1e3.crossing),
+            model_note()
         ),
     })
 }
@@ -311,7 +332,7 @@ fn fig5_v2_1e5_above<'a>(
     evidence: &str,
 ) -> Result<Computed> {
     let id = "piston.fig5_v2_1e-5_above_hz";
-    let l5 = locate(samp, "bias_v2", 1e-5)?;
+    let l5 = locate(samp, "bias_v2", V2_UNBIASED_LEVEL)?;
     let top = c.freqs.len() - 1;
     let better = (0..c.freqs.len())
         .filter(|&i| {
@@ -322,11 +343,12 @@ fn fig5_v2_1e5_above<'a>(
         id,
         spec(id).paper,
         &l5,
-        "|bias V2| < 1e-5 above",
+        &format!("|bias V2| < {V2_UNBIASED_LEVEL:e} above"),
         &format!(
-            "At {:.0} Hz: bias V2 {:.2e}, bias V1 {:.2e}, scatter V2 {:.2e} vs scatter V1 {:.2e}; V2 is more accurate than V1 (smaller |bias| and scatter) at {better} of {} frequencies. {MODEL_NOTE} {evidence}",
+            "At {:.0} Hz: bias V2 {:.2e}, bias V1 {:.2e}, scatter V2 {:.2e} vs scatter V1 {:.2e}; V2 is more accurate than V1 (smaller |bias| and scatter) at {better} of {} frequencies. {} {evidence}",
             c.freqs[top], c.b2[top], c.b1[top], c.s2[top], c.s1[top],
-            c.freqs.len()
+            c.freqs.len(),
+            model_note()
         ),
     ))
 }
@@ -383,7 +405,8 @@ fn fig5_integration_low_freq(c: &Fig5Columns) -> Computed {
 /// frequency, the scans, and 0.1% at one significant digit (from 0.05%).
 const SCATTER_HZ: f64 = 300.0;
 const SCATTER_SCANS: u32 = 1000;
-const SCATTER_ERROR_AT_LEAST: f64 = 0.5e-3;
+const PAPER_SCATTER_ERROR: f64 = 1e-3;
+const SCATTER_ERROR_AT_LEAST: f64 = 0.5 * PAPER_SCATTER_ERROR;
 
 fn scatter_1000_scans(c: &Fig5Columns) -> Computed {
     let freqs = &c.freqs;
@@ -398,10 +421,11 @@ fn scatter_1000_scans(c: &Fig5Columns) -> Computed {
         Some(err1000),
         err1000 >= SCATTER_ERROR_AT_LEAST,
         format!(
-            "scatter of V1 at {:.0} Hz on 18 m: {:.3e}; over {SCATTER_SCANS} scans the standard error is {err1000:.2e} (V2: {:.2e}), at least {SCATTER_ERROR_AT_LEAST:e} (the paper's 0.1% at one digit): {}; the paper's figure is V1's",
+            "scatter of V1 at {:.0} Hz on {FIG5_BASELINE_M} m: {:.3e}; over {SCATTER_SCANS} scans the standard error is {err1000:.2e} (V2: {:.2e}), at least {SCATTER_ERROR_AT_LEAST:e} (the paper's {}% at one digit): {}; the paper's figure is V1's",
             freqs[i300],
             c.s1[i300],
             c.s2[i300] / scans.sqrt(),
+            pct(PAPER_SCATTER_ERROR),
             err1000 >= SCATTER_ERROR_AT_LEAST
         ),
     )

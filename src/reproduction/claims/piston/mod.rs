@@ -321,7 +321,7 @@ fn rms_claim(r0_cm: f64) -> Computed {
         Some(rms),
         holds,
         format!(
-            "sigma_p = {rms:.3} um from the spectral integral, {rms_sf:.3} um from the aperture-averaged structure function ({:.0} cm apertures, r0 = {:.1} cm at 2.2 um, infinite outer scale); the paper's remark that the saturated piston stays near or below {SATURATED_PISTON_UM} um {}",
+            "sigma_p = {rms:.3} um from the spectral integral, {rms_sf:.3} um from the aperture-averaged structure function ({:.0} cm apertures, r0 = {:.1} cm at {WAVELENGTH_UM} um, infinite outer scale); the paper's remark that the saturated piston stays near or below {SATURATED_PISTON_UM} um {}",
             100.0 * APERTURE_M,
             r0_cm,
             if holds { "holds" } else { "does not hold" }

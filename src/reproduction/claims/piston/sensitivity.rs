@@ -40,6 +40,12 @@ use std::sync::Mutex;
 /// > 1 % below, V1 unbiased from, V2 below 1e-5 from.
 pub const PAPER_THRESHOLDS_HZ: [f64; 4] = [100.0, 300.0, 300.0, 800.0];
 
+/// The level of |bias| under which a visibility counts as biased (V1 and
+/// V2 "biased by more than 1 %").
+pub const BIASED_LEVEL: f64 = 0.01;
+/// The level under which the paper calls V2 unbiased ("below 1e-5").
+pub const V2_UNBIASED_LEVEL: f64 = 1e-5;
+
 /// The names of the four thresholds, in [`PAPER_THRESHOLDS_HZ`] order.
 pub const THRESHOLD_NAMES: [&str; 4] = [
     "v1_biased_1pct_below_hz",
@@ -234,9 +240,9 @@ fn thresholds(table: &Table, window: BinWindow) -> Result<Thresholds> {
         (last_biased.min(unbiased), unbiased)
     };
     let located = [
-        locate(table, &v1, 0.01)?,
-        locate(table, &v2, 0.01)?,
-        locate(table, &v2, 1e-5)?,
+        locate(table, &v1, BIASED_LEVEL)?,
+        locate(table, &v2, BIASED_LEVEL)?,
+        locate(table, &v2, V2_UNBIASED_LEVEL)?,
     ];
     let [a, b, c] = located.map(|l| (l.value, (l.lo, l.hi)));
     Ok((
@@ -280,11 +286,13 @@ impl Sensitivity {
     /// the paper's lies inside the interval.
     pub fn to_markdown(&self) -> String {
         let mut out = format!(
-            "Fig. 5 thresholds (Hz) for each combination: {} log-spaced frequencies {:.0}–{:.0} Hz, {} scans each, sampled detector, seed {FIGURE_SEED}. Paper: 100 / 300 / 300 / 800. In brackets the Monte Carlo interval of each threshold: for the level crossings, the frequencies where |bias| is within {SIGNIFICANCE_SIGMAS} standard errors of the level, widened by half a grid step; for \"V1 unbiased from\", the last frequency where |bias V1| exceeds {SIGNIFICANCE_SIGMAS} standard errors to the threshold. ✓: the paper's threshold lies inside the interval.\n\n| spectrum | reference | bins | N x δx | V1 > 1% below | V2 > 1% below | V1 unbiased from | V2 < 1e-5 from |\n|---|---|---|---|---:|---:|---:|---:|\n",
+            "Fig. 5 thresholds (Hz) for each combination: {} log-spaced frequencies {:.0}–{:.0} Hz, {} scans each, sampled detector, seed {FIGURE_SEED}. Paper: {}. In brackets the Monte Carlo interval of each threshold: for the level crossings, the frequencies where |bias| is within {SIGNIFICANCE_SIGMAS} standard errors of the level, widened by half a grid step; for \"V1 unbiased from\", the last frequency where |bias V1| exceeds {SIGNIFICANCE_SIGMAS} standard errors to the threshold. ✓: the paper's threshold lies inside the interval.\n\n| spectrum | reference | bins | N x δx | V1 > {biased_pct}% below | V2 > {biased_pct}% below | V1 unbiased from | V2 < {V2_UNBIASED_LEVEL:e} from |\n|---|---|---|---|---:|---:|---:|---:|\n",
             self.frequencies.len(),
             self.frequencies[0],
             self.frequencies[self.frequencies.len() - 1],
-            self.scans
+            self.scans,
+            PAPER_THRESHOLDS_HZ.map(|t| t.to_string()).join(" / "),
+            biased_pct = 100.0 * BIASED_LEVEL,
         );
         for r in &self.rows {
             let t: Vec<String> = (0..4).map(|i| self.cell(r, i)).collect();
