@@ -358,14 +358,14 @@ fn paired_difference(inputs: &PlanInputs, site: &Site, p: &PlanPoint, rows: u64)
     set.fold_units(
         0,
         |first, block| {
-            block
+            Ok(block
                 .chunks_exact(n)
                 .enumerate()
                 .map(|(k, row)| {
                     let (m, c) = (by_model.estimate(row), by_counts.estimate(row));
                     (first + k as u64, [m.v1_sq - c.v1_sq, m.v2_sq - c.v2_sq])
                 })
-                .collect::<Vec<_>>()
+                .collect::<Vec<_>>())
         },
         |done| {
             for (s, d) in done {
@@ -374,7 +374,8 @@ fn paired_difference(inputs: &PlanInputs, site: &Site, p: &PlanPoint, rows: u64)
                 g[1].push(d[1]);
             }
         },
-    );
+    )
+    .unwrap();
     [0, 1].map(|e| replicated_summary(&groups.iter().map(|g| g[e]).collect::<Vec<_>>()))
 }
 
