@@ -229,3 +229,37 @@ fn cli_check_of_the_vectors_names_the_mismatch_and_exits_1() {
         "{stderr}"
     );
 }
+
+/// `golden --update --only figures` replaces the folder whole, so it must
+/// carry `vectors/` over: each vector file comes back byte for byte (it
+/// deleted them all before). 22 s of figures at full effort: the slow tier.
+#[test]
+#[ignore = "slow tier: every figure at full effort through the CLI (22 s)"]
+fn updating_only_the_figures_keeps_the_vectors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("golden");
+    let vectors = dir.join("vectors");
+    std::fs::create_dir_all(&vectors).unwrap();
+    let mut kept = Vec::new();
+    for e in std::fs::read_dir(golden_dir().join("vectors")).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), vectors.join(e.file_name())).unwrap();
+        kept.push((e.file_name(), std::fs::read(e.path()).unwrap()));
+    }
+    assert!(kept.len() >= 3, "{} vector files", kept.len());
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["golden", "--update", "--only", "figures", "--dir"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.join("fig1_v1.csv").is_file(), "the figures are written");
+    for (name, bytes) in &kept {
+        let now = std::fs::read(vectors.join(name)).unwrap();
+        assert!(&now == bytes, "{name:?} changed or vanished");
+    }
+}

@@ -131,7 +131,7 @@ fn assert_xyz(got: [f64; 3], want: [f64; 3], file: &Path) {
     for (g, w) in got.iter().zip(want) {
         // A millimetre: the constants' rounding.
         assert!(
-            (g - w).abs() < 1e-3,
+            (g - w).abs() < 1e-3, // tol: a millimetre, the rounding of the constants above
             "{}: {got:?} != {want:?}",
             file.display()
         );
@@ -185,7 +185,7 @@ fn the_flags_say_where_and_when_in_every_file_written() {
         let start = 61_370.0 + 3.0 / 24.0;
         let half_row = 0.5 * s.int_time_s / 86_400.0;
         assert!(
-            (s.first_mjd - (start + half_row)).abs() < 1e-9,
+            (s.first_mjd - (start + half_row)).abs() < 1e-9, // tol: 86 us, rounding of an MJD near 6e4 in f64 is ~1e-11
             "{}: MJD {}",
             file.display(),
             s.first_mjd
@@ -219,6 +219,7 @@ fn the_flags_say_where_and_when_in_every_file_written() {
         fitsverify_clean(&file);
         assert_xyz(s.array_xyz_m, MINE_XYZ_M, &file);
         // 2024-02-29 is MJD 60369 (a leap day).
+        // tol: the first row starts within minutes of midnight (0.01 d = 14 min).
         assert!((s.first_mjd - 60_369.0).abs() < 0.01, "{}", s.first_mjd);
     }
 }
@@ -237,6 +238,7 @@ fn without_the_flags_a_file_says_what_it_said_before_them() {
             (s.date_obs.as_str(), s.arrname.as_str()),
             ("2000-01-01", "IOTA")
         );
+        // tol: the first row starts within minutes of midnight (0.01 d = 14 min).
         assert!((s.first_mjd - 51_544.0).abs() < 0.01, "{}", s.first_mjd);
         assert_xyz(s.array_xyz_m, IOTA_XYZ_M, &file);
     }

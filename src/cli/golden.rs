@@ -81,8 +81,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
         check_update_dir(&args.dir, args.force)?;
         let mut files = Vec::new();
         if figures {
-            // Replaces the whole folder: the vectors are written after it.
-            files.extend(golden::update(&args.dir)?);
+            // Replaces the whole folder: the vectors are written after it,
+            // or carried over when only the figures are asked for.
+            let keep: &[&str] = if vectors {
+                &[]
+            } else {
+                &[super::vectors::VECTORS_DIR]
+            };
+            files.extend(golden::update(&args.dir, keep)?);
         }
         if vectors {
             files.extend(super::vectors::update(&args.dir)?);

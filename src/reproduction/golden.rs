@@ -252,9 +252,38 @@ pub fn write_figures(dir: &Path, figures: &[Figure]) -> Result<Vec<PathBuf>> {
     Ok(names.into_iter().map(|n| dir.join(n)).collect())
 }
 
-/// Recomputes every figure at full effort and rewrites `dir`.
-pub fn update(dir: &Path) -> Result<Vec<PathBuf>> {
+/// Recomputes every figure at full effort and rewrites `dir`, carrying
+/// the sub-folders named in `keep` over unchanged (`golden --update --only
+/// figures` keeps `vectors/`: the folder is replaced whole, and a sub-folder
+/// not carried over would be deleted).
+pub fn update(dir: &Path, keep: &[&str]) -> Result<Vec<PathBuf>> {
     check_parent_writable(dir)?;
     let figures = crate::reproduction::figures::all(Effort::Full)?;
-    write_figures(dir, &figures)
+    let names = replace_dir_atomically(dir, |tmp| {
+        for sub in keep {
+            copy_flat_folder(&dir.join(sub), &tmp.join(sub))?;
+        }
+        write_figure_files(tmp, &figures, GENERATOR)
+    })?;
+    Ok(names.into_iter().map(|n| dir.join(n)).collect())
+}
+
+/// Copies the files of the folder `from` (not its sub-folders: the golden
+/// vectors' folder has none) into a new folder `to`; nothing when `from`
+/// does not exist.
+fn copy_flat_folder(from: &Path, to: &Path) -> Result<()> {
+    let io = |e| Error::file(Some("dir"), from, e);
+    let entries = match std::fs::read_dir(from) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(io(e)),
+    };
+    std::fs::create_dir(to).map_err(io)?;
+    for entry in entries {
+        let entry = entry.map_err(io)?;
+        if entry.file_type().map_err(io)?.is_file() {
+            std::fs::copy(entry.path(), to.join(entry.file_name())).map_err(io)?;
+        }
+    }
+    Ok(())
 }
