@@ -70,9 +70,32 @@ def docstring(text):
     return ['    """' + lines[0]] + [("    " + l).rstrip() for l in lines[1:]] + ['    """']
 
 
+def appended_docs(tree):
+    """What the module appends to its functions' docstrings, by function:
+    ``f.__doc__ = (f.__doc__ or "") + TEXT`` with ``TEXT`` a module-level
+    string (one text shared by several functions, written once)."""
+    texts = {
+        s.targets[0].id: s.value.value
+        for s in tree.body
+        if isinstance(s, ast.Assign)
+        and isinstance(s.targets[0], ast.Name)
+        and isinstance(s.value, ast.Constant)
+        and isinstance(s.value.value, str)
+    }
+    out = {}
+    for s in tree.body:
+        target = s.targets[0] if isinstance(s, ast.Assign) else None
+        if not (isinstance(target, ast.Attribute) and target.attr == "__doc__"):
+            continue
+        if isinstance(s.value, ast.BinOp) and isinstance(s.value.right, ast.Name):
+            out[target.value.id] = texts[s.value.right.id]
+    return out
+
+
 def functions(path, public, declaration, docstrings):
     """The stub's lines of each function of ``path`` named in ``public``."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
+    appended = appended_docs(tree)
     out = []
     for node in tree.body:
         if not isinstance(node, ast.FunctionDef) or node.name not in public:
@@ -80,6 +103,8 @@ def functions(path, public, declaration, docstrings):
         returns = f" -> {ast.unparse(node.returns)}" if node.returns else ""
         out += ["", f"def {node.name}({ast.unparse(node.args)}){returns}:"]
         doc = ast.get_docstring(node, clean=False)
+        if doc is not None and node.name in appended:
+            doc += appended[node.name]
         if doc is None:
             out[-1] += " ..."
             continue

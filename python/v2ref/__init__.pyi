@@ -790,11 +790,32 @@ def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, b
     closed-form standard deviation of the estimator at the set's
     conditions. The configuration (band, baseline) comes from ``sidecar``
     (a dict from ``synthesize()`` or a path). Written atomically.
+
+    Where and when the file says the observation was made (each left out
+    keeps the default): ``target_name`` (TARGET, 1 to 16 printable ASCII
+    characters; ``V2REF_MODEL``), ``ra_deg`` and ``dec_deg`` together (the
+    target's J2000 position, degrees: 0 to 360 and -90 to 90; 0, 0),
+    ``date`` (DATE-OBS, UTC, when the first row starts: ``YYYY-MM-DD`` or
+    ``YYYY-MM-DDThh:mm:ss[.s]`` from 1858-11-17; ``2000-01-01``), ``site``
+    (``"iota"``, ``"vlti"``, ``"chara"``, or the name of the site that
+    ``site_lon_deg``, ``site_lat_deg`` (degrees, WGS84) and ``site_height_m``
+    (m above the ellipsoid, -500 to 6000) place; ``"iota"``). A bad value
+    raises ValueError naming the keyword, as the CLI's flags do.
     """
 
 def write_oifits_truth(path: Any, *, sidecar: Any, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None) -> None:
     """Writes a synth set's truth (the expected V1², V2² of every row,
     window positive, convention model) as OIFITS v2.
+    Where and when the file says the observation was made (each left out
+    keeps the default): ``target_name`` (TARGET, 1 to 16 printable ASCII
+    characters; ``V2REF_MODEL``), ``ra_deg`` and ``dec_deg`` together (the
+    target's J2000 position, degrees: 0 to 360 and -90 to 90; 0, 0),
+    ``date`` (DATE-OBS, UTC, when the first row starts: ``YYYY-MM-DD`` or
+    ``YYYY-MM-DDThh:mm:ss[.s]`` from 1858-11-17; ``2000-01-01``), ``site``
+    (``"iota"``, ``"vlti"``, ``"chara"``, or the name of the site that
+    ``site_lon_deg``, ``site_lat_deg`` (degrees, WGS84) and ``site_height_m``
+    (m above the ellipsoid, -500 to 6000) place; ``"iota"``). A bad value
+    raises ValueError naming the keyword, as the CLI's flags do.
     """
 
 def score_oifits(path: Any, *, sidecar: Any, bins: str='positive', bias: str='model', alpha: float=0.001, insname: Optional[str]=None, estimator: Optional[str]=None, target: Optional[str]=None, accept_checksum_mismatch: bool=False) -> Dict[str, Any]:

@@ -21,7 +21,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 from astropy.io import fits
-from scipy.special import j1
 
 import v2ref
 
@@ -103,6 +102,10 @@ def vis2_tables(path):
 
 def ud_v2(freq_per_rad, diameter_mas):
     """V² of a uniform disk: (2 J1(x)/x)², x = π θ B/λ."""
+    # Imported here: scipy comes with the slow tier's packages
+    # (requirements-slow.txt), and the default tier collects this module.
+    from scipy.special import j1
+
     x = np.pi * diameter_mas * MAS * freq_per_rad
     return (2 * j1(x) / x) ** 2
 
