@@ -21,7 +21,7 @@ use crate::error::Error;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex};
 use std::time::Duration;
 
@@ -113,10 +113,11 @@ pub fn interruptible<T: Send>(
                     .unwrap_or_else(|e| e.into_inner());
                 let done = *guard;
                 drop(guard);
-                stay_out_if_exiting(&token);
-                done
+                (done, enter_python_or_park(&token))
             });
+            let (done, entered) = done;
             if done {
+                drop(entered);
                 break;
             }
             if interrupted.is_none() {
@@ -125,11 +126,11 @@ pub fn interruptible<T: Send>(
                     interrupted = Some(e);
                 }
             }
+            drop(entered);
         }
-        let out = py.allow_threads(|| {
+        let (out, _entered) = py.allow_threads(|| {
             let out = handle.join();
-            stay_out_if_exiting(&token);
-            out
+            (out, enter_python_or_park(&token))
         });
         let out = match out {
             Ok(r) => r,
@@ -156,25 +157,56 @@ pub fn interruptible<T: Send>(
 /// Set by the interpreter's `atexit`: the interpreter is ending.
 static EXITING: AtomicBool = AtomicBool::new(false);
 
+/// Threads of [`interruptible`] that found [`EXITING`] unset and are taking
+/// the GIL back (or hold it) with Rust frames on their stack.
+static ENTERING: AtomicUsize = AtomicUsize::new(0);
+
+/// Longest [`mark_exiting`] waits for the threads counted in [`ENTERING`].
+const EXIT_WAIT: Duration = Duration::from_secs(5);
+
 /// Called at exit (registered with `atexit`): the calls still running on
-/// daemon threads stop, and never take the GIL back.
+/// daemon threads stop, and never take the GIL back. A thread that checked
+/// [`EXITING`] just before it was set may already wait for the GIL: the
+/// GIL is released until every such thread has left (it holds the GIL only
+/// for a signal check), so that none is still waiting when the
+/// interpreter starts ending threads that take it (by an unwind that Rust
+/// cannot pass: an abort).
 #[pyfunction]
-fn mark_exiting() {
+fn mark_exiting(py: Python<'_>) {
     EXITING.store(true, Ordering::SeqCst);
+    py.allow_threads(|| {
+        let start = std::time::Instant::now();
+        while ENTERING.load(Ordering::SeqCst) > 0 && start.elapsed() < EXIT_WAIT {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    });
 }
 
-/// When the interpreter is ending, cancels the work and parks the calling
-/// thread (a daemon thread: the process ends around it) instead of
-/// returning to take the GIL, which the ending interpreter answers by
-/// ending the thread with an unwind that Rust cannot pass (an abort,
-/// status 134).
-fn stay_out_if_exiting(token: &Token) {
+/// A thread counted in [`ENTERING`] until dropped (after it has left the
+/// GIL's section of [`interruptible`]).
+struct Entered;
+
+impl Drop for Entered {
+    fn drop(&mut self) {
+        ENTERING.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// Before taking the GIL back: counts the thread in [`ENTERING`] or, when
+/// the interpreter is ending, cancels the work and parks the thread (a
+/// daemon thread: the process ends around it). Counting before checking
+/// (both sequentially consistent) leaves no gap: either this thread sees
+/// [`EXITING`], or [`mark_exiting`] sees it counted and waits for it.
+fn enter_python_or_park(token: &Token) -> Entered {
+    ENTERING.fetch_add(1, Ordering::SeqCst);
     if EXITING.load(Ordering::SeqCst) {
+        ENTERING.fetch_sub(1, Ordering::SeqCst);
         token.cancel();
         loop {
             std::thread::park();
         }
     }
+    Entered
 }
 
 /// The extension module `v2ref._v2ref`.
