@@ -13,7 +13,8 @@
 //! [`PARAMETERS`] states each one's unit, accepted range and help text (the
 //! library's checks in [`crate::bounds`] and the constructors enforce the
 //! ranges): the CLI's `--help`, the Python docstrings and the docs' input
-//! table are rendered from it.
+//! table are rendered from it. Both are written by one list of entries in
+//! `parameters/table.rs`: adding a physical input is one entry there.
 
 use crate::error::{Error, Result};
 use crate::formalism::interferogram::Sampling;
@@ -23,15 +24,16 @@ use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::NoiseModel;
 use crate::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
-use crate::piston::PistonReference;
 use crate::simulator::record::{AtmosphereRecord, ObservationRecord};
 use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
+mod declare;
 mod table;
 
-pub use table::{refer_to, Parameter, PARAMETERS};
+pub use declare::{Input, Kind, Value};
+pub use table::{refer_to, Parameter, Physical, PARAMETERS};
 
 /// The source model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -83,62 +85,54 @@ pub fn keyword_of(param: &str) -> String {
 /// cycles/arcsec: the paper's 18 m baseline in K.
 pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 
-/// Every physical input of one configuration (see the module doc). Field
-/// names are the Python keyword arguments and, with `_` as `-`, the CLI's
-/// flags (but `photon_noise`, which the CLI turns off with
-/// `--no-photon-noise`).
-#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
-pub struct Physical {
-    /// Centre wavelength λ0, µm.
-    pub wavelength_um: f64,
-    /// Full bandwidth Δλ, nm (flat per unit wavenumber).
-    pub bandwidth_nm: f64,
-    /// A tabulated S(σ)F(σ) instead of the flat band (CSV).
-    pub spectrum_csv: Option<PathBuf>,
-    /// Source model.
-    pub source: SourceKind,
-    /// Uniform-disk diameter θ, mas.
-    pub diameter_mas: f64,
-    /// Spatial frequency S = B σ_eff, cycles/arcsec (default
-    /// [`DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
-    pub spatial_freq_cpas: Option<f64>,
-    /// Projected baseline B, m (instead of the spatial frequency).
-    pub baseline_m: Option<f64>,
-    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
-    pub dispersion_pp_rad: f64,
-    /// OPD stroke Δx, µm (sets N = Δx/δx; else N = `samples`).
-    pub stroke_um: Option<f64>,
-    /// Sample spacing δx, µm.
-    pub dx_um: f64,
-    /// Number of samples N (ignored when `stroke_um` is given).
-    pub samples: usize,
-    /// Integrating detector (each sample averages the fringe over δx).
-    pub integrating: bool,
-    /// Visibility V scaling the fringe.
-    pub visibility: f64,
-    /// Continuum photons per sample n.
-    pub photons: f64,
-    /// Detector noise standard deviation σ_det, photons per sample.
-    pub read_noise: f64,
-    /// Poisson photon noise on (else detector noise only).
-    pub photon_noise: bool,
-    /// Fringe frequency f = v/λ0, Hz: the differential piston is on when
-    /// given.
-    pub fringe_hz: Option<f64>,
-    /// Wind speed, m/s (frozen flow along the baseline).
-    pub wind_mps: f64,
-    /// Seeing λ/r0, arcsec, at `seeing_wavelength_um`.
-    pub seeing_arcsec: f64,
-    /// Where the seeing is quoted, µm (default: the observing wavelength).
-    pub seeing_wavelength_um: Option<f64>,
-    /// Telescope aperture diameter, m.
-    pub aperture_m: f64,
-    /// von Kármán outer scale, m (None: infinite).
-    pub outer_scale_m: Option<f64>,
-    /// Sub-samples per sample of the integrating detector under piston.
-    pub sub_samples: usize,
-    /// Where the fringe packet sits in each scan.
-    pub reference: PistonReference,
+/// A tabulated spectrum and the name of the CSV file it was read from.
+/// The edges read the file (`SpectrumFile::read`, feature `files`) and
+/// hand the table over: the numerics read no file. The name is kept for
+/// what names the input (it is serialized as the name); the records hold
+/// the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpectrumFile {
+    path: PathBuf,
+    spectrum: Spectrum,
+}
+
+impl SpectrumFile {
+    /// The table `spectrum`, read from the file `path`.
+    pub fn new(path: &Path, spectrum: Spectrum) -> SpectrumFile {
+        SpectrumFile {
+            path: path.to_owned(),
+            spectrum,
+        }
+    }
+
+    /// The file's name.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The table.
+    pub fn spectrum(&self) -> &Spectrum {
+        &self.spectrum
+    }
+}
+
+impl Serialize for SpectrumFile {
+    /// As the file's name, the value the user gave.
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.path.serialize(s)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for SpectrumFile {
+    /// Refused: a name alone is no table, and the core reads no file (the
+    /// edges call `SpectrumFile::read`).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let path = PathBuf::deserialize(d)?;
+        Err(serde::de::Error::custom(format!(
+            "{}: a spectrum CSV is read by the edges (SpectrumFile::read)",
+            path.display()
+        )))
+    }
 }
 
 impl Default for Physical {
@@ -149,62 +143,14 @@ impl Default for Physical {
 }
 
 impl Physical {
-    /// The defaults: the paper's K-band case, a 43 mas disk at 40
-    /// cycles/arcsec, 400 nm at 2.2 µm, 128 samples of 0.5 µm, 10 photons
-    /// per sample (a constant, for the CLI's flag defaults).
-    pub const DEFAULT: Physical = Physical {
-        wavelength_um: 2.2,
-        bandwidth_nm: 400.0,
-        spectrum_csv: None,
-        source: SourceKind::Ud,
-        diameter_mas: 43.0,
-        spatial_freq_cpas: None,
-        baseline_m: None,
-        dispersion_pp_rad: 0.0,
-        stroke_um: None,
-        dx_um: 0.5,
-        samples: 128,
-        integrating: false,
-        visibility: 1.0,
-        photons: 10.0,
-        read_noise: 0.0,
-        photon_noise: true,
-        fringe_hz: None,
-        wind_mps: 10.0,
-        seeing_arcsec: 1.0,
-        seeing_wavelength_um: None,
-        aperture_m: 0.45,
-        outer_scale_m: None,
-        sub_samples: crate::piston::DEFAULT_SUB_SAMPLES,
-        reference: PistonReference::Mean,
-    };
-
     /// Refuses a non-finite number and the spatial frequency given with the
     /// baseline (each edge calls it once, after filling the inputs).
     pub fn check(&self) -> Result<()> {
-        for (param, v) in [
-            ("wavelength_um", Some(self.wavelength_um)),
-            ("bandwidth_nm", Some(self.bandwidth_nm)),
-            ("diameter_mas", Some(self.diameter_mas)),
-            ("spatial_freq_cpas", self.spatial_freq_cpas),
-            ("baseline_m", self.baseline_m),
-            ("dispersion_pp_rad", Some(self.dispersion_pp_rad)),
-            ("stroke_um", self.stroke_um),
-            ("dx_um", Some(self.dx_um)),
-            ("visibility", Some(self.visibility)),
-            ("photons", Some(self.photons)),
-            ("read_noise", Some(self.read_noise)),
-            ("fringe_hz", self.fringe_hz),
-            ("wind_mps", Some(self.wind_mps)),
-            ("seeing_arcsec", Some(self.seeing_arcsec)),
-            ("seeing_wavelength_um", self.seeing_wavelength_um),
-            ("aperture_m", Some(self.aperture_m)),
-            ("outer_scale_m", self.outer_scale_m),
-        ] {
-            match v {
-                Some(v) if !v.is_finite() => {
+        for p in &PARAMETERS {
+            match self.get(p) {
+                Value::Number(v) if !v.is_finite() => {
                     return Err(Error::Invalid {
-                        param,
+                        param: p.name,
                         reason: format!("{v} is not a finite number"),
                     })
                 }
@@ -223,7 +169,7 @@ impl Physical {
     /// The spectrum: the CSV table, else the band flat per unit wavenumber.
     pub fn spectrum(&self) -> Result<Spectrum> {
         match &self.spectrum_csv {
-            Some(path) => Spectrum::from_csv_path(path),
+            Some(file) => Ok(file.spectrum().clone()),
             None => Ok(Spectrum::flat(Band::new(
                 self.wavelength_um,
                 self.bandwidth_um()?,

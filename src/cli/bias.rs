@@ -30,8 +30,8 @@ pub struct Args {
 
 /// Runs `bias`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical();
-    args.sampling.scan.apply_to(&mut p);
+    let mut p = args.obs.physical()?;
+    args.sampling.scan.apply_to(&mut p)?;
     let finite = v2ref::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
     let cost = v2ref::commands::cost::bias(&p, args.finite_scan)?;

@@ -201,7 +201,7 @@ fn source(args: &Args) -> Result<Source> {
                         .into(),
             })?;
             Ok(Source {
-                config: Configuration::from_physical(&args.inputs.physical(), !args.counts)?,
+                config: Configuration::from_physical(&args.inputs.physical()?, !args.counts)?,
                 input,
             })
         }

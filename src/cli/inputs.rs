@@ -1,19 +1,68 @@
 //! The flags of the end-to-end simulator (`simulate`, `synth`, `estimate`):
 //! every physical input, gathered into [`v2ref::simulator::Inputs`].
 
-use super::common::{help, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
-use super::finite_f64;
+use super::common::{
+    warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
+};
+use super::flags::{augment, Given, Hyphen};
 use v2ref::parameters::{Parameter, Physical};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::Result;
 
 /// The differential piston: on when `--fringe-hz` is given.
-#[derive(Debug, Clone, clap::Args)]
+#[derive(Debug, Clone)]
 pub struct PistonArgs {
-    #[arg(long, help = help(&Parameter::FRINGE_HZ), value_parser = finite_f64, allow_negative_numbers = true)]
-    pub fringe_hz: Option<f64>,
-    #[command(flatten)]
+    fringe: Given,
+    /// The turbulence the piston is made of.
     pub turbulence: TurbulenceArgs,
+}
+
+impl PistonArgs {
+    /// The inputs of these flags, but the turbulence's.
+    const KEYS: &'static [&'static Parameter] = &[&Parameter::FRINGE_HZ];
+
+    /// Sets the inputs these flags hold in `p`.
+    pub fn apply_to(&self, p: &mut Physical) -> Result<()> {
+        self.fringe.apply_to(p)?;
+        self.turbulence.apply_to(p)
+    }
+}
+
+impl clap::FromArgMatches for PistonArgs {
+    fn from_arg_matches(m: &clap::ArgMatches) -> std::result::Result<Self, clap::Error> {
+        Ok(PistonArgs {
+            fringe: Given::read(m, Self::KEYS),
+            turbulence: TurbulenceArgs::from_arg_matches(m)?,
+        })
+    }
+    fn update_from_arg_matches(
+        &mut self,
+        m: &clap::ArgMatches,
+    ) -> std::result::Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for PistonArgs {
+    fn group_id() -> Option<clap::Id> {
+        Some(clap::Id::from("PistonArgs"))
+    }
+    /// Its flag, then the turbulence's; its group lists none, as clap's
+    /// derive does for a group with flags flattened in it.
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        let cmd = augment(
+            cmd,
+            "PistonArgs",
+            Self::KEYS,
+            Hyphen::NegativeNumbers,
+            false,
+        );
+        TurbulenceArgs::augment_args(cmd)
+    }
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
 }
 
 /// Every physical input of one configuration.
@@ -38,29 +87,28 @@ impl InputsArgs {
     }
 
     /// Warns on stderr about the model's piston (see
-    /// [`TurbulenceArgs::warn_if_outer_scale_infinite`]).
+    /// [`warn_if_outer_scale_infinite`]).
     pub fn warn_about(&self, model: &Model) {
-        if let Some(s) = &model.piston_spectrum {
-            self.piston
-                .turbulence
-                .warn_if_outer_scale_infinite(s.baseline_m(), s.rms_um());
+        let mut turbulence = Physical::default();
+        let set = self.piston.turbulence.apply_to(&mut turbulence);
+        if let (Some(s), Ok(())) = (&model.piston_spectrum, set) {
+            warn_if_outer_scale_infinite(&turbulence, s.baseline_m(), s.rms_um());
         }
     }
 
-    /// Every physical input these flags hold.
-    pub fn physical(&self) -> Physical {
-        let mut p = self.obs.physical();
-        self.scan.apply_to(&mut p);
-        self.light.apply_to(&mut p);
-        p.fringe_hz = self.piston.fringe_hz;
-        self.piston.turbulence.apply_to(&mut p);
-        p
+    /// Every physical input these flags hold (the spectrum's file read).
+    pub fn physical(&self) -> Result<Physical> {
+        let mut p = self.obs.physical()?;
+        self.scan.apply_to(&mut p)?;
+        self.light.apply_to(&mut p)?;
+        self.piston.apply_to(&mut p)?;
+        Ok(p)
     }
 
     /// The inputs, before the checks that involve N (a file's width may
     /// still set it).
     pub fn inputs_unchecked(&self) -> Result<Inputs> {
-        self.physical().inputs_unchecked()
+        self.physical()?.inputs_unchecked()
     }
 }
 
@@ -83,7 +131,7 @@ mod tests {
     #[test]
     fn flag_defaults_are_the_declared_defaults() {
         let cli = Cli::try_parse_from(["v2ref"]).unwrap();
-        assert_eq!(cli.inputs.physical(), Physical::default());
+        assert_eq!(cli.inputs.physical().unwrap(), Physical::default());
     }
 
     /// Each flag reaches its own field: a non-default value of every flag
@@ -111,7 +159,7 @@ mod tests {
             let cli = Cli::try_parse_from(args).unwrap();
             let mut want = Physical::default();
             set(&mut want);
-            assert_eq!(cli.inputs.physical(), want, "{flags:?}");
+            assert_eq!(cli.inputs.physical().unwrap(), want, "{flags:?}");
         }
     }
 

@@ -23,6 +23,7 @@ pub mod bias;
 pub mod claims;
 pub mod common;
 pub mod estimate;
+pub mod flags;
 #[cfg(test)]
 mod generated;
 pub mod golden;

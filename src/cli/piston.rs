@@ -1,7 +1,10 @@
 //! `v2ref piston`: the differential-piston Monte Carlo at one or more fringe
 //! frequencies (paper, Section "Effect of differential piston").
 
-use super::common::{ObservationArgs, OutputArgs, RunArgs, SamplingArgs, TurbulenceArgs};
+use super::common::{
+    warn_if_outer_scale_infinite, ObservationArgs, OutputArgs, RunArgs, SamplingArgs,
+    TurbulenceArgs,
+};
 use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
@@ -50,9 +53,9 @@ pub struct Args {
 
 /// Runs `piston`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical();
-    args.sampling.scan.apply_to(&mut p);
-    args.turbulence.apply_to(&mut p);
+    let mut p = args.obs.physical()?;
+    args.sampling.scan.apply_to(&mut p)?;
+    args.turbulence.apply_to(&mut p)?;
     let req = PistonRequest {
         fringe_hz: flatten(&args.fringe_hz),
         bins: args.sampling.bins,
@@ -70,8 +73,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let prepared = piston::prepare(&p, &req)?;
     super::output::announce("piston", &prepared.cost(&req));
     let spectrum = &prepared.spectrum;
-    args.turbulence
-        .warn_if_outer_scale_infinite(spectrum.baseline_m(), spectrum.rms_um());
+    warn_if_outer_scale_infinite(&p, spectrum.baseline_m(), spectrum.rms_um());
     let bar = progress_bar(
         (prepared.fringe_hz.len() * args.scans) as u64,
         args.output.quiet || args.output.json,

@@ -2,12 +2,13 @@
 //! that reach a target σ(V²) (or the σ reached in a time budget) for an
 //! instrument, a source and a site (`v2ref::plan`).
 
-use super::common::{help, help_off, ObservationArgs, TurbulenceArgs, DEFAULTS};
+use super::common::{warn_if_outer_scale_infinite, ObservationArgs, TurbulenceArgs};
+use super::flags::physical_flags;
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref::parameters::{Parameter, Physical};
+use v2ref::parameters::Physical;
 use v2ref::piston::turbulence::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
@@ -21,10 +22,8 @@ pub struct Args {
     /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
     #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
     samples_per_fringe: f64,
-    #[arg(long, help = help(&Parameter::INTEGRATING))]
-    integrating: bool,
-    #[arg(long, help = help(&Parameter::VISIBILITY), default_value_t = DEFAULTS.visibility, value_parser = finite_f64, allow_negative_numbers = true)]
-    visibility: f64,
+    #[command(flatten)]
+    detector: DetectorArgs,
     /// Continuum photons per second at the detector in the band: > 0 to 1e15.
     #[arg(long, default_value = "1e6", value_parser = finite_f64, allow_negative_numbers = true)]
     photon_rate_per_s: f64,
@@ -46,10 +45,8 @@ pub struct Args {
     /// QE), 0 < T <= 1; with --magnitude.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
     throughput: Option<f64>,
-    #[arg(long, help = help(&Parameter::READ_NOISE), default_value_t = DEFAULTS.read_noise, value_parser = finite_f64, allow_negative_numbers = true)]
-    read_noise: f64,
-    #[arg(long, help = help_off(&Parameter::PHOTON_NOISE))]
-    no_photon_noise: bool,
+    #[command(flatten)]
+    noise: NoiseArgs,
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     dead_time_s: f64,
@@ -129,6 +126,16 @@ pub struct Args {
     all: bool,
 }
 
+physical_flags! {
+    /// The detector and the fringe's visibility scale, among `plan`'s flags.
+    DetectorArgs, NegativeNumbers: INTEGRATING, VISIBILITY
+}
+
+physical_flags! {
+    /// The detector's noise, among `plan`'s flags.
+    NoiseArgs, NegativeNumbers: READ_NOISE, PHOTON_NOISE
+}
+
 /// The band of `--magnitude`: 2MASS (Cohen et al. 2003) or Johnson–Cousins
 /// (Bessell et al. 1998). It must cover the observing band.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -160,28 +167,27 @@ impl From<MagnitudeBand> for Band2Mass {
     }
 }
 
-/// The magnitude flags as a [`Magnitude`], when given.
-fn magnitude(args: &Args) -> Option<Magnitude> {
+/// The magnitude flags as a [`Magnitude`] collected by apertures of
+/// `aperture_m`, when given.
+fn magnitude(args: &Args, aperture_m: f64) -> Option<Magnitude> {
     Some(Magnitude {
         magnitude: args.magnitude?,
         band: args.magnitude_band?.into(),
-        aperture_m: args.turbulence.aperture_m,
+        aperture_m,
         throughput: args.throughput?,
     })
 }
 
 /// The physical inputs and the plan's own options from the flags.
-fn request(args: &Args) -> (Physical, PlanRequest) {
-    let mut p = args.obs.physical();
-    args.turbulence.apply_to(&mut p);
-    p.integrating = args.integrating;
-    p.visibility = args.visibility;
-    p.read_noise = args.read_noise;
-    p.photon_noise = !args.no_photon_noise;
+fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
+    let mut p = args.obs.physical()?;
+    args.detector.apply_to(&mut p)?;
+    args.noise.apply_to(&mut p)?;
+    args.turbulence.apply_to(&mut p)?;
     let req = PlanRequest {
         samples_per_fringe: args.samples_per_fringe,
         photon_rate_per_s: args.photon_rate_per_s,
-        magnitude: magnitude(args),
+        magnitude: magnitude(args, p.aperture_m),
         dead_time_s: args.dead_time_s,
         fringe_hz: super::grid::flatten(&args.fringe_hz),
         stroke_um: args.stroke_um.clone(),
@@ -192,7 +198,7 @@ fn request(args: &Args) -> (Physical, PlanRequest) {
         diameter_err_mas: args.diameter_err_mas,
         bias: args.bias,
     };
-    (p, req)
+    Ok((p, req))
 }
 
 /// Runs `plan`.
@@ -207,12 +213,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .chain(args.oifits.iter().map(|p| (p.as_path(), "oifits")))
         .collect();
     let set = v2ref::formats::OutputSet::begin(&targets, args.force)?;
-    let (physical, req) = request(&args);
+    let (physical, req) = request(&args)?;
     let prepared = plan::prepare(&physical, &req)?;
     super::output::announce("plan", &prepared.cost(args.threads)?);
     let piston = prepared.piston.clone();
-    args.turbulence
-        .warn_if_outer_scale_infinite(piston.baseline_m(), piston.rms_um());
+    warn_if_outer_scale_infinite(&physical, piston.baseline_m(), piston.rms_um());
     let bar = progress_bar(prepared.points(), args.quiet || args.json, "plan");
     let mut answer = plan::run(prepared, args.threads, &|k| bar.inc(k))?;
     bar.finish_and_clear();

@@ -37,9 +37,9 @@ pub struct Args {
 
 /// Runs `snr`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical();
-    args.sampling.scan.apply_to(&mut p);
-    args.noise.light.apply_to(&mut p);
+    let mut p = args.obs.physical()?;
+    args.sampling.scan.apply_to(&mut p)?;
+    args.noise.light.apply_to(&mut p)?;
     let cost = v2ref::commands::cost::snr(&p)?;
     super::output::announce("snr", &cost);
     // Seconds or more (N in the thousands): a spinner on a terminal.

@@ -19,7 +19,6 @@
 
 use crate::error::{self, Error, Result};
 use crate::math::quadrature::{integrate_pieces, QuadValue, Tolerance};
-use std::path::Path;
 
 /// Spatial frequency (cycles/arcsec) per metre of baseline per µm⁻¹ of
 /// wavenumber: `S = B σ · 10⁶ · π / 648000`.
@@ -243,7 +242,17 @@ impl Spectrum {
         Ok(sp)
     }
 
-    /// Reads a tabulated spectrum from CSV text (see [`Spectrum::from_csv_path`]).
+    /// Reads a tabulated spectrum from CSV text: `#` comments, then the
+    /// header `wavelength_um,weight` or `wavenumber_per_um,weight`, then rows
+    /// with the axis strictly increasing. `weight` (also spelled
+    /// `weight_per_wavenumber`) is S(σ)F(σ) at that point (the photon
+    /// spectrum per unit wavenumber times the transmission, any scale);
+    /// `weight_per_um` is the same per unit wavelength, converted by the
+    /// Jacobian λ² (W_σ = λ² W_λ). It is interpolated linearly in
+    /// wavenumber. A leading UTF-8 byte-order mark is skipped. At most
+    /// [`MAX_SPECTRUM_ROWS`] rows. The file of the same text is read by the
+    /// edges (`Spectrum::from_csv_path`, feature `files`): the core reads no
+    /// file.
     pub fn from_csv_str(text: &str) -> Result<Spectrum> {
         // Some((wavelength axis, weight per unit wavelength)).
         let mut axis: Option<(bool, bool)> = None;
@@ -289,40 +298,6 @@ impl Spectrum {
             ws.reverse();
         }
         Self::tabulated(xs, ws)
-    }
-
-    /// Reads a tabulated spectrum from a CSV file: `#` comments, then the
-    /// header `wavelength_um,weight` or `wavenumber_per_um,weight`, then rows
-    /// with the axis strictly increasing. `weight` (also spelled
-    /// `weight_per_wavenumber`) is S(σ)F(σ) at that point (the photon
-    /// spectrum per unit wavenumber times the transmission, any scale);
-    /// `weight_per_um` is the same per unit wavelength, converted by the
-    /// Jacobian λ² (W_σ = λ² W_λ). It is interpolated linearly in
-    /// wavenumber. A leading UTF-8
-    /// byte-order mark is skipped. At most [`MAX_SPECTRUM_CSV_BYTES`] bytes
-    /// and [`MAX_SPECTRUM_ROWS`] rows; a refusal names the file.
-    pub fn from_csv_path(path: &Path) -> Result<Spectrum> {
-        use std::io::Read;
-        let io = |e| Error::file(Some("spectrum"), path, e);
-        let file = std::fs::File::open(path).map_err(io)?;
-        let mut text = String::new();
-        // One byte more than the limit tells a file at the limit from a
-        // longer one (or an endless one such as /dev/zero).
-        file.take(MAX_SPECTRUM_CSV_BYTES + 1)
-            .read_to_string(&mut text)
-            .map_err(io)?;
-        let in_file = |reason: String| Error::SpectrumTable {
-            reason: format!("{}: {reason}", path.display()),
-        };
-        if text.len() as u64 > MAX_SPECTRUM_CSV_BYTES {
-            return Err(in_file(format!(
-                "larger than {MAX_SPECTRUM_CSV_BYTES} bytes; accepted: a CSV of at most {MAX_SPECTRUM_ROWS} rows"
-            )));
-        }
-        Self::from_csv_str(&text).map_err(|e| match e {
-            Error::SpectrumTable { reason } => in_file(reason),
-            other => other,
-        })
     }
 
     fn build(shape: Shape) -> Spectrum {

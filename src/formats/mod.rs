@@ -22,6 +22,7 @@ pub mod csv;
 pub mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
+pub mod spectrum_csv;
 
 pub use atomic::write_text_atomic;
 pub use budget::{check_budget, memory_budget};

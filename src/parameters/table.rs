@@ -1,5 +1,10 @@
-//! [`PARAMETERS`]: each physical input's unit, accepted range and help
-//! text, written once, each one named by a constant of [`Parameter`]. The
+//! The one declaration of the physical inputs: each input's field of
+//! [`Physical`] (its type, its default) with its unit, accepted range and
+//! help text, written once in the list below ([`physical_inputs!`]
+//! makes the struct, [`PARAMETERS`] and a constant of [`Parameter`] for
+//! each). Adding a physical input is one entry there (then
+//! `scripts/regenerate.sh` rewrites the Python signatures, the stub and
+//! the docs' table; a CLI group lists its key where its flag belongs). The
 //! CLI's `--help` is rendered from it ([`Parameter::describe`]); the Python
 //! package's keyword arguments, their docstrings, the stub and the input
 //! table of `docs/conventions.md` are generated from it (the test
@@ -7,6 +12,10 @@
 //! `scripts/regenerate.sh`). The tests below hold the accepted ranges to
 //! what the library's checks do.
 
+use super::declare::{physical_inputs, Kind};
+use super::{SourceKind, SpectrumFile};
+use crate::error::{Error, Result};
+use crate::piston::PistonReference;
 use serde::Serialize;
 
 /// One physical input, declared once. In the texts, `{name}` names another
@@ -30,6 +39,10 @@ pub struct Parameter {
     pub unset: &'static str,
     /// Why the accepted range is what it is (the docs' table), or empty.
     pub why: &'static str,
+    /// How it is given at the edges: its field's type's
+    /// ([`super::Input::KIND`]).
+    #[serde(skip)]
+    pub kind: Kind,
 }
 
 impl Parameter {
@@ -78,13 +91,9 @@ pub fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
     out
 }
 
-/// Each physical input's declaration, named by its field of
-/// [`super::Physical`] in capitals: the edges name a parameter by these
-/// constants (a typed key, checked by the compiler), never by a string.
-impl Parameter {
-    /// `wavelength_um`.
-    pub const WAVELENGTH_UM: Parameter = Parameter {
-        name: "wavelength_um",
+physical_inputs! {
+    /// Centre wavelength λ0, µm.
+    wavelength_um: f64 = 2.2, WAVELENGTH_UM {
         unit: "µm",
         accepted: "0.001 to 100000",
         what: "Centre wavelength λ0",
@@ -92,10 +101,9 @@ impl Parameter {
                    of the samples per fringe and of the seeing: give the spectrum's centre.",
         unset: "",
         why: "1 nm (X-rays, no fringe-scanning interferometer) to 10 cm (radio)",
-    };
-    /// `bandwidth_nm`.
-    pub const BANDWIDTH_NM: Parameter = Parameter {
-        name: "bandwidth_nm",
+    }
+    /// Full bandwidth Δλ, nm (flat per unit wavenumber).
+    bandwidth_nm: f64 = 400.0, BANDWIDTH_NM {
         unit: "nm",
         accepted: "1e-12 λ0 to under 2 λ0",
         what: "Full bandwidth Δλ",
@@ -104,10 +112,10 @@ impl Parameter {
                    1/(λ0 − Δλ/2)).",
         unset: "",
         why: "narrower is lost in the rounding of λ0 (use a line); wider reaches zero wavelength",
-    };
-    /// `spectrum_csv`.
-    pub const SPECTRUM_CSV: Parameter = Parameter {
-        name: "spectrum_csv",
+    }
+    /// A tabulated S(σ)F(σ) instead of the flat band: a CSV file's table,
+    /// read by the edges ([`SpectrumFile`]).
+    spectrum_csv: Option<SpectrumFile> = None, SPECTRUM_CSV {
         unit: "",
         accepted: "a CSV file of at most 100000 rows, 16 MiB",
         what: "A tabulated S(σ)F(σ) instead of the flat band",
@@ -118,80 +126,73 @@ impl Parameter {
         unset: "the flat band of {wavelength_um} and {bandwidth_nm}",
         why: "far more than the bias integrals need; a longer file (or `/dev/zero`) is \
                   refused at once",
-    };
-    /// `source`.
-    pub const SOURCE: Parameter = Parameter {
-        name: "source",
+    }
+    /// Source model.
+    source: SourceKind = SourceKind::Ud, SOURCE {
         unit: "",
         accepted: "point or ud",
         what: "Source model",
         note: "ud: a uniform disk of diameter {diameter_mas}; point: unresolved (V = 1).",
         unset: "",
         why: "",
-    };
-    /// `diameter_mas`.
-    pub const DIAMETER_MAS: Parameter = Parameter {
-        name: "diameter_mas",
+    }
+    /// Uniform-disk diameter θ, mas.
+    diameter_mas: f64 = 43.0, DIAMETER_MAS {
         unit: "mas",
         accepted: "> 0 to 3.6e6",
         what: "Uniform-disk diameter θ",
         note: "",
         unset: "",
         why: "up to 1°: the visibility is that of a small source",
-    };
-    /// `spatial_freq_cpas`.
-    pub const SPATIAL_FREQ_CPAS: Parameter = Parameter {
-        name: "spatial_freq_cpas",
+    }
+    /// Spatial frequency S = B σ_eff, cycles/arcsec (default
+    /// [`super::DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
+    spatial_freq_cpas: Option<f64> = None, SPATIAL_FREQ_CPAS {
         unit: "cycles/arcsec",
         accepted: "0 to 1e13 (and B = S/σ_eff at most 1e9 m)",
         what: "Spatial frequency S = B σ_eff",
         note: "",
         unset: "40, the paper's 18 m baseline in K (or from {baseline_m})",
         why: "the frequency of a 1e9 m baseline at 1 nm",
-    };
-    /// `baseline_m`.
-    pub const BASELINE_M: Parameter = Parameter {
-        name: "baseline_m",
+    }
+    /// Projected baseline B, m (instead of the spatial frequency).
+    baseline_m: Option<f64> = None, BASELINE_M {
         unit: "m",
         accepted: "0 to 1e9",
         what: "Projected baseline B",
         note: "Instead of {spatial_freq_cpas}.",
         unset: "from {spatial_freq_cpas}",
         why: "beyond any interferometer, space included",
-    };
-    /// `dispersion_pp_rad`.
-    pub const DISPERSION_PP_RAD: Parameter = Parameter {
-        name: "dispersion_pp_rad",
+    }
+    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
+    dispersion_pp_rad: f64 = 0.0, DISPERSION_PP_RAD {
         unit: "rad",
         accepted: "-1e4 to 1e4",
         what: "Quadratic dispersion phase, peak-to-peak over the band",
         note: "",
         unset: "",
         why: "the V2 quadrature follows the Fresnel 1/√P law up to here (20 % off at 3e4)",
-    };
-    /// `stroke_um`.
-    pub const STROKE_UM: Parameter = Parameter {
-        name: "stroke_um",
+    }
+    /// OPD stroke Δx, µm (sets N = Δx/δx; else N = `samples`).
+    stroke_um: Option<f64> = None, STROKE_UM {
         unit: "µm",
         accepted: "N = Δx/δx, rounded, from 2 to 2^24",
         what: "OPD stroke Δx",
         note: "",
         unset: "{samples} × {dx_um}",
         why: "",
-    };
-    /// `dx_um`.
-    pub const DX_UM: Parameter = Parameter {
-        name: "dx_um",
+    }
+    /// Sample spacing δx, µm.
+    dx_um: f64 = 0.5, DX_UM {
         unit: "µm",
         accepted: "> 0",
         what: "Sample spacing δx",
         note: "",
         unset: "",
         why: "",
-    };
-    /// `samples`.
-    pub const SAMPLES: Parameter = Parameter {
-        name: "samples",
+    }
+    /// Number of samples N (ignored when `stroke_um` is given).
+    samples: usize = 128, SAMPLES {
         unit: "",
         accepted: "2 to 2^24",
         what: "Number of samples N",
@@ -199,60 +200,55 @@ impl Parameter {
                    (N = 16384: about 10 s on two cores).",
         unset: "",
         why: "",
-    };
-    /// `integrating`.
-    pub const INTEGRATING: Parameter = Parameter {
-        name: "integrating",
+    }
+    /// Integrating detector (each sample averages the fringe over δx).
+    integrating: bool = false, INTEGRATING {
         unit: "",
         accepted: FLAG,
         what: "Integrating detector (each sample averages the fringe over δx)",
         note: "",
         unset: "",
         why: "",
-    };
-    /// `visibility`.
-    pub const VISIBILITY: Parameter = Parameter {
-        name: "visibility",
+    }
+    /// Visibility V scaling the fringe.
+    visibility: f64 = 1.0, VISIBILITY {
         unit: "",
         accepted: "0 to 1",
         what: "Visibility V scaling the fringe",
         note: "m_0 = n V for a point source (a source of known V: {source} point).",
         unset: "",
         why: "",
-    };
-    /// `photons`.
-    pub const PHOTONS: Parameter = Parameter {
-        name: "photons",
+    }
+    /// Continuum photons per sample n.
+    photons: f64 = 10.0, PHOTONS {
         unit: "photons per sample",
         accepted: "> 0 to 1e12",
         what: "Continuum n (c = n)",
         note: "",
         unset: "",
         why: "beyond any full well; keeps the fourth moments of the variances far from overflow",
-    };
-    /// `read_noise`.
-    pub const READ_NOISE: Parameter = Parameter {
-        name: "read_noise",
+    }
+    /// Detector noise standard deviation σ_det, photons per sample.
+    read_noise: f64 = 0.0, READ_NOISE {
         unit: "photons per sample",
         accepted: "0 to 1e12",
         what: "Detector noise standard deviation σ_det",
         note: "",
         unset: "",
         why: "as the photons",
-    };
-    /// `photon_noise`.
-    pub const PHOTON_NOISE: Parameter = Parameter {
-        name: "photon_noise",
+    }
+    /// Poisson photon noise on (else detector noise only).
+    photon_noise: bool = true, PHOTON_NOISE {
         unit: "",
         accepted: FLAG,
         what: "Poisson photon noise (when off, detector noise only)",
         note: "",
         unset: "",
         why: "",
-    };
-    /// `fringe_hz`.
-    pub const FRINGE_HZ: Parameter = Parameter {
-        name: "fringe_hz",
+    }
+    /// Fringe frequency f = v/λ0, Hz: the differential piston is on when
+    /// given.
+    fringe_hz: Option<f64> = None, FRINGE_HZ {
         unit: "Hz",
         accepted: "0.001 to 1e7",
         what: "Fringe frequency f = v/λ0",
@@ -260,10 +256,9 @@ impl Parameter {
                    piston sequence).",
         unset: "no piston",
         why: "",
-    };
-    /// `wind_mps`.
-    pub const WIND_MPS: Parameter = Parameter {
-        name: "wind_mps",
+    }
+    /// Wind speed, m/s (frozen flow along the baseline).
+    wind_mps: f64 = 10.0, WIND_MPS {
         unit: "m/s",
         accepted: "0.001 to 343",
         what: "Wind speed",
@@ -271,20 +266,18 @@ impl Parameter {
         unset: "",
         why: "no atmospheric layer moves faster than sound; below a millimetre a second the \
                   piston's time scales leave the range where its spectrum is finite",
-    };
-    /// `seeing_arcsec`.
-    pub const SEEING_ARCSEC: Parameter = Parameter {
-        name: "seeing_arcsec",
+    }
+    /// Seeing λ/r0, arcsec, at `seeing_wavelength_um`.
+    seeing_arcsec: f64 = 1.0, SEEING_ARCSEC {
         unit: "arcsec",
         accepted: "0 to 100",
         what: "Seeing λ/r0",
         note: "Quoted at {seeing_wavelength_um}; 0: no turbulence.",
         unset: "",
         why: "r0 of 4.5 mm in K: no fringe can be tracked beyond",
-    };
-    /// `seeing_wavelength_um`.
-    pub const SEEING_WAVELENGTH_UM: Parameter = Parameter {
-        name: "seeing_wavelength_um",
+    }
+    /// Where the seeing is quoted, µm (default: the observing wavelength).
+    seeing_wavelength_um: Option<f64> = None, SEEING_WAVELENGTH_UM {
         unit: "µm",
         accepted: "0.3 to 30",
         what: "Wavelength at which {seeing_arcsec} is quoted",
@@ -292,10 +285,9 @@ impl Parameter {
                    r0 ∝ λ^(6/5).",
         unset: "the observing wavelength {wavelength_um}",
         why: "where seeing is measured, and where the λ^(-1/5) law that converts it holds",
-    };
-    /// `aperture_m`.
-    pub const APERTURE_M: Parameter = Parameter {
-        name: "aperture_m",
+    }
+    /// Telescope aperture diameter, m.
+    aperture_m: f64 = 0.45, APERTURE_M {
         unit: "m",
         accepted: "0.001 to 1000",
         what: "Telescope aperture diameter",
@@ -303,66 +295,35 @@ impl Parameter {
         unset: "",
         why: "a millimetre to a kilometre; at 1e300 m or 1e-308 m the aperture filter under- \
                   or overflows and every piston statistic was undefined",
-    };
-    /// `outer_scale_m`.
-    pub const OUTER_SCALE_M: Parameter = Parameter {
-        name: "outer_scale_m",
+    }
+    /// von Kármán outer scale, m (None: infinite).
+    outer_scale_m: Option<f64> = None, OUTER_SCALE_M {
         unit: "m",
         accepted: "> 0",
         what: "von Kármán outer scale",
         note: "",
         unset: "infinite",
         why: "",
-    };
-    /// `sub_samples`.
-    pub const SUB_SAMPLES: Parameter = Parameter {
-        name: "sub_samples",
+    }
+    /// Sub-samples per sample of the integrating detector under piston.
+    sub_samples: usize = crate::piston::DEFAULT_SUB_SAMPLES, SUB_SAMPLES {
         unit: "",
         accepted: "1 to 64",
         what: "Sub-samples per sample of the integrating detector under piston",
         note: "",
         unset: "",
         why: "",
-    };
-    /// `reference`.
-    pub const REFERENCE: Parameter = Parameter {
-        name: "reference",
+    }
+    /// Where the fringe packet sits in each scan.
+    reference: PistonReference = PistonReference::Mean, REFERENCE {
         unit: "",
         accepted: "centre, mean or absolute",
         what: "Where the fringe packet sits in each scan",
         note: "",
         unset: "",
         why: "",
-    };
+    }
 }
-
-/// Every field of [`super::Physical`], in declaration order.
-pub const PARAMETERS: [Parameter; 24] = [
-    Parameter::WAVELENGTH_UM,
-    Parameter::BANDWIDTH_NM,
-    Parameter::SPECTRUM_CSV,
-    Parameter::SOURCE,
-    Parameter::DIAMETER_MAS,
-    Parameter::SPATIAL_FREQ_CPAS,
-    Parameter::BASELINE_M,
-    Parameter::DISPERSION_PP_RAD,
-    Parameter::STROKE_UM,
-    Parameter::DX_UM,
-    Parameter::SAMPLES,
-    Parameter::INTEGRATING,
-    Parameter::VISIBILITY,
-    Parameter::PHOTONS,
-    Parameter::READ_NOISE,
-    Parameter::PHOTON_NOISE,
-    Parameter::FRINGE_HZ,
-    Parameter::WIND_MPS,
-    Parameter::SEEING_ARCSEC,
-    Parameter::SEEING_WAVELENGTH_UM,
-    Parameter::APERTURE_M,
-    Parameter::OUTER_SCALE_M,
-    Parameter::SUB_SAMPLES,
-    Parameter::REFERENCE,
-];
 
 #[cfg(test)]
 mod tests {

@@ -4,41 +4,51 @@
 
 use super::values::to_py;
 use super::Fail;
-use crate::parameters::{Parameter, PARAMETERS};
-use crate::words::Words;
+use crate::parameters::{Kind, Parameter, SpectrumFile, Value, PARAMETERS};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::path::PathBuf;
 
 pub use crate::parameters::Physical;
 
-fn item<'py, T: FromPyObject<'py>>(d: &Bound<'py, PyDict>, key: &str, default: T) -> PyResult<T> {
-    match d.get_item(key)? {
-        Some(v) if !v.is_none() => v.extract().map_err(|e| {
-            pyo3::exceptions::PyTypeError::new_err(format!(
-                "{key}: {}",
-                e.value(d.py())
-                    .str()
-                    .map(|s| s.to_string())
-                    .unwrap_or_default()
-            ))
-        }),
-        _ => Ok(default),
-    }
+/// The value of the keyword argument `key` (`v`, not None) as its
+/// declaration's kind takes it, or a TypeError naming it.
+fn extract<'py, T: FromPyObject<'py>>(v: &Bound<'py, PyAny>, key: &str) -> PyResult<T> {
+    v.extract().map_err(|e| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "{key}: {}",
+            e.value(v.py())
+                .str()
+                .map(|s| s.to_string())
+                .unwrap_or_default()
+        ))
+    })
 }
 
-/// The choice `key` of `d` (missing or None: `default`), one of its words
-/// ([`Words::WORDS`]).
-fn choice<T: Words>(d: &Bound<'_, PyDict>, key: &'static str, default: T) -> PyResult<T> {
-    let word: Option<String> = item(d, key, None)?;
-    match word {
-        None => Ok(default),
-        Some(word) => T::from_word(key, &word).map_err(|e| e.into_py_err()),
-    }
+/// The keyword argument `v` of the input `p`, as its kind is given; a
+/// spectrum's file is only named here ([`Given::File`]), read after the
+/// checks.
+fn given(p: &Parameter, v: &Bound<'_, PyAny>) -> PyResult<Given> {
+    Ok(Given::Value(match p.kind {
+        Kind::Number => Value::Number(extract(v, p.name)?),
+        Kind::Count => Value::Count(extract(v, p.name)?),
+        Kind::Flag => Value::Flag(extract(v, p.name)?),
+        Kind::Word => Value::Word(extract(v, p.name)?),
+        Kind::File => return Ok(Given::File(extract(v, p.name)?)),
+    }))
+}
+
+/// A keyword argument as given: a value, or the name of a file to read.
+enum Given {
+    Value(Value),
+    File(PathBuf),
 }
 
 impl Physical {
     /// The physical inputs in `d` (missing or None: [`Physical::default`]),
-    /// checked ([`Physical::check`]).
+    /// checked ([`Physical::check`]), each set by its key in the one
+    /// declaration ([`PARAMETERS`]); a spectrum's file is read here, at the
+    /// edge, after the checks.
     pub fn from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
         for (k, _) in d.iter() {
             let k: String = k.extract()?;
@@ -50,38 +60,23 @@ impl Physical {
                 )));
             }
         }
-        let d0 = Physical::default();
-        let p = Physical {
-            wavelength_um: item(d, Parameter::WAVELENGTH_UM.name, d0.wavelength_um)?,
-            bandwidth_nm: item(d, Parameter::BANDWIDTH_NM.name, d0.bandwidth_nm)?,
-            spectrum_csv: item(d, Parameter::SPECTRUM_CSV.name, d0.spectrum_csv)?,
-            source: choice(d, Parameter::SOURCE.name, d0.source)?,
-            diameter_mas: item(d, Parameter::DIAMETER_MAS.name, d0.diameter_mas)?,
-            spatial_freq_cpas: item(d, Parameter::SPATIAL_FREQ_CPAS.name, d0.spatial_freq_cpas)?,
-            baseline_m: item(d, Parameter::BASELINE_M.name, d0.baseline_m)?,
-            dispersion_pp_rad: item(d, Parameter::DISPERSION_PP_RAD.name, d0.dispersion_pp_rad)?,
-            stroke_um: item(d, Parameter::STROKE_UM.name, d0.stroke_um)?,
-            dx_um: item(d, Parameter::DX_UM.name, d0.dx_um)?,
-            samples: item(d, Parameter::SAMPLES.name, d0.samples)?,
-            integrating: item(d, Parameter::INTEGRATING.name, d0.integrating)?,
-            visibility: item(d, Parameter::VISIBILITY.name, d0.visibility)?,
-            photons: item(d, Parameter::PHOTONS.name, d0.photons)?,
-            read_noise: item(d, Parameter::READ_NOISE.name, d0.read_noise)?,
-            photon_noise: item(d, Parameter::PHOTON_NOISE.name, d0.photon_noise)?,
-            fringe_hz: item(d, Parameter::FRINGE_HZ.name, d0.fringe_hz)?,
-            wind_mps: item(d, Parameter::WIND_MPS.name, d0.wind_mps)?,
-            seeing_arcsec: item(d, Parameter::SEEING_ARCSEC.name, d0.seeing_arcsec)?,
-            seeing_wavelength_um: item(
-                d,
-                Parameter::SEEING_WAVELENGTH_UM.name,
-                d0.seeing_wavelength_um,
-            )?,
-            aperture_m: item(d, Parameter::APERTURE_M.name, d0.aperture_m)?,
-            outer_scale_m: item(d, Parameter::OUTER_SCALE_M.name, d0.outer_scale_m)?,
-            sub_samples: item(d, Parameter::SUB_SAMPLES.name, d0.sub_samples)?,
-            reference: choice(d, Parameter::REFERENCE.name, d0.reference)?,
-        };
+        let mut p = Physical::default();
+        let mut files = Vec::new();
+        for key in &PARAMETERS {
+            let Some(v) = d.get_item(key.name)?.filter(|v| !v.is_none()) else {
+                continue;
+            };
+            match given(key, &v)? {
+                Given::Value(value) => p.set(key, value).map_err(|e| e.into_py_err())?,
+                Given::File(path) => files.push((key, path)),
+            }
+        }
         p.check().map_err(|e| e.into_py_err())?;
+        for (key, path) in files {
+            let table = SpectrumFile::read(&path).map_err(|e| e.into_py_err())?;
+            p.set(key, Value::Spectrum(table))
+                .map_err(|e| e.into_py_err())?;
+        }
         Ok(p)
     }
 }
