@@ -88,8 +88,8 @@ pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 /// A tabulated spectrum and the name of the CSV file it was read from.
 /// The edges read the file (`SpectrumFile::read`, feature `files`) and
 /// hand the table over: the numerics read no file. The name is kept for
-/// what names the input (it is serialized as the name); the records hold
-/// the table.
+/// what names the input (it is serialized as the name, and so is not read
+/// back); the records hold the table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpectrumFile {
     path: PathBuf,
@@ -120,18 +120,6 @@ impl Serialize for SpectrumFile {
     /// As the file's name, the value the user gave.
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         self.path.serialize(s)
-    }
-}
-
-impl<'de> serde::Deserialize<'de> for SpectrumFile {
-    /// Refused: a name alone is no table, and the core reads no file (the
-    /// edges call `SpectrumFile::read`).
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
-        let path = PathBuf::deserialize(d)?;
-        Err(serde::de::Error::custom(format!(
-            "{}: a spectrum CSV is read by the edges (SpectrumFile::read)",
-            path.display()
-        )))
     }
 }
 

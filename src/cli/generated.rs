@@ -18,7 +18,7 @@
 use clap::CommandFactory;
 use serde_json::Value;
 use std::path::Path;
-use v2ref::parameters::{refer_to, Parameter, Physical, PARAMETERS};
+use v2ref::parameters::{refer_to, Kind, Parameter, Physical, PARAMETERS};
 
 /// Each Python function with physical keyword arguments: its name, the CLI
 /// command it answers as (whose physical flags are its keywords), and the
@@ -49,22 +49,15 @@ const BEGIN: &str = "    # The physical keyword arguments, generated (scripts/re
 const END: &str = "    # End of the generated keyword arguments.\n";
 
 /// The kind of an input's value, as Python checks it: `float`, `int`,
-/// `bool`, `word` (one of a choice's words) or `path`; found from what the
-/// declaration's struct accepts, not restated.
+/// `bool`, `word` (one of a choice's words) or `path`; its declaration's
+/// (the kind of its field's type), not restated.
 fn kind(p: &Parameter) -> &'static str {
-    let defaults = serde_json::to_value(Physical::DEFAULT).unwrap();
-    let accepts = |v: Value| {
-        let mut d = defaults.clone();
-        d[p.name] = v;
-        serde_json::from_value::<Physical>(d).is_ok()
-    };
-    match &defaults[p.name] {
-        Value::Bool(_) => "bool",
-        Value::String(_) => "word",
-        Value::Number(n) if n.is_u64() => "int",
-        Value::Number(_) => "float",
-        _ if accepts(Value::from(0.5)) => "float",
-        _ => "path",
+    match p.kind {
+        Kind::Number => "float",
+        Kind::Count => "int",
+        Kind::Flag => "bool",
+        Kind::Word => "word",
+        Kind::File => "path",
     }
 }
 

@@ -154,7 +154,7 @@ macro_rules! physical_inputs {
         /// declared once ([`PARAMETERS`]). Field names are the Python keyword
         /// arguments and, with `_` as `-`, the CLI's flags (a flag on by
         /// default, `photon_noise`, is turned off by `--no-photon-noise`).
-        #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+        #[derive(Debug, Clone, PartialEq, Serialize)]
         pub struct Physical {
             $( $(#[$doc])* pub $field: $ty, )*
         }

@@ -328,8 +328,7 @@ physical_inputs! {
 #[cfg(test)]
 mod tests {
     use super::{refer_to, Parameter, PARAMETERS};
-    use crate::parameters::{Physical, DEFAULT_SPATIAL_FREQ_CPAS};
-    use serde_json::json;
+    use crate::parameters::{Kind, Physical, Value, DEFAULT_SPATIAL_FREQ_CPAS};
 
     /// Every text names other inputs by declared names only, and an input
     /// may be unset exactly where its field is an `Option` (unset by
@@ -415,25 +414,25 @@ mod tests {
     /// (Err), or accepted (Ok): the default configuration, with the piston
     /// on and an integrating detector so that every input is checked.
     fn probe(name: &str, value: f64) -> Result<(), String> {
-        let mut v = serde_json::to_value(Physical::DEFAULT).unwrap();
-        v["fringe_hz"] = json!(300.0);
-        v["integrating"] = json!(true);
-        v[name] = if value.fract() == 0.0 && name.contains("samples") {
-            json!(value as u64)
-        } else {
-            json!(value)
+        let key = PARAMETERS.iter().find(|p| p.name == name).unwrap();
+        let mut p = Physical {
+            fringe_hz: Some(300.0),
+            integrating: true,
+            ..Physical::DEFAULT
         };
+        let given = match key.kind {
+            Kind::Count => Value::Count(value as usize),
+            _ => Value::Number(value),
+        };
+        p.set(key, given).unwrap();
         if name == "wavelength_um" {
             // The band follows λ0, as a user's would.
-            v["bandwidth_nm"] = json!(value * 100.0);
+            p.bandwidth_nm = value * 100.0;
         }
         if name.ends_with("wavelength_um") || name == "bandwidth_nm" {
             // Four samples per shortest wavelength of the band.
-            let shortest =
-                v["wavelength_um"].as_f64().unwrap() - v["bandwidth_nm"].as_f64().unwrap() / 2e3;
-            v["dx_um"] = json!(shortest / 4.0);
+            p.dx_um = (p.wavelength_um - p.bandwidth_nm / 2e3) / 4.0;
         }
-        let p: Physical = serde_json::from_value(v).unwrap();
         match p.check().and_then(|()| p.inputs()) {
             Ok(_) => Ok(()),
             Err(e) if e.param().map(crate::parameters::keyword_of).as_deref() == Some(name) => {
