@@ -1,6 +1,6 @@
 //! `v2ref bias`: noise-free wide-band V1 and V2 for one configuration.
 
-use super::common::{ObservationArgs, SamplingArgs};
+use super::common::ObservedArgs;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
 use v2ref::commands::cost::duration_words;
@@ -16,9 +16,7 @@ const SLOW_SAMPLES: usize = 4096;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    obs: ObservationArgs,
-    #[command(flatten)]
-    sampling: SamplingArgs,
+    observed: ObservedArgs,
     /// Also compute the finite-scan estimators from a sampled interferogram
     /// (implied by --stroke-um).
     #[arg(long)]
@@ -30,8 +28,7 @@ pub struct Args {
 
 /// Runs `bias`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical()?;
-    args.sampling.scan.apply_to(&mut p)?;
+    let p = args.observed.physical()?;
     let finite = v2ref::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
     let cost = v2ref::commands::cost::bias(&p, args.finite_scan)?;
@@ -41,7 +38,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         duration_words(cost.seconds)
     );
     let bar = super::spinner(n < SLOW_SAMPLES, &what);
-    let answer = v2ref::commands::bias::answer(&p, args.sampling.bins, args.finite_scan)?;
+    let answer = v2ref::commands::bias::answer(&p, args.observed.sampling.bins, args.finite_scan)?;
     bar.finish_and_clear();
     let wb = answer.infinite_scan;
     if args.json {

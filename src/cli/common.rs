@@ -64,6 +64,25 @@ pub struct SamplingArgs {
     pub bins: BinWindow,
 }
 
+/// The observation and how it is sampled: the first flags of `bias`,
+/// `snr` and `piston`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ObservedArgs {
+    #[command(flatten)]
+    obs: ObservationArgs,
+    #[command(flatten)]
+    pub sampling: SamplingArgs,
+}
+
+impl ObservedArgs {
+    /// The physical inputs: these flags, the defaults for the rest.
+    pub fn physical(&self) -> v2ref::Result<Physical> {
+        let mut p = self.obs.physical()?;
+        self.sampling.scan.apply_to(&mut p)?;
+        Ok(p)
+    }
+}
+
 physical_flags! {
     /// The turbulence, the telescopes and the scans through the piston (§6).
     TurbulenceArgs, NegativeNumbers: WIND_MPS, SEEING_ARCSEC, SEEING_WAVELENGTH_UM,

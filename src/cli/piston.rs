@@ -2,8 +2,7 @@
 //! frequencies (paper, Section "Effect of differential piston").
 
 use super::common::{
-    warn_if_outer_scale_infinite, ObservationArgs, OutputArgs, RunArgs, SamplingArgs,
-    TurbulenceArgs,
+    warn_if_outer_scale_infinite, ObservedArgs, OutputArgs, RunArgs, TurbulenceArgs,
 };
 use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
@@ -17,9 +16,7 @@ use v2ref::piston::turbulence::PistonPsdModel;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    obs: ObservationArgs,
-    #[command(flatten)]
-    sampling: SamplingArgs,
+    observed: ObservedArgs,
     /// Fringe frequency f = v/λ0, Hz: a value, A:B:N (N values from A to B)
     /// or A:B:N:log (log-spaced); repeatable [default: 300 and 1000].
     #[arg(long = "fringe-hz", value_parser = parse_fringe_hz, allow_negative_numbers = true)]
@@ -53,12 +50,11 @@ pub struct Args {
 
 /// Runs `piston`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical()?;
-    args.sampling.scan.apply_to(&mut p)?;
+    let mut p = args.observed.physical()?;
     args.turbulence.apply_to(&mut p)?;
     let req = PistonRequest {
         fringe_hz: flatten(&args.fringe_hz),
-        bins: args.sampling.bins,
+        bins: args.observed.sampling.bins,
         scans: args.scans,
         seed: args.run.seed,
         threads: args.run.threads,

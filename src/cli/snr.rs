@@ -3,7 +3,7 @@
 //! paper's window factor kept apart and the exact variance of the chosen
 //! bin window beside it.
 
-use super::common::{LightArgs, ObservationArgs, SamplingArgs};
+use super::common::{LightArgs, ObservedArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
 use v2ref::noise::report::SnrReport;
@@ -25,9 +25,7 @@ pub struct NoiseArgs {
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
-    obs: ObservationArgs,
-    #[command(flatten)]
-    sampling: SamplingArgs,
+    observed: ObservedArgs,
     #[command(flatten)]
     noise: NoiseArgs,
     /// One JSON document instead of the table.
@@ -37,8 +35,7 @@ pub struct Args {
 
 /// Runs `snr`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    let mut p = args.obs.physical()?;
-    args.sampling.scan.apply_to(&mut p)?;
+    let mut p = args.observed.physical()?;
     args.noise.light.apply_to(&mut p)?;
     let cost = v2ref::commands::cost::snr(&p)?;
     super::output::announce("snr", &cost);
@@ -49,7 +46,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         v2ref::commands::cost::duration_words(cost.seconds)
     );
     let bar = super::spinner(cost.seconds < 1.0, &what);
-    let answer = v2ref::commands::snr::answer(&p, args.sampling.bins, args.noise.formula)?;
+    let answer = v2ref::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
     bar.finish_and_clear();
     if args.json {
         print_json(&answer);

@@ -202,6 +202,45 @@ fn write_oifits_truth(
     ok(oifits::write_oifits(Path::new(path), "path", &doc))
 }
 
+/// Which table of an OIFITS file holds a pipeline's estimates (the
+/// keywords of `read_oifits_estimates` and `score_oifits`).
+struct Pick<'a> {
+    insname: Option<&'a str>,
+    estimator: Option<&'a str>,
+    target: Option<&'a str>,
+    accept_checksum_mismatch: bool,
+}
+
+/// The estimates of the OIFITS file `path` picked by `pick`, read against
+/// the set of the sidecar `sc` (its rows, its band) under `window`.
+fn read_estimates(
+    path: &str,
+    sc: &Sidecar,
+    window: (BinWindow, BiasConvention),
+    pick: &Pick<'_>,
+) -> PyResult<oifits::OifitsEstimates> {
+    let estimator = estimator_of(pick.estimator)?;
+    let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
+    let expected = Expected {
+        rows: sc.data.rows,
+        band_m: (1e-6 / hi, 1e-6 / lo),
+        bins: window.0,
+        bias: window.1,
+    };
+    let choice = oifits::Choice {
+        insname: pick.insname,
+        estimator,
+        target: pick.target,
+        read: oifits::ReadOptions {
+            accept_checksum_mismatch: pick.accept_checksum_mismatch,
+        },
+    };
+    ok(
+        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
+            .map_err(|e| renamed(e, "estimates", "path")),
+    )
+}
+
 /// A pipeline's estimates read from OIFITS against a set's sidecar: a
 /// dict (`v1_sq`, `v2_sq`: arrays of the unflagged rows or None; `rows`,
 /// `flagged`).
@@ -223,26 +262,13 @@ fn read_oifits_estimates<'py>(
     let bins: BinWindow = ok(Words::from_word("bins", bins))?;
     let bias: BiasConvention = ok(Words::from_word("bias", bias))?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
-    let est = estimator_of(estimator)?;
-    let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
-    let expected = Expected {
-        rows: sc.data.rows,
-        band_m: (1e-6 / hi, 1e-6 / lo),
-        bins,
-        bias,
-    };
-    let choice = oifits::Choice {
+    let pick = Pick {
         insname,
-        estimator: est,
+        estimator,
         target,
-        read: oifits::ReadOptions {
-            accept_checksum_mismatch,
-        },
+        accept_checksum_mismatch,
     };
-    let read = ok(
-        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
-            .map_err(|e| renamed(e, "estimates", "path")),
-    )?;
+    let read = read_estimates(path, &sc, (bins, bias), &pick)?;
     let d = PyDict::new(py);
     d.set_item(
         "v1_sq",
@@ -285,26 +311,13 @@ fn score_oifits(
             "sidecar: {sidecar_name}: no truth for bins={bins} bias={bias}; pick a window and convention the set has"
         ))
     })?;
-    let est = estimator_of(estimator)?;
-    let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
-    let expected = Expected {
-        rows: sc.data.rows,
-        band_m: (1e-6 / hi, 1e-6 / lo),
-        bins: window,
-        bias: convention,
-    };
-    let choice = oifits::Choice {
+    let pick = Pick {
         insname,
-        estimator: est,
+        estimator,
         target,
-        read: oifits::ReadOptions {
-            accept_checksum_mismatch,
-        },
+        accept_checksum_mismatch,
     };
-    let read = ok(
-        oifits::read_oifits_estimates(Path::new(path), &choice, &expected)
-            .map_err(|e| renamed(e, "estimates", "path")),
-    )?;
+    let read = read_estimates(path, &sc, (window, convention), &pick)?;
     let (set_rows, flagged) = (sc.data.rows, read.flagged as u64);
     let kept = set_rows - flagged;
     let head = serde_json::json!({

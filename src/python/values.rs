@@ -172,6 +172,16 @@ impl<'py> Compound<'py> {
     }
 }
 
+/// The serializer's methods of the plain values Python converts itself
+/// (`ToPy::any`).
+macro_rules! serialize_any {
+    ($($method:ident: $ty:ty),*) => {$(
+        fn $method(self, v: $ty) -> Out {
+            self.any(v)
+        }
+    )*};
+}
+
 impl<'py> ser::Serializer for ToPy<'py> {
     type Ok = PyObject;
     type Error = ToPyError;
@@ -183,33 +193,17 @@ impl<'py> ser::Serializer for ToPy<'py> {
     type SerializeStruct = Compound<'py>;
     type SerializeStructVariant = Compound<'py>;
 
-    fn serialize_bool(self, v: bool) -> Out {
-        self.any(v)
-    }
-    fn serialize_i8(self, v: i8) -> Out {
-        self.any(v)
-    }
-    fn serialize_i16(self, v: i16) -> Out {
-        self.any(v)
-    }
-    fn serialize_i32(self, v: i32) -> Out {
-        self.any(v)
-    }
-    fn serialize_i64(self, v: i64) -> Out {
-        self.any(v)
-    }
-    fn serialize_u8(self, v: u8) -> Out {
-        self.any(v)
-    }
-    fn serialize_u16(self, v: u16) -> Out {
-        self.any(v)
-    }
-    fn serialize_u32(self, v: u32) -> Out {
-        self.any(v)
-    }
-    fn serialize_u64(self, v: u64) -> Out {
-        self.any(v)
-    }
+    serialize_any!(
+        serialize_bool: bool,
+        serialize_i8: i8,
+        serialize_i16: i16,
+        serialize_i32: i32,
+        serialize_i64: i64,
+        serialize_u8: u8,
+        serialize_u16: u16,
+        serialize_u32: u32,
+        serialize_u64: u64
+    );
     fn serialize_f32(self, v: f32) -> Out {
         self.serialize_f64(f64::from(v))
     }
@@ -292,49 +286,29 @@ impl<'py> ser::Serializer for ToPy<'py> {
     }
 }
 
-impl ser::SerializeSeq for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), ToPyError> {
-        self.push(v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
+/// The compounds of a list (a sequence, a tuple, a tuple struct or
+/// variant): each element pushed, the list (or tagged variant) returned.
+macro_rules! list_compound {
+    ($($kind:ident: $element:ident),*) => {$(
+        impl ser::$kind for Compound<'_> {
+            type Ok = PyObject;
+            type Error = ToPyError;
+            fn $element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), ToPyError> {
+                self.push(v)
+            }
+            fn end(self) -> Out {
+                self.finish()
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), ToPyError> {
-        self.push(v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
-}
-
-impl ser::SerializeTupleStruct for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), ToPyError> {
-        self.push(v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
-}
-
-impl ser::SerializeTupleVariant for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, v: &T) -> Result<(), ToPyError> {
-        self.push(v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
-}
+list_compound!(
+    SerializeSeq: serialize_element,
+    SerializeTuple: serialize_element,
+    SerializeTupleStruct: serialize_field,
+    SerializeTupleVariant: serialize_field
+);
 
 impl ser::SerializeMap for Compound<'_> {
     type Ok = PyObject;
@@ -372,35 +346,28 @@ impl ser::SerializeMap for Compound<'_> {
     }
 }
 
-impl ser::SerializeStruct for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        k: &'static str,
-        v: &T,
-    ) -> Result<(), ToPyError> {
-        self.field(k, v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
+/// The compounds of named fields (a struct or a struct variant): each
+/// field set, the dict (or tagged variant) returned.
+macro_rules! struct_compound {
+    ($($kind:ident),*) => {$(
+        impl ser::$kind for Compound<'_> {
+            type Ok = PyObject;
+            type Error = ToPyError;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                k: &'static str,
+                v: &T,
+            ) -> Result<(), ToPyError> {
+                self.field(k, v)
+            }
+            fn end(self) -> Out {
+                self.finish()
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeStructVariant for Compound<'_> {
-    type Ok = PyObject;
-    type Error = ToPyError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        k: &'static str,
-        v: &T,
-    ) -> Result<(), ToPyError> {
-        self.field(k, v)
-    }
-    fn end(self) -> Out {
-        self.finish()
-    }
-}
+struct_compound!(SerializeStruct, SerializeStructVariant);
 
 /// A sidecar given from Python: the text of a SET.json file (a `str`) or
 /// the dict `synthesize` returned, as a JSON value (`None` for a text).
