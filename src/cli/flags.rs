@@ -117,16 +117,10 @@ pub fn arg(p: &Parameter, hyphen: Hyphen) -> Arg {
     }
 }
 
-/// `cmd` with the flags of `keys` and their group `group` (a group whose
-/// flags flattened in another lists none).
-pub fn augment(
-    cmd: Command,
-    group: &'static str,
-    keys: &[&Parameter],
-    hyphen: Hyphen,
-    listed: bool,
-) -> Command {
-    let members = keys.iter().filter(|_| listed).map(|p| names(p).id.as_str());
+/// `cmd` with the flags of `keys` and their group `group` (what
+/// `--sidecar` of `estimate` conflicts with).
+pub fn augment(cmd: Command, group: &'static str, keys: &[&Parameter], hyphen: Hyphen) -> Command {
+    let members = keys.iter().map(|p| names(p).id.as_str());
     let group = clap::ArgGroup::new(group).multiple(true).args(members);
     keys.iter()
         .fold(cmd.group(group), |cmd, p| cmd.arg(arg(p, hyphen)))
@@ -216,7 +210,7 @@ macro_rules! physical_flags {
             }
             fn augment_args(cmd: clap::Command) -> clap::Command {
                 use $crate::cli::flags::{augment, Hyphen};
-                augment(cmd, stringify!($name), Self::KEYS, Hyphen::$hyphen, true)
+                augment(cmd, stringify!($name), Self::KEYS, Hyphen::$hyphen)
             }
             fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
                 Self::augment_args(cmd)

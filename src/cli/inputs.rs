@@ -48,16 +48,11 @@ impl clap::Args for PistonArgs {
     fn group_id() -> Option<clap::Id> {
         Some(clap::Id::from("PistonArgs"))
     }
-    /// Its flag, then the turbulence's; its group lists none, as clap's
-    /// derive does for a group with flags flattened in it.
+    /// Its flag, then the turbulence's. Its group holds its flag (clap's
+    /// derive leaves the group of a struct with flattened flags empty: then
+    /// `estimate --sidecar` took `--fringe-hz` and ignored it).
     fn augment_args(cmd: clap::Command) -> clap::Command {
-        let cmd = augment(
-            cmd,
-            "PistonArgs",
-            Self::KEYS,
-            Hyphen::NegativeNumbers,
-            false,
-        );
+        let cmd = augment(cmd, "PistonArgs", Self::KEYS, Hyphen::NegativeNumbers);
         TurbulenceArgs::augment_args(cmd)
     }
     fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
