@@ -112,9 +112,9 @@ mod tests {
     use super::InputsArgs;
     use crate::cli::flag_of;
     use clap::{CommandFactory, Parser};
-    use serde_json::Value;
+    use serde_json::Value as Json;
     use std::collections::BTreeSet;
-    use v2ref::parameters::{Parameter, Physical, PARAMETERS};
+    use v2ref::parameters::{Kind, Parameter, Physical, SpectrumFile, Value, PARAMETERS};
 
     #[derive(Parser)]
     struct Cli {
@@ -129,32 +129,56 @@ mod tests {
         assert_eq!(cli.inputs.physical().unwrap(), Physical::default());
     }
 
-    /// Each flag reaches its own field: a non-default value of every flag
-    /// moves exactly that field (a flag copied into the wrong field, or not
-    /// at all, fails).
+    /// Each flag reaches its own field: a non-default value of every
+    /// declared input's flag moves exactly that field (a flag copied into
+    /// the wrong field, or not at all, fails). The spectrum's file is read.
     #[test]
     fn each_flag_sets_its_field() {
-        type Case = (&'static [&'static str], fn(&mut Physical));
-        let cases: [Case; 12] = [
-            (&["--wavelength-um", "1.6"], |p| p.wavelength_um = 1.6),
-            (&["--bandwidth-nm", "300"], |p| p.bandwidth_nm = 300.0),
-            (&["--diameter-mas", "2"], |p| p.diameter_mas = 2.0),
-            (&["--baseline-m", "100"], |p| p.baseline_m = Some(100.0)),
-            (&["--dispersion-pp-rad", "1"], |p| p.dispersion_pp_rad = 1.0),
-            (&["--dx-um", "0.25"], |p| p.dx_um = 0.25),
-            (&["--samples", "64"], |p| p.samples = 64),
-            (&["--photons", "5"], |p| p.photons = 5.0),
-            (&["--read-noise", "2"], |p| p.read_noise = 2.0),
-            (&["--no-photon-noise"], |p| p.photon_noise = false),
-            (&["--fringe-hz", "300"], |p| p.fringe_hz = Some(300.0)),
-            (&["--aperture-m", "1.8"], |p| p.aperture_m = 1.8),
-        ];
-        for (flags, set) in cases {
-            let args = std::iter::once("v2ref").chain(flags.iter().copied());
-            let cli = Cli::try_parse_from(args).unwrap();
-            let mut want = Physical::default();
-            set(&mut want);
-            assert_eq!(cli.inputs.physical().unwrap(), want, "{flags:?}");
+        let dir = tempfile::tempdir().unwrap();
+        let csv = dir.path().join("band.csv");
+        std::fs::write(&csv, "wavelength_um,weight\n2.0,1\n2.4,2\n").unwrap();
+        let d = Physical::default();
+        for p in &PARAMETERS {
+            let name = p.name.replace('_', "-");
+            let (flags, want) = match d.get(p) {
+                Value::Flag(true) => (vec![format!("--no-{name}")], Value::Flag(false)),
+                Value::Flag(false) => (vec![format!("--{name}")], Value::Flag(true)),
+                Value::Number(x) => (
+                    vec![format!("--{name}"), format!("{}", x + 0.5)],
+                    Value::Number(x + 0.5),
+                ),
+                Value::Count(n) => (
+                    vec![format!("--{name}"), format!("{}", n + 1)],
+                    Value::Count(n + 1),
+                ),
+                Value::Word(w) => {
+                    let words = Physical::words(p);
+                    let other = words.iter().find(|(o, _)| *o != w).unwrap().0;
+                    (
+                        vec![format!("--{name}"), other.to_owned()],
+                        Value::Word(other.to_owned()),
+                    )
+                }
+                Value::Unset if p.kind == Kind::File => {
+                    let table = SpectrumFile::read(&csv).unwrap();
+                    (
+                        vec![format!("--{name}"), csv.display().to_string()],
+                        Value::Spectrum(table),
+                    )
+                }
+                Value::Unset => (vec![format!("--{name}"), "1.5".into()], Value::Number(1.5)),
+                v => panic!("{}: {v:?}", p.name),
+            };
+            let args = std::iter::once("v2ref".to_owned()).chain(flags.iter().cloned());
+            let got = Cli::try_parse_from(args)
+                .unwrap()
+                .inputs
+                .physical()
+                .unwrap();
+            assert_eq!(got.get(p), want, "{flags:?}");
+            for o in PARAMETERS.iter().filter(|o| o.name != p.name) {
+                assert_eq!(got.get(o), d.get(o), "{flags:?} moved {}", o.name);
+            }
         }
     }
 
@@ -226,10 +250,10 @@ mod tests {
                 .map(|v| v.to_string_lossy().into_owned())
                 .collect();
             match &defaults[p.name] {
-                Value::Null => assert!(shown.is_empty(), "{at}: {shown:?}"),
-                Value::Bool(b) => assert_eq!(*b, off, "{at}"),
-                Value::Number(x) => assert_eq!(shown[0].parse().ok(), x.as_f64(), "{at}"),
-                Value::String(w) => {
+                Json::Null => assert!(shown.is_empty(), "{at}: {shown:?}"),
+                Json::Bool(b) => assert_eq!(*b, off, "{at}"),
+                Json::Number(x) => assert_eq!(shown[0].parse().ok(), x.as_f64(), "{at}"),
+                Json::String(w) => {
                     assert_eq!(shown, [w.as_str()], "{at}");
                     let words: Vec<String> = arg
                         .get_possible_values()
