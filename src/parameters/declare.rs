@@ -186,7 +186,7 @@ macro_rules! physical_inputs {
                 Vec::new()
             }
 
-            /// The value of the input `key` ([`Value::Unset`] for an
+            /// The value of the input `key` ([`crate::parameters::Value::Unset`] for an
             /// unknown key).
             pub fn get(&self, key: &Parameter) -> $crate::parameters::Value {
                 use $crate::parameters::Input;
