@@ -22,7 +22,8 @@ pub enum Kind {
     Flag,
     /// One of a choice's words ([`Words`]).
     Word,
-    /// A spectrum CSV file, read by the edges ([`SpectrumFile::read`]).
+    /// A spectrum CSV file, read by the edges (`SpectrumFile::read`, feature
+    /// `files`).
     File,
 }
 
