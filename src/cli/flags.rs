@@ -43,6 +43,7 @@ struct Names {
 }
 
 impl Names {
+    /// The names of the flag of `p`, from its declaration and default.
     fn of(p: &Parameter) -> Names {
         let off = Physical::DEFAULT.get(p) == Value::Flag(true);
         let id = if off {
