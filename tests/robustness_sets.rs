@@ -148,6 +148,71 @@ fn every_terminating_signal_leaves_the_old_set_whole() {
     }
 }
 
+/// The sidecar and the lengths of the data files of the set `dir/set`.
+fn set_shape(dir: &Path) -> (Vec<u8>, u64, u64) {
+    let len = |f: &str| std::fs::metadata(dir.join(f)).unwrap().len();
+    let json = std::fs::read(dir.join("set.json")).unwrap();
+    (json, len("set.npy"), len("set.csv"))
+}
+
+/// A signal that comes as a `synth --force` places its files (the moment
+/// its new `.npy` takes the old one's place) leaves a whole set, the old
+/// or the new, and no temporary. The writer of 02610a7 renamed its files
+/// one by one, the CSV after syncing it: a SIGINT then left the new `.npy`
+/// beside the old CSV and sidecar, with status 130.
+#[test]
+fn a_signal_as_the_set_is_placed_leaves_a_whole_set() {
+    use std::os::unix::fs::MetadataExt as _;
+    let rows = [
+        "synth",
+        "--rows",
+        "100000",
+        "--samples",
+        "64",
+        "--quiet",
+        "--csv",
+    ];
+    let new = ["--out", "set", "--seed", "2", "--force"];
+    let reference = tempfile::tempdir().unwrap();
+    let made = v2ref(reference.path()).args(rows).args(new).output();
+    let made = made.unwrap();
+    assert!(made.status.success(), "{made:?}");
+    let dir = tempfile::tempdir().unwrap();
+    assert!(small_set(dir.path(), "1").status.success());
+    let (old_shape, listing) = (set_shape(dir.path()), names(dir.path()));
+    let npy_inode = || std::fs::metadata(dir.path().join("set.npy")).map(|m| m.ino());
+    let old_inode = npy_inode().unwrap();
+    let mut child = v2ref(dir.path())
+        .args(rows)
+        .args(new)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if npy_inode().is_ok_and(|i| i != old_inode) {
+            // SAFETY: a signal to our own child, which we have not yet
+            // waited for, so its pid is not reused; no memory is involved.
+            unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no end");
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(matches!(out.status.code(), Some(0 | 130)), "{err}");
+    let shape = set_shape(dir.path());
+    assert!(
+        shape == old_shape || shape == set_shape(reference.path()),
+        "a mixed set: sidecar of {} bytes, .npy of {} bytes, CSV of {} bytes ({err})",
+        shape.0.len(),
+        shape.1,
+        shape.2
+    );
+    assert_eq!(names(dir.path()), listing, "{err}");
+}
+
 /// A second run on an output being written is refused, naming the process
 /// that writes it, whichever command and format it writes (`synth`,
 /// `estimate` to `.csv`, `.npy` and `.fits`, `plan --oifits` and `--svg`);
