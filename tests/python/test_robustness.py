@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 import threading
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -121,3 +122,11 @@ def test_a_memory_mapped_array_is_refused_at_its_first_bad_row(tmp_path):
         v2ref.estimate(rows)
     grown_kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
     assert grown_kib < 256 << 10, f"{grown_kib} KiB resident for a refusal at row 1"
+
+
+def test_the_docs_say_that_ctrl_c_stops_estimate():
+    # docs/python.md said that `estimate` runs to the end; it stops at its
+    # next checkpoint as the other long calls do.
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "python.md").read_text()
+    ctrl_c = next(p for p in docs.split("\n- ") if p.startswith("**Ctrl-C**"))
+    assert "`estimate`" in ctrl_c and "run to the end" not in ctrl_c, ctrl_c
