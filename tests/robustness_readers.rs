@@ -226,26 +226,35 @@ proptest! {
     }
 }
 
+/// Claimed shapes that panicked or aborted a reader before issue 35.
+const OVERFLOWING_SHAPES: [&str; 6] = [
+    "(4294967296, 4294967296)",
+    "(2305843009213693952, 8)",
+    "(18446744073709551615, 3)",
+    "(3, 6148914691236517206)",
+    // Past u64: refused by v2ref's own reading of the shape.
+    "(99999999999999999999999, 1)",
+    // No values, but npyz's strides (products of the trailing
+    // dimensions) overflow: a panic in the test profile.
+    "(0, 4294967296, 4294967296)",
+];
+
+/// A `.npy` of `<f8` that is a header claiming `shape` and no data.
+fn npy_header_only(shape: &str) -> Vec<u8> {
+    let h = header_text(shape, false, "<f8");
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(h.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(h.as_bytes());
+    bytes
+}
+
 /// The headers that panicked or aborted before this round, each refused by
 /// name (a test that fails on the old reader).
 #[test]
 fn claimed_shapes_that_overflow_are_refused_with_the_header() {
     let dir = tempfile::tempdir().unwrap();
-    for shape in [
-        "(4294967296, 4294967296)",
-        "(2305843009213693952, 8)",
-        "(18446744073709551615, 3)",
-        "(3, 6148914691236517206)",
-        // Past u64: refused by v2ref's own reading of the shape.
-        "(99999999999999999999999, 1)",
-        // No values, but npyz's strides (products of the trailing
-        // dimensions) overflow: a panic in the test profile.
-        "(0, 4294967296, 4294967296)",
-    ] {
-        let h = header_text(shape, false, "<f8");
-        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-        bytes.extend_from_slice(&(h.len() as u16).to_le_bytes());
-        bytes.extend_from_slice(h.as_bytes());
+    for shape in OVERFLOWING_SHAPES {
+        let bytes = npy_header_only(shape);
         let p = temp_file(dir.path(), "big.npy", &bytes);
         let e = read_matrix(&p, "input").unwrap_err();
         let text = e.to_string();
@@ -285,4 +294,64 @@ fn an_estimates_column_named_twice_is_refused_by_name() {
             "{header}: {e}"
         );
     }
+}
+
+/// The binary refuses the same headers with status 2 and one line naming
+/// `--input`, in every build profile: with overflow checks on (`cargo
+/// test`'s profile, which CI runs this suite in too) the binary of
+/// 02610a7 panicked inside npyz's header parsing (status 101) before its
+/// own check ran.
+#[test]
+fn claimed_shapes_that_overflow_are_refused_by_the_cli() {
+    let dir = tempfile::tempdir().unwrap();
+    for shape in OVERFLOWING_SHAPES {
+        temp_file(dir.path(), "big.npy", &npy_header_only(shape));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .current_dir(dir.path())
+            .args(["estimate", "--input", "big.npy"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{shape}: {err}");
+        assert!(
+            err.lines().count() == 1 && err.contains("--input") && err.contains("header"),
+            "{shape}: {err}"
+        );
+    }
+}
+
+/// `score` refuses an estimates CSV with a column named twice, naming it
+/// and both places, with status 2 (before, it scored the first column,
+/// here junk, without a word).
+#[test]
+fn score_refuses_an_estimates_column_named_twice() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let v2ref = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_v2ref"))
+            .current_dir(d)
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let synth = ["synth", "--rows", "4", "--samples", "16", "--quiet"];
+    assert!(v2ref(&[&synth[..], &["--out", "set"]].concat())
+        .status
+        .success());
+    let estimated = v2ref(&["estimate", "--sidecar", "set.json"]);
+    assert!(estimated.status.success());
+    // The estimates' columns, then a junk v1_sq before them.
+    let text = String::from_utf8(estimated.stdout).unwrap();
+    let mut lines = text.lines();
+    let header = format!("v1_sq,{}", lines.next().unwrap());
+    let rows: Vec<String> = lines.map(|l| format!("1e9,{l}")).collect();
+    let csv = format!("{header}\n{}\n", rows.join("\n"));
+    temp_file(d, "twice.csv", csv.as_bytes());
+    let out = v2ref(&["score", "--sidecar", "set.json", "--estimates", "twice.csv"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--estimates") && err.contains("v1_sq") && err.contains("columns 1 and 6"),
+        "{err}"
+    );
 }

@@ -59,6 +59,24 @@ fn wait_for(dir: &Path, prefix: &str) {
     }
 }
 
+/// Whether `name` is a temporary of a run: hidden, with `tmp` in it
+/// (`.v2ref-tmp-PID-K-NAME`; the writers before issue 35 named theirs
+/// `.NAME.PID.K.tmp`, so that these tests, run with an older binary, fail
+/// on what it does and not on how it names its files).
+fn is_temporary(name: &OsString) -> bool {
+    let name = name.as_bytes();
+    name.starts_with(b".") && name.windows(3).any(|w| w == b"tmp")
+}
+
+/// Waits until `dir` holds a temporary (the run has begun writing).
+fn wait_for_temporary(dir: &Path) {
+    let start = Instant::now();
+    while !names(dir).iter().any(is_temporary) {
+        assert!(start.elapsed() < Duration::from_secs(60), "no temporary");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
 /// Sends `signal` (a `kill` name) to `child` and returns its status code
 /// and stderr.
 fn stop(mut child: Child, signal: &str) -> (Option<i32>, String) {
@@ -112,46 +130,142 @@ fn read_set(dir: &Path) -> Vec<Vec<u8>> {
 
 /// SIGINT, SIGTERM and SIGHUP each stop a `synth --force` over an existing
 /// set with 128 + the signal's number: the old set stays whole, byte for
-/// byte, and no temporary or lock is left.
+/// byte, and no temporary or lock is left. Every signal is tried before
+/// the verdict, which lists each one's faults.
 #[test]
 fn every_terminating_signal_leaves_the_old_set_whole() {
+    let mut faults = Vec::new();
     for (signal, code) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
         let dir = tempfile::tempdir().unwrap();
         assert!(small_set(dir.path(), "1").status.success());
         let before = read_set(dir.path());
         let listing = names(dir.path());
         let child = long_synth(dir.path(), &["--force", "--seed", "2"]);
-        wait_for(dir.path(), ".v2ref-tmp-");
+        wait_for_temporary(dir.path());
         let (status, err) = stop(child, signal);
-        assert_eq!(status, Some(code), "SIG{signal}: {err}");
-        assert!(err.contains(&format!("SIG{signal}")), "{err}");
-        assert_eq!(read_set(dir.path()), before, "SIG{signal}");
-        assert_eq!(names(dir.path()), listing, "SIG{signal}");
+        if status != Some(code) || !err.contains(&format!("SIG{signal}")) {
+            faults.push(format!("SIG{signal}: status {status:?}, {err:?}"));
+        }
+        if read_set(dir.path()) != before {
+            faults.push(format!("SIG{signal}: the old set changed"));
+        }
+        let after = names(dir.path());
+        if after != listing {
+            faults.push(format!("SIG{signal}: left {after:?}"));
+        }
     }
+    assert!(faults.is_empty(), "{faults:#?}");
+}
+
+/// The sidecar and the lengths of the data files of the set `dir/set`.
+fn set_shape(dir: &Path) -> (Vec<u8>, u64, u64) {
+    let len = |f: &str| std::fs::metadata(dir.join(f)).unwrap().len();
+    let json = std::fs::read(dir.join("set.json")).unwrap();
+    (json, len("set.npy"), len("set.csv"))
+}
+
+/// A signal that comes as a `synth --force` places its files (the moment
+/// its new `.npy` takes the old one's place) leaves a whole set, the old
+/// or the new, and no temporary. The writer of 02610a7 renamed its files
+/// one by one, the CSV after syncing it: a SIGINT then left the new `.npy`
+/// beside the old CSV and sidecar, with status 130.
+#[test]
+fn a_signal_as_the_set_is_placed_leaves_a_whole_set() {
+    use std::os::unix::fs::MetadataExt as _;
+    let rows = [
+        "synth",
+        "--rows",
+        "100000",
+        "--samples",
+        "64",
+        "--quiet",
+        "--csv",
+    ];
+    let new = ["--out", "set", "--seed", "2", "--force"];
+    let reference = tempfile::tempdir().unwrap();
+    let made = v2ref(reference.path()).args(rows).args(new).output();
+    let made = made.unwrap();
+    assert!(made.status.success(), "{made:?}");
+    let dir = tempfile::tempdir().unwrap();
+    assert!(small_set(dir.path(), "1").status.success());
+    let (old_shape, listing) = (set_shape(dir.path()), names(dir.path()));
+    let npy_inode = || std::fs::metadata(dir.path().join("set.npy")).map(|m| m.ino());
+    let old_inode = npy_inode().unwrap();
+    let mut child = v2ref(dir.path())
+        .args(rows)
+        .args(new)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if npy_inode().is_ok_and(|i| i != old_inode) {
+            // SAFETY: a signal to our own child, which we have not yet
+            // waited for, so its pid is not reused; no memory is involved.
+            unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "no end");
+        std::thread::sleep(Duration::from_micros(200));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(matches!(out.status.code(), Some(0 | 130)), "{err}");
+    let shape = set_shape(dir.path());
+    assert!(
+        shape == old_shape || shape == set_shape(reference.path()),
+        "a mixed set: sidecar of {} bytes, .npy of {} bytes, CSV of {} bytes ({err})",
+        shape.0.len(),
+        shape.1,
+        shape.2
+    );
+    assert_eq!(names(dir.path()), listing, "{err}");
 }
 
 /// A second run on an output being written is refused, naming the process
-/// that writes it; the first is not disturbed.
+/// that writes it, whichever command and format it writes (`synth`,
+/// `estimate` to `.csv`, `.npy` and `.fits`, `plan --oifits` and `--svg`);
+/// the first is not disturbed.
 #[test]
 fn a_second_run_on_the_same_output_is_refused_with_the_writer() {
     let dir = tempfile::tempdir().unwrap();
     write_input(dir.path());
-    let first = long_synth(dir.path(), &[]);
-    wait_for(dir.path(), ".v2ref-lock-");
+    // Writes set.npy, set.csv, set.json and set.truth.fits.
+    let first = long_synth(dir.path(), &["--oifits"]);
+    wait_for_temporary(dir.path());
     let pid = first.id().to_string();
-    let tries: [&[&str]; 3] = [
-        &["synth", "--rows", "4", "--samples", "16", "--out", "set"],
-        &["synth", "--rows", "4", "--out", "set", "--force"],
-        &["estimate", "--input", "in.csv", "--out", "set.csv"],
+    let plan = ["plan", "--scans", "64"];
+    let plan_fits = [&plan[..], &["--oifits", "set.truth.fits", "--svg", "p.svg"]].concat();
+    let plan_svg = [&plan[..], &["--svg", "set.json", "--oifits", "p.fits"]].concat();
+    let tries: [(&[&str], &str); 7] = [
+        (
+            &["synth", "--rows", "4", "--samples", "16", "--out", "set"],
+            "--out",
+        ),
+        (
+            &["synth", "--rows", "4", "--out", "set", "--force"],
+            "--out",
+        ),
+        (
+            &["estimate", "--input", "in.csv", "--out", "set.csv"],
+            "--out",
+        ),
+        (
+            &["estimate", "--input", "in.csv", "--out", "set.npy"],
+            "--out",
+        ),
+        (
+            &["estimate", "--input", "in.csv", "--out", "set.truth.fits"],
+            "--out",
+        ),
+        (&plan_fits, "--oifits"),
+        (&plan_svg, "--svg"),
     ];
-    for args in tries {
+    for (args, flag) in tries {
         let out = run(dir.path(), args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(
-            err.contains("--out") && err.contains(&pid),
-            "{args:?}: {err}"
-        );
+        assert!(err.contains(flag) && err.contains(&pid), "{args:?}: {err}");
     }
     let (status, _) = stop(first, "INT");
     assert_eq!(status, Some(130));
@@ -170,7 +284,7 @@ fn a_file_made_at_a_target_during_the_run_is_kept() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    wait_for(dir.path(), ".v2ref-tmp-");
+    wait_for_temporary(dir.path());
     std::fs::write(dir.path().join("set.json"), "mine\n").unwrap();
     let status = child.wait().unwrap();
     let mut err = String::new();
@@ -194,19 +308,19 @@ fn a_file_made_at_a_target_during_the_run_is_kept() {
 fn a_dead_processs_temporaries_are_removed_by_a_later_run() {
     let dir = tempfile::tempdir().unwrap();
     let child = long_synth(dir.path(), &[]);
-    wait_for(dir.path(), ".v2ref-tmp-");
+    wait_for_temporary(dir.path());
     let (status, _) = stop(child, "KILL");
     assert_eq!(status, None);
-    let dead: Vec<_> = names(dir.path());
-    assert!(dead
-        .iter()
-        .any(|n| n.as_bytes().starts_with(b".v2ref-tmp-")));
+    let dead: Vec<OsString> = names(dir.path()).into_iter().filter(is_temporary).collect();
+    assert!(!dead.is_empty());
     let live = format!(".v2ref-tmp-{}-0-set.npy", std::process::id());
     for f in [live.as_str(), "v2ref-tmp-1-0-x", ".v2ref-tmp-x"] {
         std::fs::write(dir.path().join(f), "kept").unwrap();
     }
     assert!(small_set(dir.path(), "3").status.success());
     let after: Vec<_> = names(dir.path());
+    let left: Vec<_> = dead.iter().filter(|n| after.contains(n)).collect();
+    assert!(left.is_empty(), "the dead run's {left:?} left");
     let expect = [".v2ref-tmp-x", &live, "set.csv", "set.json", "set.npy"];
     let mut expect: Vec<OsString> = expect.iter().map(OsString::from).collect();
     expect.push("v2ref-tmp-1-0-x".into());
@@ -256,6 +370,16 @@ fn a_non_utf8_name_is_kept_as_given() {
         .map(OsString::from_vec)
         .collect();
     assert_eq!(names(dir.path()), expect);
+    // The sidecar finds its rows (JSON holds the name lossily: before, the
+    // rows `s\u{fffd}\u{fffd}.npy` it named were not found).
+    let sidecar = OsString::from_vec(b"s\xff\xfe.json".to_vec());
+    let out = v2ref(dir.path())
+        .args(["estimate", "--sidecar"])
+        .arg(&sidecar)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 5);
 }
 
 /// Two outputs of one run on the same file are refused before any work,

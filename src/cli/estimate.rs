@@ -170,12 +170,24 @@ fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<R
     v2ref::commands::estimate::estimator(&inputs, options, cs, calibrator, args.threads)
 }
 
+/// The `.npy` rows of the set whose sidecar is `sidecar_path`, named `npy`
+/// in it (relative to its folder). A sidecar's names are JSON text, where
+/// a name that is not UTF-8 can only be written lossily (U+FFFD for each
+/// bad byte): when `npy` is the lossy form of the sidecar's own name with
+/// `.npy` (how `synth` names a set), that name is the file, byte for byte.
+fn set_rows_path(sidecar_path: &Path, npy: &str) -> PathBuf {
+    let beside = sidecar_path.with_extension("npy");
+    match beside.file_name() {
+        Some(name) if name.to_string_lossy() == npy => beside,
+        _ => sidecar_path.parent().unwrap_or(Path::new(".")).join(npy),
+    }
+}
+
 fn source(args: &Args) -> Result<Source> {
     match &args.sidecar {
         Some(path) => {
             let sidecar = super::score::read_sidecar(path)?;
-            let folder = path.parent().unwrap_or(Path::new("."));
-            let default_input = folder.join(&sidecar.data.npy);
+            let default_input = set_rows_path(path, &sidecar.data.npy);
             let config = Configuration::from_sidecar(sidecar);
             // Other rows than the set's (--input) may be as many as they
             // like, but of the set's N.
