@@ -281,6 +281,7 @@ pub(crate) fn settle(entry: &Path, param: &'static str, held: &[PathBuf]) -> Res
         let Some(record) = Record::parse(&bytes) else {
             return settle_cut_short(entry, &bytes, param);
         };
+        let record = located(record, entry, param)?;
         let mut locks = Vec::new();
         for m in &record.members {
             if !held.contains(&m.target) {
@@ -307,6 +308,45 @@ pub(crate) fn settle(entry: &Path, param: &'static str, held: &[PathBuf]) -> Res
         return Ok(());
     }
     Ok(())
+}
+
+/// The record as found at `entry`: as written, or, when its folder was
+/// moved or copied since (the entry is not where the record puts it), its
+/// members taken in the entry's folder. A set of several folders found
+/// elsewhere cannot be placed: refused, naming the entry.
+fn located(record: Record, entry: &Path, param: &'static str) -> Result<Record> {
+    let here = real_location(&parent_of(entry));
+    let entry = here.join(entry.file_name().unwrap_or_default());
+    if record.entries().contains(&entry) {
+        return Ok(record);
+    }
+    let folder = parent_of(&record.members[0].target);
+    let one_folder = record.members.iter().all(|m| {
+        [&m.target, &m.temp]
+            .into_iter()
+            .chain(&m.old)
+            .all(|p| parent_of(p) == folder)
+    });
+    if !one_folder {
+        return Err(Error::Invalid {
+            param,
+            reason: format!(
+                "{}: the commit record of a set of several folders, moved here from {}; its files cannot be told whole: remove it and check the set",
+                entry.display(),
+                folder.display()
+            ),
+        });
+    }
+    let moved = |p: &Path| here.join(p.file_name().unwrap_or_default());
+    let members = record.members.iter().map(|m| Member {
+        target: moved(&m.target),
+        temp: moved(&m.temp),
+        old: m.old.as_deref().map(moved),
+    });
+    Ok(Record {
+        members: members.collect(),
+        ..record
+    })
 }
 
 /// An entry cut short: its writer was killed while writing it, before any
