@@ -200,8 +200,13 @@ impl Commit {
         let entries = record.entries();
         let commit = Commit { record };
         fault::point("before-journal");
+        // A failed write (a full disk) leaves no entry behind.
+        let failed = |e: &Path, err| {
+            commit.remove_entries();
+            output_error(e, err)
+        };
         for e in &entries[1..] {
-            write_synced(e, &bytes).map_err(|err| output_error(e, err))?;
+            write_synced(e, &bytes).map_err(|err| failed(e, err))?;
         }
         sync_folders_of(entries[1..].to_vec());
         let home = &entries[0];
@@ -209,7 +214,7 @@ impl Commit {
             let _ = write_synced(home, &bytes[..bytes.len() / 2]);
             fault::point("in-journal");
         }
-        write_synced(home, &bytes).map_err(|err| output_error(home, err))?;
+        write_synced(home, &bytes).map_err(|err| failed(home, err))?;
         sync_folder(&parent_of(home));
         fault::point("after-journal");
         Ok(commit)
