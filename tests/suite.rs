@@ -55,6 +55,7 @@ mod properties;
 mod readme;
 mod reproduce;
 mod robustness_cli;
+mod robustness_commit;
 mod robustness_files;
 mod robustness_lib;
 mod robustness_limits;

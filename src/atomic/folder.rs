@@ -1,6 +1,8 @@
 //! A folder written as a whole: filled as a temporary folder beside its
-//! target, which then takes the target's place by rename, the old folder
-//! moved aside first and removed last (put back if the rename fails).
+//! target, which then takes the target's place: swapped with the old
+//! folder in one step where the system can (Linux's `RENAME_EXCHANGE`),
+//! else by rename, the old folder moved aside first (put back if the
+//! rename fails); the old folder removed last.
 
 use super::lock::{name_bytes, remove_stale_temporaries, temp_name, OutputLock};
 use super::target::parent_of;
@@ -88,6 +90,17 @@ impl TempFolder {
     fn place(mut self) -> Result<()> {
         let io = |e| Error::file(self.param, &self.target, e);
         let signals_wait = crate::cleanup::hold_commit();
+        // One atomic swap where the system has it: no instant without a
+        // folder at the target, even for a run killed there.
+        if std::fs::symlink_metadata(&self.target).is_ok() && exchange(&self.path, &self.target) {
+            self.placed = true;
+            drop(signals_wait);
+            let _ = std::fs::remove_file(self.target.join(FOLDER_MARKER));
+            // The old folder, now under the temporary's name.
+            let _ = std::fs::remove_dir_all(&self.path);
+            crate::cleanup::unregister(&self.path);
+            return Ok(());
+        }
         let old = match std::fs::symlink_metadata(&self.target) {
             Ok(_) => {
                 let name = self.target.file_name().map(name_bytes).unwrap_or_default();
@@ -124,6 +137,35 @@ impl Drop for TempFolder {
             crate::cleanup::unregister(&self.path);
         }
     }
+}
+
+/// Swaps the folders `a` and `b` in one step (`renameat2` with
+/// `RENAME_EXCHANGE`); false where the system or the file system cannot,
+/// nothing then moved.
+#[cfg(any(target_os = "linux", target_os = "android"))]
+fn exchange(a: &Path, b: &Path) -> bool {
+    use std::os::unix::ffi::OsStrExt as _;
+    let c = |p: &Path| std::ffi::CString::new(p.as_os_str().as_bytes()).ok();
+    let (Some(a), Some(b)) = (c(a), c(b)) else {
+        return false;
+    };
+    // SAFETY: both paths are NUL-terminated strings that live through the
+    // call; `renameat2` only reads them.
+    let r = unsafe {
+        libc::renameat2(
+            libc::AT_FDCWD,
+            a.as_ptr(),
+            libc::AT_FDCWD,
+            b.as_ptr(),
+            libc::RENAME_EXCHANGE,
+        )
+    };
+    r == 0
+}
+
+#[cfg(not(any(target_os = "linux", target_os = "android")))]
+fn exchange(_: &Path, _: &Path) -> bool {
+    false
 }
 
 /// Makes (and registers) the first free temporary folder for `name`

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 pub(crate) const TEMP_PREFIX: &str = ".v2ref-tmp-";
 
 /// The prefix of the lock file of an output.
-const LOCK_PREFIX: &str = ".v2ref-lock-";
+pub(crate) const LOCK_PREFIX: &str = ".v2ref-lock-";
 
 /// The longest file name (bytes) on the file systems v2ref writes to
 /// (`NAME_MAX` of Linux, the BSDs and macOS).
@@ -63,17 +63,32 @@ pub(crate) struct OutputLock {
     _file: File,
 }
 
+/// The 16 hexadecimal digits that name `target`'s lock file and its
+/// commit record (`src/atomic/journal.rs`) in its folder.
+pub(crate) fn name_hash(target: &Path) -> String {
+    let name = target.file_name().map(name_bytes).unwrap_or_default();
+    format!("{:016x}", fnv1a(&name))
+}
+
 /// The lock file of `target` (in the folder `target` is written in).
 fn lock_path(target: &Path) -> PathBuf {
-    let name = target.file_name().map(name_bytes).unwrap_or_default();
-    super::target::parent_of(target).join(format!("{LOCK_PREFIX}{:016x}", fnv1a(&name)))
+    super::target::parent_of(target).join(format!("{LOCK_PREFIX}{}", name_hash(target)))
 }
 
 impl OutputLock {
     /// Takes the lock of `target` (named `param` in errors), or refuses
     /// with the process that holds it.
     pub(crate) fn acquire(target: &Path, param: &'static str) -> Result<OutputLock> {
-        let path = lock_path(target);
+        OutputLock::acquire_at(lock_path(target), target, param)
+    }
+
+    /// Takes the lock file `path` of the output `target` (`target` only
+    /// names it in errors).
+    pub(crate) fn acquire_at(
+        path: PathBuf,
+        target: &Path,
+        param: &'static str,
+    ) -> Result<OutputLock> {
         let io = |e| Error::file(Some(param), target, e);
         loop {
             let mut file = std::fs::OpenOptions::new()
@@ -202,33 +217,79 @@ pub(crate) fn is_alive(_: u32) -> bool {
 }
 
 /// Removes, in `dir`, the temporary files (and folders holding v2ref's
-/// marker) of v2ref processes that no longer run (killed before they could clean up: SIGKILL, a power cut);
-/// returns how many. Failures are ignored: the run goes on with its own
-/// fresh names.
+/// marker) of v2ref processes that no longer run (killed before they could
+/// clean up: SIGKILL, a power cut), under today's names and the names of
+/// earlier versions ([`old_temp_pid`]); returns how many. A set such a
+/// process left half placed is settled first (`src/atomic/journal.rs`),
+/// and the files a commit record still names are kept. Failures are
+/// ignored: the run goes on with its own fresh names.
 pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
+    let kept = super::journal::settle_folder(dir);
     let Ok(entries) = std::fs::read_dir(dir) else {
         return 0;
     };
     let mut removed = 0;
     for entry in entries.flatten() {
-        let Some(pid) = temp_pid(&name_bytes(&entry.file_name())) else {
+        let name = entry.file_name();
+        let bytes = name_bytes(&name);
+        let Ok(kind) = entry.file_type() else {
             continue;
         };
-        if pid == std::process::id() || is_alive(pid) {
+        let pid = match temp_pid(&bytes) {
+            Some(pid) => pid,
+            None => match old_temp_pid(&bytes, kind.is_dir()) {
+                Some(pid) => pid,
+                None => continue,
+            },
+        };
+        if pid == std::process::id() || is_alive(pid) || kept.contains(&name) {
             continue;
         }
         let path = entry.path();
-        let gone = match entry.file_type() {
-            Ok(t) if t.is_file() => std::fs::remove_file(&path).is_ok(),
+        let gone = if kind.is_file() {
+            std::fs::remove_file(&path).is_ok()
+        } else if kind.is_dir() && super::folder::is_own_folder(&path) {
             // A folder only when it is v2ref's own (its marker inside).
-            Ok(t) if t.is_dir() && super::folder::is_own_folder(&path) => {
-                std::fs::remove_dir_all(&path).is_ok()
-            }
-            _ => false,
+            std::fs::remove_dir_all(&path).is_ok()
+        } else {
+            false
         };
         removed += usize::from(gone);
     }
     removed
+}
+
+/// The process id in the name of a temporary of v2ref before 2026-11-26:
+/// a file `.NAME.PID.K.tmp`, or a folder `.NAME.tmp-PID` or `.NAME.old-PID`
+/// (removed only with v2ref's marker inside, as today's folders). Both
+/// numbers all digits and NAME not empty: a name that merely looks similar
+/// is not one.
+fn old_temp_pid(name: &[u8], folder: bool) -> Option<u32> {
+    let digits = |b: &[u8]| -> Option<u32> {
+        if b.is_empty() || !b.iter().all(u8::is_ascii_digit) {
+            return None;
+        }
+        std::str::from_utf8(b).ok()?.parse().ok()
+    };
+    let rest = name.strip_prefix(b".")?;
+    if folder {
+        let at = rest
+            .windows(5)
+            .rposition(|w| w == b".tmp-" || w == b".old-")?;
+        return if at == 0 {
+            None
+        } else {
+            digits(&rest[at + 5..])
+        };
+    }
+    let stem = rest.strip_suffix(b".tmp")?;
+    let k_at = stem.iter().rposition(|&b| b == b'.')?;
+    digits(&stem[k_at + 1..])?;
+    let pid_at = stem[..k_at].iter().rposition(|&b| b == b'.')?;
+    if pid_at == 0 {
+        return None;
+    }
+    digits(&stem[pid_at + 1..k_at])
 }
 
 #[cfg(test)]
@@ -245,6 +306,28 @@ mod tests {
         assert!(short.ends_with(b"-0-x.npy"), "{short:?}");
         assert_eq!(temp_pid(b".v2ref-tmp-12x-0-a"), None);
         assert_eq!(temp_pid(b"other"), None);
+    }
+
+    #[test]
+    fn the_temporaries_of_earlier_versions_are_told_by_their_exact_names() {
+        assert_eq!(old_temp_pid(b".set.npy.4242.0.tmp", false), Some(4242));
+        assert_eq!(old_temp_pid(b".a.b.17.3.tmp", false), Some(17));
+        assert_eq!(old_temp_pid(b".out.tmp-99", true), Some(99));
+        assert_eq!(old_temp_pid(b".golden.old-7", true), Some(7));
+        let look_alike: [(&[u8], bool); 9] = [
+            (b"set.npy.4242.0.tmp", false),
+            (b"..4242.0.tmp", false),
+            (b".set.npy.42x.0.tmp", false),
+            (b".set.npy.4242..tmp", false),
+            (b".set.npy.4242.0.tmp", true),
+            (b".out.tmp-99", false),
+            (b".out.tmp-", true),
+            (b"..tmp-99", true),
+            (b".out.tmp-99a", true),
+        ];
+        for (name, folder) in look_alike {
+            assert_eq!(old_temp_pid(name, folder), None, "{name:?}");
+        }
     }
 
     #[test]

@@ -3,7 +3,9 @@
 //! (`.v2ref-tmp-PID-K-NAME`, at most 255 bytes; registered with
 //! [`crate::cleanup`], so that a terminating signal removes it), which
 //! takes the target's place only once it is complete and synced, alone or
-//! with the rest of its set ([`set`]). Targets are checked ([`target`])
+//! with the rest of its set ([`set`]; the set's renames under a commit
+//! record, [`journal`], so that a run killed between two of them is
+//! completed or undone by the next run). Targets are checked ([`target`])
 //! and locked for the run (`src/atomic/lock.rs`); temporaries of processes that no
 //! longer run are removed by the next run that writes beside them.
 //!
@@ -11,6 +13,7 @@
 //!   (`.npy`, CSV, OIFITS, text: [`write_text_atomic`]).
 //! - A folder: [`replace_folder`] (`reproduce --out`, `golden --update`).
 
+pub mod journal;
 pub(crate) mod lock;
 pub mod set;
 pub mod target;
@@ -117,6 +120,18 @@ impl TempTarget {
                 std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))
             }
             Err(e) => Err(self.io(e)),
+        }
+    }
+
+    /// This file as a member of a set's commit record (absolute paths),
+    /// with the old file kept aside.
+    pub(crate) fn member(&self, old: &Option<PathBuf>) -> journal::Member {
+        let dir = journal::real_location(&target::parent_of(&self.target));
+        let beside = |p: &Path| dir.join(p.file_name().unwrap_or_default());
+        journal::Member {
+            target: beside(&self.target),
+            temp: beside(&self.temp),
+            old: old.as_deref().map(beside),
         }
     }
 

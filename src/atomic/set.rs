@@ -9,14 +9,17 @@
 //! [`OutputSet::write`] runs the writers: each finished file waits, complete
 //! and synced, as its temporary; once every writer has succeeded, the
 //! temporaries take their targets' places one after the other, while the
-//! signal handler waits ([`crate::cleanup::hold_commit`]). If one of these
-//! renames fails, the files already placed are put back as they were.
+//! signal handler waits ([`crate::cleanup::hold_commit`]), under a commit
+//! record ([`super::journal`]: a run killed there is completed by the next
+//! run that writes or reads a file of the set). If one of these renames
+//! fails, the files already placed are put back as they were.
 //!
 //! Without `force`, a file is placed with `link` then `unlink`: a file that
 //! appeared at the target during the run (a user's, another program's) is
 //! never replaced, the run is refused instead. With `force`, the old file
 //! is kept as a hard link until the whole set is placed.
 
+use super::journal::{self, real_location, Commit};
 use super::lock::OutputLock;
 use super::TempTarget;
 use crate::{Error, Result};
@@ -47,6 +50,12 @@ impl OutputSet {
         let mut locks = Vec::with_capacity(targets.len());
         for (path, param) in targets {
             locks.push(OutputLock::acquire(path, param)?);
+        }
+        // A set a killed run left half placed is completed (or rolled
+        // back) before this run replaces any of it.
+        let held: Vec<PathBuf> = targets.iter().map(|(p, _)| real_location(p)).collect();
+        for (target, (_, param)) in held.iter().zip(targets) {
+            journal::settle(&journal::entry_of(target), param, &held)?;
         }
         for (path, _) in targets {
             super::lock::remove_stale_temporaries(&super::target::parent_of(path));
@@ -147,29 +156,69 @@ struct Placed {
 }
 
 /// Places every staged file, while signals wait; on a failure, puts back
-/// what was placed.
+/// what was placed. A set of two files or more is placed under a commit
+/// record ([`journal`]): a run killed during the renames is completed by
+/// the next run that writes or reads one of its files.
 fn place_all(staged: Vec<TempTarget>, force: bool) -> Result<()> {
     let _signals_wait = crate::cleanup::hold_commit();
+    let olds = keep_olds(&staged, force)?;
+    let commit = if staged.len() > 1 {
+        let members = staged.iter().zip(&olds).map(|(t, old)| t.member(old));
+        match Commit::write(members.collect(), force) {
+            Ok(c) => Some(c),
+            Err(e) => {
+                olds.into_iter()
+                    .flatten()
+                    .for_each(|o| drop(std::fs::remove_file(o)));
+                return Err(e);
+            }
+        }
+    } else {
+        None
+    };
     let mut placed: Vec<Placed> = Vec::with_capacity(staged.len());
-    for temp in staged {
-        let old = if force { temp.keep_old()? } else { None };
+    for (k, (temp, old)) in staged.into_iter().zip(olds).enumerate() {
         match temp.place(force) {
             Ok(target) => placed.push(Placed { target, old }),
             Err(e) => {
                 if let Some(old) = old {
                     let _ = std::fs::remove_file(old);
                 }
+                // The record first: a run killed while the files are put
+                // back then removes the temporaries, never rolls forward.
+                commit.into_iter().for_each(Commit::abandon);
                 undo(placed);
                 return Err(e);
             }
         }
+        journal::fault::point(&format!("after-rename-{}", k + 1));
     }
-    for p in placed {
-        if let Some(old) = p.old {
-            let _ = std::fs::remove_file(old);
-        }
+    match commit {
+        Some(c) => c.finish(),
+        None => placed
+            .into_iter()
+            .filter_map(|p| p.old)
+            .for_each(|o| drop(std::fs::remove_file(o))),
     }
     Ok(())
+}
+
+/// With `force`, the file at each target kept as a hard link beside it
+/// until the set is placed (removed again if one cannot be kept).
+fn keep_olds(staged: &[TempTarget], force: bool) -> Result<Vec<Option<PathBuf>>> {
+    let mut olds = Vec::with_capacity(staged.len());
+    for temp in staged {
+        match if force { temp.keep_old() } else { Ok(None) } {
+            Ok(old) => olds.push(old),
+            Err(e) => {
+                olds.into_iter()
+                    .flatten()
+                    .for_each(|o| drop(std::fs::remove_file(o)));
+                return Err(e);
+            }
+        }
+    }
+    Ok(olds)
 }
 
 /// Puts back the files that were at the targets before (or removes the new
