@@ -46,6 +46,7 @@ fn row_estimator_matches_its_oracle() {
                             .zip(&model.signal.continuum)
                             .map(|(m, c)| 1.5 * 1.5 + c + m)
                             .collect(),
+                        other => panic!("no variance for {other:?}"),
                     };
                     let want = estimate_row_oracle(row, &bins, &variance, est.calibration());
                     let got = est.estimate(row);
@@ -313,7 +314,7 @@ fn model_convention_is_biased_under_piston_and_counts_is_not() {
                 aperture_m: 0.45,
                 outer_scale_m: None,
                 reference: v2ref::piston::PistonReference::Mean,
-                sub_samples: v2ref::piston::scan::DEFAULT_SUB_SAMPLES,
+                sub_samples: v2ref::piston::DEFAULT_SUB_SAMPLES,
             }),
             ..Inputs::default()
         };

@@ -221,7 +221,7 @@ fn synth_rows(rows: u64) -> Case {
 /// inverse FFT of M points (realfft, on one thread: the 2-thread ratio is
 /// against a floor whose transform does not scale).
 fn piston_series() -> Case {
-    use v2ref::piston::series::synthesize_series;
+    use v2ref::piston::synthesize_series;
     use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
     const LEN: usize = 1 << 20;
     const DT_S: f64 = 1e-3;
@@ -254,7 +254,7 @@ fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: 
     use rand_distr::{Distribution, StandardNormal};
     use realfft::num_complex::Complex;
     const BLOCK: usize = 1 << 15;
-    let m = v2ref::piston::series::sequence_length(len);
+    let m = v2ref::piston::sequence_length(len);
     let (half, dnu) = (m / 2, 1.0 / (m as f64 * dt_s));
     let mut spectrum_half = vec![Complex::new(0.0, 0.0); half + 1];
     spectrum_half[1..half]

@@ -58,6 +58,7 @@ const DIRICHLET_SERIES_BELOW: f64 = 1e-7;
 /// The scan's response to a unit spectral line, as a function of
 /// `u = σ δx − k/N` (cycles per sample).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Kernel {
     /// `Σ_j e^{2πiju}`: exact for N samples (periodic in u with period 1).
     Dirichlet,
@@ -158,6 +159,7 @@ pub fn convolution_estimates(
 
 /// How the raw estimates are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Method {
     /// FFT of the synthesized interferogram.
     Dft,

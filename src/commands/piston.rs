@@ -12,7 +12,7 @@ use crate::piston::model_comparison::PsdComparison;
 use crate::piston::report::{ComparisonNote, PistonReport, PistonSetting};
 use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
-use crate::simulator::record::{InputsRecord, SamplingRecord};
+use crate::record::{InputsRecord, SamplingRecord};
 
 /// The fringe frequencies when none is given, Hz.
 pub const DEFAULT_FRINGE_HZ: [f64; 2] = [300.0, 1000.0];
@@ -42,6 +42,7 @@ pub struct PistonRequest {
 
 /// The length of the observation `piston` reports σ of the mean for.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum ObservationLength {
     /// n consecutive scans.
     Scans(u64),

@@ -110,6 +110,7 @@ pub struct PistonSpectrum {
 /// Which differential-piston spectrum the sequences are drawn from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum PistonPsdModel {
     /// The two-aperture spectral integral of this module (Kolmogorov, or von
     /// Kármán with an outer scale; any wind direction).

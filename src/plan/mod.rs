@@ -51,6 +51,7 @@
 
 pub mod answer;
 mod candidates;
+#[cfg(feature = "internals")]
 pub mod figure;
 pub mod observation;
 pub mod photometry;
@@ -90,6 +91,7 @@ pub const MIN_SAMPLES: usize = 8;
 /// The two estimators.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Estimator {
     /// V1² (sum of squared moduli).
     V1,
@@ -100,11 +102,22 @@ pub enum Estimator {
 /// What to reach.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum Target {
     /// σ(V²) of the averaged measurement.
     SigmaV2(f64),
     /// A time budget, s.
     TimeBudgetS(f64),
+}
+
+impl Target {
+    /// The σ(V²) to reach, when that is the target (not a time budget).
+    pub fn sigma_v2(self) -> Option<f64> {
+        match self {
+            Target::SigmaV2(s) => Some(s),
+            Target::TimeBudgetS(_) => None,
+        }
+    }
 }
 
 /// Everything a plan needs.

@@ -21,6 +21,7 @@ use crate::piston::turbulence::Turbulence;
 
 /// How hard the Monte Carlo providers work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Effort {
     /// Fewer trials and scans, same code paths (tests, `reproduce --quick`).
     Quick,

@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 /// How the rows of a set with piston lie in time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum RowLayout {
     /// Independent sequences, scans spread out in each: the statistics of
     /// one scan (the default; the rows of every earlier version).

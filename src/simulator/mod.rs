@@ -17,7 +17,9 @@ pub mod estimate;
 pub mod inputs;
 pub mod layout;
 pub mod model;
-pub mod record;
+#[cfg(feature = "internals")]
+pub(crate) mod record;
+#[cfg(feature = "internals")]
 pub mod report;
 pub mod rows;
 pub mod run;

@@ -30,6 +30,7 @@ use scaling::scaling_claims;
 
 /// Where a curve |y(f)| falls below a level for good (f increasing).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Crossing {
     /// Every point is below the level.
     BelowRange,

@@ -13,7 +13,7 @@
 //!
 //! Each threshold carries its Monte Carlo interval: for the three level
 //! crossings that of the claims (the frequencies where |bias| is within
-//! [`SIGNIFICANCE_SIGMAS`](crate::tolerance::SIGNIFICANCE_SIGMAS) standard
+//! `tolerance::SIGNIFICANCE_SIGMAS` (3) standard
 //! errors of the level, plus half a grid step each side); for "V1
 //! unbiased from", from the last frequency where |bias V1| is significant
 //! to the threshold itself (the grid step that brackets it).
