@@ -61,12 +61,16 @@
 //! A dependent crate with the default features sees the stable surface:
 //! [`prelude`], [`oracle`], the paper's parts ([`formalism`], [`bias`],
 //! [`noise`], [`piston`], [`simulator`], [`conformance`], [`plan`]), [`math`],
-//! [`montecarlo`], [`bounds`], [`cancel`] and [`error`]. Each item has one
+//! [`montecarlo`], [`bounds`], [`cancel`], and [`Error`] with [`Result`]. Each item has one
 //! path; the two gathering modules, [`prelude`] and [`oracle`], give a
 //! second one to what they collect. The listing of this surface is
 //! committed (`lib/public-api/default.txt`) and CI fails when the library's
 //! differs from it; its enums and its error are `#[non_exhaustive]`, so a
-//! new variant is not a breaking change.
+//! new variant is not a breaking change. A function's name says what it
+//! runs or returns: [`simulator::simulate`] (a set of noisy rows with every
+//! effect), [`piston::simulate_piston`] (scans through piston sequences),
+//! [`noise::simulation::simulate_noisy`] (noisy scans without piston), and
+//! [`bias::finite_scan::finite_scan_bias`] (the finite scan's bias).
 //!
 //! Two features open more, for the workspace's own crates, and are **not
 //! stable**: they may change in any release, and a pipeline should not turn
@@ -94,7 +98,7 @@
 //! | the paper's cases, figures, claims, golden files and plots | `reproduction` (internal) |
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
-//! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`error`] |
+//! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`Error`] |
 //! | tolerances (one home) | `tolerance` (feature `testing`) |
 //! | what a computation was asked, as plain values, and its record in the answers | `record` (internal) |
 //!
@@ -105,7 +109,7 @@
 //! so that each can be read, tested and changed with only what is under it
 //! in mind:
 //!
-//! 1. foundation: [`error`], `tolerance`, [`bounds`], [`cancel`], `cleanup`, [`math`], [`montecarlo`], `words` (the words that name each choice);
+//! 1. foundation: `error` ([`Error`]), `tolerance`, [`bounds`], [`cancel`], `cleanup`, [`math`], [`montecarlo`], `words` (the words that name each choice);
 //! 2. [`formalism`];
 //! 3. `record` (the inputs of a computation as plain values, and the record of them an answer carries);
 //! 4. [`bias`];
@@ -155,10 +159,10 @@
 //! | §3 Fig. 0, normalization of V2 | $\big(\sum_k W\delta\sigma\big)^2$ against the stroke | [`bias::normalization::deviation_curve`] | `tests/bias_normalization.rs` |
 //! | §3 Fig. 1, bandwidth bias | $V_1 - V_\mathrm{mono}$, $V_2 - V_\mathrm{mono}$ against S | [`bias::bandwidth::curve`] | `tests/bias_bandwidth.rs` |
 //! | §4 dispersion | $\phi = \tfrac12 D(\sigma-\sigma_0)^2$, peak to peak $P = \tfrac12 D(\Delta\sigma/2)^2$ | [`formalism::phase::SpectralPhase`], [`bias::dispersion`] | `tests/bias_dispersion.rs` |
-//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::fresnel::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
-//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::bias`] | `tests/bias_finite_scan.rs` |
+//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
+//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::finite_scan_bias`] | `tests/bias_finite_scan.rs` |
 //! | §6 turbulence and the differential-piston spectrum | Kolmogorov / von Kármán, $r_0$ from seeing, two-aperture filter | [`piston::turbulence`] | `tests/turbulence.rs` |
-//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`] | `tests/piston.rs`, `tests/piston_claims.rs` |
+//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate_piston`] | `tests/piston.rs`, `tests/piston_claims.rs` |
 //! | Appendix, the DFT and the raw estimators | $B_k = \sum_i M_i e^{-2\pi i\,ik/N}$, $V_1^2 = \sum_{K}\lvert B_k\rvert^2$, $V_2^2 = \lvert\sum_{K} B_k\rvert^2$ | [`formalism::estimator::dft`], [`formalism::estimator::raw_estimates`], [`formalism::estimator::BinWindow`] (slow oracle: [`formalism::oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
 //! | Appendix, additive-noise bias | $\lvert K\rvert \sum_i v_i$ and $\sum_i v_i \lvert\sum_K e^{-2\pi i\,ik/N}\rvert^2$ | [`formalism::estimator::noise_bias`] | `tests/noise.rs` |
 //! | Appendix, noise moments, var $V_1^2$, var $V_2^2$, SNR (printed and exact) | $\mathrm{SNR} = \langle V^2\rangle/\sqrt{\operatorname{var} V^2}$ | [`noise::moments()`](noise::moments()), [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
@@ -172,6 +176,8 @@
 //! | Figs. 0–5 as data, golden files, claims | | `reproduction::figures::all`, `reproduction::golden::check`, `reproduction::claims::evaluate` (internal) | `tests/golden.rs`, `tests/claims.rs` |
 
 #![warn(missing_docs)]
+// A type a public item shows (a field, an argument, a return) is public too.
+#![warn(unnameable_types)]
 
 /// Declares modules the stable surface is built on but does not show: public
 /// with the feature `gate` (turned on by the workspace's command line and
@@ -191,7 +197,7 @@ pub mod bias;
 pub mod bounds;
 pub mod cancel;
 pub mod conformance;
-pub mod error;
+pub(crate) mod error;
 pub mod formalism;
 pub mod math;
 pub mod montecarlo;

@@ -11,8 +11,8 @@
 //! It sits just above [`crate::formalism`], below the paper's effects
 //! ([`crate::bias`], [`crate::noise`], [`crate::piston`]) whose answers
 //! carry it. The module is internal (feature `internals`); the records a
-//! public answer carries are public at [`crate::simulator::inputs`] and
-//! [`crate::piston::scan`] (for [`PistonReference`]).
+//! public answer carries are public at [`crate::simulator`] and
+//! [`crate::piston`] (for [`PistonReference`]).
 
 use crate::error::{self, Result};
 // (The answers' records, below, are built for the edges only.)

@@ -11,7 +11,7 @@ use v2ref::montecarlo::unit_rng;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
 use v2ref::noise::Formula;
-use v2ref::piston::{simulate as simulate_piston, Detector, RunSize, ScanSetup};
+use v2ref::piston::{simulate_piston, Detector, RunSize, ScanSetup};
 use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref::tolerance::{MC_SIGMAS, PATHS_AGREE_ABS, ROUNDING_REL};
 use v2ref::{assert_abs_eq, assert_rel_eq, assert_within_sigmas};

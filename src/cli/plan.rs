@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::parameters::{Parameter, Physical};
-use v2ref::piston::turbulence::PistonSpectrum;
+use v2ref::piston::spectrum::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
 use v2ref::{Error, Result};

@@ -10,7 +10,7 @@ use crate::formalism::observation::Observation;
 use crate::parameters::Physical;
 use crate::piston::model_comparison::PsdComparison;
 use crate::piston::report::{ComparisonNote, PistonReport, PistonSetting};
-use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::record::{InputsRecord, SamplingRecord};
 
@@ -64,7 +64,7 @@ pub struct PistonAnswer {
 
 /// [`run`], and the observation's σ of `req.observation` at each fringe
 /// frequency (noise-free V1², V2² of contiguous scans,
-/// [`crate::plan::observation`]).
+/// `plan::observation`).
 pub fn run_with_observation(
     prepared: &Prepared,
     p: &Physical,

@@ -4,7 +4,7 @@
 //!
 //! - [`turbulence`]: Kolmogorov turbulence, r0 and seeing.
 //! - [`spectrum`]: the temporal spectrum of the differential piston
-//!   ([`spectrum::PistonSpectrum`], also at `piston::turbulence::PistonSpectrum`).
+//!   ([`spectrum::PistonSpectrum`]).
 //! - [`transverse`]: the transverse integrals G and S under that spectrum,
 //!   by quadrature and tabulated ([`transverse::TransverseTable`]).
 //! - [`three_slope`]: the three-slope model of that spectrum (Conan et al.
@@ -14,15 +14,15 @@
 //! - `series`: piston sequences synthesised from that spectrum.
 //! - `fringe_table`: the fringe tabulated against OPD.
 //! - `scan`: the detectors, the packet reference and one scan's samples.
-//! - [`calibration`]: the piston-free calibration of each detector.
+//! - `calibration` ([`Calibration`]): the piston-free calibration of each detector.
 //! - `simulation`: the Monte Carlo over consecutive scans (Figs. 4, 5).
 //! - `report` (internal): a run's answer (the CLI's JSON, the Python dict).
 //!
 //! The items of `series`, `fringe_table`, `scan`, `sequences` and
-//! `simulation` are public here, as `v2ref::piston::simulate` etc. (their
+//! `simulation` are public here, as `v2ref::piston::simulate_piston` etc. (their
 //! one path).
 
-pub mod calibration;
+pub(crate) mod calibration;
 pub(crate) mod fringe_table;
 #[cfg(feature = "internals")]
 pub mod model_comparison;

@@ -26,7 +26,7 @@
 //! - **the observation**: consecutive scans share the atmosphere, so in
 //!   target mode the fastest [`CANDIDATES`] settings of each
 //!   estimator are solved again with σ of the mean of n consecutive scans
-//!   measured on contiguous piston sequences ([`observation`], n on both
+//!   measured on contiguous piston sequences (`observation`, n on both
 //!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
 //!   the plan recommends among them; [`verify`] simulates the
 //!   recommended observation.
@@ -49,18 +49,21 @@
 //! convention asked for); the piston packet is centred on the scan-mean
 //! piston.
 
-pub mod answer;
+pub(crate) mod answer;
 mod candidates;
 #[cfg(feature = "internals")]
 pub mod figure;
-pub mod observation;
+pub(crate) mod observation;
 pub mod photometry;
 mod reach;
 pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
 pub use candidates::CANDIDATES;
-pub use observation::ObservationError;
+pub use observation::{
+    observation_piston, ObservationError, ObservationPiston, BLOCKS_PER_SEQUENCE,
+    MAX_OBSERVATION_SAMPLES, SEQUENCES,
+};
 pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
 
@@ -272,7 +275,7 @@ pub struct Plan {
     /// The confidence level of the piston terms' intervals ([`CONFIDENCE`]).
     pub confidence: f64,
     /// When the recommendation sits on an edge of the grid: which, and
-    /// what to do ([`answer::grid_edge_note`]).
+    /// what to do (`answer::grid_edge_note`).
     pub grid_edge: Option<String>,
 }
 

@@ -98,7 +98,7 @@ impl SetLayout {
     /// sequence (None past the last row).
     ///
     /// ```
-    /// use v2ref::simulator::layout::{RowLayout, SetLayout};
+    /// use v2ref::simulator::{RowLayout, SetLayout};
     /// let layout = SetLayout {
     ///     layout: RowLayout::Sequences,
     ///     sequences: 2,

@@ -44,7 +44,7 @@ pub use read::{
     min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
     truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
-pub use setting::{iota, Setting};
+pub use setting::{iota, Setting, Site};
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
 
 use crate::{Error, Result};

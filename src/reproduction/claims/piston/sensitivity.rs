@@ -25,7 +25,7 @@ use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
-use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonReference, RunSize, ScanSetup};
 use crate::reproduction::cases::{
     fig5_frequencies, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
