@@ -8,7 +8,7 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::special::fresnel::fresnel_cs;
+use v2ref::math::special::fresnel_cs;
 use v2ref::reproduction::cases::DX_UM;
 
 fn disk_at(s: f64) -> Observation {
@@ -31,7 +31,8 @@ fn benches(c: &mut Criterion) {
         let cal = finite_scan::calibrator_raw(&obs, &sampling, Method::Dft).unwrap();
         c.bench_function(&format!("finite-scan bias, DFT path, {stroke} um"), |b| {
             b.iter(|| {
-                finite_scan::bias(black_box(&obs), &sampling, Method::Dft, Some(cal)).unwrap()
+                finite_scan::finite_scan_bias(black_box(&obs), &sampling, Method::Dft, Some(cal))
+                    .unwrap()
             })
         });
         let method = Method::Convolution(Kernel::Dirichlet);
@@ -39,7 +40,10 @@ fn benches(c: &mut Criterion) {
         c.bench_function(
             &format!("finite-scan bias, convolution path, {stroke} um"),
             |b| {
-                b.iter(|| finite_scan::bias(black_box(&obs), &sampling, method, Some(cal)).unwrap())
+                b.iter(|| {
+                    finite_scan::finite_scan_bias(black_box(&obs), &sampling, method, Some(cal))
+                        .unwrap()
+                })
             },
         );
     }

@@ -7,9 +7,10 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
+use v2ref::piston::spectrum::PistonSpectrum;
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::piston::{
-    simulate, synthesize_series, Detector, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
+    simulate_piston, synthesize_series, Detector, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
 
 fn bench(c: &mut Criterion) {
@@ -39,7 +40,7 @@ fn bench(c: &mut Criterion) {
     ] {
         g.bench_function(name, |b| {
             b.iter(|| {
-                simulate(
+                simulate_piston(
                     &obs,
                     &spectrum,
                     &ScanSetup::paper(300.0),

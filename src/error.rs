@@ -23,6 +23,7 @@ pub type Result<T> = std::result::Result<T, Error>;
 /// then the detail ([`Error::detail`]), or the detail alone where there is
 /// no parameter ([`Error::param`]).
 #[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A number was NaN or infinite.
     #[error("{param}: {value} is not a finite number")]

@@ -56,6 +56,35 @@
 //! [`prelude`] gathers the dozen items a user calls first; the folders below
 //! follow the paper's table of contents.
 //!
+//! ## What is public, and what is stable
+//!
+//! A dependent crate with the default features sees the stable surface:
+//! [`prelude`], [`oracle`], the paper's parts ([`formalism`], [`bias`],
+//! [`noise`], [`piston`], [`simulator`], [`conformance`], [`plan`]), [`math`],
+//! [`montecarlo`], [`bounds`], [`cancel`], and [`Error`] with [`Result`]. Each item has one
+//! path; the two gathering modules, [`prelude`] and [`oracle`], give a
+//! second one to what they collect. The listing of this surface is
+//! committed (`lib/public-api/default.txt`) and CI fails when the library's
+//! differs from it; its enums and its error are `#[non_exhaustive]`, so a
+//! new variant is not a breaking change. A function's name says what it
+//! runs or returns: [`simulator::simulate`] (a set of noisy rows with every
+//! effect), [`piston::simulate_piston`] (scans through piston sequences),
+//! [`noise::simulation::simulate_noisy`] (noisy scans without piston), and
+//! [`bias::finite_scan::finite_scan_bias`] (the finite scan's bias).
+//!
+//! Two features open more, for the workspace's own crates, and are **not
+//! stable**: they may change in any release, and a pipeline should not turn
+//! them on.
+//! - `internals` (turned on by `files`, `oifits`, `cli` and `python`): the
+//!   machinery of the command line and the Python package — each command's
+//!   answer (`commands`), the physical inputs' table (`parameters`), the
+//!   file formats (`formats`), the paper's reproduction (`reproduction`),
+//!   the atomic writers (`atomic`, `cleanup`), the inputs' record
+//!   (`record`) and the choices' words (`words`).
+//! - `testing` (turned on by the test suite): the tolerances (`tolerance`)
+//!   and the assertion macros `assert_rel_eq!`, `assert_abs_eq!` and
+//!   `assert_within_sigmas!`.
+//!
 //! ## The crate, as the paper
 //!
 //! | paper | module |
@@ -66,11 +95,12 @@
 //! | Appendix, *Estimator signal-to-noise ratio*: noise moments, closed forms, windowed variance, noisy Monte Carlo | [`noise`] |
 //! | all of the above at once: noisy interferograms with every effect, for any instrument | [`simulator`] |
 //! | the conformance kit: per-row estimates, the truth of a synth set, the score of a pipeline | [`conformance`] |
-//! | the paper's cases, figures, claims, golden files and plots | [`reproduction`] |
+//! | the paper's cases, figures, claims, golden files and plots | `reproduction` (internal) |
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
-//! | tolerances (one home), errors | [`tolerance`], [`error`] |
-//! | what a computation was asked, as plain values, and its record in the answers | [`record`] |
+//! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`Error`] |
+//! | tolerances (one home) | `tolerance` (feature `testing`) |
+//! | what a computation was asked, as plain values, and its record in the answers | `record` (internal) |
 //!
 //! ## Levels
 //!
@@ -79,14 +109,14 @@
 //! so that each can be read, tested and changed with only what is under it
 //! in mind:
 //!
-//! 1. foundation: [`error`], [`tolerance`], [`bounds`], [`cleanup`], [`math`], [`montecarlo`], [`words`] (the words that name each choice);
+//! 1. foundation: `error` ([`Error`]), `tolerance`, [`bounds`], [`cancel`], `cleanup`, [`math`], [`montecarlo`], `words` (the words that name each choice);
 //! 2. [`formalism`];
-//! 3. [`record`] (the inputs of a computation as plain values, and the record of them an answer carries);
+//! 3. `record` (the inputs of a computation as plain values, and the record of them an answer carries);
 //! 4. [`bias`];
 //! 5. [`noise`], [`piston`];
-//! 6. [`simulator`], [`parameters`] (the physical inputs declared once, and the objects they build);
+//! 6. [`simulator`], `parameters` (the physical inputs declared once, and the objects they build);
 //! 7. [`conformance`];
-//! 8. [`plan`], [`reproduction`], [`commands`] (each command's answer, built once for the CLI and Python);
+//! 8. [`plan`], `reproduction`, `commands` (each command's answer, built once for the CLI and Python);
 //! 9. the edges: [`prelude`], [`oracle`] (a pipeline's `cargo test`), the file formats (`formats`, feature `files`), the Python bindings (`python`, feature `python`) and the command line (`src/cli/`, `src/main.rs`).
 //!
 //! ## Units and conventions
@@ -129,10 +159,10 @@
 //! | §3 Fig. 0, normalization of V2 | $\big(\sum_k W\delta\sigma\big)^2$ against the stroke | [`bias::normalization::deviation_curve`] | `tests/bias_normalization.rs` |
 //! | §3 Fig. 1, bandwidth bias | $V_1 - V_\mathrm{mono}$, $V_2 - V_\mathrm{mono}$ against S | [`bias::bandwidth::curve`] | `tests/bias_bandwidth.rs` |
 //! | §4 dispersion | $\phi = \tfrac12 D(\sigma-\sigma_0)^2$, peak to peak $P = \tfrac12 D(\Delta\sigma/2)^2$ | [`formalism::phase::SpectralPhase`], [`bias::dispersion`] | `tests/bias_dispersion.rs` |
-//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::fresnel::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
-//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::bias`] | `tests/bias_finite_scan.rs` |
+//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
+//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::finite_scan_bias`] | `tests/bias_finite_scan.rs` |
 //! | §6 turbulence and the differential-piston spectrum | Kolmogorov / von Kármán, $r_0$ from seeing, two-aperture filter | [`piston::turbulence`] | `tests/turbulence.rs` |
-//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate`] | `tests/piston.rs`, `tests/piston_claims.rs` |
+//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate_piston`] | `tests/piston.rs`, `tests/piston_claims.rs` |
 //! | Appendix, the DFT and the raw estimators | $B_k = \sum_i M_i e^{-2\pi i\,ik/N}$, $V_1^2 = \sum_{K}\lvert B_k\rvert^2$, $V_2^2 = \lvert\sum_{K} B_k\rvert^2$ | [`formalism::estimator::dft`], [`formalism::estimator::raw_estimates`], [`formalism::estimator::BinWindow`] (slow oracle: [`formalism::oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
 //! | Appendix, additive-noise bias | $\lvert K\rvert \sum_i v_i$ and $\sum_i v_i \lvert\sum_K e^{-2\pi i\,ik/N}\rvert^2$ | [`formalism::estimator::noise_bias`] | `tests/noise.rs` |
 //! | Appendix, noise moments, var $V_1^2$, var $V_2^2$, SNR (printed and exact) | $\mathrm{SNR} = \langle V^2\rangle/\sqrt{\operatorname{var} V^2}$ | [`noise::moments()`](noise::moments()), [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
@@ -143,36 +173,61 @@
 //! | all effects at once: rows of one synth set | $I_i \sim \mathrm{Poisson}(c_i + m_i(\text{piston}_s)) + \sigma_\mathrm{det}\,\mathcal N(0,1)$, $M_i = I_i - c_i$ | [`simulator::Model::rows`], [`simulator::simulate`] | `tests/simulator.rs` |
 //! | per-row estimates, bias conventions | $(V^2_\mathrm{raw} - b)/C$, $v_i = \sigma_\mathrm{det}^2 + n_i$ with $n_i$ from the model or the row | [`conformance::estimate::RowEstimator`] (slow oracle: [`conformance::estimate::estimate_row_oracle`]) | `tests/simulator.rs`, `tests/conformance_cli.rs` |
 //! | the truth of a set and the score of a pipeline | $z = (\bar x - \mu)/\sigma_\mathrm{set}$, $\lvert z\rvert \le \Phi^{-1}(1-\alpha/2m)$ | [`conformance::truth::truth`], [`conformance::score`] | `tests/conformance_score.rs`, `tests/conformance_cli.rs` |
-//! | Figs. 0–5 as data, golden files, claims | | [`reproduction::figures::all`], [`reproduction::golden::check`], [`reproduction::claims::evaluate`] | `tests/golden.rs`, `tests/claims.rs` |
+//! | Figs. 0–5 as data, golden files, claims | | `reproduction::figures::all`, `reproduction::golden::check`, `reproduction::claims::evaluate` (internal) | `tests/golden.rs`, `tests/claims.rs` |
 
 #![warn(missing_docs)]
+// A type a public item shows (a field, an argument, a return) is public too.
+#![warn(unnameable_types)]
 
-pub mod atomic;
+/// Declares modules the stable surface is built on but does not show: public
+/// with the feature `gate` (turned on by the workspace's command line and
+/// test suite), crate-private without it, so that a dependent crate's view of
+/// the library is its stable part.
+macro_rules! gated_mod {
+    ($gate:literal: $($name:ident),+ $(,)?) => {$(
+        #[cfg(feature = $gate)]
+        pub mod $name;
+        #[cfg(not(feature = $gate))]
+        pub(crate) mod $name;
+    )+};
+}
+
+// The stable surface: what a pipeline calls (lib/public-api/default.txt).
 pub mod bias;
 pub mod bounds;
 pub mod cancel;
-pub mod cleanup;
-pub mod commands;
 pub mod conformance;
-pub(crate) mod csv_lines;
-pub mod error;
+pub(crate) mod error;
 pub mod formalism;
-#[cfg(feature = "files")]
-pub mod formats;
 pub mod math;
 pub mod montecarlo;
 pub mod noise;
 pub mod oracle;
-pub mod parameters;
 pub mod piston;
 pub mod plan;
 pub mod prelude;
-#[cfg(feature = "python")]
-pub mod python;
-pub mod record;
-pub mod reproduction;
 pub mod simulator;
-pub mod tolerance;
-pub mod words;
+
+// What the stable surface is built on, public only to the workspace's own
+// crates (feature `internals`: unstable, not for pipelines).
+gated_mod!("internals": commands, record, words);
+// The tolerances and assertion macros of the test suite (feature `testing`).
+gated_mod!("testing": tolerance);
+pub(crate) mod csv_lines;
+
+// The command line's and Python's machinery, compiled only for them
+// (feature `internals`, which `files`, `oifits`, `cli` and `python` turn on).
+#[cfg(feature = "internals")]
+pub mod atomic;
+#[cfg(feature = "internals")]
+pub mod cleanup;
+#[cfg(feature = "files")]
+pub mod formats;
+#[cfg(feature = "internals")]
+pub mod parameters;
+#[cfg(feature = "python")]
+pub(crate) mod python;
+#[cfg(feature = "internals")]
+pub mod reproduction;
 
 pub use error::{Error, Result};

@@ -27,7 +27,7 @@
 //! | differential piston | [`Turbulence`], [`PistonSpectrum`], [`ScanSetup`], [`simulate_piston`] |
 //! | errors | [`Error`], [`Result`] |
 
-pub use crate::bias::finite_scan::bias as finite_scan_bias;
+pub use crate::bias::finite_scan::finite_scan_bias;
 pub use crate::error::{Error, Result};
 pub use crate::formalism::estimator::{
     dft, noise_bias, raw_estimates, sampled_wide_band, wide_band, BinWindow, WideBand,
@@ -39,6 +39,7 @@ pub use crate::formalism::source::Source;
 pub use crate::formalism::spectrum::{Band, Spectrum};
 pub use crate::noise::simulation::{simulate_noisy, NoisySpec};
 pub use crate::noise::{appendix_stats, Formula, NoiseModel};
-pub use crate::piston::simulate as simulate_piston;
-pub use crate::piston::turbulence::{PistonSpectrum, Turbulence};
+pub use crate::piston::simulate_piston;
+pub use crate::piston::spectrum::PistonSpectrum;
+pub use crate::piston::turbulence::Turbulence;
 pub use crate::piston::ScanSetup;

@@ -10,14 +10,16 @@
 //!
 //! It sits just above [`crate::formalism`], below the paper's effects
 //! ([`crate::bias`], [`crate::noise`], [`crate::piston`]) whose answers
-//! carry it; the simulator re-exports it ([`crate::simulator::record`],
-//! [`crate::simulator::inputs`]), as does [`crate::piston::scan`] for
-//! [`PistonReference`].
+//! carry it. The module is internal (feature `internals`); the records a
+//! public answer carries are public at [`crate::simulator`] and
+//! [`crate::piston`] (for [`PistonReference`]).
 
 use crate::error::{self, Result};
-use crate::formalism::estimator::BinWindow;
-use crate::formalism::interferogram::Sampling;
-use crate::formalism::observation::Observation;
+// (The answers' records, below, are built for the edges only.)
+#[cfg(feature = "internals")]
+use crate::formalism::{
+    estimator::BinWindow, interferogram::Sampling, observation::Observation,
+};
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use serde::{Deserialize, Serialize};
@@ -25,6 +27,7 @@ use serde::{Deserialize, Serialize};
 /// S(σ)F(σ): a flat band or a table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum SpectrumInput {
     /// Flat in wavenumber over [λ0 − Δλ/2, λ0 + Δλ/2].
     Flat {
@@ -81,6 +84,7 @@ impl SpectrumInput {
 /// The source.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum SourceInput {
     /// Unresolved.
     Point,
@@ -104,6 +108,7 @@ impl SourceInput {
 /// Where the fringe packet sits in each scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum PistonReference {
     /// The piston at the time of the middle (zero-OPD) sample is removed:
     /// the scan is centred on the white-light fringe at that instant.
@@ -141,6 +146,7 @@ impl PistonReference {
     }
 }
 
+#[cfg(feature = "internals")]
 /// The observation: spectrum, source, where in the (u, v) plane, dispersion.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ObservationRecord {
@@ -158,6 +164,7 @@ pub struct ObservationRecord {
     pub dispersion_pp_rad: f64,
 }
 
+#[cfg(feature = "internals")]
 impl ObservationRecord {
     /// The record of `obs`, a view of `source`; `flat` is the (λ0 µm,
     /// Δλ nm) of a flat band (unused for a tabulated spectrum),
@@ -179,6 +186,7 @@ impl ObservationRecord {
     }
 }
 
+#[cfg(feature = "internals")]
 /// The scan: samples, spacing, stroke, detector and the bins summed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SamplingRecord {
@@ -194,6 +202,7 @@ pub struct SamplingRecord {
     pub bins: &'static str,
 }
 
+#[cfg(feature = "internals")]
 impl SamplingRecord {
     /// The record of `sampling` summed over `window`.
     pub fn new(sampling: &Sampling, window: BinWindow) -> SamplingRecord {
@@ -210,6 +219,7 @@ impl SamplingRecord {
 /// An outer scale: a length, or infinite (Kolmogorov).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
+#[non_exhaustive]
 pub enum OuterScale {
     /// von Kármán outer scale, m.
     Metres(f64),
@@ -223,6 +233,7 @@ impl From<Option<f64>> for OuterScale {
     }
 }
 
+#[cfg(feature = "internals")]
 /// The atmosphere and telescopes behind the piston.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AtmosphereRecord {
@@ -246,6 +257,7 @@ pub struct AtmosphereRecord {
     pub sub_samples: usize,
 }
 
+#[cfg(feature = "internals")]
 /// The `inputs` object of an answer.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct InputsRecord {

@@ -11,7 +11,7 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::special::fresnel::{fresnel_c, fresnel_cs, fresnel_s, point_source_v2_sq};
+use v2ref::math::special::{fresnel_c, fresnel_cs, fresnel_s, point_source_v2_sq};
 use v2ref::tolerance::{
     CLOSED_FORM_VS_NUMERICAL, FINITE_DIFFERENCE_REL, FRESNEL_ABS, GLASS_DISPERSION_REL,
     LEADING_TERM_REL, POWER_FACTOR, RESIDUAL_CUBIC_REL, RESIDUAL_PHASE_REL, ROUNDING_REL,

@@ -69,8 +69,8 @@ fn dft_and_convolution_paths_agree() {
         let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
         for s in [0.0, 13.0, 28.3, 40.0, 61.0, 79.0] {
             let obs = disk_obs(s);
-            let a = finite_scan::bias(&obs, &sampling, Method::Dft, None).unwrap();
-            let b = finite_scan::bias(
+            let a = finite_scan::finite_scan_bias(&obs, &sampling, Method::Dft, None).unwrap();
+            let b = finite_scan::finite_scan_bias(
                 &obs,
                 &sampling,
                 Method::Convolution(Kernel::Dirichlet),
@@ -142,7 +142,7 @@ fn the_printed_single_sinc_misses_the_replication() {
     let diff = |stroke: f64| {
         let sampling = Sampling::from_stroke(stroke, DX_UM, false).unwrap();
         let obs = disk_obs(28.3);
-        let a = finite_scan::bias(
+        let a = finite_scan::finite_scan_bias(
             &obs,
             &sampling,
             Method::Convolution(Kernel::Dirichlet),
@@ -150,7 +150,8 @@ fn the_printed_single_sinc_misses_the_replication() {
         )
         .unwrap();
         let b =
-            finite_scan::bias(&obs, &sampling, Method::Convolution(Kernel::Sinc), None).unwrap();
+            finite_scan::finite_scan_bias(&obs, &sampling, Method::Convolution(Kernel::Sinc), None)
+                .unwrap();
         (a.v1 - b.v1).abs().max((a.v2 - b.v2).abs())
     };
     let (short, long) = (diff(8.0), diff(256.0));
@@ -170,7 +171,7 @@ fn a_point_source_has_no_finite_scan_bias() {
             SpectralPhase::zero(),
         )
         .unwrap();
-        let b = finite_scan::bias(&obs, &sampling, Method::Dft, None).unwrap();
+        let b = finite_scan::finite_scan_bias(&obs, &sampling, Method::Dft, None).unwrap();
         assert!(
             b.v1.abs() < ROUNDING_REL && b.v2.abs() < ROUNDING_REL,
             "{b:?}"
@@ -185,7 +186,8 @@ fn max_bias_near_null(stroke: f64) -> (f64, f64) {
     let (mut m1, mut m2) = (0.0_f64, 0.0_f64);
     for i in 0..=20 {
         let s = 27.0 + 0.1 * i as f64;
-        let b = finite_scan::bias(&disk_obs(s), &sampling, Method::Dft, Some(cal)).unwrap();
+        let b =
+            finite_scan::finite_scan_bias(&disk_obs(s), &sampling, Method::Dft, Some(cal)).unwrap();
         m1 = m1.max(b.v1.abs());
         m2 = m2.max(b.v2.abs());
     }
@@ -213,7 +215,8 @@ fn long_scans_reproduce_the_spectral_estimators() {
     let sampling = Sampling::from_stroke(2048.0, DX_UM, false).unwrap();
     let cal = finite_scan::calibrator_raw(&disk_obs(0.0), &sampling, Method::Dft).unwrap();
     for s in [5.0, 45.0] {
-        let b = finite_scan::bias(&disk_obs(s), &sampling, Method::Dft, Some(cal)).unwrap();
+        let b =
+            finite_scan::finite_scan_bias(&disk_obs(s), &sampling, Method::Dft, Some(cal)).unwrap();
         // tol: 2048 µm is 8 times Fig. 3's longest scan, where V1's bias is 4.3e-4 and V2's 2.7e-6 (the ledger's scanlength claims): falling like 1/stroke they sit well below 1e-4 and 1e-5.
         assert!(b.v1.abs() < 1e-4 && b.v2.abs() < 1e-5, "S={s}: {b:?}");
     }
@@ -312,7 +315,8 @@ fn disk_biases_are_the_point_biases_against_one_calibrator() {
         assert!(cal.v1_sq > 0.0 && cal.v2_sq > 0.0);
         assert_eq!(row.len(), grid.len());
         for (&s, b) in grid.iter().zip(row) {
-            let one = finite_scan::bias(&disk_obs(s), sampling, Method::Dft, Some(cal)).unwrap();
+            let one = finite_scan::finite_scan_bias(&disk_obs(s), sampling, Method::Dft, Some(cal))
+                .unwrap();
             assert_eq!(*b, one, "S = {s}");
         }
     }

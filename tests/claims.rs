@@ -210,6 +210,7 @@ fn every_status_changes_when_its_numbers_are_perturbed() {
                 assert_eq!(verdict(&spec, Finding::Failed), Status::Failed);
             }
             Finding::Failed => panic!("{id} failed: {}", computed.note),
+            other => panic!("{id}: no perturbation for {other:?}"),
         }
     }
 }

@@ -5,10 +5,11 @@
 
 use v2ref::formats as files;
 
-use files::{read_estimates, read_matrix, write_text_atomic, CsvRowWriter, NpyRowWriter};
+use files::{read_estimates, read_matrix, CsvRowWriter, NpyRowWriter};
 use npyz::WriterBuilder;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use v2ref::atomic::write_text_atomic;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::sidecar::{
     self, ConventionTruth, DataFiles, EstimatorTruth, ReferenceRun, Sidecar, Truth, TruthSource,

@@ -328,19 +328,21 @@ fn a_row_written_as_nan_is_flagged() {
     // estimate --out over 4096 samples writes VIS2ERR NaN (no closed
     // form), Python's write_oifits whatever NaN it is given: the writer
     // flags every such row, so that no fitter reads a NaN as a weight.
-    use v2ref::formats::oifits::{parse_oifits, setting, write, ReadOptions, Setting};
+    use v2ref::formats::oifits::{
+        iota, parse_oifits, to_bytes, OifitsDoc, ReadOptions, Setting, Vis2Out,
+    };
     let setting = Setting {
         target: "T".into(),
         target_radec_deg: (10.0, -20.0),
         date_obs: "2024-03-01".into(),
-        site: setting::iota(),
+        site: iota(),
         diameter_m: 0.45,
         baseline_m: 20.0,
         eff_wave_m: 2.2e-6,
         eff_band_m: 0.4e-6,
         scan_s: None,
     };
-    let table = write::Vis2Out {
+    let table = Vis2Out {
         insname: "X".into(),
         estimator: None,
         vis2data: vec![0.5, f64::NAN, 0.5, 0.5],
@@ -349,12 +351,12 @@ fn a_row_written_as_nan_is_flagged() {
         keywords: Vec::new(),
         vis2data_note: None,
     };
-    let doc = write::OifitsDoc {
+    let doc = OifitsDoc {
         setting,
         tables: vec![table],
         keywords: Vec::new(),
     };
-    let bytes = write::to_bytes(&doc).unwrap();
+    let bytes = to_bytes(&doc).unwrap();
     let file = parse_oifits(&bytes, ReadOptions::default()).unwrap();
     assert_eq!(file.tables[0].flag, [false, true, true, true]);
     // The date and the rows' times: MJD 60370 is 2024-03-01, rows 1 s apart.

@@ -12,9 +12,11 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::montecarlo::{RunningStats, Summary};
-use v2ref::piston::turbulence::{PistonSpectrum, TransverseTable, Turbulence};
+use v2ref::piston::spectrum::PistonSpectrum;
+use v2ref::piston::transverse::TransverseTable;
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::piston::{
-    scan_samples, series_variance, simulate, sweep, sweep_seed, synthesize_series, Detector,
+    scan_samples, series_variance, simulate_piston, sweep, sweep_seed, synthesize_series, Detector,
     FringeTable, PistonReference, PistonRun, RunSize, ScanSetup,
 };
 use v2ref::tolerance::{
@@ -56,7 +58,7 @@ fn run(
     seed: u64,
     threads: usize,
 ) -> PistonRun {
-    simulate(
+    simulate_piston(
         o,
         s,
         &setup,
@@ -487,7 +489,7 @@ fn bad_input_is_refused_with_typed_errors() {
         threads: 0,
     };
     let go = |setup: ScanSetup, det: Detector, size: RunSize| {
-        simulate(&o, &s, &setup, &[det], &size, None)
+        simulate_piston(&o, &s, &setup, &[det], &size, None)
     };
     assert!(matches!(
         go(ScanSetup::paper(0.0), Detector::Sampled, size),
@@ -551,7 +553,7 @@ fn three_slope_series_match_their_spectrum_within_the_standard_error() {
     // against Σ 2PΔν of the three-slope model, with power against 2 %
     // (2000 sequences: 0.3 % standard error).
     let s = spectrum(1.0, 10.0, 2.0)
-        .with_model(v2ref::piston::turbulence::PistonPsdModel::ThreeSlope)
+        .with_model(v2ref::piston::spectrum::PistonPsdModel::ThreeSlope)
         .unwrap();
     let psd = |nu: f64| s.psd_um2_per_hz(nu);
     let (dt, len, reps) = (0.02, 4096, 2000);
@@ -580,8 +582,8 @@ fn a_sweep_at_1000_hz_alone_equals_1000_hz_after_100_hz_for_any_model_and_thread
     let o = obs(Source::Point);
     let det = [Detector::Sampled];
     for model in [
-        v2ref::piston::turbulence::PistonPsdModel::TwoAperture,
-        v2ref::piston::turbulence::PistonPsdModel::ThreeSlope,
+        v2ref::piston::spectrum::PistonPsdModel::TwoAperture,
+        v2ref::piston::spectrum::PistonPsdModel::ThreeSlope,
     ] {
         let s = spectrum(1.0, 10.0, 18.0).with_model(model).unwrap();
         let size = |threads| RunSize {

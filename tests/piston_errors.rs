@@ -19,9 +19,10 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::montecarlo::{replicated_summary, RunningStats, Summary};
-use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
+use v2ref::piston::spectrum::PistonSpectrum;
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::piston::{
-    simulate, simulate_consecutive, Detector, PistonReference, PistonRun, RunSize, ScanSetup,
+    simulate_consecutive, simulate_piston, Detector, PistonReference, PistonRun, RunSize, ScanSetup,
 };
 
 use statrs::distribution::{ChiSquared, ContinuousCDF};
@@ -116,7 +117,7 @@ fn stated_errors_match_the_spread_over_seeds_and_naive_ones_do_not() {
     };
     let det = [Detector::Sampled];
     let r = ratios(&|seed| {
-        simulate(&obs, &spectrum, &setup, &det, &size(seed), None).unwrap()[0].clone()
+        simulate_piston(&obs, &spectrum, &setup, &det, &size(seed), None).unwrap()[0].clone()
     });
     for (name, stated, _) in &r {
         assert!(

@@ -7,7 +7,8 @@
 
 use std::process::Command;
 use v2ref::piston::model_comparison::{structure_over_lag_um2, PsdComparison};
-use v2ref::piston::turbulence::{PistonPsdModel, PistonSpectrum, Turbulence};
+use v2ref::piston::spectrum::{PistonPsdModel, PistonSpectrum};
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::tolerance::{TURBULENCE_CHECK_REL, TURBULENCE_SPECTRAL_REL};
 
 /// A site of the reference file and its variance, µm².

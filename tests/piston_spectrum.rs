@@ -23,12 +23,15 @@ use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
 use std::sync::Arc;
 use v2ref::math::quadrature::{integrate_pieces, Tolerance};
-use v2ref::piston::three_slope::ThreeSlope;
-use v2ref::piston::turbulence::{
-    aperture_filter, crosswind_integral, differential_piston_variance_from_structure_um2,
-    transverse_integral, two_one_minus_j0, PistonPsdModel, PistonSpectrum, TransverseTable,
-    Turbulence,
+use v2ref::piston::spectrum::{
+    differential_piston_variance_from_structure_um2, two_one_minus_j0, PistonPsdModel,
+    PistonSpectrum,
 };
+use v2ref::piston::three_slope::ThreeSlope;
+use v2ref::piston::transverse::{
+    aperture_filter, crosswind_integral, transverse_integral, TransverseTable,
+};
+use v2ref::piston::turbulence::Turbulence;
 use v2ref::tolerance::{
     BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, LOW_FREQ_VALUE_COEFF, ROUNDING_REL, TABLE_LN_ABS,
     TURBULENCE_CHECK_REL, TURBULENCE_QUADRATURE_REL, ULPS,

@@ -74,6 +74,7 @@ fn validate(case: &str, inputs: &PlanInputs, p: &PlanPoint) {
     let s = match p.estimator {
         Estimator::V1 => run.v1_sq,
         Estimator::V2 => run.v2_sq,
+        other => panic!("no simulated statistics for {other:?}"),
     };
     let rel = s.std / p.sigma_per_scan - 1.0;
     let bias = s.mean - p.v_sq_sampled;

@@ -13,8 +13,8 @@
 //!   2J1(x)/x from Bessel's integral (no code of the crate), over the band
 //!   flat per unit wavenumber.
 
-use v2ref::piston::scan::DEFAULT_SUB_SAMPLES;
 use v2ref::piston::PistonReference;
+use v2ref::piston::DEFAULT_SUB_SAMPLES;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{default_grid, plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
@@ -277,6 +277,7 @@ fn bandwidth_bias_of_the_pionier_like_disk_is_the_independent_integral() {
         let want = match p.estimator {
             Estimator::V1 => v1,
             Estimator::V2 => v2,
+            other => panic!("no expected bias for {other:?}"),
         };
         assert!(
             // tol: a bias from the same quadratures in another order, relative to max(|bias|, 1e-3) (the bias's scale): ~1e-13, 1e-9 a margin.

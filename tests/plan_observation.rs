@@ -30,8 +30,8 @@ use v2ref::assert_within_sigmas;
 use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::montecarlo::{replicated_summary, RunningStats, Summary};
-use v2ref::piston::scan::DEFAULT_SUB_SAMPLES;
 use v2ref::piston::PistonReference;
+use v2ref::piston::DEFAULT_SUB_SAMPLES;
 use v2ref::plan::verify::{verification_size, verify, Verification};
 use v2ref::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
@@ -126,6 +126,7 @@ fn verified(site: &Site, e: Estimator, observations: u64) -> (PlanPoint, Verific
     let p = match e {
         Estimator::V1 => plan.best_v1,
         Estimator::V2 => plan.best_v2,
+        other => panic!("no best point for {other:?}"),
     }
     .expect("the target is reachable");
     let sky = inputs.atmosphere.spectrum(site.baseline_m).unwrap();
@@ -258,6 +259,7 @@ fn planned(site: &Site, bias: BiasConvention, e: Estimator) -> (PlanInputs, Plan
     let p = match e {
         Estimator::V1 => plan.best_v1,
         Estimator::V2 => plan.best_v2,
+        other => panic!("no best point for {other:?}"),
     };
     (inputs, p.expect("the target is reachable"))
 }

@@ -11,7 +11,7 @@ use v2ref::montecarlo::unit_rng;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
 use v2ref::noise::Formula;
-use v2ref::piston::{simulate as simulate_piston, Detector, RunSize, ScanSetup};
+use v2ref::piston::{simulate_piston, Detector, RunSize, ScanSetup};
 use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref::tolerance::{MC_SIGMAS, PATHS_AGREE_ABS, ROUNDING_REL};
 use v2ref::{assert_abs_eq, assert_rel_eq, assert_within_sigmas};
@@ -46,6 +46,7 @@ fn row_estimator_matches_its_oracle() {
                             .zip(&model.signal.continuum)
                             .map(|(m, c)| 1.5 * 1.5 + c + m)
                             .collect(),
+                        other => panic!("no variance for {other:?}"),
                     };
                     let want = estimate_row_oracle(row, &bins, &variance, est.calibration());
                     let got = est.estimate(row);
@@ -313,7 +314,7 @@ fn model_convention_is_biased_under_piston_and_counts_is_not() {
                 aperture_m: 0.45,
                 outer_scale_m: None,
                 reference: v2ref::piston::PistonReference::Mean,
-                sub_samples: v2ref::piston::scan::DEFAULT_SUB_SAMPLES,
+                sub_samples: v2ref::piston::DEFAULT_SUB_SAMPLES,
             }),
             ..Inputs::default()
         };

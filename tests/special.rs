@@ -1,7 +1,7 @@
 //! Bessel functions against mpmath (tests/data/bessel_reference.csv, 50-digit
 //! reference with its generator beside it).
 
-use v2ref::math::special::bessel::SERIES_BELOW;
+use v2ref::math::special::SERIES_BELOW;
 use v2ref::math::special::{bessel_j0, bessel_j0_j1, bessel_j1, bessel_j1_zero, jinc};
 use v2ref::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL, FINITE_DIFFERENCE_REL, ROUNDING_REL};
 

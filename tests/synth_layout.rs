@@ -117,7 +117,7 @@ fn slow_sky(samples: usize) -> Inputs {
             aperture_m: 1.8,
             outer_scale_m: None,
             reference: PistonReference::Mean,
-            sub_samples: v2ref::piston::scan::DEFAULT_SUB_SAMPLES,
+            sub_samples: v2ref::piston::DEFAULT_SUB_SAMPLES,
         }),
         ..Inputs::default()
     }

@@ -4,10 +4,12 @@
 
 use std::f64::consts::PI;
 use std::sync::{Arc, OnceLock};
+use v2ref::piston::spectrum::{
+    differential_piston_variance_from_structure_um2, PistonPsdModel, PistonSpectrum,
+};
+use v2ref::piston::transverse::{transverse_integral, TransverseTable};
 use v2ref::piston::turbulence::{
-    differential_piston_variance_from_structure_um2, profile_integral, psd_coefficient,
-    r0_from_seeing_m, structure_coefficient, transverse_integral, PistonPsdModel, PistonSpectrum,
-    TransverseTable, Turbulence,
+    profile_integral, psd_coefficient, r0_from_seeing_m, structure_coefficient, Turbulence,
 };
 use v2ref::tolerance::{
     ASYMPTOTIC_LIMIT_REL, CORNER_REL, DECADE_SLOPE_ABS, GAMMA_REL, LOW_FREQ_SLOPE_COEFF,

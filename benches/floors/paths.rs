@@ -170,7 +170,7 @@ fn simulate(noise: NoiseModel, label: &str) -> Case {
 /// ROWS_PER_UNIT rows), each row written once into a preallocated array,
 /// units over the threads.
 fn synth_rows(rows: u64) -> Case {
-    use v2ref::simulator::rows::ROWS_PER_UNIT;
+    use v2ref::simulator::ROWS_PER_UNIT;
     let model = Model::new(&Inputs::default()).expect("the default inputs");
     let n = model.samples();
     let (m, c) = (
@@ -221,8 +221,8 @@ fn synth_rows(rows: u64) -> Case {
 /// inverse FFT of M points (realfft, on one thread: the 2-thread ratio is
 /// against a floor whose transform does not scale).
 fn piston_series() -> Case {
-    use v2ref::piston::series::synthesize_series;
-    use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
+    use v2ref::piston::synthesize_series;
+    use v2ref::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
     const LEN: usize = 1 << 20;
     const DT_S: f64 = 1e-3;
     let turb = Turbulence::from_seeing(1.0, 2.2, 10.0, None).expect("valid");
@@ -254,7 +254,7 @@ fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: 
     use rand_distr::{Distribution, StandardNormal};
     use realfft::num_complex::Complex;
     const BLOCK: usize = 1 << 15;
-    let m = v2ref::piston::series::sequence_length(len);
+    let m = v2ref::piston::sequence_length(len);
     let (half, dnu) = (m / 2, 1.0 / (m as f64 * dt_s));
     let mut spectrum_half = vec![Complex::new(0.0, 0.0); half + 1];
     spectrum_half[1..half]
@@ -291,11 +291,11 @@ fn piston_run(scans: usize) -> Case {
     use v2ref::formalism::phase::SpectralPhase;
     use v2ref::formalism::source::Source;
     use v2ref::formalism::spectrum::{Band, Spectrum};
-    use v2ref::piston::turbulence::{PistonSpectrum, Turbulence};
     use v2ref::piston::{
-        scan_stride, sequence_seed, sequence_split, simulate, Detector, FringeTable, RunSize,
-        ScanSetup,
+        scan_stride, sequence_seed, sequence_split, simulate_piston, Detector, FringeTable,
+        RunSize, ScanSetup,
     };
+    use v2ref::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
     let turb = Turbulence::from_seeing(1.0, 2.2, 10.0, None).expect("valid");
     let spectrum = std::sync::Arc::new(PistonSpectrum::new(turb, 0.45, 18.0).expect("valid"));
     spectrum.tabulate();
@@ -375,8 +375,8 @@ fn piston_run(scans: usize) -> Case {
             seed: 1,
             threads,
         };
-        let run =
-            simulate(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None).expect("runs");
+        let run = simulate_piston(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)
+            .expect("runs");
         run[0].windows.iter().map(|w| w.v1.mean + w.v2.mean).sum()
     };
     Case {

@@ -32,7 +32,7 @@ pub fn curve(
 
 /// The largest value of `f` over `[lo, hi]`: a scan on `points` equally
 /// spaced points, then golden-section refinement on the bracket around the
-/// best one (to a bracket width of [`crate::tolerance::MINIMIZE_BRACKET_REL`]
+/// best one (to a bracket width of `tolerance::MINIMIZE_BRACKET_REL` (1e-9)
 /// of the interval). Returns (x, f(x)).
 /// Assumes `f` is unimodal within one grid step of its maximum, which the
 /// caller ensures by a grid finer than the features of `f`.

@@ -58,6 +58,7 @@ const DIRICHLET_SERIES_BELOW: f64 = 1e-7;
 /// The scan's response to a unit spectral line, as a function of
 /// `u = σ δx − k/N` (cycles per sample).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Kernel {
     /// `Σ_j e^{2πiju}`: exact for N samples (periodic in u with period 1).
     Dirichlet,
@@ -158,6 +159,7 @@ pub fn convolution_estimates(
 
 /// How the raw estimates are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Method {
     /// FFT of the synthesized interferogram.
     Dft,
@@ -206,16 +208,16 @@ pub struct Bias {
 /// ```
 /// use v2ref::prelude::*;
 /// use v2ref::formalism::estimator::{all_bins, positive_bins};
-/// use v2ref::bias::finite_scan::{bias, Method};
+/// use v2ref::bias::finite_scan::{finite_scan_bias, Method};
 /// // The finite-scan bias of V1 for a 43 mas disk in K at 20 cycles/arcsec
 /// // shrinks as the stroke grows.
 /// let obs = Observation::new(Spectrum::flat(Band::k()), Source::uniform_disk(43.0)?, Frequency::SpatialFreqCpas(20.0), SpectralPhase::zero())?;
-/// let short = bias(&obs, &Sampling::from_stroke(16.0, 0.55, false)?, Method::Dft, None)?;
-/// let long = bias(&obs, &Sampling::from_stroke(256.0, 0.55, false)?, Method::Dft, None)?;
+/// let short = finite_scan_bias(&obs, &Sampling::from_stroke(16.0, 0.55, false)?, Method::Dft, None)?;
+/// let long = finite_scan_bias(&obs, &Sampling::from_stroke(256.0, 0.55, false)?, Method::Dft, None)?;
 /// assert!(long.v1.abs() < short.v1.abs());
 /// # Ok::<(), v2ref::Error>(())
 /// ```
-pub fn bias(
+pub fn finite_scan_bias(
     obs: &Observation,
     sampling: &Sampling,
     method: Method,
@@ -265,7 +267,7 @@ pub fn disk_biases(
                         Frequency::SpatialFreqCpas(s),
                         SpectralPhase::zero(),
                     )?;
-                    bias(&obs, sampling, method, Some(cal))
+                    finite_scan_bias(&obs, sampling, method, Some(cal))
                 })
                 .collect()
         })

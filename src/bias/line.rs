@@ -27,6 +27,7 @@ use crate::math::quadrature::{integrate_pieces, Tolerance};
 
 /// The line's spectral profile, normalized to a peak of 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum LineProfile {
     /// 1 within ±width/2 of the centre.
     TopHat,
@@ -36,6 +37,7 @@ pub enum LineProfile {
 
 /// The channel's response F(σ), peak 1.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Channel {
     /// 1 over one spectral element δσ = 1/Δx centred on the channel.
     TopHat,

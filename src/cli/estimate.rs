@@ -6,12 +6,13 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use v2ref::atomic::set::OutputSet;
 use v2ref::commands::estimate::{
     estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
 };
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, OutputSet, RowStream};
+use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, RowStream};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.

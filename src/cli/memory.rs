@@ -2,7 +2,7 @@
 //! files (`estimate`, `score`): the library's budget
 //! (`v2ref::formats::budget`) set for the run.
 
-use v2ref::formats::budget::{budget_bytes_of_gib, set_memory_budget_gib};
+use v2ref::formats::{budget_bytes_of_gib, set_memory_budget_gib};
 use v2ref::Result;
 
 /// The memory budget flag.

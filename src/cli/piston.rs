@@ -8,9 +8,9 @@ use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref::commands::piston::{self, PistonRequest};
-use v2ref::error::Result;
 use v2ref::piston::report::PistonReport;
-use v2ref::piston::turbulence::PistonPsdModel;
+use v2ref::piston::spectrum::PistonPsdModel;
+use v2ref::Result;
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]

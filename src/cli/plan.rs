@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use v2ref::commands::plan::{self, PlanRequest};
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::parameters::Physical;
-use v2ref::piston::turbulence::PistonSpectrum;
+use v2ref::piston::spectrum::PistonSpectrum;
 use v2ref::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
 use v2ref::{Error, Result};
@@ -212,7 +212,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let targets: Vec<_> = svg
         .chain(args.oifits.iter().map(|p| (p.as_path(), "oifits")))
         .collect();
-    let set = v2ref::formats::OutputSet::begin(&targets, args.force)?;
+    let set = v2ref::atomic::set::OutputSet::begin(&targets, args.force)?;
     let (physical, req) = request(&args)?;
     let prepared = plan::prepare(&physical, &req)?;
     super::output::announce("plan", &prepared.cost(args.threads)?);
@@ -286,6 +286,7 @@ fn name(e: Estimator) -> &'static str {
     match e {
         Estimator::V1 => "V1^2",
         Estimator::V2 => "V2^2",
+        _ => "V^2",
     }
 }
 
@@ -396,10 +397,7 @@ fn corrections(inputs: &PlanInputs, p: &PlanPoint) {
         verdict(p.scan_bias_over_target)
     );
     if inputs.diameter_err_mas > 0.0 {
-        let target = match inputs.target {
-            Target::SigmaV2(t) => t,
-            Target::TimeBudgetS(_) => f64::NAN,
-        };
+        let target = inputs.target.sigma_v2().unwrap_or(f64::NAN);
         outln!(
             "  the diameter's uncertainty ({} mas) moves V^2 by {:.2e} ({:.2}x the target): calibration, not noise, limits the accuracy where this is above 1",
             inputs.diameter_err_mas,
@@ -413,6 +411,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     let target = match inputs.target {
         Target::SigmaV2(s) => format!("target sigma(V^2) = {s:e}"),
         Target::TimeBudgetS(t) => format!("time budget {}", human_duration(t)),
+        other => format!("target {other:?}"),
     };
     match &plan.recommended {
         Some(p) => {

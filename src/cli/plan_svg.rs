@@ -8,7 +8,7 @@
 use plotters::prelude::*;
 use std::path::Path;
 use v2ref::plan::figure::{figure_time_s, sigma_curve, Drawn};
-use v2ref::plan::{Estimator, Plan, PlanInputs, Target};
+use v2ref::plan::{Estimator, Plan, PlanInputs};
 use v2ref::{Error, Result};
 
 fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
@@ -40,10 +40,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
         .flatten()
         .map(|p| p.1)
         .collect();
-    let target = match inputs.target {
-        Target::SigmaV2(s) => Some(s),
-        Target::TimeBudgetS(_) => None,
-    };
+    let target = inputs.target.sigma_v2();
     let lo = all
         .iter()
         .copied()
@@ -145,7 +142,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .map_err(|e| fail(path, e))?;
         root.present().map_err(|e| fail(path, e))?;
     }
-    v2ref::formats::write_text_atomic(path, &svg)
+    v2ref::atomic::write_text_atomic(path, &svg)
 }
 
 /// A log-axis tick at the precision it carries: three significant figures

@@ -8,11 +8,12 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use v2ref::atomic::{set::OutputSet, write_text_atomic};
 use v2ref::commands::cost::SetOutput;
 use v2ref::commands::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
-use v2ref::formats::{write_text_atomic, CsvRowWriter, NpyRowWriter, OutputSet};
+use v2ref::formats::{CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::{Model, RowLayout};
 use v2ref::{Error, Result};
 

@@ -221,6 +221,7 @@ pub fn simulate(inputs: &Inputs, trials: u64, threads: usize) -> Result<Cost> {
 
 /// How a set is delivered: written to `.npy` (and CSV) or kept in memory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SetOutput {
     /// An array in memory (Python).
     Memory,

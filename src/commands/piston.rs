@@ -10,9 +10,9 @@ use crate::formalism::observation::Observation;
 use crate::parameters::Physical;
 use crate::piston::model_comparison::PsdComparison;
 use crate::piston::report::{ComparisonNote, PistonReport, PistonSetting};
-use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
-use crate::simulator::record::{InputsRecord, SamplingRecord};
+use crate::record::{InputsRecord, SamplingRecord};
 
 /// The fringe frequencies when none is given, Hz.
 pub const DEFAULT_FRINGE_HZ: [f64; 2] = [300.0, 1000.0];
@@ -42,6 +42,7 @@ pub struct PistonRequest {
 
 /// The length of the observation `piston` reports σ of the mean for.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum ObservationLength {
     /// n consecutive scans.
     Scans(u64),
@@ -63,7 +64,7 @@ pub struct PistonAnswer {
 
 /// [`run`], and the observation's σ of `req.observation` at each fringe
 /// frequency (noise-free V1², V2² of contiguous scans,
-/// [`crate::plan::observation`]).
+/// `plan::observation`).
 pub fn run_with_observation(
     prepared: &Prepared,
     p: &Physical,

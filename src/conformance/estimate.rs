@@ -3,7 +3,7 @@
 //! a [`BiasConvention`] and a calibrator ([`RowEstimator`], and its slow
 //! oracle [`estimate_row_oracle`]).
 //!
-//! The estimator is the simulator's own ([`crate::simulator::estimate`],
+//! The estimator is the simulator's own (`simulator::estimate`,
 //! where it is defined and documented: `simulate` reduces rows with it),
 //! re-exported here as the conformance kit's reference.
 

@@ -127,6 +127,7 @@ pub fn critical_z(alpha: f64, tests: usize) -> Result<f64> {
 /// Where the standard error of a set's variance comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum VarStderrSource {
     /// `EstimatorTruth::set_stderr_var` (the reference run's blocks).
     Truth,
@@ -350,6 +351,7 @@ pub fn score(
 /// Which estimator a score is of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum Estimator {
     /// Normalized V1².
     V1Sq,

@@ -116,6 +116,7 @@ pub struct ConventionTruth {
 /// Where a truth value comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum TruthSource {
     /// An exact closed form (no uncertainty).
     ClosedForm,

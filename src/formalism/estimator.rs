@@ -34,10 +34,14 @@ use crate::error::{Error, Result};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::formalism::spectrum::Spectrum;
-use crate::tolerance::BAND_EDGE_REL;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
 use serde::Serialize;
+
+/// The band window's tie rule is a convention a pipeline matches, so its
+/// slack is public here, the one tolerance of the stable surface (its home,
+/// with the others, is the test machinery's `tolerance`).
+pub use crate::tolerance::BAND_EDGE_REL;
 
 /// Noise-free wide-band estimates for one observation (the `bias` command's
 /// answer).
@@ -135,6 +139,7 @@ pub fn wide_band(obs: &Observation) -> WideBand {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum BinWindow {
     /// The positive frequencies k = 1 … ⌈N/2⌉ − 1: DC excluded, and the
     /// Nyquist bin N/2 excluded when N is even.

@@ -12,6 +12,7 @@ use num_complex::Complex64;
 
 /// Where on the (u, v) plane: a spatial frequency or a baseline.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Frequency {
     /// Spatial frequency at σ_eff, cycles/arcsec (≥ 0).
     SpatialFreqCpas(f64),

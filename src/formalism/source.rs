@@ -21,6 +21,7 @@ pub const ARCSEC_PER_MAS: f64 = 1e-3;
 
 /// How a component's flux depends on wavenumber.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum FluxProfile {
     /// The same flux at every wavenumber.
     Flat {
@@ -102,6 +103,7 @@ pub struct Component {
 /// # Ok::<(), v2ref::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Source {
     /// Unresolved: V = 1 at every spatial frequency.
     Point,

@@ -9,7 +9,7 @@
 //! - [`Spectrum::mean_w2`]: `∫ W²(σ) f(σ) dσ / ∫ W² dσ`;
 //!
 //! computed by adaptive Gauss–Kronrod quadrature split at every kink of the
-//! spectrum, converged to [`crate::tolerance::QUADRATURE_REL`]. A
+//! spectrum, converged to `tolerance::QUADRATURE_REL` (1e-13). A
 //! monochromatic spectrum (a Dirac line) is the limit where both averages
 //! are `f(σ0)`.
 //!

@@ -27,7 +27,7 @@ const GIB: f64 = (1u64 << 30) as f64;
 const ACCEPTED: &str = "a number of GiB above 0 and at most 1048576";
 
 /// Checks a budget of `gib` GiB: a number above 0 and at most
-/// [`MAX_MEMORY_GIB`]; returns it in bytes (at least 1).
+/// `MAX_MEMORY_GIB`; returns it in bytes (at least 1).
 pub fn budget_bytes_of_gib(gib: f64) -> Result<u64> {
     if !(gib.is_finite() && gib > 0.0 && gib <= MAX_MEMORY_GIB) {
         return Err(Error::Invalid {

@@ -1,5 +1,5 @@
 //! File formats of the conformance kit and the command line: matrices and
-//! estimates read from `.npy` or `.csv` ([`npy`], [`csv`]), and atomic,
+//! estimates read from `.npy` or `.csv` (`npy`, `csv`), and atomic,
 //! streaming writers (over the crate's one atomic writer, [`crate::atomic`]:
 //! a temporary file renamed onto the target only when complete, so that a
 //! failed or interrupted write leaves the target as it was).
@@ -15,21 +15,22 @@
 //! This module is the edge's (feature `files`, on with `cli`): the
 //! numerical core reads and writes no file.
 
-pub use crate::atomic;
-pub use crate::atomic::{set, target};
-pub mod budget;
-pub mod csv;
-pub mod npy;
+// The atomic writers' one public path is `crate::atomic`; these names are
+// this module's shorthand for them, crate-private.
+pub(crate) use crate::atomic;
+pub(crate) mod budget;
+pub(crate) mod csv;
+pub(crate) mod npy;
 #[cfg(feature = "oifits")]
 pub mod oifits;
 pub mod spectrum_csv;
 
-pub use atomic::write_text_atomic;
-pub use budget::{check_budget, memory_budget};
+pub use budget::{budget_bytes_of_gib, check_budget, memory_budget, set_memory_budget_gib};
 pub use csv::{CsvRowWriter, CsvRows, MAX_CSV_LINE_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
-pub use set::OutputSet;
-pub use target::{check_output_file, check_parent};
+// The Python bindings' shorthand for the atomic writers.
+#[cfg(feature = "python")]
+pub(crate) use atomic::{set::OutputSet, write_text_atomic};
 
 use crate::{Error, Result};
 use std::fs::File;
@@ -118,6 +119,7 @@ pub(crate) fn not_finite(param: &'static str, path: &Path, location: String, v: 
 
 /// A file of rows read a block of rows at a time, each value checked
 /// finite: a `.npy` ([`NpyRows`]) or a `.csv` ([`CsvRows`]) file.
+#[non_exhaustive]
 pub enum RowStream {
     /// A `.npy` file.
     Npy(NpyRows),

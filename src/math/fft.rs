@@ -1,6 +1,6 @@
 //! A long inverse DFT computed as many short ones, on every thread.
 //!
-//! A piston sequence of M samples ([`crate::piston::series`]) is one inverse
+//! A piston sequence of M samples (`piston::series`) is one inverse
 //! DFT of M up to 2^24 points; a single rustfft call runs it on one thread.
 //! The four-step algorithm (Bailey 1990, "FFTs in external or hierarchical
 //! memory", J. Supercomputing 4, 23) writes M = M1 M2, the output index

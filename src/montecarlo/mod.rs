@@ -8,7 +8,7 @@
 //! neighbouring units get unrelated streams.
 
 pub mod pool;
-pub mod statistics;
+pub(crate) mod statistics;
 
 pub use statistics::{
     effective_count, replicated_summary, replicated_t_quantile, variance_stderr, RunningStats,

@@ -68,6 +68,7 @@ use serde::Serialize;
 /// confirmed by Monte Carlo.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Formula {
     /// As printed in the paper's Appendix.
     Published,

@@ -2,7 +2,7 @@
 //! general [`ExampleSetup`] of a sampled K-band interferogram, its
 //! noise-free samples, and the four SNRs of the printed examples. The
 //! paper's own setup (128 samples, δx = 0.5 µm, n = 10, V = 1) is
-//! [`crate::reproduction::cases::appendix_setup`].
+//! `reproduction::cases::appendix_setup` (internal).
 //!
 //! # The worked examples: which 128-sample interferogram
 //!

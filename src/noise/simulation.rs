@@ -242,6 +242,7 @@ pub(crate) const ALIAS_BUDGET: usize = 1 << 20;
 /// Internal to [`simulate_noisy`]; public only for `tests/montecarlo_noise.rs`.
 #[doc(hidden)]
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub enum PoissonSampler {
     /// λ = 0: always 0.
     Zero,

@@ -41,6 +41,7 @@ pub const DEFAULT_SUB_SAMPLES: usize = 6;
 /// How each sample sees the fringe.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Detector {
     /// The fringe at the sample time.
     Sampled,

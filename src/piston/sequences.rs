@@ -41,7 +41,7 @@ pub const MAX_SEQUENCES: usize = 16;
 /// more for the first `scans % K`).
 ///
 /// ```
-/// use v2ref::piston::sequences::sequence_split;
+/// use v2ref::piston::sequence_split;
 /// assert_eq!(sequence_split(1000), (16, 63));
 /// assert_eq!(sequence_split(20), (2, 10));
 /// assert_eq!(sequence_split(100_000), (16, 6250));

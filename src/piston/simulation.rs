@@ -295,7 +295,7 @@ fn reduce(
 /// assert!(v2.mean < 0.0 && v2.std > 0.0); // piston lowers the fringe contrast on average
 /// # Ok::<(), v2ref::Error>(())
 /// ```
-pub fn simulate(
+pub fn simulate_piston(
     obs: &Observation,
     spectrum: &PistonSpectrum,
     setup: &ScanSetup,
@@ -327,7 +327,7 @@ pub fn simulate_consecutive(
     simulate_through(obs, spectrum, setup, detectors, size, None, &sequence)
 }
 
-/// [`simulate`] through the sequences `make_sequence` synthesizes.
+/// [`simulate_piston`] through the sequences `make_sequence` synthesizes.
 fn simulate_through(
     obs: &Observation,
     spectrum: &PistonSpectrum,
@@ -369,7 +369,7 @@ pub fn sweep_seed(seed: u64, fringe_hz: f64) -> u64 {
     derive_seed(seed, "piston", &[fringe_hz])
 }
 
-/// [`simulate`] at each fringe frequency of `frequencies` (the template
+/// [`simulate_piston`] at each fringe frequency of `frequencies` (the template
 /// `setup` with its `fringe_hz` replaced), each from its own sequence of
 /// seed [`sweep_seed`]`(size.seed, f)`. Returns, per frequency, one
 /// [`PistonRun`] per detector; `progress` counts scans over all of them.
@@ -397,7 +397,7 @@ pub fn sweep(
             threads: 0,
             ..*size
         };
-        simulate(obs, spectrum, &setup, detectors, &size, progress)
+        simulate_piston(obs, spectrum, &setup, detectors, &size, progress)
     };
     crate::montecarlo::in_pool(size.threads, || {
         use rayon::prelude::*;

@@ -61,9 +61,9 @@ use crate::piston::transverse::{tol, F_MAX_TIMES_D};
 use crate::piston::turbulence::{profile_integral, Turbulence};
 use std::f64::consts::PI;
 
-pub use crate::piston::transverse::{
-    aperture_filter, crosswind_integral, transverse_integral, TransverseTable,
-};
+// The crate's shorthand for the transverse integrals (their one public path
+// is `piston::transverse`).
+pub(crate) use crate::piston::transverse::{aperture_filter, transverse_integral, TransverseTable};
 
 /// Below this z, `2(1 − J0(z))` is summed from its series to z⁶: the next
 /// term, z⁸/73728 < 2e-21 relative to z²/2 ≈ 5e-5, is below an ulp, and
@@ -110,6 +110,7 @@ pub struct PistonSpectrum {
 /// Which differential-piston spectrum the sequences are drawn from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum PistonPsdModel {
     /// The two-aperture spectral integral of this module (Kolmogorov, or von
     /// Kármán with an outer scale; any wind direction).
@@ -441,7 +442,7 @@ impl PistonSpectrum {
 /// lose ~log10(4/z²) digits to cancellation.
 ///
 /// ```
-/// use v2ref::piston::turbulence::two_one_minus_j0;
+/// use v2ref::piston::spectrum::two_one_minus_j0;
 /// assert!((two_one_minus_j0(1e-3) / 5e-7 - 1.0).abs() < 1e-6);
 /// assert!((two_one_minus_j0(1.0) - 2.0 * (1.0 - 0.765_197_686_557_966_6)).abs() < 1e-15);
 /// ```

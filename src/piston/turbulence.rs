@@ -22,10 +22,9 @@
 use crate::error::{self, Error, Result};
 use std::f64::consts::PI;
 
-pub use super::spectrum::{
-    aperture_filter, crosswind_integral, differential_piston_variance_from_structure_um2,
-    transverse_integral, two_one_minus_j0, PistonPsdModel, PistonSpectrum, TransverseTable,
-};
+// The crate's shorthand for the spectrum's items (their one public path is
+// `piston::spectrum`).
+pub(crate) use super::spectrum::PistonSpectrum;
 
 /// Radians per arcsecond.
 pub const RAD_PER_ARCSEC: f64 = PI / 648_000.0;

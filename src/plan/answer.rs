@@ -58,7 +58,7 @@ pub(super) fn echo_atmosphere<S: serde::Serializer>(
         seeing_at_observing_arcsec: f64,
         wind_mps: f64,
         aperture_m: f64,
-        outer_scale_m: crate::simulator::record::OuterScale,
+        outer_scale_m: crate::record::OuterScale,
         reference: crate::piston::PistonReference,
         sub_samples: usize,
     }

@@ -19,6 +19,7 @@ pub const FALLBACK_TIME_S: f64 = 3600.0;
 
 /// What a point of the figure states.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Drawn {
     /// The plan's number: the observation of consecutive scans solved
     /// (target), or the σ a time budget reaches (the table's own).

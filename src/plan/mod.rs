@@ -26,7 +26,7 @@
 //! - **the observation**: consecutive scans share the atmosphere, so in
 //!   target mode the fastest [`CANDIDATES`] settings of each
 //!   estimator are solved again with σ of the mean of n consecutive scans
-//!   measured on contiguous piston sequences ([`observation`], n on both
+//!   measured on contiguous piston sequences (`observation`, n on both
 //!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
 //!   the plan recommends among them; [`verify`] simulates the
 //!   recommended observation.
@@ -49,17 +49,21 @@
 //! convention asked for); the piston packet is centred on the scan-mean
 //! piston.
 
-pub mod answer;
+pub(crate) mod answer;
 mod candidates;
+#[cfg(feature = "internals")]
 pub mod figure;
-pub mod observation;
+pub(crate) mod observation;
 pub mod photometry;
 mod reach;
 pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
 pub use candidates::CANDIDATES;
-pub use observation::ObservationError;
+pub use observation::{
+    observation_piston, ObservationError, ObservationPiston, BLOCKS_PER_SEQUENCE,
+    MAX_OBSERVATION_SAMPLES, SEQUENCES,
+};
 pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
 
@@ -90,6 +94,7 @@ pub const MIN_SAMPLES: usize = 8;
 /// The two estimators.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Estimator {
     /// V1² (sum of squared moduli).
     V1,
@@ -100,11 +105,22 @@ pub enum Estimator {
 /// What to reach.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum Target {
     /// σ(V²) of the averaged measurement.
     SigmaV2(f64),
     /// A time budget, s.
     TimeBudgetS(f64),
+}
+
+impl Target {
+    /// The σ(V²) to reach, when that is the target (not a time budget).
+    pub fn sigma_v2(self) -> Option<f64> {
+        match self {
+            Target::SigmaV2(s) => Some(s),
+            Target::TimeBudgetS(_) => None,
+        }
+    }
 }
 
 /// Everything a plan needs.
@@ -259,7 +275,7 @@ pub struct Plan {
     /// The confidence level of the piston terms' intervals ([`CONFIDENCE`]).
     pub confidence: f64,
     /// When the recommendation sits on an edge of the grid: which, and
-    /// what to do ([`answer::grid_edge_note`]).
+    /// what to do (`answer::grid_edge_note`).
     pub grid_edge: Option<String>,
 }
 

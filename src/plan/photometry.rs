@@ -36,6 +36,7 @@ pub const JANSKY_W_PER_M2_HZ: f64 = 1e-26;
 /// 2003, AJ 126, 1090, Table 2) and the Johnson–Cousins visible bands
 /// (Bessell, Castelli & Plez 1998, A&A 333, 231, Table A2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[non_exhaustive]
 pub enum Band2Mass {
     /// J, 1.235 µm.
     J,

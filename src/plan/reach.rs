@@ -78,7 +78,7 @@ pub(super) fn reach(p: &mut PlanPoint, inputs: &PlanInputs, lower: Bounds) {
 /// mean of consecutive scans ([`PlanPoint::observation`], target mode)
 /// states its observation's σ, `√(σ²_noise/n + σ²_piston,obs,upper)`, at its
 /// own n, and elsewhere that piston variance carried as 1/n from it (as
-/// [`super::observation`] carries a measured block to a longer one); any
+/// `observation` carries a measured block to a longer one); any
 /// other point `√((σ²_noise + σ²_piston,upper)/n + bias²_upper)`, its scans
 /// taken as independent. None when no scan fits or σ is not finite. The one
 /// computation behind a budget plan's `sigma_reached` and the plan's figure.

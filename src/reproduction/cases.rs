@@ -21,6 +21,7 @@ use crate::piston::turbulence::Turbulence;
 
 /// How hard the Monte Carlo providers work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Effort {
     /// Fewer trials and scans, same code paths (tests, `reproduce --quick`).
     Quick,
@@ -126,7 +127,7 @@ pub fn fig3_check_step(effort: Effort) -> f64 {
 
 /// The project's reading of the Appendix's worked examples: 128 samples,
 /// δx = 0.5 µm, centred scan, sampling detector, n = 10 continuum photons per
-/// sample, V = 1 (so `m_0 = n V`; [`crate::noise::example`] explains the
+/// sample, V = 1 (so `m_0 = n V`; `noise::example` explains the
 /// choice).
 pub fn appendix_setup() -> ExampleSetup {
     ExampleSetup {

@@ -9,7 +9,7 @@
 //!
 //! [`check`] recomputes every figure of [`crate::reproduction::figures::all`] at
 //! [`Effort::Full`] and compares cell by cell: deterministic tables to
-//! [`GOLDEN_REL`] relative (floor [`GOLDEN_ABS`]), Monte Carlo tables
+//! `tolerance::GOLDEN_REL` (1e-12) relative (floor `tolerance::GOLDEN_ABS`, 1e-14), Monte Carlo tables
 //! exactly (same seed, same bits). It returns every mismatch, including
 //! missing or extra files and changed parameters. [`update`] rewrites the
 //! directory atomically: everything is written into a temporary sibling

@@ -33,6 +33,7 @@ use serde::{Deserialize, Serialize};
 /// Where the photon-noise bias takes the mean counts n_i from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum BiasConvention {
     /// The model's noise-free counts `n_i = c_i + m_i` (exact for a known
     /// source without piston). With piston (`--fringe-hz`) it is biased:
@@ -369,6 +370,7 @@ pub const DARK_ROW: &str =
 /// file holds no data, and the estimators would return a bias-subtracted
 /// number of no meaning).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum RowFault {
     /// `value`, at `row` and `col` (0-based), is not finite.
     NonFinite {

@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 /// How the rows of a set with piston lie in time.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
+#[non_exhaustive]
 pub enum RowLayout {
     /// Independent sequences, scans spread out in each: the statistics of
     /// one scan (the default; the rows of every earlier version).
@@ -97,7 +98,7 @@ impl SetLayout {
     /// sequence (None past the last row).
     ///
     /// ```
-    /// use v2ref::simulator::layout::{RowLayout, SetLayout};
+    /// use v2ref::simulator::{RowLayout, SetLayout};
     /// let layout = SetLayout {
     ///     layout: RowLayout::Sequences,
     ///     sequences: 2,

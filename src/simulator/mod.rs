@@ -7,23 +7,25 @@
 //! [`Inputs`] holds every physical input as plain numbers; [`Model`] is
 //! the configuration built from them (the noise-free, piston-free source
 //! and calibrator); [`Model::rows`] draws a set of noisy rows
-//! ([`rows`]); [`estimate`] computes each row's V1² and V2² (raw,
+//! (`rows`); `estimate` computes each row's V1² and V2² (raw,
 //! bias-subtracted, normalized: the conformance kit's reference,
 //! re-exported at [`crate::conformance::estimate`]); [`run::simulate`]
 //! reduces them to the running statistics of the normalized estimators,
 //! beside their closed forms.
 
-pub mod estimate;
-pub mod inputs;
-pub mod layout;
-pub mod model;
-pub mod record;
+pub(crate) mod estimate;
+pub(crate) mod inputs;
+pub(crate) mod layout;
+pub(crate) mod model;
+#[cfg(feature = "internals")]
+pub(crate) mod record;
+#[cfg(feature = "internals")]
 pub mod report;
-pub mod rows;
-pub mod run;
+pub(crate) mod rows;
+pub(crate) mod run;
 
 pub use inputs::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 pub use layout::{RowLayout, SetLayout};
 pub use model::Model;
 pub use rows::{PistonFacts, Rows, ROWS_PER_UNIT};
-pub use run::{simulate, SimulationRun};
+pub use run::{simulate, PistonEffect, SimulationRun};

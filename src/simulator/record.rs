@@ -1,8 +1,5 @@
-//! The records of what a computation was asked (the `inputs` object of
-//! the JSON answers), at their home, [`crate::record`], below the
-//! paper's effects that carry them; re-exported here, where they were
-//! first defined.
+//! Where the records of what a computation was asked were first defined;
+//! their home is [`crate::record`]. Kept, crate-private, for the import of
+//! `crate::parameters`.
 
-pub use crate::record::{
-    AtmosphereRecord, InputsRecord, ObservationRecord, OuterScale, SamplingRecord,
-};
+pub(crate) use crate::record::{AtmosphereRecord, ObservationRecord};

@@ -33,6 +33,7 @@ pub(crate) fn refuse(location: impl Into<String>, reason: impl Into<String>) -> 
 
 /// A keyword's value as written on its card.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Value {
     /// A quoted string, trailing blanks removed.
     Str(String),

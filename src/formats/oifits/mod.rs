@@ -1,7 +1,7 @@
 //! OIFITS, the exchange format of optical interferometry (Pauls et al.
 //! 2005, PASP 117, 1255; version 2: Duvert, Young & Hummel 2017, A&A 597,
-//! A8): squared visibilities written as OIFITS v2 (module [`self::write`]) and read
-//! from OIFITS v1 or v2 ([`read`]).
+//! A8): squared visibilities written as OIFITS v2 (module `write`) and read
+//! from OIFITS v1 or v2 (`read`).
 //!
 //! **Writing goes through cfitsio** (NASA HEASARC, the reference FITS
 //! implementation), by the Rust crate `fitsio` and its `fitsio-src`
@@ -29,23 +29,23 @@
 pub mod docs;
 pub mod fits;
 mod mem;
-pub mod observing;
+pub(crate) mod observing;
 mod order;
-pub mod read;
+pub(crate) mod read;
 #[cfg(test)]
 mod reader_tests;
 mod select;
-pub mod setting;
+pub(crate) mod setting;
 pub mod table;
-pub mod write;
+pub(crate) mod write;
 
 pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
     min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
     truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
-pub use setting::Setting;
-pub use write::{write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
+pub use setting::{iota, Setting, Site};
+pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
 
 use crate::{Error, Result};
 use std::path::Path;

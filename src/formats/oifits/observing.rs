@@ -57,7 +57,7 @@ pub struct ObservingSpec {
     /// `DATE-OBS`: `YYYY-MM-DD` or `YYYY-MM-DDThh:mm:ss[.s]` (UTC), when
     /// the first row starts.
     pub date: Option<String>,
-    /// A known array ([`KNOWN_SITES`]), or the name of the site whose
+    /// A known array (`KNOWN_SITES`), or the name of the site whose
     /// coordinates follow.
     pub site: Option<String>,
     /// The site's east longitude, degrees (with `site_lat_deg`,
@@ -181,8 +181,8 @@ pub struct ObservingContext {
 }
 
 impl Default for ObservingContext {
-    /// The file's defaults: [`DEFAULT_TARGET`] at RA = Dec = 0,
-    /// [`DEFAULT_DATE`], IOTA.
+    /// The file's defaults: `DEFAULT_TARGET` at RA = Dec = 0,
+    /// `DEFAULT_DATE`, IOTA.
     fn default() -> Self {
         ObservingContext {
             target_name: DEFAULT_TARGET.into(),

@@ -305,6 +305,4 @@ pub struct Expected {
     pub bias: crate::conformance::estimate::BiasConvention,
 }
 
-pub use super::select::{
-    min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice, MIN_UNFLAGGED_FRACTION,
-};
+pub use super::select::{min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice};

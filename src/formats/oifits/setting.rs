@@ -81,7 +81,7 @@ pub struct Setting {
     /// `EFF_BAND`, m: the width in wavelength of the band's support.
     pub eff_band_m: f64,
     /// Duration of one scan, s (`INT_TIME`); None where the configuration
-    /// has no scan speed (then `INT_TIME = 0` and rows [`NOMINAL_ROW_S`]
+    /// has no scan speed (then `INT_TIME = 0` and rows `NOMINAL_ROW_S`
     /// apart).
     pub scan_s: Option<f64>,
 }

@@ -12,6 +12,7 @@ const MAX_COLUMNS: i64 = 999;
 
 /// The data type of a column (`TFORMn`'s letter).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Kind {
     /// `L`: logical, one byte (`T`, `F`, or 0 for undefined).
     Logical,

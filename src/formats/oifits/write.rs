@@ -21,6 +21,7 @@ pub const KEY_NHDU: &str = "V2R_NHDU";
 
 /// A header keyword's value.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum KeyValue {
     /// A character string (at most 68 characters).
     Str(String),

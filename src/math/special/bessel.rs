@@ -14,7 +14,7 @@
 //!   until its terms fall below `HANKEL_STOP` (at x ≥ 30 the smallest term is far
 //!   below that).
 //!
-//! Accuracy: |error| ≤ [`crate::tolerance::BESSEL_ABS`] for |x| ≤ 100, checked
+//! Accuracy: |error| ≤ `tolerance::BESSEL_ABS` (1e-14) for |x| ≤ 100, checked
 //! against mpmath in `tests/special.rs`.
 
 /// Where the Hankel expansion takes over from the recurrence.

@@ -57,6 +57,7 @@ pub fn ledger() -> Vec<ClaimSpec> {
 /// A claim's verdict (listed in the header of `paper/claims.toml`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Status {
     /// Computed, within the paper's rounding.
     Reproduced,

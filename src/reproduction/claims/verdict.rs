@@ -9,9 +9,10 @@ use crate::tolerance::MC_SIGMAS;
 
 /// An independent confirmation of a computed value.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Check {
     /// A Monte Carlo estimate of the same quantity and its standard error:
-    /// confirms a value within [`MC_SIGMAS`] standard errors.
+    /// confirms a value within `tolerance::MC_SIGMAS` (5) standard errors.
     MonteCarlo {
         /// The Monte Carlo mean (or variance, or ratio).
         estimate: f64,
@@ -52,6 +53,7 @@ impl Check {
 /// What a provider computed for one claim: the numbers its status is
 /// decided from.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Finding {
     /// A value in the ledger's unit.
     Number {

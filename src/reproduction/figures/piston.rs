@@ -23,9 +23,10 @@ use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::montecarlo::{derive_seed, Summary};
 use crate::piston::spectrum::PistonPsdModel;
-use crate::piston::turbulence::{PistonSpectrum, TransverseTable, Turbulence};
+use crate::piston::spectrum::{PistonSpectrum, TransverseTable};
+use crate::piston::turbulence::Turbulence;
 use crate::piston::{
-    simulate, sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
+    simulate_piston, sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
 use crate::reproduction::cases::{
     fig4_size, fig5_frequencies, fig5_size, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M,
@@ -140,7 +141,7 @@ fn fig4_row(
         threads: 0,
     };
     let setup = ScanSetup::paper(fringe_hz);
-    let run = &simulate(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)?[0];
+    let run = &simulate_piston(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)?[0];
     let w = run.window(BinWindow::Positive);
     let mut row = vec![
         s,

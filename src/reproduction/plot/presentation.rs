@@ -41,6 +41,7 @@ pub struct PlotHint {
 
 /// A corner of the chart for the legend.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub enum LegendAt {
     /// Upper right (plotters' usual place).
     #[default]

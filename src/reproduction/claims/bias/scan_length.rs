@@ -20,7 +20,7 @@ fn max_finite_scan_bias(sampling: &Sampling, points: usize) -> MaxBias {
     let cal_obs = observe(&band, &Source::Point, 0.0, &SpectralPhase::zero());
     let cal = finite_scan::calibrator_raw(&cal_obs, sampling, Method::Dft).expect("valid scan");
     let bias = |s: f64| {
-        finite_scan::bias(
+        finite_scan::finite_scan_bias(
             &observe(&band, &disk(), s, &SpectralPhase::zero()),
             sampling,
             Method::Dft,

@@ -10,10 +10,9 @@ use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum, CPAS_PER_M_PER_INV_UM};
 use crate::montecarlo::derive_seed;
-use crate::piston::turbulence::{
-    differential_piston_variance_from_structure_um2, r0_from_seeing_m, PistonSpectrum,
-};
-use crate::piston::{simulate, Detector, PistonRun, RunSize, ScanSetup};
+use crate::piston::spectrum::{differential_piston_variance_from_structure_um2, PistonSpectrum};
+use crate::piston::turbulence::r0_from_seeing_m;
+use crate::piston::{simulate_piston, Detector, PistonRun, RunSize, ScanSetup};
 use crate::reproduction::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
 use crate::reproduction::cases::{Effort, SEEING_ARCSEC, WAVELENGTH_UM, WIND_MPS};
 use crate::reproduction::figures::piston::{fig4, fig5};
@@ -30,6 +29,7 @@ use scaling::scaling_claims;
 
 /// Where a curve |y(f)| falls below a level for good (f increasing).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Crossing {
     /// Every point is below the level.
     BelowRange,

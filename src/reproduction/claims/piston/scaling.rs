@@ -36,7 +36,7 @@ fn scaling_run(
         threads: 0,
     };
     let setup = ScanSetup::paper(f);
-    let mut runs = simulate(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)?;
+    let mut runs = simulate_piston(&obs, &spectrum, &setup, &[Detector::Sampled], &size, None)?;
     runs.pop().ok_or_else(|| Error::Invalid {
         param: "detector",
         reason: "no run returned".into(),

@@ -13,7 +13,7 @@
 //!
 //! Each threshold carries its Monte Carlo interval: for the three level
 //! crossings that of the claims (the frequencies where |bias| is within
-//! [`SIGNIFICANCE_SIGMAS`](crate::tolerance::SIGNIFICANCE_SIGMAS) standard
+//! `tolerance::SIGNIFICANCE_SIGMAS` (3) standard
 //! errors of the level, plus half a grid step each side); for "V1
 //! unbiased from", from the last frequency where |bias V1| is significant
 //! to the threshold itself (the grid step that brackets it).
@@ -25,7 +25,7 @@ use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
-use crate::piston::turbulence::{PistonPsdModel, PistonSpectrum};
+use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonReference, RunSize, ScanSetup};
 use crate::reproduction::cases::{
     fig5_frequencies, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
