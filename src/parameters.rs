@@ -24,7 +24,7 @@ use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::NoiseModel;
 use crate::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
-use crate::simulator::record::{AtmosphereRecord, ObservationRecord};
+use crate::record::{AtmosphereRecord, ObservationRecord};
 use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -38,6 +38,7 @@ pub use table::{refer_to, Parameter, Physical, PARAMETERS};
 /// The source model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum SourceKind {
     /// Unresolved (V = 1).
     Point,

@@ -18,8 +18,6 @@ pub(crate) mod inputs;
 pub(crate) mod layout;
 pub(crate) mod model;
 #[cfg(feature = "internals")]
-pub(crate) mod record;
-#[cfg(feature = "internals")]
 pub mod report;
 pub(crate) mod rows;
 pub(crate) mod run;
