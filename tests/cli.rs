@@ -1,21 +1,10 @@
 //! The command-line contract: bad input exits 2 with one line naming the
 //! flag, never a panic; `--json` answers parse and carry the contract's fields.
 
-use std::process::Command;
 use v2ref::assert_rel_eq;
 use v2ref::tolerance::{QUADRATURE_CHECK_REL, ROUNDING_REL};
 
-fn v2ref(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::run::v2ref;
 
 fn assert_bad_input(args: &[&str], flag: &str) {
     let (code, stdout, stderr) = v2ref(args);

@@ -1,21 +1,10 @@
 //! `v2ref snr` and `v2ref simulate` against the CLI contract.
 
 use serde_json::Value;
-use std::process::Command;
 use v2ref::assert_within_sigmas;
 use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
 
-fn v2ref(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::run::v2ref;
 
 fn json(args: &[&str]) -> Value {
     let (code, out, err) = v2ref(args);

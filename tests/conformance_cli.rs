@@ -3,22 +3,11 @@
 //! across thread counts, the vectors, and bad input.
 
 use std::path::Path;
-use std::process::Command;
 use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::simulator::{Inputs, Model, SourceInput};
 
-fn v2ref(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::run::v2ref;
 
 fn ok(args: &[&str]) -> String {
     let (code, out, err) = v2ref(args);

@@ -8,7 +8,6 @@ use v2ref::formats as files;
 use files::{read_estimates, read_matrix, CsvRowWriter, NpyRowWriter};
 use npyz::WriterBuilder;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use v2ref::atomic::write_text_atomic;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::sidecar::{
@@ -19,17 +18,7 @@ use v2ref::formalism::estimator::{BinWindow, Pair};
 use v2ref::simulator::Inputs;
 use v2ref::Error;
 
-fn v2ref(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::run::v2ref;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -9,17 +9,7 @@ use fitsio::FitsFile;
 use std::path::Path;
 use std::process::Command;
 
-fn v2ref(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::run::v2ref;
 
 const ROWS: usize = 200;
 

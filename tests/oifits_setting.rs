@@ -10,13 +10,10 @@ use fitsio::FitsFile;
 use std::path::Path;
 use std::process::Command;
 
+/// `v2ref ARGS`: its exit status and standard error.
 fn v2ref(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    (out.status.code().unwrap_or(-1), err)
+    let (code, _, err) = crate::run::v2ref(args);
+    (code, err)
 }
 
 /// What a file says of the observation, read with cfitsio.

@@ -62,6 +62,7 @@ mod robustness_limits;
 mod robustness_memory;
 mod robustness_readers;
 mod robustness_sets;
+mod run;
 mod running_stats;
 mod simulator;
 mod special;
