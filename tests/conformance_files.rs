@@ -85,6 +85,7 @@ fn sidecar() -> Sidecar {
                 rows_per_block: 4,
             },
         },
+        members: None,
     }
 }
 

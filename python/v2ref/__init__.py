@@ -855,6 +855,7 @@ def plan(
     threads: int = 0,
     diameter_err_mas: float = 0.0,
     oifits: Optional[_PathLike] = None,
+    force: bool = False,
     target_name: Optional[str] = None,
     ra_deg: Optional[float] = None,
     dec_deg: Optional[float] = None,
@@ -920,6 +921,9 @@ def plan(
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
         written when no setting reaches the target (``recommended`` null).
+    force : bool
+        Replace an existing ``oifits`` file (as ``--force``); without it an
+        existing file is refused before any computing.
     target_name, ra_deg, dec_deg, date, site, site_lon_deg, site_lat_deg, site_height_m : optional
         Where and when the ``oifits`` file says the observation is made,
         as :func:`v2ref.oifits.write_oifits` takes them (refused without
@@ -978,6 +982,7 @@ def plan(
         _word("bias", bias),
         observations if verify else None,
         observing,
+        _flag("force", force),
     )
 
 

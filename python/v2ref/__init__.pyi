@@ -599,7 +599,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1000000.0, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1000000.0, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -632,6 +632,9 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         biases left to correct in header keywords. Refused unless it ends
         in ``.fits``, ``.oifits`` or ``.fit`` (each possibly ``.gz``); not
         written when no setting reaches the target (``recommended`` null).
+    force : bool
+        Replace an existing ``oifits`` file (as ``--force``); without it an
+        existing file is refused before any computing.
     target_name, ra_deg, dec_deg, date, site, site_lon_deg, site_lat_deg, site_height_m : optional
         Where and when the ``oifits`` file says the observation is made,
         as :func:`v2ref.oifits.write_oifits` takes them (refused without
@@ -782,14 +785,16 @@ def read_oifits(path: Any, *, accept_checksum_mismatch: bool=False) -> List[Dict
     ``accept_checksum_mismatch``. ``.fits.gz`` is read as well.
     """
 
-def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, bins: str='positive', bias: str='model', target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None) -> None:
+def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, bins: str='positive', bias: str='model', target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, force: bool=False) -> None:
     """Writes per-row estimates of a synth set as OIFITS v2 (``.fits``).
 
     One ``OI_VIS2`` table per array given (INSNAME ``V2REF_V1SQ``,
     ``V2REF_V2SQ``), one row per interferogram; ``VIS2ERR`` is the
     closed-form standard deviation of the estimator at the set's
     conditions. The configuration (band, baseline) comes from ``sidecar``
-    (a dict from ``synthesize()`` or a path). Written atomically.
+    (a dict from ``synthesize()`` or a path). Written atomically; an
+    existing file is replaced only with ``force=True`` (as ``--force``),
+    never a link, a folder or a special file.
 
     Where and when the file says the observation was made (each left out
     keeps the default): ``target_name`` (TARGET, 1 to 16 printable ASCII
@@ -803,9 +808,10 @@ def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, b
     raises ValueError naming the keyword, as the CLI's flags do.
     """
 
-def write_oifits_truth(path: Any, *, sidecar: Any, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None) -> None:
+def write_oifits_truth(path: Any, *, sidecar: Any, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, force: bool=False) -> None:
     """Writes a synth set's truth (the expected V1², V2² of every row,
-    window positive, convention model) as OIFITS v2.
+    window positive, convention model) as OIFITS v2; an existing file is
+    replaced only with ``force=True``.
     Where and when the file says the observation was made (each left out
     keeps the default): ``target_name`` (TARGET, 1 to 16 printable ASCII
     characters; ``V2REF_MODEL``), ``ra_deg`` and ``dec_deg`` together (the

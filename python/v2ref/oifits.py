@@ -116,6 +116,7 @@ def write_oifits(
     site_lon_deg: Optional[float] = None,
     site_lat_deg: Optional[float] = None,
     site_height_m: Optional[float] = None,
+    force: bool = False,
 ) -> None:
     """Writes per-row estimates of a synth set as OIFITS v2 (``.fits``).
 
@@ -123,7 +124,9 @@ def write_oifits(
     ``V2REF_V2SQ``), one row per interferogram; ``VIS2ERR`` is the
     closed-form standard deviation of the estimator at the set's
     conditions. The configuration (band, baseline) comes from ``sidecar``
-    (a dict from ``synthesize()`` or a path). Written atomically.
+    (a dict from ``synthesize()`` or a path). Written atomically; an
+    existing file is replaced only with ``force=True`` (as ``--force``),
+    never a link, a folder or a special file.
     """
     observing = _observing(locals())
     text, name = _sidecar(sidecar)
@@ -133,7 +136,7 @@ def write_oifits(
         raise TypeError(f"bins: {bins!r} is not a string")
     if not isinstance(bias, str):
         raise TypeError(f"bias: {bias!r} is not a string")
-    _v2ref.write_oifits(_path("path", path), a1, a2, text, name, bins, bias, observing)
+    _v2ref.write_oifits(_path("path", path), a1, a2, text, name, bins, bias, observing, _flag("force", force))
 
 
 def write_oifits_truth(
@@ -148,12 +151,14 @@ def write_oifits_truth(
     site_lon_deg: Optional[float] = None,
     site_lat_deg: Optional[float] = None,
     site_height_m: Optional[float] = None,
+    force: bool = False,
 ) -> None:
     """Writes a synth set's truth (the expected V1², V2² of every row,
-    window positive, convention model) as OIFITS v2."""
+    window positive, convention model) as OIFITS v2; an existing file is
+    replaced only with ``force=True``."""
     observing = _observing(locals())
     text, name = _sidecar(sidecar)
-    _v2ref.write_oifits_truth(_path("path", path), text, name, observing)
+    _v2ref.write_oifits_truth(_path("path", path), text, name, observing, _flag("force", force))
 
 
 write_oifits.__doc__ = (write_oifits.__doc__ or "") + _OBSERVING_DOC

@@ -2,34 +2,29 @@
 //! target, which then takes the target's place: swapped with the old
 //! folder in one step where the system can (Linux's `RENAME_EXCHANGE`),
 //! else by rename, the old folder moved aside first (put back if the
-//! rename fails); the old folder removed last.
+//! rename fails); the old folder removed last. Only a folder is ever
+//! replaced: a file, a link or anything else at the target is refused.
 
 use super::lock::{name_bytes, remove_stale_temporaries, temp_name, OutputLock};
+use super::own;
 use super::target::parent_of;
 use crate::{Error, Result};
+use std::fs::File;
 use std::path::{Path, PathBuf};
 
-/// The file a temporary folder holds from its start: a stale temporary
-/// folder is removed only when it holds this file with this text, or is an
-/// old folder moved aside that held `reproduce`'s `.v2ref-output` (a
-/// user's folder that merely has such a name stays).
+/// The file a temporary folder holds from its start, held under its
+/// writer's `flock`: a temporary folder is removed by a later run only
+/// when it holds this file, of this user, with its lock free.
 pub(crate) const FOLDER_MARKER: &str = ".v2ref-temporary";
-const FOLDER_MARKER_TEXT: &str = "a temporary folder of v2ref; removed when its run is gone\n";
-
-/// Whether `path` is a folder [`replace_folder`] made, or moved aside.
-pub(crate) fn is_own_folder(path: &Path) -> bool {
-    let marked =
-        std::fs::read_to_string(path.join(FOLDER_MARKER)).is_ok_and(|t| t == FOLDER_MARKER_TEXT);
-    marked || path.join(".v2ref-output").is_file()
-}
 
 /// Replaces the folder `dir` as a whole (its parent created if needed):
 /// `fill` writes into a fresh temporary folder beside it, which takes
 /// `dir`'s place once `fill` succeeds. The folder is locked for the run (a
 /// second writer is refused, naming the process), and the temporaries of
-/// dead processes beside it are removed first. If `fill` fails, or the
-/// rename does, `dir` is left as it was and nothing half-written remains;
-/// a terminating signal waits for the renames. Errors name `param`.
+/// writers that are gone beside it are removed first. If `fill` fails, or
+/// the rename does, `dir` is left as it was and nothing half-written
+/// remains; a terminating signal waits for the renames. Errors name
+/// `param`.
 pub fn replace_folder<T>(
     dir: &Path,
     param: Option<&'static str>,
@@ -37,6 +32,7 @@ pub fn replace_folder<T>(
 ) -> Result<T> {
     let parent = parent_of(dir);
     std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    check_folder_target(dir, param)?;
     let _lock = OutputLock::acquire(dir, param.unwrap_or("out"))?;
     remove_stale_temporaries(&parent);
     let temp = TempFolder::create(dir, param)?;
@@ -50,10 +46,25 @@ pub fn replace_folder<T>(
 pub fn check_folder_parent(dir: &Path, param: Option<&'static str>) -> Result<()> {
     let parent = parent_of(dir);
     std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    check_folder_target(dir, param)?;
     let name = dir.file_name().map(name_bytes).unwrap_or_default();
     let probe = parent.join(temp_name(&name, 3000));
-    std::fs::write(&probe, b"").map_err(|e| Error::file(param, &parent, e))?;
+    own::open_own(&probe, true).map_err(|e| Error::file(param, &parent, e))?;
     std::fs::remove_file(&probe).map_err(|e| Error::file(param, &probe, e))
+}
+
+/// Refuses a target that is there and is not a folder (a file, a link).
+fn check_folder_target(dir: &Path, param: Option<&'static str>) -> Result<()> {
+    match std::fs::symlink_metadata(dir) {
+        Ok(m) if !m.is_dir() => Err(Error::Invalid {
+            param: param.unwrap_or("out"),
+            reason: format!(
+                "{}: is not a folder (a file or a link); v2ref replaces only a folder: give another name",
+                dir.display()
+            ),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// A temporary folder beside a target, removed on drop unless placed.
@@ -61,6 +72,8 @@ struct TempFolder {
     target: PathBuf,
     path: PathBuf,
     param: Option<&'static str>,
+    // The marker, open: holds its flock for the life of the folder.
+    _marker: File,
     placed: bool,
 }
 
@@ -73,51 +86,56 @@ impl TempFolder {
                 path: target.display().to_string(),
                 reason: "not a folder name".into(),
             })?;
-        let path = free_name(target, &name, 0).map_err(|e| Error::file(param, target, e))?;
-        let folder = TempFolder {
+        let path = free_name(target, &name).map_err(|e| Error::file(param, target, e))?;
+        let marker = own::open_own(&path.join(FOLDER_MARKER), true)
+            .and_then(|f| own::try_lock(&f).map(|_| f));
+        let marker = match marker {
+            Ok(f) => f,
+            Err(e) => {
+                let _ = std::fs::remove_dir_all(&path);
+                crate::cleanup::unregister(&path);
+                return Err(Error::file(param, &path, e));
+            }
+        };
+        Ok(TempFolder {
             target: target.to_path_buf(),
             path,
             param,
+            _marker: marker,
             placed: false,
-        };
-        std::fs::write(folder.path.join(FOLDER_MARKER), FOLDER_MARKER_TEXT)
-            .map_err(|e| Error::file(param, &folder.path, e))?;
-        Ok(folder)
+        })
     }
 
-    /// Puts the folder at its target: the old folder (if any) moved aside
-    /// under a temporary name, this one renamed in, the old one removed.
+    /// Puts the folder at its target: swapped with the old folder, or
+    /// renamed in (the old folder moved aside first), the old one removed.
     fn place(mut self) -> Result<()> {
         let io = |e| Error::file(self.param, &self.target, e);
         let signals_wait = crate::cleanup::hold_commit();
+        check_folder_target(&self.target, self.param)?;
+        let there = std::fs::symlink_metadata(&self.target).is_ok();
         // One atomic swap where the system has it: no instant without a
         // folder at the target, even for a run killed there.
-        if std::fs::symlink_metadata(&self.target).is_ok() && exchange(&self.path, &self.target) {
-            self.placed = true;
-            drop(signals_wait);
-            let _ = std::fs::remove_file(self.target.join(FOLDER_MARKER));
-            // The old folder, now under the temporary's name.
-            let _ = std::fs::remove_dir_all(&self.path);
-            crate::cleanup::unregister(&self.path);
-            return Ok(());
-        }
-        let old = match std::fs::symlink_metadata(&self.target) {
-            Ok(_) => {
+        let old = if there && exchange(&self.path, &self.target) {
+            Some(self.path.clone())
+        } else {
+            let old = if there {
                 let name = self.target.file_name().map(name_bytes).unwrap_or_default();
                 let old = parent_of(&self.target).join(temp_name(&name, 2000));
                 std::fs::rename(&self.target, &old).map_err(io)?;
                 crate::cleanup::register(&old);
                 Some(old)
+            } else {
+                None
+            };
+            if let Err(e) = std::fs::rename(&self.path, &self.target) {
+                if let Some(old) = &old {
+                    let _ = std::fs::rename(old, &self.target);
+                    crate::cleanup::unregister(old);
+                }
+                return Err(io(e));
             }
-            Err(_) => None,
+            old
         };
-        if let Err(e) = std::fs::rename(&self.path, &self.target) {
-            if let Some(old) = &old {
-                let _ = std::fs::rename(old, &self.target);
-                crate::cleanup::unregister(old);
-            }
-            return Err(io(e));
-        }
         crate::cleanup::unregister(&self.path);
         self.placed = true;
         drop(signals_wait);
@@ -169,10 +187,10 @@ fn exchange(_: &Path, _: &Path) -> bool {
 }
 
 /// Makes (and registers) the first free temporary folder for `name`
-/// beside `target`, from the `first`-th name on.
-fn free_name(target: &Path, name: &[u8], first: u32) -> std::io::Result<PathBuf> {
+/// beside `target`.
+fn free_name(target: &Path, name: &[u8]) -> std::io::Result<PathBuf> {
     let dir = parent_of(target);
-    let mut k = first;
+    let mut k = 0;
     loop {
         let path = dir.join(temp_name(name, k));
         // Registered first: a signal that comes as it is made removes it.
@@ -182,7 +200,7 @@ fn free_name(target: &Path, name: &[u8], first: u32) -> std::io::Result<PathBuf>
             Err(e) => {
                 crate::cleanup::unregister(&path);
                 match e.kind() {
-                    std::io::ErrorKind::AlreadyExists if k < first + 1000 => k += 1,
+                    std::io::ErrorKind::AlreadyExists if k < 1000 => k += 1,
                     _ => return Err(e),
                 }
             }

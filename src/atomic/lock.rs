@@ -1,18 +1,25 @@
 //! Who is writing an output, and what a process that died left behind.
 //!
-//! - An output file is written under a lock (an `flock` on a file
-//!   `.v2ref-lock-HASH` beside it, HASH naming the target): a second writer
-//!   of the same target, in another process or another thread, is refused
-//!   with the process that holds it. The kernel releases the lock of a
-//!   process that ends however it ends, so a lock is never stale.
-//! - Temporaries carry the process id in their name
-//!   (`.v2ref-tmp-PID-K-NAME`); [`remove_stale_temporaries`] removes those
-//!   of processes that no longer run.
+//! - An output is written under a lock: an `flock` on `.v2ref-lock-HASH`
+//!   beside it (HASH names the target), a regular file of this user opened
+//!   without following a link ([`super::own`]); a second writer of the
+//!   same target, in another process or another thread, is refused with
+//!   the process that holds it. The kernel releases the lock of a process
+//!   that ends however it ends.
+//! - A temporary (`.v2ref-tmp-PID-K-NAME`, a file, or a folder holding the
+//!   marker [`super::folder::FOLDER_MARKER`]) is held under an `flock` by
+//!   its writer for as long as it lives: [`remove_stale_temporaries`]
+//!   removes only the temporaries of this user whose lock it can take, so
+//!   it never removes a live writer's, whatever host or container that
+//!   writer runs in, and never decides by a process id.
 
+use super::own::{self, Folder};
 use crate::{Error, Result};
 use std::fs::File;
-use std::io::{Read, Seek, Write};
-use std::path::{Path, PathBuf};
+use std::io::{self, Read, Seek, Write};
+use std::path::Path;
+#[cfg(test)]
+use std::path::PathBuf;
 
 /// The prefix of every temporary file v2ref makes beside an output.
 pub(crate) const TEMP_PREFIX: &str = ".v2ref-tmp-";
@@ -50,70 +57,73 @@ pub(crate) fn name_from_bytes(bytes: Vec<u8>) -> std::ffi::OsString {
 
 /// FNV-1a of `bytes`: a name for a target that does not lengthen it and is
 /// the same in every build (the standard hasher's keys may change).
-fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
-    })
+pub(crate) fn fnv1a(bytes: &[u8], h: u64) -> u64 {
+    bytes
+        .iter()
+        .fold(h, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
 }
+
+/// FNV-1a's starting value.
+pub(crate) const FNV_START: u64 = 0xcbf2_9ce4_8422_2325;
 
 /// A held lock on an output; released (and its file removed) on drop.
 pub(crate) struct OutputLock {
-    path: PathBuf,
+    folder: Folder,
+    name: std::ffi::OsString,
     // Holds the flock; closed after the file is removed.
     _file: File,
 }
 
-/// The 16 hexadecimal digits that name `target`'s lock file and its
-/// commit record (`src/atomic/journal.rs`) in its folder.
-pub(crate) fn name_hash(target: &Path) -> String {
-    let name = target.file_name().map(name_bytes).unwrap_or_default();
-    format!("{:016x}", fnv1a(&name))
-}
-
-/// The lock file of `target` (in the folder `target` is written in).
-fn lock_path(target: &Path) -> PathBuf {
-    super::target::parent_of(target).join(format!("{LOCK_PREFIX}{}", name_hash(target)))
+/// Refuses a lock or temporary name that holds something v2ref does not
+/// use (a link, a FIFO, a folder, another user's file), naming it.
+pub(crate) fn not_own(param: &'static str, path: &Path, e: &io::Error) -> Error {
+    Error::Invalid {
+        param,
+        reason: format!(
+            "{}: is not a regular file of yours ({e}); v2ref neither opens nor removes it: remove it or write elsewhere",
+            path.display()
+        ),
+    }
 }
 
 impl OutputLock {
     /// Takes the lock of `target` (named `param` in errors), or refuses
     /// with the process that holds it.
     pub(crate) fn acquire(target: &Path, param: &'static str) -> Result<OutputLock> {
-        OutputLock::acquire_at(lock_path(target), target, param)
-    }
-
-    /// Takes the lock file `path` of the output `target` (`target` only
-    /// names it in errors).
-    pub(crate) fn acquire_at(
-        path: PathBuf,
-        target: &Path,
-        param: &'static str,
-    ) -> Result<OutputLock> {
-        let io = |e| Error::file(Some(param), target, e);
+        let dir = super::target::parent_of(target);
+        let folder = Folder::open(&dir).map_err(|e| Error::file(Some(param), &dir, e))?;
+        let name = target.file_name().map(name_bytes).unwrap_or_default();
+        let name =
+            std::ffi::OsString::from(format!("{LOCK_PREFIX}{:016x}", fnv1a(&name, FNV_START)));
+        let path = dir.join(&name);
         loop {
-            let mut file = std::fs::OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(&path)
-                .map_err(io)?;
-            if !try_lock(&file).map_err(io)? {
+            let mut file = match own::open_own(&path, false) {
+                Ok(f) => f,
+                Err(e) if e.kind() == io::ErrorKind::PermissionDenied => {
+                    return Err(Error::file(Some(param), target, e))
+                }
+                Err(e) => return Err(not_own(param, &path, &e)),
+            };
+            if !own::try_lock(&file).map_err(|e| Error::file(Some(param), target, e))? {
                 let mut text = String::new();
-                let _ = file.read_to_string(&mut text);
+                let _ = (&file).take(32).read_to_string(&mut text);
                 return Err(held(param, target, text.trim()));
             }
             // The holder before us may have removed the file between our
             // open and our lock: hold the lock of the file at the path.
-            if !same_file(&file, &path) {
+            if !own::is_at(&file, &path) {
                 continue;
             }
             crate::cleanup::register(&path);
             file.set_len(0)
                 .and_then(|()| file.rewind())
                 .and_then(|()| writeln!(file, "{}", std::process::id()))
-                .map_err(io)?;
-            return Ok(OutputLock { path, _file: file });
+                .map_err(|e| Error::file(Some(param), target, e))?;
+            return Ok(OutputLock {
+                folder,
+                name,
+                _file: file,
+            });
         }
     }
 }
@@ -121,8 +131,8 @@ impl OutputLock {
 impl Drop for OutputLock {
     fn drop(&mut self) {
         // Removed while still held: a waiting writer then finds a new file.
-        let _ = std::fs::remove_file(&self.path);
-        crate::cleanup::unregister(&self.path);
+        let _ = self.folder.unlink(&self.name);
+        crate::cleanup::unregister(&self.folder.path().join(&self.name));
     }
 }
 
@@ -143,48 +153,10 @@ fn held(param: &'static str, target: &Path, holder: &str) -> Error {
     }
 }
 
-/// Takes an exclusive `flock` on `file` without waiting; false when
-/// another open file holds it.
-#[cfg(unix)]
-fn try_lock(file: &File) -> std::io::Result<bool> {
-    use std::os::unix::io::AsRawFd as _;
-    // SAFETY: `flock` only reads its arguments; the descriptor is open for
-    // the whole call (borrowed from `file`).
-    let r = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
-    if r == 0 {
-        return Ok(true);
-    }
-    let e = std::io::Error::last_os_error();
-    if e.raw_os_error() == Some(libc::EWOULDBLOCK) {
-        Ok(false)
-    } else {
-        Err(e)
-    }
-}
-
-#[cfg(not(unix))]
-fn try_lock(_: &File) -> std::io::Result<bool> {
-    Ok(true)
-}
-
-/// Whether `file` is the file now at `path`.
-#[cfg(unix)]
-fn same_file(file: &File, path: &Path) -> bool {
-    use std::os::unix::fs::MetadataExt as _;
-    match (file.metadata(), std::fs::metadata(path)) {
-        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
-        _ => false,
-    }
-}
-
-#[cfg(not(unix))]
-fn same_file(_: &File, _: &Path) -> bool {
-    true
-}
-
 /// The name of the `k`-th temporary of this process for the file `name`:
 /// `.v2ref-tmp-PID-K-` and as much of `name` as fits in [`NAME_MAX`] bytes
-/// (a name of 255 bytes has a temporary of 255 bytes).
+/// (a name of 255 bytes has a temporary of 255 bytes). The process id only
+/// keeps the names of two processes apart; it decides nothing.
 pub(crate) fn temp_name(name: &[u8], k: u32) -> std::ffi::OsString {
     let mut bytes = format!("{TEMP_PREFIX}{}-{k}-", std::process::id()).into_bytes();
     let room = NAME_MAX.saturating_sub(bytes.len());
@@ -192,65 +164,30 @@ pub(crate) fn temp_name(name: &[u8], k: u32) -> std::ffi::OsString {
     name_from_bytes(bytes)
 }
 
-/// The process id in a temporary's name, if it is one of v2ref's.
-fn temp_pid(name: &[u8]) -> Option<u32> {
-    let rest = name.strip_prefix(TEMP_PREFIX.as_bytes())?;
-    let end = rest.iter().position(|&b| b == b'-')?;
-    std::str::from_utf8(&rest[..end]).ok()?.parse().ok()
-}
-
-/// Whether the process `pid` runs (or may: a process of another user).
-#[cfg(unix)]
-pub(crate) fn is_alive(pid: u32) -> bool {
-    let Ok(pid) = libc::pid_t::try_from(pid) else {
-        return false;
-    };
-    // SAFETY: signal 0 sends nothing; `kill` only checks that the process
-    // exists and may be signalled.
-    let r = unsafe { libc::kill(pid, 0) };
-    r == 0 || std::io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
-}
-
-#[cfg(not(unix))]
-pub(crate) fn is_alive(_: u32) -> bool {
-    true
-}
-
-/// Removes, in `dir`, the temporary files (and folders holding v2ref's
-/// marker) of v2ref processes that no longer run (killed before they could
-/// clean up: SIGKILL, a power cut), under today's names and the names of
-/// earlier versions ([`old_temp_pid`]); returns how many. A set such a
-/// process left half placed is settled first (`src/atomic/journal.rs`),
-/// and the files a commit record still names are kept. Failures are
-/// ignored: the run goes on with its own fresh names.
+/// Removes, in `dir`, the temporaries of writers that are gone (killed
+/// before they could clean up: SIGKILL, a power cut): only names
+/// `.v2ref-tmp-*`, only a regular file of this user (or a folder of this
+/// user holding such a file as its marker) whose `flock` this call takes,
+/// so never a live writer's. Returns how many; failures are ignored (the
+/// run goes on with its own fresh names).
 pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
-    let kept = super::journal::settle_folder(dir);
     let Ok(entries) = std::fs::read_dir(dir) else {
         return 0;
     };
     let mut removed = 0;
     for entry in entries.flatten() {
-        let name = entry.file_name();
-        let bytes = name_bytes(&name);
-        let Ok(kind) = entry.file_type() else {
-            continue;
-        };
-        let pid = match temp_pid(&bytes) {
-            Some(pid) => pid,
-            None => match old_temp_pid(&bytes, kind.is_dir()) {
-                Some(pid) => pid,
-                None => continue,
-            },
-        };
-        if pid == std::process::id() || is_alive(pid) || kept.contains(&name) {
+        if !name_bytes(&entry.file_name()).starts_with(TEMP_PREFIX.as_bytes()) {
             continue;
         }
         let path = entry.path();
-        let gone = if kind.is_file() {
-            std::fs::remove_file(&path).is_ok()
-        } else if kind.is_dir() && super::folder::is_own_folder(&path) {
-            // A folder only when it is v2ref's own (its marker inside).
-            std::fs::remove_dir_all(&path).is_ok()
+        let Ok(meta) = std::fs::symlink_metadata(&path) else {
+            continue;
+        };
+        let gone = if meta.is_file() {
+            remove_if_unlocked(&path, &path, |p| std::fs::remove_file(p))
+        } else if meta.is_dir() && owned(&meta) {
+            let marker = path.join(super::folder::FOLDER_MARKER);
+            remove_if_unlocked(&marker, &path, |p| std::fs::remove_dir_all(p))
         } else {
             false
         };
@@ -259,37 +196,35 @@ pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
     removed
 }
 
-/// The process id in the name of a temporary of v2ref before 2026-11-26:
-/// a file `.NAME.PID.K.tmp`, or a folder `.NAME.tmp-PID` or `.NAME.old-PID`
-/// (removed only with v2ref's marker inside, as today's folders). Both
-/// numbers all digits and NAME not empty: a name that merely looks similar
-/// is not one.
-fn old_temp_pid(name: &[u8], folder: bool) -> Option<u32> {
-    let digits = |b: &[u8]| -> Option<u32> {
-        if b.is_empty() || !b.iter().all(u8::is_ascii_digit) {
-            return None;
-        }
-        std::str::from_utf8(b).ok()?.parse().ok()
+/// Removes `path` with `remove` when `lock_file` is a regular file of this
+/// user whose lock is free (its writer is gone).
+fn remove_if_unlocked(lock_file: &Path, path: &Path, remove: fn(&Path) -> io::Result<()>) -> bool {
+    let Ok(file) = own::open_existing_own(lock_file) else {
+        return false;
     };
-    let rest = name.strip_prefix(b".")?;
-    if folder {
-        let at = rest
-            .windows(5)
-            .rposition(|w| w == b".tmp-" || w == b".old-")?;
-        return if at == 0 {
-            None
-        } else {
-            digits(&rest[at + 5..])
-        };
+    if !matches!(own::try_lock(&file), Ok(true)) || !own::is_at(&file, lock_file) {
+        return false;
     }
-    let stem = rest.strip_suffix(b".tmp")?;
-    let k_at = stem.iter().rposition(|&b| b == b'.')?;
-    digits(&stem[k_at + 1..])?;
-    let pid_at = stem[..k_at].iter().rposition(|&b| b == b'.')?;
-    if pid_at == 0 {
-        return None;
-    }
-    digits(&stem[pid_at + 1..k_at])
+    remove(path).is_ok()
+}
+
+#[cfg(unix)]
+fn owned(meta: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    // SAFETY: `geteuid` takes no argument and cannot fail.
+    meta.uid() == unsafe { libc::geteuid() }
+}
+
+#[cfg(not(unix))]
+fn owned(_: &std::fs::Metadata) -> bool {
+    true
+}
+
+/// Where the lock of `target` is (for the tests of this module).
+#[cfg(test)]
+fn lock_path(target: &Path) -> PathBuf {
+    let name = target.file_name().map(name_bytes).unwrap_or_default();
+    super::target::parent_of(target).join(format!("{LOCK_PREFIX}{:016x}", fnv1a(&name, FNV_START)))
 }
 
 #[cfg(test)]
@@ -297,43 +232,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_temporary_name_never_exceeds_name_max_and_names_its_process() {
+    fn a_temporary_name_never_exceeds_name_max() {
         let long = vec![b'a'; NAME_MAX];
         let t = name_bytes(&temp_name(&long, 7));
         assert_eq!(t.len(), NAME_MAX);
-        assert_eq!(temp_pid(&t), Some(std::process::id()));
         let short = name_bytes(&temp_name(b"x.npy", 0));
         assert!(short.ends_with(b"-0-x.npy"), "{short:?}");
-        assert_eq!(temp_pid(b".v2ref-tmp-12x-0-a"), None);
-        assert_eq!(temp_pid(b"other"), None);
-    }
-
-    #[test]
-    fn the_temporaries_of_earlier_versions_are_told_by_their_exact_names() {
-        assert_eq!(old_temp_pid(b".set.npy.4242.0.tmp", false), Some(4242));
-        assert_eq!(old_temp_pid(b".a.b.17.3.tmp", false), Some(17));
-        assert_eq!(old_temp_pid(b".out.tmp-99", true), Some(99));
-        assert_eq!(old_temp_pid(b".golden.old-7", true), Some(7));
-        let look_alike: [(&[u8], bool); 9] = [
-            (b"set.npy.4242.0.tmp", false),
-            (b"..4242.0.tmp", false),
-            (b".set.npy.42x.0.tmp", false),
-            (b".set.npy.4242..tmp", false),
-            (b".set.npy.4242.0.tmp", true),
-            (b".out.tmp-99", false),
-            (b".out.tmp-", true),
-            (b"..tmp-99", true),
-            (b".out.tmp-99a", true),
-        ];
-        for (name, folder) in look_alike {
-            assert_eq!(old_temp_pid(name, folder), None, "{name:?}");
-        }
-    }
-
-    #[test]
-    fn a_dead_process_is_told_from_a_live_one() {
-        assert!(is_alive(std::process::id()));
-        // pid_max is at most 2^22: no process has that id.
-        assert!(!is_alive(1 << 22));
+        assert!(lock_path(Path::new("a/x.npy")).starts_with("a"));
     }
 }

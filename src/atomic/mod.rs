@@ -1,20 +1,26 @@
-//! The one atomic writer of the crate: an output (a file, or a folder
+//! The one atomic writer of the crate. An output (a file, or a folder
 //! written as a whole) is made as a temporary beside its target
-//! (`.v2ref-tmp-PID-K-NAME`, at most 255 bytes; registered with
-//! [`crate::cleanup`], so that a terminating signal removes it), which
-//! takes the target's place only once it is complete and synced, alone or
-//! with the rest of its set ([`set`]; the set's renames under a commit
-//! record, [`journal`], so that a run killed between two of them is
-//! completed or undone by the next run). Targets are checked ([`target`])
-//! and locked for the run (`src/atomic/lock.rs`); temporaries of processes that no
-//! longer run are removed by the next run that writes beside them.
+//! (`.v2ref-tmp-PID-K-NAME`, at most 255 bytes; created new, never through
+//! a link, and held under an `flock` by its writer for as long as it
+//! lives; registered with [`crate::cleanup`], so that a terminating signal
+//! removes it), which takes the target's place by one rename once it is
+//! complete and synced, alone or with the rest of its set ([`set`]).
+//! Targets are checked ([`target`]) and locked for the run
+//! (`src/atomic/lock.rs`); the temporaries of writers that are gone are
+//! removed by the next writer beside them, only when their lock is free.
+//!
+//! A set that is read back as a set (`synth`'s files) lists its members,
+//! each by file name with its size and checksum, in its sidecar, placed
+//! last ([`set::Member`]); a reader that uses a member checks it against
+//! that list, so that a set a run left half placed is refused in one line,
+//! without anything written. Readers never write.
 //!
 //! - A file: a temporary file under every writer of [`crate::formats`]
 //!   (`.npy`, CSV, OIFITS, text: [`write_text_atomic`]).
 //! - A folder: [`replace_folder`] (`reproduce --out`, `golden --update`).
 
-pub mod journal;
 pub(crate) mod lock;
+pub(crate) mod own;
 pub mod set;
 pub mod target;
 
@@ -23,16 +29,22 @@ mod folder;
 use crate::{Error, Result};
 pub use folder::{check_folder_parent, replace_folder, ScratchFolder};
 use lock::{name_bytes, temp_name};
+use own::Folder;
+use std::ffi::OsString;
 use std::fs::File;
 #[cfg(feature = "files")]
 use std::io::BufWriter;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-/// A temporary file next to a target, removed on drop unless persisted.
+/// A temporary file next to a target, held under its writer's lock,
+/// removed on drop unless placed.
 pub(crate) struct TempTarget {
     target: PathBuf,
-    temp: PathBuf,
+    folder: Folder,
+    temp: OsString,
+    // The temporary, open: holds its flock until it is placed or removed.
+    held: File,
     param: Option<&'static str>,
     done: bool,
 }
@@ -42,35 +54,47 @@ impl TempTarget {
         target::check_parent(target, param)?;
         target::check_replaceable(target, param)?;
         let dir = target::parent_of(target);
+        let folder = Folder::open(&dir).map_err(|e| Error::file(param, &dir, e))?;
         let name = target.file_name().map(name_bytes).unwrap_or_default();
-        let mut k = 0u32;
-        loop {
-            let temp = dir.join(temp_name(&name, k));
-            match std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&temp)
-            {
-                Ok(f) => {
-                    crate::cleanup::register(&temp);
-                    return Ok((
-                        TempTarget {
-                            target: target.to_path_buf(),
-                            temp,
-                            param,
-                            done: false,
-                        },
-                        f,
-                    ));
-                }
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists && k < 1000 => k += 1,
+        for k in 0..1000 {
+            let temp = temp_name(&name, k);
+            let path = dir.join(&temp);
+            let held = match own::open_own(&path, true) {
+                Ok(f) => f,
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
                 Err(e) => return Err(Error::file(param, target, e)),
+            };
+            // A sweep may have taken it between the create and the lock.
+            if !own::try_lock(&held).unwrap_or(false) || !own::is_at(&held, &path) {
+                continue;
             }
+            crate::cleanup::register(&path);
+            let file = held
+                .try_clone()
+                .map_err(|e| Error::file(param, target, e))?;
+            let temp = TempTarget {
+                target: target.to_path_buf(),
+                folder,
+                temp,
+                held,
+                param,
+                done: false,
+            };
+            return Ok((temp, file));
         }
+        Err(Error::file(
+            param,
+            target,
+            io::Error::new(io::ErrorKind::AlreadyExists, "no free temporary name"),
+        ))
     }
 
     pub(crate) fn io(&self, e: io::Error) -> Error {
         Error::file(self.param, &self.target, e)
+    }
+
+    fn target_name(&self) -> OsString {
+        self.target.file_name().unwrap_or_default().to_os_string()
     }
 
     /// Puts the finished temporary file at its target: at once, or, when
@@ -79,32 +103,35 @@ impl TempTarget {
     pub(crate) fn persist(self) -> Result<()> {
         match set::stage(self) {
             None => Ok(()),
-            Some(temp) => temp.place(true).map(drop),
+            Some(mut temp) => temp.place(true),
         }
     }
 
     /// Renames the temporary file onto the target; without `replace`, only
     /// when nothing is there at that moment (link, then unlink: a file that
-    /// appeared meanwhile stays and the write is refused). Returns the
-    /// target.
-    pub(crate) fn place(mut self, replace: bool) -> Result<PathBuf> {
+    /// appeared meanwhile stays and the write is refused).
+    pub(crate) fn place(&mut self, replace: bool) -> Result<()> {
         // Checked again: a link or a device put there meanwhile stays.
         target::check_replaceable(&self.target, self.param)?;
         if replace {
-            std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))?;
+            let to = self.target_name();
+            self.folder
+                .rename(&self.temp, &to)
+                .map_err(|e| self.io(e))?;
         } else {
             self.link_new()?;
         }
-        crate::cleanup::unregister(&self.temp);
+        crate::cleanup::unregister(&self.folder.path().join(&self.temp));
         self.done = true;
-        Ok(std::mem::take(&mut self.target))
+        Ok(())
     }
 
     /// Links the temporary at the target, refused when the target exists.
     fn link_new(&self) -> Result<()> {
-        match std::fs::hard_link(&self.temp, &self.target) {
+        let to = self.target_name();
+        match self.folder.link(&self.temp, &to) {
             Ok(()) => {
-                let _ = std::fs::remove_file(&self.temp);
+                let _ = self.folder.unlink(&self.temp);
                 Ok(())
             }
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => Err(Error::Invalid {
@@ -117,52 +144,37 @@ impl TempTarget {
             // A file system without hard links: the rename, checked just
             // before.
             Err(_) if std::fs::symlink_metadata(&self.target).is_err() => {
-                std::fs::rename(&self.temp, &self.target).map_err(|e| self.io(e))
+                self.folder.rename(&self.temp, &to).map_err(|e| self.io(e))
             }
             Err(e) => Err(self.io(e)),
         }
     }
 
-    /// This file as a member of a set's commit record (absolute paths),
-    /// with the old file kept aside.
-    pub(crate) fn member(&self, old: &Option<PathBuf>) -> journal::Member {
-        let dir = journal::real_location(&target::parent_of(&self.target));
-        let beside = |p: &Path| dir.join(p.file_name().unwrap_or_default());
-        journal::Member {
-            target: beside(&self.target),
-            temp: beside(&self.temp),
-            old: old.as_deref().map(beside),
+    /// Removes the placed file again, when the target is still this file
+    /// (a set that could not be placed whole, without `--force`).
+    fn unplace(&self) {
+        if own::is_at(&self.held, &self.target) {
+            let _ = self.folder.unlink(&self.target_name());
         }
     }
 
-    /// Keeps the regular file now at the target as a hard link beside it
-    /// (its own temporary name), so that it can be put back; None when
-    /// there is none.
-    pub(crate) fn keep_old(&self) -> Result<Option<PathBuf>> {
-        if !std::fs::symlink_metadata(&self.target).is_ok_and(|m| m.is_file()) {
-            return Ok(None);
-        }
-        let dir = target::parent_of(&self.target);
-        let name = self.target.file_name().map(name_bytes).unwrap_or_default();
-        for k in 1000..2000 {
-            let old = dir.join(temp_name(&name, k));
-            match std::fs::hard_link(&self.target, &old) {
-                Ok(()) => return Ok(Some(old)),
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-                // No hard links here: the old file is replaced without a
-                // copy kept.
-                Err(_) => return Ok(None),
-            }
-        }
-        Ok(None)
+    /// The target's name, size and checksum ([`set::Member`]), read from
+    /// the finished temporary.
+    fn member(&self) -> Result<set::Member> {
+        let (bytes, sum) = set::checksum(&self.held).map_err(|e| self.io(e))?;
+        Ok(set::Member {
+            name: self.target_name().to_string_lossy().into_owned(),
+            bytes,
+            fnv1a64: format!("{sum:016x}"),
+        })
     }
 }
 
 impl Drop for TempTarget {
     fn drop(&mut self) {
         if !self.done {
-            let _ = std::fs::remove_file(&self.temp);
-            crate::cleanup::unregister(&self.temp);
+            let _ = self.folder.unlink(&self.temp);
+            crate::cleanup::unregister(&self.folder.path().join(&self.temp));
         }
     }
 }

@@ -1,28 +1,29 @@
-//! The outputs of one run written as one unit: all of them appear together,
-//! or none does and what was there before stays.
+//! The outputs of one run written as one unit.
 //!
 //! [`OutputSet::begin`] checks every target before any work (distinct
 //! paths, each writable and replaceable, an existing file only with
 //! `force`), takes each target's lock (`src/atomic/lock.rs`: a second run on
 //! the same outputs is refused, naming the process that writes them) and
-//! removes the temporaries of dead processes beside them.
-//! [`OutputSet::write`] runs the writers: each finished file waits, complete
-//! and synced, as its temporary; once every writer has succeeded, the
-//! temporaries take their targets' places one after the other, while the
-//! signal handler waits ([`crate::cleanup::hold_commit`]), under a commit
-//! record ([`super::journal`]: a run killed there is completed by the next
-//! run that writes or reads a file of the set). If one of these renames
-//! fails, the files already placed are put back as they were.
+//! removes the temporaries of writers that are gone beside them.
+//! [`OutputSet::write`] runs the writers: each finished file waits,
+//! complete and synced, as its temporary; once every writer has succeeded,
+//! the temporaries take their targets' places one rename each, in the
+//! order they were written, while the signal handler waits
+//! ([`crate::cleanup::hold_commit`]). Without `force`, a file is placed
+//! with `link` then `unlink`: a file that appeared at the target during the
+//! run is never replaced, the run is refused and the files it placed are
+//! removed again.
 //!
-//! Without `force`, a file is placed with `link` then `unlink`: a file that
-//! appeared at the target during the run (a user's, another program's) is
-//! never replaced, the run is refused instead. With `force`, the old file
-//! is kept as a hard link until the whole set is placed.
+//! A run killed between two renames (SIGKILL, a power cut: no handler
+//! runs) can leave a set half placed. A set that is read back as a set
+//! therefore writes its sidecar last, listing every other member
+//! ([`staged_members`]: name, size, checksum); a reader checks the members
+//! it uses ([`verify_member`]) and refuses a mismatch in one line. Nothing
+//! is repaired by a reader: the next writer of the set replaces it whole.
 
-use super::journal::{self, real_location, Commit};
-use super::lock::OutputLock;
 use super::TempTarget;
 use crate::{Error, Result};
+use serde::{Deserialize, Serialize};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
@@ -35,7 +36,7 @@ thread_local! {
 pub struct OutputSet {
     force: bool,
     // Released after the set is placed (or abandoned).
-    _locks: Vec<OutputLock>,
+    _locks: Vec<super::lock::OutputLock>,
 }
 
 impl OutputSet {
@@ -49,13 +50,7 @@ impl OutputSet {
         }
         let mut locks = Vec::with_capacity(targets.len());
         for (path, param) in targets {
-            locks.push(OutputLock::acquire(path, param)?);
-        }
-        // A set a killed run left half placed is completed (or rolled
-        // back) before this run replaces any of it.
-        let held: Vec<PathBuf> = targets.iter().map(|(p, _)| real_location(p)).collect();
-        for (target, (_, param)) in held.iter().zip(targets) {
-            journal::settle(&journal::entry_of(target), param, &held)?;
+            locks.push(super::lock::OutputLock::acquire(path, param)?);
         }
         for (path, _) in targets {
             super::lock::remove_stale_temporaries(&super::target::parent_of(path));
@@ -149,85 +144,168 @@ fn identity(path: &Path) -> PathBuf {
     parent.join(path.file_name().unwrap_or_default())
 }
 
-/// A file placed at its target, and the old file kept aside meanwhile.
-struct Placed {
-    target: PathBuf,
-    old: Option<PathBuf>,
-}
-
-/// Places every staged file, while signals wait; on a failure, puts back
-/// what was placed. A set of two files or more is placed under a commit
-/// record ([`journal`]): a run killed during the renames is completed by
-/// the next run that writes or reads one of its files.
-fn place_all(staged: Vec<TempTarget>, force: bool) -> Result<()> {
+/// Places every staged file in order, while signals wait. Without
+/// `force`, a failure removes the files already placed (they are new);
+/// with `force`, the files replaced are gone, and the error says the set
+/// is half placed (its sidecar, last, still lists the old members).
+fn place_all(mut staged: Vec<TempTarget>, force: bool) -> Result<()> {
     let _signals_wait = crate::cleanup::hold_commit();
-    let olds = keep_olds(&staged, force)?;
-    let commit = if staged.len() > 1 {
-        let members = staged.iter().zip(&olds).map(|(t, old)| t.member(old));
-        match Commit::write(members.collect(), force) {
-            Ok(c) => Some(c),
-            Err(e) => {
-                olds.into_iter()
-                    .flatten()
-                    .for_each(|o| drop(std::fs::remove_file(o)));
+    for k in 0..staged.len() {
+        if let Err(e) = staged[k].place(force) {
+            if !force {
+                staged[..k].iter().for_each(TempTarget::unplace);
                 return Err(e);
             }
+            return Err(half_placed(&staged[k], k, e));
         }
-    } else {
-        None
-    };
-    let mut placed: Vec<Placed> = Vec::with_capacity(staged.len());
-    for (k, (temp, old)) in staged.into_iter().zip(olds).enumerate() {
-        match temp.place(force) {
-            Ok(target) => placed.push(Placed { target, old }),
-            Err(e) => {
-                if let Some(old) = old {
-                    let _ = std::fs::remove_file(old);
-                }
-                // The record first: a run killed while the files are put
-                // back then removes the temporaries, never rolls forward.
-                commit.into_iter().for_each(Commit::abandon);
-                undo(placed);
-                return Err(e);
-            }
-        }
-        journal::fault::point(&format!("after-rename-{}", k + 1));
+        fault::point(&format!("after-rename-{}", k + 1));
     }
-    match commit {
-        Some(c) => c.finish(),
-        None => placed
-            .into_iter()
-            .filter_map(|p| p.old)
-            .for_each(|o| drop(std::fs::remove_file(o))),
+    for t in &staged {
+        t.folder.sync();
     }
     Ok(())
 }
 
-/// With `force`, the file at each target kept as a hard link beside it
-/// until the set is placed (removed again if one cannot be kept).
-fn keep_olds(staged: &[TempTarget], force: bool) -> Result<Vec<Option<PathBuf>>> {
-    let mut olds = Vec::with_capacity(staged.len());
-    for temp in staged {
-        match if force { temp.keep_old() } else { Ok(None) } {
-            Ok(old) => olds.push(old),
-            Err(e) => {
-                olds.into_iter()
-                    .flatten()
-                    .for_each(|o| drop(std::fs::remove_file(o)));
-                return Err(e);
+fn half_placed(failed: &TempTarget, k: usize, e: Error) -> Error {
+    if k == 0 {
+        return e;
+    }
+    Error::Output {
+        path: failed.target.display().to_string(),
+        reason: format!(
+            "{e}; {k} file(s) of the set before it were replaced already, and readers of the set refuse it: run the writer again"
+        ),
+    }
+}
+
+/// One member of a set as its sidecar lists it: the file's name (in the
+/// sidecar's folder, lossy when it is not UTF-8), its size and its
+/// checksum (FNV-1a, 64 bits, of its bytes: it tells a file from another
+/// file, it does not authenticate one).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct Member {
+    /// The file name, without a folder.
+    pub name: String,
+    /// Its size, bytes.
+    pub bytes: u64,
+    /// FNV-1a (64 bits) of its bytes, 16 hexadecimal digits.
+    pub fnv1a64: String,
+}
+
+/// The most members a sidecar may list (a v2ref set has at most 4).
+pub const MAX_MEMBERS: usize = 16;
+
+/// The members staged so far by this thread's set (the files written
+/// before the sidecar that lists them); None when no set is being written.
+pub fn staged_members() -> Result<Option<Vec<Member>>> {
+    STAGED.with(|s| match s.borrow().as_ref() {
+        Some(staged) => staged
+            .iter()
+            .map(TempTarget::member)
+            .collect::<Result<_>>()
+            .map(Some),
+        None => Ok(None),
+    })
+}
+
+/// The size and FNV-1a of the whole of `file`, read from its start.
+pub(crate) fn checksum(file: &std::fs::File) -> std::io::Result<(u64, u64)> {
+    use std::io::{Read, Seek};
+    let mut file = file;
+    file.rewind()?;
+    let mut buf = vec![0u8; 1 << 20];
+    let (mut bytes, mut sum) = (0u64, super::lock::FNV_START);
+    loop {
+        match file.read(&mut buf)? {
+            0 => return Ok((bytes, sum)),
+            n => {
+                sum = super::lock::fnv1a(&buf[..n], sum);
+                bytes += n as u64;
             }
         }
     }
-    Ok(olds)
 }
 
-/// Puts back the files that were at the targets before (or removes the new
-/// ones where there were none).
-fn undo(placed: Vec<Placed>) {
-    for p in placed.into_iter().rev() {
-        let _ = match p.old {
-            Some(old) => std::fs::rename(old, &p.target),
-            None => std::fs::remove_file(&p.target),
-        };
+/// Checks `file` (named `param`), about to be read as a member of the set
+/// whose sidecar `sidecar` lists `members`: when the sidecar lists a file
+/// of that name and `file` is in the sidecar's folder, its size and
+/// checksum must match (a set a run left half placed is refused, saying
+/// what to do). Writes nothing.
+pub fn verify_member(
+    sidecar: &Path,
+    members: &[Member],
+    file: &Path,
+    param: &'static str,
+) -> Result<()> {
+    if members.len() > MAX_MEMBERS {
+        return Err(Error::data(
+            "sidecar",
+            sidecar,
+            "field members",
+            format!(
+                "{} members; a v2ref set has at most {MAX_MEMBERS}",
+                members.len()
+            ),
+        ));
+    }
+    let name = file.file_name().unwrap_or_default().to_string_lossy();
+    let Some(m) = members.iter().find(|m| m.name == name) else {
+        return Ok(());
+    };
+    let folder = |p: &Path| {
+        let dir = super::target::parent_of(p);
+        std::fs::canonicalize(&dir).unwrap_or(dir)
+    };
+    if folder(file) != folder(sidecar) {
+        return Ok(());
+    }
+    let f = std::fs::File::open(file).map_err(|e| Error::file(Some(param), file, e))?;
+    let same = f.metadata().map(|md| md.len() == m.bytes).unwrap_or(false)
+        && checksum(&f)
+            .map(|(n, s)| n == m.bytes && format!("{s:016x}") == m.fnv1a64)
+            .unwrap_or(false);
+    if same {
+        return Ok(());
+    }
+    Err(Error::Invalid {
+        param,
+        reason: format!(
+            "{}: not the file its sidecar {} lists ({} bytes, checksum {}): the set was half written by a run that stopped; run the writer again",
+            file.display(),
+            sidecar.display(),
+            m.bytes,
+            m.fnv1a64
+        ),
+    })
+}
+
+/// A test-only way to stop a run between two renames of a set, as a
+/// SIGKILL there would: the process kills itself with SIGKILL when the
+/// environment variable [`fault::VARIABLE`] is exactly `after-rename-K`
+/// (K from 1). Its long name is not one to set by accident.
+pub(crate) mod fault {
+    /// The variable's name.
+    pub(crate) const VARIABLE: &str = "V2REF_TEST_ONLY_SIGKILL_SELF_AT_SET_COMMIT_STEP";
+
+    /// Dies here, as by a SIGKILL, when asked to at `step`.
+    pub(crate) fn point(step: &str) {
+        if std::env::var_os(VARIABLE).is_some_and(|v| v == step) {
+            kill_self();
+        }
+    }
+
+    #[cfg(unix)]
+    fn kill_self() {
+        // SAFETY: `kill` only reads its arguments; the signal is sent to
+        // this process, which it ends at once.
+        unsafe {
+            libc::kill(libc::getpid(), libc::SIGKILL);
+        }
+    }
+
+    #[cfg(not(unix))]
+    fn kill_self() {
+        std::process::abort();
     }
 }

@@ -99,6 +99,7 @@ pub(crate) fn check_replaceable(path: &Path, param: Option<&'static str>) -> Res
 /// path is not a link or a special file, and an existing regular file is
 /// replaced only with `force`.
 pub fn check_output_file(path: &Path, param: &'static str, force: bool) -> Result<()> {
+    check_file_name(path, param)?;
     check_parent(path, Some(param))?;
     check_replaceable(path, Some(param))?;
     if !force && std::fs::symlink_metadata(path).is_ok() {
@@ -106,6 +107,24 @@ pub fn check_output_file(path: &Path, param: &'static str, force: bool) -> Resul
             Some(param),
             path,
             "exists and would be replaced; give a new name or --force".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses an output path that names a folder rather than a file: one
+/// that ends with a separator or `.`/`..` (`--out DIR/` would otherwise
+/// write `DIR.npy` beside the folder).
+pub fn check_file_name(path: &Path, param: &'static str) -> Result<()> {
+    let text = path.as_os_str().to_string_lossy();
+    let ends_as_folder = text.ends_with(std::path::is_separator)
+        || path.file_name().is_none()
+        || text.ends_with("/.");
+    if ends_as_folder {
+        return Err(refuse(
+            Some(param),
+            path,
+            "names a folder (it ends with a slash, `.` or `..`); give a file name in it".into(),
         ));
     }
     Ok(())

@@ -176,11 +176,21 @@ fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<R
 /// a name that is not UTF-8 can only be written lossily (U+FFFD for each
 /// bad byte): when `npy` is the lossy form of the sidecar's own name with
 /// `.npy` (how `synth` names a set), that name is the file, byte for byte.
-fn set_rows_path(sidecar_path: &Path, npy: &str) -> PathBuf {
+/// A name with a folder in it (`../x`, `/etc/x`) is refused: a set's files
+/// are beside its sidecar, and nothing else is read on a file's word.
+fn set_rows_path(sidecar_path: &Path, npy: &str) -> Result<PathBuf> {
     let beside = sidecar_path.with_extension("npy");
     match beside.file_name() {
-        Some(name) if name.to_string_lossy() == npy => beside,
-        _ => sidecar_path.parent().unwrap_or(Path::new(".")).join(npy),
+        Some(name) if name.to_string_lossy() == npy => Ok(beside),
+        _ if Path::new(npy).file_name() == Some(std::ffi::OsStr::new(npy)) => {
+            Ok(sidecar_path.parent().unwrap_or(Path::new(".")).join(npy))
+        }
+        _ => Err(Error::data(
+            "sidecar",
+            sidecar_path,
+            "field data.npy",
+            format!("{npy:?} is not a file name in the sidecar's folder; a set's files are beside its sidecar"),
+        )),
     }
 }
 
@@ -188,7 +198,16 @@ fn source(args: &Args) -> Result<Source> {
     match &args.sidecar {
         Some(path) => {
             let sidecar = super::score::read_sidecar(path)?;
-            let default_input = set_rows_path(path, &sidecar.data.npy);
+            let default_input = set_rows_path(path, &sidecar.data.npy)?;
+            // A set a stopped run left half placed is refused here.
+            let members = sidecar.members.clone().unwrap_or_default();
+            let read = args.input.as_ref().unwrap_or(&default_input);
+            let param = if args.input.is_some() {
+                "input"
+            } else {
+                "sidecar"
+            };
+            v2ref::atomic::set::verify_member(path, &members, read, param)?;
             let config = Configuration::from_sidecar(sidecar);
             // Other rows than the set's (--input) may be as many as they
             // like, but of the set's N.

@@ -83,7 +83,6 @@ const MAX_SIDECAR_BYTES: u64 = 16 << 20;
 /// The text of `path` (named by `param`), refused beyond `max_bytes`.
 fn read_limited(path: &Path, param: &'static str, max_bytes: u64) -> Result<String> {
     use std::io::Read;
-    v2ref::atomic::journal::settle_before_read(path, param)?;
     let file = std::fs::File::open(path).map_err(|e| Error::file(Some(param), path, e))?;
     let mut text = String::new();
     file.take(max_bytes + 1)

@@ -110,12 +110,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     };
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
     set.write(|| {
-        let sidecar = write_set(&model, &spec, &args.out, &|k| bar.inc(k))?;
+        let sidecar = write_data(&model, &spec, &args.out, &|k| bar.inc(k))?;
         bar.finish_and_clear();
         if args.oifits {
             super::oifits::write_truth(&fits, &sidecar, &observing)?;
         }
-        Ok(())
+        write_sidecar(&args.out, sidecar).map(drop)
     })?;
     Ok(ExitCode::SUCCESS)
 }
@@ -142,6 +142,33 @@ pub struct SetSpec {
 /// Writes the set of `model` described by `spec` at `out` (.npy, .json and
 /// optionally .csv beside it); returns the sidecar.
 pub fn write_set(
+    model: &Model,
+    spec: &SetSpec,
+    out: &Path,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Sidecar> {
+    let sidecar = write_data(model, spec, out, progress)?;
+    write_sidecar(out, sidecar)
+}
+
+/// Writes the sidecar of the set at `out` (`OUT.json`), last: inside a set
+/// ([`OutputSet::write`]) it lists the files written before it, with their
+/// sizes and checksums, which readers check.
+pub fn write_sidecar(out: &Path, mut sidecar: Sidecar) -> Result<Sidecar> {
+    let stem = Stem::new(out)?;
+    sidecar.members = v2ref::atomic::set::staged_members()?;
+    let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
+        path: stem.json.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    write_text_atomic(&stem.json, &(json + "\n"))?;
+    Ok(sidecar)
+}
+
+/// Writes the data files of the set of `model` described by `spec` at
+/// `out` (.npy, optionally .csv); returns its sidecar, to be written last
+/// ([`write_sidecar`]).
+fn write_data(
     model: &Model,
     spec: &SetSpec,
     out: &Path,
@@ -177,16 +204,10 @@ pub fn write_set(
         Ok(())
     };
     let sidecar = synthesize(model, &size, names, &mut sink, progress)?;
-    let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
-        path: stem.json.display().to_string(),
-        reason: e.to_string(),
-    })?;
-    // The data first, the sidecar last: a set with a sidecar is complete.
     npy.finish()?;
     if let Some(c) = csv {
         c.finish()?;
     }
-    write_text_atomic(&stem.json, &(json + "\n"))?;
     Ok(sidecar)
 }
 
@@ -199,6 +220,7 @@ struct Stem {
 
 impl Stem {
     fn new(out: &Path) -> Result<Stem> {
+        v2ref::atomic::target::check_file_name(out, "out")?;
         let Some(name) = out.file_name().filter(|n| !n.is_empty()) else {
             return Err(Error::Invalid {
                 param: "out",

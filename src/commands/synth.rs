@@ -85,5 +85,6 @@ pub fn synthesize(
         mean_counts_photons: model.signal.mean_counts(),
         inputs: inputs.clone(),
         truth,
+        members: None,
     })
 }

@@ -43,6 +43,14 @@ pub struct Sidecar {
     pub mean_counts_photons: Vec<f64>,
     /// What the estimators should give.
     pub truth: Truth,
+    /// The other files of the set, each with its size and checksum,
+    /// written by `synth --out` (and Python's `synthesize(out=...)`), whose
+    /// sidecar is placed last: a reader checks the files it reads against
+    /// them, so that a set a stopped run left half placed is refused.
+    /// Absent in sidecars written before it and in the conformance
+    /// vectors.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub members: Option<Vec<crate::atomic::set::Member>>,
 }
 
 /// The files a set is stored in, relative to the sidecar's folder.

@@ -97,10 +97,9 @@ pub(crate) fn kind_of(path: &Path, param: &'static str) -> Result<Kind> {
     }
 }
 
-/// Opens an input file; a set it belongs to that a killed run left half
-/// placed is settled first ([`atomic::journal::settle_before_read`]).
+/// Opens an input file, read-only: a reader never writes, renames or
+/// removes anything.
 pub(crate) fn open(path: &Path, param: &'static str) -> Result<File> {
-    atomic::journal::settle_before_read(path, param)?;
     File::open(path).map_err(|e| Error::file(Some(param), path, e))
 }
 

@@ -138,7 +138,7 @@ fn read_oifits<'py>(
 /// array given), the configuration from the sidecar, where and when
 /// `observing` says.
 #[pyfunction]
-#[pyo3(signature = (path, v1_sq, v2_sq, sidecar, sidecar_name, bins, bias, observing=None))]
+#[pyo3(signature = (path, v1_sq, v2_sq, sidecar, sidecar_name, bins, bias, observing=None, force=false))]
 #[allow(clippy::too_many_arguments)] // one per keyword of the Python wrapper
 fn write_oifits(
     path: &str,
@@ -149,6 +149,7 @@ fn write_oifits(
     bins: &str,
     bias: &str,
     observing: Option<ObservingKeywords>,
+    force: bool,
 ) -> PyResult<()> {
     let bins: BinWindow = ok(Words::from_word("bins", bins))?;
     let bias: BiasConvention = ok(Words::from_word("bias", bias))?;
@@ -182,24 +183,34 @@ fn write_oifits(
         (bins, bias),
         &observing,
     ))?;
-    ok(oifits::write_oifits(Path::new(path), "path", &doc))
+    write_new(path, &doc, force)
+}
+
+/// Writes `doc` at `path` as `v2ref` writes a set of one file: checked and
+/// locked, never through a link, an existing file replaced only with
+/// `force` (and one that appears meanwhile never).
+fn write_new(path: &str, doc: &oifits::OifitsDoc, force: bool) -> PyResult<()> {
+    let path = Path::new(path);
+    let set = ok(crate::formats::OutputSet::begin(&[(path, "path")], force))?;
+    ok(set.write(|| oifits::write_oifits(path, "path", doc)))
 }
 
 /// A synth set's truth (window positive, convention model) as OIFITS v2,
 /// where and when `observing` says.
 #[pyfunction]
-#[pyo3(signature = (path, sidecar, sidecar_name, observing=None))]
+#[pyo3(signature = (path, sidecar, sidecar_name, observing=None, force=false))]
 fn write_oifits_truth(
     path: &str,
     sidecar: &Bound<'_, PyAny>,
     sidecar_name: &str,
     observing: Option<ObservingKeywords>,
+    force: bool,
 ) -> PyResult<()> {
     let observing = observing_of(observing, true, "path")?;
     let sc = sidecar_of(sidecar, sidecar_name)?;
     let window = (BinWindow::Positive, BiasConvention::Model);
     let doc = ok(docs::truth_doc(&sc, window, &observing))?;
-    ok(oifits::write_oifits(Path::new(path), "path", &doc))
+    write_new(path, &doc, force)
 }
 
 /// Which table of an OIFITS file holds a pipeline's estimates (the

@@ -25,16 +25,7 @@ pub fn write_set(
     sidecar: &Sidecar,
     force: bool,
 ) -> PyResult<()> {
-    if out.file_name().filter(|n| !n.is_empty()).is_none() {
-        return Err(pyo3::exceptions::PyValueError::new_err(format!(
-            "out: {}: needs a file name (the set's stem)",
-            out.display()
-        )));
-    }
-    // Pretty, as `v2ref synth` writes OUT.json.
-    let text = serde_json::to_string_pretty(sidecar).map_err(|e| {
-        pyo3::exceptions::PyValueError::new_err(format!("cannot serialize the sidecar: {e}"))
-    })?;
+    ok(crate::atomic::target::check_file_name(out, "out"))?;
     let (npy, json) = (with_ext(out, ".npy"), with_ext(out, ".json"));
     let set = ok(OutputSet::begin(&[(&npy, "out"), (&json, "out")], force))?;
     let rows = values.len() / cols.max(1);
@@ -43,6 +34,14 @@ pub fn write_set(
             let mut w = NpyRowWriter::create(&npy, rows as u64, cols, "out")?;
             w.write_rows(values)?;
             w.finish()?;
+            // The sidecar last, listing the .npy (as `v2ref synth` does).
+            let mut sidecar = sidecar.clone();
+            sidecar.members = crate::atomic::set::staged_members()?;
+            let text =
+                serde_json::to_string_pretty(&sidecar).map_err(|e| crate::Error::Output {
+                    path: json.display().to_string(),
+                    reason: format!("cannot serialize the sidecar: {e}"),
+                })?;
             write_text_atomic(&json, &(text + "\n"))
         })
     }))

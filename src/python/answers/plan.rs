@@ -15,7 +15,7 @@ use std::path::PathBuf;
 /// `oifits`: `--oifits`; `observing`: its target, date and site (the
 /// wrapper's keywords, as `--target-name` ... `--site-height-m`).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -35,10 +35,19 @@ pub(super) fn plan(
     bias: &str,
     verify_observations: Option<u64>,
     observing: Option<crate::python::oifits::ObservingKeywords>,
+    force: bool,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::check_fits_extension(path, "oifits"))?;
     }
+    // Checked and locked before any computing, as `v2ref plan --oifits`.
+    let set = match &oifits {
+        Some(path) => Some(ok(crate::formats::OutputSet::begin(
+            &[(path, "oifits")],
+            force,
+        ))?),
+        None => None,
+    };
     let observing = crate::python::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
     let p = Physical::from_dict(physical)?;
     let req = PlanRequest {
@@ -70,15 +79,17 @@ pub(super) fn plan(
             commands::plan::verify(&mut answer, &size, threads, tick)
         })?;
     }
-    if let Some(path) = &oifits {
+    if let (Some(path), Some(set)) = (&oifits, set) {
         // Nothing is written when no setting reaches the target: the
         // answer's `recommended` is then null, as the CLI says in a note.
-        ok(crate::formats::oifits::write_plan(
-            path,
-            "oifits",
-            (&answer.inputs, &answer.plan),
-            &observing,
-        ))?;
+        ok(set.write(|| {
+            crate::formats::oifits::write_plan(
+                path,
+                "oifits",
+                (&answer.inputs, &answer.plan),
+                &observing,
+            )
+        }))?;
     }
     to_py(py, &answer)
 }
