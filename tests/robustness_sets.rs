@@ -303,7 +303,9 @@ fn a_file_made_at_a_target_during_the_run_is_kept() {
 
 /// The temporaries of a process that died (SIGKILL leaves them) are
 /// removed by the next run that writes beside them; those of a running
-/// process, and a user's files, stay.
+/// writer (one that holds its temporary's `flock`, here this test), and a
+/// user's files, stay. (Issue 43: decided by the lock, not by a process
+/// id, so an unlocked `.v2ref-tmp-x` of this user is removed.)
 #[test]
 fn a_dead_processs_temporaries_are_removed_by_a_later_run() {
     let dir = tempfile::tempdir().unwrap();
@@ -317,11 +319,16 @@ fn a_dead_processs_temporaries_are_removed_by_a_later_run() {
     for f in [live.as_str(), "v2ref-tmp-1-0-x", ".v2ref-tmp-x"] {
         std::fs::write(dir.path().join(f), "kept").unwrap();
     }
+    let held = std::fs::File::open(dir.path().join(&live)).unwrap();
+    // SAFETY: `flock` only reads its arguments; the descriptor is open.
+    let r = unsafe { libc::flock(std::os::unix::io::AsRawFd::as_raw_fd(&held), libc::LOCK_EX) };
+    assert_eq!(r, 0);
     assert!(small_set(dir.path(), "3").status.success());
     let after: Vec<_> = names(dir.path());
     let left: Vec<_> = dead.iter().filter(|n| after.contains(n)).collect();
     assert!(left.is_empty(), "the dead run's {left:?} left");
-    let expect = [".v2ref-tmp-x", &live, "set.csv", "set.json", "set.npy"];
+    drop(held);
+    let expect = [&live, "set.csv", "set.json", "set.npy"];
     let mut expect: Vec<OsString> = expect.iter().map(OsString::from).collect();
     expect.push("v2ref-tmp-1-0-x".into());
     expect.sort();
