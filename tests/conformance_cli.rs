@@ -264,6 +264,17 @@ fn bad_input_is_one_line_naming_the_file() {
         "--quiet",
     ]);
     std::fs::copy(d("other.npy"), d("set.npy")).unwrap();
+    // Not the file the sidecar lists (issue 43: size and checksum) ...
+    assert_bad(
+        &["estimate", "--sidecar", &sidecar],
+        &["set.npy", "not the file its sidecar", "set.json"],
+    );
+    // ... and, from a sidecar that lists no files (before issue 43), not
+    // its rows.
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&sidecar).unwrap()).unwrap();
+    json.as_object_mut().unwrap().remove("members").unwrap();
+    std::fs::write(&sidecar, json.to_string()).unwrap();
     assert_bad(
         &["estimate", "--sidecar", &sidecar],
         &["set.npy", "300 rows", "400"],

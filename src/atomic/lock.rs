@@ -99,10 +99,8 @@ impl OutputLock {
         loop {
             let mut file = match own::open_own(&path, false) {
                 Ok(f) => f,
-                Err(e) if e.kind() == io::ErrorKind::PermissionDenied => {
-                    return Err(Error::file(Some(param), target, e))
-                }
-                Err(e) => return Err(not_own(param, &path, &e)),
+                Err(e) if own::is_not_own(&e) => return Err(not_own(param, &path, &e)),
+                Err(e) => return Err(Error::file(Some(param), target, e)),
             };
             if !own::try_lock(&file).map_err(|e| Error::file(Some(param), target, e))? {
                 let mut text = String::new();

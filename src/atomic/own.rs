@@ -49,6 +49,20 @@ fn no_follow(options: &mut std::fs::OpenOptions) {
 #[cfg(not(unix))]
 fn no_follow(_: &mut std::fs::OpenOptions) {}
 
+/// Whether `e`, from [`open_own`], says that the name holds something that
+/// is not v2ref's to use (a link, a folder, a FIFO or device not a regular
+/// file, another user's file), rather than that the file system refused.
+pub(crate) fn is_not_own(e: &io::Error) -> bool {
+    #[cfg(unix)]
+    if matches!(
+        e.raw_os_error(),
+        Some(libc::ELOOP | libc::EISDIR | libc::ENXIO)
+    ) {
+        return true;
+    }
+    e.raw_os_error().is_none() && e.kind() == io::ErrorKind::Other
+}
+
 fn not_own() -> io::Error {
     io::Error::other("not a regular file of this user: left as it is")
 }

@@ -271,7 +271,7 @@ pub fn verify_member(
     Err(Error::Invalid {
         param,
         reason: format!(
-            "{}: not the file its sidecar {} lists ({} bytes, checksum {}): the set was half written by a run that stopped; run the writer again",
+            "{}: not the file its sidecar {} lists ({} bytes, checksum {}): the set was half written by a run that stopped, or this file was changed since; run the writer again",
             file.display(),
             sidecar.display(),
             m.bytes,
