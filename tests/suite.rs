@@ -64,6 +64,7 @@ mod robustness_readers;
 mod robustness_sets;
 mod run;
 mod running_stats;
+mod security_small;
 mod simulator;
 mod special;
 mod spectral_estimators;

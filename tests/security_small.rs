@@ -1,0 +1,302 @@
+//! Issue 43's smaller findings, one test each (tests/README.md, "Issue
+//! 43, smaller findings", lists them with what each did on 4865b29): the
+//! OIFITS reader within the memory budget and a bounded header, rows of
+//! no listed target, an ambiguous `--target`, more HDUs than announced,
+//! a FIFO as `--input`, negative numbers with exponents, leap seconds and
+//! over-long dates, a truth's negative variance, `plan --svg` with nothing
+//! to plot, fractional seeds, and the progress bar on a dumb terminal.
+//!
+//! The OIFITS files are made here byte by byte (FITS 4.0 binary tables):
+//! a pipeline's file, not v2ref's writer's.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::run::v2ref;
+
+/// One 80-byte card.
+fn card(text: &str) -> Vec<u8> {
+    assert!(text.len() <= 80, "{text}");
+    format!("{text:<80}").into_bytes()
+}
+
+/// `KEY = value` (the value as FITS writes it: `'text'`, `T`, a number).
+fn key(k: &str, v: &str) -> Vec<u8> {
+    card(&format!("{k:<8}= {v:>20}"))
+}
+
+/// A header of `cards` and `END`, then `data`, each padded to 2880-byte blocks.
+fn hdu(cards: &[Vec<u8>], data: &[u8]) -> Vec<u8> {
+    let mut out: Vec<u8> = cards.concat();
+    out.extend(card("END"));
+    out.resize(out.len().next_multiple_of(2880), b' ');
+    let mut d = data.to_vec();
+    d.resize(d.len().next_multiple_of(2880), 0);
+    out.extend(d);
+    out
+}
+
+fn primary(extra: &[Vec<u8>]) -> Vec<u8> {
+    let mut cards = vec![key("SIMPLE", "T"), key("BITPIX", "8"), key("NAXIS", "0")];
+    cards.extend_from_slice(extra);
+    hdu(&cards, &[])
+}
+
+/// A binary table `extname` of `columns` (TTYPE, TFORM, bytes per row),
+/// its keywords `extra`, rows already encoded big-endian.
+fn table(extname: &str, extra: &[Vec<u8>], columns: &[(&str, &str)], rows: &[Vec<u8>]) -> Vec<u8> {
+    let width = rows.first().map_or(0, Vec::len);
+    let mut cards = vec![
+        key("XTENSION", "'BINTABLE'"),
+        key("BITPIX", "8"),
+        key("NAXIS", "2"),
+        key("NAXIS1", &width.to_string()),
+        key("NAXIS2", &rows.len().to_string()),
+        key("PCOUNT", "0"),
+        key("GCOUNT", "1"),
+        key("TFIELDS", &columns.len().to_string()),
+    ];
+    for (n, (name, form)) in columns.iter().enumerate() {
+        cards.push(key(&format!("TTYPE{}", n + 1), &format!("'{name}'")));
+        cards.push(key(&format!("TFORM{}", n + 1), &format!("'{form}'")));
+    }
+    cards.push(key("EXTNAME", &format!("'{extname}'")));
+    cards.extend_from_slice(extra);
+    hdu(&cards, &rows.concat())
+}
+
+/// A pipeline's OIFITS v2 file: OI_TARGET of `targets` (id, name), one
+/// OI_WAVELENGTH at 2.2 µm, one OI_VIS2 of `rows` (TARGET_ID, V²), a
+/// minute apart; `primary_extra` in the primary header.
+fn oifits(targets: &[(i16, &str)], rows: &[(i16, f64)], primary_extra: &[Vec<u8>]) -> Vec<u8> {
+    let revn = key("OI_REVN", "2");
+    let ins = key("INSNAME", "'PIPE'");
+    let target_rows: Vec<Vec<u8>> = targets
+        .iter()
+        .map(|(id, name)| {
+            let mut r = id.to_be_bytes().to_vec();
+            r.extend(format!("{name:<16}").into_bytes());
+            r
+        })
+        .collect();
+    let vis2_rows: Vec<Vec<u8>> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, (id, v2))| {
+            let mut r = id.to_be_bytes().to_vec();
+            r.extend((60_000.0 + i as f64 / 1440.0).to_be_bytes());
+            r.extend(v2.to_be_bytes());
+            r.extend(0.1f64.to_be_bytes());
+            r.push(b'F');
+            r
+        })
+        .collect();
+    [
+        primary(primary_extra),
+        table(
+            "OI_TARGET",
+            &[revn.clone()],
+            &[("TARGET_ID", "1I"), ("TARGET", "16A")],
+            &target_rows,
+        ),
+        table(
+            "OI_WAVELENGTH",
+            &[revn.clone(), ins.clone()],
+            &[("EFF_WAVE", "1E")],
+            &[2.2e-6f32.to_be_bytes().to_vec()],
+        ),
+        table(
+            "OI_VIS2",
+            &[revn, ins],
+            &[
+                ("TARGET_ID", "1I"),
+                ("MJD", "1D"),
+                ("VIS2DATA", "1D"),
+                ("VIS2ERR", "1D"),
+                ("FLAG", "1L"),
+            ],
+            &vis2_rows,
+        ),
+    ]
+    .concat()
+}
+
+const ROWS: usize = 8;
+
+/// A synth set of `ROWS` rows in `dir` (made once): its sidecar.
+fn sidecar(dir: &Path) -> String {
+    let stem = dir.join("set").display().to_string();
+    if dir.join("set.json").exists() {
+        return format!("{stem}.json");
+    }
+    let rows = ROWS.to_string();
+    let (code, _, err) = v2ref(&[
+        "synth",
+        "--out",
+        &stem,
+        "--rows",
+        &rows,
+        "--samples",
+        "32",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    format!("{stem}.json")
+}
+
+/// `score --estimator v2_sq` of the OIFITS `bytes` written to `dir/name`.
+fn score_oifits(dir: &Path, name: &str, bytes: &[u8], extra: &[&str]) -> (i32, String) {
+    let side = sidecar(dir);
+    let file = dir.join(name);
+    std::fs::write(&file, bytes).unwrap();
+    let mut args = vec![
+        "score",
+        "--sidecar",
+        &side,
+        "--estimates",
+        file.to_str().unwrap(),
+        "--estimator",
+        "v2_sq",
+    ];
+    args.extend_from_slice(extra);
+    let (code, _, err) = v2ref(&args);
+    (code, err)
+}
+
+fn one_line_refusal(code: i32, err: &str, words: &[&str]) {
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    for w in words {
+        assert!(err.contains(w), "{w:?} not in {err}");
+    }
+}
+
+#[test]
+fn a_gzip_inflating_past_the_memory_budget_is_refused_naming_it() {
+    // 900 gzip members of 1 MiB of zeros each: a 1 MB file that inflates
+    // to 900 MiB (4865b29 held it all, then called it "not FITS").
+    let dir = tempfile::tempdir().unwrap();
+    let mut gzip = Command::new("gzip")
+        .args(["-c", "-9"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("gzip runs");
+    use std::io::Write;
+    let mut stdin = gzip.stdin.take().unwrap();
+    stdin.write_all(&vec![0u8; 1 << 20]).unwrap();
+    drop(stdin);
+    let member = gzip.wait_with_output().unwrap().stdout;
+    let bomb = member.repeat(900);
+    assert!(bomb.len() < 2 << 20, "{}", bomb.len());
+    let (code, err) = score_oifits(
+        dir.path(),
+        "bomb.fits.gz",
+        &bomb,
+        &["--max-memory-gib", "0.05"],
+    );
+    one_line_refusal(
+        code,
+        &err,
+        &["--estimates", "memory budget", "--max-memory-gib"],
+    );
+    // The environment's budget, as Python's readers take it.
+    let side = sidecar(dir.path());
+    let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["score", "--sidecar", &side, "--estimates"])
+        .arg(dir.path().join("bomb.fits.gz"))
+        .env("V2REF_MAX_MEMORY_GIB", "0.05")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    one_line_refusal(out.status.code().unwrap(), &err, &["V2REF_MAX_MEMORY_GIB"]);
+}
+
+#[test]
+fn a_plain_oifits_over_the_budget_is_refused_from_its_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut big = primary(&[]);
+    big.resize((64usize << 20).next_multiple_of(2880), 0);
+    let (code, err) = score_oifits(dir.path(), "big.fits", &big, &["--max-memory-gib", "0.01"]);
+    one_line_refusal(code, &err, &["memory budget", "0.01 GiB"]);
+}
+
+#[test]
+fn a_header_of_400000_cards_is_refused_by_the_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let filler: Vec<Vec<u8>> = (0..400_000)
+        .map(|i| key(&format!("K{}", i % 10_000_000), "1"))
+        .collect();
+    let file = oifits(&[(1, "STAR")], &[(1, 0.5); ROWS], &filler);
+    let (code, err) = score_oifits(dir.path(), "long.fits", &file, &[]);
+    one_line_refusal(code, &err, &["HDU 1", "100000 cards"]);
+}
+
+#[test]
+fn a_table_of_999_columns_and_a_long_header_is_read() {
+    // Every keyword looked up once per column: the index keeps this linear.
+    let mut filler: Vec<Vec<u8>> = (0..90_000).map(|i| key(&format!("H{i}"), "1")).collect();
+    filler.push(key("V2R_EST", "'V2SQ'"));
+    let names: Vec<String> = (0..999).map(|i| format!("C{i}")).collect();
+    let columns: Vec<(&str, &str)> = names.iter().map(|n| (n.as_str(), "1B")).collect();
+    let bytes = [
+        primary(&[]),
+        table("EXTRA", &filler, &columns, &[vec![7u8; 999]]),
+    ]
+    .concat();
+    let hdus = v2ref::formats::oifits::fits::parse(&bytes).unwrap();
+    let t = v2ref::formats::oifits::table::Table::new(&hdus[1]).unwrap();
+    assert_eq!(t.columns.len(), 999);
+    assert_eq!(t.columns[998].name, "C998");
+    assert_eq!(hdus[1].header.str("V2R_EST"), Some("V2SQ"));
+}
+
+#[test]
+fn rows_of_a_target_absent_from_oi_target_are_refused_with_their_row() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut rows = vec![(1i16, 0.5); ROWS];
+    rows[3].0 = 7;
+    let file = oifits(&[(1, "STAR")], &rows, &[]);
+    let (code, err) = score_oifits(dir.path(), "lost.fits", &file, &["--target", "STAR"]);
+    one_line_refusal(code, &err, &["HDU 4", "row 4", "TARGET_ID 7", "OI_TARGET"]);
+    // Every row of an unlisted target (4865b29 scored them).
+    let file = oifits(&[(1, "STAR")], &[(7, 0.5); ROWS], &[]);
+    let (code, err) = score_oifits(dir.path(), "lost.fits", &file, &[]);
+    one_line_refusal(code, &err, &["row 1", "TARGET_ID 7"]);
+}
+
+#[test]
+fn a_target_number_that_is_another_targets_name_is_ambiguous() {
+    // Target 1 is named "2"; target 2 is STAR. `--target 2` picked the
+    // one named "2" on 4865b29 without a word.
+    let dir = tempfile::tempdir().unwrap();
+    let rows: Vec<(i16, f64)> = (0..2 * ROWS).map(|r| (1 + (r % 2) as i16, 0.5)).collect();
+    let file = oifits(&[(1, "2"), (2, "STAR")], &rows, &[]);
+    let (code, err) = score_oifits(dir.path(), "two.fits", &file, &["--target", "2"]);
+    one_line_refusal(
+        code,
+        &err,
+        &["--target", "ambiguous", "TARGET_ID 1", "TARGET_ID 2"],
+    );
+    // Either, named unambiguously, is read.
+    for name in ["STAR", "1"] {
+        let (code, err) = score_oifits(dir.path(), "two.fits", &file, &["--target", name]);
+        assert!(code == 0 || code == 1, "{name}: {err}");
+    }
+}
+
+#[test]
+fn more_hdus_than_announced_is_not_called_truncated() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = oifits(&[(1, "STAR")], &[(1, 0.5); ROWS], &[key("V2R_NHDU", "3")]);
+    let (code, err) = score_oifits(dir.path(), "more.fits", &file, &[]);
+    one_line_refusal(
+        code,
+        &err,
+        &["3 HDUs and holds 4", "more HDUs than announced"],
+    );
+    assert!(!err.contains("truncated"), "{err}");
+    let file = oifits(&[(1, "STAR")], &[(1, 0.5); ROWS], &[key("V2R_NHDU", "5")]);
+    let (code, err) = score_oifits(dir.path(), "fewer.fits", &file, &[]);
+    one_line_refusal(code, &err, &["5 HDUs and holds 4", "truncated"]);
+}
