@@ -300,3 +300,248 @@ fn more_hdus_than_announced_is_not_called_truncated() {
     let (code, err) = score_oifits(dir.path(), "fewer.fits", &file, &[]);
     one_line_refusal(code, &err, &["5 HDUs and holds 4", "truncated"]);
 }
+
+#[test]
+fn a_fifo_as_input_is_refused_without_waiting() {
+    // 4865b29 opened it twice (its shape, then its values): with no
+    // writer it waited for ever, with one it read nothing the second time.
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("rows.csv");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(["estimate", "--samples", "32", "--input"])
+        .arg(&fifo)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(30) {
+            child.kill().unwrap();
+            panic!("estimate --input FIFO still waits after 30 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    one_line_refusal(
+        out.status.code().unwrap(),
+        &err,
+        &["--input", "FIFO", "regular file"],
+    );
+}
+
+#[test]
+fn negative_numbers_with_a_signed_exponent_are_numbers() {
+    // clap's test of a negative number takes -1e3 but not -1e-3, which it
+    // split into flags: "unexpected argument '-1' found" on 4865b29.
+    let dir = tempfile::tempdir().unwrap();
+    let stem = dir.path().join("set").display().to_string();
+    let synth = |stem: &str, ra: &str, dec: &str| {
+        v2ref(&[
+            "synth",
+            "--out",
+            stem,
+            "--rows",
+            "4",
+            "--samples",
+            "8",
+            "--quiet",
+            "--oifits",
+            "--ra-deg",
+            ra,
+            "--dec-deg",
+            dec,
+        ])
+    };
+    let (code, _, err) = synth(&stem, "1e+1", "-1e-3");
+    assert_eq!(code, 0, "{err}");
+    // The value reaches its own check: -1e+3 degrees is out of range.
+    let (code, _, err) = synth(&format!("{stem}2"), "10", "-1e+3");
+    one_line_refusal(code, &err, &["--dec-deg", "-90 to 90"]);
+    let (code, _, err) = v2ref(&["snr", "--dispersion-pp-rad", "-2.5E-1", "--json"]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn a_leap_second_is_a_date_and_an_over_long_date_is_refused_not_cut() {
+    let dir = tempfile::tempdir().unwrap();
+    let stem = |n: &str| dir.path().join(n).display().to_string();
+    let synth = |stem: &str, date: &str| {
+        v2ref(&[
+            "synth",
+            "--out",
+            stem,
+            "--rows",
+            "4",
+            "--samples",
+            "8",
+            "--quiet",
+            "--oifits",
+            "--date",
+            date,
+        ])
+    };
+    let (code, _, err) = synth(&stem("leap"), "2016-12-31T23:59:60.5");
+    assert_eq!(code, 0, "{err}");
+    let truth = std::fs::read(dir.path().join("leap.truth.fits")).unwrap();
+    let text = String::from_utf8_lossy(&truth);
+    assert!(
+        text.contains("'2016-12-31T23:59:60.5'"),
+        "DATE-OBS as given"
+    );
+    // Only 23:59:60, and only where UTC inserts leap seconds.
+    for bad in ["2016-12-30T23:59:60", "2016-12-31T23:58:60"] {
+        let (code, _, err) = synth(&stem("bad"), bad);
+        one_line_refusal(code, &err, &["--date", "leap second"]);
+    }
+    // 80 digits of a second were cut to fit the card on 4865b29.
+    let long = format!("2026-11-26T00:00:01.{}", "1".repeat(80));
+    let (code, _, err) = synth(&stem("long"), &long);
+    one_line_refusal(code, &err, &["--date", "at most 9 digits"]);
+    assert!(!dir.path().join("long.truth.fits").exists());
+}
+
+#[test]
+fn plan_svg_with_nothing_to_plot_is_bad_input() {
+    // 4865b29: status 74, as if the file could not be written.
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("plan.svg");
+    let (code, _, err) = v2ref(&["plan", "--svg", svg.to_str().unwrap(), "--fringe-hz", "100"]);
+    one_line_refusal(code, &err, &["--svg", "nothing to plot", "--fringe-hz"]);
+    assert!(!svg.exists());
+}
+
+#[test]
+fn a_seed_that_is_not_a_whole_number_is_refused_not_rounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let synth = |name: &str, seed: &str| {
+        let stem = dir.path().join(name).display().to_string();
+        v2ref(&[
+            "synth",
+            "--out",
+            &stem,
+            "--rows",
+            "4",
+            "--samples",
+            "8",
+            "--quiet",
+            "--seed",
+            seed,
+        ])
+    };
+    // A float rounds 1.0000000000000001 to 1 (4865b29 took it as seed 1).
+    for bad in [
+        "1.5",
+        "1.0000000000000001",
+        "1e-1",
+        "9007199254740993.5",
+        "1e3.5",
+    ] {
+        let (code, _, err) = synth("bad", bad);
+        assert_eq!(code, 2, "{bad}: {err}");
+        assert!(
+            err.contains("--seed") && err.contains("whole number"),
+            "{bad}: {err}"
+        );
+    }
+    for (name, good) in [
+        ("a", "1e6"),
+        ("b", "1_000_000"),
+        ("c", "1.5e3"),
+        ("d", "1000000"),
+    ] {
+        let (code, _, err) = synth(name, good);
+        assert_eq!(code, 0, "{good}: {err}");
+    }
+    let bytes = |n: &str| std::fs::read(dir.path().join(format!("{n}.npy"))).unwrap();
+    assert_eq!(bytes("a"), bytes("b"));
+    assert_eq!(bytes("a"), bytes("d"));
+    // Exact beyond 2^53: the digits, not a float's neighbour.
+    let (code, _, err) = synth("e", "9007199254740993");
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = synth("f", "9.007199254740993e15");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(bytes("e"), bytes("f"));
+}
+
+/// Runs `v2ref ARGS` with its standard error on a pseudo-terminal and
+/// `TERM=term`: what it wrote there.
+#[cfg(unix)]
+fn stderr_on_a_terminal(args: &[&str], term: &str) -> Vec<u8> {
+    use std::io::Read;
+    use std::os::fd::FromRawFd;
+    let (mut master, mut slave) = (-1, -1);
+    // SAFETY: openpty writes two descriptors; null name, termios, winsize.
+    let r = unsafe {
+        libc::openpty(
+            &mut master,
+            &mut slave,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            std::ptr::null(),
+        )
+    };
+    assert_eq!(r, 0, "openpty");
+    // SAFETY: both descriptors are ours, each owned once from here.
+    let (master, slave) = unsafe {
+        (
+            std::fs::File::from_raw_fd(master),
+            std::fs::File::from_raw_fd(slave),
+        )
+    };
+    let status = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .args(args)
+        .env("TERM", term)
+        .env("NO_COLOR", "1")
+        .stdout(std::process::Stdio::null())
+        .stderr(slave)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let mut out = Vec::new();
+    // SAFETY: the master's flags are read and set non-blocking: what is
+    // buffered is read, then EAGAIN ends the read.
+    unsafe {
+        let flags = libc::fcntl(std::os::fd::AsRawFd::as_raw_fd(&master), libc::F_GETFL);
+        libc::fcntl(
+            std::os::fd::AsRawFd::as_raw_fd(&master),
+            libc::F_SETFL,
+            flags | libc::O_NONBLOCK,
+        );
+    }
+    let mut buf = [0u8; 4096];
+    let mut master = master;
+    while let Ok(n) = master.read(&mut buf) {
+        if n == 0 {
+            break;
+        }
+        out.extend_from_slice(&buf[..n]);
+    }
+    out
+}
+
+#[cfg(unix)]
+#[test]
+fn a_dumb_terminal_gets_no_escape_codes() {
+    // A run of about a second, long enough for the bar to be drawn.
+    let args = [
+        "simulate",
+        "--trials",
+        "3000000",
+        "--samples",
+        "32",
+        "--json",
+    ];
+    let dumb = stderr_on_a_terminal(&args, "dumb");
+    assert!(!dumb.contains(&0x1b), "{}", String::from_utf8_lossy(&dumb));
+    // Power: the same run on a capable terminal draws its bar with them.
+    let capable = stderr_on_a_terminal(&args, "xterm");
+    assert!(
+        capable.contains(&0x1b),
+        "{}",
+        String::from_utf8_lossy(&capable)
+    );
+}

@@ -201,6 +201,7 @@ fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
     use std::io::Read;
     let budget = crate::formats::memory_budget()?;
     let limit = MAX_OIFITS_BYTES.min(budget);
+    crate::formats::csv::check_regular(path, param)?;
     let file = crate::formats::open(path, param)?;
     let size = file.metadata().map(|m| m.len()).unwrap_or(0);
     if size > limit {
