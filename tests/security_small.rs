@@ -545,3 +545,41 @@ fn a_dumb_terminal_gets_no_escape_codes() {
         String::from_utf8_lossy(&capable)
     );
 }
+
+#[test]
+fn a_truth_with_a_negative_variance_is_refused_not_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    let side = sidecar(dir.path());
+    let est = dir.path().join("est.csv");
+    let (code, _, err) = v2ref(&[
+        "estimate",
+        "--sidecar",
+        &side,
+        "--out",
+        est.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let score = || {
+        v2ref(&[
+            "score",
+            "--sidecar",
+            &side,
+            "--estimates",
+            est.to_str().unwrap(),
+        ])
+    };
+    let (code, _, err) = score();
+    assert!(code == 0 || code == 1, "{err}");
+    // Every convention's V2² variance made negative (4865b29 scored it).
+    let mut json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&side).unwrap()).unwrap();
+    for window in json["truth"]["windows"].as_array_mut().unwrap() {
+        for convention in window["conventions"].as_array_mut().unwrap() {
+            let var = convention["v2_sq"]["var"].as_f64().unwrap();
+            convention["v2_sq"]["var"] = serde_json::json!(-var);
+        }
+    }
+    std::fs::write(&side, serde_json::to_string_pretty(&json).unwrap()).unwrap();
+    let (code, _, err) = score();
+    one_line_refusal(code, &err, &["var is -", "variance", ">= 0"]);
+}
