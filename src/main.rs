@@ -60,7 +60,7 @@ fn main() -> ExitCode {
     // SIGINT, SIGTERM and SIGHUP stop any computation at once: the
     // temporaries are removed (what was there before stays), status 128 + N.
     cli::signals::install();
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(cli::negative_numbers_joined(std::env::args_os())) {
         Ok(c) => c,
         Err(e) => return cli::clap_error(e),
     };

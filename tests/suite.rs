@@ -65,6 +65,7 @@ mod robustness_sets;
 mod run;
 mod running_stats;
 mod security_sets;
+mod security_small;
 mod simulator;
 mod special;
 mod spectral_estimators;

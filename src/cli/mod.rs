@@ -77,6 +77,42 @@ pub fn fail(e: &Error) -> ExitCode {
     ExitCode::from(output::exit_status(e))
 }
 
+/// The command line with each negative number that follows a `--flag`
+/// joined to it (`--dec-deg -1e-3` read as `--dec-deg=-1e-3`). clap's
+/// `allow_negative_numbers` takes `-1e3` but not an exponent with a sign
+/// (its test of a number, in clap_lex, allows digits, one `.` and one
+/// `e` only), so `-1e-3` was split into the short flags `-1`, `-e`, ...
+/// and refused as an unexpected argument. Joined, the value is the flag's
+/// whatever it starts with, and its own parser checks it.
+pub fn negative_numbers_joined(
+    args: impl IntoIterator<Item = std::ffi::OsString>,
+) -> Vec<std::ffi::OsString> {
+    let mut out: Vec<std::ffi::OsString> = Vec::new();
+    for arg in args {
+        let negative_number = arg
+            .to_str()
+            .and_then(|a| a.strip_prefix('-'))
+            .is_some_and(|rest| {
+                rest.starts_with(|c: char| c.is_ascii_digit() || c == '.')
+                    && rest.parse::<f64>().is_ok()
+            });
+        let after_flag = out
+            .last()
+            .and_then(|f| f.to_str())
+            .is_some_and(|f| f.len() > 2 && f.starts_with("--") && !f.contains('='));
+        if negative_number && after_flag && out.len() > 1 {
+            let flag = out.pop().expect("a flag before");
+            let mut joined = flag;
+            joined.push("=");
+            joined.push(&arg);
+            out.push(joined);
+        } else {
+            out.push(arg);
+        }
+    }
+    out
+}
+
 /// Handles a clap parse error: help and version print normally (status 0);
 /// anything else prints its first line and returns status 2.
 pub fn clap_error(e: clap::Error) -> ExitCode {
@@ -125,20 +161,57 @@ pub fn finite_f64(s: &str) -> Result<f64, String> {
 
 /// Parses a count (clap value parser): a whole number such as `1000000`,
 /// also written `1e6` or `1_000_000`; a refusal says what is accepted.
+/// The number is read exactly, as decimal digits: `1.5`, and `1.0000000000000001`
+/// (which a float would round to 1), are refused, not rounded.
 pub fn count_u64(s: &str) -> Result<u64, String> {
+    const ACCEPTED: &str = "expected a whole number >= 0, for example 1000000 (or 1e6)";
     let t = s.trim().replace('_', "");
     if let Ok(n) = t.parse::<u64>() {
         return Ok(n);
     }
-    // Scientific notation of an exact whole number up to 2^53 (where every
-    // whole f64 is exact).
-    match t.parse::<f64>() {
-        Ok(x) if x >= 0.0 && x.fract() == 0.0 && x <= 2f64.powi(53) => Ok(x as u64),
-        Ok(x) if x.is_finite() && x > 2f64.powi(53) => Err(format!(
-            "{x:e} is too large; a whole number up to 9007199254740992 (2^53)"
+    match exact_whole(&t) {
+        Some(Ok(n)) => Ok(n),
+        Some(Err(())) => Err(format!(
+            "{t} is too large; a whole number up to {}",
+            u64::MAX
         )),
-        _ => Err("expected a whole number >= 0, for example 1000000 (or 1e6)".into()),
+        None => Err(format!("{t}: {ACCEPTED}")),
     }
+}
+
+/// `t` (`DIGITS[.DIGITS][e[+-]DIGITS]`) as a whole number, read in
+/// decimal: None when it is not one (a fraction, a sign, not a number),
+/// `Some(Err)` when it is beyond `u64`.
+fn exact_whole(t: &str) -> Option<Result<u64, ()>> {
+    let (mantissa, exp) = match t.find(['e', 'E']) {
+        Some(i) => (&t[..i], t[i + 1..].parse::<i64>().ok()?),
+        None => (t, 0),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let all_digits = |p: &str| p.bytes().all(|b| b.is_ascii_digit());
+    if int.len() + frac.len() == 0 || !all_digits(int) || !all_digits(frac) {
+        return None;
+    }
+    let digits = format!("{int}{frac}");
+    let digits = digits.trim_start_matches('0');
+    if digits.is_empty() {
+        return Some(Ok(0));
+    }
+    // The value is digits × 10^scale.
+    let scale = exp.checked_sub(frac.len() as i64)?;
+    let whole = if scale < 0 {
+        let cut = usize::try_from(-scale).ok()?;
+        let kept = digits.len().checked_sub(cut)?;
+        if !digits[kept..].bytes().all(|b| b == b'0') {
+            return None;
+        }
+        digits[..kept].to_owned()
+    } else if (digits.len() as i64).saturating_add(scale) > 20 {
+        return Some(Err(()));
+    } else {
+        format!("{digits}{}", "0".repeat(scale as usize))
+    };
+    Some(whole.parse::<u64>().map_err(|_| ()))
 }
 
 /// [`count_u64`] as a `usize`.
@@ -170,10 +243,14 @@ pub fn print_rows(rows: &[(&str, String)]) {
     }
 }
 
-/// Whether progress bars should be drawn: stderr is a terminal and the user
-/// did not ask for quiet.
+/// Whether progress bars should be drawn: stderr is a terminal that moves
+/// its cursor (not `TERM=dumb`: the bar is redrawn with escape codes, which
+/// such a terminal prints as they are) and the user did not ask for quiet.
+/// Where none is drawn, a long run is announced in one plain line instead
+/// ([`output::watch_cost`]).
 pub fn show_progress(quiet: bool) -> bool {
-    !quiet && std::io::stderr().is_terminal()
+    let dumb = std::env::var_os("TERM").is_some_and(|t| t == "dumb");
+    !quiet && !dumb && std::io::stderr().is_terminal()
 }
 
 /// A progress bar over `len` steps, hidden when not [`show_progress`].

@@ -87,7 +87,9 @@ pub struct ObservingArgs {
     #[arg(long, help_heading = HEADING, value_parser = super::finite_f64, allow_negative_numbers = true)]
     dec_deg: Option<f64>,
     /// When the first row starts (DATE-OBS, UTC): YYYY-MM-DD or
-    /// YYYY-MM-DDThh:mm:ss[.s], from 1858-11-17 [default: 2000-01-01].
+    /// YYYY-MM-DDThh:mm:ss[.s] (at most 9 digits after the point; a leap
+    /// second 23:59:60 on June 30 or December 31), from 1858-11-17
+    /// [default: 2000-01-01].
     #[arg(long, help_heading = HEADING, value_name = "DATE")]
     date: Option<String>,
     /// The array: iota, vlti or chara (their sites), or the name (1 to 16

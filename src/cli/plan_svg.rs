@@ -18,6 +18,13 @@ fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
     }
 }
 
+fn nothing_to_plot(path: &Path, why: &str) -> Error {
+    Error::Invalid {
+        param: "svg",
+        reason: format!("{}: nothing to plot: {why}", path.display()),
+    }
+}
+
 /// Writes the figure to `path` (SVG).
 pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
     // The planner's own numbers (upper ends of the piston intervals).
@@ -56,10 +63,15 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .fold(f64::INFINITY, f64::min),
         inputs.fringe_hz.iter().copied().fold(0.0, f64::max),
     );
-    if all.is_empty() || !(lo > 0.0 && hi > lo && f1 > f0) {
-        return Err(fail(
+    // Nothing to plot is a property of the plan asked for, not of the
+    // file: bad input (status 2), not an output that cannot be written.
+    if all.is_empty() || !(lo > 0.0 && hi > lo) {
+        return Err(nothing_to_plot(path, "no grid point reaches any accuracy"));
+    }
+    if !(f1 > f0) {
+        return Err(nothing_to_plot(
             path,
-            "nothing to plot: no grid point reaches any accuracy",
+            "one fringe frequency; the figure draws σ(V²) against two or more (--fringe-hz)",
         ));
     }
     let mut svg = String::new();

@@ -195,6 +195,14 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
             return Err(bad(what, v));
         }
     }
+    // A variance below 0 is no variance: scored, its z would compare the
+    // set's spread with nothing a set can have.
+    if truth.var < 0.0 {
+        return Err(Error::Invalid {
+            param: "truth",
+            reason: format!("var is {}; a variance is a finite number >= 0", truth.var),
+        });
+    }
     if truth.stderr_dof == Some(0) {
         return Err(Error::Invalid {
             param: "truth",

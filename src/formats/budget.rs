@@ -101,16 +101,29 @@ pub fn check_budget(need: u64, param: &'static str, path: &Path) -> Result<()> {
     if need <= budget {
         return Ok(());
     }
+    Err(over_budget(need, budget, param, path, "header", ""))
+}
+
+/// The refusal of `need` bytes (`more`: "more than " when reading stopped
+/// there) over `budget`, at `location` of `path`.
+pub(crate) fn over_budget(
+    need: u64,
+    budget: u64,
+    param: &'static str,
+    path: &Path,
+    location: &str,
+    more: &str,
+) -> Error {
     let gib = |b: u64| b as f64 / GIB;
-    Err(Error::data(
+    Error::data(
         param,
         path,
-        "header",
+        location,
         format!(
-            "reading it takes {:.2} GiB, more than the memory budget of {:.2} GiB ({}); raise it with --max-memory-gib (or V2REF_MAX_MEMORY_GIB)",
+            "reading it takes {more}{:.2} GiB, more than the memory budget of {:.2} GiB ({}); raise it with --max-memory-gib (or V2REF_MAX_MEMORY_GIB)",
             gib(need),
             gib(budget),
             budget_source()
         ),
-    ))
+    )
 }

@@ -15,8 +15,52 @@ pub const MAX_CSV_LINE_BYTES: u64 = 4 << 20;
 
 /// The content lines of the CSV file `path` ([`crate::csv_lines`]).
 fn lines_of(path: &Path, param: &'static str) -> Result<CsvLines<BufReader<File>>> {
+    check_regular(path, param)?;
     let file = BufReader::new(open(path, param)?);
     Ok(CsvLines::new(file, MAX_CSV_LINE_BYTES))
+}
+
+/// Refuses an input that is not a regular file (a FIFO, a device, a
+/// socket, a folder), looked at without waiting: opening a FIFO waits for
+/// a writer, and a file is read more than once (a CSV's shape, then its
+/// values), which a pipe cannot give twice. Opened non-blocking, so a
+/// FIFO is seen, not waited on.
+pub(crate) fn check_regular(path: &Path, param: &'static str) -> Result<()> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
+    let kind = options
+        .open(path)
+        .and_then(|f| f.metadata())
+        .map_err(|e| Error::file(Some(param), path, e))?
+        .file_type();
+    if kind.is_file() {
+        return Ok(());
+    }
+    let what = if kind.is_dir() {
+        "a folder"
+    } else if is_fifo(&kind) {
+        "a FIFO (named pipe)"
+    } else {
+        "a device or socket"
+    };
+    Err(Error::data(
+        param,
+        path,
+        "",
+        format!("{what}, not a regular file; give a file (it is read more than once)"),
+    ))
+}
+
+#[cfg(unix)]
+fn is_fifo(kind: &std::fs::FileType) -> bool {
+    std::os::unix::fs::FileTypeExt::is_fifo(kind)
+}
+
+#[cfg(not(unix))]
+fn is_fifo(_: &std::fs::FileType) -> bool {
+    false
 }
 
 /// The refusal of a line of `path` that could not be read.

@@ -248,14 +248,26 @@ fn check_date(date: &str) -> Result<String> {
     Err(Error::Invalid {
         param: "date",
         reason: format!(
-            "{date:?}: a UTC date YYYY-MM-DD or date and time YYYY-MM-DDThh:mm:ss[.s], from {EARLIEST_DATE} (MJD 0) to 9999-12-31"
+            "{date:?}: a UTC date YYYY-MM-DD or date and time YYYY-MM-DDThh:mm:ss[.s] \
+             (at most {MAX_FRACTION_DIGITS} digits after the point; 23:59:60 on June 30 or December 31, \
+             a leap second), from {EARLIEST_DATE} (MJD 0) to 9999-12-31"
         ),
     })
 }
 
+/// Most digits of a second's fraction (a nanosecond): a longer date would
+/// be cut where its FITS card ends, not written as given.
+const MAX_FRACTION_DIGITS: usize = 9;
+
 /// The MJD of a `DATE-OBS` value: `YYYY-MM-DD` (its 00:00 UTC) or
 /// `YYYY-MM-DDThh:mm:ss[.s]`. None unless it is a real calendar date and
 /// time from [`EARLIEST_DATE`] on.
+///
+/// A leap second, `23:59:60[.s]`, is a UTC time on the days UTC inserts
+/// them (June 30 and December 31; which years did is not checked: it is
+/// announced months ahead). MJD counts 86 400 s a day (FITS 4.0 §9.2.2
+/// leaves the MJD of a leap second to the writer), so every instant of
+/// the leap second has the MJD of the next day's 00:00 UTC.
 pub fn mjd_of_date(date: &str) -> Option<f64> {
     let (day, time) = match date.split_once('T') {
         Some((d, t)) => (d, Some(t)),
@@ -264,7 +276,10 @@ pub fn mjd_of_date(date: &str) -> Option<f64> {
     let mjd = mjd_of_day(day)?;
     let day_fraction = match time {
         None => 0.0,
-        Some(t) => seconds_of_day(t)? / 86_400.0,
+        Some(t) => {
+            let leap_day = day.ends_with("-06-30") || day.ends_with("-12-31");
+            (seconds_of_day(t, leap_day)? / 86_400.0).min(1.0)
+        }
     };
     (mjd >= 0.0).then_some(mjd + day_fraction)
 }
@@ -304,8 +319,9 @@ fn mjd_of_day(day: &str) -> Option<f64> {
     Some(days_since_1970 as f64 + 40_587.0)
 }
 
-/// Seconds since 00:00 of `hh:mm:ss[.s]` (FITS's time of day).
-fn seconds_of_day(time: &str) -> Option<f64> {
+/// Seconds since 00:00 of `hh:mm:ss[.s]` (FITS's time of day); second
+/// 60 of 23:59 only on a day that may end with a leap second.
+fn seconds_of_day(time: &str, leap_day: bool) -> Option<f64> {
     let b = time.as_bytes();
     if b.len() < 8 || b[2] != b':' || b[5] != b':' {
         return None;
@@ -315,12 +331,17 @@ fn seconds_of_day(time: &str) -> Option<f64> {
     let fraction = &time[8..];
     let fraction_s = match fraction.strip_prefix('.') {
         None if fraction.is_empty() => 0.0,
-        Some(f) if !f.is_empty() && f.bytes().all(|c| c.is_ascii_digit()) => {
+        Some(f)
+            if (1..=MAX_FRACTION_DIGITS).contains(&f.len())
+                && f.bytes().all(|c| c.is_ascii_digit()) =>
+        {
             format!("0.{f}").parse::<f64>().ok()?
         }
         _ => return None,
     };
-    (h < 24 && m < 60 && whole_s < 60).then(|| (h * 3600 + m * 60 + whole_s) as f64 + fraction_s)
+    let leap_second = leap_day && h == 23 && m == 59 && whole_s == 60;
+    (h < 24 && m < 60 && (whole_s < 60 || leap_second))
+        .then(|| (h * 3600 + m * 60 + whole_s) as f64 + fraction_s)
 }
 
 /// A field of ASCII digits only (no sign, no space).
@@ -345,6 +366,13 @@ mod tests {
             mjd_of_date("2026-11-26T00:00:01.5"),
             Some(61_370.0 + 1.5 / 86_400.0)
         );
+        // A leap second: the MJD of the next day's start.
+        assert_eq!(mjd_of_date("2016-12-31T23:59:60.5"), Some(57_754.0));
+        assert_eq!(
+            mjd_of_date("2015-06-30T23:59:60"),
+            mjd_of_date("2015-07-01")
+        );
+        assert!(mjd_of_date("2026-11-26T00:00:01.123456789").is_some());
         for bad in [
             "2023-02-29",
             "2026-04-31",
@@ -358,6 +386,9 @@ mod tests {
             "2026-11-26T12:00",
             "2026-11-26T12:00:00Z",
             "2026-11-26T12:00:00.",
+            "2026-11-26T23:59:60",
+            "2016-12-31T23:58:60",
+            "2026-11-26T12:00:00.1234567891",
             "+026-11-26",
             "2026-11-26 ",
             "",

@@ -10,7 +10,8 @@ use std::path::Path;
 /// The `TARGET_ID` whose rows are read: None when every row is of one
 /// target and none is chosen; `chosen` (a `TARGET` name or a number)
 /// resolved otherwise. Refused: rows of several targets and none chosen,
-/// a chosen target with no rows.
+/// a chosen target with no rows, a number that names one target and is
+/// the `TARGET_ID` of another's rows (ambiguous: neither is preferred).
 pub fn target_of(
     file: &OifitsFile,
     groups: &[Vec<&Vis2Table>],
@@ -50,8 +51,21 @@ pub fn target_of(
         .iter()
         .find(|(_, n)| n.eq_ignore_ascii_case(name.trim()))
         .map(|(i, _)| *i);
-    let id = by_name.or_else(|| name.trim().parse::<i64>().ok());
-    match id.filter(|id| ids.contains(id)) {
+    let by_id = name.trim().parse::<i64>().ok();
+    if let (Some(named), Some(numbered)) = (by_name, by_id) {
+        if named != numbered && ids.contains(&numbered) {
+            return Err(Error::Invalid {
+                param: "target",
+                reason: format!(
+                    "{name} is ambiguous: the TARGET named {name:?} has TARGET_ID {named}, \
+                     and rows have TARGET_ID {numbered}; the rows are of TARGET_ID {}: \
+                     choose by a TARGET name that is not a number",
+                    listed()
+                ),
+            });
+        }
+    }
+    match by_name.or(by_id).filter(|id| ids.contains(id)) {
         Some(id) => Ok(Some(id)),
         None => Err(Error::Invalid {
             param: "target",

@@ -94,13 +94,16 @@ pub fn parse_oifits(
 ) -> std::result::Result<OifitsFile, Refusal> {
     let hdus = fits::parse(bytes)?;
     if let Some(n) = hdus[0].header.int(super::write::KEY_NHDU) {
-        if n != hdus.len() as i64 {
+        let held = hdus.len() as i64;
+        if n != held {
+            let what = if held < n {
+                "it is truncated"
+            } else {
+                "it holds more HDUs than announced: HDUs were added after it was written"
+            };
             return Err(fits::refuse(
                 format!("HDU 1, keyword {}", super::write::KEY_NHDU),
-                format!(
-                    "the file was written with {n} HDUs and holds {}: it is truncated",
-                    hdus.len()
-                ),
+                format!("the file was written with {n} HDUs and holds {held}: {what}"),
             ));
         }
     }
@@ -152,22 +155,77 @@ pub fn parse_oifits(
         }
         t.eff_wave_m = w.clone();
     }
+    if !targets.is_empty() {
+        check_targets_listed(&tables, &targets)?;
+    }
     Ok(OifitsFile { tables, targets })
 }
 
+/// Refuses a row whose `TARGET_ID` is not in `OI_TARGET`: the row is of
+/// no known target, and choosing a target by name could not see it.
+fn check_targets_listed(
+    tables: &[Vis2Table],
+    targets: &[(i64, String)],
+) -> std::result::Result<(), Refusal> {
+    for t in tables {
+        let unlisted = t
+            .target_id
+            .iter()
+            .position(|id| !targets.iter().any(|(i, _)| i == id));
+        if let Some(r) = unlisted {
+            let ids: Vec<String> = targets.iter().map(|(i, _)| i.to_string()).collect();
+            return Err(fits::refuse(
+                format!(
+                    "HDU {} (OI_VIS2 INSNAME {}), row {}",
+                    t.hdu,
+                    t.insname,
+                    r + 1
+                ),
+                format!(
+                    "TARGET_ID {} is not in OI_TARGET (its TARGET_IDs: {}): a row of no listed target",
+                    t.target_id[r],
+                    ids.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The file's bytes, gunzipped when they start with gzip's magic number;
-/// at most [`MAX_OIFITS_BYTES`] either way.
+/// at most [`MAX_OIFITS_BYTES`] either way, and no more than the memory
+/// budget ([`crate::formats::memory_budget`]): a plain file is refused from
+/// its size before it is read, a `.fits.gz` as soon as its inflation
+/// passes the budget (a 1 MB file of zeros inflates to 1 GiB).
 fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
     use std::io::Read;
+    let budget = crate::formats::memory_budget()?;
+    let limit = MAX_OIFITS_BYTES.min(budget);
+    crate::formats::csv::check_regular(path, param)?;
     let file = crate::formats::open(path, param)?;
+    let size = file.metadata().map(|m| m.len()).unwrap_or(0);
+    if size > limit {
+        return Err(too_large(path, param, size, budget, ""));
+    }
     let mut bytes = Vec::new();
-    file.take(MAX_OIFITS_BYTES + 1)
+    file.take(limit + 1)
         .read_to_end(&mut bytes)
         .map_err(|e| Error::file(Some(param), path, e))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(
+            path,
+            param,
+            bytes.len() as u64,
+            budget,
+            "more than ",
+        ));
+    }
     if bytes.starts_with(&[0x1f, 0x8b]) {
+        // The compressed bytes are held while inflating: both count.
+        let room = limit - bytes.len() as u64;
         let mut plain = Vec::new();
         flate2::read::MultiGzDecoder::new(&bytes[..])
-            .take(MAX_OIFITS_BYTES + 1)
+            .take(room + 1)
             .read_to_end(&mut plain)
             .map_err(|e| {
                 Error::data(
@@ -177,17 +235,27 @@ fn read_bounded(path: &Path, param: &'static str) -> Result<Vec<u8>> {
                     format!("a gzip file that does not decompress ({e}): truncated or damaged"),
                 )
             })?;
+        let held = (bytes.len() + plain.len()) as u64;
+        if held > limit {
+            return Err(too_large(path, param, held, budget, "more than "));
+        }
         bytes = plain;
     }
-    if bytes.len() as u64 > MAX_OIFITS_BYTES {
-        return Err(Error::data(
-            param,
-            path,
-            "",
-            format!("larger than {MAX_OIFITS_BYTES} bytes"),
-        ));
-    }
     Ok(bytes)
+}
+
+/// The refusal of a file that takes `need` bytes to hold (`more`: "more
+/// than " where reading stopped), over [`MAX_OIFITS_BYTES`] or `budget`.
+fn too_large(path: &Path, param: &'static str, need: u64, budget: u64, more: &str) -> Error {
+    if budget < MAX_OIFITS_BYTES {
+        return crate::formats::budget::over_budget(need, budget, param, path, "", more);
+    }
+    Error::data(
+        param,
+        path,
+        "",
+        format!("{more}{need} bytes, larger than {MAX_OIFITS_BYTES} bytes"),
+    )
 }
 
 fn insname(hdu: &Hdu, what: &str) -> std::result::Result<String, Refusal> {
