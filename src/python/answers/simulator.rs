@@ -153,7 +153,7 @@ fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Boun
 /// `out`, also writes the set as `v2ref synth --out OUT` does
 /// ([`super::super::output::write_set`]).
 #[pyfunction]
-#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force))]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force, observations=1, dead_time_s=0.0))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn synthesize<'py>(
     py: Python<'py>,
@@ -167,8 +167,15 @@ pub(super) fn synthesize<'py>(
     layout: &str,
     out: Option<std::path::PathBuf>,
     force: bool,
+    observations: u64,
+    dead_time_s: f64,
 ) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
     let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
+    let layout = ok(crate::simulator::RowTiming::new(
+        layout,
+        observations,
+        dead_time_s,
+    ))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
     // None: sized by what the truth needs (`default_reference_blocks`).
     let reference_blocks = reference_blocks.unwrap_or_else(|| {
