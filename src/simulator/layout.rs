@@ -10,19 +10,23 @@
 //!   samples the statistics of *one scan* over many atmospheres: the
 //!   per-scan bias and scatter, with the spread between sequences as their
 //!   error.
-//! - [`RowLayout::Observation`]: every row through *one* contiguous
-//!   sequence in time order, each scan starting where the previous one
-//!   ended (stride N samples, one scan period). It is the observation a
-//!   plan recommends: the mean of its n rows scatters as the mean of n
-//!   consecutive scans through one atmosphere does — more than σ²/n when
-//!   the atmosphere is slow against the scans, less when it is fast.
+//! - [`RowLayout::Observation`]: the rows are [`RowTiming::observations`]
+//!   observations of n consecutive scans each (stride: one scan period,
+//!   the scan and [`RowTiming::dead_time_s`]), each through its own
+//!   atmosphere: the observation a plan recommends, whose mean of n rows
+//!   scatters as the mean of n consecutive scans through one atmosphere
+//!   does — more than σ²/n when the atmosphere is slow against the scans,
+//!   less when it is fast. Each observation reads the start of a sequence
+//!   at least [`OBSERVATION_SPAN`](crate::piston::sequences::OBSERVATION_SPAN)
+//!   times longer and two correlation times B/v, so its drift is kept; the
+//!   sidecar's note says how long it was.
 //!
-//! The piston sequence of a set is held in memory whole: at most
-//! [`MAX_SERIES`](crate::piston::MAX_SERIES) samples (2^24, 128 MiB of
-//! f64, about 0.8 GB at the peak of its synthesis), shared by all the
-//! sequences of a set; in the observation layout they all go to the one
-//! sequence (164 000 rows at N = 102, where each of the 16 sequences of the
-//! default layout holds at most about 10 000).
+//! The piston of a set is held in memory: in the default layout, all its
+//! sequences within [`MAX_SERIES`](crate::piston::MAX_SERIES) samples
+//! (2^24, 128 MiB of f64, about 0.8 GB at the peak of their synthesis);
+//! in the observation layout, each observation's sequence is synthesized
+//! within it in turn and only the stretches read are kept, together within
+//! it.
 
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
@@ -230,7 +234,7 @@ pub(crate) fn observation_note(
     let kept = if times >= crate::piston::sequences::OBSERVATION_SPAN as f64 - 1e-9 {
         "its piston's drift over the observation is not forced to zero (the plan's observation model: sequences of at least 4 observations)"
     } else {
-        "shorter than 4 observations (the memory limit, 2^24 samples): the piston's wander slower than a quarter of the sequence is missing"
+        "shorter than the plan's 4 observations (the memory limit, 2^24 samples per sequence): the piston's wander slower than one over the sequence is missing, and the nearer the sequence is to the observation the more its drift over the observation is forced toward zero; use fewer scans per observation"
     };
     let s = |x: f64| crate::error::number(format!("{x:.4e}").parse().unwrap_or(x));
     format!(
