@@ -50,6 +50,7 @@ mod piston_models;
 mod piston_spectrum;
 mod plan;
 mod plan_cases;
+mod plan_check;
 mod plan_observation;
 mod plan_presets;
 mod properties;
