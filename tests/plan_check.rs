@@ -44,9 +44,7 @@ const OBSERVATIONS: u64 = 200;
 const DEAD_TIME_S: &str = "0.005";
 
 fn number(v: &Value, key: &str) -> f64 {
-    v[key]
-        .as_f64()
-        .unwrap_or_else(|| panic!("{key} in {v}"))
+    v[key].as_f64().unwrap_or_else(|| panic!("{key} in {v}"))
 }
 
 /// `plan --verify` at 1000 Hz, 32 µm, 1e8 photons/s, σ(V²) = 5e-4, 5 ms
@@ -88,7 +86,10 @@ fn a_user_side_simulation_reproduces_the_verification() {
     let n = ver["scans_per_observation"].as_u64().unwrap();
     let observation_s = n as f64 * number(&rec["observation"], "scan_period_s");
     // The case the check is for: the observation spans many B/v.
-    assert!(observation_s > 10.0 * 2.0 * 10.0 / 20.0, "{observation_s} s");
+    assert!(
+        observation_s > 10.0 * 2.0 * 10.0 / 20.0,
+        "{observation_s} s"
+    );
 
     // The user's side: the recommended setting as the plan printed it.
     let stem = dir.path().join("check");
@@ -100,10 +101,29 @@ fn a_user_side_simulation_reproduces_the_verification() {
         rec["photons_per_sample"].to_string(),
     );
     let mut synth = vec![
-        "synth", "--out", stem, "--rows", &rows, "--layout", "observation",
-        "--observations", &k, "--dead-time-s", DEAD_TIME_S, "--samples", &samples,
-        "--dx-um", &dx, "--photons", &photons, "--fringe-hz", "1000",
-        "--reference-blocks", "0", "--seed", "7",
+        "synth",
+        "--out",
+        stem,
+        "--rows",
+        &rows,
+        "--layout",
+        "observation",
+        "--observations",
+        &k,
+        "--dead-time-s",
+        DEAD_TIME_S,
+        "--samples",
+        &samples,
+        "--dx-um",
+        &dx,
+        "--photons",
+        &photons,
+        "--fringe-hz",
+        "1000",
+        "--reference-blocks",
+        "0",
+        "--seed",
+        "7",
     ];
     synth.extend(SKY);
     let (code, _, err) = v2ref(&synth);
@@ -114,15 +134,27 @@ fn a_user_side_simulation_reproduces_the_verification() {
     assert!(note.contains("not forced to zero"), "{note}");
     let est = format!("{stem}.est.csv");
     let estimate = [
-        "estimate", "--sidecar", &format!("{stem}.json"), "--bias", "counts", "--out", &est,
+        "estimate",
+        "--sidecar",
+        &format!("{stem}.json"),
+        "--bias",
+        "counts",
+        "--out",
+        &est,
     ];
     let (code, _, err) = v2ref(&estimate);
     assert_eq!(code, 0, "{err}");
     let (means, all) = observation_means(&est, n);
     assert_eq!(means.count, OBSERVATIONS);
 
-    let (sigma, se) = (means.std(), means.std() / (2.0 * (OBSERVATIONS - 1) as f64).sqrt());
-    let (achieved, achieved_se) = (number(ver, "achieved_sigma"), number(ver, "achieved_sigma_stderr"));
+    let (sigma, se) = (
+        means.std(),
+        means.std() / (2.0 * (OBSERVATIONS - 1) as f64).sqrt(),
+    );
+    let (achieved, achieved_se) = (
+        number(ver, "achieved_sigma"),
+        number(ver, "achieved_sigma_stderr"),
+    );
     let independent = number(ver, "sigma_if_independent");
     let report = format!(
         "user-side sigma {sigma:.4e} +/- {se:.2e} over {OBSERVATIONS} observations of {n} scans \

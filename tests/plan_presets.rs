@@ -61,12 +61,20 @@ fn every_preset_is_inside_the_accepted_ranges() {
         let (p, req) = applied(i);
         let prepared = prepare(&p, &req).unwrap_or_else(|e| panic!("{}: {e}", i.name));
         assert!(i.baseline_min_m <= i.baseline_m && i.baseline_m <= i.baseline_max_m);
-        assert!((0.0..=1.0).contains(&i.throughput) && i.throughput > 0.0, "{}", i.name);
+        assert!(
+            (0.0..=1.0).contains(&i.throughput) && i.throughput > 0.0,
+            "{}",
+            i.name
+        );
         assert!(i.frame_rate_hz > 0.0 && i.read_noise >= 0.0 && i.dead_time_s >= 0.0);
         let grid = &prepared.inputs.fringe_hz;
         let edge = i.frame_rate_hz / 4.0;
         // tol: the log grid's last point is exp(ln(edge)): a few roundings.
-        assert!((grid[grid.len() - 1] - edge).abs() <= 1e-12 * edge, "{}: {grid:?}", i.name);
+        assert!(
+            (grid[grid.len() - 1] - edge).abs() <= 1e-12 * edge,
+            "{}: {grid:?}",
+            i.name
+        );
         assert_eq!(instrument(&i.name.to_uppercase()).unwrap(), i);
     }
     let e = instrument("keck").unwrap_err().to_string();
@@ -103,7 +111,12 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
             ("wavelength_um", p.wavelength_um, 1.6, kept_p.wavelength_um),
             ("bandwidth_nm", p.bandwidth_nm, 100.0, kept_p.bandwidth_nm),
             ("aperture_m", p.aperture_m, 8.2, kept_p.aperture_m),
-            ("baseline_m", p.baseline_m.unwrap(), 33.0, kept_p.baseline_m.unwrap()),
+            (
+                "baseline_m",
+                p.baseline_m.unwrap(),
+                33.0,
+                kept_p.baseline_m.unwrap(),
+            ),
             ("read_noise", p.read_noise, 7.0, kept_p.read_noise),
             ("dead_time_s", req.dead_time_s, 0.0, kept_req.dead_time_s),
             ("throughput", m.throughput, 0.3, i.throughput),
@@ -119,7 +132,9 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
     // A baseline given as a spatial frequency is a baseline given.
     let mut p = Physical::default();
     p.spatial_freq_cpas = Some(40.0);
-    i.apply(&mut p, &mut request(Band2Mass::H), &|k| k == "spatial_freq_cpas");
+    i.apply(&mut p, &mut request(Band2Mass::H), &|k| {
+        k == "spatial_freq_cpas"
+    });
     assert_eq!((p.spatial_freq_cpas, p.baseline_m), (Some(40.0), None));
 }
 
@@ -138,7 +153,14 @@ fn the_command_line_overrides_the_preset() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("centred on 0.65 um"), "{err}");
     // Given, --wavelength-um replaces it.
-    let (code, _, err) = plan(&["--wavelength-um", "2.2", "--magnitude", "2", "--magnitude-band", "v"]);
+    let (code, _, err) = plan(&[
+        "--wavelength-um",
+        "2.2",
+        "--magnitude",
+        "2",
+        "--magnitude-band",
+        "v",
+    ]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("centred on 2.2 um"), "{err}");
     // A flag out of range is refused, not replaced by the preset's value.

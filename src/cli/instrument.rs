@@ -23,7 +23,9 @@ impl clap::FromArgMatches for InstrumentArgs {
     fn from_arg_matches(m: &clap::ArgMatches) -> std::result::Result<Self, clap::Error> {
         let given = m
             .ids()
-            .filter(|id| m.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine))
+            .filter(|id| {
+                m.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine)
+            })
             .map(|id| id.as_str().to_owned())
             .collect();
         Ok(InstrumentArgs {
@@ -86,7 +88,10 @@ impl InstrumentArgs {
                 i.wavelength_um,
                 i.bandwidth_nm,
                 i.aperture_m,
-                format!("{}-{} ({})", i.baseline_min_m, i.baseline_max_m, i.baseline_m),
+                format!(
+                    "{}-{} ({})",
+                    i.baseline_min_m, i.baseline_max_m, i.baseline_m
+                ),
                 i.throughput,
                 i.frame_rate_hz,
                 i.read_noise,

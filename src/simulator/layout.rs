@@ -110,7 +110,12 @@ impl RowTiming {
     /// (1 to [`MAX_OBSERVATIONS`]), scans `dead_time_s` apart (0 to
     /// [`MAX_DEAD_TIME_S`]); refused under the parameter named otherwise.
     pub fn observation(observations: u64, dead_time_s: f64) -> Result<RowTiming> {
-        crate::error::in_range("observations", observations as f64, 1.0, MAX_OBSERVATIONS as f64)?;
+        crate::error::in_range(
+            "observations",
+            observations as f64,
+            1.0,
+            MAX_OBSERVATIONS as f64,
+        )?;
         crate::error::in_range("dead_time_s", dead_time_s, 0.0, MAX_DEAD_TIME_S)?;
         Ok(RowTiming {
             layout: RowLayout::Observation,

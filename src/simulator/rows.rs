@@ -331,7 +331,12 @@ impl Rows<'_> {
         let period = sequence.period_samples();
         let note = (p.timing.layout == RowLayout::Observation).then(|| {
             let scans = rows_per_sequence.first().copied().unwrap_or(0) as usize;
-            super::layout::observation_note(p.spectrum_time_s, &p.setup, (scans, stride_samples), period)
+            super::layout::observation_note(
+                p.spectrum_time_s,
+                &p.setup,
+                (scans, stride_samples),
+                period,
+            )
         });
         Some(SetLayout {
             layout: p.timing.layout,

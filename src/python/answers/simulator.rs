@@ -127,10 +127,13 @@ fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
             "continuum_subtracted: cannot be used with sidecar (the configuration comes from it)",
         ));
     }
-    Ok(Configuration::from_sidecar(parse_sidecar(
-        sidecar,
-        sidecar_name,
-    )?))
+    // Any number of rows of the set's N, as the CLI's `estimate --sidecar
+    // SET.json --input ROWS` takes them (a subset of the set's rows, one
+    // observation of an observation-layout set).
+    Ok(Configuration {
+        set_rows: None,
+        ..Configuration::from_sidecar(parse_sidecar(sidecar, sidecar_name)?)
+    })
 }
 
 /// The per-row estimates as a dict of 1-D arrays, [`ESTIMATE_COLUMNS`].
