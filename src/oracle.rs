@@ -136,7 +136,7 @@ impl Set {
             reference_blocks,
             threads: 0,
             keep_continuum: false,
-            layout: RowLayout::default(),
+            layout: RowLayout::default().into(),
         };
         let mut values = Vec::new();
         let mut sink = |block: &[f64]| {

@@ -9,7 +9,7 @@ use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::montecarlo::{derive_seed, RunningStats};
 use v2ref::piston::PistonReference;
-use v2ref::simulator::{Inputs, Model, PistonInputs, RowLayout, SourceInput};
+use v2ref::simulator::{Inputs, Model, PistonInputs, RowLayout, RowTiming, SourceInput};
 use v2ref::tolerance::MC_SIGMAS;
 
 fn synth_sidecar(dir: &std::path::Path, name: &str, extra: &[&str]) -> serde_json::Value {
@@ -182,4 +182,167 @@ fn consecutive_rows_of_one_observation_have_the_correlated_variance() {
     // Power: σ²/n lies many standard errors below both.
     assert!(within - independent > MC_SIGMAS * se_within, "{report}");
     assert!(across - independent > MC_SIGMAS * se_across, "{report}");
+}
+
+/// Normalized V1² of every row of a set, in row order.
+fn v1_sq_of(model: &Model, set: &v2ref::simulator::Rows<'_>) -> Vec<f64> {
+    let estimator =
+        RowEstimator::new(model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
+    let n = model.samples();
+    let mut out = Vec::new();
+    set.stream(0, 8, |block: &[f64]| -> Result<(), ()> {
+        out.extend(block.chunks_exact(n).map(|r| estimator.estimate(r).v1_sq));
+        Ok(())
+    })
+    .unwrap();
+    out
+}
+
+/// The variance of the means of consecutive blocks of `n` values, with
+/// its standard error.
+fn block_mean_variance(values: &[f64], n: usize) -> (f64, f64) {
+    let mut means = RunningStats::default();
+    for block in values.chunks_exact(n) {
+        means.push(block.iter().sum::<f64>() / n as f64);
+    }
+    (means.variance(), means.stderr_variance())
+}
+
+/// Observations longer than 2B/v (64 scans of 0.145 s, 9.3 s, through a
+/// 1 m/s wind on 3 m: B/v = 3 s): 200 observations of one `synth
+/// --observations 200` set scatter in their mean as the 64-scan blocks of
+/// one long observation do. Before the observation layout read each
+/// observation from a sequence several times its length, a sequence only
+/// as long as the observation (its drift forced to zero; built here as the
+/// 200 sequences of 64 scans the planner's explicit layout makes) is what
+/// an observation got: measured 3.80e-6 ± 0.33e-6 for the long
+/// observation's blocks, 3.55e-6 ± 0.33e-6 across the 200 observations,
+/// and 0.10e-6 from the short sequences — 35 times less, far outside: the
+/// test's power, and the failure of the layout before issue 44.
+#[test]
+fn observations_longer_than_the_correlation_time_keep_their_drift() {
+    const N_ROWS: u64 = 64;
+    const K: u64 = 200;
+    let mut inputs = slow_sky(64);
+    inputs.baseline_m = 3.0;
+    let model = Model::new(&inputs).unwrap();
+    let long = model
+        .rows_in(RowLayout::Observation, N_ROWS * K, 21, 0)
+        .unwrap();
+    let (within, se_within) = block_mean_variance(&v1_sq_of(&model, &long), N_ROWS as usize);
+    let timing = RowTiming::observation(K, 0.0).unwrap();
+    let many = model.rows_in(timing, N_ROWS * K, 22, 0).unwrap();
+    assert_eq!(many.sequences(), K as usize);
+    let (across, se_across) = block_mean_variance(&v1_sq_of(&model, &many), N_ROWS as usize);
+    let short = model
+        .rows_with_layout(N_ROWS * K, 23, 0, Some((K as usize, 64)))
+        .unwrap();
+    let (periodic, se_periodic) = block_mean_variance(&v1_sq_of(&model, &short), N_ROWS as usize);
+    let report = format!(
+        "var of 64-scan means: one long observation {within:.3e} ± {se_within:.1e}, \
+         {K} observations {across:.3e} ± {se_across:.1e}, sequences as long as the \
+         observation {periodic:.3e} ± {se_periodic:.1e}"
+    );
+    eprintln!("{report}");
+    let se = se_within.hypot(se_across);
+    assert!((within - across).abs() <= MC_SIGMAS * se, "{report}");
+    // Power: the sequences only as long as an observation lie far below.
+    assert!(
+        across - periodic > MC_SIGMAS * se_across.hypot(se_periodic),
+        "{report}"
+    );
+}
+
+/// Observation j of a set is keyed by its index: its atmosphere is the same
+/// whatever the number of observations after it, so are its rows (to the
+/// fringe table's rounding: the table spans the largest excursion of all
+/// the set's observations, so its samples move by ~1e-14); the dead time sets
+/// the stride (N + dead time / sample time) and the sidecar's layout says
+/// how long each observation's sequence is.
+#[test]
+fn observations_are_keyed_by_their_index_and_take_the_dead_time() {
+    let model = Model::new(&slow_sky(32)).unwrap();
+    let rows = |k: u64, dead: f64| {
+        let set = model
+            .rows_in(RowTiming::observation(k, dead).unwrap(), 10 * k, 9, 1)
+            .unwrap();
+        let mut out = Vec::new();
+        set.fill_unit(0, &mut v2ref::montecarlo::unit_rng(9, 0), &mut out);
+        (out, set.layout().unwrap())
+    };
+    let (two, _) = rows(2, 0.01);
+    let (three, layout) = rows(3, 0.01);
+    let scale = two.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let moved = two
+        .iter()
+        .zip(&three)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    // tol: the fringe table's interpolation over a different OPD span: a
+    // few roundings of the rows' scale (measured 1e-13 of 10).
+    assert!(moved <= 1e-10 * scale, "{moved} of {scale}");
+    // 32 samples of 0.5 µm at 100 Hz · 2.2 µm: t_s = 0.5 / 220 s.
+    let t_s: f64 = 0.5 / 220.0;
+    assert_eq!(layout.stride_samples, 32 + (0.01 / t_s).round() as usize);
+    assert_eq!(layout.rows_per_sequence, vec![10, 10, 10]);
+    let read = 9 * layout.stride_samples + 32;
+    assert!(
+        layout.sequence_samples.unwrap() >= 4 * read as u64,
+        "{layout:?}"
+    );
+    assert!(layout.note.unwrap().contains("not forced to zero"));
+    let (other, _) = rows(2, 0.02);
+    assert_ne!(two, other);
+}
+
+/// The observation layout's own refusals name the flag and its range.
+#[test]
+fn the_observation_flags_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let stem = dir.path().join("x").display().to_string();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "synth",
+            "--out",
+            &stem,
+            "--rows",
+            "40",
+            "--samples",
+            "32",
+            "--fringe-hz",
+            "250",
+            "--reference-blocks",
+            "0",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        crate::run::v2ref(&args)
+    };
+    for (extra, flag) in [
+        (
+            &["--layout", "observation", "--observations", "3"][..],
+            "--observations",
+        ),
+        (
+            &["--layout", "observation", "--observations", "0"][..],
+            "--observations",
+        ),
+        (&["--observations", "2"][..], "--observations"),
+        (&["--dead-time-s", "0.1"][..], "--dead-time-s"),
+        (
+            &["--layout", "observation", "--dead-time-s", "-1"][..],
+            "--dead-time-s",
+        ),
+        (
+            &["--layout", "observation", "--dead-time-s", "1e6"][..],
+            "--rows",
+        ),
+    ] {
+        let (code, _, err) = run(extra);
+        assert_eq!(code, 2, "{extra:?}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {flag}")),
+            "{extra:?}: {err}"
+        );
+        assert!(!std::path::Path::new(&format!("{stem}.npy")).exists());
+    }
 }

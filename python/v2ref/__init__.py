@@ -275,7 +275,10 @@ def estimate(
     sidecar : dict or path, optional
         A synth sidecar (the dict from :func:`synthesize` or a SET.json
         path): the configuration comes from it, and the physical keyword
-        arguments must be left at their defaults.
+        arguments must be left at their defaults. The rows may be any number
+        of rows of the set's N (a subset of the set's rows, one observation
+        of ``layout="observation"``, or other rows), as ``v2ref estimate
+        --sidecar SET.json --input ROWS`` takes them.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
     bias : {"model", "counts"}
@@ -342,6 +345,8 @@ def synthesize(
     reference_blocks: Optional[int] = None,
     keep_continuum: bool = False,
     layout: str = "sequences",
+    observations: int = 1,
+    dead_time_s: float = 0.0,
     out: Optional[_PathLike] = None,
     force: bool = False,
     # The physical keyword arguments, generated (scripts/regenerate.sh).
@@ -395,10 +400,20 @@ def synthesize(
         How the rows lie in time through the piston (with ``fringe_hz``):
         ``"sequences"`` (default) cuts them from up to 16 independent piston
         sequences, scans spread out in each — the statistics of one scan;
-        ``"observation"`` puts all of them through one contiguous sequence,
-        scan after scan — the observation a plan recommends, whose mean
-        over n rows scatters as n consecutive scans through one atmosphere
-        do. The sidecar's ``layout`` records it.
+        ``"observation"`` cuts them into ``observations`` observations of
+        rows/observations consecutive scans — the observation a plan
+        recommends, whose mean over n rows scatters as n consecutive scans
+        through one atmosphere do; each reads the start of its own piston
+        sequence, at least 4 times as long and two correlation times B/v,
+        so its drift is kept. The sidecar's ``layout`` records it (its
+        ``note`` says how long the sequences were).
+    observations : int
+        With ``layout="observation"``: independent observations, each its
+        own atmosphere keyed by its index (1 to 1e6, dividing ``rows``;
+        their piston together within 2^24 samples). 1 otherwise.
+    dead_time_s : float
+        With ``layout="observation"``: dead time between consecutive scans,
+        s (0 to 3.2e7), as ``plan(dead_time_s=...)``. 0 otherwise.
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.
@@ -438,6 +453,8 @@ def synthesize(
         # not at all, an existing file replaced only with force=True.
         None if out is None else _os.fsdecode(out),
         _flag("force", force),
+        _uint("observations", observations),
+        _float("dead_time_s", dead_time_s),
     )
 
 

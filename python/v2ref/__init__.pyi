@@ -26,7 +26,10 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
     sidecar : dict or path, optional
         A synth sidecar (the dict from :func:`synthesize` or a SET.json
         path): the configuration comes from it, and the physical keyword
-        arguments must be left at their defaults.
+        arguments must be left at their defaults. The rows may be any number
+        of rows of the set's N (a subset of the set's rows, one observation
+        of ``layout="observation"``, or other rows), as ``v2ref estimate
+        --sidecar SET.json --input ROWS`` takes them.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
     bias : {"model", "counts"}
@@ -119,7 +122,7 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
         dimensionless): the columns of ``v2ref estimate``.
     """
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -144,10 +147,20 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         How the rows lie in time through the piston (with ``fringe_hz``):
         ``"sequences"`` (default) cuts them from up to 16 independent piston
         sequences, scans spread out in each — the statistics of one scan;
-        ``"observation"`` puts all of them through one contiguous sequence,
-        scan after scan — the observation a plan recommends, whose mean
-        over n rows scatters as n consecutive scans through one atmosphere
-        do. The sidecar's ``layout`` records it.
+        ``"observation"`` cuts them into ``observations`` observations of
+        rows/observations consecutive scans — the observation a plan
+        recommends, whose mean over n rows scatters as n consecutive scans
+        through one atmosphere do; each reads the start of its own piston
+        sequence, at least 4 times as long and two correlation times B/v,
+        so its drift is kept. The sidecar's ``layout`` records it (its
+        ``note`` says how long the sequences were).
+    observations : int
+        With ``layout="observation"``: independent observations, each its
+        own atmosphere keyed by its index (1 to 1e6, dividing ``rows``;
+        their piston together within 2^24 samples). 1 otherwise.
+    dead_time_s : float
+        With ``layout="observation"``: dead time between consecutive scans,
+        s (0 to 3.2e7), as ``plan(dead_time_s=...)``. 0 otherwise.
     out : path, optional
         Also write the set as ``v2ref synth --out`` does: OUT.npy and the
         sidecar OUT.json.

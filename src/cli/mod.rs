@@ -29,6 +29,7 @@ mod generated;
 pub mod golden;
 pub mod grid;
 pub mod inputs;
+pub mod instrument;
 pub mod memory;
 pub mod oifits;
 pub mod output;

@@ -18,6 +18,8 @@ use v2ref::{Error, Result};
 #[derive(Debug, clap::Args)]
 pub struct Args {
     #[command(flatten)]
+    instrument: super::instrument::InstrumentArgs,
+    #[command(flatten)]
     obs: ObservationArgs,
     /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
     #[arg(long, default_value = "4", value_parser = finite_f64, allow_negative_numbers = true)]
@@ -35,14 +37,15 @@ pub struct Args {
     /// --throughput. From -10 to 30.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true,
           conflicts_with_all = ["photon_rate_per_s", "spectrum_csv"],
-          requires_all = ["magnitude_band", "throughput"])]
+          requires = "magnitude_band")]
     magnitude: Option<f64>,
     /// The band of --magnitude: 2MASS J, H, Ks or Johnson–Cousins V, R, I.
     #[arg(long, value_enum, requires = "magnitude")]
     magnitude_band: Option<MagnitudeBand>,
     /// Fraction of the source's photons counted in the sampled
     /// interferogram (atmosphere, optics, combiner outputs sampled, detector
-    /// QE), 0 < T <= 1; with --magnitude.
+    /// QE), 0 < T <= 1; with --magnitude (needed, unless --instrument's
+    /// preset gives it).
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
     throughput: Option<f64>,
     #[command(flatten)]
@@ -174,7 +177,8 @@ fn magnitude(args: &Args, aperture_m: f64) -> Option<Magnitude> {
         magnitude: args.magnitude?,
         band: args.magnitude_band?.into(),
         aperture_m,
-        throughput: args.throughput?,
+        // NaN: none given; the preset's, or refused (InstrumentArgs::apply).
+        throughput: args.throughput.unwrap_or(f64::NAN),
     })
 }
 
@@ -184,7 +188,7 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
     args.detector.apply_to(&mut p)?;
     args.noise.apply_to(&mut p)?;
     args.turbulence.apply_to(&mut p)?;
-    let req = PlanRequest {
+    let mut req = PlanRequest {
         samples_per_fringe: args.samples_per_fringe,
         photon_rate_per_s: args.photon_rate_per_s,
         magnitude: magnitude(args, p.aperture_m),
@@ -198,11 +202,15 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
         diameter_err_mas: args.diameter_err_mas,
         bias: args.bias,
     };
+    args.instrument.apply(&mut p, &mut req)?;
     Ok((p, req))
 }
 
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if args.instrument.print_list() {
+        return Ok(ExitCode::SUCCESS);
+    }
     if let Some(p) = &args.oifits {
         v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
     }

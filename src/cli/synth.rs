@@ -14,7 +14,7 @@ use v2ref::commands::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
 use v2ref::formats::{CsvRowWriter, NpyRowWriter};
-use v2ref::simulator::{Model, RowLayout};
+use v2ref::simulator::{Model, RowLayout, RowTiming};
 use v2ref::{Error, Result};
 
 /// Flags of `synth`.
@@ -44,12 +44,24 @@ pub struct Args {
     /// How the rows lie in time through the piston (with --fringe-hz).
     /// sequences: cut from up to 16 independent piston sequences, scans
     /// spread over two correlation times in each — the statistics of one
-    /// scan (per-scan bias and scatter). observation: all rows through one
-    /// contiguous sequence, scan after scan (stride: one scan period) — the
-    /// observation a plan recommends, to check its promise for the mean of
-    /// n consecutive scans. The sidecar's `layout` records it.
+    /// scan (per-scan bias and scatter). observation: --observations
+    /// observations of rows/observations consecutive scans (one scan and
+    /// --dead-time-s apart) — the observation a plan recommends, to check
+    /// its promise for the mean of n consecutive scans; each reads the
+    /// start of its own piston sequence, at least 4 times longer and two
+    /// correlation times B/v, so its drift is kept. The sidecar's `layout`
+    /// records it.
     #[arg(long, value_parser = super::common::choice::<RowLayout>(), default_value = "sequences")]
     layout: RowLayout,
+    /// With --layout observation: independent observations (each its own
+    /// atmosphere, keyed by its index), 1 to 1e6, dividing --rows; their
+    /// piston together within 2^24 samples.
+    #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
+    observations: u64,
+    /// With --layout observation: dead time between consecutive scans, s,
+    /// 0 to 3.2e7 (a year), as `plan --dead-time-s`.
+    #[arg(long, default_value = "0", value_parser = super::finite_f64, allow_negative_numbers = true)]
+    dead_time_s: f64,
     /// Blocks of the truth's reference run: 0 (closed forms only), or 8 to
     /// 1000; default 16 with piston (replicates of the set, whose spread the
     /// score divides by, as Student-t with blocks − 1 degrees of freedom),
@@ -70,6 +82,7 @@ pub struct Args {
 /// Runs `synth`.
 pub fn run(args: Args) -> Result<ExitCode> {
     let inputs = args.inputs.inputs()?;
+    let timing = RowTiming::new(args.layout, args.observations, args.dead_time_s)?;
     let observing = args.observing.resolve(args.oifits, "--oifits")?;
     let reference_blocks = args
         .reference_blocks
@@ -106,7 +119,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         threads: args.run.threads,
         csv: args.csv,
         keep_continuum: args.keep_continuum,
-        layout: args.layout,
+        layout: timing,
     };
     let bar = progress_bar(args.rows + reference_rows, args.quiet, "synth");
     set.write(|| {
@@ -136,7 +149,7 @@ pub struct SetSpec {
     /// Write the counts rather than the continuum-subtracted samples.
     pub keep_continuum: bool,
     /// How the rows lie in time through the piston.
-    pub layout: RowLayout,
+    pub layout: RowTiming,
 }
 
 /// Writes the set of `model` described by `spec` at `out` (.npy, .json and

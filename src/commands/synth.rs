@@ -6,10 +6,10 @@
 use crate::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
 use crate::conformance::truth::{truth_laid_out, TruthSize};
 use crate::error::Result;
-use crate::simulator::{Model, RowLayout};
+use crate::simulator::{Model, RowTiming};
 
 /// The size of a set and how its rows are given.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SetSize {
     /// Rows (scans).
     pub rows: u64,
@@ -21,8 +21,9 @@ pub struct SetSize {
     pub threads: usize,
     /// The counts `c_i + M_i` rather than the continuum-subtracted `M_i`.
     pub keep_continuum: bool,
-    /// How the rows lie in time through the piston.
-    pub layout: RowLayout,
+    /// How the rows lie in time through the piston (the layout, and the
+    /// observation layout's observations and dead time).
+    pub layout: RowTiming,
 }
 
 /// Units generated at once while streaming the rows.

@@ -50,7 +50,7 @@ use crate::formalism::estimator::{
 use crate::montecarlo::{derive_seed, variance_stderr, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
-use crate::simulator::{Model, RowLayout};
+use crate::simulator::{Model, RowLayout, RowTiming};
 
 /// The size of a set and of its reference run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,7 +141,7 @@ pub fn truth(model: &Model, size: TruthSize, progress: &(dyn Fn(u64) + Sync)) ->
 pub fn truth_laid_out(
     model: &Model,
     size: TruthSize,
-    layout: RowLayout,
+    layout: impl Into<RowTiming>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Truth> {
     let obs = &model.observation;
@@ -150,7 +150,7 @@ pub fn truth_laid_out(
     let windows = usable_windows(model);
     let piston = model.inputs.piston.is_some();
     let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
-    let blocks = (rows_per_block, layout);
+    let blocks = (rows_per_block, layout.into());
     let reference = reference_run(model, &windows, size, blocks, progress)?;
     let mut out = Vec::new();
     for (w, blocks) in windows.iter().zip(&reference) {
@@ -180,7 +180,7 @@ fn reference_run(
     model: &Model,
     windows: &[BinWindow],
     size: TruthSize,
-    (rows_per_block, layout): (u64, RowLayout),
+    (rows_per_block, layout): (u64, RowTiming),
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Reference> {
     let estimators = windows

@@ -106,6 +106,36 @@ pub(crate) struct PistonSequence {
     samples: usize,
     /// How each scan's reference is taken.
     reference: PistonReference,
+    /// Where the first scan of a sequence starts in its segment (0, or
+    /// [`OBSERVATION_LEAD`] when only the stretch read of a longer
+    /// sequence is kept).
+    first_sample: usize,
+    /// Samples of the longest periodic sequence synthesized.
+    period_samples: usize,
+}
+
+/// How many times what an observation spans its piston sequence spans at
+/// least (the observation layout): the sequence then also holds the
+/// piston's wander slower than the observation, as the plan's observation
+/// model does (`plan::observation::BLOCKS_PER_SEQUENCE`, whose sequences
+/// hold at least 4 observations).
+pub const OBSERVATION_SPAN: usize = 4;
+
+/// Samples kept before an observation's first scan (what the cubic
+/// interpolation reads before a sample).
+const OBSERVATION_LEAD: usize = 2;
+
+/// Samples of the piston sequence an observation reading `read` samples is
+/// cut from: [`OBSERVATION_SPAN`] times `read` and at least
+/// [`SPAN_CORRELATION_TIMES`] correlation times, within [`MAX_SERIES`].
+pub fn observation_sequence_samples(
+    spectrum: &PistonSpectrum,
+    setup: &ScanSetup,
+    read: usize,
+) -> usize {
+    let span = SPAN_CORRELATION_TIMES * correlation_time_s(spectrum) / setup.sample_time_s();
+    let wanted = (OBSERVATION_SPAN as f64 * read as f64).max(span.ceil());
+    (wanted.min(MAX_SERIES as f64) as usize).max(read.min(MAX_SERIES))
 }
 
 impl PistonSequence {
@@ -136,22 +166,59 @@ impl PistonSequence {
         Self::synthesize_segments(spectrum, setup, size, (k, stride), 0)
     }
 
-    /// One sequence read by all the scans back to back (stride N: one
-    /// observation), synthesized over at least [`SPAN_CORRELATION_TIMES`]
-    /// correlation times (within [`MAX_SERIES`] samples) and read from its
-    /// start. A sequence only as long as the scans would lack the piston's
-    /// wander below 1/(its length): measured on 64 scans of 0.145 s
-    /// (1 m/s over 1.8 m apertures 18 m apart, B/v = 18 s), the variance of their
-    /// mean V1² came out 300 times below that of 64 consecutive scans of a
-    /// long sequence.
-    pub(crate) fn synthesize_observation(
+    /// `observations` independent observations of `scans` consecutive
+    /// scans each, `stride` samples apart (the scan and its dead time), in
+    /// that order: observation j reads the start of its own sequence (seed
+    /// [`sequence_seed`]`(size.seed, j)`), synthesized
+    /// [`observation_sequence_samples`] long — [`OBSERVATION_SPAN`] times
+    /// what the observation spans and at least [`SPAN_CORRELATION_TIMES`]
+    /// correlation times, within [`MAX_SERIES`] — of which only the
+    /// stretch the scans read is kept. A sequence only as long as the scans
+    /// is periodic over them, so the piston's drift over the observation
+    /// is forced to zero: measured on 64 scans of 0.145 s (1 m/s over 1.8 m
+    /// apertures 18 m apart, B/v = 18 s), the variance of their mean V1²
+    /// came out 300 times below that of 64 consecutive scans of a long
+    /// sequence; at a bright K setting with n = 8 000 scans, the piston σ
+    /// of the observation 3.4 times below.
+    pub(crate) fn synthesize_observations(
         spectrum: &PistonSpectrum,
         setup: &ScanSetup,
-        size: &RunSize,
+        (observations, scans, stride): (usize, usize, usize),
+        (seed, threads): (u64, usize),
     ) -> Result<Self> {
-        let span = SPAN_CORRELATION_TIMES * correlation_time_s(spectrum) / setup.sample_time_s();
-        let span = (span.ceil() as usize).min(MAX_SERIES);
-        Self::synthesize_segments(spectrum, setup, size, (1, setup.samples), span)
+        let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
+        let n = setup.samples;
+        let read = (scans - 1) * stride + n + 4;
+        let long = observation_sequence_samples(spectrum, setup, read);
+        let mut segments = Vec::with_capacity(observations);
+        let mut period = 0;
+        for j in 0..observations {
+            crate::cancel::check()?;
+            let series = synthesize_series(
+                &psd,
+                setup.sample_time_s(),
+                long,
+                sequence_seed(seed, j),
+                threads,
+            )?;
+            let m = series.len();
+            period = period.max(m);
+            // The stretch read, with the two samples before its start (the
+            // cubic of the first sample reads one before it).
+            let mut kept = Vec::with_capacity(read + OBSERVATION_LEAD);
+            kept.extend_from_slice(&series[m - OBSERVATION_LEAD..]);
+            kept.extend_from_slice(&series[..read.min(m)]);
+            segments.push(kept);
+        }
+        Ok(PistonSequence {
+            segments,
+            first_scan: (0..=observations).map(|j| j * scans).collect(),
+            stride,
+            samples: n,
+            reference: setup.reference,
+            first_sample: OBSERVATION_LEAD,
+            period_samples: period,
+        })
     }
 
     /// [`synthesize_layout`](Self::synthesize_layout) with each sequence at
@@ -178,12 +245,15 @@ impl PistonSequence {
                 size.threads,
             )?);
         }
+        let period_samples = segments.iter().map(Vec::len).max().unwrap_or(0);
         Ok(PistonSequence {
             segments,
             first_scan,
             stride,
             samples: n,
             reference: setup.reference,
+            first_sample: 0,
+            period_samples,
         })
     }
 
@@ -201,6 +271,17 @@ impl PistonSequence {
     /// sequence.
     pub(crate) fn stride(&self) -> usize {
         self.stride
+    }
+
+    /// Samples of the longest periodic sequence synthesized (the piston's
+    /// slowest wander is at one over this).
+    pub(crate) fn period_samples(&self) -> usize {
+        self.period_samples
+    }
+
+    /// Where scan `local` of a sequence starts in its segment.
+    fn start_of(&self, local: usize) -> usize {
+        self.first_sample + local * self.stride
     }
 
     /// The index of the sequence read by scan `s`.
@@ -230,7 +311,7 @@ impl PistonSequence {
     /// The piston removed from scan `s`, µm.
     pub(crate) fn reference_um(&self, s: usize) -> f64 {
         let (series, local) = self.locate(s);
-        let (n, base) = (self.samples, local * self.stride);
+        let (n, base) = (self.samples, self.start_of(local));
         match self.reference {
             PistonReference::Centre => series[base + n / 2],
             PistonReference::Mean => series[base..base + n].iter().sum::<f64>() / n as f64,
@@ -243,7 +324,7 @@ impl PistonSequence {
     /// sample.
     pub(crate) fn of_scan(&self, s: usize) -> impl Fn(f64) -> f64 + '_ {
         let (series, local) = self.locate(s);
-        let start = (local * self.stride) as f64;
+        let start = self.start_of(local) as f64;
         move |tau| interp(series, start + tau)
     }
 
@@ -262,14 +343,15 @@ impl PistonSequence {
             let (series, local) = self.locate(s);
             let m = series.len();
             let r = self.reference_um(s);
+            let start = self.start_of(local);
             for j in 0..=n + 1 {
-                let d = series[(local * self.stride + j) % m] - r;
+                let d = series[(start + j) % m] - r;
                 excursion = excursion.max(d.abs());
                 if j < n {
                     resid2 += d * d;
                 }
             }
-            let prev = series[(local * self.stride + m - 1) % m] - r;
+            let prev = series[(start + m - 1) % m] - r;
             excursion = excursion.max(prev.abs());
         }
         (excursion, (resid2 / (scans * n) as f64).sqrt())

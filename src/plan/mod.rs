@@ -53,6 +53,7 @@ pub(crate) mod answer;
 mod candidates;
 #[cfg(feature = "internals")]
 pub mod figure;
+pub mod instrument;
 pub(crate) mod observation;
 pub mod photometry;
 mod reach;

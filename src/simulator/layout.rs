@@ -10,19 +10,23 @@
 //!   samples the statistics of *one scan* over many atmospheres: the
 //!   per-scan bias and scatter, with the spread between sequences as their
 //!   error.
-//! - [`RowLayout::Observation`]: every row through *one* contiguous
-//!   sequence in time order, each scan starting where the previous one
-//!   ended (stride N samples, one scan period). It is the observation a
-//!   plan recommends: the mean of its n rows scatters as the mean of n
-//!   consecutive scans through one atmosphere does — more than σ²/n when
-//!   the atmosphere is slow against the scans, less when it is fast.
+//! - [`RowLayout::Observation`]: the rows are [`RowTiming::observations`]
+//!   observations of n consecutive scans each (stride: one scan period,
+//!   the scan and [`RowTiming::dead_time_s`]), each through its own
+//!   atmosphere: the observation a plan recommends, whose mean of n rows
+//!   scatters as the mean of n consecutive scans through one atmosphere
+//!   does — more than σ²/n when the atmosphere is slow against the scans,
+//!   less when it is fast. Each observation reads the start of a sequence
+//!   at least [`OBSERVATION_SPAN`](crate::piston::sequences::OBSERVATION_SPAN)
+//!   times longer and two correlation times B/v, so its drift is kept; the
+//!   sidecar's note says how long it was.
 //!
-//! The piston sequence of a set is held in memory whole: at most
-//! [`MAX_SERIES`](crate::piston::MAX_SERIES) samples (2^24, 128 MiB of
-//! f64, about 0.8 GB at the peak of its synthesis), shared by all the
-//! sequences of a set; in the observation layout they all go to the one
-//! sequence (164 000 rows at N = 102, where each of the 16 sequences of the
-//! default layout holds at most about 10 000).
+//! The piston of a set is held in memory: in the default layout, all its
+//! sequences within [`MAX_SERIES`](crate::piston::MAX_SERIES) samples
+//! (2^24, 128 MiB of f64, about 0.8 GB at the peak of their synthesis);
+//! in the observation layout, each observation's sequence is synthesized
+//! within it in turn and only the stretches read are kept, together within
+//! it.
 
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
@@ -54,6 +58,91 @@ impl crate::words::Words for RowLayout {
             help: "One contiguous sequence, scan after scan: one observation of n consecutive scans through one atmosphere",
         },
     ];
+}
+
+/// How the rows of a set lie in time: the [`RowLayout`] and, in the
+/// observation layout, how many independent observations the rows are
+/// cut into and the dead time between consecutive scans.
+///
+/// In the observation layout the rows are `observations` observations of
+/// `rows / observations` consecutive scans each, one scan period (the scan
+/// and `dead_time_s`) apart; observation j reads the start of its own
+/// piston sequence (seed keyed by j), synthesized several times longer
+/// than the observation and over at least two correlation times B/v, so
+/// that the piston's drift over the observation is not forced to zero
+/// (an FFT sequence only as long as the observation is periodic over it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct RowTiming {
+    /// The layout.
+    pub layout: RowLayout,
+    /// Independent observations (observation layout; 1 otherwise).
+    pub observations: u64,
+    /// Dead time between consecutive scans of an observation, s
+    /// (observation layout; 0 otherwise).
+    pub dead_time_s: f64,
+}
+
+impl Default for RowTiming {
+    fn default() -> RowTiming {
+        RowLayout::default().into()
+    }
+}
+
+impl From<RowLayout> for RowTiming {
+    fn from(layout: RowLayout) -> RowTiming {
+        RowTiming {
+            layout,
+            observations: 1,
+            dead_time_s: 0.0,
+        }
+    }
+}
+
+/// Most independent observations of one set.
+pub const MAX_OBSERVATIONS: u64 = 1_000_000;
+
+/// Longest dead time between scans, s (a year, as `plan --dead-time-s`).
+pub const MAX_DEAD_TIME_S: f64 = 3.2e7;
+
+impl RowTiming {
+    /// The observation layout: `observations` independent observations
+    /// (1 to [`MAX_OBSERVATIONS`]), scans `dead_time_s` apart (0 to
+    /// [`MAX_DEAD_TIME_S`]); refused under the parameter named otherwise.
+    pub fn observation(observations: u64, dead_time_s: f64) -> Result<RowTiming> {
+        crate::error::in_range(
+            "observations",
+            observations as f64,
+            1.0,
+            MAX_OBSERVATIONS as f64,
+        )?;
+        crate::error::in_range("dead_time_s", dead_time_s, 0.0, MAX_DEAD_TIME_S)?;
+        Ok(RowTiming {
+            layout: RowLayout::Observation,
+            observations,
+            dead_time_s,
+        })
+    }
+
+    /// `layout` with `observations` and `dead_time_s` as the flags give
+    /// them: the observation layout takes both ([`RowTiming::observation`]);
+    /// the others refuse anything but 1 observation and no dead time.
+    pub fn new(layout: RowLayout, observations: u64, dead_time_s: f64) -> Result<RowTiming> {
+        match layout {
+            RowLayout::Observation => RowTiming::observation(observations, dead_time_s),
+            RowLayout::Sequences if observations != 1 => Err(crate::Error::Invalid {
+                param: "observations",
+                reason: format!("{observations}: only with layout observation (1 otherwise)"),
+            }),
+            RowLayout::Sequences if dead_time_s != 0.0 => Err(crate::Error::Invalid {
+                param: "dead_time_s",
+                reason: format!(
+                    "{dead_time_s}: only with layout observation (the sequences layout spreads its scans apart already)"
+                ),
+            }),
+            RowLayout::Sequences => Ok(layout.into()),
+        }
+    }
 }
 
 impl RowLayout {
@@ -91,6 +180,15 @@ pub struct SetLayout {
     pub stride_s: f64,
     /// Duration of one scan (N samples), s.
     pub scan_time_s: f64,
+    /// Samples of each periodic piston sequence the rows read (the longest
+    /// when they differ); absent in sidecars written before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sequence_samples: Option<u64>,
+    /// How long each sequence is against what its rows span, in words
+    /// (the observation layout: whether an observation's drift is kept);
+    /// absent in sidecars written before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 impl SetLayout {
@@ -106,6 +204,8 @@ impl SetLayout {
     ///     stride_samples: 200,
     ///     stride_s: 0.02,
     ///     scan_time_s: 0.0064,
+    ///     sequence_samples: None,
+    ///     note: None,
     /// };
     /// assert_eq!(layout.row_start(4), Some((1, 0.02)));
     /// assert_eq!(layout.row_start(5), None);
@@ -120,4 +220,33 @@ impl SetLayout {
         }
         None
     }
+}
+
+/// The sidecar's words on an observation layout's sequences: how long each
+/// observation's piston sequence is against the observation and the
+/// correlation time `correlation_s` (B/v), and so whether the piston's
+/// drift over an observation is kept.
+pub(crate) fn observation_note(
+    correlation_s: f64,
+    setup: &crate::piston::scan::ScanSetup,
+    (scans, stride): (usize, usize),
+    period_samples: usize,
+) -> String {
+    let t_s = setup.sample_time_s();
+    let observation_s = ((scans.max(1) - 1) * stride + setup.samples) as f64 * t_s;
+    let sequence_s = period_samples as f64 * t_s;
+    let times = sequence_s / observation_s;
+    let kept = if times >= crate::piston::sequences::OBSERVATION_SPAN as f64 - 1e-9 {
+        "its piston's drift over the observation is not forced to zero (the plan's observation model: sequences of at least 4 observations)"
+    } else {
+        "shorter than the plan's 4 observations (the memory limit, 2^24 samples per sequence): the piston's wander slower than one over the sequence is missing, and the nearer the sequence is to the observation the more its drift over the observation is forced toward zero; use fewer scans per observation"
+    };
+    let s = |x: f64| crate::error::number(format!("{x:.4e}").parse().unwrap_or(x));
+    format!(
+        "each observation ({scans} consecutive scans, {} s) reads the start of its own periodic piston sequence of {} s: {times:.2} times the observation and {:.2} correlation times B/v = {} s; {kept}",
+        s(observation_s),
+        s(sequence_s),
+        sequence_s / correlation_s,
+        s(correlation_s)
+    )
 }

@@ -23,7 +23,7 @@ pub(crate) mod rows;
 pub(crate) mod run;
 
 pub use inputs::{Inputs, PistonInputs, SourceInput, SpectrumInput};
-pub use layout::{RowLayout, SetLayout};
+pub use layout::{RowLayout, RowTiming, SetLayout, MAX_DEAD_TIME_S, MAX_OBSERVATIONS};
 pub use model::Model;
 pub use rows::{PistonFacts, Rows, ROWS_PER_UNIT};
 pub use run::{simulate, PistonEffect, SimulationRun};

@@ -29,7 +29,7 @@ use crate::piston::scan::{fill_scan, ScanSetup};
 use crate::piston::sequences::PistonSequence;
 use crate::piston::simulation::{table_range_um, validate_size};
 use crate::piston::{self, RunSize};
-use crate::simulator::{Model, RowLayout, SetLayout};
+use crate::simulator::{Model, RowLayout, RowTiming, SetLayout};
 
 /// Rows per work unit (that of `simulate`, so that a noise-only set draws
 /// what `simulate` draws).
@@ -37,7 +37,7 @@ pub const ROWS_PER_UNIT: u64 = TRIALS_PER_UNIT;
 
 /// The scans through the piston of one set.
 struct PistonScans {
-    layout: RowLayout,
+    timing: RowTiming,
     sequence: PistonSequence,
     table: FringeTable,
     setup: ScanSetup,
@@ -45,6 +45,8 @@ struct PistonScans {
     /// photons · V: the modulated signal per unit fringe.
     scale: f64,
     residual_rms_um: f64,
+    /// The piston's correlation time B/v, s.
+    spectrum_time_s: f64,
 }
 
 /// What a set's piston was.
@@ -66,7 +68,7 @@ pub struct PistonFacts {
 /// names, or the planner's explicit `(sequences, stride)`.
 #[derive(Clone, Copy)]
 enum Layout {
-    Named(RowLayout),
+    Named(RowTiming),
     Explicit(usize, usize),
 }
 
@@ -99,17 +101,18 @@ impl Model {
         self.rows_in(RowLayout::Sequences, rows, seed, threads)
     }
 
-    /// [`Model::rows`] laid out in time as `layout` says (the same rows in
-    /// the default [`RowLayout::Sequences`]; the layout changes nothing
-    /// without piston).
+    /// [`Model::rows`] laid out in time as `layout` says (a [`RowLayout`],
+    /// or a [`RowTiming`] with the observations and the dead time); the
+    /// same rows in the default [`RowLayout::Sequences`]; the layout changes
+    /// nothing without piston.
     pub fn rows_in(
         &self,
-        layout: RowLayout,
+        layout: impl Into<RowTiming>,
         rows: u64,
         seed: u64,
         threads: usize,
     ) -> Result<Rows<'_>> {
-        self.rows_laid_out(Layout::Named(layout), rows, seed, threads)
+        self.rows_laid_out(Layout::Named(layout.into()), rows, seed, threads)
     }
 
     /// [`Model::rows`] with the piston layout given, `(sequences,
@@ -126,7 +129,7 @@ impl Model {
         layout: Option<(usize, usize)>,
     ) -> Result<Rows<'_>> {
         let layout = match layout {
-            None => Layout::Named(RowLayout::Sequences),
+            None => Layout::Named(RowLayout::Sequences.into()),
             Some((sequences, stride)) => Layout::Explicit(sequences, stride),
         };
         self.rows_laid_out(layout, rows, seed, threads)
@@ -184,6 +187,7 @@ impl Model {
     ) -> Result<PistonScans> {
         match layout {
             Layout::Explicit(..) => setup.validate()?,
+            Layout::Named(t) if t.layout == RowLayout::Observation => setup.validate()?,
             Layout::Named(_) => {
                 validate_size(&setup, size).map_err(|e| e.renamed("scans", "rows"))?
             }
@@ -192,12 +196,12 @@ impl Model {
         // coefficient block while the others wait.
         crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
         let sequence = match layout {
-            Layout::Named(RowLayout::Sequences) => {
-                PistonSequence::synthesize(spectrum, &setup, size)?
+            Layout::Named(t) if t.layout == RowLayout::Observation => {
+                let shape = observation_shape(&setup, t, size.scans)?;
+                let seeds = (size.seed, size.threads);
+                PistonSequence::synthesize_observations(spectrum, &setup, shape, seeds)?
             }
-            Layout::Named(RowLayout::Observation) => {
-                PistonSequence::synthesize_observation(spectrum, &setup, size)?
-            }
+            Layout::Named(_) => PistonSequence::synthesize(spectrum, &setup, size)?,
             Layout::Explicit(sequences, stride) => {
                 PistonSequence::synthesize_layout(spectrum, &setup, size, (sequences, stride))?
             }
@@ -205,11 +209,11 @@ impl Model {
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
-            layout: match layout {
+            timing: match layout {
                 Layout::Named(named) => named,
                 // An observation's sequences read scan after scan: recorded
                 // as the independent-sequence layout they generalize.
-                Layout::Explicit(..) => RowLayout::Sequences,
+                Layout::Explicit(..) => RowLayout::Sequences.into(),
             },
             sequence,
             table,
@@ -217,8 +221,47 @@ impl Model {
             sub: self.inputs.detector().sub_samples()?,
             scale: self.inputs.photons * self.inputs.visibility,
             residual_rms_um,
+            spectrum_time_s: crate::piston::sequences::correlation_time_s(spectrum),
         })
     }
+}
+
+/// `(observations, scans of each, stride)` of the observation layout
+/// `timing` for `rows` rows of `setup`: the rows shared evenly, the scans
+/// one scan and its dead time apart, every kept stretch within
+/// [`MAX_SERIES`](crate::piston::MAX_SERIES) samples together.
+fn observation_shape(
+    setup: &ScanSetup,
+    timing: RowTiming,
+    rows: usize,
+) -> Result<(usize, usize, usize)> {
+    let k = timing.observations as usize;
+    if rows % k != 0 || rows / k < 2 {
+        return Err(Error::Invalid {
+            param: "observations",
+            reason: format!(
+                "{k}: must divide the rows ({rows}) into observations of at least 2 scans each"
+            ),
+        });
+    }
+    let scans = rows / k;
+    let n = setup.samples;
+    let dead = (timing.dead_time_s / setup.sample_time_s()).round();
+    let most = crate::piston::MAX_SERIES as f64;
+    let stride = n as f64 + dead;
+    let kept = k as f64 * ((scans - 1) as f64 * stride + n as f64 + 6.0);
+    if kept > most {
+        return Err(Error::OutOfRange {
+            param: "rows",
+            value: rows as f64,
+            accepted: format!(
+                "observations whose piston fits in memory together: {k} x {scans} scans \
+                 {stride} samples apart span {kept:.3e} samples, at most {most:.3e} \
+                 (2^24) in one set; split them over sets of different seeds"
+            ),
+        });
+    }
+    Ok((k, scans, stride as usize))
 }
 
 impl Rows<'_> {
@@ -282,15 +325,28 @@ impl Rows<'_> {
         let p = self.piston.as_ref()?;
         let sequence = &p.sequence;
         let stride_samples = sequence.stride();
+        let rows_per_sequence: Vec<u64> = (0..sequence.sequences())
+            .map(|j| sequence.scans_of(j).len() as u64)
+            .collect();
+        let period = sequence.period_samples();
+        let note = (p.timing.layout == RowLayout::Observation).then(|| {
+            let scans = rows_per_sequence.first().copied().unwrap_or(0) as usize;
+            super::layout::observation_note(
+                p.spectrum_time_s,
+                &p.setup,
+                (scans, stride_samples),
+                period,
+            )
+        });
         Some(SetLayout {
-            layout: p.layout,
+            layout: p.timing.layout,
             sequences: sequence.sequences(),
-            rows_per_sequence: (0..sequence.sequences())
-                .map(|j| sequence.scans_of(j).len() as u64)
-                .collect(),
+            rows_per_sequence,
             stride_samples,
             stride_s: stride_samples as f64 * p.setup.sample_time_s(),
             scan_time_s: p.setup.scan_time_s(),
+            sequence_samples: Some(period as u64),
+            note,
         })
     }
 

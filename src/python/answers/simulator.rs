@@ -127,10 +127,13 @@ fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
             "continuum_subtracted: cannot be used with sidecar (the configuration comes from it)",
         ));
     }
-    Ok(Configuration::from_sidecar(parse_sidecar(
-        sidecar,
-        sidecar_name,
-    )?))
+    // Any number of rows of the set's N, as the CLI's `estimate --sidecar
+    // SET.json --input ROWS` takes them (a subset of the set's rows, one
+    // observation of an observation-layout set).
+    Ok(Configuration {
+        set_rows: None,
+        ..Configuration::from_sidecar(parse_sidecar(sidecar, sidecar_name)?)
+    })
 }
 
 /// The per-row estimates as a dict of 1-D arrays, [`ESTIMATE_COLUMNS`].
@@ -153,7 +156,7 @@ fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Boun
 /// `out`, also writes the set as `v2ref synth --out OUT` does
 /// ([`super::super::output::write_set`]).
 #[pyfunction]
-#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force))]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force, observations=1, dead_time_s=0.0))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn synthesize<'py>(
     py: Python<'py>,
@@ -167,8 +170,15 @@ pub(super) fn synthesize<'py>(
     layout: &str,
     out: Option<std::path::PathBuf>,
     force: bool,
+    observations: u64,
+    dead_time_s: f64,
 ) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
     let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
+    let layout = ok(crate::simulator::RowTiming::new(
+        layout,
+        observations,
+        dead_time_s,
+    ))?;
     let inputs = ok(Physical::from_dict(physical)?.inputs())?;
     // None: sized by what the truth needs (`default_reference_blocks`).
     let reference_blocks = reference_blocks.unwrap_or_else(|| {
