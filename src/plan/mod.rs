@@ -53,6 +53,7 @@ pub(crate) mod answer;
 mod candidates;
 #[cfg(feature = "internals")]
 pub mod figure;
+mod correlation;
 pub(crate) mod observation;
 pub mod photometry;
 mod reach;
@@ -395,8 +396,9 @@ fn grid_point(
         &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
         sky.clone(),
     )?;
+    let scans = point_scans(inputs.scans, noisy.samples());
     let size = Trials {
-        trials: inputs.scans,
+        trials: scans,
         seed: derive_seed(inputs.seed, "plan", &[fringe_hz, stroke_um]),
         // 0: the pool the grid runs on. A pool per point built inside the
         // grid's pool nests each waiting worker's stolen points on its
@@ -412,7 +414,7 @@ fn grid_point(
         &|_| {},
     )?;
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
-    let t_factor = replicated_t_quantile(CONFIDENCE, mc_sequences(inputs.scans));
+    let t_factor = replicated_t_quantile(CONFIDENCE, mc_sequences(scans));
     let target = match inputs.target {
         Target::SigmaV2(t) => t,
         Target::TimeBudgetS(_) => f64::NAN,
@@ -445,7 +447,7 @@ fn grid_point(
             bias_piston: piston.mean - sampled,
             bias_piston_stderr: piston.stderr_mean,
             sigma_per_scan: sigma,
-            piston_sequences: mc_sequences(inputs.scans),
+            piston_sequences: mc_sequences(scans),
             sigma_piston_upper: piston.std + t_factor * piston.stderr_std,
             bias_piston_upper: (piston.mean - sampled).abs() + t_factor * piston.stderr_mean,
             scans_needed: None,
@@ -468,6 +470,22 @@ fn grid_point(
         p
     };
     Ok([point(Estimator::V1), point(Estimator::V2)])
+}
+
+/// Most samples (scans × N) of one grid point's piston Monte Carlo: 2^21,
+/// about 0.2 core-seconds. A point of N samples simulates
+/// [`point_scans`] scans: the plan's `scans`, or fewer on long scans (a
+/// long scan is slow, and its piston terms need fewer scans for the same
+/// standard error than the time it takes). The grid's cost is then
+/// bounded whatever the strokes.
+pub const POINT_SAMPLES: u64 = 1 << 21;
+
+/// Scans of the piston Monte Carlo of a grid point of `samples` samples:
+/// `scans`, at most [`POINT_SAMPLES`] samples in all, at least 32 (two
+/// sequences of 16).
+pub fn point_scans(scans: u64, samples: usize) -> u64 {
+    let least = 2 * crate::piston::sequences::MIN_SCANS_PER_SEQUENCE as u64;
+    scans.min((POINT_SAMPLES / samples.max(1) as u64).max(least))
 }
 
 /// The independent piston sequences of a Monte Carlo of `scans` scans.
