@@ -72,6 +72,7 @@ fn case(
             samples_per_fringe: 4.0,
             photon_rate_per_s,
             dead_time_s: 0.0,
+            frame_rate_hz: None,
             fringe_hz,
             stroke_um,
             target: Target::SigmaV2(target),

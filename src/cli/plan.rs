@@ -50,6 +50,14 @@ pub struct Args {
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     dead_time_s: f64,
+    /// The detector's maximum sample (frame) rate, Hz, 1e-3 to 1e9: the
+    /// grid's fringe frequencies stop at frame rate / --samples-per-fringe
+    /// (the default grid then runs up to it, beyond 2000 Hz if the detector
+    /// allows; a given grid is cut there and gains that edge), and a
+    /// recommendation there is said to be the detector's edge [default: no
+    /// detector limit: the grid as given].
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    frame_rate_hz: Option<f64>,
     #[command(flatten)]
     turbulence: TurbulenceArgs,
     /// Target σ of the averaged V², 1e-9 to 1 [default: 1e-3 when no
@@ -189,6 +197,7 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
         photon_rate_per_s: args.photon_rate_per_s,
         magnitude: magnitude(args, p.aperture_m),
         dead_time_s: args.dead_time_s,
+        frame_rate_hz: args.frame_rate_hz,
         fringe_hz: super::grid::flatten(&args.fringe_hz),
         stroke_um: args.stroke_um.clone(),
         target_sigma_v2: args.target_sigma_v2,

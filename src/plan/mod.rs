@@ -143,6 +143,10 @@ pub struct PlanInputs {
     pub photon_rate_per_s: f64,
     /// Dead time between scans, s.
     pub dead_time_s: f64,
+    /// The detector's maximum sample (frame) rate, Hz: the fringe
+    /// frequencies of the grid are at most this over `samples_per_fringe`
+    /// (None: no detector limit).
+    pub frame_rate_hz: Option<f64>,
     /// Fringe frequencies of the grid, Hz.
     pub fringe_hz: Vec<f64>,
     /// Strokes of the grid, µm.
@@ -173,6 +177,23 @@ pub fn log_grid(lo: f64, hi: f64, count: usize) -> Vec<f64> {
 /// strokes of 16, 32, 64 and 128 µm.
 pub fn default_grid() -> (Vec<f64>, Vec<f64>) {
     (log_grid(20.0, 2000.0, 20), vec![16.0, 32.0, 64.0, 128.0])
+}
+
+/// The fringe frequencies of a grid bounded by a detector whose fastest
+/// fringe is `most` Hz (frame rate / samples per fringe): the default grid
+/// (`given` empty) runs from 20 Hz (or `most`/100 when that is lower) up to
+/// `most`, 20 frequencies in log, beyond 2000 Hz when the detector allows;
+/// a given grid loses its frequencies above `most` and gains `most` when
+/// it lost any, so its top is the detector's edge.
+pub fn detector_grid(given: &[f64], most: f64) -> Vec<f64> {
+    if given.is_empty() {
+        return log_grid(20.0_f64.min(most / 100.0), most, 20);
+    }
+    let mut kept: Vec<f64> = given.iter().copied().filter(|&f| f <= most).collect();
+    if kept.len() < given.len() && !kept.contains(&most) {
+        kept.push(most);
+    }
+    kept
 }
 
 /// One estimator at one grid point.
@@ -278,6 +299,10 @@ pub struct Plan {
     /// When the recommendation sits on an edge of the grid: which, and
     /// what to do (`answer::grid_edge_note`).
     pub grid_edge: Option<String>,
+    /// Whether the recommended fringe frequency is the detector's fastest
+    /// (`frame_rate_hz` / samples per fringe): the edge is the detector's,
+    /// not the grid's.
+    pub at_detector_edge: bool,
 }
 
 impl PlanInputs {
@@ -293,6 +318,7 @@ impl PlanInputs {
             PHOTON_RATE_MAX_PER_S,
         )?;
         error::in_range("dead_time_s", self.dead_time_s, 0.0, PLAN_TIME_MAX_S)?;
+        self.validate_frame_rate()?;
         match self.target {
             Target::SigmaV2(s) => error::in_range("target_sigma_v2", s, PLAN_SIGMA_V2_MIN, 1.0)?,
             Target::TimeBudgetS(t) => positive_at_most("time_budget_s", t, PLAN_TIME_MAX_S)?,
@@ -306,6 +332,33 @@ impl PlanInputs {
         self.validate_scans()?;
         error::non_negative("diameter_err_mas", self.diameter_err_mas)?;
         Ok(())
+    }
+
+    /// The frame rate in its range, and no fringe frequency of the grid
+    /// faster than the detector samples it.
+    fn validate_frame_rate(&self) -> Result<()> {
+        let Some(rate) = self.frame_rate_hz else {
+            return Ok(());
+        };
+        error::in_range("frame_rate_hz", rate, 1e-3, 1e9)?;
+        let most = self.fringe_hz_max().unwrap_or(f64::INFINITY);
+        if let Some(&f) = self.fringe_hz.iter().find(|&&f| f > most * (1.0 + 1e-12)) {
+            return Err(Error::OutOfRange {
+                param: "fringe_hz",
+                value: f,
+                accepted: format!(
+                    "at most {most} Hz: frame_rate_hz {rate} / samples_per_fringe {}",
+                    self.samples_per_fringe
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The fastest fringe the detector samples at `samples_per_fringe`:
+    /// frame rate / samples per fringe, Hz (None: no detector limit).
+    pub fn fringe_hz_max(&self) -> Option<f64> {
+        self.frame_rate_hz.map(|r| r / self.samples_per_fringe)
     }
 
     /// `scans` from 32 (two independent piston sequences: the fewest that
@@ -557,6 +610,11 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
         no_v2_reason: None,
         confidence: CONFIDENCE,
         grid_edge: None,
+        at_detector_edge: false,
+    };
+    plan.at_detector_edge = match (plan.recommended, inputs.fringe_hz_max()) {
+        (Some(p), Some(most)) => p.fringe_hz >= most * (1.0 - 1e-12),
+        _ => false,
     };
     plan.grid_edge = answer::grid_edge_note(&plan, inputs);
     plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);
