@@ -51,6 +51,7 @@ mod piston_spectrum;
 mod plan;
 mod plan_cases;
 mod plan_observation;
+mod plan_stability;
 mod properties;
 mod readme;
 mod reproduce;

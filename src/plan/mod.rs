@@ -26,10 +26,17 @@
 //! - **the observation**: consecutive scans share the atmosphere, so in
 //!   target mode the fastest [`CANDIDATES`] settings of each
 //!   estimator are solved again with σ of the mean of n consecutive scans
-//!   measured on contiguous piston sequences (`observation`, n on both
-//!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
-//!   the plan recommends among them; [`verify`] simulates the
-//!   recommended observation.
+//!   from the autocovariance of the per-scan errors on contiguous piston
+//!   sequences spanning a few correlation times (`correlation`: the cost
+//!   is the atmosphere's, not n's; n on both sides), with the bias
+//!   convention's offset ([`PlanInputs::bias`]); a setting whose noise
+//!   alone needs longer than the best solved one is not simulated, and the
+//!   plan recommends among the solved; [`verify`] simulates the
+//!   recommended observation;
+//! - **the detector**: with [`PlanInputs::frame_rate_hz`] no fringe is
+//!   faster than frame rate / samples per fringe ([`detector_grid`]), and
+//!   a recommendation there is the detector's edge
+//!   ([`Plan::at_detector_edge`]).
 //!
 //! - **honest piston terms**: the piston Monte Carlo cuts its scans from up
 //!   to 16 independent sequences, each spanning two piston correlation
@@ -39,15 +46,15 @@
 //!   ends of their [`CONFIDENCE`] intervals;
 //! - **a seed-stable choice**: points whose optimistic time is within the
 //!   best's stated time are equally good to the Monte Carlo's precision
-//!   (16 000 scans by default: the cost is mostly the sequences, so scans
-//!   are cheap); among them the plan takes the highest fringe frequency,
+//!   (16 000 scans by default, at most [`POINT_SAMPLES`] samples per
+//!   point); among them the plan takes the highest fringe frequency,
 //!   whose piston terms are known best, so the recommendation does not
 //!   flip with the seed (`tests/plan_cases.rs`).
 //!
 //! Model choices, stated: the per-scan noise is that of the exact model
 //! bias (`model` convention, positive bins; the observation's uses the
 //! convention asked for); the piston packet is centred on the scan-mean
-//! piston.
+//! piston (a perfect group-delay tracker); no dead time unless given.
 
 pub(crate) mod answer;
 mod candidates;
