@@ -260,7 +260,7 @@ mod tests {
     #[test]
     fn variance_of_the_mean_matches_an_ar1_process() {
         let rho = 0.5;
-        let scans = ar1(rho, (16, 1 << 18), 7);
+        let scans = ar1(rho, (16, 1 << 19), 7);
         // Window 2 × 8 = 16 lags: ρ^16 = 1.5e-5.
         let c = ScanCorrelation::new(&scans, (0, false), 8.0);
         assert_eq!(c.window(), 16);
