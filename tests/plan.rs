@@ -36,6 +36,7 @@ fn inputs(instrument: Inputs, seeing: f64, rate: f64, fringe_hz: Vec<f64>) -> Pl
         samples_per_fringe: 4.0,
         photon_rate_per_s: rate,
         dead_time_s: 0.0,
+        frame_rate_hz: None,
         fringe_hz,
         stroke_um: vec![24.0],
         target: Target::SigmaV2(1e-3),

@@ -78,6 +78,7 @@ fn inputs(s: &Site, bias: BiasConvention) -> PlanInputs {
         samples_per_fringe: 4.0,
         photon_rate_per_s: s.photon_rate_per_s,
         dead_time_s: 0.0,
+        frame_rate_hz: None,
         fringe_hz: vec![s.fringe_hz],
         stroke_um: vec![s.stroke_um],
         target: Target::SigmaV2(s.target),

@@ -53,6 +53,7 @@ mod plan_cases;
 mod plan_check;
 mod plan_observation;
 mod plan_presets;
+mod plan_stability;
 mod properties;
 mod readme;
 mod reproduce;

@@ -862,9 +862,13 @@ def plan(
     *,
     target_sigma_v2: Optional[float] = None,
     time_budget_s: Optional[float] = None,
-    photon_rate_per_s: float = 1e6,
+    photon_rate_per_s: Optional[float] = None,
+    magnitude: Optional[float] = None,
+    magnitude_band: Optional[str] = None,
+    throughput: Optional[float] = None,
     samples_per_fringe: float = 4.0,
     dead_time_s: float = 0.0,
+    frame_rate_hz: Optional[float] = None,
     fringe_hz: Optional[Sequence[float]] = None,
     stroke_um: Optional[Sequence[float]] = None,
     scans: int = 16000,
@@ -914,12 +918,24 @@ def plan(
         σ of the averaged V² to reach (default 1e-3 when no time budget).
     time_budget_s : float, optional
         Instead, the time to spend, s: the σ reached is reported.
-    photon_rate_per_s : float
-        Continuum photons per second at the detector in the band.
+    photon_rate_per_s : float, optional
+        Continuum photons per second at the detector in the band (default
+        1e6; not with ``magnitude``).
+    magnitude, magnitude_band, throughput : optional
+        Instead of ``photon_rate_per_s`` (as ``v2ref plan --magnitude``):
+        the source's magnitude (-10 to 30) in ``magnitude_band`` ("J", "H",
+        "Ks", "V", "R", "I"), collected by two apertures of ``aperture_m``
+        times ``throughput`` (0 < T <= 1); see :func:`photon_rate`. All
+        three together.
     samples_per_fringe : float
         Samples per fringe at λ0 (δx = λ0 / this).
     dead_time_s : float
-        Dead time between scans, s.
+        Dead time between scans, s (the plan assumes none unless given).
+    frame_rate_hz : float, optional
+        The detector's maximum sample rate, Hz (as ``--frame-rate-hz``): the
+        grid's fringe frequencies stop at ``frame_rate_hz /
+        samples_per_fringe`` (the default grid runs up to it), and a
+        recommendation there is the detector's edge (``at_detector_edge``).
     fringe_hz, stroke_um : sequence of float, optional
         The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
         and strokes (µm; default 16, 32, 64, 128).
@@ -985,7 +1001,7 @@ def plan(
     return _v2ref.plan(
         _physical(values, exclude=_PLAN_GRID),
         _float("samples_per_fringe", samples_per_fringe),
-        _float("photon_rate_per_s", photon_rate_per_s),
+        _float("photon_rate_per_s", 1e6 if photon_rate_per_s is None else photon_rate_per_s),
         _float("dead_time_s", dead_time_s),
         [_to_float("fringe_hz", f) for f in (fringe_hz or [])],
         [_to_float("stroke_um", s) for s in (stroke_um or [])],
@@ -1000,7 +1016,34 @@ def plan(
         observations if verify else None,
         observing,
         _flag("force", force),
+        _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv),
+        opt("frame_rate_hz", frame_rate_hz),
     )
+
+
+def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv):
+    """``plan``'s magnitude keywords as the extension takes them (None
+    without ``magnitude``), refused half given or beside a photon rate."""
+    given = {
+        "magnitude": magnitude,
+        "magnitude_band": magnitude_band,
+        "throughput": throughput,
+    }
+    if magnitude is None:
+        for name, v in given.items():
+            if v is not None:
+                raise ValueError(f"{name}: needs magnitude (with magnitude_band and throughput)")
+        return None
+    if photon_rate_per_s is not None:
+        raise ValueError("photon_rate_per_s: give photon_rate_per_s or magnitude, not both")
+    if spectrum_csv is not None:
+        raise ValueError("magnitude: converted over the flat band (wavelength_um, bandwidth_nm), not with spectrum_csv")
+    for name, v in given.items():
+        if v is None:
+            raise ValueError(f"{name}: needed with magnitude (magnitude, magnitude_band and throughput together)")
+    if not isinstance(magnitude_band, str):
+        raise TypeError(f"magnitude_band: {magnitude_band!r} is not a str (J, H, Ks, V, R or I)")
+    return (_float("magnitude", magnitude), magnitude_band, _float("throughput", throughput))
 
 
 @_documented()

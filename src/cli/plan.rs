@@ -53,6 +53,14 @@ pub struct Args {
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
     #[arg(long, default_value = "0", value_parser = finite_f64, allow_negative_numbers = true)]
     dead_time_s: f64,
+    /// The detector's maximum sample (frame) rate, Hz, 1e-3 to 1e9: the
+    /// grid's fringe frequencies stop at frame rate / --samples-per-fringe
+    /// (the default grid then runs up to it, beyond 2000 Hz if the detector
+    /// allows; a given grid is cut there and gains that edge), and a
+    /// recommendation there is said to be the detector's edge [default: no
+    /// detector limit: the grid as given].
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    frame_rate_hz: Option<f64>,
     #[command(flatten)]
     turbulence: TurbulenceArgs,
     /// Target σ of the averaged V², 1e-9 to 1 [default: 1e-3 when no
@@ -70,12 +78,11 @@ pub struct Args {
     /// Strokes of the grid, µm (repeatable) [default: 16, 32, 64, 128].
     #[arg(long = "stroke-um", value_parser = finite_f64, allow_negative_numbers = true)]
     stroke_um: Vec<f64>,
-    /// Scans of each piston Monte Carlo, 32 to 2^24 / (samples per scan at
-    /// the grid's longest stroke), checked before computing: cut into up to 16
-    /// independent piston sequences spanning two correlation times B/v
-    /// each, whose spread gives the standard errors. The cost is mostly the
-    /// sequences (fixed), so many scans cost little and pin down the piston
-    /// bias.
+    /// Scans of each grid point's piston Monte Carlo, 32 to 2^24 / (samples
+    /// per scan at the grid's longest stroke), checked before computing; at
+    /// most 2^21 samples per point (fewer scans on long scans): cut into up
+    /// to 16 independent piston sequences spanning two correlation times
+    /// B/v each, whose spread gives the standard errors.
     #[arg(long, value_parser = super::count_u64, default_value = "16000", allow_negative_numbers = true)]
     scans: u64,
     /// 1σ uncertainty of the uniform disk's diameter, mas (>= 0): the V²
@@ -86,7 +93,8 @@ pub struct Args {
     /// counts (each scan's own; unbiased for both estimators under piston)
     /// or model (the source's piston-free counts; off by the piston's shift
     /// of the fringe, predicted and added to the bias). The predicted mean
-    /// and the noise follow it.
+    /// and the noise follow it. plan defaults to counts, estimate to model:
+    /// the plan's text says which it used at every use.
     #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "counts")]
     bias: BiasConvention,
     /// Also simulate the recommended observation (n consecutive scans
@@ -193,6 +201,7 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
         photon_rate_per_s: args.photon_rate_per_s,
         magnitude: magnitude(args, p.aperture_m),
         dead_time_s: args.dead_time_s,
+        frame_rate_hz: args.frame_rate_hz,
         fringe_hz: super::grid::flatten(&args.fringe_hz),
         stroke_um: args.stroke_um.clone(),
         target_sigma_v2: args.target_sigma_v2,
@@ -338,6 +347,37 @@ fn describe(p: &PlanPoint) -> String {
     )
 }
 
+/// How the recommended setting scans, and what the plan assumed of it:
+/// the sample step, the stroke the samples span, the frame rate, the dead
+/// time and the fringe tracking.
+fn setting(p: &PlanPoint, inputs: &PlanInputs) {
+    let dead = if inputs.dead_time_s > 0.0 {
+        format!("dead time {} s between scans", inputs.dead_time_s)
+    } else {
+        "no dead time between scans (none given: --dead-time-s)".into()
+    };
+    outln!(
+        "  scan: sample step {:.4} um (lambda0/{}), true stroke {:.3} um ({} samples x step), {:.0} frames/s, one scan {}; {dead}; tracking assumed: the fringe packet re-centred on each scan's mean piston (a perfect group-delay tracker: only the piston's wander within a scan moves the fringe)",
+        p.dx_um,
+        inputs.samples_per_fringe,
+        p.stroke_um,
+        p.samples,
+        inputs.samples_per_fringe * p.fringe_hz,
+        human_duration(p.scan_time_s),
+    );
+}
+
+/// The bias convention in words, saying which command defaults to which
+/// (`plan` to counts, `estimate` to model).
+pub(super) fn convention_words(b: BiasConvention) -> String {
+    let said = match b {
+        BiasConvention::Counts => "plan's default; estimate defaults to model",
+        BiasConvention::Model => "estimate's default; plan's is counts",
+        _ => "",
+    };
+    format!("--bias {} ({said})", b.name())
+}
+
 /// The terms of a point, one per line, on V².
 fn terms(p: &PlanPoint, confidence: f64) {
     outln!(
@@ -373,9 +413,9 @@ fn observation(p: &PlanPoint, inputs: &PlanInputs) {
         )),
     );
     outln!(
-        "  predicted mean V^2 {:.5e} with --bias {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",
+        "  predicted mean V^2 {:.5e} with {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",
         o.predicted_mean,
-        inputs.bias.name(),
+        convention_words(inputs.bias),
         o.bias,
         o.bias_stderr,
         p.bias_piston,
@@ -424,6 +464,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     match &plan.recommended {
         Some(p) => {
             outln!("recommended ({target}): {}", describe(p));
+            setting(p, inputs);
             terms(p, plan.confidence);
             observation(p, inputs);
             corrections(inputs, p);
@@ -514,7 +555,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     if rows.iter().any(|p| {
         p.observation.is_none() && p.time_s.is_some() && matches!(inputs.target, Target::SigmaV2(_))
     }) {
-        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest {} settings of each estimator (by the per-scan estimate) only", v2ref::plan::CANDIDATES);
+        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest {} settings of each estimator (by the per-scan estimate) only, less those whose noise alone needs longer than the best solved", v2ref::plan::CANDIDATES);
     }
     // What a "-" in the table stands for, once per reason shown.
     let mut reasons: Vec<&str> = Vec::new();

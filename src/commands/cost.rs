@@ -288,7 +288,8 @@ pub fn piston(samples: usize, frequencies: usize, scans: usize, threads: usize) 
 }
 
 /// `plan` over a grid of `frequencies` fringe frequencies × the strokes
-/// sampled as `strokes`, with `scans` scans per point: per point the
+/// sampled as `strokes`, with `scans` scans per point (at most
+/// [`crate::plan::POINT_SAMPLES`] samples): per point the
 /// interferograms of two models and the noise bias (three times the
 /// pair), its window's statistics and its piston Monte Carlo, the points
 /// in parallel.
@@ -304,7 +305,7 @@ pub fn plan(
         per_frequency += PLAN_POINT_S
             + 3.0 * interferograms_s(obs, s)?
             + window_stats_s(n, 1.0)
-            + scans as f64 * n as f64 * SCAN_S_PER_SAMPLE;
+            + crate::plan::point_scans(scans, n) as f64 * n as f64 * SCAN_S_PER_SAMPLE;
     }
     let points = frequencies * strokes.len();
     Ok(Cost {

@@ -30,6 +30,10 @@ pub struct PlanRequest {
     pub magnitude: Option<Magnitude>,
     /// Dead time between scans, s.
     pub dead_time_s: f64,
+    /// The detector's maximum sample rate, Hz: the grid's fringe
+    /// frequencies are cut (and the default grid extended) to frame rate /
+    /// samples per fringe (None: no detector limit, the grid as given).
+    pub frame_rate_hz: Option<f64>,
     /// Fringe frequencies of the grid, Hz (the default grid when empty).
     pub fringe_hz: Vec<f64>,
     /// Strokes of the grid, µm (the default grid when empty).
@@ -172,7 +176,13 @@ pub fn prepare(p: &Physical, req: &PlanRequest) -> Result<Prepared> {
         samples_per_fringe: req.samples_per_fringe,
         photon_rate_per_s: photometry.map_or(req.photon_rate_per_s, |m| m.photon_rate_per_s),
         dead_time_s: req.dead_time_s,
-        fringe_hz: or_default(&req.fringe_hz, default_f),
+        frame_rate_hz: req.frame_rate_hz,
+        fringe_hz: match req.frame_rate_hz {
+            Some(rate) if rate.is_finite() && rate > 0.0 => {
+                crate::plan::detector_grid(&req.fringe_hz, rate / req.samples_per_fringe)
+            }
+            _ => or_default(&req.fringe_hz, default_f),
+        },
         stroke_um: or_default(&req.stroke_um, default_s),
         target: target(req)?,
         scans: req.scans,

@@ -150,7 +150,17 @@ pub fn grid_edge_note(plan: &Plan, inputs: &super::PlanInputs) -> Option<String>
         }
     };
     let mut notes = Vec::new();
-    if let Some((side, lo, hi)) = edge(&inputs.fringe_hz, p.fringe_hz) {
+    let at_detector = inputs
+        .fringe_hz_max()
+        .is_some_and(|most| p.fringe_hz >= most * (1.0 - 1e-12));
+    if at_detector {
+        notes.push(format!(
+            "the fringe frequency {:.1} Hz is the detector's edge ({} frames/s at {} samples per fringe): a faster fringe needs a faster detector or fewer samples per fringe, not a wider grid",
+            p.fringe_hz,
+            inputs.frame_rate_hz.unwrap_or(f64::NAN),
+            inputs.samples_per_fringe
+        ));
+    } else if let Some((side, lo, hi)) = edge(&inputs.fringe_hz, p.fringe_hz) {
         notes.push(format!(
             "the fringe frequency {:.1} Hz is the {side} of the grid ({lo:.1} to {hi:.1} Hz; {:.0} detector frames/s at {:.1} Hz)",
             p.fringe_hz,
@@ -164,9 +174,17 @@ pub fn grid_edge_note(plan: &Plan, inputs: &super::PlanInputs) -> Option<String>
             p.stroke_um
         ));
     }
+    if notes.len() == 1 && at_detector {
+        return Some(format!("on the detector's edge: {}", notes[0]));
+    }
+    let widen = if inputs.frame_rate_hz.is_some() {
+        "widen the grid (--fringe-hz up to the detector's edge, --stroke-um) within what the delay line allows"
+    } else {
+        "widen the grid (--fringe-hz, --stroke-um) within what the detector and the delay line allow, or give the detector's --frame-rate-hz to search up to its edge"
+    };
     (!notes.is_empty()).then(|| {
         format!(
-            "on the edge of the grid: {}; the best setting may lie beyond it, which the plan did not search: widen the grid (--fringe-hz, --stroke-um) within what the detector and the delay line allow",
+            "on the edge of the grid: {}; the best setting may lie beyond it, which the plan did not search: {widen}",
             notes.join("; ")
         )
     })

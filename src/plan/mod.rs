@@ -26,10 +26,17 @@
 //! - **the observation**: consecutive scans share the atmosphere, so in
 //!   target mode the fastest [`CANDIDATES`] settings of each
 //!   estimator are solved again with σ of the mean of n consecutive scans
-//!   measured on contiguous piston sequences (`observation`, n on both
-//!   sides), with the bias convention's offset ([`PlanInputs::bias`]), and
-//!   the plan recommends among them; [`verify`] simulates the
-//!   recommended observation.
+//!   from the autocovariance of the per-scan errors on contiguous piston
+//!   sequences spanning a few correlation times (`correlation`: the cost
+//!   is the atmosphere's, not n's; n on both sides), with the bias
+//!   convention's offset ([`PlanInputs::bias`]); a setting whose noise
+//!   alone needs longer than the best solved one is not simulated, and the
+//!   plan recommends among the solved; [`verify`] simulates the
+//!   recommended observation;
+//! - **the detector**: with [`PlanInputs::frame_rate_hz`] no fringe is
+//!   faster than frame rate / samples per fringe ([`detector_grid`]), and
+//!   a recommendation there is the detector's edge
+//!   ([`Plan::at_detector_edge`]).
 //!
 //! - **honest piston terms**: the piston Monte Carlo cuts its scans from up
 //!   to 16 independent sequences, each spanning two piston correlation
@@ -39,21 +46,22 @@
 //!   ends of their [`CONFIDENCE`] intervals;
 //! - **a seed-stable choice**: points whose optimistic time is within the
 //!   best's stated time are equally good to the Monte Carlo's precision
-//!   (16 000 scans by default: the cost is mostly the sequences, so scans
-//!   are cheap); among them the plan takes the highest fringe frequency,
+//!   (16 000 scans by default, at most [`POINT_SAMPLES`] samples per
+//!   point); among them the plan takes the highest fringe frequency,
 //!   whose piston terms are known best, so the recommendation does not
 //!   flip with the seed (`tests/plan_cases.rs`).
 //!
 //! Model choices, stated: the per-scan noise is that of the exact model
 //! bias (`model` convention, positive bins; the observation's uses the
 //! convention asked for); the piston packet is centred on the scan-mean
-//! piston.
+//! piston (a perfect group-delay tracker); no dead time unless given.
 
 pub(crate) mod answer;
 mod candidates;
 #[cfg(feature = "internals")]
 pub mod figure;
 pub mod instrument;
+mod correlation;
 pub(crate) mod observation;
 pub mod photometry;
 mod reach;
@@ -143,6 +151,10 @@ pub struct PlanInputs {
     pub photon_rate_per_s: f64,
     /// Dead time between scans, s.
     pub dead_time_s: f64,
+    /// The detector's maximum sample (frame) rate, Hz: the fringe
+    /// frequencies of the grid are at most this over `samples_per_fringe`
+    /// (None: no detector limit).
+    pub frame_rate_hz: Option<f64>,
     /// Fringe frequencies of the grid, Hz.
     pub fringe_hz: Vec<f64>,
     /// Strokes of the grid, µm.
@@ -173,6 +185,23 @@ pub fn log_grid(lo: f64, hi: f64, count: usize) -> Vec<f64> {
 /// strokes of 16, 32, 64 and 128 µm.
 pub fn default_grid() -> (Vec<f64>, Vec<f64>) {
     (log_grid(20.0, 2000.0, 20), vec![16.0, 32.0, 64.0, 128.0])
+}
+
+/// The fringe frequencies of a grid bounded by a detector whose fastest
+/// fringe is `most` Hz (frame rate / samples per fringe): the default grid
+/// (`given` empty) runs from 20 Hz (or `most`/100 when that is lower) up to
+/// `most`, 20 frequencies in log, beyond 2000 Hz when the detector allows;
+/// a given grid loses its frequencies above `most` and gains `most` when
+/// it lost any, so its top is the detector's edge.
+pub fn detector_grid(given: &[f64], most: f64) -> Vec<f64> {
+    if given.is_empty() {
+        return log_grid(20.0_f64.min(most / 100.0), most, 20);
+    }
+    let mut kept: Vec<f64> = given.iter().copied().filter(|&f| f <= most).collect();
+    if kept.len() < given.len() && !kept.contains(&most) {
+        kept.push(most);
+    }
+    kept
 }
 
 /// One estimator at one grid point.
@@ -278,6 +307,10 @@ pub struct Plan {
     /// When the recommendation sits on an edge of the grid: which, and
     /// what to do (`answer::grid_edge_note`).
     pub grid_edge: Option<String>,
+    /// Whether the recommended fringe frequency is the detector's fastest
+    /// (`frame_rate_hz` / samples per fringe): the edge is the detector's,
+    /// not the grid's.
+    pub at_detector_edge: bool,
 }
 
 impl PlanInputs {
@@ -293,6 +326,7 @@ impl PlanInputs {
             PHOTON_RATE_MAX_PER_S,
         )?;
         error::in_range("dead_time_s", self.dead_time_s, 0.0, PLAN_TIME_MAX_S)?;
+        self.validate_frame_rate()?;
         match self.target {
             Target::SigmaV2(s) => error::in_range("target_sigma_v2", s, PLAN_SIGMA_V2_MIN, 1.0)?,
             Target::TimeBudgetS(t) => positive_at_most("time_budget_s", t, PLAN_TIME_MAX_S)?,
@@ -306,6 +340,33 @@ impl PlanInputs {
         self.validate_scans()?;
         error::non_negative("diameter_err_mas", self.diameter_err_mas)?;
         Ok(())
+    }
+
+    /// The frame rate in its range, and no fringe frequency of the grid
+    /// faster than the detector samples it.
+    fn validate_frame_rate(&self) -> Result<()> {
+        let Some(rate) = self.frame_rate_hz else {
+            return Ok(());
+        };
+        error::in_range("frame_rate_hz", rate, 1e-3, 1e9)?;
+        let most = self.fringe_hz_max().unwrap_or(f64::INFINITY);
+        if let Some(&f) = self.fringe_hz.iter().find(|&&f| f > most * (1.0 + 1e-12)) {
+            return Err(Error::OutOfRange {
+                param: "fringe_hz",
+                value: f,
+                accepted: format!(
+                    "at most {most} Hz: frame_rate_hz {rate} / samples_per_fringe {}",
+                    self.samples_per_fringe
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The fastest fringe the detector samples at `samples_per_fringe`:
+    /// frame rate / samples per fringe, Hz (None: no detector limit).
+    pub fn fringe_hz_max(&self) -> Option<f64> {
+        self.frame_rate_hz.map(|r| r / self.samples_per_fringe)
     }
 
     /// `scans` from 32 (two independent piston sequences: the fewest that
@@ -396,8 +457,9 @@ fn grid_point(
         &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
         sky.clone(),
     )?;
+    let scans = point_scans(inputs.scans, noisy.samples());
     let size = Trials {
-        trials: inputs.scans,
+        trials: scans,
         seed: derive_seed(inputs.seed, "plan", &[fringe_hz, stroke_um]),
         // 0: the pool the grid runs on. A pool per point built inside the
         // grid's pool nests each waiting worker's stolen points on its
@@ -413,7 +475,7 @@ fn grid_point(
         &|_| {},
     )?;
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
-    let t_factor = replicated_t_quantile(CONFIDENCE, mc_sequences(inputs.scans));
+    let t_factor = replicated_t_quantile(CONFIDENCE, mc_sequences(scans));
     let target = match inputs.target {
         Target::SigmaV2(t) => t,
         Target::TimeBudgetS(_) => f64::NAN,
@@ -446,7 +508,7 @@ fn grid_point(
             bias_piston: piston.mean - sampled,
             bias_piston_stderr: piston.stderr_mean,
             sigma_per_scan: sigma,
-            piston_sequences: mc_sequences(inputs.scans),
+            piston_sequences: mc_sequences(scans),
             sigma_piston_upper: piston.std + t_factor * piston.stderr_std,
             bias_piston_upper: (piston.mean - sampled).abs() + t_factor * piston.stderr_mean,
             scans_needed: None,
@@ -469,6 +531,22 @@ fn grid_point(
         p
     };
     Ok([point(Estimator::V1), point(Estimator::V2)])
+}
+
+/// Most samples (scans × N) of one grid point's piston Monte Carlo: 2^21,
+/// about 0.2 core-seconds. A point of N samples simulates
+/// [`point_scans`] scans: the plan's `scans`, or fewer on long scans (a
+/// long scan is slow, and its piston terms need fewer scans for the same
+/// standard error than the time it takes). The grid's cost is then
+/// bounded whatever the strokes.
+pub const POINT_SAMPLES: u64 = 1 << 21;
+
+/// Scans of the piston Monte Carlo of a grid point of `samples` samples:
+/// `scans`, at most [`POINT_SAMPLES`] samples in all, at least 32 (two
+/// sequences of 16).
+pub fn point_scans(scans: u64, samples: usize) -> u64 {
+    let least = 2 * crate::piston::sequences::MIN_SCANS_PER_SEQUENCE as u64;
+    scans.min((POINT_SAMPLES / samples.max(1) as u64).max(least))
 }
 
 /// The independent piston sequences of a Monte Carlo of `scans` scans.
@@ -540,6 +618,11 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
         no_v2_reason: None,
         confidence: CONFIDENCE,
         grid_edge: None,
+        at_detector_edge: false,
+    };
+    plan.at_detector_edge = match (plan.recommended, inputs.fringe_hz_max()) {
+        (Some(p), Some(most)) => p.fringe_hz >= most * (1.0 - 1e-12),
+        _ => false,
     };
     plan.grid_edge = answer::grid_edge_note(&plan, inputs);
     plan.no_v1_reason = no_recommendation_reason(&plan, Estimator::V1);

@@ -27,6 +27,7 @@
 //! carried to n as 1/n (`extrapolated_from_scans`: it assumes the scans
 //! further apart than n′ scan periods are uncorrelated).
 
+use super::correlation::ScanCorrelation;
 use super::{PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::{BiasConvention, RowEstimator};
 use crate::error::Result;
@@ -241,24 +242,40 @@ pub struct ObservationError {
     pub scan_period_s: f64,
     /// Independent piston sequences simulated ([`SEQUENCES`]).
     pub sequences: usize,
-    /// Consecutive scans simulated in each sequence.
+    /// Consecutive scans simulated in each sequence (L: they span
+    /// [`super::correlation::SPAN_CORRELATION_TIMES`] correlation times
+    /// where [`MAX_OBSERVATION_SAMPLES`] allows, whatever n).
     pub scans_per_sequence: u64,
-    /// Blocks of n consecutive scans (simulated observations) in all.
+    /// Disjoint blocks of n consecutive scans the sequences hold (0 when n
+    /// is longer than a sequence: the variance then comes from the scans'
+    /// correlation, not from simulated observations).
     pub simulated_observations: u64,
-    /// σ of the mean of n consecutive scans from the piston alone (the
-    /// spread of the block means).
+    /// W: the per-scan errors' autocovariance is summed up to W scans
+    /// apart (a quarter of a sequence).
+    pub correlation_window_scans: u64,
+    /// σ of the mean of n consecutive scans from the piston alone.
     pub sigma_piston: f64,
     /// Its standard error (spread between the sequences).
     pub sigma_piston_stderr: f64,
-    /// The upper end of its [`CONFIDENCE`] interval: σ + t·se.
+    /// The terms of the variance between W and 2W scans apart (0 when
+    /// n − 1 ≤ W): what summing only up to W leaves out, estimated; its
+    /// size widens the interval both ways.
+    pub variance_beyond_window: f64,
+    /// The upper end of σ_piston's [`CONFIDENCE`] interval (with the terms
+    /// beyond the window): the promise's piston term.
     pub sigma_piston_upper: f64,
+    /// The lower end of that interval.
+    pub sigma_piston_lower: f64,
     /// What independent scans would give: σ_piston per scan / √n.
     pub sigma_piston_if_independent: f64,
     /// σ_piston(n)² · n / σ²_piston per scan: 1 for independent scans,
     /// above 1 when consecutive scans share the piston's errors.
     pub variance_inflation: f64,
-    /// σ of one scan from detector and photon noise under the convention.
+    /// σ of one scan from detector and photon noise under the convention
+    /// (the upper end of its interval for `counts`, from a Monte Carlo).
     pub sigma_noise_per_scan: f64,
+    /// The lower end of that interval (the exact value for `model`).
+    pub sigma_noise_per_scan_lower: f64,
     /// σ_noise per scan / √n (independent from scan to scan).
     pub sigma_noise: f64,
     /// The promise: sqrt(σ_noise² + σ_piston_upper²), the σ(V²) of the
@@ -279,76 +296,97 @@ pub struct ObservationError {
     pub bias_stderr: f64,
     /// The upper end of |bias|'s [`CONFIDENCE`] interval.
     pub bias_upper: f64,
-    /// n′ when n consecutive scans do not fit in one simulated sequence:
-    /// the piston variance was measured at n′ and carried to n as 1/n.
+    /// W + 1 when n is longer: the scans more than W apart were taken as
+    /// uncorrelated, and `variance_beyond_window` states what that leaves
+    /// out.
     pub extrapolated_from_scans: Option<u64>,
 }
 
 /// The inputs of [`observation_error`] at one grid point.
 pub(crate) struct AtPoint<'a> {
     pub(crate) scans: &'a ContiguousScans,
+    /// The per-scan errors' autocovariance of the point's estimator.
+    pub(crate) correlation: &'a ScanCorrelation,
     pub(crate) point: &'a PlanPoint,
     pub(crate) convention: BiasConvention,
-    /// σ per scan of the noise under the convention.
-    pub(crate) sigma_noise_per_scan: f64,
+    /// σ per scan of the noise under the convention: the lower and upper
+    /// ends of its interval.
+    pub(crate) sigma_noise_per_scan: [f64; 2],
 }
 
 /// The error of an observation of `n` consecutive scans at `at`.
-/// With `upper`, the piston terms at the upper ends of their [`CONFIDENCE`]
-/// intervals (the promise); else at the lower ends (the best the setting
-/// could be, for the time's interval).
+/// With `upper`, the piston and noise terms at the upper ends of their
+/// [`CONFIDENCE`] intervals (the promise); else at the lower ends (the best
+/// the setting could be, for the time's interval).
 pub(crate) fn observation_error(at: &AtPoint, n: u64, upper: bool) -> ObservationError {
     let p = at.point;
     let s = at.scans;
     let model = at.convention == BiasConvention::Model;
     let fits = s.per_sequence() as u64;
-    let measured = n.min(fits).max(1);
     let e = match p.estimator {
         super::Estimator::V1 => 0,
         super::Estimator::V2 => 1,
     };
-    let block = s.block_means(measured as usize, model)[e];
     let offset = if model {
         s.offset()[e]
     } else {
         Summary::default()
     };
-    let t = replicated_t_quantile(CONFIDENCE, s.sequences.len()) * if upper { 1.0 } else { -1.0 };
-    let carry = (measured as f64 / n as f64).sqrt();
-    let sigma_piston = block.std * carry;
-    let sigma_piston_stderr = block.stderr_std * carry;
-    let sigma_piston_upper = (sigma_piston + t * sigma_piston_stderr).max(0.0);
-    let sigma_noise = at.sigma_noise_per_scan / (n as f64).sqrt();
+    let t = replicated_t_quantile(CONFIDENCE, s.sequences.len());
+    let v = at.correlation.piston_variance(n);
+    let measured = v.var.max(0.0);
+    let spread = t * v.var_stderr.hypot(v.tail_stderr) + v.tail.abs();
+    let sigma_piston = measured.sqrt();
+    let sigma_piston_upper = (measured + spread).sqrt();
+    let sigma_piston_lower = (v.var - spread).max(0.0).sqrt();
+    let [noise_lower, noise_upper] = at.sigma_noise_per_scan;
+    let noise_per_scan = if upper { noise_upper } else { noise_lower };
+    let sigma_noise = noise_per_scan / (n as f64).sqrt();
+    let piston_used = if upper {
+        sigma_piston_upper
+    } else {
+        sigma_piston_lower
+    };
     let per_scan = p.sigma_piston_per_scan;
     let bias = p.bias_piston + offset.mean;
     let bias_se = p.bias_piston_stderr.hypot(offset.stderr_mean);
+    let signed_t = if upper { t } else { -t };
+    let window = at.correlation.window() as u64;
     ObservationError {
         scans: n,
         scan_period_s: s.scan_period_s,
         sequences: s.sequences.len(),
         scans_per_sequence: fits,
-        simulated_observations: block.count,
+        simulated_observations: (fits / n.max(1)) * s.sequences.len() as u64,
+        correlation_window_scans: window,
         sigma_piston,
-        sigma_piston_stderr,
+        sigma_piston_stderr: if sigma_piston > 0.0 {
+            v.var_stderr / (2.0 * sigma_piston)
+        } else {
+            v.var_stderr.sqrt()
+        },
+        variance_beyond_window: v.tail,
         sigma_piston_upper,
+        sigma_piston_lower,
         sigma_piston_if_independent: per_scan / (n as f64).sqrt(),
-        variance_inflation: sigma_piston * sigma_piston * n as f64 / (per_scan * per_scan),
-        sigma_noise_per_scan: at.sigma_noise_per_scan,
+        variance_inflation: measured * n as f64 / (per_scan * per_scan),
+        sigma_noise_per_scan: noise_upper,
+        sigma_noise_per_scan_lower: noise_lower,
         sigma_noise,
-        sigma: sigma_noise.hypot(sigma_piston_upper),
+        sigma: sigma_noise.hypot(piston_used),
         convention_offset: offset.mean,
         convention_offset_stderr: offset.stderr_mean,
         predicted_mean: p.v_sq_sampled + bias,
         bias,
         bias_stderr: bias_se,
-        bias_upper: (bias.abs() + t * bias_se).max(0.0),
-        extrapolated_from_scans: (measured < n).then_some(measured),
+        bias_upper: (bias.abs() + signed_t * bias_se).max(0.0),
+        extrapolated_from_scans: (n > window + 1).then_some(window + 1),
     }
 }
 
 /// The fewest consecutive scans whose observation reaches σ(V²) =
 /// `target` with the bias's upper end (n enters both sides: the piston
-/// variance of the mean is measured at each n tried), from the
+/// variance of the mean is computed at each n tried), from the
 /// independent-scan estimate `start`; None when the bias's upper end is at
 /// or above the target.
 pub(crate) fn solve_scans(
@@ -366,7 +404,7 @@ pub(crate) fn solve_scans(
     }
     // Fixed point of n = n σ²_obs(n) / (target² − bias²): σ²_obs ∝ 1/n
     // locally; a few steps settle it.
-    for _ in 0..12 {
+    for _ in 0..20 {
         let o = observation_error(at, n, upper);
         let room = target * target - o.bias_upper * o.bias_upper;
         let next = ((n as f64) * o.sigma * o.sigma / room).ceil().max(1.0);
@@ -379,15 +417,36 @@ pub(crate) fn solve_scans(
         }
         n = next;
     }
-    // The measured variance is noisy in n: step up until the promise holds.
-    for _ in 0..200 {
+    // σ²_obs(n)·n is not constant in n: step up until the promise holds,
+    // then back down to the fewest scans that keep it.
+    for _ in 0..400 {
         let o = observation_error(at, n, upper);
         if reaches(&o) {
-            return Some(o);
+            return Some(fewest(at, target, upper, o));
         }
         n = (n + n / 50).max(n + 1);
     }
     None
+}
+
+/// From an n that reaches the target, the fewest scans that still do (by
+/// halving the step down), so the answer does not depend on where the
+/// search came from.
+fn fewest(at: &AtPoint, target: f64, upper: bool, mut best: ObservationError) -> ObservationError {
+    let reaches =
+        |o: &ObservationError| o.bias_upper < target && o.sigma.hypot(o.bias_upper) <= target;
+    let mut step = (best.scans / 50).max(1);
+    loop {
+        let down = best.scans.saturating_sub(step).max(1);
+        let o = observation_error(at, down, upper);
+        if down < best.scans && reaches(&o) {
+            best = o;
+        } else if step == 1 {
+            return best;
+        } else {
+            step /= 2;
+        }
+    }
 }
 
 /// The seed of a point's observation Monte Carlo.

@@ -8,7 +8,7 @@ use super::{Estimator, PlanInputs, PlanPoint, Target, ONE_NIGHT_S};
 pub const UNREACHABLE: &str = "unreachable: the piston bias (upper end of its interval) is at or above the target sigma(V^2), so no number of scans reaches it: scans_needed and time_s are null (and time_lower_s where even the lower end of the bias is at or above the target), sigma_reached is the sigma(V^2) a time budget reaches, and observation (the error of the consecutive scans' mean) is null";
 
 /// Why a reachable target-mode point has `sigma_reached` null.
-pub const TARGET_MODE: &str = "sigma_reached is null: it is the sigma(V^2) a time budget reaches, and this plan has a target instead; observation is null on the settings not solved for the mean of consecutive scans (all but the 5 fastest of each estimator by the per-scan estimate, whose scans assume independent scans)";
+pub const TARGET_MODE: &str = "sigma_reached is null: it is the sigma(V^2) a time budget reaches, and this plan has a target instead; observation is null on the settings not solved for the mean of consecutive scans (all but the 5 fastest of each estimator by the per-scan estimate, and those of the 5 whose noise alone needs longer than the best solved setting of their estimator: their scans assume independent scans)";
 
 /// Why a budget-mode point has the lower and noise-only times null.
 pub const BUDGET_MODE: &str = "time_lower_s and time_noise_only_s are null: they are the times to a target sigma(V^2), and this plan has a time budget instead; observation is null too (it is solved for a target)";

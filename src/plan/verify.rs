@@ -143,7 +143,17 @@ pub struct Verification {
     pub predicted_bias: f64,
     /// The achieved bias: achieved_mean − V²_sampled.
     pub achieved_bias: f64,
-    /// Whether the achieved σ's interval reaches down to the promise.
+    /// Achieved σ / promised σ: 1 when the promise is exact, below 1 when
+    /// it is pessimistic.
+    pub sigma_ratio: f64,
+    /// Its [`CONFIDENCE`] interval (the achieved σ's over the promise, the
+    /// promise being a fixed number once planned): a promise is
+    /// optimistic by the amount the lower end exceeds 1.
+    pub sigma_ratio_interval: [f64; 2],
+    /// Whether the achieved σ's interval reaches down to the promise
+    /// (`sigma_ratio_interval[0] <= 1`): not a proof that the promise
+    /// holds, only that the simulation does not contradict it; read the
+    /// ratio and its interval.
     pub sigma_kept: bool,
     /// Whether the achieved and predicted means agree within the interval
     /// of their difference (both standard errors).
@@ -201,6 +211,8 @@ pub fn verify(
         predicted_mean_stderr: o.bias_stderr,
         predicted_bias: o.bias,
         achieved_bias: s.mean - p.v_sq_sampled,
+        sigma_ratio: s.std / o.sigma,
+        sigma_ratio_interval: sigma_interval.map(|v| v / o.sigma),
         sigma_kept: sigma_interval[0] <= o.sigma,
         mean_kept: (s.mean - o.predicted_mean).abs() <= t * s.stderr_mean.hypot(o.bias_stderr),
     })

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 /// `oifits`: `--oifits`; `observing`: its target, date and site (the
 /// wrapper's keywords, as `--target-name` ... `--site-height-m`).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -36,6 +36,8 @@ pub(super) fn plan(
     verify_observations: Option<u64>,
     observing: Option<crate::python::oifits::ObservingKeywords>,
     force: bool,
+    magnitude: Option<(f64, String, f64)>,
+    frame_rate_hz: Option<f64>,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(crate::formats::oifits::check_fits_extension(path, "oifits"))?;
@@ -50,11 +52,24 @@ pub(super) fn plan(
     };
     let observing = crate::python::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
     let p = Physical::from_dict(physical)?;
+    let magnitude = match magnitude {
+        Some((magnitude, band, throughput)) => Some(crate::plan::photometry::Magnitude {
+            magnitude,
+            band: ok(crate::plan::photometry::Band2Mass::from_word(
+                "magnitude_band",
+                &band,
+            ))?,
+            aperture_m: p.aperture_m,
+            throughput,
+        }),
+        None => None,
+    };
     let req = PlanRequest {
         samples_per_fringe,
         photon_rate_per_s,
-        magnitude: None,
+        magnitude,
         dead_time_s,
+        frame_rate_hz,
         fringe_hz,
         stroke_um,
         target_sigma_v2,

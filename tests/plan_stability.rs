@@ -1,0 +1,162 @@
+//! The planner's promise as a property of a setting, and its detector:
+//!
+//! - **a setting's promise is its own**: the same setting in two grids
+//!   that differ in every other frequency gives the same bits (its piston
+//!   Monte Carlos are keyed by the setting and sized by the atmosphere, not
+//!   by the grid or by the n of another setting);
+//! - **the intervals hold the noise Monte Carlo's scatter**: under the
+//!   `counts` convention the time's interval is not zero wide even when the
+//!   piston is negligible;
+//! - **the detector's edge**: `--frame-rate-hz` bounds the grid at frame
+//!   rate / samples per fringe, and a recommendation there is said to be
+//!   the detector's edge; a bad rate exits 2 naming the flag, and a
+//!   library grid faster than the detector is refused naming `fringe_hz`.
+
+use crate::run::v2ref;
+use v2ref::conformance::estimate::BiasConvention;
+use v2ref::plan::{plan, PlanInputs, Target};
+use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+
+/// An H-band 2 mas disk on 100 m at 1e6 photons/s through 1 m apertures
+/// with a 25 m outer scale: noise and piston both matter.
+fn inputs(fringe_hz: Vec<f64>, bias: BiasConvention) -> PlanInputs {
+    PlanInputs {
+        instrument: Inputs {
+            spectrum: SpectrumInput::Flat {
+                wavelength_um: 1.65,
+                bandwidth_nm: 300.0,
+            },
+            source: SourceInput::Ud { diameter_mas: 2.0 },
+            baseline_m: 100.0,
+            ..Inputs::default()
+        },
+        atmosphere: PistonInputs {
+            wavelength_um: 1.65,
+            seeing_arcsec: 0.8,
+            outer_scale_m: Some(25.0),
+            aperture_m: 1.0,
+            ..PistonInputs::paper(1.0)
+        },
+        samples_per_fringe: 4.0,
+        photon_rate_per_s: 1e6,
+        dead_time_s: 0.0,
+        frame_rate_hz: None,
+        fringe_hz,
+        stroke_um: vec![16.0],
+        target: Target::SigmaV2(2e-3),
+        scans: 2000,
+        seed: 5,
+        diameter_err_mas: 0.0,
+        bias,
+    }
+}
+
+/// The point at 1000 Hz is the same, bit for bit, in a grid with 300 Hz
+/// and in one with 600 Hz beside it: per-scan terms, the observation's
+/// promise and its interval.
+#[test]
+fn a_settings_promise_does_not_depend_on_the_rest_of_the_grid() {
+    let a = plan(&inputs(vec![300.0, 1000.0], BiasConvention::Counts), 0, &|_| {}).unwrap();
+    let b = plan(&inputs(vec![600.0, 1000.0], BiasConvention::Counts), 1, &|_| {}).unwrap();
+    let at = |p: &v2ref::plan::Plan| {
+        p.points
+            .iter()
+            .filter(|q| q.fringe_hz == 1000.0)
+            .copied()
+            .collect::<Vec<_>>()
+    };
+    let (pa, pb) = (at(&a), at(&b));
+    assert_eq!(pa.len(), 2);
+    assert!(pa.iter().any(|p| p.observation.is_some()), "{pa:?}");
+    for (x, y) in pa.iter().zip(&pb) {
+        assert_eq!(x, y, "the same setting, two grids");
+        if let Some(o) = x.observation {
+            assert_eq!(o.sigma.to_bits(), y.observation.unwrap().sigma.to_bits());
+        }
+    }
+}
+
+/// Under `counts` the noise per scan comes from a Monte Carlo: its
+/// interval enters the time's, so no solved point has a zero-wide one.
+#[test]
+fn the_noise_monte_carlo_widens_the_time_interval() {
+    let p = plan(&inputs(vec![1000.0], BiasConvention::Counts), 0, &|_| {}).unwrap();
+    let solved: Vec<_> = p.points.iter().filter(|q| q.observation.is_some()).collect();
+    assert!(!solved.is_empty());
+    for q in solved {
+        let o = q.observation.unwrap();
+        assert!(o.sigma_noise_per_scan_lower < o.sigma_noise_per_scan, "{o:?}");
+        assert!(q.time_lower_s.unwrap() < q.time_s.unwrap(), "{q:?}");
+    }
+}
+
+fn plan_json(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "plan",
+        "--wavelength-um",
+        "1.65",
+        "--bandwidth-nm",
+        "300",
+        "--diameter-mas",
+        "1",
+        "--baseline-m",
+        "100",
+        "--outer-scale-m",
+        "25",
+        "--photon-rate-per-s",
+        "1e8",
+        "--stroke-um",
+        "16",
+        "--scans",
+        "500",
+        "--quiet",
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let (code, out, err) = v2ref(&args);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+/// A bright star wants the fastest fringe: with a 6 kHz detector at 4
+/// samples per fringe the grid stops at 1500 Hz, which the plan
+/// recommends and calls the detector's edge; a given grid is cut there
+/// and gains the edge.
+#[test]
+fn the_frame_rate_bounds_the_grid_and_names_the_detectors_edge() {
+    let j = plan_json(&["--frame-rate-hz", "6000", "--fringe-hz", "200:1500:4:log"]);
+    let grid: Vec<f64> = serde_json::from_value(j["inputs"]["fringe_hz"].clone()).unwrap();
+    assert_eq!(grid.last(), Some(&1500.0), "{grid:?}");
+    assert_eq!(j["recommended"]["fringe_hz"].as_f64(), Some(1500.0));
+    assert_eq!(j["at_detector_edge"].as_bool(), Some(true));
+    let note = j["grid_edge"].as_str().unwrap();
+    assert!(note.contains("detector's edge"), "{note}");
+    // A grid beyond the detector: cut, and its top is the edge.
+    let j = plan_json(&["--frame-rate-hz", "6000", "--fringe-hz", "500", "--fringe-hz", "3000"]);
+    let grid: Vec<f64> = serde_json::from_value(j["inputs"]["fringe_hz"].clone()).unwrap();
+    assert_eq!(grid, vec![500.0, 1500.0]);
+    // Without a detector, the top of the grid is the grid's corner.
+    let j = plan_json(&["--fringe-hz", "200:1500:4:log"]);
+    assert_eq!(j["at_detector_edge"].as_bool(), Some(false));
+    let note = j["grid_edge"].as_str().unwrap();
+    assert!(note.contains("top of the grid") && note.contains("--frame-rate-hz"), "{note}");
+}
+
+/// Bad rates exit 2 with one line naming the flag and its range; the
+/// library refuses a grid faster than its detector, naming `fringe_hz`.
+#[test]
+fn a_bad_frame_rate_is_refused_by_name() {
+    for bad in ["0", "-5", "1e10", "nan"] {
+        let (code, out, err) = v2ref(&["plan", "--frame-rate-hz", bad, "--quiet"]);
+        assert_eq!(code, 2, "{bad}: {err}");
+        assert!(out.is_empty());
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains("--frame-rate-hz"), "{err}");
+    }
+    let i = PlanInputs {
+        frame_rate_hz: Some(4000.0),
+        ..inputs(vec![500.0, 2000.0], BiasConvention::Model)
+    };
+    let e = plan(&i, 0, &|_| {}).unwrap_err().to_string();
+    assert!(e.contains("fringe_hz") && e.contains("frame_rate_hz"), "{e}");
+}
