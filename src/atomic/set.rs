@@ -22,8 +22,8 @@
 //! is repaired by a reader: the next writer of the set replaces it whole.
 
 use super::TempTarget;
+pub use crate::conformance::sidecar::Member;
 use crate::{Error, Result};
-use serde::{Deserialize, Serialize};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
@@ -176,21 +176,6 @@ fn half_placed(failed: &TempTarget, k: usize, e: Error) -> Error {
             "{e}; {k} file(s) of the set before it were replaced already, and readers of the set refuse it: run the writer again"
         ),
     }
-}
-
-/// One member of a set as its sidecar lists it: the file's name (in the
-/// sidecar's folder, lossy when it is not UTF-8), its size and its
-/// checksum (FNV-1a, 64 bits, of its bytes: it tells a file from another
-/// file, it does not authenticate one).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct Member {
-    /// The file name, without a folder.
-    pub name: String,
-    /// Its size, bytes.
-    pub bytes: u64,
-    /// FNV-1a (64 bits) of its bytes, 16 hexadecimal digits.
-    pub fnv1a64: String,
 }
 
 /// The most members a sidecar may list (a v2ref set has at most 4).

@@ -50,7 +50,7 @@ pub struct Sidecar {
     /// Absent in sidecars written before it and in the conformance
     /// vectors.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub members: Option<Vec<crate::atomic::set::Member>>,
+    pub members: Option<Vec<Member>>,
 }
 
 /// The files a set is stored in, relative to the sidecar's folder.
@@ -231,4 +231,19 @@ impl Sidecar {
             .iter()
             .find(|c| c.bias == bias)
     }
+}
+
+/// One file of a set as its sidecar lists it: the file's name (in the
+/// sidecar's folder, lossy when it is not UTF-8), its size and its
+/// checksum (FNV-1a, 64 bits, of its bytes: it tells a file from another
+/// file, it does not authenticate one).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[non_exhaustive]
+pub struct Member {
+    /// The file name, without a folder.
+    pub name: String,
+    /// Its size, bytes.
+    pub bytes: u64,
+    /// FNV-1a (64 bits) of its bytes, 16 hexadecimal digits.
+    pub fnv1a64: String,
 }
