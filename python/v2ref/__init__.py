@@ -121,7 +121,7 @@ def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[st
         if kind == "path":
             if not isinstance(v, (str, bytes, _os.PathLike)):
                 raise TypeError(f"{k}: {v!r} is not a path")
-            v = _os.fsdecode(v)
+            v = _utf8_path(k, v)
         elif kind == "word":
             v = _word(k, v)
         elif kind == "int":
@@ -208,6 +208,20 @@ def _vector(name: str, x: Any) -> _np.ndarray:
     return _contiguous(name, a, "a 1-D array (one value per row)")
 
 
+def _utf8_path(name: str, value: Any) -> str:
+    """The path `value` (str, bytes, os.PathLike) as text for the readers
+    that take one: a path whose bytes are not UTF-8 is refused naming the
+    keyword (the extension takes text paths), not left to a codec error."""
+    path = _os.fsdecode(value)
+    try:
+        path.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(
+            f"{name}: {value!r} is not a UTF-8 path; this keyword takes a path of UTF-8 text (rename the file)"
+        ) from None
+    return path
+
+
 def _sidecar_arg(sidecar: Any) -> Tuple[Any, str]:
     """(the sidecar as the extension takes it, name for messages) of a
     sidecar given as a dict (passed as a dict) or a path (the file's text)."""
@@ -215,11 +229,13 @@ def _sidecar_arg(sidecar: Any) -> Tuple[Any, str]:
         return dict(sidecar), "<dict>"
     if isinstance(sidecar, (str, bytes, _os.PathLike)):
         path = _os.fsdecode(sidecar)
+        # The name in messages: bytes that are not UTF-8 as U+FFFD.
+        name = path.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
         try:
             with open(path, encoding="utf-8") as f:
-                return f.read(), path
+                return f.read(), name
         except OSError as e:
-            raise OSError(e.errno, f"sidecar: {path}: {e.strerror}") from None
+            raise OSError(e.errno, f"sidecar: {name}: {e.strerror}") from None
     raise TypeError(
         f"sidecar: {type(sidecar).__name__} is not a sidecar; give the dict returned by synthesize() or the path of a SET.json"
     )
@@ -531,6 +547,10 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
         )
     if "v1_sq" not in names and "v2_sq" not in names:
         raise ValueError(f"columns: no column named v1_sq or v2_sq ({','.join(names)}); one of them is needed")
+    for k in ("v1_sq", "v2_sq"):
+        if names.count(k) > 1:
+            # As the CLI's --columns: which of the two is scored would be a guess.
+            raise ValueError(f"columns: {k} is named twice ({','.join(names)}); name each column once")
     return tuple(
         _vector(f"estimates[{k!r}]", a[:, names.index(k)]) if k in names else None
         for k in ("v1_sq", "v2_sq")

@@ -10,11 +10,12 @@ from typing import Any, Dict, List, Optional
 import numpy as _np
 
 from . import _v2ref
+from . import _utf8_path
 
 
 def _path(name: str, value: Any) -> str:
     if isinstance(value, (str, bytes, _os.PathLike)):
-        return _os.fsdecode(value)
+        return _utf8_path(name, value)
     raise TypeError(f"{name}: {type(value).__name__} is not a path")
 
 

@@ -190,6 +190,7 @@ pub(super) fn synthesize<'py>(
         reference_blocks,
     ))?;
     let n = inputs.samples;
+    check_array_fits(rows, n)?;
     let reference_rows = reference_blocks
         * crate::conformance::truth::reference_rows_per_block(
             rows,
@@ -221,6 +222,26 @@ pub(super) fn synthesize<'py>(
     }
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
     Ok((array.into_any(), to_py(py, &sidecar)?))
+}
+
+/// Refuses, before anything is allocated, an answer of `rows` rows of `n`
+/// samples (float64, held whole as the returned array) larger than the
+/// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
+/// within the documented bounds, 60 million rows of 32 samples (15 GB)
+/// aborted the interpreter when the allocation failed.
+fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
+    let budget = ok(crate::formats::memory_budget())?;
+    let need = rows.saturating_mul(n as u64).saturating_mul(8);
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(pyo3::exceptions::PyMemoryError::new_err(format!(
+        "rows: {rows} rows of {n} samples take {:.2} GiB, more than the memory budget of {:.2} GiB \
+         (V2REF_MAX_MEMORY_GIB, else half the physical memory); write fewer rows, or raise the budget",
+        gib(need),
+        gib(budget)
+    )))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.
