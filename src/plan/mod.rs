@@ -58,9 +58,9 @@
 
 pub(crate) mod answer;
 mod candidates;
+mod correlation;
 #[cfg(feature = "internals")]
 pub mod figure;
-mod correlation;
 pub(crate) mod observation;
 pub mod photometry;
 mod reach;
