@@ -56,8 +56,18 @@ fn inputs(fringe_hz: Vec<f64>, bias: BiasConvention) -> PlanInputs {
 /// promise and its interval.
 #[test]
 fn a_settings_promise_does_not_depend_on_the_rest_of_the_grid() {
-    let a = plan(&inputs(vec![300.0, 1000.0], BiasConvention::Counts), 0, &|_| {}).unwrap();
-    let b = plan(&inputs(vec![600.0, 1000.0], BiasConvention::Counts), 1, &|_| {}).unwrap();
+    let a = plan(
+        &inputs(vec![300.0, 1000.0], BiasConvention::Counts),
+        0,
+        &|_| {},
+    )
+    .unwrap();
+    let b = plan(
+        &inputs(vec![600.0, 1000.0], BiasConvention::Counts),
+        1,
+        &|_| {},
+    )
+    .unwrap();
     let at = |p: &v2ref::plan::Plan| {
         p.points
             .iter()
@@ -81,11 +91,18 @@ fn a_settings_promise_does_not_depend_on_the_rest_of_the_grid() {
 #[test]
 fn the_noise_monte_carlo_widens_the_time_interval() {
     let p = plan(&inputs(vec![1000.0], BiasConvention::Counts), 0, &|_| {}).unwrap();
-    let solved: Vec<_> = p.points.iter().filter(|q| q.observation.is_some()).collect();
+    let solved: Vec<_> = p
+        .points
+        .iter()
+        .filter(|q| q.observation.is_some())
+        .collect();
     assert!(!solved.is_empty());
     for q in solved {
         let o = q.observation.unwrap();
-        assert!(o.sigma_noise_per_scan_lower < o.sigma_noise_per_scan, "{o:?}");
+        assert!(
+            o.sigma_noise_per_scan_lower < o.sigma_noise_per_scan,
+            "{o:?}"
+        );
         assert!(q.time_lower_s.unwrap() < q.time_s.unwrap(), "{q:?}");
     }
 }
@@ -132,14 +149,24 @@ fn the_frame_rate_bounds_the_grid_and_names_the_detectors_edge() {
     let note = j["grid_edge"].as_str().unwrap();
     assert!(note.contains("detector's edge"), "{note}");
     // A grid beyond the detector: cut, and its top is the edge.
-    let j = plan_json(&["--frame-rate-hz", "6000", "--fringe-hz", "500", "--fringe-hz", "3000"]);
+    let j = plan_json(&[
+        "--frame-rate-hz",
+        "6000",
+        "--fringe-hz",
+        "500",
+        "--fringe-hz",
+        "3000",
+    ]);
     let grid: Vec<f64> = serde_json::from_value(j["inputs"]["fringe_hz"].clone()).unwrap();
     assert_eq!(grid, vec![500.0, 1500.0]);
     // Without a detector, the top of the grid is the grid's corner.
     let j = plan_json(&["--fringe-hz", "200:1500:4:log"]);
     assert_eq!(j["at_detector_edge"].as_bool(), Some(false));
     let note = j["grid_edge"].as_str().unwrap();
-    assert!(note.contains("top of the grid") && note.contains("--frame-rate-hz"), "{note}");
+    assert!(
+        note.contains("top of the grid") && note.contains("--frame-rate-hz"),
+        "{note}"
+    );
 }
 
 /// Bad rates exit 2 with one line naming the flag and its range; the
@@ -158,5 +185,8 @@ fn a_bad_frame_rate_is_refused_by_name() {
         ..inputs(vec![500.0, 2000.0], BiasConvention::Model)
     };
     let e = plan(&i, 0, &|_| {}).unwrap_err().to_string();
-    assert!(e.contains("fringe_hz") && e.contains("frame_rate_hz"), "{e}");
+    assert!(
+        e.contains("fringe_hz") && e.contains("frame_rate_hz"),
+        "{e}"
+    );
 }

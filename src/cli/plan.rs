@@ -363,7 +363,11 @@ fn setting(p: &PlanPoint, inputs: &PlanInputs) {
         p.stroke_um,
         p.samples,
         inputs.samples_per_fringe * p.fringe_hz,
-        human_duration(p.scan_time_s),
+        if p.scan_time_s < 1.0 {
+            format!("{:.3} ms", p.scan_time_s * 1e3)
+        } else {
+            human_duration(p.scan_time_s)
+        },
     );
 }
 

@@ -62,7 +62,10 @@ fn sigma_noise_per_scan(inputs: &PlanInputs, noisy: &Model, p: &PlanPoint) -> Re
         Estimator::V2 => run.v2_sq,
     };
     let t = replicated_t_quantile(super::CONFIDENCE, 2 * size.trials as usize);
-    Ok([(s.std - t * s.stderr_std).max(0.0), s.std + t * s.stderr_std])
+    Ok([
+        (s.std - t * s.stderr_std).max(0.0),
+        s.std + t * s.stderr_std,
+    ])
 }
 
 /// The contiguous scans of one setting: the same sequences whatever the
@@ -148,7 +151,10 @@ struct Setting {
 /// The least time for σ(V²) = `target` from noise σ per scan
 /// `noise_lower` alone, one scan and its dead time being `period_s`.
 fn least_time_s(noise_lower: f64, target: f64, period_s: f64) -> f64 {
-    (noise_lower * noise_lower / (target * target)).ceil().max(1.0) * period_s
+    (noise_lower * noise_lower / (target * target))
+        .ceil()
+        .max(1.0)
+        * period_s
 }
 
 /// Re-solves each estimator's [`CANDIDATES`] fastest points (target mode),

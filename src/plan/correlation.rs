@@ -138,7 +138,8 @@ impl ScanCorrelation {
                     .take(size)
                     .collect();
                 forward.process(&mut buf);
-                buf.iter_mut().for_each(|c| *c = Complex64::new(c.norm_sqr(), 0.0));
+                buf.iter_mut()
+                    .for_each(|c| *c = Complex64::new(c.norm_sqr(), 0.0));
                 inverse.process(&mut buf);
                 let gamma = |k: usize| buf[k].re / size as f64 / (length - k) as f64;
                 Prefix::of(&(0..=most_lag).map(gamma).collect::<Vec<_>>())
@@ -249,7 +250,8 @@ mod tests {
     /// (1/n) [(1+ρ)/(1−ρ) − 2ρ(1−ρⁿ)/(n(1−ρ)²)].
     fn exact(rho: f64, n: u64) -> f64 {
         let n = n as f64;
-        ((1.0 + rho) / (1.0 - rho) - 2.0 * rho * (1.0 - rho.powf(n)) / (n * (1.0 - rho).powi(2))) / n
+        ((1.0 + rho) / (1.0 - rho) - 2.0 * rho * (1.0 - rho.powf(n)) / (n * (1.0 - rho).powi(2)))
+            / n
     }
 
     /// The estimate agrees with the closed form within 5 standard errors
@@ -270,7 +272,10 @@ mod tests {
             let se = v.var_stderr.hypot(v.tail_stderr);
             let z = (v.var + v.tail - truth) / se;
             assert!(z.abs() < 5.0, "n = {n}: {} vs {truth} (z = {z})", v.var);
-            assert!(5.0 * se < 0.02 * truth, "n = {n}: no power ({se} of {truth})");
+            assert!(
+                5.0 * se < 0.02 * truth,
+                "n = {n}: no power ({se} of {truth})"
+            );
             if n <= 17 {
                 assert_eq!(v.tail, 0.0, "n = {n}");
             } else {

@@ -58,10 +58,10 @@
 
 pub(crate) mod answer;
 mod candidates;
+mod correlation;
 #[cfg(feature = "internals")]
 pub mod figure;
 pub mod instrument;
-mod correlation;
 pub(crate) mod observation;
 pub mod photometry;
 mod reach;
