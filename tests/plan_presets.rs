@@ -89,14 +89,16 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
     let i = instrument("vlti-pionier").unwrap();
     let (kept_p, kept_req) = applied(i);
     for key in PRESET_KEYS {
-        let mut p = Physical::default();
-        let mut req = request(Band2Mass::H);
         // The caller's own values, as the flags would have set them.
-        p.wavelength_um = 1.6;
-        p.bandwidth_nm = 100.0;
-        p.aperture_m = 8.2;
-        p.baseline_m = Some(33.0);
-        p.read_noise = 7.0;
+        let mut p = Physical {
+            wavelength_um: 1.6,
+            bandwidth_nm: 100.0,
+            aperture_m: 8.2,
+            baseline_m: Some(33.0),
+            read_noise: 7.0,
+            ..Physical::default()
+        };
+        let mut req = request(Band2Mass::H);
         req.dead_time_s = 0.0;
         req.fringe_hz = Vec::new();
         if let Some(m) = req.magnitude.as_mut() {
@@ -130,8 +132,10 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
         assert_eq!(m.aperture_m, p.aperture_m, "{key} given");
     }
     // A baseline given as a spatial frequency is a baseline given.
-    let mut p = Physical::default();
-    p.spatial_freq_cpas = Some(40.0);
+    let mut p = Physical {
+        spatial_freq_cpas: Some(40.0),
+        ..Physical::default()
+    };
     i.apply(&mut p, &mut request(Band2Mass::H), &|k| {
         k == "spatial_freq_cpas"
     });

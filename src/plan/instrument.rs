@@ -185,6 +185,7 @@ pub const PRESET_KEYS: [&str; 8] = [
     "fringe_hz",
 ];
 
+#[cfg(feature = "internals")]
 impl Instrument {
     /// Sets in `p` and `req` every value of this preset whose parameter
     /// `given` says the caller did not give ([`PRESET_KEYS`]; a baseline
