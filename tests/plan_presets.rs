@@ -100,6 +100,7 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
         };
         let mut req = request(Band2Mass::H);
         req.dead_time_s = 0.0;
+        req.frame_rate_hz = Some(500.0);
         req.fringe_hz = Vec::new();
         if let Some(m) = req.magnitude.as_mut() {
             m.throughput = 0.3;
@@ -123,6 +124,12 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
             ("dead_time_s", req.dead_time_s, 0.0, kept_req.dead_time_s),
             ("throughput", m.throughput, 0.3, i.throughput),
             ("fringe_hz", req.fringe_hz[0], 123.0, kept_req.fringe_hz[0]),
+            (
+                "frame_rate_hz",
+                req.frame_rate_hz.unwrap(),
+                500.0,
+                i.frame_rate_hz,
+            ),
         ];
         for (name, value, own, preset) in got {
             let want = if name == key { own } else { preset };

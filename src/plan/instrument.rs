@@ -174,7 +174,7 @@ pub fn fringe_grid_hz(fringe_hz_max: f64) -> Vec<f64> {
 
 /// The inputs a preset sets, by the name of the parameter that overrides
 /// each (the library's and Python's keyword; the CLI's flag with `-`).
-pub const PRESET_KEYS: [&str; 8] = [
+pub const PRESET_KEYS: [&str; 9] = [
     "wavelength_um",
     "bandwidth_nm",
     "aperture_m",
@@ -183,6 +183,7 @@ pub const PRESET_KEYS: [&str; 8] = [
     "dead_time_s",
     "throughput",
     "fringe_hz",
+    "frame_rate_hz",
 ];
 
 #[cfg(feature = "internals")]
@@ -190,7 +191,7 @@ impl Instrument {
     /// Sets in `p` and `req` every value of this preset whose parameter
     /// `given` says the caller did not give ([`PRESET_KEYS`]; a baseline
     /// given as `spatial_freq_cpas` counts as given): the band, aperture,
-    /// baseline and read noise; the dead time; the throughput of a
+    /// baseline and read noise; the dead time and the detector's frame rate; the throughput of a
     /// magnitude's photon rate (and its apertures, those of `p`); and,
     /// without a fringe-frequency grid, one whose top is the fastest
     /// fringe the detector samples ([`Instrument::fringe_hz_max`]).
@@ -219,6 +220,10 @@ impl Instrument {
         }
         if set("dead_time_s") {
             req.dead_time_s = self.dead_time_s;
+        }
+        // The detector's edge bounds the grid (given or the preset's).
+        if set("frame_rate_hz") {
+            req.frame_rate_hz = Some(self.frame_rate_hz);
         }
         if let Some(m) = req.magnitude.as_mut() {
             m.aperture_m = p.aperture_m;
