@@ -22,6 +22,7 @@ fn request(band: Band2Mass) -> PlanRequest {
             throughput: f64::NAN,
         }),
         dead_time_s: 0.0,
+        frame_rate_hz: None,
         fringe_hz: Vec::new(),
         stroke_um: Vec::new(),
         target_sigma_v2: Some(1e-3),
