@@ -243,7 +243,7 @@ pub struct ObservationError {
     /// Independent piston sequences simulated ([`SEQUENCES`]).
     pub sequences: usize,
     /// Consecutive scans simulated in each sequence (L: they span
-    /// [`super::correlation::SPAN_CORRELATION_TIMES`] correlation times
+    /// 8 correlation times B/v, the plan's correlation module's span,
     /// where [`MAX_OBSERVATION_SAMPLES`] allows, whatever n).
     pub scans_per_sequence: u64,
     /// Disjoint blocks of n consecutive scans the sequences hold (0 when n
