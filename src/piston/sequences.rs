@@ -128,7 +128,7 @@ const OBSERVATION_LEAD: usize = 2;
 /// Samples of the piston sequence an observation reading `read` samples is
 /// cut from: [`OBSERVATION_SPAN`] times `read` and at least
 /// [`SPAN_CORRELATION_TIMES`] correlation times, within [`MAX_SERIES`].
-pub fn observation_sequence_samples(
+pub(crate) fn observation_sequence_samples(
     spectrum: &PistonSpectrum,
     setup: &ScanSetup,
     read: usize,
