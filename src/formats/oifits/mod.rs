@@ -3,7 +3,7 @@
 //! A8): squared visibilities written as OIFITS v2 (module `write`) and read
 //! from OIFITS v1 or v2 (`read`).
 //!
-//! **Writing is safe Rust** ([`fits_write`]): the cards laid out as
+//! **Writing is safe Rust** (`fits_write.rs`): the cards laid out as
 //! cfitsio (NASA HEASARC's reference implementation, which wrote these
 //! files before) lays them out, binary tables, `CHECKSUM` and `DATASUM`; no
 //! C compiler. A file is built in memory and written with the atomic
