@@ -52,6 +52,7 @@ mod plan;
 mod plan_cases;
 mod plan_observation;
 mod properties;
+mod public_misuse;
 mod readme;
 mod reproduce;
 mod robustness_cli;

@@ -195,6 +195,12 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
             return Err(bad(what, v));
         }
     }
+    if truth.var < 0.0 {
+        return Err(Error::Invalid {
+            param: "truth",
+            reason: format!("var is {}; a variance is >= 0", truth.var),
+        });
+    }
     if truth.stderr_dof == Some(0) {
         return Err(Error::Invalid {
             param: "truth",
