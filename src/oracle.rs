@@ -115,7 +115,8 @@ impl Set {
     /// size (the default reference run: 8 blocks, 16 with piston). The
     /// same bits as `v2ref synth` of the same inputs, rows and seed,
     /// whatever the thread count; refuses what `synth` refuses (invalid
-    /// inputs, a set too small or too large).
+    /// inputs, a set too small or too large) and a set whose values would
+    /// take more than half the physical memory.
     pub fn synthesize(inputs: &Inputs, rows: u64, seed: u64) -> Result<Set> {
         let blocks = default_reference_blocks(inputs.piston.is_some());
         Set::synthesize_with_blocks(inputs, rows, seed, blocks, "set")
@@ -130,6 +131,7 @@ impl Set {
     ) -> Result<Set> {
         let model = Model::new(inputs)?;
         crate::bounds::check_set_size(rows, inputs.samples, reference_blocks)?;
+        check_set_memory(rows, inputs.samples)?;
         let size = SetSize {
             rows,
             seed,
@@ -319,6 +321,48 @@ impl<'a> Estimates<'a> {
             ..self
         }
     }
+}
+
+/// Refuses a set whose values (`rows × samples` float64, held in memory)
+/// would take more than half the physical memory: the allocation would
+/// otherwise abort the process, or swap for hours.
+fn check_set_memory(rows: u64, samples: usize) -> Result<()> {
+    let need = rows.saturating_mul(samples as u64).saturating_mul(8);
+    let Some(budget) = physical_memory().map(|m| m / 2) else {
+        return Ok(());
+    };
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(Error::Invalid {
+        param: "rows",
+        reason: format!(
+            "{rows} rows of {samples} samples take {:.2} GiB, more than half the physical memory ({:.2} GiB); make the set smaller",
+            gib(need),
+            gib(budget)
+        ),
+    })
+}
+
+/// The machine's physical memory, bytes (None where unknown).
+#[cfg(unix)]
+fn physical_memory() -> Option<u64> {
+    // SAFETY: sysconf only reads a system constant.
+    let (pages, size) = unsafe {
+        (
+            libc::sysconf(libc::_SC_PHYS_PAGES),
+            libc::sysconf(libc::_SC_PAGESIZE),
+        )
+    };
+    u64::try_from(pages)
+        .ok()?
+        .checked_mul(u64::try_from(size).ok()?)
+}
+
+#[cfg(not(unix))]
+fn physical_memory() -> Option<u64> {
+    None
 }
 
 /// The catalogue's vector `name`.

@@ -155,7 +155,8 @@ proptest! {
     fn any_row_is_estimated_or_refused(row in prop::collection::vec(prop::num::f64::ANY, 0..40)) {
         match estimator().try_estimate(&row) {
             Ok(e) => prop_assert!(row.len() == 16 && [e.v1_sq, e.v2_sq, e.v1_sq_raw].iter().all(|x| x.is_finite())),
-            Err(_) => prop_assert!(row.len() != 16 || row.iter().any(|x| !x.is_finite()) || row.iter().all(|&x| x == 0.0)),
+            // (Values near 1e154 and above overflow the squares: refused too.)
+            Err(_) => prop_assert!(row.len() != 16 || row.iter().any(|x| !x.is_finite() || x.abs() > 1e150) || row.iter().all(|&x| x == 0.0)),
         }
     }
 
@@ -214,4 +215,28 @@ proptest! {
             prop_assert!(r.estimators.iter().all(|s| s.score.z_mean.is_finite() && s.score.z_var.is_finite()));
         }
     }
+}
+
+/// A set whose values would take more than half the machine's memory is
+/// refused before anything is allocated (checked where the largest set
+/// the bounds accept, 2^31 values = 16 GiB, exceeds it).
+#[test]
+fn a_set_larger_than_half_the_memory_is_refused_at_once() {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").unwrap_or_default();
+    let kib: u64 = meminfo
+        .lines()
+        .find_map(|l| l.strip_prefix("MemTotal:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+        .unwrap_or(u64::MAX / 1024);
+    let (rows, samples) = (1u64 << 21, 1024usize);
+    if rows * samples as u64 * 8 <= kib * 1024 / 2 {
+        eprintln!("this machine holds 16 GiB in half its memory: not checked");
+        return;
+    }
+    let inputs = Inputs {
+        samples,
+        ..Inputs::default()
+    };
+    let e = Set::synthesize(&inputs, rows, 1).unwrap_err();
+    assert!(param(&e).contains("memory"), "{e}");
 }

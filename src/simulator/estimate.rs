@@ -265,8 +265,8 @@ impl RowEstimator {
     }
 
     /// The estimates of one row; refuses (parameter `row`) a row that does
-    /// not hold N samples, a value that is not a finite number and a dark
-    /// row ([`RowFault`]).
+    /// not hold N samples, a value that is not a finite number, a dark row
+    /// ([`RowFault`]) and values so large that the estimates overflow.
     pub fn try_estimate(&self, row: &[f64]) -> Result<RowEstimate> {
         let n = self.samples();
         if row.len() != n {
@@ -281,7 +281,22 @@ impl RowEstimator {
                 reason: fault.reason(),
             });
         }
-        Ok(self.estimate_row(row, &mut Vec::new(), &mut Vec::new()))
+        let e = self.estimate_row(row, &mut Vec::new(), &mut Vec::new());
+        let all = [
+            e.v1_sq_raw,
+            e.v2_sq_raw,
+            e.v1_sq_bias,
+            e.v2_sq_bias,
+            e.v1_sq,
+            e.v2_sq,
+        ];
+        if all.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Invalid {
+                param: "row",
+                reason: "its values are so large that the estimates overflow a float64".into(),
+            });
+        }
+        Ok(e)
     }
 
     /// The estimates of `row`; `buf` (the modulated samples of a row of
