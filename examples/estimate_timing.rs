@@ -103,7 +103,7 @@ fn file(args: &[String]) -> Result<(), Failure> {
     out.extend_from_slice(b"\x93NUMPY\x01\x00");
     out.extend_from_slice(&((dict.len() + pad + 1) as u16).to_le_bytes());
     out.extend_from_slice(dict.as_bytes());
-    out.extend(std::iter::repeat(b' ').take(pad));
+    out.extend(std::iter::repeat_n(b' ', pad));
     out.push(b'\n');
     for (v1, v2) in raw {
         for v in [v1, v2, 0.0, 0.0, v1, v2] {

@@ -40,7 +40,7 @@
 //! regenerated bit for bit.
 //!
 //! ```
-//! use v2ref::oracle::{BiasConvention, BinWindow, Set};
+//! use v2ref::oracle::{BiasConvention, BinWindow, Estimates, Set};
 //!
 //! let set = Set::golden("noise_gaussian")?;       // golden/vectors/noise_gaussian, in memory
 //! let (window, bias) = (BinWindow::Positive, BiasConvention::Model);
@@ -49,7 +49,8 @@
 //!     .iter()
 //!     .map(|r| r.v1_sq)
 //!     .collect();
-//! assert!(set.score(window, bias, Some(&mine), None)?.pass);
+//! let report = set.score(window, bias, Estimates::default().v1_sq(&mine))?;
+//! assert!(report.pass, "{report}");
 //! # Ok::<(), v2ref::Error>(())
 //! ```
 //!

@@ -24,7 +24,7 @@
 //!    estimator's mean or variance.
 //!
 //! ```
-//! use v2ref::oracle::{BiasConvention, BinWindow, Inputs, Set, SourceInput};
+//! use v2ref::oracle::{BiasConvention, BinWindow, Estimates, Inputs, Set, SourceInput};
 //!
 //! // 2000 scans of 32 samples of a V = 0.6 point source in K, photon noise only.
 //! let source = SourceInput::Point;
@@ -37,8 +37,8 @@
 //! let v1_sq: Vec<f64> = rows.iter().map(|r| r.v1_sq).collect();
 //! let v2_sq: Vec<f64> = rows.iter().map(|r| r.v2_sq).collect();
 //!
-//! let report = set.score(window, bias, Some(&v1_sq), Some(&v2_sq))?;
-//! assert!(report.pass, "{report:?}");
+//! let report = set.score(window, bias, Estimates::default().v1_sq(&v1_sq).v2_sq(&v2_sq))?;
+//! assert!(report.pass, "{report}");
 //! // The power of this set: the smallest relative error of the mean of V1² it catches.
 //! let power = report.estimators[0].score.min_detectable_rel_bias_mean;
 //! assert!(power < 0.05, "{power}");
@@ -46,7 +46,7 @@
 //! // A pipeline that forgets the photon-noise bias is rejected.
 //! let divisor = set.closed_form(window)?.calibration.v1_sq;
 //! let forgot: Vec<f64> = rows.iter().map(|r| r.v1_sq_raw / divisor).collect();
-//! assert!(!set.score(window, bias, Some(&forgot), None)?.pass);
+//! assert!(!set.score(window, bias, Estimates::default().v1_sq(&forgot))?.pass);
 //! # Ok::<(), v2ref::Error>(())
 //! ```
 
@@ -115,7 +115,8 @@ impl Set {
     /// size (the default reference run: 8 blocks, 16 with piston). The
     /// same bits as `v2ref synth` of the same inputs, rows and seed,
     /// whatever the thread count; refuses what `synth` refuses (invalid
-    /// inputs, a set too small or too large).
+    /// inputs, a set too small or too large) and a set whose values would
+    /// take more than half the physical memory.
     pub fn synthesize(inputs: &Inputs, rows: u64, seed: u64) -> Result<Set> {
         let blocks = default_reference_blocks(inputs.piston.is_some());
         Set::synthesize_with_blocks(inputs, rows, seed, blocks, "set")
@@ -130,6 +131,7 @@ impl Set {
     ) -> Result<Set> {
         let model = Model::new(inputs)?;
         crate::bounds::check_set_size(rows, inputs.samples, reference_blocks)?;
+        check_set_memory(rows, inputs.samples)?;
         let size = SetSize {
             rows,
             seed,
@@ -278,19 +280,89 @@ impl Set {
         RowEstimator::new(&self.model, window, bias, true)?.estimate_rows(&self.values, 0)
     }
 
-    /// Scores a pipeline's per-row V1² and V2² (either may be None; one
-    /// value per row, in row order) against the truth of `window` under
-    /// `bias`, at [`DEFAULT_ALPHA`] shared by the tests made.
+    /// Scores a pipeline's per-row V1² and V2² (each named in
+    /// `estimates`, either or both; one value per row, in row order)
+    /// against the truth of `window` under `bias`, at [`DEFAULT_ALPHA`]
+    /// shared by the tests made. Refuses estimates with neither.
     pub fn score(
         &self,
         window: BinWindow,
         bias: BiasConvention,
-        v1_sq: Option<&[f64]>,
-        v2_sq: Option<&[f64]>,
+        estimates: Estimates<'_>,
     ) -> Result<ScoreReport> {
         let truth = self.expected(window, bias)?;
-        score_report(v1_sq, v2_sq, truth, self.len() as u64, DEFAULT_ALPHA)
+        let rows = self.len() as u64;
+        score_report(estimates.v1_sq, estimates.v2_sq, truth, rows, DEFAULT_ALPHA)
     }
+}
+
+/// A pipeline's per-row estimates for [`Set::score`], each given by name
+/// (`Estimates::default().v1_sq(&a).v2_sq(&b)`), so that V1² and V2²
+/// cannot be swapped by their position.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Estimates<'a> {
+    v1_sq: Option<&'a [f64]>,
+    v2_sq: Option<&'a [f64]>,
+}
+
+impl<'a> Estimates<'a> {
+    /// With the normalized V1² of every row.
+    pub fn v1_sq(self, v1_sq: &'a [f64]) -> Self {
+        Estimates {
+            v1_sq: Some(v1_sq),
+            ..self
+        }
+    }
+
+    /// With the normalized V2² of every row.
+    pub fn v2_sq(self, v2_sq: &'a [f64]) -> Self {
+        Estimates {
+            v2_sq: Some(v2_sq),
+            ..self
+        }
+    }
+}
+
+/// Refuses a set whose values (`rows × samples` float64, held in memory)
+/// would take more than half the physical memory: the allocation would
+/// otherwise abort the process, or swap for hours.
+fn check_set_memory(rows: u64, samples: usize) -> Result<()> {
+    let need = rows.saturating_mul(samples as u64).saturating_mul(8);
+    let Some(budget) = physical_memory().map(|m| m / 2) else {
+        return Ok(());
+    };
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(Error::Invalid {
+        param: "rows",
+        reason: format!(
+            "{rows} rows of {samples} samples take {:.2} GiB, more than half the physical memory ({:.2} GiB); make the set smaller",
+            gib(need),
+            gib(budget)
+        ),
+    })
+}
+
+/// The machine's physical memory, bytes (None where unknown).
+#[cfg(unix)]
+fn physical_memory() -> Option<u64> {
+    // SAFETY: sysconf only reads a system constant.
+    let (pages, size) = unsafe {
+        (
+            libc::sysconf(libc::_SC_PHYS_PAGES),
+            libc::sysconf(libc::_SC_PAGESIZE),
+        )
+    };
+    u64::try_from(pages)
+        .ok()?
+        .checked_mul(u64::try_from(size).ok()?)
+}
+
+#[cfg(not(unix))]
+fn physical_memory() -> Option<u64> {
+    None
 }
 
 /// The catalogue's vector `name`.

@@ -29,7 +29,7 @@ fn fixed_rule(bw_nm: f64, s_cpas: f64) -> (f64, f64) {
     let sp = band(bw_nm);
     let (lo, hi) = sp.support();
     let sigma_eff = sp.sigma_eff_per_um();
-    let (x, w) = gauss_legendre(400);
+    let (x, w) = gauss_legendre(400).unwrap();
     let (mut a1, mut a2) = (0.0, 0.0);
     for (xi, wi) in x.iter().zip(&w) {
         let sigma = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xi;

@@ -167,7 +167,7 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
     let variance = model.sample_variance();
     for (r, e) in got.iter().enumerate() {
         let row = &data[r * 64..(r + 1) * 64];
-        let oracle = estimate_row_oracle(row, &bins, &variance, by_model.calibration());
+        let oracle = estimate_row_oracle(row, &bins, &variance, by_model.calibration()).unwrap();
         assert!(
             // tol: the oracle sums the same products over 64 samples in another order (~1e-14 relative); 1e-9 is a margin a wrong bin or bias, O(1) relative, cannot pass.
             (e.v1_sq - oracle.v1_sq).abs() <= 1e-9 * oracle.v1_sq.abs()
@@ -199,7 +199,7 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
         v2_sq: 0.0,
     };
     for row in cal_data.chunks(64) {
-        let o = estimate_row_oracle(row, &bins, &cal_variance, unit);
+        let o = estimate_row_oracle(row, &bins, &cal_variance, unit).unwrap();
         expected.v1_sq += (o.v1_sq_raw - o.v1_sq_bias) / 2.0;
         expected.v2_sq += (o.v2_sq_raw - o.v2_sq_bias) / 2.0;
     }
@@ -214,7 +214,7 @@ fn estimates_match_the_oracle_with_the_model_or_a_calibrators_rows() {
     let scaled = estimate_rows(&by_cal, ARRAY, (&data, 0), 1).unwrap();
     for (r, e) in scaled.iter().enumerate() {
         let row = &data[r * 64..(r + 1) * 64];
-        let oracle = estimate_row_oracle(row, &bins, &variance, expected);
+        let oracle = estimate_row_oracle(row, &bins, &variance, expected).unwrap();
         assert!(
             // tol: the oracle sums the same products over 64 samples in another order (~1e-14 relative); 1e-9 is a margin a wrong bin or bias, O(1) relative, cannot pass.
             (e.v1_sq - oracle.v1_sq).abs() <= 1e-9 * oracle.v1_sq.abs(),

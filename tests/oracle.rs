@@ -4,7 +4,7 @@
 
 use std::path::Path;
 use v2ref::oracle::{
-    catalogue, powered_rows, worst_min_detectable, BiasConvention, BinWindow, Set,
+    catalogue, powered_rows, worst_min_detectable, BiasConvention, BinWindow, Estimates, Set,
     BIAS_CONVENTIONS, BIN_WINDOWS, POWERED_REL_ERROR,
 };
 
@@ -78,8 +78,10 @@ fn a_powered_set_catches_a_two_percent_error() {
             };
             let v1: Vec<f64> = est.iter().map(|r| r.v1_sq).collect();
             let v2: Vec<f64> = est.iter().map(|r| r.v2_sq).collect();
-            let pass =
-                |a: &[f64], b: &[f64]| set.score(window, bias, Some(a), Some(b)).unwrap().pass;
+            let pass = |a: &[f64], b: &[f64]| {
+                let given = Estimates::default().v1_sq(a).v2_sq(b);
+                set.score(window, bias, given).unwrap().pass
+            };
             assert!(
                 pass(&v1, &v2),
                 "{window:?} {bias:?}: v2ref's own estimates fail"
@@ -120,8 +122,46 @@ fn a_powered_set_catches_a_two_percent_error() {
     let v1: Vec<f64> = est.iter().map(|r| r.v1_sq).collect();
     let v2: Vec<f64> = est.iter().map(|r| r.v2_sq).collect();
     assert!(
-        !set.score(right, BiasConvention::Model, Some(&v1), Some(&v2))
-            .unwrap()
-            .pass
+        !set.score(
+            right,
+            BiasConvention::Model,
+            Estimates::default().v1_sq(&v1).v2_sq(&v2)
+        )
+        .unwrap()
+        .pass
     );
+}
+
+/// A verdict prints on one screen (at most 12 lines of at most 100
+/// characters for both estimators), says FAIL, and marks the test out.
+#[test]
+fn a_score_report_displays_on_one_screen() {
+    use v2ref::oracle::{Inputs, SourceInput};
+    let source = SourceInput::Point;
+    let inputs = Inputs {
+        samples: 32,
+        source,
+        visibility: 0.6,
+        photons: 50.0,
+        ..Inputs::default()
+    };
+    let set = Set::synthesize(&inputs, 2000, 7).unwrap();
+    let (window, bias) = (BinWindow::Positive, BiasConvention::Model);
+    let est = set.reference_estimates(window, bias).unwrap();
+    let v1: Vec<f64> = est.iter().map(|r| r.v1_sq).collect();
+    let v2: Vec<f64> = est.iter().map(|r| 1.1 * r.v2_sq).collect();
+    let report = set
+        .score(window, bias, Estimates::default().v1_sq(&v1).v2_sq(&v2))
+        .unwrap();
+    let text = report.to_string();
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines.len() <= 12, "{text}");
+    assert!(lines.iter().all(|l| l.chars().count() <= 100), "{text}");
+    assert!(lines[0].starts_with("FAIL"), "{text}");
+    let v2_lines = &lines[lines.iter().position(|l| l.contains("v2_sq")).unwrap()..];
+    assert!(v2_lines[0].contains("<- out"), "{text}");
+    assert!(!lines[1].contains("<- out"), "{text}");
+    // Neither estimator given is refused, naming the parameter.
+    let none = set.score(window, bias, Estimates::default()).unwrap_err();
+    assert!(none.to_string().contains("estimates"), "{none}");
 }

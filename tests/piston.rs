@@ -532,10 +532,10 @@ fn sequence_length_is_even_smooth_and_short() {
     use v2ref::piston::sequence_length;
     for len in [1usize, 5, 127, 1000, 1_280_004, 128_004, 999_999] {
         let m = sequence_length(len);
-        assert!(m >= len && m >= 4 && m % 2 == 0, "{len} -> {m}");
+        assert!(m >= len && m >= 4 && m.is_multiple_of(2), "{len} -> {m}");
         let mut r = m;
         for p in [2, 3, 5] {
-            while r % p == 0 {
+            while r.is_multiple_of(p) {
                 r /= p;
             }
         }

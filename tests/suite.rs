@@ -55,6 +55,7 @@ mod plan_observation;
 mod plan_presets;
 mod plan_stability;
 mod properties;
+mod public_misuse;
 mod readme;
 mod reproduce;
 mod robustness_cli;

@@ -1,5 +1,5 @@
 """OIFITS (v2 written, v1 and v2 read) from Python, with the Rust library's
-own reader (safe Rust) and writers (cfitsio through the ``fitsio`` crate): NumPy arrays
+own reader and writer (both safe Rust): NumPy arrays
 in and out. The files are those of ``v2ref estimate --out FILE.fits``,
 ``v2ref synth --oifits`` and ``v2ref score --estimates FILE.fits``.
 """

@@ -439,3 +439,50 @@ pub fn score_report(
         pass,
     })
 }
+
+/// One screen: the verdict, then a line per estimator with its mean and
+/// variance against the truth, their z-scores and the smallest relative
+/// error the set catches (what a failing assertion should print).
+impl std::fmt::Display for ScoreReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let verdict = if self.pass { "pass" } else { "FAIL" };
+        writeln!(
+            f,
+            "{verdict}: alpha {:e} over {} tests, every |z| <= {:.3} needed",
+            self.alpha, self.tests, self.z_crit
+        )?;
+        for e in &self.estimators {
+            let s = &e.score;
+            let mark = |pass: bool| if pass { "" } else { "  <- out" };
+            writeln!(
+                f,
+                "  {} ({} rows): mean {:.6e} expected {:.6e} ± {:.2e}, z {:+.2}{}",
+                e.estimator.name(),
+                s.rows,
+                s.mean,
+                s.expected_mean,
+                s.stderr_mean_combined,
+                s.z_mean,
+                mark(s.pass_mean)
+            )?;
+            writeln!(
+                f,
+                "  {} variance {:.6e} expected {:.6e} ± {:.2e}, z {:+.2}{}",
+                " ".repeat(e.estimator.name().len()),
+                s.var,
+                s.expected_var,
+                s.stderr_var_combined,
+                s.z_var,
+                mark(s.pass_var)
+            )?;
+            writeln!(
+                f,
+                "  {} catches a relative error of {:.2} % of the mean, {:.2} % of the variance",
+                " ".repeat(e.estimator.name().len()),
+                100.0 * s.min_detectable_rel_bias_mean,
+                100.0 * s.min_detectable_rel_bias_var
+            )?;
+        }
+        Ok(())
+    }
+}

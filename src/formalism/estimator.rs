@@ -194,14 +194,36 @@ impl BinWindow {
     }
 }
 
+/// Most samples whose bins are listed: a scan's most samples
+/// ([`crate::formalism::interferogram::MAX_SAMPLES`], 2^24).
+pub const MAX_BINS: usize = crate::formalism::interferogram::MAX_SAMPLES;
+
 /// k = 1 … ⌈N/2⌉ − 1: for even N, 1 … N/2 − 1; for odd N, 1 … (N − 1)/2.
+///
+/// # Panics
+///
+/// When `n` exceeds [`MAX_BINS`] (no scan has that many samples; the list
+/// would take memory without bound), as indexing past a slice does.
 pub fn positive_bins(n: usize) -> Vec<usize> {
+    check_bins(n);
     (1..n.div_ceil(2)).collect()
 }
 
 /// k = 0 … N − 1.
+///
+/// # Panics
+///
+/// When `n` exceeds [`MAX_BINS`], as [`positive_bins`].
 pub fn all_bins(n: usize) -> Vec<usize> {
+    check_bins(n);
     (0..n).collect()
+}
+
+fn check_bins(n: usize) {
+    assert!(
+        n <= MAX_BINS,
+        "{n} samples: bins are listed for at most {MAX_BINS} samples (a scan's most)"
+    );
 }
 
 /// The positive bins ([`positive_bins`]) whose wavenumber k/(N δx) lies in

@@ -234,7 +234,8 @@ impl SpectralNodes {
                 amplitude: vec![obs.fringe_amplitude(s) * filter(s)],
             };
         }
-        let (gx, gw) = gauss_legendre(NODES_PER_PANEL);
+        // NODES_PER_PANEL (16) is within the rule's range: this cannot fail.
+        let (gx, gw) = gauss_legendre(NODES_PER_PANEL).expect("16 Gauss-Legendre nodes");
         let mut sigma = Vec::new();
         let mut amplitude = Vec::new();
         for (a, b, panels) in panel_plan(obs, max_opd_um) {

@@ -229,11 +229,22 @@ pub fn integrate_pieces<T: QuadValue>(f: &impl Fn(f64) -> T, breaks: &[f64], tol
 /// this (half an ulp of a node in [−1, 1]): the node no longer moves.
 const LEGENDRE_NEWTON_STOP: f64 = 1e-16;
 
+/// Most nodes of [`gauss_legendre`]: its cost grows as n² (each node's
+/// Newton steps evaluate P_n by an n-term recurrence), about 0.1 s here.
+pub const GAUSS_LEGENDRE_MAX_NODES: usize = 4096;
+
 /// Nodes and weights of the n-point Gauss–Legendre rule on [−1, 1]
 /// (Newton's method on P_n from Tricomi's initial guesses; nodes accurate to
-/// a few ulps). Exact for polynomials of degree 2n − 1. Returns empty
-/// vectors for n = 0.
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+/// a few ulps). Exact for polynomials of degree 2n − 1. Refuses n = 0 (no
+/// rule) and n above [`GAUSS_LEGENDRE_MAX_NODES`].
+pub fn gauss_legendre(n: usize) -> crate::Result<(Vec<f64>, Vec<f64>)> {
+    if !(1..=GAUSS_LEGENDRE_MAX_NODES).contains(&n) {
+        return Err(crate::Error::OutOfRange {
+            param: "nodes",
+            value: n as f64,
+            accepted: format!("1 to {GAUSS_LEGENDRE_MAX_NODES} Gauss-Legendre nodes"),
+        });
+    }
     let mut x = vec![0.0; n];
     let mut w = vec![0.0; n];
     let nf = n as f64;
@@ -264,5 +275,5 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
         w[i] = wi;
         w[n - 1 - i] = wi;
     }
-    (x, w)
+    Ok((x, w))
 }

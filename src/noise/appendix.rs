@@ -290,8 +290,8 @@ pub fn snr_with_extra_samples(
     let c = continuum.iter().sum::<f64>() / continuum.len().max(1) as f64;
     let mut m = modulated.to_vec();
     let mut cc = continuum.to_vec();
-    m.extend(std::iter::repeat(0.0).take(extra));
-    cc.extend(std::iter::repeat(c).take(extra));
+    m.extend(std::iter::repeat_n(0.0, extra));
+    cc.extend(std::iter::repeat_n(c, extra));
     let s = appendix_stats(&m, &cc, noise, formula)?;
     Ok((s.snr1, s.snr2))
 }

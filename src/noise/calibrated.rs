@@ -73,7 +73,7 @@ impl CalibratedSetup {
         } else {
             Err(Error::Invalid {
                 param: "bins",
-                reason: "the window holds no fringe of the calibrator (nothing to normalize by); choose --bins all or positive, or more photons".into(),
+                reason: "the window holds no fringe of the calibrator (nothing to normalize by); choose the all or positive window, or more photons".into(),
             })
         }
     }

@@ -402,11 +402,15 @@ fn unit_trials(trials: u64, unit: u64) -> u64 {
     (trials - unit * TRIALS_PER_UNIT).min(TRIALS_PER_UNIT)
 }
 
+/// Most trials of [`simulate_noisy`]: 2^40 (the simulator's own bound,
+/// `simulator::report::MAX_TRIALS`), days of work on any machine.
+pub const MAX_NOISY_TRIALS: u64 = 1 << 40;
+
 /// Simulates `trials` noisy interferograms of `spec` and accumulates both raw
 /// estimators (seeded per unit of [`TRIALS_PER_UNIT`] trials from
 /// (`seed`, unit); bit-identical for any `threads`). `progress(done)` is
 /// called with the number of trials just finished, every few milliseconds
-/// of work ([`Steps`]).
+/// of work ([`Steps`]). Refuses `trials` outside 1 to [`MAX_NOISY_TRIALS`].
 ///
 /// # Example
 ///
@@ -436,6 +440,13 @@ pub fn simulate_noisy(
     threads: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> crate::Result<NoisyRun> {
+    if !(1..=MAX_NOISY_TRIALS).contains(&trials) {
+        return Err(crate::Error::OutOfRange {
+            param: "trials",
+            value: trials as f64,
+            accepted: format!("1 to {MAX_NOISY_TRIALS}"),
+        });
+    }
     let noise = SampleNoise::new(spec)?;
     let est = WindowedEstimators::new(spec.modulated.len(), &spec.bins);
     let units = trials.div_ceil(TRIALS_PER_UNIT);

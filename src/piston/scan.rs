@@ -67,7 +67,7 @@ impl Detector {
                         accepted: format!("1 to {MAX_SUB_SAMPLES}"),
                     });
                 }
-                let (x, w) = gauss_legendre(sub_samples);
+                let (x, w) = gauss_legendre(sub_samples)?;
                 Ok((
                     x.iter().map(|u| 0.5 * u).collect(),
                     w.iter().map(|w| 0.5 * w).collect(),

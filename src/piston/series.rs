@@ -54,7 +54,8 @@ pub fn sequence_length(len: usize) -> usize {
 /// Deterministic in `seed` whatever the thread count: the coefficients are
 /// drawn in fixed blocks, one generator each, and the transform is split
 /// into rows ([`crate::math::fft::inverse_dft`]), all spread over
-/// `threads` threads (0 = the current pool).
+/// `threads` threads (0 = the current pool). Refuses (parameter `psd`) a
+/// spectrum that is not a finite number >= 0 at some frequency drawn.
 pub fn synthesize_series(
     psd: &(dyn Fn(f64) -> f64 + Sync),
     dt_s: f64,
@@ -87,6 +88,22 @@ pub fn synthesize_series(
             })
             .collect::<Vec<_>>()
     });
+    // A spectrum that is not a finite number >= 0 somewhere leaves a
+    // coefficient that is not finite: refused, naming the frequency.
+    let coefficients = blocks.iter().flatten();
+    if let Some(k) = coefficients
+        .clone()
+        .position(|c| !(c.re.is_finite() && c.im.is_finite()))
+    {
+        let nu_hz = (k + 1) as f64 * dnu;
+        return Err(Error::Invalid {
+            param: "psd",
+            reason: format!(
+                "the spectrum at {nu_hz:e} Hz is {}; a power spectral density is a finite number >= 0",
+                psd(nu_hz)
+            ),
+        });
+    }
     let mut buf = vec![Complex64::new(0.0, 0.0); m];
     for (dst, src) in buf[1..half].iter_mut().zip(blocks.into_iter().flatten()) {
         *dst = src;

@@ -129,7 +129,7 @@ pub(crate) fn table_range_um(setup: &ScanSetup, excursion_um: f64) -> Result<f64
         return Err(Error::Invalid {
             param: "reference",
             reason: format!(
-                "the piston moves the fringe packet by up to {excursion_um:.0} um within the scans (at most {MAX_OPD_UM} um of OPD is simulated): lower the seeing, raise the fringe frequency or re-centre the scans (--reference mean)"
+                "the piston moves the fringe packet by up to {excursion_um:.0} um within the scans (at most {MAX_OPD_UM} um of OPD is simulated): lower the seeing, raise the fringe frequency or re-centre the scans on their mean (reference `mean`)"
             ),
         });
     }

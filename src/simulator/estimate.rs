@@ -248,8 +248,55 @@ impl RowEstimator {
     }
 
     /// The estimates of one row (length N).
+    ///
+    /// # Panics
+    ///
+    /// When `row` does not hold N samples, as indexing past a slice does;
+    /// [`RowEstimator::try_estimate`] refuses it instead.
     pub fn estimate(&self, row: &[f64]) -> RowEstimate {
+        let n = self.samples();
+        assert_eq!(
+            row.len(),
+            n,
+            "a row of {} values, not {n} samples",
+            row.len()
+        );
         self.estimate_row(row, &mut Vec::new(), &mut Vec::new())
+    }
+
+    /// The estimates of one row; refuses (parameter `row`) a row that does
+    /// not hold N samples, a value that is not a finite number, a dark row
+    /// ([`RowFault`]) and values so large that the estimates overflow.
+    pub fn try_estimate(&self, row: &[f64]) -> Result<RowEstimate> {
+        let n = self.samples();
+        if row.len() != n {
+            return Err(Error::Invalid {
+                param: "row",
+                reason: format!("{} values; a row holds the set's {n} samples", row.len()),
+            });
+        }
+        if let Some(fault) = RowFault::of_row(0, row) {
+            return Err(Error::Invalid {
+                param: "row",
+                reason: fault.reason(),
+            });
+        }
+        let e = self.estimate_row(row, &mut Vec::new(), &mut Vec::new());
+        let all = [
+            e.v1_sq_raw,
+            e.v2_sq_raw,
+            e.v1_sq_bias,
+            e.v2_sq_bias,
+            e.v1_sq,
+            e.v2_sq,
+        ];
+        if all.iter().any(|x| !x.is_finite()) {
+            return Err(Error::Invalid {
+                param: "row",
+                reason: "its values are so large that the estimates overflow a float64".into(),
+            });
+        }
+        Ok(e)
     }
 
     /// The estimates of `row`; `buf` (the modulated samples of a row of
@@ -351,14 +398,49 @@ impl RowEstimator {
 /// naive DFT, the window's sums, the bias of `variance` (the per-sample
 /// noise variance the convention gives) by its definition
 /// ([`noise_bias`]), divided by `calibration`.
+///
+/// Refuses (naming the parameter) inputs that do not describe one row: an
+/// empty or non-finite `m`, a `variance` not of `m`'s length or not finite
+/// and >= 0, a bin not below `m`'s length, and a calibration not finite
+/// and > 0.
 pub fn estimate_row_oracle(
     m: &[f64],
     bins: &[usize],
     variance: &[f64],
     calibration: Pair,
-) -> RowEstimate {
+) -> Result<RowEstimate> {
+    let n = m.len();
+    let invalid = |param: &'static str, reason: String| Err(Error::Invalid { param, reason });
+    if n == 0 || m.iter().any(|x| !x.is_finite()) {
+        return invalid(
+            "m",
+            format!("{n} samples; a row of finite samples is needed"),
+        );
+    }
+    if variance.len() != n || variance.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+        let reason = format!(
+            "{} values; one finite variance >= 0 per sample ({n})",
+            variance.len()
+        );
+        return invalid("variance", reason);
+    }
+    if let Some(k) = bins.iter().find(|&&k| k >= n) {
+        return invalid(
+            "bins",
+            format!("bin {k}; the bins of {n} samples are 0 to {}", n - 1),
+        );
+    }
+    let good = |c: f64| c.is_finite() && c > 0.0;
+    if !(good(calibration.v1_sq) && good(calibration.v2_sq)) {
+        let reason = format!("{calibration:?}; both divisors must be finite and > 0");
+        return invalid("calibration", reason);
+    }
     let raw = raw_estimates(&naive_dft(m), bins);
-    RowEstimate::new(raw, noise_bias(variance, bins), calibration)
+    Ok(RowEstimate::new(
+        raw,
+        noise_bias(variance, bins),
+        calibration,
+    ))
 }
 
 /// Why a row of zeros is refused.

@@ -8,7 +8,7 @@
 
 use downstream::{Instrument, Mistake, Pipeline};
 use std::sync::OnceLock;
-use v2ref::oracle::{BiasConvention, BinWindow, ScoreReport, Set, POWERED_REL_ERROR};
+use v2ref::oracle::{BiasConvention, BinWindow, Estimates, ScoreReport, Set, POWERED_REL_ERROR};
 
 /// Row-by-row agreement with v2ref's own estimates, relative to the
 /// calibrated signal: the two compute the same sums in different orders
@@ -37,8 +37,7 @@ fn score(set: &Set, mistake: Mistake) -> ScoreReport {
     set.score(
         BinWindow::Positive,
         BiasConvention::Model,
-        Some(&v1_sq),
-        Some(&v2_sq),
+        Estimates::default().v1_sq(&v1_sq).v2_sq(&v2_sq),
     )
     .unwrap()
 }

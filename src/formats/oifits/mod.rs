@@ -3,18 +3,13 @@
 //! A8): squared visibilities written as OIFITS v2 (module `write`) and read
 //! from OIFITS v1 or v2 (`read`).
 //!
-//! **Writing goes through cfitsio** (NASA HEASARC, the reference FITS
-//! implementation), by the Rust crate `fitsio` and its `fitsio-src`
-//! feature: cfitsio is compiled from the source bundled in `fitsio-sys`,
-//! so a fresh machine needs a C compiler and no system library. `fitsio`
-//! creates the tables and writes the keywords and numeric columns;
-//! `fitsio_sys` (its raw binding) is called where `fitsio` has no safe
-//! equivalent: the memory file, logical columns (`FLAG`), checksums and a
-//! column's comment. A file is built in memory and written with the atomic
-//! pattern of [`crate::formats::atomic`], never through cfitsio's file-name
-//! parser (which reads `name[ext]` and `!name` as instructions).
+//! **Writing is safe Rust** (`fits_write.rs`): the cards laid out as
+//! cfitsio (NASA HEASARC's reference implementation, which wrote these
+//! files before) lays them out, binary tables, `CHECKSUM` and `DATASUM`; no
+//! C compiler. A file is built in memory and written with the atomic
+//! pattern of [`crate::formats::atomic`].
 //!
-//! **Reading is safe Rust** ([`fits`], [`table`]), no cfitsio: every size
+//! **Reading is safe Rust** ([`fits`], [`table`]): every size
 //! a header announces is checked against the file's bytes before a value
 //! is read, and `CHECKSUM`/`DATASUM` are verified where present.
 //!
@@ -28,7 +23,7 @@
 
 pub mod docs;
 pub mod fits;
-mod mem;
+mod fits_write;
 pub(crate) mod observing;
 mod order;
 pub(crate) mod read;
@@ -114,19 +109,6 @@ pub fn check_fits_extension(path: &Path, param: &'static str) -> Result<()> {
         "",
         format!("{ext}; an OIFITS file is written as .fits, .oifits or .fit (each possibly .gz)"),
     ))
-}
-
-/// A cfitsio status as a sentence (its own text, and the code).
-pub(crate) fn status_text(status: i32) -> String {
-    let mut buf = [0 as std::os::raw::c_char; 31];
-    // SAFETY: ffgerr writes at most 30 characters and a NUL into `buf`.
-    unsafe { fitsio_sys::ffgerr(status, buf.as_mut_ptr()) };
-    let text = buf
-        .iter()
-        .take_while(|&&c| c != 0)
-        .map(|&c| c as u8 as char)
-        .collect::<String>();
-    format!("{text} (cfitsio status {status})")
 }
 
 /// Writes a plan's predicted observation at its recommended setting

@@ -291,32 +291,11 @@ fn mjd_of_day(day: &str) -> Option<f64> {
         return None;
     }
     let (y, m, d) = (digits(&day[..4])?, digits(&day[5..7])?, digits(&day[8..])?);
-    let leap = y % 4 == 0 && (y % 100 != 0 || y % 400 == 0);
-    let month_days = [
-        31,
-        if leap { 29 } else { 28 },
-        31,
-        30,
-        31,
-        30,
-        31,
-        31,
-        30,
-        31,
-        30,
-        31,
-    ];
-    if !(1..=12).contains(&m) || d < 1 || d > month_days[m as usize - 1] {
-        return None;
-    }
-    // Days from the civil date (Hinnant's days_from_civil), then MJD.
-    let y = if m <= 2 { y - 1 } else { y };
-    let era = y.div_euclid(400);
-    let yoe = y - era * 400;
-    let doy = (153 * (if m > 2 { m - 3 } else { m + 9 }) + 2) / 5 + d - 1;
-    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    let days_since_1970 = era * 146_097 + doe - 719_468;
-    Some(days_since_1970 as f64 + 40_587.0)
+    let month = time::Month::try_from(u8::try_from(m).ok()?).ok()?;
+    let date = time::Date::from_calendar_date(i32::try_from(y).ok()?, month, u8::try_from(d).ok()?)
+        .ok()?;
+    // The Julian day number counts from noon: MJD 0 is JDN 2 400 001.
+    Some(f64::from(date.to_julian_day() - 2_400_001))
 }
 
 /// Seconds since 00:00 of `hh:mm:ss[.s]` (FITS's time of day); second
@@ -394,6 +373,33 @@ mod tests {
             "",
         ] {
             assert_eq!(mjd_of_date(bad), None, "{bad}");
+        }
+    }
+
+    /// Every day from MJD 0 to 9999-12-31 has the MJD one counts to it,
+    /// day after day (the `time` crate's calendar against a count), and
+    /// the day after each month's last is refused.
+    #[test]
+    #[cfg_attr(miri, ignore = "3 million days: too long for the interpreter")]
+    fn every_day_counts_from_mjd_zero() {
+        let (mut y, mut m, mut d, mut mjd) = (1858, 11, 17, 0.0);
+        while y <= 9999 {
+            assert_eq!(mjd_of_date(&format!("{y:04}-{m:02}-{d:02}")), Some(mjd));
+            let leap = y % 4 == 0 && (y % 100 != 0 || y % 400 == 0);
+            let last = match m {
+                2 if leap => 29,
+                2 => 28,
+                4 | 6 | 9 | 11 => 30,
+                _ => 31,
+            };
+            if d == last {
+                assert_eq!(mjd_of_date(&format!("{y:04}-{m:02}-{:02}", d + 1)), None);
+                (d, m) = (1, m % 12 + 1);
+                y += i32::from(m == 1);
+            } else {
+                d += 1;
+            }
+            mjd += 1.0;
         }
     }
 }

@@ -214,7 +214,7 @@ fn concat(
             )));
         }
         super::order::check_time_order(t, target, path)?;
-        let of_target = |r: &usize| target.map_or(true, |id| t.target_id[*r] == id);
+        let of_target = |r: &usize| target.is_none_or(|id| t.target_id[*r] == id);
         for r in (0..t.rows).filter(of_target) {
             values.push(t.vis2data[r]);
             flags.push(t.flag[r]);

@@ -1,17 +1,15 @@
 //! Writing OIFITS v2: the primary header and the tables `OI_TARGET`,
 //! `OI_ARRAY`, then per `INSNAME` an `OI_WAVELENGTH` and an `OI_VIS2`
 //! (mandatory columns, units and keywords of Duvert et al. 2017, tables
-//! 5–11), built in memory by cfitsio and written atomically.
+//! 5–11), built in memory by the safe writer [`super::fits_write`] and
+//! written atomically.
 
-use super::mem::MemFits;
+use super::fits_write::{CardValue, Column, ColumnData, HduWriter};
 use super::setting::Setting;
 use super::{check_fits_extension, estimator_key, KEY_ESTIMATOR};
 use crate::conformance::score::Estimator;
 use crate::formats::atomic::TempTarget;
 use crate::{Error, Result};
-use fitsio::hdu::FitsHdu;
-use fitsio::tables::{ColumnDataType, ColumnDescription};
-use fitsio::FitsFile;
 use std::io::Write;
 use std::path::Path;
 
@@ -158,41 +156,43 @@ fn gzip(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
 /// The file's bytes: every HDU with its `CHECKSUM` and `DATASUM`; a row
 /// whose `VIS2DATA` or `VIS2ERR` is not a number is flagged.
 pub fn to_bytes(doc: &OifitsDoc) -> std::result::Result<Vec<u8>, String> {
-    let mut mem = MemFits::create()?;
-    let f = &mut mem.file;
-    primary(f, doc)?;
-    target(f, &doc.setting)?;
-    array(f, &doc.setting)?;
+    let now = time::OffsetDateTime::now_utc();
+    let stamp = format!(
+        "{}T{:02}:{:02}:{:02}",
+        date_text(now.date()),
+        now.hour(),
+        now.minute(),
+        now.second()
+    );
+    let mut out = Vec::new();
+    primary(doc, &date_text(now.date()))?.finish(&stamp, &mut out);
+    target(&doc.setting)?.finish(&stamp, &mut out);
+    array(&doc.setting)?.finish(&stamp, &mut out);
     for (i, t) in doc.tables.iter().enumerate() {
         let extver = i as i64 + 1;
-        wavelength(f, &doc.setting, &t.insname, extver)?;
+        wavelength(&doc.setting, &t.insname, extver)?.finish(&stamp, &mut out);
         let mut t = t.clone();
         for (r, flag) in t.flag.iter_mut().enumerate() {
             *flag |= !(t.vis2data[r].is_finite() && t.vis2err[r].is_finite());
         }
-        vis2(f, &doc.setting, &t, extver)?;
+        vis2(&doc.setting, &t, extver)?.finish(&stamp, &mut out);
     }
-    mem.into_bytes()
+    Ok(out)
 }
 
-fn e(what: &str) -> impl Fn(fitsio::errors::Error) -> String + '_ {
-    move |err| format!("{what}: {err}")
-}
-
-fn put_keys(f: &mut FitsFile, hdu: &FitsHdu, keys: &[Key]) -> std::result::Result<(), String> {
+fn put_keys(h: &mut HduWriter, keys: &[Key]) -> std::result::Result<(), String> {
     for k in keys {
-        let r = match &k.value {
-            KeyValue::Str(s) => hdu.write_key(f, &k.name, (s.as_str(), k.comment.as_str())),
-            KeyValue::F64(v) => hdu.write_key(f, &k.name, (*v, k.comment.as_str())),
-            KeyValue::Int(v) => hdu.write_key(f, &k.name, (*v, k.comment.as_str())),
+        let value = match &k.value {
+            KeyValue::Str(s) => CardValue::Str(s),
+            KeyValue::F64(v) => CardValue::Real(*v),
+            KeyValue::Int(v) => CardValue::Int(*v),
         };
-        r.map_err(|err| format!("keyword {}: {err}", k.name))?;
+        h.key(&k.name, value, &k.comment)?;
     }
     Ok(())
 }
 
-fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String> {
-    let hdu = f.primary_hdu().map_err(e("primary HDU"))?;
+fn primary(doc: &OifitsDoc, today: &str) -> std::result::Result<HduWriter, String> {
     let s = &doc.setting;
     let soft = format!("v2ref {}", env!("CARGO_PKG_VERSION"));
     let mut keys = vec![
@@ -206,7 +206,7 @@ fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String>
             "v2ref",
             "institution or software that wrote the file",
         ),
-        Key::str("DATE", &today(), "UTC date the file was written"),
+        Key::str("DATE", today, "UTC date the file was written"),
         Key::str("DATE-OBS", &s.date_obs, "UTC date of the first row"),
         Key::str("TELESCOP", &s.site.name, "array (two stations)"),
         Key::str("INSTRUME", &doc.tables[0].insname, "first INSNAME"),
@@ -236,174 +236,72 @@ fn primary(f: &mut FitsFile, doc: &OifitsDoc) -> std::result::Result<(), String>
         comment: "HDUs in this file, the primary included".into(),
     });
     keys.extend(doc.keywords.iter().cloned());
-    put_keys(f, &hdu, &keys)
+    let mut h = HduWriter::primary();
+    put_keys(&mut h, &keys)?;
+    Ok(h)
 }
 
-/// A binary-table column: name, TFORM type and repeat, unit.
-struct Col {
-    name: &'static str,
-    typ: ColumnDataType,
+/// A binary-table column: name, data (`repeat` per row), unit.
+fn col<'a>(
+    name: &'a str,
     repeat: usize,
+    data: ColumnData<'a>,
     unit: &'static str,
+) -> (Column<'a>, &'static str) {
+    (Column { name, repeat, data }, unit)
 }
 
-const fn col(name: &'static str, typ: ColumnDataType, repeat: usize, unit: &'static str) -> Col {
-    Col {
-        name,
-        typ,
-        repeat,
-        unit,
-    }
-}
-
-/// Creates the table `extname` with `cols` (units as `TUNITn`) and
-/// `keys`, and makes it current.
+/// The table `extname` of `cols` (units as `TUNITn`) and `keys`.
 fn create(
-    f: &mut FitsFile,
     extname: &str,
-    cols: &[Col],
+    cols: &[(Column, &'static str)],
     keys: &[Key],
-) -> std::result::Result<FitsHdu, String> {
-    let descs = cols
-        .iter()
-        .map(|c| {
-            ColumnDescription::new(c.name)
-                .with_type(c.typ)
-                .that_repeats(c.repeat)
-                .create()
-        })
-        .collect::<fitsio::errors::Result<Vec<_>>>()
-        .map_err(e(extname))?;
-    let hdu = f.create_table(extname, &descs).map_err(e(extname))?;
+) -> std::result::Result<HduWriter, String> {
+    let columns: Vec<Column> = cols.iter().map(|(c, _)| *c).collect();
+    let mut h = HduWriter::bintable(extname, &columns)?;
     let mut all = vec![Key {
         name: "OI_REVN".into(),
         value: KeyValue::Int(2),
         comment: "revision of the OIFITS table definition".into(),
     }];
-    for (i, c) in cols.iter().enumerate().filter(|(_, c)| !c.unit.is_empty()) {
-        all.push(Key::str(&format!("TUNIT{}", i + 1), c.unit, ""));
+    for (i, (_, unit)) in cols.iter().enumerate().filter(|(_, (_, u))| !u.is_empty()) {
+        all.push(Key::str(&format!("TUNIT{}", i + 1), unit, ""));
     }
     all.extend(keys.iter().cloned());
-    put_keys(f, &hdu, &all)?;
-    Ok(hdu)
+    put_keys(&mut h, &all)?;
+    Ok(h)
 }
 
-fn write_f64(
-    f: &mut FitsFile,
-    hdu: &FitsHdu,
-    name: &str,
-    v: &[f64],
-) -> std::result::Result<(), String> {
-    hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
+fn target(s: &Setting) -> std::result::Result<HduWriter, String> {
+    use ColumnData::{Str, F32, F64, I16};
+    let zero = [0.0f64];
+    create(
+        "OI_TARGET",
+        &[
+            col("TARGET_ID", 1, I16(&[1]), ""),
+            col("TARGET", 16, Str(&[&s.target]), ""),
+            col("RAEP0", 1, F64(&[s.target_radec_deg.0]), "deg"),
+            col("DECEP0", 1, F64(&[s.target_radec_deg.1]), "deg"),
+            col("EQUINOX", 1, F32(&[2000.0]), "yr"),
+            col("RA_ERR", 1, F64(&zero), "deg"),
+            col("DEC_ERR", 1, F64(&zero), "deg"),
+            col("SYSVEL", 1, F64(&zero), "m/s"),
+            col("VELTYP", 8, Str(&["UNKNOWN"]), ""),
+            col("VELDEF", 8, Str(&["OPTICAL"]), ""),
+            col("PMRA", 1, F64(&zero), "deg/yr"),
+            col("PMDEC", 1, F64(&zero), "deg/yr"),
+            col("PMRA_ERR", 1, F64(&zero), "deg/yr"),
+            col("PMDEC_ERR", 1, F64(&zero), "deg/yr"),
+            col("PARALLAX", 1, F32(&[0.0]), "deg"),
+            col("PARA_ERR", 1, F32(&[0.0]), "deg"),
+            col("SPECTYP", 16, Str(&["UNKNOWN"]), ""),
+        ],
+        &[],
+    )
 }
 
-fn write_i16(
-    f: &mut FitsFile,
-    hdu: &FitsHdu,
-    name: &str,
-    v: &[i16],
-) -> std::result::Result<(), String> {
-    hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
-}
-
-fn write_str(
-    f: &mut FitsFile,
-    hdu: &FitsHdu,
-    name: &str,
-    v: &[&str],
-) -> std::result::Result<(), String> {
-    let owned: Vec<String> = v.iter().map(|s| s.to_string()).collect();
-    hdu.write_col(f, name, &owned).map(|_| ()).map_err(e(name))
-}
-
-fn write_f32(
-    f: &mut FitsFile,
-    hdu: &FitsHdu,
-    name: &str,
-    v: &[f32],
-) -> std::result::Result<(), String> {
-    hdu.write_col(f, name, v).map(|_| ()).map_err(e(name))
-}
-
-/// `FLAG` (logical, column `colno` from 1 of the table just written):
-/// `fitsio` writes no logical column.
-fn write_flag(f: &mut FitsFile, colno: i32, v: &[bool]) -> std::result::Result<(), String> {
-    let mut bytes: Vec<std::os::raw::c_char> = v.iter().map(|&b| b as _).collect();
-    let mut status = 0;
-    // SAFETY: the file is open at this table; `bytes` holds `v.len()` values.
-    unsafe {
-        fitsio_sys::ffpcll(
-            f.as_raw(),
-            colno,
-            1,
-            1,
-            v.len() as i64,
-            bytes.as_mut_ptr(),
-            &mut status,
-        );
-    }
-    match status {
-        0 => Ok(()),
-        s => Err(format!("FLAG: {}", super::status_text(s))),
-    }
-}
-
-fn target(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
-    use ColumnDataType::{Double, Float, Short, String as A};
-    let cols = [
-        col("TARGET_ID", Short, 1, ""),
-        col("TARGET", A, 16, ""),
-        col("RAEP0", Double, 1, "deg"),
-        col("DECEP0", Double, 1, "deg"),
-        col("EQUINOX", Float, 1, "yr"),
-        col("RA_ERR", Double, 1, "deg"),
-        col("DEC_ERR", Double, 1, "deg"),
-        col("SYSVEL", Double, 1, "m/s"),
-        col("VELTYP", A, 8, ""),
-        col("VELDEF", A, 8, ""),
-        col("PMRA", Double, 1, "deg/yr"),
-        col("PMDEC", Double, 1, "deg/yr"),
-        col("PMRA_ERR", Double, 1, "deg/yr"),
-        col("PMDEC_ERR", Double, 1, "deg/yr"),
-        col("PARALLAX", Float, 1, "deg"),
-        col("PARA_ERR", Float, 1, "deg"),
-        col("SPECTYP", A, 16, ""),
-    ];
-    let h = create(f, "OI_TARGET", &cols, &[])?;
-    write_i16(f, &h, "TARGET_ID", &[1])?;
-    write_str(f, &h, "TARGET", &[&s.target])?;
-    write_f64(f, &h, "RAEP0", &[s.target_radec_deg.0])?;
-    write_f64(f, &h, "DECEP0", &[s.target_radec_deg.1])?;
-    for name in [
-        "RA_ERR",
-        "DEC_ERR",
-        "SYSVEL",
-        "PMRA",
-        "PMDEC",
-        "PMRA_ERR",
-        "PMDEC_ERR",
-    ] {
-        write_f64(f, &h, name, &[0.0])?;
-    }
-    write_f32(f, &h, "EQUINOX", &[2000.0])?;
-    write_f32(f, &h, "PARALLAX", &[0.0])?;
-    write_f32(f, &h, "PARA_ERR", &[0.0])?;
-    write_str(f, &h, "VELTYP", &["UNKNOWN"])?;
-    write_str(f, &h, "VELDEF", &["OPTICAL"])?;
-    write_str(f, &h, "SPECTYP", &["UNKNOWN"])
-}
-
-fn array(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
-    use ColumnDataType::{Double, Float, Short, String as A};
-    let cols = [
-        col("TEL_NAME", A, 16, ""),
-        col("STA_NAME", A, 16, ""),
-        col("STA_INDEX", Short, 1, ""),
-        col("DIAMETER", Float, 1, "m"),
-        col("STAXYZ", Double, 3, "m"),
-        col("FOV", Double, 1, "arcsec"),
-        col("FOVTYPE", A, 6, ""),
-    ];
+fn array(s: &Setting) -> std::result::Result<HduWriter, String> {
+    use ColumnData::{Str, F32, F64, I16};
     let centre = s.site.geocentric_m();
     let keys = [
         Key::str("ARRNAME", &s.site.name, "array"),
@@ -412,7 +310,6 @@ fn array(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
         Key::f64("ARRAYY", centre[1], "[m] array centre, geocentric Y"),
         Key::f64("ARRAYZ", centre[2], "[m] array centre, geocentric Z"),
     ];
-    let h = create(f, "OI_ARRAY", &cols, &keys)?;
     // The two stations half a baseline either side of the centre, east–west.
     let east = s.site.east();
     let station = |sign: f64| east.map(|e| sign * 0.5 * s.baseline_m * e);
@@ -423,32 +320,34 @@ fn array(f: &mut FitsFile, s: &Setting) -> std::result::Result<(), String> {
     } else {
         0.0
     };
-    write_str(f, &h, "TEL_NAME", &["T1", "T2"])?;
-    write_str(f, &h, "STA_NAME", &["S1", "S2"])?;
-    write_i16(f, &h, "STA_INDEX", &[1, 2])?;
-    write_f32(f, &h, "DIAMETER", &[s.diameter_m as f32; 2])?;
-    write_f64(f, &h, "STAXYZ", &staxyz)?;
-    write_f64(f, &h, "FOV", &[fov_arcsec; 2])?;
-    write_str(f, &h, "FOVTYPE", &["FWHM", "FWHM"])
+    create(
+        "OI_ARRAY",
+        &[
+            col("TEL_NAME", 16, Str(&["T1", "T2"]), ""),
+            col("STA_NAME", 16, Str(&["S1", "S2"]), ""),
+            col("STA_INDEX", 1, I16(&[1, 2]), ""),
+            col("DIAMETER", 1, F32(&[s.diameter_m as f32; 2]), "m"),
+            col("STAXYZ", 3, F64(&staxyz), "m"),
+            col("FOV", 1, F64(&[fov_arcsec; 2]), "arcsec"),
+            col("FOVTYPE", 6, Str(&["FWHM", "FWHM"]), ""),
+        ],
+        &keys,
+    )
 }
 
-fn wavelength(
-    f: &mut FitsFile,
-    s: &Setting,
-    insname: &str,
-    extver: i64,
-) -> std::result::Result<(), String> {
-    let cols = [
-        col("EFF_WAVE", ColumnDataType::Float, 1, "m"),
-        col("EFF_BAND", ColumnDataType::Float, 1, "m"),
-    ];
+fn wavelength(s: &Setting, insname: &str, extver: i64) -> std::result::Result<HduWriter, String> {
     let keys = [
         Key::str("INSNAME", insname, "instrument (estimator)"),
         extver_key(extver),
     ];
-    let h = create(f, "OI_WAVELENGTH", &cols, &keys)?;
-    write_f32(f, &h, "EFF_WAVE", &[s.eff_wave_m as f32])?;
-    write_f32(f, &h, "EFF_BAND", &[s.eff_band_m as f32])
+    create(
+        "OI_WAVELENGTH",
+        &[
+            col("EFF_WAVE", 1, ColumnData::F32(&[s.eff_wave_m as f32]), "m"),
+            col("EFF_BAND", 1, ColumnData::F32(&[s.eff_band_m as f32]), "m"),
+        ],
+        &keys,
+    )
 }
 
 /// `EXTVER`: tables of the same `EXTNAME` are told apart by it.
@@ -460,25 +359,8 @@ fn extver_key(extver: i64) -> Key {
     }
 }
 
-fn vis2(
-    f: &mut FitsFile,
-    s: &Setting,
-    t: &Vis2Out,
-    extver: i64,
-) -> std::result::Result<(), String> {
-    use ColumnDataType::{Double, Logical, Short};
-    let cols = [
-        col("TARGET_ID", Short, 1, ""),
-        col("TIME", Double, 1, "s"),
-        col("MJD", Double, 1, "day"),
-        col("INT_TIME", Double, 1, "s"),
-        col("VIS2DATA", Double, 1, ""),
-        col("VIS2ERR", Double, 1, ""),
-        col("UCOORD", Double, 1, "m"),
-        col("VCOORD", Double, 1, "m"),
-        col("STA_INDEX", Short, 2, ""),
-        col("FLAG", Logical, 1, ""),
-    ];
+fn vis2(s: &Setting, t: &Vis2Out, extver: i64) -> std::result::Result<HduWriter, String> {
+    use ColumnData::{Logical, F64, I16};
     let mut keys = vec![
         extver_key(extver),
         Key::str("DATE-OBS", &s.date_obs, "UTC date of the first row"),
@@ -498,29 +380,33 @@ fn vis2(
         ));
     }
     keys.extend(t.keywords.iter().cloned());
-    let h = create(f, "OI_VIS2", &cols, &keys)?;
     let n = t.vis2data.len();
     // OIFITS v2 keeps TIME at zero: the time is MJD.
     let mjd: Vec<f64> = (0..n).map(|r| s.mjd(r)).collect();
-    write_i16(f, &h, "TARGET_ID", &vec![1; n])?;
-    write_f64(f, &h, "TIME", &vec![0.0; n])?;
-    write_f64(f, &h, "MJD", &mjd)?;
-    write_f64(f, &h, "INT_TIME", &vec![s.row_s(); n])?;
-    write_f64(f, &h, "VIS2DATA", &t.vis2data)?;
-    write_f64(f, &h, "VIS2ERR", &t.vis2err)?;
-    write_f64(f, &h, "UCOORD", &vec![s.baseline_m; n])?;
-    write_f64(f, &h, "VCOORD", &vec![0.0; n])?;
-    write_i16(f, &h, "STA_INDEX", &[1, 2].repeat(n))?;
-    write_flag(f, 10, &t.flag)?;
+    let (target_id, zeros) = (vec![1i16; n], vec![0.0; n]);
+    let (int_time, ucoord) = (vec![s.row_s(); n], vec![s.baseline_m; n]);
+    let stations = [1i16, 2].repeat(n);
+    let cols = [
+        col("TARGET_ID", 1, I16(&target_id), ""),
+        col("TIME", 1, F64(&zeros), "s"),
+        col("MJD", 1, F64(&mjd), "day"),
+        col("INT_TIME", 1, F64(&int_time), "s"),
+        col("VIS2DATA", 1, F64(&t.vis2data), ""),
+        col("VIS2ERR", 1, F64(&t.vis2err), ""),
+        col("UCOORD", 1, F64(&ucoord), "m"),
+        col("VCOORD", 1, F64(&zeros), "m"),
+        col("STA_INDEX", 2, I16(&stations), ""),
+        col("FLAG", 1, Logical(&t.flag), ""),
+    ];
+    let mut h = create("OI_VIS2", &cols, &keys)?;
     if let Some(note) = &t.vis2data_note {
-        note_column(f, 5, note)?;
+        note_column(&mut h, 5, note)?;
     }
-    Ok(())
+    Ok(h)
 }
 
 /// Sets the comment of the `TTYPEn` card of column `n` (1-based).
-fn note_column(f: &mut FitsFile, n: usize, note: &str) -> std::result::Result<(), String> {
-    let key = std::ffi::CString::new(format!("TTYPE{n}")).map_err(|e| e.to_string())?;
+fn note_column(h: &mut HduWriter, n: usize, note: &str) -> std::result::Result<(), String> {
     let mut text: String = note
         .chars()
         .filter(|c| c.is_ascii() && !c.is_control())
@@ -532,30 +418,10 @@ fn note_column(f: &mut FitsFile, n: usize, note: &str) -> std::result::Result<()
         let cut = text[..ROOM].rfind(' ').unwrap_or(ROOM);
         text.truncate(cut);
     }
-    let com = std::ffi::CString::new(text).map_err(|e| e.to_string())?;
-    let mut status = 0;
-    // SAFETY: the file is open at the table; both strings are NUL-terminated.
-    unsafe { fitsio_sys::ffmcom(f.as_raw(), key.as_ptr(), com.as_ptr(), &mut status) };
-    match status {
-        0 => Ok(()),
-        s => Err(format!("TTYPE{n}: {}", super::status_text(s))),
-    }
+    h.set_comment(&format!("TTYPE{n}"), &text)
 }
 
-/// Today's UTC date, `YYYY-MM-DD` (civil from days since 1970, Hinnant).
-fn today() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0);
-    let z = (secs / 86_400) as i64 + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02}")
+/// `YYYY-MM-DD` of a UTC date.
+fn date_text(d: time::Date) -> String {
+    format!("{:04}-{:02}-{:02}", d.year(), u8::from(d.month()), d.day())
 }
