@@ -95,7 +95,7 @@ fn oifits(targets: &[(i16, &str)], rows: &[(i16, f64)], primary_extra: &[Vec<u8>
         primary(primary_extra),
         table(
             "OI_TARGET",
-            &[revn.clone()],
+            std::slice::from_ref(&revn),
             &[("TARGET_ID", "1I"), ("TARGET", "16A")],
             &target_rows,
         ),

@@ -68,7 +68,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
     if all.is_empty() || !(lo > 0.0 && hi > lo) {
         return Err(nothing_to_plot(path, "no grid point reaches any accuracy"));
     }
-    if !(f1 > f0) {
+    if f1 <= f0 {
         return Err(nothing_to_plot(
             path,
             "one fringe frequency; the figure draws σ(V²) against two or more (--fringe-hz)",
