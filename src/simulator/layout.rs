@@ -180,8 +180,9 @@ pub struct SetLayout {
     pub stride_s: f64,
     /// Duration of one scan (N samples), s.
     pub scan_time_s: f64,
-    /// Samples of each periodic piston sequence the rows read (the longest
-    /// when they differ); absent in sidecars written before it.
+    /// Observation layout: samples of each periodic piston sequence the
+    /// rows read (the longest when they differ); absent otherwise and in
+    /// sidecars written before it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sequence_samples: Option<u64>,
     /// How long each sequence is against what its rows span, in words

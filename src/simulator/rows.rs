@@ -345,7 +345,9 @@ impl Rows<'_> {
             stride_samples,
             stride_s: stride_samples as f64 * p.setup.sample_time_s(),
             scan_time_s: p.setup.scan_time_s(),
-            sequence_samples: Some(period as u64),
+            // Only in the observation layout (the default layout's sidecars,
+            // golden vectors among them, stay as they were).
+            sequence_samples: note.as_ref().map(|_| period as u64),
             note,
         })
     }
