@@ -612,7 +612,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: float=1000000.0, samples_per_fringe: float=4.0, dead_time_s: float=0.0, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -621,12 +621,24 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         σ of the averaged V² to reach (default 1e-3 when no time budget).
     time_budget_s : float, optional
         Instead, the time to spend, s: the σ reached is reported.
-    photon_rate_per_s : float
-        Continuum photons per second at the detector in the band.
+    photon_rate_per_s : float, optional
+        Continuum photons per second at the detector in the band (default
+        1e6; not with ``magnitude``).
+    magnitude, magnitude_band, throughput : optional
+        Instead of ``photon_rate_per_s`` (as ``v2ref plan --magnitude``):
+        the source's magnitude (-10 to 30) in ``magnitude_band`` ("J", "H",
+        "Ks", "V", "R", "I"), collected by two apertures of ``aperture_m``
+        times ``throughput`` (0 < T <= 1); see :func:`photon_rate`. All
+        three together.
     samples_per_fringe : float
         Samples per fringe at λ0 (δx = λ0 / this).
     dead_time_s : float
-        Dead time between scans, s.
+        Dead time between scans, s (the plan assumes none unless given).
+    frame_rate_hz : float, optional
+        The detector's maximum sample rate, Hz (as ``--frame-rate-hz``): the
+        grid's fringe frequencies stop at ``frame_rate_hz /
+        samples_per_fringe`` (the default grid runs up to it), and a
+        recommendation there is the detector's edge (``at_detector_edge``).
     fringe_hz, stroke_um : sequence of float, optional
         The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
         and strokes (µm; default 16, 32, 64, 128).
