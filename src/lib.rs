@@ -110,7 +110,7 @@
 //! so that each can be read, tested and changed with only what is under it
 //! in mind:
 //!
-//! 1. foundation: `error` ([`Error`]), `tolerance`, [`bounds`], [`cancel`], `cleanup`, [`math`], [`montecarlo`], `words` (the words that name each choice);
+//! 1. foundation: `error` ([`Error`]), `tolerance`, [`bounds`], [`cancel`], `cleanup`, [`math`], [`montecarlo`], `words` (the words that name each choice), `manifest` (the member list of a set of files);
 //! 2. [`formalism`];
 //! 3. `record` (the inputs of a computation as plain values, and the record of them an answer carries);
 //! 4. [`bias`];
@@ -215,6 +215,8 @@ gated_mod!("internals": commands, record, words);
 // The tolerances and assertion macros of the test suite (feature `testing`).
 gated_mod!("testing": tolerance);
 pub(crate) mod csv_lines;
+// The member list of a set (named by `atomic` and the sidecar).
+mod manifest;
 
 // The command line's and Python's machinery, compiled only for them
 // (feature `internals`, which `files`, `oifits`, `cli` and `python` turn on).

@@ -16,6 +16,7 @@ const LEVELS: &[&[&str]] = &[
         "cleanup",
         "atomic",
         "csv_lines",
+        "manifest",
         "math",
         "montecarlo",
         "words",

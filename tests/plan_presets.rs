@@ -72,6 +72,7 @@ fn every_preset_is_inside_the_accepted_ranges() {
         let edge = i.frame_rate_hz / 4.0;
         // tol: the log grid's last point is exp(ln(edge)): a few roundings.
         assert!(
+            // tol: the log grid's last point is exp(ln(edge)): a few roundings.
             (grid[grid.len() - 1] - edge).abs() <= 1e-12 * edge,
             "{}: {grid:?}",
             i.name

@@ -1063,7 +1063,10 @@ def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, sp
             raise ValueError(f"{name}: needed with magnitude (magnitude, magnitude_band and throughput together)")
     if not isinstance(magnitude_band, str):
         raise TypeError(f"magnitude_band: {magnitude_band!r} is not a str (J, H, Ks, V, R or I)")
-    return (_float("magnitude", magnitude), magnitude_band, _float("throughput", throughput))
+    # Any case, as the CLI's --magnitude-band takes it (h, H; ks, Ks).
+    bands = {b.lower(): b for b in ("J", "H", "Ks", "V", "R", "I")}
+    band = bands.get(magnitude_band.strip().lower(), magnitude_band)
+    return (_float("magnitude", magnitude), band, _float("throughput", throughput))
 
 
 @_documented()

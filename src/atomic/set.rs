@@ -22,7 +22,7 @@
 //! is repaired by a reader: the next writer of the set replaces it whole.
 
 use super::TempTarget;
-pub use crate::conformance::sidecar::Member;
+pub use crate::manifest::Member;
 use crate::{Error, Result};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};

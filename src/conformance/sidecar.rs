@@ -233,17 +233,4 @@ impl Sidecar {
     }
 }
 
-/// One file of a set as its sidecar lists it: the file's name (in the
-/// sidecar's folder, lossy when it is not UTF-8), its size and its
-/// checksum (FNV-1a, 64 bits, of its bytes: it tells a file from another
-/// file, it does not authenticate one).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[non_exhaustive]
-pub struct Member {
-    /// The file name, without a folder.
-    pub name: String,
-    /// Its size, bytes.
-    pub bytes: u64,
-    /// FNV-1a (64 bits) of its bytes, 16 hexadecimal digits.
-    pub fnv1a64: String,
-}
+pub use crate::manifest::Member;

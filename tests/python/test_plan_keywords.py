@@ -25,7 +25,9 @@ def _cli_flags():
     out = subprocess.run(
         [str(release_binary()), "plan", "--help"], capture_output=True, text=True, check=True
     ).stdout
-    return {m.replace("-", "_") for m in re.findall(r"^\s+(?:-\w, )?--([a-z0-9-]+)", out, re.M)}
+    flags = {m.replace("-", "_") for m in re.findall(r"^\s+(?:-\w, )?--([a-z0-9-]+)", out, re.M)}
+    # --no-photon-noise is the keyword photon_noise=False.
+    return {f[3:] if f == "no_photon_noise" else f for f in flags}
 
 
 @pytest.mark.needs_bin
