@@ -9,7 +9,7 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::special::fresnel_cs;
-use v2ref::reproduction::cases::DX_UM;
+use v2ref_reproduction::cases::DX_UM;
 
 fn disk_at(s: f64) -> Observation {
     Observation::new(

@@ -13,7 +13,7 @@ use v2ref::formalism::estimator::BinWindow;
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
 use v2ref::noise::{example_interferogram, NoiseModel};
-use v2ref::reproduction::cases::appendix_setup;
+use v2ref_reproduction::cases::appendix_setup;
 
 const TRIALS: u64 = 1 << 16;
 

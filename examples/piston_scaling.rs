@@ -14,10 +14,10 @@
 
 use std::time::Instant;
 use v2ref::montecarlo::in_pool;
-use v2ref::reproduction::cases::{
+use v2ref_reproduction::cases::{
     fig5_frequencies, fig5_size, paper_turbulence, Effort, FIGURE_SEED,
 };
-use v2ref::reproduction::figures::fig5_runs;
+use v2ref_reproduction::figures::fig5_runs;
 
 /// FNV-1a over the JSON of the runs (every number's shortest
 /// round-trip decimal, so equal digests mean equal bits).

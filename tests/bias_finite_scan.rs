@@ -12,7 +12,7 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::reproduction::cases::DX_UM;
+use v2ref_reproduction::cases::DX_UM;
 use v2ref::tolerance::{
     BIN_ORACLE_ABS, DIRECT_SUM_REL, DIRICHLET_VS_SINC_ABS, PATHS_AGREE_ABS as PATHS_AGREE,
     ROUGH_SCALING_REL, ROUNDING_REL,
@@ -247,8 +247,8 @@ fn the_window_is_the_positive_half() {
 /// runs the code.
 #[test]
 fn the_figure_shows_both_paths_agreeing() {
-    use v2ref::reproduction::cases::{Effort, STROKES_UM};
-    use v2ref::reproduction::figures::fig3;
+    use v2ref_reproduction::cases::{Effort, STROKES_UM};
+    use v2ref_reproduction::figures::fig3;
     let fig = fig3(Effort::Quick).unwrap();
     let load = |name: &str| fig.tables.iter().find(|t| t.name == name).unwrap();
     let (v1, v2, conv) = (load("fig3_v1"), load("fig3_v2"), load("fig3_convolution"));

@@ -3,8 +3,8 @@
 
 use serde::Serialize;
 use std::path::Path;
-use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::table::Table;
+use v2ref_reproduction::cases::Effort;
+use v2ref_reproduction::table::Table;
 use v2ref::tolerance::{GOLDEN_ABS, GOLDEN_REL};
 
 /// Six significant digits: enough to see drift, stable across platforms.
@@ -61,7 +61,7 @@ fn extrema(t: &Table, skip: usize) -> Vec<Extremum> {
 /// thresholds of the recomputed curves are snapshotted for review.
 #[test]
 fn figure_extrema() {
-    let figures = v2ref::reproduction::figures::all(Effort::Quick).unwrap();
+    let figures = v2ref_reproduction::figures::all(Effort::Quick).unwrap();
     let computed = |name: &str| -> Table {
         figures
             .iter()

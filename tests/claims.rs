@@ -4,8 +4,8 @@
 //! claims as the steering ledger is checked by `.ci/run`, where that ledger
 //! is available.)
 
-use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::claims::{
+use v2ref_reproduction::cases::Effort;
+use v2ref_reproduction::claims::{
     compute, decide, ledger, summary, ClaimResult, ClaimSpec, Computed, Finding, Status,
 };
 use v2ref::tolerance::ROUNDING_REL;

@@ -1,16 +1,16 @@
-//! `v2ref::commands::estimate`, the one answer of `estimate` behind the
+//! `v2ref_commands::commands::estimate`, the one answer of `estimate` behind the
 //! CLI and Python: its configuration against the rows' shape, its
 //! refusals named as each edge names its rows, its calibration by a
 //! calibrator's rows against the slow oracle, and the CLI's one changed
 //! refusal (other rows than a set's must have the set's N).
 
 use std::path::Path;
-use v2ref::commands::estimate::{
+use v2ref_commands::commands::estimate::{
     check_rows, estimate_rows, estimator, CalibratorRows, Configuration, RowsName,
 };
 use v2ref::conformance::estimate::{estimate_row_oracle, BiasConvention};
 use v2ref::formalism::estimator::{BinWindow, Pair};
-use v2ref::parameters::Physical;
+use v2ref_commands::parameters::Physical;
 use v2ref::simulator::Model;
 use v2ref::Error;
 

@@ -298,8 +298,8 @@ fn bad_input_is_one_line_naming_the_file() {
     assert_bad(&["estimate", "--sidecar", &d("bad.json")], &["bad.json"]);
     // Every physical flag with a sidecar is refused by the parser, naming
     // it (`--fringe-hz` was taken and ignored).
-    for p in &v2ref::parameters::PARAMETERS {
-        use v2ref::parameters::{Kind, Physical, Value};
+    for p in &v2ref_commands::parameters::PARAMETERS {
+        use v2ref_commands::parameters::{Kind, Physical, Value};
         let flag = match Physical::DEFAULT.get(p) {
             Value::Flag(true) => format!("--no-{}", p.name.replace('_', "-")),
             _ => format!("--{}", p.name.replace('_', "-")),

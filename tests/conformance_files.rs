@@ -1,14 +1,14 @@
-//! The file formats (`v2ref::formats`: .npy, CSV, atomic writers) and
+//! The file formats (`v2ref_files::formats`: .npy, CSV, atomic writers) and
 //! `v2ref score` on good and bad files: every bad input exits 2 with one
 //! line naming the file and where in it; the writers round-trip bits and
 //! are atomic.
 
-use v2ref::formats as files;
+use v2ref_files::formats as files;
 
 use files::{read_estimates, read_matrix, CsvRowWriter, NpyRowWriter};
 use npyz::WriterBuilder;
 use std::path::{Path, PathBuf};
-use v2ref::atomic::write_text_atomic;
+use v2ref_files::atomic::write_text_atomic;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::sidecar::{
     self, ConventionTruth, DataFiles, EstimatorTruth, ReferenceRun, Sidecar, Truth, TruthSource,

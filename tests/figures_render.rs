@@ -6,7 +6,7 @@
 
 use resvg::{tiny_skia, usvg};
 use std::process::Command;
-use v2ref::reproduction::cases::Effort;
+use v2ref_reproduction::cases::Effort;
 
 /// Below this share of non-white pixels a panel counts as blank (a panel
 /// has axes, grid, curves and text: several percent).
@@ -106,11 +106,11 @@ fn every_figure_panel_renders() {
     if !fonts {
         eprintln!("no system font: text layout not checked, parsing and drawing only");
     }
-    let figures = v2ref::reproduction::figures::all(Effort::Quick).unwrap();
+    let figures = v2ref_reproduction::figures::all(Effort::Quick).unwrap();
     let mut panels = 0;
     for fig in &figures {
         for table in &fig.tables {
-            let svg = v2ref::reproduction::plot::table_svg(fig, table).unwrap();
+            let svg = v2ref_reproduction::plot::table_svg(fig, table).unwrap();
             if let Err(why) = check_svg(&svg, &opt, fonts) {
                 panic!("{}.svg: {why}", table.name);
             }
@@ -165,10 +165,10 @@ fn plan_svg_renders() {
 #[test]
 fn broken_svgs_fail() {
     let (opt, fonts) = options();
-    let figure = v2ref::reproduction::figures::all(Effort::Quick)
+    let figure = v2ref_reproduction::figures::all(Effort::Quick)
         .unwrap()
         .remove(0);
-    let svg = v2ref::reproduction::plot::table_svg(&figure, &figure.tables[0]).unwrap();
+    let svg = v2ref_reproduction::plot::table_svg(&figure, &figure.tables[0]).unwrap();
     assert!(check_svg(&svg, &opt, fonts).is_ok());
 
     let truncated = &svg[..svg.len() / 2];

@@ -984,7 +984,7 @@ mod words {
     use v2ref::conformance::estimate::BiasConvention;
     use v2ref::formalism::estimator::BinWindow;
     use v2ref::noise::Formula;
-    use v2ref::parameters::SourceKind;
+    use v2ref_commands::parameters::SourceKind;
     use v2ref::piston::spectrum::PistonPsdModel;
     use v2ref::piston::PistonReference;
     use v2ref::simulator::RowLayout;
@@ -1018,7 +1018,7 @@ mod words {
         check::<PistonReference>();
         check::<PistonPsdModel>();
         check::<RowLayout>();
-        check::<v2ref::plan::photometry::Band2Mass>();
+        check::<v2ref_commands::plan::photometry::Band2Mass>();
         assert_eq!(BinWindow::listed(", "), "positive, band, all");
         assert_eq!(RowLayout::listed(" or "), "sequences or observation");
     }

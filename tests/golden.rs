@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use v2ref::reproduction::golden::{check_figures, write_figures};
-use v2ref::reproduction::table::{Column, Figure, Table};
+use v2ref_reproduction::golden::{check_figures, write_figures};
+use v2ref_reproduction::table::{Column, Figure, Table};
 
 fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("golden")
@@ -14,7 +14,7 @@ fn golden_dir() -> PathBuf {
 fn golden_data_matches_the_code() {
     // What `v2ref golden --check` runs: every figure at full effort.
     let figures =
-        v2ref::reproduction::figures::all(v2ref::reproduction::cases::Effort::Full).unwrap();
+        v2ref_reproduction::figures::all(v2ref_reproduction::cases::Effort::Full).unwrap();
     let report = check_figures(&golden_dir(), &figures);
     let tables: usize = figures.iter().map(|f| f.tables.len()).sum();
     assert_eq!(report.checked, tables);

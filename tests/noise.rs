@@ -11,7 +11,7 @@ use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref::reproduction::cases::appendix_setup;
+use v2ref_reproduction::cases::appendix_setup;
 use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
 use v2ref::{assert_abs_eq, assert_rel_eq};
 

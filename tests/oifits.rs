@@ -8,7 +8,7 @@
 use fitsio::tables::{ColumnDataType, ColumnDescription};
 use fitsio::FitsFile;
 use std::path::Path;
-use v2ref::formats::oifits::read_vis2_tables;
+use v2ref_oifits::read_vis2_tables;
 
 use crate::run::v2ref;
 

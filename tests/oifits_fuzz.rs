@@ -11,7 +11,7 @@
 
 use proptest::prelude::*;
 use std::sync::OnceLock;
-use v2ref::formats::oifits::{parse_oifits, OifitsFile, ReadOptions};
+use v2ref_oifits::{parse_oifits, OifitsFile, ReadOptions};
 
 const CHECKED: ReadOptions = ReadOptions {
     accept_checksum_mismatch: false,

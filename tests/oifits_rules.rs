@@ -318,7 +318,7 @@ fn a_row_written_as_nan_is_flagged() {
     // estimate --out over 4096 samples writes VIS2ERR NaN (no closed
     // form), Python's write_oifits whatever NaN it is given: the writer
     // flags every such row, so that no fitter reads a NaN as a weight.
-    use v2ref::formats::oifits::{
+    use v2ref_oifits::{
         iota, parse_oifits, to_bytes, OifitsDoc, ReadOptions, Setting, Vis2Out,
     };
     let setting = Setting {
@@ -379,7 +379,7 @@ fn the_plans_file_holds_its_errors_and_convention_and_exits_as_the_plan() {
     let (code, _, err) = v2ref(&[&PLAN[..], &["--oifits", f]].concat());
     assert_eq!(code, 0, "{err}");
     let bytes = std::fs::read(&file).unwrap();
-    let hdus = v2ref::formats::oifits::fits::parse(&bytes).unwrap();
+    let hdus = v2ref_oifits::fits::parse(&bytes).unwrap();
     let vis2 = hdus
         .iter()
         .find(|h| h.header.str("EXTNAME") == Some("OI_VIS2"))

@@ -2,11 +2,11 @@
 //! three-slope`): both carry the von Kármán piston variance (against a
 //! pupil-plane mpmath quadrature, tests/data/vonkarman_piston.csv, its
 //! generator beside it), and what they differ in is how far the piston
-//! moves within a scan (`v2ref::piston::model_comparison`), which `piston`
+//! moves within a scan (`v2ref_commands::report::model_comparison`), which `piston`
 //! states in a note.
 
 use std::process::Command;
-use v2ref::piston::model_comparison::{structure_over_lag_um2, PsdComparison};
+use v2ref_commands::report::model_comparison::{structure_over_lag_um2, PsdComparison};
 use v2ref::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use v2ref::piston::turbulence::Turbulence;
 use v2ref::tolerance::{TURBULENCE_CHECK_REL, TURBULENCE_SPECTRAL_REL};

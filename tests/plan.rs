@@ -7,7 +7,7 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
-use v2ref::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
+use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref::tolerance::MC_SIGMAS;
 
@@ -248,9 +248,9 @@ fn cli_plan_writes_json_and_svg() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--photon-rate-per-s"));
 }
 
-// --- The magnitude helper (`v2ref::plan::photometry`) --------------------
+// --- The magnitude helper (`v2ref_commands::plan::photometry`) --------------------
 
-use v2ref::plan::photometry::{Band2Mass, Magnitude};
+use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
 
 fn ks_zero(aperture_m: f64, throughput: f64) -> Magnitude {
@@ -460,8 +460,8 @@ fn every_null_of_a_plan_has_its_reason_in_words() {
 
 // --- The plan's figure (`plan --svg`) draws the planner's numbers --------
 
-use v2ref::plan::figure::{drawn_as, figure_time_s, sigma_curve, Drawn};
-use v2ref::plan::sigma_reached_in;
+use v2ref_commands::plan::figure::{drawn_as, figure_time_s, sigma_curve, Drawn};
+use v2ref_commands::plan::sigma_reached_in;
 
 /// One computation for the figure and the table. With a time budget the
 /// figure's σ at each fringe frequency is the least `sigma_reached` of the

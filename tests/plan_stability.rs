@@ -14,7 +14,7 @@
 
 use crate::run::v2ref;
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref::plan::{plan, PlanInputs, Target};
+use v2ref_commands::plan::{plan, PlanInputs, Target};
 use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 
 /// An H-band 2 mas disk on 100 m at 1e6 photons/s through 1 m apertures
@@ -68,7 +68,7 @@ fn a_settings_promise_does_not_depend_on_the_rest_of_the_grid() {
         &|_| {},
     )
     .unwrap();
-    let at = |p: &v2ref::plan::Plan| {
+    let at = |p: &v2ref_commands::plan::Plan| {
         p.points
             .iter()
             .filter(|q| q.fringe_hz == 1000.0)

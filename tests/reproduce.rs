@@ -90,7 +90,7 @@ fn quick_reproduction_writes_every_expected_file() {
     let md = std::fs::read_to_string(out.join("claims.md")).unwrap();
     let claims: Vec<serde_json::Value> =
         serde_json::from_str(&std::fs::read_to_string(out.join("claims.json")).unwrap()).unwrap();
-    assert_eq!(claims.len(), v2ref::reproduction::claims::ledger().len());
+    assert_eq!(claims.len(), v2ref_reproduction::claims::ledger().len());
     for c in &claims {
         let id = c["id"].as_str().unwrap();
         assert_ne!(c["status"], "pending", "{id} is pending");

@@ -226,7 +226,7 @@ fn sigkill_at_random_moments_never_lets_a_mix_be_read() {
 #[cfg(target_os = "linux")]
 fn a_folder_is_replaced_in_one_step() {
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-    use v2ref::reproduction::golden::replace_dir_atomically;
+    use v2ref_reproduction::golden::replace_dir_atomically;
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     let fill =

@@ -435,7 +435,7 @@ fn golden_update_rewrites_its_own_folder() {
 /// both calls succeeded, one replacing the other.)
 #[test]
 fn a_folder_has_one_writer_at_a_time() {
-    use v2ref::reproduction::golden::replace_dir_atomically;
+    use v2ref_reproduction::golden::replace_dir_atomically;
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     let write = |d: &Path, text: &str| {

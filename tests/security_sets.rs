@@ -523,7 +523,7 @@ fn moving_the_output_folder_during_a_run_leaves_no_lock_file() {
 /// writer removed it as a stale temporary.)
 #[test]
 fn a_file_at_a_folder_target_is_never_swapped_out() {
-    use v2ref::reproduction::golden::replace_dir_atomically;
+    use v2ref_reproduction::golden::replace_dir_atomically;
     let tmp = tempfile::tempdir().unwrap();
     let target = tmp.path().join("out");
     std::fs::write(&target, "a user's file\n").unwrap();

@@ -244,8 +244,8 @@ fn a_table_of_999_columns_and_a_long_header_is_read() {
         table("EXTRA", &filler, &columns, &[vec![7u8; 999]]),
     ]
     .concat();
-    let hdus = v2ref::formats::oifits::fits::parse(&bytes).unwrap();
-    let t = v2ref::formats::oifits::table::Table::new(&hdus[1]).unwrap();
+    let hdus = v2ref_oifits::fits::parse(&bytes).unwrap();
+    let t = v2ref_oifits::table::Table::new(&hdus[1]).unwrap();
     assert_eq!(t.columns.len(), 999);
     assert_eq!(t.columns[998].name, "C998");
     assert_eq!(hdus[1].header.str("V2R_EST"), Some("V2SQ"));

@@ -95,7 +95,7 @@ fn the_error_is_one_line_naming_the_library_parameter() {
 fn a_missing_file_keeps_the_system_error_as_source() {
     use std::error::Error as _;
     let path = std::path::Path::new("/nonexistent/spectrum.csv");
-    let e = Spectrum::from_csv_path(path).unwrap_err();
+    let e = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(path).unwrap_err();
     assert_eq!(e.param(), Some("spectrum"));
     let source = e.source().expect("the io::Error is kept");
     // The system's error, shared (`Arc`) so that the error stays `Clone`.
@@ -159,12 +159,12 @@ fn a_file_is_read_up_to_its_size_limit() {
     text.push_str(table);
     assert_eq!(text.len(), limit);
     std::fs::write(&path, &text).unwrap();
-    let read = Spectrum::from_csv_path(&path).unwrap();
+    let read = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(&path).unwrap();
     assert_eq!(read, Spectrum::from_csv_str(table).unwrap());
     // One byte more is refused, naming the file and the limit.
     text.insert(0, '#');
     std::fs::write(&path, &text).unwrap();
-    match Spectrum::from_csv_path(&path) {
+    match v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(&path) {
         Err(Error::SpectrumTable { reason }) => {
             assert!(
                 reason.contains("band.csv") && reason.contains(&limit.to_string()),

@@ -9,7 +9,7 @@ use v2ref::formalism::estimator::{positive_bins, BinWindow};
 use v2ref::montecarlo::{in_pool, unit_rng, Rng};
 use v2ref::noise::simulation::{simulate_noisy, NoisySpec, PoissonSampler, TRIALS_PER_UNIT};
 use v2ref::noise::{example_interferogram, NoiseModel};
-use v2ref::reproduction::cases::appendix_setup;
+use v2ref_reproduction::cases::appendix_setup;
 use v2ref::simulator::{Inputs, Model};
 
 /// The paths, in the order they run.
@@ -70,7 +70,7 @@ fn estimate(rows: u64, n: usize) -> Case {
     };
     let inputs = model.inputs.clone();
     let v2ref = move |threads: usize| {
-        use v2ref::commands::estimate::{estimate_rows, estimator, RowsName};
+        use v2ref_commands::commands::estimate::{estimate_rows, estimator, RowsName};
         use v2ref::conformance::estimate::BiasConvention;
         let name = RowsName {
             param: "interferograms",

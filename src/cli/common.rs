@@ -4,7 +4,7 @@
 
 use super::flags::physical_flags;
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::parameters::{Parameter, Physical};
+use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref::words::Words;
 
 /// The `--help` of the flag of the physical input `p`, from its one

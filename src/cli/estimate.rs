@@ -6,17 +6,17 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::atomic::set::OutputSet;
-use v2ref::commands::estimate::{
+use v2ref_files::atomic::set::OutputSet;
+use v2ref_commands::commands::estimate::{
     estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
 };
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::{read_matrix, CsvRowWriter, NpyRowWriter, RowStream};
+use v2ref_files::formats::{read_matrix, CsvRowWriter, NpyRowWriter, RowStream};
 use v2ref::{Error, Result};
 
 /// The columns written, in order.
-pub use v2ref::commands::ESTIMATE_COLUMNS as COLUMNS;
+pub use v2ref_commands::commands::ESTIMATE_COLUMNS as COLUMNS;
 
 /// Flags of `estimate`.
 #[derive(Debug, clap::Args)]
@@ -97,7 +97,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let fits = args
         .out
         .as_deref()
-        .is_some_and(v2ref::formats::oifits::is_fits_path);
+        .is_some_and(v2ref_oifits::is_fits_path);
     let observing = args.observing.resolve(fits, "--out FILE.fits")?;
     set.write(|| estimate_and_write(&args, &source, &observing))
 }
@@ -107,14 +107,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
 fn estimate_and_write(
     args: &Args,
     source: &Source,
-    observing: &v2ref::formats::oifits::ObservingContext,
+    observing: &v2ref_oifits::ObservingContext,
 ) -> Result<ExitCode> {
     let (rows, cols) = match RowStream::open(&source.input, "input")? {
         Some(mut stream) => {
             // The answer is held whole (6 values a row): refused from the
             // header when it cannot fit.
             let answer_bytes = stream.rows() as u64 * std::mem::size_of::<RowEstimate>() as u64;
-            v2ref::formats::check_budget(answer_bytes, "input", &source.input)?;
+            v2ref_files::formats::check_budget(answer_bytes, "input", &source.input)?;
             let est = estimator(args, source, stream.rows(), stream.cols())?;
             let mut out = Vec::with_capacity(stream.rows());
             let mut block = Vec::new();
@@ -137,7 +137,7 @@ fn estimate_and_write(
     if let Some(p) = args
         .out
         .as_ref()
-        .filter(|p| v2ref::formats::oifits::is_fits_path(p))
+        .filter(|p| v2ref_oifits::is_fits_path(p))
     {
         let inputs = source.config.inputs_for(source.name(), rows.len(), cols)?;
         let what = (args.bins, args.bias, args.oifits_estimator);
@@ -152,7 +152,7 @@ fn estimate_and_write(
 /// cost announced first.
 fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<RowEstimator> {
     let inputs = source.config.inputs_for(source.name(), rows, cols)?;
-    let cost = v2ref::commands::cost::estimate(&inputs, rows as u64, args.threads)?;
+    let cost = v2ref_commands::commands::cost::estimate(&inputs, rows as u64, args.threads)?;
     super::output::announce("estimate", &cost);
     let calibrator = match args.calibrator.as_str() {
         "model" => None,
@@ -168,7 +168,7 @@ fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<R
     });
     let options = (args.bins, args.bias);
     let cs = source.config.continuum_subtracted;
-    v2ref::commands::estimate::estimator(&inputs, options, cs, calibrator, args.threads)
+    v2ref_commands::commands::estimate::estimator(&inputs, options, cs, calibrator, args.threads)
 }
 
 /// The `.npy` rows of the set whose sidecar is `sidecar_path`, named `npy`
@@ -207,7 +207,7 @@ fn source(args: &Args) -> Result<Source> {
             } else {
                 "sidecar"
             };
-            v2ref::atomic::set::verify_member(path, &members, read, param)?;
+            v2ref_files::atomic::set::verify_member(path, &members, read, param)?;
             let config = Configuration::from_sidecar(sidecar);
             // Other rows than the set's (--input) may be as many as they
             // like, but of the set's N.

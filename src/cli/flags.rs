@@ -1,5 +1,5 @@
 //! The physical flags, made from the library's one declaration
-//! ([`v2ref::parameters::PARAMETERS`]): each input's flag (its name, value
+//! ([`v2ref_commands::parameters::PARAMETERS`]): each input's flag (its name, value
 //! parser, default, help) follows from its entry, and a group of flags
 //! ([`physical_flags!`]) only lists the keys of the inputs it holds, in
 //! the order `--help` shows them. Reading the flags back sets each input by
@@ -10,7 +10,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::path::PathBuf;
 use std::sync::OnceLock;
-use v2ref::parameters::{Kind, Parameter, Physical, SpectrumFile, Value, PARAMETERS};
+use v2ref_commands::parameters::{Kind, Parameter, Physical, Value, PARAMETERS};
 
 /// How a group's number flags take a value that starts with `-`: as a
 /// negative number only, or whatever follows (then the value parser says
@@ -165,7 +165,7 @@ impl Given {
     pub fn apply_to(&self, p: &mut Physical) -> v2ref::Result<()> {
         for (key, file, value) in &self.0 {
             let value = match file {
-                Some(path) => Value::Spectrum(SpectrumFile::read(path)?),
+                Some(path) => Value::Spectrum(v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?),
                 None => value.clone(),
             };
             p.set(key, value)?;
@@ -185,12 +185,12 @@ macro_rules! physical_flags {
 
         impl $name {
             /// The inputs of these flags.
-            const KEYS: &'static [&'static v2ref::parameters::Parameter] =
-                &[$(&v2ref::parameters::Parameter::$key),+];
+            const KEYS: &'static [&'static v2ref_commands::parameters::Parameter] =
+                &[$(&v2ref_commands::parameters::Parameter::$key),+];
 
             /// Sets the inputs these flags hold in `p` (a spectrum's file
             /// read here).
-            pub fn apply_to(&self, p: &mut v2ref::parameters::Physical) -> v2ref::Result<()> {
+            pub fn apply_to(&self, p: &mut v2ref_commands::parameters::Physical) -> v2ref::Result<()> {
                 self.0.apply_to(p)
             }
         }

@@ -9,7 +9,7 @@ use super::print_json;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use v2ref::reproduction::golden;
+use v2ref_reproduction::golden;
 use v2ref::{Error, Result};
 
 /// Flags of `golden`.
@@ -124,7 +124,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         report.checked += checked;
         report.mismatches.extend(
             bad.into_iter()
-                .map(|m| v2ref::reproduction::table::Mismatch {
+                .map(|m| v2ref_reproduction::table::Mismatch {
                     table: m.file,
                     detail: m.detail,
                 }),
@@ -196,7 +196,7 @@ fn check_update_dir(dir: &std::path::Path, force: bool) -> Result<()> {
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
         name.is_some_and(|n| n.starts_with("fig") && n.ends_with(".json"))
             && std::fs::read_to_string(p)
-                .is_ok_and(|t| t.contains(v2ref::reproduction::golden::GENERATOR))
+                .is_ok_and(|t| t.contains(v2ref_reproduction::golden::GENERATOR))
     });
     let vectors_readme = dir.join(super::vectors::VECTORS_DIR).join("README.md");
     let vectors_by_golden = std::fs::read_to_string(vectors_readme)

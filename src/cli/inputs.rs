@@ -5,7 +5,7 @@ use super::common::{
     warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
 };
 use super::flags::{augment, Given, Hyphen};
-use v2ref::parameters::{Parameter, Physical};
+use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::Result;
 
@@ -114,7 +114,7 @@ mod tests {
     use clap::{CommandFactory, Parser};
     use serde_json::Value as Json;
     use std::collections::BTreeSet;
-    use v2ref::parameters::{Kind, Parameter, Physical, SpectrumFile, Value, PARAMETERS};
+    use v2ref_commands::parameters::{Kind, Parameter, Physical, Value, PARAMETERS};
 
     #[derive(Parser)]
     struct Cli {
@@ -160,7 +160,7 @@ mod tests {
                     )
                 }
                 Value::Unset if p.kind == Kind::File => {
-                    let table = SpectrumFile::read(&csv).unwrap();
+                    let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&csv).unwrap();
                     (
                         vec![format!("--{name}"), csv.display().to_string()],
                         Value::Spectrum(table),

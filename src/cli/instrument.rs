@@ -1,11 +1,11 @@
 //! `--instrument NAME` of `plan`: start from an instrument's preset
-//! (`v2ref::plan::instrument`), every flag given on the command line
+//! (`v2ref_commands::plan::instrument`), every flag given on the command line
 //! overriding its value; `--instrument list` prints the presets.
 
 use std::collections::BTreeSet;
-use v2ref::commands::plan::PlanRequest;
-use v2ref::parameters::Physical;
-use v2ref::plan::instrument::{instrument, Instrument, INSTRUMENTS};
+use v2ref_commands::commands::plan::PlanRequest;
+use v2ref_commands::parameters::Physical;
+use v2ref_commands::plan::instrument::{instrument, Instrument, INSTRUMENTS};
 use v2ref::{Error, Result};
 
 /// The flag, and which flags the command line gave (they override the
@@ -44,7 +44,7 @@ impl clap::FromArgMatches for InstrumentArgs {
 
 impl clap::Args for InstrumentArgs {
     fn augment_args(cmd: clap::Command) -> clap::Command {
-        let names = v2ref::plan::instrument::names().join(", ");
+        let names = v2ref_commands::plan::instrument::names().join(", ");
         cmd.arg(
             clap::Arg::new(ID)
                 .long("instrument")

@@ -1,8 +1,8 @@
 //! `--max-memory-gib`, the memory budget of the commands that read data
 //! files (`estimate`, `score`): the library's budget
-//! (`v2ref::formats::budget`) set for the run.
+//! (`v2ref_files::formats::budget`) set for the run.
 
-use v2ref::formats::{budget_bytes_of_gib, set_memory_budget_gib};
+use v2ref_files::formats::{budget_bytes_of_gib, set_memory_budget_gib};
 use v2ref::Result;
 
 /// The memory budget flag.

@@ -54,11 +54,11 @@ use v2ref::Error;
 pub const EXIT_BAD_INPUT: u8 = 2;
 
 /// The flag that sets the library parameter `param`: `--` and its keyword
-/// ([`v2ref::parameters::keyword_of`]) with `_` as `-`.
+/// ([`v2ref_commands::parameters::keyword_of`]) with `_` as `-`.
 pub fn flag_of(param: &str) -> String {
     format!(
         "--{}",
-        v2ref::parameters::keyword_of(param).replace('_', "-")
+        v2ref_commands::parameters::keyword_of(param).replace('_', "-")
     )
 }
 

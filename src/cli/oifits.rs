@@ -1,14 +1,14 @@
 //! The command line's OIFITS edge: which format an `--out` path asks for,
 //! the flags that choose estimators and tables, and the calls into
-//! `v2ref::formats::oifits` (which builds and reads every file).
+//! the crate `v2ref-oifits` (which builds and reads every file).
 
 use std::path::Path;
 use v2ref::conformance::estimate::{BiasConvention, RowEstimate};
 use v2ref::conformance::score::Estimator;
 use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref::formats::oifits::{self, docs, Expected, ObservingContext, ObservingSpec};
-use v2ref::formats::{read_estimates, Estimates};
+use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
+use v2ref_files::formats::{read_estimates, Estimates};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
 

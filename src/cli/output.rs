@@ -14,7 +14,7 @@
 use std::io::{self, Write};
 use std::path::Path;
 use std::sync::atomic::Ordering;
-use v2ref::commands::cost::{duration_words, Cost, NOTICE_S};
+use v2ref_commands::commands::cost::{duration_words, Cost, NOTICE_S};
 use v2ref::{Error, Result};
 
 /// Exit status when the output cannot be written (sysexits' `EX_IOERR`).
@@ -82,7 +82,7 @@ pub fn check_out_dir(out: &Path, force: bool) -> Result<()> {
             )))
         }
     }
-    v2ref::reproduction::golden::check_parent_writable(out).map_err(|e| match e {
+    v2ref_reproduction::golden::check_parent_writable(out).map_err(|e| match e {
         Error::Io { path, source, .. } => Error::Io {
             param: Some("out"),
             path,

@@ -1,7 +1,7 @@
 //! The lines `piston --observation-scans` prints: σ(V²) of the mean of an
 //! observation's consecutive scans beside the independent-scan value.
 
-use v2ref::plan::ObservationPiston;
+use v2ref_commands::plan::ObservationPiston;
 
 /// Prints one line per fringe frequency.
 pub fn print(rows: &[ObservationPiston]) {

@@ -1,17 +1,17 @@
 //! `v2ref plan`: the estimator, fringe frequency, stroke and number of scans
 //! that reach a target σ(V²) (or the σ reached in a time budget) for an
-//! instrument, a source and a site (`v2ref::plan`).
+//! instrument, a source and a site (`v2ref_commands::plan`).
 
 use super::common::{warn_if_outer_scale_infinite, ObservationArgs, TurbulenceArgs};
 use super::flags::physical_flags;
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
-use v2ref::commands::plan::{self, PlanRequest};
+use v2ref_commands::commands::plan::{self, PlanRequest};
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref::parameters::Physical;
+use v2ref_commands::parameters::Physical;
 use v2ref::piston::spectrum::PistonSpectrum;
-use v2ref::plan::photometry::{Band2Mass, Magnitude};
-use v2ref::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
+use v2ref_commands::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
 use v2ref::{Error, Result};
 
 /// Flags of `plan`.
@@ -221,7 +221,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(p) = &args.oifits {
-        v2ref::formats::oifits::check_fits_extension(p, "oifits")?;
+        v2ref_oifits::check_fits_extension(p, "oifits")?;
     }
     let observing = args.observing.resolve(args.oifits.is_some(), "--oifits")?;
     // Both files checked and locked before any work, written together.
@@ -229,7 +229,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let targets: Vec<_> = svg
         .chain(args.oifits.iter().map(|p| (p.as_path(), "oifits")))
         .collect();
-    let set = v2ref::atomic::set::OutputSet::begin(&targets, args.force)?;
+    let set = v2ref_files::atomic::set::OutputSet::begin(&targets, args.force)?;
     let (physical, req) = request(&args)?;
     let prepared = plan::prepare(&physical, &req)?;
     super::output::announce("plan", &prepared.cost(args.threads)?);
@@ -240,14 +240,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
     bar.finish_and_clear();
     if args.verify {
         let size = plan::verification(&answer, args.verify_observations)?;
-        let cost = v2ref::commands::cost::plan_verification(&size, args.threads);
+        let cost = v2ref_commands::commands::cost::plan_verification(&size, args.threads);
         if cost.notice().is_some() {
             super::output::announce("plan --verify", &cost);
         } else if !args.quiet {
             super::output::write_stderr_line(format_args!(
                 "note: plan --verify: simulating {}, about {}",
                 cost.what,
-                v2ref::commands::cost::duration_words(cost.seconds)
+                v2ref_commands::commands::cost::duration_words(cost.seconds)
             ));
         }
         let bar = progress_bar(size.scans(), args.quiet || args.json, "plan --verify");
@@ -260,7 +260,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
         if let Some(path) = &args.oifits {
             let plan = (&answer.inputs, &answer.plan);
-            if !v2ref::formats::oifits::write_plan(path, "oifits", plan, &observing)? {
+            if !v2ref_oifits::write_plan(path, "oifits", plan, &observing)? {
                 errln!(
                     "note: --oifits: no setting reaches the target, so no observation is predicted; {} not written",
                     path.display()
@@ -559,7 +559,7 @@ fn print_table(inputs: &PlanInputs, plan: &Plan, piston: &PistonSpectrum, all: b
     if rows.iter().any(|p| {
         p.observation.is_none() && p.time_s.is_some() && matches!(inputs.target, Target::SigmaV2(_))
     }) {
-        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest {} settings of each estimator (by the per-scan estimate) only, less those whose noise alone needs longer than the best solved", v2ref::plan::CANDIDATES);
+        outln!("  *: scans and time assume independent scans (sigma_scan^2/(target^2 - bias^2)); the plan solves the observation of consecutive scans for the fastest {} settings of each estimator (by the per-scan estimate) only, less those whose noise alone needs longer than the best solved", v2ref_commands::plan::CANDIDATES);
     }
     // What a "-" in the table stands for, once per reason shown.
     let mut reasons: Vec<&str> = Vec::new();

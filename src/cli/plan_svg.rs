@@ -1,14 +1,14 @@
 //! The planner's figure: the σ(V²) each estimator reaches against fringe
 //! frequency (best stroke at each), in the plan's time, with the target;
-//! its numbers are the planner's ([`v2ref::plan::figure`]), only drawn here.
+//! its numbers are the planner's ([`v2ref_commands::plan::figure`]), only drawn here.
 //! The promise is drawn as lines through filled points; settings not solved
 //! for consecutive scans as open circles at the other frequencies, with
 //! their own legend line.
 
 use plotters::prelude::*;
 use std::path::Path;
-use v2ref::plan::figure::{figure_time_s, sigma_curve, Drawn};
-use v2ref::plan::{Estimator, Plan, PlanInputs};
+use v2ref_commands::plan::figure::{figure_time_s, sigma_curve, Drawn};
+use v2ref_commands::plan::{Estimator, Plan, PlanInputs};
 use v2ref::{Error, Result};
 
 fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
@@ -154,7 +154,7 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .map_err(|e| fail(path, e))?;
         root.present().map_err(|e| fail(path, e))?;
     }
-    v2ref::atomic::write_text_atomic(path, &svg)
+    v2ref_files::atomic::write_text_atomic(path, &svg)
 }
 
 /// A log-axis tick at the precision it carries: three significant figures

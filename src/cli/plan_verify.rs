@@ -1,7 +1,7 @@
 //! The lines `plan --verify` prints: the simulated observations beside the
 //! promise.
 
-use v2ref::plan::verify::Verification;
+use v2ref_commands::plan::verify::Verification;
 
 /// Prints the verification `v` (V² throughout).
 pub fn print(v: &Verification) {

@@ -8,8 +8,8 @@ use super::{print_json, progress_bar};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::reproduction::cases::Effort;
-use v2ref::reproduction::claims::{evaluate, status_counts, to_markdown, ClaimResult};
+use v2ref_reproduction::cases::Effort;
+use v2ref_reproduction::claims::{evaluate, status_counts, to_markdown, ClaimResult};
 use v2ref::{Error, Result};
 
 /// Flags of `reproduce`.
@@ -71,7 +71,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     } else {
         Effort::Full
     };
-    let (claims, files) = v2ref::reproduction::golden::replace_dir_atomically(&args.out, |dir| {
+    let (claims, files) = v2ref_reproduction::golden::replace_dir_atomically(&args.out, |dir| {
         build(dir, effort, args.output.quiet)
     })?;
     if args.output.json {
@@ -97,7 +97,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, Vec<String>)> {
     super::output::write_out_marker(dir)?;
     let bar = progress_bar(4, quiet, "figures");
-    let figures = v2ref::reproduction::figures::all(effort)?;
+    let figures = v2ref_reproduction::figures::all(effort)?;
     bar.inc(1);
     bar.set_message("plots");
     let generator = format!(
@@ -108,16 +108,16 @@ fn build(dir: &Path, effort: Effort, quiet: bool) -> Result<(Vec<ClaimResult>, V
             ""
         }
     );
-    let mut files = v2ref::reproduction::golden::write_figure_files(dir, &figures, &generator)?;
+    let mut files = v2ref_reproduction::golden::write_figure_files(dir, &figures, &generator)?;
     for fig in &figures {
         for table in &fig.tables {
-            let svg = v2ref::reproduction::plot::table_svg(fig, table)?;
+            let svg = v2ref_reproduction::plot::table_svg(fig, table)?;
             write(dir, &format!("{}.svg", table.name), &svg, &mut files)?;
         }
     }
     bar.inc(1);
     bar.set_message("Fig. 5 sensitivity");
-    let sensitivity = v2ref::reproduction::claims::sensitivity::fig5_sensitivity(effort)?;
+    let sensitivity = v2ref_reproduction::claims::sensitivity::fig5_sensitivity(effort)?;
     write(
         dir,
         "fig5_sensitivity.csv",

@@ -135,7 +135,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         &flags,
     )?;
     if let Some(flagged) = input.flagged {
-        let floor = v2ref::formats::oifits::min_unflagged_rows(sc.data.rows);
+        let floor = v2ref_oifits::min_unflagged_rows(sc.data.rows);
         if input.rows < floor {
             return Ok(too_few_rows(&args, sc.data.rows, flagged, floor));
         }

@@ -20,7 +20,7 @@ pub fn install() {
 
 /// Ends the process after `signal` (its name, its number).
 fn stop(name: &str, number: i32) -> ! {
-    v2ref::cleanup::remove_all();
+    v2ref_files::cleanup::remove_all();
     super::output::write_stderr_line(format_args!("interrupted ({name})"));
     std::process::exit(128 + number);
 }

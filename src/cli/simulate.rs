@@ -13,7 +13,7 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
-use v2ref::simulator::report::{check_trials, Estimation, SimulateReport};
+use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 use v2ref::simulator::{simulate, Model};
 use v2ref::Result;
 
@@ -47,7 +47,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
     let inputs = args.inputs.inputs()?;
-    let cost = v2ref::commands::cost::simulate(&inputs, args.trials, args.run.threads)?;
+    let cost = v2ref_commands::commands::cost::simulate(&inputs, args.trials, args.run.threads)?;
     super::output::announce("simulate", &cost);
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);

@@ -6,7 +6,7 @@
 use super::common::{LightArgs, ObservedArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref::noise::report::SnrReport;
+use v2ref_commands::report::noise::SnrReport;
 use v2ref::noise::snr_value::snr_text;
 use v2ref::noise::Formula;
 use v2ref::Result;
@@ -37,16 +37,16 @@ pub struct Args {
 pub fn run(args: Args) -> Result<ExitCode> {
     let mut p = args.observed.physical()?;
     args.noise.light.apply_to(&mut p)?;
-    let cost = v2ref::commands::cost::snr(&p)?;
+    let cost = v2ref_commands::commands::cost::snr(&p)?;
     super::output::announce("snr", &cost);
     // Seconds or more (N in the thousands): a spinner on a terminal.
     let what = format!(
         "snr: {}, predicted about {}",
         cost.what,
-        v2ref::commands::cost::duration_words(cost.seconds)
+        v2ref_commands::commands::cost::duration_words(cost.seconds)
     );
     let bar = super::spinner(cost.seconds < 1.0, &what);
-    let answer = v2ref::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
+    let answer = v2ref_commands::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
     bar.finish_and_clear();
     if args.json {
         print_json(&answer);

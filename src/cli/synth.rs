@@ -8,12 +8,12 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::atomic::{set::OutputSet, write_text_atomic};
-use v2ref::commands::cost::SetOutput;
-use v2ref::commands::synth::{synthesize, SetSize};
+use v2ref_files::atomic::{set::OutputSet, write_text_atomic};
+use v2ref_commands::commands::cost::SetOutput;
+use v2ref::conformance::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
-use v2ref::formats::{CsvRowWriter, NpyRowWriter};
+use v2ref_files::formats::{CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::{Model, RowLayout, RowTiming};
 use v2ref::{Error, Result};
 
@@ -108,7 +108,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let rows = (args.rows, reference_rows);
     super::output::announce(
         "synth",
-        &v2ref::commands::cost::synth(&inputs, rows, args.run.threads, output)?,
+        &v2ref_commands::commands::cost::synth(&inputs, rows, args.run.threads, output)?,
     );
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
@@ -169,7 +169,7 @@ pub fn write_set(
 /// sizes and checksums, which readers check.
 pub fn write_sidecar(out: &Path, mut sidecar: Sidecar) -> Result<Sidecar> {
     let stem = Stem::new(out)?;
-    sidecar.members = v2ref::atomic::set::staged_members()?;
+    sidecar.members = v2ref_files::atomic::set::staged_members()?;
     let json = serde_json::to_string_pretty(&sidecar).map_err(|e| Error::Output {
         path: stem.json.display().to_string(),
         reason: e.to_string(),
@@ -233,7 +233,7 @@ struct Stem {
 
 impl Stem {
     fn new(out: &Path) -> Result<Stem> {
-        v2ref::atomic::target::check_file_name(out, "out")?;
+        v2ref_files::atomic::target::check_file_name(out, "out")?;
         let Some(name) = out.file_name().filter(|n| !n.is_empty()) else {
             return Err(Error::Invalid {
                 param: "out",

@@ -325,7 +325,7 @@ fn predicted(note: &str, unit: &str) -> f64 {
 }
 
 /// A long run announces its predicted duration before any work (the cost
-/// laws of `v2ref::commands::cost`), whether or not stderr is a terminal:
+/// laws of `v2ref_commands::commands::cost`), whether or not stderr is a terminal:
 /// 1e12 trials of 128 samples at 9e-9 core-s per sample on the cores
 /// here is days; the prediction is held to a factor of 2 of that law.
 #[test]

@@ -1,0 +1,18 @@
+//! Each command's answer, built once: from the physical inputs
+//! ([`crate::parameters::Physical`]) and the command's own options, the
+//! typed answer (inputs echoed, results, units) that the CLI prints as a
+//! table or JSON and Python returns as a dictionary. The edges only parse,
+//! convert and print; nothing here reads a flag, writes a file or prints.
+
+pub mod bias;
+// The cost laws were timed on one machine: the edges' (the CLI's notice,
+// Python's warning), not the numerics'.
+pub mod cost;
+pub mod estimate;
+pub mod piston;
+pub mod plan;
+pub mod snr;
+// The oracle's, where its sets in memory are built (`v2ref::oracle`).
+pub use crate::conformance::synth;
+
+pub use crate::simulator::estimate::ESTIMATE_COLUMNS;

@@ -1,0 +1,132 @@
+//! The planner: `plan`, `photon_rate`.
+
+use crate::commands::{self, plan::PlanRequest};
+use crate::conformance::estimate::BiasConvention;
+use crate::values::to_py;
+use crate::{interruptible, ok, warn_cost};
+use crate::words::Words;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+
+/// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
+/// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3);
+/// `oifits`: `--oifits`; `observing`: its target, date and site (the
+/// wrapper's keywords, as `--target-name` ... `--site-height-m`).
+#[pyfunction]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn plan(
+    py: Python<'_>,
+    physical: &Bound<'_, PyDict>,
+    samples_per_fringe: f64,
+    photon_rate_per_s: f64,
+    dead_time_s: f64,
+    fringe_hz: Vec<f64>,
+    stroke_um: Vec<f64>,
+    target_sigma_v2: Option<f64>,
+    time_budget_s: Option<f64>,
+    scans: u64,
+    seed: u64,
+    threads: usize,
+    diameter_err_mas: f64,
+    oifits: Option<PathBuf>,
+    bias: &str,
+    verify_observations: Option<u64>,
+    observing: Option<crate::oifits::ObservingKeywords>,
+    force: bool,
+    magnitude: Option<(f64, String, f64)>,
+    frame_rate_hz: Option<f64>,
+) -> PyResult<PyObject> {
+    if let Some(path) = &oifits {
+        ok(v2ref_oifits::check_fits_extension(path, "oifits"))?;
+    }
+    // Checked and locked before any computing, as `v2ref plan --oifits`.
+    let set = match &oifits {
+        Some(path) => Some(ok(crate::formats::OutputSet::begin(
+            &[(path, "oifits")],
+            force,
+        ))?),
+        None => None,
+    };
+    let observing = crate::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
+    let p = crate::inputs::physical_from_dict(physical)?;
+    let magnitude = match magnitude {
+        Some((magnitude, band, throughput)) => Some(crate::plan::photometry::Magnitude {
+            magnitude,
+            band: ok(crate::plan::photometry::Band2Mass::from_word(
+                "magnitude_band",
+                &band,
+            ))?,
+            aperture_m: p.aperture_m,
+            throughput,
+        }),
+        None => None,
+    };
+    let req = PlanRequest {
+        samples_per_fringe,
+        photon_rate_per_s,
+        magnitude,
+        dead_time_s,
+        frame_rate_hz,
+        fringe_hz,
+        stroke_um,
+        target_sigma_v2,
+        time_budget_s,
+        scans,
+        seed,
+        diameter_err_mas,
+        bias: ok(BiasConvention::from_word("bias", bias))?,
+    };
+    let prepared = ok(commands::plan::prepare(&p, &req))?;
+    warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
+    let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
+    if let Some(observations) = verify_observations {
+        // `plan --verify`: its cost warned about before it starts.
+        let size = ok(commands::plan::verification(&answer, observations))?;
+        warn_cost(
+            py,
+            "plan(verify=True)",
+            &commands::cost::plan_verification(&size, threads),
+        )?;
+        interruptible(py, |tick| {
+            commands::plan::verify(&mut answer, &size, threads, tick)
+        })?;
+    }
+    if let (Some(path), Some(set)) = (&oifits, set) {
+        // Nothing is written when no setting reaches the target: the
+        // answer's `recommended` is then null, as the CLI says in a note.
+        ok(set.write(|| {
+            v2ref_oifits::write_plan(
+                path,
+                "oifits",
+                (&answer.inputs, &answer.plan),
+                &observing,
+            )
+        }))?;
+    }
+    to_py(py, &answer)
+}
+
+/// `photon_rate`: the photon rate at the detector from a magnitude (2MASS
+/// or Johnson–Cousins; `v2ref plan --magnitude`).
+#[pyfunction]
+#[pyo3(signature = (magnitude, band, aperture_m, throughput, wavelength_um, bandwidth_nm))]
+pub(super) fn photon_rate(
+    magnitude: f64,
+    band: &str,
+    aperture_m: f64,
+    throughput: f64,
+    wavelength_um: f64,
+    bandwidth_nm: f64,
+) -> PyResult<f64> {
+    use crate::plan::photometry::{Band2Mass, Magnitude};
+    let band = ok(Band2Mass::from_word("band", band))?;
+    let m = Magnitude {
+        magnitude,
+        band,
+        aperture_m,
+        throughput,
+    };
+    ok(m.photon_rate_per_s(wavelength_um, bandwidth_nm * 1e-3))
+}

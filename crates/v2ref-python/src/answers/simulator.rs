@@ -1,0 +1,355 @@
+//! The end-to-end simulator and the conformance kit: `simulate`,
+//! `synthesize`, `estimate`, `score`.
+
+use super::data::{data_error, estimate_column, matrix, parse_sidecar};
+use super::{convention, formula, window};
+use crate::commands::cost::{self, SetOutput};
+use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
+use crate::commands::synth::{self as synth_set, SetSize};
+use crate::conformance::estimate::{BiasConvention, RowEstimate};
+use crate::conformance::score::score_report;
+use crate::error::Result;
+use crate::formalism::estimator::BinWindow;
+use crate::noise::calibrated::Trials;
+use crate::values::to_py;
+use crate::{interruptible, ok, warn_cost};
+use crate::report::simulator::{check_trials, Estimation, SimulateReport};
+use crate::simulator::{simulate as run_simulation, Model};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::Serialize;
+
+use crate::commands::ESTIMATE_COLUMNS;
+
+/// `estimate`: per-row V1², V2² (raw, bias, normalized), as `v2ref
+/// estimate`. `physical` holds only the keyword arguments given;
+/// `sidecar` is a sidecar (a file's text or a dict), `sidecar_name` where
+/// it came from.
+#[pyfunction]
+#[pyo3(signature = (interferograms, physical, sidecar, sidecar_name, continuum_subtracted, bins, bias, calibrator, threads))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn estimate<'py>(
+    py: Python<'py>,
+    interferograms: PyReadonlyArray2<'py, f64>,
+    physical: &Bound<'py, PyDict>,
+    sidecar: Option<Bound<'py, PyAny>>,
+    sidecar_name: &str,
+    continuum_subtracted: Option<bool>,
+    bins: &str,
+    bias: &str,
+    calibrator: Option<PyReadonlyArray2<'py, f64>>,
+    threads: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let window = ok(window(bins))?;
+    let bias = ok(convention(bias))?;
+    let (rows, cols, data) = matrix("interferograms", &interferograms)?;
+    let given = Given {
+        physical,
+        sidecar: sidecar.as_ref().map(|s| (s, sidecar_name)),
+        continuum_subtracted,
+    };
+    let config = configuration(given)?;
+    let inputs = ok(config.inputs_for(INTERFEROGRAMS, rows, cols))?;
+    warn_cost(
+        py,
+        "estimate",
+        &ok(cost::estimate(&inputs, rows as u64, threads))?,
+    )?;
+    let cal = match &calibrator {
+        None => None,
+        Some(c) => {
+            let (_, cols, rows) = matrix("calibrator", c)?;
+            Some(CalibratorRows {
+                name: RowsName {
+                    param: "calibrator",
+                    path: None,
+                },
+                rows,
+                cols,
+            })
+        }
+    };
+    let rows = interruptible(py, |_| -> Result<Vec<RowEstimate>> {
+        let options = (window, bias);
+        let cs = config.continuum_subtracted;
+        let est = rows_estimate::estimator(&inputs, options, cs, cal, threads)?;
+        // A block of rows at a time, as the CLI streams a file: a bad row of
+        // a memory-mapped array is refused once its block is read.
+        let mut out = Vec::with_capacity(rows);
+        let block_len = (rows_estimate::STREAM_ROWS * cols).max(1);
+        for (k, block) in data.chunks(block_len).enumerate() {
+            let at = (block, k * rows_estimate::STREAM_ROWS);
+            out.extend(rows_estimate::estimate_rows(
+                &est,
+                INTERFEROGRAMS,
+                at,
+                threads,
+            )?);
+        }
+        Ok(out)
+    })?;
+    estimate_columns(py, &rows)
+}
+
+/// How a refusal names the rows of `estimate`.
+const INTERFEROGRAMS: RowsName<'static> = RowsName {
+    param: "interferograms",
+    path: None,
+};
+
+/// Where `estimate` takes its configuration from: the keyword arguments
+/// given, or a sidecar's JSON text and where it came from (then no
+/// keyword may be given).
+struct Given<'a, 'py> {
+    physical: &'a Bound<'py, PyDict>,
+    sidecar: Option<(&'a Bound<'py, PyAny>, &'a str)>,
+    continuum_subtracted: Option<bool>,
+}
+
+/// The configuration of `estimate`: a sidecar's (its set's rows), or the
+/// keyword arguments' (N from the rows).
+fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
+    let Some((sidecar, sidecar_name)) = given.sidecar else {
+        let p = crate::inputs::physical_from_dict(given.physical)?;
+        let cs = given.continuum_subtracted.unwrap_or(true);
+        return ok(Configuration::from_physical(&p, cs));
+    };
+    if let Some((k, _)) = given.physical.iter().next() {
+        return Err(PyValueError::new_err(format!(
+            "{k}: cannot be used with sidecar (the configuration comes from it)"
+        )));
+    }
+    if given.continuum_subtracted.is_some() {
+        return Err(PyValueError::new_err(
+            "continuum_subtracted: cannot be used with sidecar (the configuration comes from it)",
+        ));
+    }
+    // Any number of rows of the set's N, as the CLI's `estimate --sidecar
+    // SET.json --input ROWS` takes them (a subset of the set's rows, one
+    // observation of an observation-layout set).
+    Ok(Configuration {
+        set_rows: None,
+        ..Configuration::from_sidecar(parse_sidecar(sidecar, sidecar_name)?)
+    })
+}
+
+/// The per-row estimates as a dict of 1-D arrays, [`ESTIMATE_COLUMNS`].
+fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Bound<'py, PyDict>> {
+    let mut columns: [Vec<f64>; 6] = std::array::from_fn(|_| Vec::with_capacity(rows.len()));
+    for e in rows {
+        for (c, v) in columns.iter_mut().zip(e.values()) {
+            c.push(v);
+        }
+    }
+    let out = PyDict::new(py);
+    for (name, c) in ESTIMATE_COLUMNS.iter().zip(columns) {
+        out.set_item(name, PyArray1::from_vec(py, c))?;
+    }
+    Ok(out)
+}
+
+/// `synthesize`: a set's rows (2-D array) and its sidecar (a dict), as
+/// `v2ref synth` writes them; `npy` is the data file name recorded. With
+/// `out`, also writes the set as `v2ref synth --out OUT` does
+/// ([`super::super::output::write_set`]).
+#[pyfunction]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force, observations=1, dead_time_s=0.0))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn synthesize<'py>(
+    py: Python<'py>,
+    physical: &Bound<'py, PyDict>,
+    rows: u64,
+    seed: u64,
+    threads: usize,
+    reference_blocks: Option<u64>,
+    keep_continuum: bool,
+    npy: String,
+    layout: &str,
+    out: Option<std::path::PathBuf>,
+    force: bool,
+    observations: u64,
+    dead_time_s: f64,
+) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
+    let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
+    let layout = ok(crate::simulator::RowTiming::new(
+        layout,
+        observations,
+        dead_time_s,
+    ))?;
+    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
+    // None: sized by what the truth needs (`default_reference_blocks`).
+    let reference_blocks = reference_blocks.unwrap_or_else(|| {
+        crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
+    });
+    ok(crate::bounds::check_set_size(
+        rows,
+        inputs.samples,
+        reference_blocks,
+    ))?;
+    let n = inputs.samples;
+    check_array_fits(rows, n)?;
+    let reference_rows = reference_blocks
+        * crate::conformance::truth::reference_rows_per_block(
+            rows,
+            reference_blocks,
+            inputs.piston.is_some(),
+        );
+    let predicted = cost::synth(&inputs, (rows, reference_rows), threads, SetOutput::Memory);
+    warn_cost(py, "synthesize", &ok(predicted)?)?;
+    let size = SetSize {
+        rows,
+        seed,
+        reference_blocks,
+        threads,
+        keep_continuum,
+        layout,
+    };
+    let (data, sidecar) = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
+        let mut data: Vec<f64> = Vec::with_capacity(rows as usize * n);
+        let mut sink = |block: &[f64]| -> Result<()> {
+            data.extend_from_slice(block);
+            Ok(())
+        };
+        let sidecar = synth_set::synthesize(&model, &size, (npy, None), &mut sink, tick)?;
+        Ok((data, sidecar))
+    })?;
+    if let Some(out) = out {
+        crate::output::write_set(py, &out, (&data, n), &sidecar, force)?;
+    }
+    let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
+    Ok((array.into_any(), to_py(py, &sidecar)?))
+}
+
+/// Refuses, before anything is allocated, an answer of `rows` rows of `n`
+/// samples (float64, held whole as the returned array) larger than the
+/// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
+/// within the documented bounds, 60 million rows of 32 samples (15 GB)
+/// aborted the interpreter when the allocation failed.
+fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
+    let budget = ok(crate::formats::memory_budget())?;
+    let need = rows.saturating_mul(n as u64).saturating_mul(8);
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(pyo3::exceptions::PyMemoryError::new_err(format!(
+        "rows: {rows} rows of {n} samples take {:.2} GiB, more than the memory budget of {:.2} GiB \
+         (V2REF_MAX_MEMORY_GIB, else half the physical memory); write fewer rows, or raise the budget",
+        gib(need),
+        gib(budget)
+    )))
+}
+
+/// `simulate`: the running statistics of `v2ref simulate --json`.
+#[pyfunction]
+#[pyo3(signature = (physical, bins, bias, formula, trials, seed, threads))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn simulate(
+    py: Python<'_>,
+    physical: &Bound<'_, PyDict>,
+    bins: &str,
+    bias: &str,
+    formula: &str,
+    trials: u64,
+    seed: u64,
+    threads: usize,
+) -> PyResult<PyObject> {
+    let (window, bias, formula) = (
+        ok(window(bins))?,
+        ok(convention(bias))?,
+        ok(self::formula(formula))?,
+    );
+    ok(check_trials(trials))?;
+    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
+    let size = Trials {
+        trials,
+        seed,
+        threads,
+    };
+    warn_cost(
+        py,
+        "simulate",
+        &ok(cost::simulate(&inputs, trials, threads))?,
+    )?;
+    let run = interruptible(py, |tick| {
+        let model = Model::new(&inputs)?;
+        run_simulation(&model, window, bias, formula, size, tick)
+    })?;
+    let estimation = Estimation {
+        window,
+        bias,
+        formula,
+    };
+    to_py(py, &SimulateReport::new(inputs, estimation, size, &run))
+}
+
+#[derive(Serialize)]
+struct ScoreAnswer<'a> {
+    sidecar: &'a str,
+    estimates: &'a str,
+    bins: BinWindow,
+    bias: BiasConvention,
+    rows: u64,
+    #[serde(flatten)]
+    report: &'a crate::conformance::score::ScoreReport,
+}
+
+/// `score`: `v2ref score --json`, the estimates as 1-D arrays (either may
+/// be None, not both).
+#[pyfunction]
+#[pyo3(signature = (v1_sq, v2_sq, sidecar, sidecar_name, estimates_name, bins, bias, alpha))]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn score(
+    py: Python<'_>,
+    v1_sq: Option<PyReadonlyArray1<'_, f64>>,
+    v2_sq: Option<PyReadonlyArray1<'_, f64>>,
+    sidecar: &Bound<'_, PyAny>,
+    sidecar_name: &str,
+    estimates_name: &str,
+    bins: &str,
+    bias: &str,
+    alpha: f64,
+) -> PyResult<PyObject> {
+    let window = ok(window(bins))?;
+    let bias = ok(convention(bias))?;
+    let sc = parse_sidecar(sidecar, sidecar_name)?;
+    let truth = sc.truth(window, bias).ok_or_else(|| {
+        data_error(
+            "sidecar",
+            &format!("{sidecar_name}: field truth.windows"),
+            &format!(
+                "no truth for bins={} bias={}; pick a window and convention the set has",
+                window.name(),
+                bias.name()
+            ),
+        )
+    })?;
+    if v1_sq.is_none() && v2_sq.is_none() {
+        return Err(PyValueError::new_err(
+            "estimates: no column named v1_sq or v2_sq; one of them is needed",
+        ));
+    }
+    let mut slices: Vec<Option<&[f64]>> = Vec::new();
+    for (name, col) in [("v1_sq", &v1_sq), ("v2_sq", &v2_sq)] {
+        slices.push(match col {
+            None => None,
+            Some(a) => Some(estimate_column(name, a)?),
+        });
+    }
+    let rows = sc.data.rows;
+    let report = ok(score_report(slices[0], slices[1], truth, rows, alpha))?;
+    to_py(
+        py,
+        &ScoreAnswer {
+            sidecar: sidecar_name,
+            estimates: estimates_name,
+            bins: window,
+            bias,
+            rows,
+            report: &report,
+        },
+    )
+}

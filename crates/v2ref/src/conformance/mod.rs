@@ -1,0 +1,21 @@
+//! The conformance kit: a pipeline's own estimator checked against v2ref.
+//!
+//! - [`crate::simulator`] makes test interferograms with every effect of the
+//!   paper at once; `v2ref synth` writes them with a sidecar ([`sidecar`])
+//!   that carries the inputs and the truth ([`truth`]);
+//! - [`estimate`] computes, per row, V1² and V2² raw, bias-subtracted and
+//!   normalized, under a chosen window of bins, bias convention and
+//!   calibrator — what a pipeline is expected to compute;
+//! - [`score`] compares a pipeline's per-row estimates with the truth: mean
+//!   and variance as z-scores, a verdict at a stated threshold, and the
+//!   power of the test.
+//!
+//! What a pipeline must match (sample positions, bins for even and odd N,
+//! normalization, bias) is written out in `docs/conventions.md`.
+
+pub mod estimate;
+pub mod score;
+pub mod sidecar;
+pub mod synth;
+pub mod truth;
+pub mod vectors;

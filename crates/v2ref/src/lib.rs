@@ -1,0 +1,202 @@
+//! # v2ref — squared-visibility estimators, reference implementation
+//!
+//! v2ref implements the two wide-band squared-visibility estimators of
+//! G. Perrin & S. T. Ridgway, *Squared visibility estimators: calibrating
+//! biases to reach very high dynamic range*: $V_1^2$, the sum of the squared
+//! moduli of the Fourier components of the interferogram, and $V_2^2$, the
+//! squared modulus of their complex sum. It computes their biases from
+//! spectral bandwidth, chromatic dispersion, finite scan length, integrating
+//! detectors and differential piston, and their variances and SNR under
+//! detector and photon noise, each checked against a closed form, a Monte
+//! Carlo and a golden file.
+//!
+//! ## Quick start
+//!
+//! ```
+//! use v2ref::prelude::*;
+//!
+//! // A 43 mas uniform disk in the full K band (2.0–2.4 µm), at its first null.
+//! let k = Spectrum::flat(Band::new(2.2, 0.4)?);
+//! let obs = Observation::new(
+//!     k,
+//!     Source::uniform_disk(43.0)?,
+//!     Frequency::SpatialFreqCpas(28.36),
+//!     SpectralPhase::zero(),
+//! )?;
+//! let wb = wide_band(&obs);
+//! assert!(wb.v_mono < 1e-3);            // the monochromatic visibility vanishes…
+//! assert!(wb.v1 - wb.v_mono > 0.04);    // …but the wide band fills the null for V1
+//! assert!(wb.v2 < wb.v1);               // and much less for V2
+//! # Ok::<(), v2ref::Error>(())
+//! ```
+//!
+//! ## A pipeline's `cargo test`: the oracle route
+//!
+//! A pipeline with its own V1²/V2² estimator holds it to v2ref from its
+//! own tests through [`oracle`], in memory (a dev-dependency with
+//! `default-features = false`: no file format, no C compiler): a set of
+//! noisy rows and its truth, the closed forms, the score of the pipeline's
+//! per-row estimates with the test's power, and the golden vectors
+//! regenerated bit for bit.
+//!
+//! ```
+//! use v2ref::oracle::{BiasConvention, BinWindow, Estimates, Set};
+//!
+//! let set = Set::golden("noise_gaussian")?;       // golden/vectors/noise_gaussian, in memory
+//! let (window, bias) = (BinWindow::Positive, BiasConvention::Model);
+//! let mine: Vec<f64> = set                       // the pipeline's V1² of each row
+//!     .reference_estimates(window, bias)?
+//!     .iter()
+//!     .map(|r| r.v1_sq)
+//!     .collect();
+//! let report = set.score(window, bias, Estimates::default().v1_sq(&mine))?;
+//! assert!(report.pass, "{report}");
+//! # Ok::<(), v2ref::Error>(())
+//! ```
+//!
+//! [`prelude`] gathers the dozen items a user calls first; the folders below
+//! follow the paper's table of contents.
+//!
+//! ## What is public, and what is stable
+//!
+//! A dependent crate sees the stable surface: [`prelude`], [`oracle`], the
+//! paper's parts ([`formalism`], [`bias`], [`noise`], [`piston`],
+//! [`simulator`], [`conformance`]), [`math`], [`montecarlo`], [`bounds`],
+//! [`cancel`], and [`Error`] with [`Result`]. Each item has one path; the two
+//! gathering modules, [`prelude`] and [`oracle`], give a second one to what
+//! they collect. The listing of this surface is committed
+//! (`crates/v2ref/public-api/default.txt`) and CI fails when the library's
+//! differs from it; its enums and its error are `#[non_exhaustive]`, so a new
+//! variant is not a breaking change. A function's name says what it runs or
+//! returns: [`simulator::simulate`] (a set of noisy rows with every effect),
+//! [`piston::simulate_piston`] (scans through piston sequences),
+//! [`noise::simulation::simulate_noisy`] (noisy scans without piston), and
+//! [`bias::finite_scan::finite_scan_bias`] (the finite scan's bias).
+//!
+//! The workspace's other crates are the edges, each for its own audience, and
+//! none of them is needed for a pipeline's `cargo test`: `v2ref-commands` (each
+//! command's answer, built once for the command line and Python, and the
+//! planner), `v2ref-files` (the set writer, `.npy`, CSV), `v2ref-oifits`,
+//! `v2ref-reproduction` (the paper's claims, figures and golden files),
+//! `v2ref-python`, and the command line (the repository's root package). They
+//! use [`record`] (what a computation was asked, as plain values), [`words`]
+//! (the words that name each choice) and [`manifest`] (the member list of a set
+//! of files). The feature `testing` (the workspace's test suites, unstable)
+//! adds the assertion macros `assert_rel_eq!`, `assert_abs_eq!` and
+//! `assert_within_sigmas!` to the tolerances of [`tolerance`].
+//!
+//! ## The crate, as the paper
+//!
+//! | paper | module |
+//! |---|---|
+//! | §1 Introduction (dynamic range) and §2 *General formalism*: spectrum and W(σ), source, the interferometric equation, sampled and integrated signals, the estimators | [`formalism`] |
+//! | §3 *Effect of spectral bandwidth* (with the line example and the normalization of V2, Fig. 0), §4 *chromatic dispersion*, §5 *finite scan length*, the integrating detector | [`bias`] |
+//! | §6 *Effect of differential piston*: turbulence, piston spectrum and sequences, scans through them | [`piston`] |
+//! | Appendix, *Estimator signal-to-noise ratio*: noise moments, closed forms, windowed variance, noisy Monte Carlo | [`noise`] |
+//! | all of the above at once: noisy interferograms with every effect, for any instrument | [`simulator`] |
+//! | the conformance kit: per-row estimates, the truth of a synth set, the score of a pipeline | [`conformance`] |
+//! | the paper's cases, figures, claims, golden files and plots | the crate `v2ref-reproduction` |
+//! | special functions and quadrature | [`math`] |
+//! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
+//! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`Error`] |
+//! | tolerances (one home) | [`tolerance`] (its assertion macros: feature `testing`) |
+//! | what a computation was asked, as plain values | [`record`] |
+//!
+//! ## Levels
+//!
+//! The crates form levels, and so do the modules of this one: a module uses
+//! only modules of its own level or below (`tests/architecture.rs` checks every
+//! `use` of `crates/v2ref/src/`, and the crate graph does the rest), so that
+//! each can be read, tested and changed with only what is under it in mind:
+//!
+//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`cancel`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files);
+//! 2. [`formalism`];
+//! 3. [`record`] (the inputs of a computation as plain values);
+//! 4. [`bias`];
+//! 5. [`noise`], [`piston`];
+//! 6. [`simulator`];
+//! 7. [`conformance`];
+//! 8. the oracle's gathering modules: [`prelude`], [`oracle`] (a pipeline's `cargo test`);
+//! 9. the crates above this one: `v2ref-commands` (the commands' answers and the planner), then `v2ref-files`, `v2ref-reproduction`, `v2ref-oifits`, and the edges, `v2ref-python` and the command line.
+//!
+//! ## Units and conventions
+//!
+//! Wavelength λ and OPD x in µm, wavenumber σ in µm⁻¹, angular diameter θ in
+//! mas, spatial frequency S in cycles/arcsec ($S = B\sigma_\mathrm{eff}$),
+//! baseline B in m, fringe frequency in Hz, phases in rad, counts in photons
+//! per sample. Names carry their unit where it is not obvious.
+//!
+//! The conventions a pipeline must match to agree with v2ref bit for bit —
+//! where sample 0 sits, which bins each window sums for even and odd N, how
+//! the estimators are normalized, which noise bias is subtracted, the random
+//! streams — are written out in the repository's `docs/conventions.md`;
+//! every equation of the paper, re-typeset, is in `docs/equations.md`.
+//! Where the paper is ambiguous, the choice and its effect are stated in the
+//! module docs and in `paper/reproduction.md`.
+//!
+//! ## Paper → code
+//!
+//! The paper's labelled equations, written out (W is the normalized weight
+//! $S F/\int S F\,d\sigma$, $V_e$ the extended visibility $W V e^{i\phi}/2$
+//! on positive σ, $\delta\sigma = 1/\Delta x$):
+//!
+//! | label | equation | implemented by | tests |
+//! |---|---|---|---|
+//! | `eq:dynamique` (§1) | $\mathrm{DR} = \sqrt{N_\mathrm{vis}\,/\,\big((\delta V/V)^2 + \delta\phi^2\big)}$ | [`formalism::dynamic_range::dynamic_range`] | `tests/claims.rs` |
+//! | `eq:interferogramme` (§2.1) | $I(x) = \int_0^\infty S F\,d\sigma + \int_0^\infty S F\,V \cos\!\big(2\pi\sigma x + \phi(\sigma) + 2\pi\sigma p(x)\big)\,d\sigma$ | [`formalism::interferogram::Interferogram::synthesize`], [`formalism::observation::Observation::fringe_amplitude`] | `tests/foundation.rs` |
+//! | `eq:sampled_V` (§2.2.2) | $V_s(k\,\delta\sigma) = \big[V_e \ast \widetilde\Pi(\sigma\Delta x)\big](k\,\delta\sigma),\; k = 0,\dots,N-1$ | [`bias::finite_scan::convolution_bins`] | `tests/bias_finite_scan.rs` |
+//! | `eq:estimateurs` (§3) | $V_1^2 = \dfrac{4\sum_k \lvert V_e(k\delta\sigma)\rvert^2\,\delta\sigma}{\sum_k W^2(k\delta\sigma)\,\delta\sigma}$, $\;V_2^2 = \dfrac{4\,\lvert\sum_k V_e(k\delta\sigma)\,\delta\sigma\rvert^2}{\big(\sum_k W(k\delta\sigma)\,\delta\sigma\big)^2}$ | spectral form: [`formalism::estimator::v1_sq`], [`formalism::estimator::v2_sq`]; sampled form: [`formalism::estimator::sampled_wide_band`] | `tests/foundation.rs`, `tests/properties.rs` |
+//!
+//! And the rest of the paper, in order:
+//!
+//! | paper | formula | implemented by | tests |
+//! |---|---|---|---|
+//! | §2.1 weight, effective wavenumber | $W = SF/\int SF$, $\sigma_\mathrm{eff} = \int \sigma W\,d\sigma$ | [`formalism::spectrum::Spectrum`] (`mean_w`, `mean_w2`, `sigma_eff_per_um`), [`math::quadrature`] | `tests/foundation.rs`, `tests/spectrum_csv.rs` |
+//! | §2.2.2 sampling, sample 0 on the white-light fringe | $x_i = i\,\delta x$ for $i < \lceil N/2\rceil$, $(i - N)\,\delta x$ beyond (centred scan, DFT order) | [`formalism::interferogram::Sampling`], [`formalism::interferogram::SpectralNodes`] (slow oracle: [`formalism::oracle`]) | `tests/foundation.rs` |
+//! | §2.2.2 integrating detector | spectrum filtered by $\mathrm{sinc}(\sigma\delta x)$, $2/\pi$ at Nyquist | [`formalism::interferogram::sinc`], [`bias::integration`] | `tests/foundation.rs`, `tests/bias_normalization.rs` |
+//! | §3 uniform disk | $V(S) = 2J_1(\pi\theta S)/(\pi\theta S)$ | [`formalism::source::Source`], [`math::special::jinc`], [`math::special::bessel_j1_zero`] | `tests/special.rs` |
+//! | §3 continuum plus line (0.50042) | channel visibility, flux-weighted over one spectral element | [`bias::line::channel_visibility`], [`bias::line::top_hat_closed_form`] | `tests/bias_line.rs` |
+//! | §3 Fig. 0, normalization of V2 | $\big(\sum_k W\delta\sigma\big)^2$ against the stroke | [`bias::normalization::deviation_curve`] | `tests/bias_normalization.rs` |
+//! | §3 Fig. 1, bandwidth bias | $V_1 - V_\mathrm{mono}$, $V_2 - V_\mathrm{mono}$ against S | [`bias::bandwidth::curve`] | `tests/bias_bandwidth.rs` |
+//! | §4 dispersion | $\phi = \tfrac12 D(\sigma-\sigma_0)^2$, peak to peak $P = \tfrac12 D(\Delta\sigma/2)^2$ | [`formalism::phase::SpectralPhase`], [`bias::dispersion`] | `tests/bias_dispersion.rs` |
+//! | §4 Fig. 2, point source under dispersion | $V_2^2$ from the Fresnel integrals $C$, $S$ | [`math::special::point_source_v2_sq`] | `tests/bias_dispersion.rs` |
+//! | §5 Fig. 3, finite scan | the DFT of the sampled scan and the convolution of `eq:sampled_V` | [`bias::finite_scan::finite_scan_bias`] | `tests/bias_finite_scan.rs` |
+//! | §6 turbulence and the differential-piston spectrum | Kolmogorov / von Kármán, $r_0$ from seeing, two-aperture filter | [`piston::turbulence`] | `tests/turbulence.rs` |
+//! | §6 piston sequences and scans, Figs. 4–5 | bias and scatter of V1, V2 | [`piston::synthesize_series`], [`piston::simulate_piston`] | `tests/piston.rs`, `tests/piston_claims.rs` |
+//! | Appendix, the DFT and the raw estimators | $B_k = \sum_i M_i e^{-2\pi i\,ik/N}$, $V_1^2 = \sum_{K}\lvert B_k\rvert^2$, $V_2^2 = \lvert\sum_{K} B_k\rvert^2$ | [`formalism::estimator::dft`], [`formalism::estimator::raw_estimates`], [`formalism::estimator::BinWindow`] (slow oracle: [`formalism::oracle::naive_dft`]) | `tests/foundation.rs`, `tests/properties.rs` |
+//! | Appendix, additive-noise bias | $\lvert K\rvert \sum_i v_i$ and $\sum_i v_i \lvert\sum_K e^{-2\pi i\,ik/N}\rvert^2$ | [`formalism::estimator::noise_bias`] | `tests/noise.rs` |
+//! | Appendix, noise moments, var $V_1^2$, var $V_2^2$, SNR (printed and exact) | $\mathrm{SNR} = \langle V^2\rangle/\sqrt{\operatorname{var} V^2}$ | [`noise::moments()`](noise::moments()), [`noise::appendix_stats`], [`noise::worked_example`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Appendix, filtered samples — exact quadratic form | $\operatorname{var}(M^\mathsf{T} A M)$ | [`noise::window_variance::window_stats`] | `tests/noise.rs`, `tests/noise_mc.rs` |
+//! | Monte Carlo of noisy scans | | [`noise::simulation::simulate_noisy`], [`montecarlo::run_units`] | `tests/montecarlo_noise.rs`, `tests/cli_noise.rs` |
+//! | standard errors of correlated scans (independent piston sequences) | $\mathrm{se}^2(\bar x) = \tfrac{K}{K-1}\sum_j w_j^2 (m_j - \bar m)^2$, $w_j = n_j/N$ | [`montecarlo::replicated_summary`], [`piston::sequence_split`], [`piston::scan_stride`] | `tests/piston_errors.rs` |
+//! | the planner's decision | reach the target with the piston terms at the upper ends of their 90 % intervals | `v2ref_commands::plan::plan` | `tests/plan.rs`, `tests/plan_cases.rs` |
+//! | all effects at once: rows of one synth set | $I_i \sim \mathrm{Poisson}(c_i + m_i(\text{piston}_s)) + \sigma_\mathrm{det}\,\mathcal N(0,1)$, $M_i = I_i - c_i$ | [`simulator::Model::rows`], [`simulator::simulate`] | `tests/simulator.rs` |
+//! | per-row estimates, bias conventions | $(V^2_\mathrm{raw} - b)/C$, $v_i = \sigma_\mathrm{det}^2 + n_i$ with $n_i$ from the model or the row | [`conformance::estimate::RowEstimator`] (slow oracle: [`conformance::estimate::estimate_row_oracle`]) | `tests/simulator.rs`, `tests/conformance_cli.rs` |
+//! | the truth of a set and the score of a pipeline | $z = (\bar x - \mu)/\sigma_\mathrm{set}$, $\lvert z\rvert \le \Phi^{-1}(1-\alpha/2m)$ | [`conformance::truth::truth`], [`conformance::score`] | `tests/conformance_score.rs`, `tests/conformance_cli.rs` |
+//! | Figs. 0–5 as data, golden files, claims | | `v2ref_reproduction::figures::all`, `v2ref_reproduction::golden::check`, `v2ref_reproduction::claims::evaluate` | `tests/golden.rs`, `tests/claims.rs` |
+
+#![warn(missing_docs)]
+// A type a public item shows (a field, an argument, a return) is public too.
+#![warn(unnameable_types)]
+
+// The stable surface: what a pipeline calls (public-api/default.txt).
+pub mod bias;
+pub mod bounds;
+pub mod cancel;
+pub mod conformance;
+pub mod error;
+pub mod formalism;
+pub mod math;
+pub mod montecarlo;
+pub mod noise;
+pub mod oracle;
+pub mod piston;
+pub mod prelude;
+pub mod record;
+pub mod simulator;
+pub mod tolerance;
+pub mod words;
+pub mod csv_lines;
+pub mod manifest;
+
+pub use error::{Error, Result};
