@@ -30,19 +30,19 @@ set -euo pipefail
 
 # AREA -> "file globs | test files (modules of tests/suite.rs)"
 declare -A AREAS=(
-    [estimators]="src/formalism/estimator.rs|spectral_estimators foundation"
-    [statistics]="src/montecarlo/statistics.rs|running_stats montecarlo_noise"
-    [seeding]="src/montecarlo/mod.rs|montecarlo_noise noise_mc golden"
-    [special]="src/math/special/*.rs src/math/quadrature.rs|special foundation bias_dispersion"
-    [spectrum]="src/formalism/spectrum.rs src/formalism/source.rs|spectral_estimators foundation spectrum_csv bias_line"
-    [interferogram]="src/formalism/interferogram.rs src/formalism/oracle.rs src/formalism/phase.rs|foundation bias_finite_scan properties"
-    [noise]="src/noise/window_variance.rs src/noise/appendix.rs src/noise/calibrated.rs src/noise/model.rs|noise noise_calibrated montecarlo_noise"
-    [noise_simulation]="src/noise/simulation.rs|noise_mc montecarlo_noise"
-    [dispersion]="src/bias/dispersion.rs|bias_dispersion"
-    [finite_scan]="src/bias/finite_scan.rs src/bias/normalization.rs src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
-    [turbulence]="src/piston/turbulence.rs|turbulence piston"
-    [piston_spectrum]="src/piston/spectrum.rs src/piston/transverse.rs|piston_spectrum turbulence piston"
-    [fft]="src/math/fft.rs|fft"
+    [estimators]="crates/v2ref/src/formalism/estimator.rs|spectral_estimators foundation"
+    [statistics]="crates/v2ref/src/montecarlo/statistics.rs|running_stats montecarlo_noise"
+    [seeding]="crates/v2ref/src/montecarlo/mod.rs|montecarlo_noise noise_mc golden"
+    [special]="crates/v2ref/src/math/special/*.rs crates/v2ref/src/math/quadrature.rs|special foundation bias_dispersion"
+    [spectrum]="crates/v2ref/src/formalism/spectrum.rs crates/v2ref/src/formalism/source.rs|spectral_estimators foundation spectrum_csv bias_line"
+    [interferogram]="crates/v2ref/src/formalism/interferogram.rs crates/v2ref/src/formalism/oracle.rs crates/v2ref/src/formalism/phase.rs|foundation bias_finite_scan properties"
+    [noise]="crates/v2ref/src/noise/window_variance.rs crates/v2ref/src/noise/appendix.rs crates/v2ref/src/noise/calibrated.rs crates/v2ref/src/noise/model.rs|noise noise_calibrated montecarlo_noise"
+    [noise_simulation]="crates/v2ref/src/noise/simulation.rs|noise_mc montecarlo_noise"
+    [dispersion]="crates/v2ref/src/bias/dispersion.rs|bias_dispersion"
+    [finite_scan]="crates/v2ref/src/bias/finite_scan.rs crates/v2ref/src/bias/normalization.rs crates/v2ref/src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
+    [turbulence]="crates/v2ref/src/piston/turbulence.rs|turbulence piston"
+    [piston_spectrum]="crates/v2ref/src/piston/spectrum.rs crates/v2ref/src/piston/transverse.rs|piston_spectrum turbulence piston"
+    [fft]="crates/v2ref/src/math/fft.rs|fft"
 )
 
 # AREA -> tests (libtest name filters) left out of the first pass: each

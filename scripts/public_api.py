@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Lists the public API of the library from rustdoc's JSON, one item a line.
 
-    python3 scripts/public_api.py target/doc/v2ref.json > lib/public-api/default.txt
+    python3 scripts/public_api.py target/doc/v2ref.json > crates/v2ref/public-api/default.txt
 
 Each line is `KIND PATH`: every item a dependent crate can name, under every
 path it can name it by (a type reachable by two paths is listed twice, so a

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The library's public API, listed from rustdoc's JSON (scripts/public_api.py)
-# for each build a dependent crate can ask for, against the committed
-# listings in lib/public-api/: fails with the diff when the surface changed
-# and its listing was not updated with it.
+# The oracle library's public API, listed from rustdoc's JSON
+# (scripts/public_api.py), against the committed listing in
+# crates/v2ref/public-api/: fails with the diff when the surface changed and
+# its listing was not updated with it.
 #
 #   scripts/public_api.sh            # check (CI: .ci/run)
-#   scripts/public_api.sh --update   # rewrite the listings, then review `git diff lib/public-api`
+#   scripts/public_api.sh --update   # rewrite the listings, then review `git diff crates/v2ref/public-api`
 #
 # rustdoc's JSON output is unstable: a nightly toolchain is needed
 # (rustup toolchain install nightly).
@@ -23,15 +23,14 @@ while read -r name features; do
     -- -Z unstable-options --output-format json
   listing=$(python3 scripts/public_api.py "$out/doc/v2ref.json")
   if [ "$update" = 1 ]; then
-    printf '%s\n' "$listing" > "lib/public-api/$name.txt"
-    echo "lib/public-api/$name.txt: $(python3 scripts/public_api.py --counts "$out/doc/v2ref.json")"
-  elif ! diff -u "lib/public-api/$name.txt" <(printf '%s\n' "$listing"); then
-    echo "the public API of the library (${features:-default features}) is not lib/public-api/$name.txt:"
+    printf '%s\n' "$listing" > "crates/v2ref/public-api/$name.txt"
+    echo "crates/v2ref/public-api/$name.txt: $(python3 scripts/public_api.py --counts "$out/doc/v2ref.json")"
+  elif ! diff -u "crates/v2ref/public-api/$name.txt" <(printf '%s\n' "$listing"); then
+    echo "the public API of the library (${features:-default features}) is not crates/v2ref/public-api/$name.txt:"
     echo "review the change, then run scripts/public_api.sh --update and commit the listing"
     status=1
   fi
 done <<'LISTINGS'
 default
-cli --features cli
 LISTINGS
 exit "$status"

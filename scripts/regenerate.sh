@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes every file generated from the one declaration of the physical
-# inputs (src/parameters/table.rs, `Physical::DEFAULT`) and the CLI's flags:
+# inputs (crates/v2ref-commands/src/parameters/table.rs, `Physical::DEFAULT`) and the CLI's flags:
 # python/v2ref/_declaration.py, the physical keyword arguments of the
 # signatures in python/v2ref/__init__.py, the input table of
 # docs/conventions.md (all three by the binary's test

@@ -1,20 +1,21 @@
-//! The crate's levels (the crate docs, "Levels"): a module of `src/` uses
-//! only modules of its own level or below. Every path `crate::<module>` in
-//! the code of `src/` (comments and doc comments aside: a doc link to a
-//! higher module is a pointer for the reader, not a dependency) is checked
-//! against the table below, which must place every module of `src/`.
+//! The workspace's levels (the oracle's crate docs, "Levels"). Between
+//! crates: each crate depends only on crates of lower levels ([`CRATES`],
+//! checked against each `crates/*/Cargo.toml`). Inside the oracle
+//! `crates/v2ref`: a module uses only modules of its own level or below.
+//! Every path `crate::<module>` in the code of `crates/v2ref/src/`
+//! (comments and doc comments aside: a doc link to a higher module is a
+//! pointer for the reader, not a dependency) is checked against [`LEVELS`],
+//! which must place every module of that folder.
 
 use std::path::{Path, PathBuf};
 
-/// The levels, lowest first; the edges (the last) may use anything.
+/// The oracle's module levels, lowest first.
 const LEVELS: &[&[&str]] = &[
     &[
         "error",
         "tolerance",
         "bounds",
         "cancel",
-        "cleanup",
-        "atomic",
         "csv_lines",
         "manifest",
         "math",
@@ -25,13 +26,26 @@ const LEVELS: &[&[&str]] = &[
     &["record"],
     &["bias"],
     &["noise", "piston"],
-    &["simulator", "parameters"],
+    &["simulator"],
     &["conformance"],
-    &["plan", "reproduction", "commands"],
-    &[
-        "prelude", "oracle", "formats", "python", "cli", "main", "lib",
-    ],
+    &["prelude", "oracle", "lib"],
 ];
+
+/// The workspace's crates, lowest level first (the command line, the
+/// repository's root package `v2ref-cli`, is the top): a crate may depend
+/// on crates of lower levels only.
+const CRATES: &[&[&str]] = &[
+    &["v2ref"],
+    &["v2ref-commands"],
+    &["v2ref-files"],
+    &["v2ref-oifits", "v2ref-reproduction"],
+    &["v2ref-python", "v2ref-cli"],
+];
+
+/// The oracle's sources.
+fn oracle_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/v2ref/src")
+}
 
 /// The level of the top module `name`.
 fn level(name: &str) -> Option<usize> {
@@ -50,8 +64,8 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The top module a file of `src/` belongs to: `src/noise/report.rs` is
-/// in `noise`, `src/record.rs` in `record`.
+/// The top module a file of `src/` belongs to: `crates/v2ref-commands/src/report/noise.rs` is
+/// in `noise`, `crates/v2ref/src/record.rs` in `record`.
 fn top_module(src: &Path, file: &Path) -> String {
     let first = file
         .strip_prefix(src)
@@ -111,7 +125,7 @@ fn modules_used(code: &str) -> Vec<String> {
 
 #[test]
 fn every_module_uses_only_its_level_and_below() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = oracle_src();
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     files.sort();
@@ -119,7 +133,7 @@ fn every_module_uses_only_its_level_and_below() {
     for file in &files {
         let module = top_module(&src, file);
         let own = level(&module).unwrap_or_else(|| {
-            panic!("src/{module}: place the module in a level (tests/architecture.rs and the crate docs)")
+            panic!("crates/v2ref/src/{module}: place the module in a level (tests/architecture.rs and the crate docs)")
         });
         let text = std::fs::read_to_string(file).expect("a source file");
         for used in modules_used(&code_of(&text)) {
@@ -128,7 +142,9 @@ fn every_module_uses_only_its_level_and_below() {
             let Some(theirs) = level(&used) else { continue };
             if theirs > own {
                 let shown = file.strip_prefix(&src).unwrap_or(file).display();
-                breaches.push(format!("src/{shown} ({module}) uses crate::{used}"));
+                breaches.push(format!(
+                    "crates/v2ref/src/{shown} ({module}) uses crate::{used}"
+                ));
             }
         }
     }
@@ -154,10 +170,70 @@ fn the_checker_sees_what_it_should() {
 
 #[test]
 fn every_top_module_has_a_level() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = oracle_src();
     for entry in std::fs::read_dir(&src).expect("src/ is readable") {
         let path = entry.expect("a directory entry").path();
         let module = top_module(&src, &path);
-        assert!(level(&module).is_some(), "src/{module} has no level");
+        assert!(
+            level(&module).is_some(),
+            "crates/v2ref/src/{module} has no level"
+        );
     }
+}
+
+/// The level of the crate `name`.
+fn crate_level(name: &str) -> Option<usize> {
+    CRATES.iter().position(|l| l.contains(&name))
+}
+
+/// The workspace crates named in the `[dependencies]` table of the manifest
+/// `text` (a line `v2ref… = { path = … }`).
+fn workspace_dependencies(text: &str) -> Vec<String> {
+    let mut deps = Vec::new();
+    let mut in_deps = false;
+    for line in text.lines() {
+        let line = line.trim();
+        if line.starts_with('[') {
+            in_deps = line == "[dependencies]";
+        } else if in_deps && line.starts_with("v2ref") && line.contains("path =") {
+            deps.push(line.split('=').next().unwrap_or("").trim().to_owned());
+        }
+    }
+    deps
+}
+
+#[test]
+fn every_crate_depends_only_on_lower_levels() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut manifests = vec![("v2ref-cli".to_owned(), root.join("Cargo.toml"))];
+    for entry in std::fs::read_dir(root.join("crates")).expect("crates/ is readable") {
+        let dir = entry.expect("a directory entry").path();
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        manifests.push((name, dir.join("Cargo.toml")));
+    }
+    let mut breaches = Vec::new();
+    for (name, manifest) in &manifests {
+        let own = crate_level(name).unwrap_or_else(|| {
+            panic!("{name}: place the crate in a level (tests/architecture.rs)")
+        });
+        let text = std::fs::read_to_string(manifest).expect("a manifest");
+        for dep in workspace_dependencies(&text) {
+            let theirs = crate_level(&dep).unwrap_or(usize::MAX);
+            if theirs >= own {
+                breaches.push(format!("{name} depends on {dep}"));
+            }
+        }
+    }
+    assert!(
+        breaches.is_empty(),
+        "crates depending on their own level or above:\n{}",
+        breaches.join("\n")
+    );
+}
+
+#[test]
+fn the_manifest_reader_sees_what_it_should() {
+    let text = "[dependencies]\nv2ref = { path = \"../v2ref\" }\nserde = \"1\"\n\
+                [dev-dependencies]\nv2ref-files = { path = \"../v2ref-files\" }\n";
+    assert_eq!(workspace_dependencies(text), ["v2ref"]);
 }

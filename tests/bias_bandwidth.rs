@@ -9,10 +9,10 @@ use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::{uniform_disk_visibility, Source};
 use v2ref::formalism::spectrum::{Band, Spectrum};
 use v2ref::math::quadrature::gauss_legendre;
-use v2ref_reproduction::cases::s_grid;
 use v2ref::tolerance::{
     ARGMAX_ABS, GRID_INTERPOLATION_REL, MINIMIZE_BRACKET_REL, QUADRATURE_REL, SCALING_LAW_REL, ULPS,
 };
+use v2ref_reproduction::cases::s_grid;
 
 fn disk() -> Source {
     Source::UniformDisk { diameter_mas: 43.0 }

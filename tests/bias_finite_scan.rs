@@ -12,11 +12,11 @@ use v2ref::formalism::observation::{Frequency, Observation};
 use v2ref::formalism::phase::SpectralPhase;
 use v2ref::formalism::source::Source;
 use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref_reproduction::cases::DX_UM;
 use v2ref::tolerance::{
     BIN_ORACLE_ABS, DIRECT_SUM_REL, DIRICHLET_VS_SINC_ABS, PATHS_AGREE_ABS as PATHS_AGREE,
     ROUGH_SCALING_REL, ROUNDING_REL,
 };
+use v2ref_reproduction::cases::DX_UM;
 
 fn disk_obs(s: f64) -> Observation {
     Observation::new(

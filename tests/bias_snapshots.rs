@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 use std::path::Path;
+use v2ref::tolerance::{GOLDEN_ABS, GOLDEN_REL};
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::table::Table;
-use v2ref::tolerance::{GOLDEN_ABS, GOLDEN_REL};
 
 /// Six significant digits: enough to see drift, stable across platforms.
 fn sig(x: f64) -> f64 {

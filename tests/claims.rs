@@ -4,12 +4,12 @@
 //! claims as the steering ledger is checked by `.ci/run`, where that ledger
 //! is available.)
 
+use v2ref::tolerance::ROUNDING_REL;
+use v2ref::{assert_abs_eq, assert_rel_eq};
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::claims::{
     compute, decide, ledger, summary, ClaimResult, ClaimSpec, Computed, Finding, Status,
 };
-use v2ref::tolerance::ROUNDING_REL;
-use v2ref::{assert_abs_eq, assert_rel_eq};
 
 /// `v2ref claims --quick --json`, the code path a user runs (the CLI calls
 /// `evaluate(Effort::Quick)`), run once for every test of the suite that

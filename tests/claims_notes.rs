@@ -1,5 +1,5 @@
 //! No number in a claim's note is typed by hand: every string literal of
-//! the claims' providers (`src/reproduction/claims/`) is read, its format
+//! the claims' providers (`crates/v2ref-reproduction/src/claims/`) is read, its format
 //! placeholders (`{x:.3}`, filled from computed values or from the case's
 //! inputs declared in code) taken out, and any number left in the text is a
 //! typed one, which fails the test unless it belongs to a formula or a
@@ -184,7 +184,10 @@ fn typed_numbers(literal: &str) -> Vec<String> {
 fn typed_numbers_in_claims() -> Vec<String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    rust_files(&root.join("src/reproduction/claims"), &mut files);
+    rust_files(
+        &root.join("crates/v2ref-reproduction/src/claims"),
+        &mut files,
+    );
     files.sort();
     let mut found = Vec::new();
     for file in files {

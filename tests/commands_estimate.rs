@@ -5,14 +5,14 @@
 //! refusal (other rows than a set's must have the set's N).
 
 use std::path::Path;
+use v2ref::conformance::estimate::{estimate_row_oracle, BiasConvention};
+use v2ref::formalism::estimator::{BinWindow, Pair};
+use v2ref::simulator::Model;
+use v2ref::Error;
 use v2ref_commands::commands::estimate::{
     check_rows, estimate_rows, estimator, CalibratorRows, Configuration, RowsName,
 };
-use v2ref::conformance::estimate::{estimate_row_oracle, BiasConvention};
-use v2ref::formalism::estimator::{BinWindow, Pair};
 use v2ref_commands::parameters::Physical;
-use v2ref::simulator::Model;
-use v2ref::Error;
 
 const ARRAY: RowsName<'static> = RowsName {
     param: "interferograms",

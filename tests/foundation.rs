@@ -979,16 +979,16 @@ fn mean_counts_are_continuum_plus_modulation() {
     assert_eq!(ifg.mean_counts(), [12.5, 6.0, 10.0]);
 }
 
-/// The words of each choice of the library (`src/words.rs`).
+/// The words of each choice of the library (`crates/v2ref/src/words.rs`).
 mod words {
     use v2ref::conformance::estimate::BiasConvention;
     use v2ref::formalism::estimator::BinWindow;
     use v2ref::noise::Formula;
-    use v2ref_commands::parameters::SourceKind;
     use v2ref::piston::spectrum::PistonPsdModel;
     use v2ref::piston::PistonReference;
     use v2ref::simulator::RowLayout;
     use v2ref::words::Words;
+    use v2ref_commands::parameters::SourceKind;
 
     /// Each word is its value's serde name (what JSON writes), once, and
     /// names that value back; a word not listed is refused naming the

@@ -196,7 +196,7 @@ fn the_alias_table_leaves_out_less_than_1e_minus_30_of_the_poisson_mass() {
     }
 }
 
-// ---- seeding (src/montecarlo/mod.rs) ----------------------------------------
+// ---- seeding (crates/v2ref/src/montecarlo/mod.rs) ----------------------------------------
 
 #[test]
 fn the_seed_mixer_is_splitmix64() {

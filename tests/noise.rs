@@ -11,9 +11,9 @@ use v2ref::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref_reproduction::cases::appendix_setup;
 use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
 use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_reproduction::cases::appendix_setup;
 
 fn gauss(s: f64) -> NoiseModel {
     NoiseModel::detector(s).unwrap()

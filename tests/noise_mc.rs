@@ -12,8 +12,8 @@ use v2ref::noise::window_variance::{
 use v2ref::noise::{
     appendix_stats, example_interferogram, published, raw_moment, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref_reproduction::cases::appendix_setup;
 use v2ref::tolerance::{IDENTITY_REL, MC_POWER_SIGMAS, MC_SIGMAS, POWER_FACTOR};
+use v2ref_reproduction::cases::appendix_setup;
 
 /// Asserts `mc` within MC_SIGMAS·se of `f` and outside MC_SIGMAS·se of 1.02 f.
 fn check(what: &str, mc: f64, se: f64, f: f64) {

@@ -318,9 +318,7 @@ fn a_row_written_as_nan_is_flagged() {
     // estimate --out over 4096 samples writes VIS2ERR NaN (no closed
     // form), Python's write_oifits whatever NaN it is given: the writer
     // flags every such row, so that no fitter reads a NaN as a weight.
-    use v2ref_oifits::{
-        iota, parse_oifits, to_bytes, OifitsDoc, ReadOptions, Setting, Vis2Out,
-    };
+    use v2ref_oifits::{iota, parse_oifits, to_bytes, OifitsDoc, ReadOptions, Setting, Vis2Out};
     let setting = Setting {
         target: "T".into(),
         target_radec_deg: (10.0, -20.0),

@@ -1,9 +1,9 @@
 //! Every `piston.*` claim is computed (no `pending`), by the code path the
 //! user runs, at the quick effort; errata carry both values.
 
-use v2ref_reproduction::claims::Status;
 use v2ref::tolerance::{ROUNDING_REL, VISIBILITY_SCALING_REL};
 use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_reproduction::claims::Status;
 
 #[test]
 fn every_piston_claim_is_answered() {

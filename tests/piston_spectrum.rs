@@ -1,5 +1,5 @@
-//! The differential-piston spectrum (src/piston/spectrum.rs, its transverse
-//! integrals and table in src/piston/transverse.rs) piece by piece,
+//! The differential-piston spectrum (crates/v2ref/src/piston/spectrum.rs, its transverse
+//! integrals and table in crates/v2ref/src/piston/transverse.rs) piece by piece,
 //! without the 721 quadratures of a real table of G, so that every test but
 //! one runs in milliseconds at opt-level 0 (the mutation runs,
 //! docs/mutation.md):

@@ -7,9 +7,9 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
-use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref::tolerance::MC_SIGMAS;
+use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 
 fn h_band(source: SourceInput, baseline_m: f64, read_noise: f64, photon_noise: bool) -> Inputs {
     Inputs {
@@ -250,8 +250,8 @@ fn cli_plan_writes_json_and_svg() {
 
 // --- The magnitude helper (`v2ref_commands::plan::photometry`) --------------------
 
-use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
+use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 
 fn ks_zero(aperture_m: f64, throughput: f64) -> Magnitude {
     Magnitude {

@@ -15,9 +15,9 @@
 
 use v2ref::piston::PistonReference;
 use v2ref::piston::DEFAULT_SUB_SAMPLES;
+use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref_commands::plan::{default_grid, plan, Estimator, PlanInputs, PlanPoint, Target};
-use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 
 /// One case: its inputs on the default grid.
 struct Case {

@@ -32,10 +32,10 @@ use v2ref::formalism::estimator::BinWindow;
 use v2ref::montecarlo::{replicated_summary, RunningStats, Summary};
 use v2ref::piston::PistonReference;
 use v2ref::piston::DEFAULT_SUB_SAMPLES;
-use v2ref_commands::plan::verify::{verification_size, verify, Verification};
-use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref::simulator::{Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref::tolerance::{check_sigmas, MC_SIGMAS, PLAN_MEAN_SIGMAS};
+use v2ref_commands::plan::verify::{verification_size, verify, Verification};
+use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 
 /// A plan's inputs on a one-point grid.
 struct Site {

@@ -14,8 +14,8 @@
 
 use crate::run::v2ref;
 use v2ref::conformance::estimate::BiasConvention;
-use v2ref_commands::plan::{plan, PlanInputs, Target};
 use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use v2ref_commands::plan::{plan, PlanInputs, Target};
 
 /// An H-band 2 mas disk on 100 m at 1e6 photons/s through 1 m apertures
 /// with a 25 m outer scale: noise and piston both matter.

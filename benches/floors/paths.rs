@@ -9,8 +9,8 @@ use v2ref::formalism::estimator::{positive_bins, BinWindow};
 use v2ref::montecarlo::{in_pool, unit_rng, Rng};
 use v2ref::noise::simulation::{simulate_noisy, NoisySpec, PoissonSampler, TRIALS_PER_UNIT};
 use v2ref::noise::{example_interferogram, NoiseModel};
-use v2ref_reproduction::cases::appendix_setup;
 use v2ref::simulator::{Inputs, Model};
+use v2ref_reproduction::cases::appendix_setup;
 
 /// The paths, in the order they run.
 pub const NAMES: [&str; 6] = [
@@ -70,8 +70,8 @@ fn estimate(rows: u64, n: usize) -> Case {
     };
     let inputs = model.inputs.clone();
     let v2ref = move |threads: usize| {
-        use v2ref_commands::commands::estimate::{estimate_rows, estimator, RowsName};
         use v2ref::conformance::estimate::BiasConvention;
+        use v2ref_commands::commands::estimate::{estimate_rows, estimator, RowsName};
         let name = RowsName {
             param: "interferograms",
             path: None,

@@ -3,8 +3,8 @@
 use super::common::ObservedArgs;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref_commands::commands::cost::duration_words;
 use v2ref::Result;
+use v2ref_commands::commands::cost::duration_words;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
 /// on a terminal: its cost grows as N² (synthesis of N samples, each a sum
@@ -38,7 +38,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         duration_words(cost.seconds)
     );
     let bar = super::spinner(n < SLOW_SAMPLES, &what);
-    let answer = v2ref_commands::commands::bias::answer(&p, args.observed.sampling.bins, args.finite_scan)?;
+    let answer =
+        v2ref_commands::commands::bias::answer(&p, args.observed.sampling.bins, args.finite_scan)?;
     bar.finish_and_clear();
     let wb = answer.infinite_scan;
     if args.json {

@@ -3,9 +3,9 @@
 use super::common::OutputArgs;
 use super::print_json;
 use std::process::ExitCode;
+use v2ref::Result;
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::claims::evaluate;
-use v2ref::Result;
 
 /// Flags of `claims`.
 #[derive(Debug, clap::Args)]

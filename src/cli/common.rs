@@ -4,8 +4,8 @@
 
 use super::flags::physical_flags;
 use v2ref::formalism::estimator::BinWindow;
-use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref::words::Words;
+use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The `--help` of the flag of the physical input `p`, from its one
 /// declaration ([`Parameter::describe`]; other inputs named by their

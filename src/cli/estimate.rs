@@ -6,14 +6,14 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref_files::atomic::set::OutputSet;
+use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use v2ref::formalism::estimator::BinWindow;
+use v2ref::{Error, Result};
 use v2ref_commands::commands::estimate::{
     estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
 };
-use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
-use v2ref::formalism::estimator::BinWindow;
+use v2ref_files::atomic::set::OutputSet;
 use v2ref_files::formats::{read_matrix, CsvRowWriter, NpyRowWriter, RowStream};
-use v2ref::{Error, Result};
 
 /// The columns written, in order.
 pub use v2ref_commands::commands::ESTIMATE_COLUMNS as COLUMNS;
@@ -94,10 +94,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let targets: Vec<_> = args.out.iter().map(|p| (p.as_path(), "out")).collect();
     let set = OutputSet::begin(&targets, args.force)?;
     super::oifits::check_estimates_out(args.out.as_deref())?;
-    let fits = args
-        .out
-        .as_deref()
-        .is_some_and(v2ref_oifits::is_fits_path);
+    let fits = args.out.as_deref().is_some_and(v2ref_oifits::is_fits_path);
     let observing = args.observing.resolve(fits, "--out FILE.fits")?;
     set.write(|| estimate_and_write(&args, &source, &observing))
 }
@@ -134,11 +131,7 @@ fn estimate_and_write(
             )
         }
     };
-    if let Some(p) = args
-        .out
-        .as_ref()
-        .filter(|p| v2ref_oifits::is_fits_path(p))
-    {
+    if let Some(p) = args.out.as_ref().filter(|p| v2ref_oifits::is_fits_path(p)) {
         let inputs = source.config.inputs_for(source.name(), rows.len(), cols)?;
         let what = (args.bins, args.bias, args.oifits_estimator);
         super::oifits::write_estimates(p, &inputs, &rows, what, observing)?;

@@ -165,7 +165,9 @@ impl Given {
     pub fn apply_to(&self, p: &mut Physical) -> v2ref::Result<()> {
         for (key, file, value) in &self.0 {
             let value = match file {
-                Some(path) => Value::Spectrum(v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?),
+                Some(path) => Value::Spectrum(
+                    v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?,
+                ),
                 None => value.clone(),
             };
             p.set(key, value)?;

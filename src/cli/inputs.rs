@@ -5,9 +5,9 @@ use super::common::{
     warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
 };
 use super::flags::{augment, Given, Hyphen};
-use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::Result;
+use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The differential piston: on when `--fringe-hz` is given.
 #[derive(Debug, Clone)]
@@ -160,7 +160,8 @@ mod tests {
                     )
                 }
                 Value::Unset if p.kind == Kind::File => {
-                    let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&csv).unwrap();
+                    let table =
+                        v2ref_files::formats::spectrum_csv::read_spectrum_file(&csv).unwrap();
                     (
                         vec![format!("--{name}"), csv.display().to_string()],
                         Value::Spectrum(table),

@@ -7,10 +7,10 @@ use v2ref::conformance::estimate::{BiasConvention, RowEstimate};
 use v2ref::conformance::score::Estimator;
 use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
 use v2ref::formalism::estimator::BinWindow;
-use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
-use v2ref_files::formats::{read_estimates, Estimates};
 use v2ref::simulator::{Inputs, Model};
 use v2ref::{Error, Result};
+use v2ref_files::formats::{read_estimates, Estimates};
+use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
 
 /// Which estimators an OIFITS file holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

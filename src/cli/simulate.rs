@@ -13,9 +13,9 @@ use v2ref::conformance::estimate::BiasConvention;
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::noise::calibrated::Trials;
 use v2ref::noise::Formula;
-use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 use v2ref::simulator::{simulate, Model};
 use v2ref::Result;
+use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 
 /// Flags of `simulate`.
 #[derive(Debug, clap::Args)]

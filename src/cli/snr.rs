@@ -6,10 +6,10 @@
 use super::common::{LightArgs, ObservedArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref_commands::report::noise::SnrReport;
 use v2ref::noise::snr_value::snr_text;
 use v2ref::noise::Formula;
 use v2ref::Result;
+use v2ref_commands::report::noise::SnrReport;
 
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]
@@ -46,7 +46,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         v2ref_commands::commands::cost::duration_words(cost.seconds)
     );
     let bar = super::spinner(cost.seconds < 1.0, &what);
-    let answer = v2ref_commands::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
+    let answer =
+        v2ref_commands::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
     bar.finish_and_clear();
     if args.json {
         print_json(&answer);

@@ -8,14 +8,14 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref_files::atomic::{set::OutputSet, write_text_atomic};
-use v2ref_commands::commands::cost::SetOutput;
-use v2ref::conformance::synth::{synthesize, SetSize};
 use v2ref::conformance::sidecar::Sidecar;
+use v2ref::conformance::synth::{synthesize, SetSize};
 use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
-use v2ref_files::formats::{CsvRowWriter, NpyRowWriter};
 use v2ref::simulator::{Model, RowLayout, RowTiming};
 use v2ref::{Error, Result};
+use v2ref_commands::commands::cost::SetOutput;
+use v2ref_files::atomic::{set::OutputSet, write_text_atomic};
+use v2ref_files::formats::{CsvRowWriter, NpyRowWriter};
 
 /// Flags of `synth`.
 #[derive(Debug, clap::Args)]

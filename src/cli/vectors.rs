@@ -5,7 +5,6 @@
 use super::synth::{write_set, SetSpec};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use v2ref_files::atomic::ScratchFolder;
 use v2ref::conformance::estimate::BiasConvention;
 use v2ref::conformance::score::{
     critical_z, min_detectable_rel_bias, DEFAULT_ALPHA, TESTS_PER_ESTIMATOR,
@@ -14,9 +13,10 @@ use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
 use v2ref::conformance::vectors::{catalogue, Vector, VECTOR_REFERENCE_BLOCKS, VECTOR_ROWS};
 use v2ref::formalism::estimator::BinWindow;
 use v2ref::oracle::{powered_rows, POWERED_REL_ERROR};
-use v2ref_reproduction::golden::replace_dir_atomically;
 use v2ref::simulator::Model;
 use v2ref::{Error, Result};
+use v2ref_files::atomic::ScratchFolder;
+use v2ref_reproduction::golden::replace_dir_atomically;
 
 /// The folder of the vectors inside the golden folder.
 pub const VECTORS_DIR: &str = "vectors";

@@ -8,9 +8,7 @@
 // The plain values of the inputs (the oracle's), beside their records.
 pub use v2ref::record::*;
 
-use crate::formalism::{
-    estimator::BinWindow, interferogram::Sampling, observation::Observation,
-};
+use crate::formalism::{estimator::BinWindow, interferogram::Sampling, observation::Observation};
 use serde::Serialize;
 
 /// The observation: spectrum, source, where in the (u, v) plane, dispersion.

@@ -17,8 +17,7 @@
 // in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
 pub(crate) use v2ref::{
-    bounds, conformance, csv_lines, error, formalism, manifest, noise, simulator, Error,
-    Result,
+    bounds, conformance, csv_lines, error, formalism, manifest, noise, simulator, Error, Result,
 };
 #[allow(unused_imports)]
 pub(crate) use v2ref_commands::{parameters, plan};

@@ -14,10 +14,7 @@ pub fn columns_of(rows: &[RowEstimate], which: &[Estimator]) -> Vec<(Estimator, 
     which
         .iter()
         .map(|&e| {
-            let v = rows
-                .iter()
-                .map(|r| e.pick(r.v1_sq, r.v2_sq))
-                .collect();
+            let v = rows.iter().map(|r| e.pick(r.v1_sq, r.v2_sq)).collect();
             (e, v)
         })
         .collect()

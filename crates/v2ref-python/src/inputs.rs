@@ -72,7 +72,8 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
     }
     p.check().map_err(|e| e.into_py_err())?;
     for (key, path) in files {
-        let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&path).map_err(|e| e.into_py_err())?;
+        let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&path)
+            .map_err(|e| e.into_py_err())?;
         p.set(key, Value::Spectrum(table))
             .map_err(|e| e.into_py_err())?;
     }

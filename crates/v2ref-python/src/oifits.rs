@@ -8,7 +8,6 @@ use crate::conformance::estimate::BiasConvention;
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::{Sidecar, FORMAT};
 use crate::formalism::estimator::BinWindow;
-use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
 use crate::simulator::Model;
 use crate::words::Words;
 use crate::Error;
@@ -17,6 +16,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use std::path::Path;
+use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
 
 /// The library's parameter `from` renamed `to` (the Python keyword).
 fn renamed(e: Error, from: &str, to: &'static str) -> Error {

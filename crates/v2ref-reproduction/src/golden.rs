@@ -16,8 +16,8 @@
 //! directory that then replaces the old one by rename, so an interrupted
 //! update leaves the old data whole.
 
-use crate::error::{Error, Result};
 use crate::cases::Effort;
+use crate::error::{Error, Result};
 use crate::table::{compare_tables, Figure, Mismatch, Table};
 use crate::tolerance::{GOLDEN_ABS, GOLDEN_REL};
 use serde::{Deserialize, Serialize};

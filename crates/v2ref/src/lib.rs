@@ -81,9 +81,8 @@
 //! `v2ref-python`, and the command line (the repository's root package). They
 //! use [`record`] (what a computation was asked, as plain values), [`words`]
 //! (the words that name each choice) and [`manifest`] (the member list of a set
-//! of files). The feature `testing` (the workspace's test suites, unstable)
-//! adds the assertion macros `assert_rel_eq!`, `assert_abs_eq!` and
-//! `assert_within_sigmas!` to the tolerances of [`tolerance`].
+//! of files), and [`tolerance`] with its assertion macros `assert_rel_eq!`,
+//! `assert_abs_eq!` and `assert_within_sigmas!` (the workspace's test suites).
 //!
 //! ## The crate, as the paper
 //!
@@ -99,7 +98,7 @@
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
 //! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`Error`] |
-//! | tolerances (one home) | [`tolerance`] (its assertion macros: feature `testing`) |
+//! | tolerances (one home) | [`tolerance`] and its assertion macros |
 //! | what a computation was asked, as plain values | [`record`] |
 //!
 //! ## Levels
@@ -184,8 +183,10 @@ pub mod bias;
 pub mod bounds;
 pub mod cancel;
 pub mod conformance;
+pub mod csv_lines;
 pub mod error;
 pub mod formalism;
+pub mod manifest;
 pub mod math;
 pub mod montecarlo;
 pub mod noise;
@@ -196,7 +197,5 @@ pub mod record;
 pub mod simulator;
 pub mod tolerance;
 pub mod words;
-pub mod csv_lines;
-pub mod manifest;
 
 pub use error::{Error, Result};

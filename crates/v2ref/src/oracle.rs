@@ -50,8 +50,8 @@
 //! # Ok::<(), v2ref::Error>(())
 //! ```
 
-use crate::conformance::synth::{synthesize, SetSize};
 use crate::conformance::score::{critical_z, min_detectable_rel_bias, TESTS_PER_ESTIMATOR};
+use crate::conformance::synth::{synthesize, SetSize};
 use crate::conformance::truth::{default_reference_blocks, POOLED_MIN_ROWS};
 use crate::conformance::vectors::{VECTOR_REFERENCE_BLOCKS, VECTOR_ROWS};
 use crate::error::{Error, Result};

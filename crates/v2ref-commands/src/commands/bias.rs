@@ -2,10 +2,10 @@
 //! infinite scan and, when asked (or when a stroke is given), from the
 //! sampled finite scan.
 
-use crate::report::bias::BiasReport;
 use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
 use crate::parameters::Physical;
+use crate::report::bias::BiasReport;
 
 /// Whether `bias` computes the finite scan: asked for, or implied by a
 /// stroke.

@@ -105,7 +105,7 @@ impl Cost {
     pub fn notice(&self) -> Option<String> {
         (self.seconds > NOTICE_S).then(|| {
             format!(
-                "predicted to take about {} ({}, by the measured cost laws of v2ref::commands::cost); Ctrl-C stops it and leaves no partial output",
+                "predicted to take about {} ({}, by the measured cost laws of v2ref_commands::commands::cost); Ctrl-C stops it and leaves no partial output",
                 duration_words(self.seconds),
                 self.what
             )

@@ -8,11 +8,11 @@ use crate::formalism::estimator::BinWindow;
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
 use crate::parameters::Physical;
-use crate::report::model_comparison::PsdComparison;
-use crate::report::piston::{ComparisonNote, PistonReport, PistonSetting};
 use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonRun, RunSize, ScanSetup};
 use crate::record::{InputsRecord, SamplingRecord};
+use crate::report::model_comparison::PsdComparison;
+use crate::report::piston::{ComparisonNote, PistonReport, PistonSetting};
 
 /// The fringe frequencies when none is given, Hz.
 pub const DEFAULT_FRINGE_HZ: [f64; 2] = [300.0, 1000.0];

@@ -3,9 +3,9 @@
 
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
-use crate::report::noise::{Light, SnrReport};
 use crate::noise::Formula;
 use crate::parameters::Physical;
+use crate::report::noise::{Light, SnrReport};
 
 /// The answer of `snr` for `p`, the exact statistics over `bins`, the
 /// Appendix's by `formula`.

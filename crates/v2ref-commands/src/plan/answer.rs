@@ -79,7 +79,7 @@ pub(super) fn echo_atmosphere<S: serde::Serializer>(
 /// significant figures.
 ///
 /// ```
-/// use v2ref::plan::human_duration;
+/// use v2ref_commands::plan::human_duration;
 /// assert_eq!(human_duration(42.0), "42.0 s");
 /// assert_eq!(human_duration(1_168_782.9), "13.5 d");
 /// assert_eq!(human_duration(5400.0), "90.0 min");

@@ -198,7 +198,7 @@ impl Magnitude {
     /// # Example
     ///
     /// ```
-    /// use v2ref::plan::photometry::{Band2Mass, Magnitude};
+    /// use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
     /// // H = 5 on two 1.8 m telescopes with 1 % throughput, full H band.
     /// let m = Magnitude { magnitude: 5.0, band: Band2Mass::H, aperture_m: 1.8, throughput: 0.01 };
     /// let rate = m.photon_rate_per_s(1.65, 0.3)?;

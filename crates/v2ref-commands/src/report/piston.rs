@@ -2,14 +2,14 @@
 //! `v2ref.piston()` returns it: one place, so that the CLI and the Python
 //! package cannot drift apart.
 
-use crate::piston::scan::{Detector, PistonReference};
-use crate::piston::simulation::PistonRun;
-use crate::piston::spectrum::PistonSpectrum;
 use crate::formalism::estimator::BinWindow;
 use crate::formalism::interferogram::Sampling;
 use crate::formalism::observation::Observation;
-use crate::report::model_comparison::PsdComparison;
+use crate::piston::scan::{Detector, PistonReference};
+use crate::piston::simulation::PistonRun;
+use crate::piston::spectrum::PistonSpectrum;
 use crate::record::InputsRecord;
+use crate::report::model_comparison::PsdComparison;
 use serde::Serialize;
 
 /// One fringe frequency's bias and scatter of V1 and V2 (of V, not V²).

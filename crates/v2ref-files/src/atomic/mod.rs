@@ -6,7 +6,7 @@
 //! removes it), which takes the target's place by one rename once it is
 //! complete and synced, alone or with the rest of its set ([`set`]).
 //! Targets are checked ([`target`]) and locked for the run
-//! (`src/atomic/lock.rs`); the temporaries of writers that are gone are
+//! (`crates/v2ref-files/src/atomic/lock.rs`); the temporaries of writers that are gone are
 //! removed by the next writer beside them, only when their lock is free.
 //!
 //! A set that is read back as a set (`synth`'s files) lists its members,

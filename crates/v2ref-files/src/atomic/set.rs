@@ -2,7 +2,7 @@
 //!
 //! [`OutputSet::begin`] checks every target before any work (distinct
 //! paths, each writable and replaceable, an existing file only with
-//! `force`), takes each target's lock (`src/atomic/lock.rs`: a second run on
+//! `force`), takes each target's lock (`crates/v2ref-files/src/atomic/lock.rs`: a second run on
 //! the same outputs is refused, naming the process that writes them) and
 //! removes the temporaries of writers that are gone beside them.
 //! [`OutputSet::write`] runs the writers: each finished file waits,

@@ -3,10 +3,10 @@
 use super::{formula, window};
 use crate::commands::{self, cost, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
-use crate::values::to_py;
-use crate::{interruptible, ok, warn_cost};
 use crate::reproduction::cases::Effort;
+use crate::values::to_py;
 use crate::words::Words;
+use crate::{interruptible, ok, warn_cost};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 

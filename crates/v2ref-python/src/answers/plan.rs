@@ -3,8 +3,8 @@
 use crate::commands::{self, plan::PlanRequest};
 use crate::conformance::estimate::BiasConvention;
 use crate::values::to_py;
-use crate::{interruptible, ok, warn_cost};
 use crate::words::Words;
+use crate::{interruptible, ok, warn_cost};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -97,12 +97,7 @@ pub(super) fn plan(
         // Nothing is written when no setting reaches the target: the
         // answer's `recommended` is then null, as the CLI says in a note.
         ok(set.write(|| {
-            v2ref_oifits::write_plan(
-                path,
-                "oifits",
-                (&answer.inputs, &answer.plan),
-                &observing,
-            )
+            v2ref_oifits::write_plan(path, "oifits", (&answer.inputs, &answer.plan), &observing)
         }))?;
     }
     to_py(py, &answer)

@@ -18,6 +18,8 @@
 use crate::bias::bandwidth;
 use crate::bias::finite_scan::{self, Kernel, Method};
 use crate::bias::normalization;
+use crate::cases::Effort;
+use crate::cases::{fig1_step, fig3_check_step, fig3_step};
 use crate::error::Result;
 use crate::formalism::estimator::{v2_sq, wide_band};
 use crate::formalism::interferogram::Sampling;
@@ -26,8 +28,6 @@ use crate::formalism::phase::SpectralPhase;
 use crate::formalism::source::{uniform_disk_visibility, Source};
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::math::special::fresnel::point_source_v2_sq;
-use crate::cases::Effort;
-use crate::cases::{fig1_step, fig3_check_step, fig3_step};
 use crate::table::{Column, Figure, Table};
 use rayon::prelude::*;
 use serde_json::json;
@@ -36,9 +36,7 @@ use crate::cases::{ABCD_DX_UM, DX_UM, STROKES_UM};
 use crate::cases::{BANDWIDTHS_NM, DIAMETER_MAS, S_MAX_CPAS, WAVELENGTH_UM};
 
 use crate::cases::{disk, k_band, observe_at, s_grid};
-use crate::cases::{
-    DISPERSIONS_RAD, FIG0_EDGE_PER_UM, FIG0_INDICES, FIG0_MAX_SAMPLES,
-};
+use crate::cases::{DISPERSIONS_RAD, FIG0_EDGE_PER_UM, FIG0_INDICES, FIG0_MAX_SAMPLES};
 
 /// Column-name label of a number: 12.5 → "12p5".
 pub(crate) fn label(x: f64) -> String {

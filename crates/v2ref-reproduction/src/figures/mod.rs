@@ -1,8 +1,8 @@
 //! The registry of the paper's figures: each area provides the figures it
 //! computes; `golden/` and `v2ref reproduce` take them from here.
 
-use crate::error::Result;
 use crate::cases::Effort;
+use crate::error::Result;
 use crate::table::Figure;
 
 pub(crate) mod bias;

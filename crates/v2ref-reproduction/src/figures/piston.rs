@@ -15,6 +15,10 @@
 //! the seed of each point is fixed, so the figures are reproducible bit for
 //! bit whatever the thread count.
 
+use crate::cases::{
+    fig4_size, fig5_frequencies, fig5_size, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M,
+    FIGURE_SEED, SEEING_ARCSEC, WIND_MPS,
+};
 use crate::error::Result;
 use crate::formalism::estimator::{BinWindow, BIN_WINDOWS};
 use crate::formalism::observation::{Frequency, Observation};
@@ -27,10 +31,6 @@ use crate::piston::spectrum::{PistonSpectrum, TransverseTable};
 use crate::piston::turbulence::Turbulence;
 use crate::piston::{
     simulate_piston, sweep, Detector, PistonRun, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
-};
-use crate::cases::{
-    fig4_size, fig5_frequencies, fig5_size, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M,
-    FIGURE_SEED, SEEING_ARCSEC, WIND_MPS,
 };
 use crate::table::{Column, Figure, Table};
 use std::sync::{Arc, Mutex};

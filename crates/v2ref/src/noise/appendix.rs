@@ -3,8 +3,8 @@
 //! bins, as printed (`published`) and exact, the SNRs, the paper's window
 //! factor, the crossover of SNR_1 and SNR_2, and the ABCD (Colavita)
 //! variances. The noise model and the per-sample moments are in
-//! [`crate::noise::model`]; the worked examples' interferogram in
-//! [`crate::noise::example`].
+//! `noise::model`; the worked examples' interferogram in
+//! `noise::example`.
 //!
 //! # Estimators over all bins
 //!

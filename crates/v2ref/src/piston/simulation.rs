@@ -14,7 +14,7 @@
 //! The independent sequences ([`crate::piston::sequences`]), their
 //! synthesis ([`crate::piston::series`]), the scans
 //! ([`crate::piston::scan`]) and the tabulated fringe
-//! ([`crate::piston::fringe_table`]) are in their own modules.
+//! (`piston::fringe_table`) are in their own modules.
 
 use crate::error::{Error, Result};
 use crate::formalism::estimator::{BinWindow, Pair, BIN_WINDOWS};

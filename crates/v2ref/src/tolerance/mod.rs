@@ -58,12 +58,10 @@
 //! when none is named) and print both values, their difference and the
 //! tolerance on failure.
 //!
-//! The module and the macros are public only with the feature `testing`
-//! (the workspace's test suite turns it on): they are test machinery, not a
-//! pipeline's API, and not stable. Without it, the constants only the tests
-//! use are compiled and unused (they stay here, beside those the library
-//! iterates to, so that one file holds every tolerance).
-#![cfg_attr(not(feature = "testing"), allow(dead_code, unused_imports))]
+//! The module and the macros are public for the workspace's test suites
+//! (and for a pipeline's own tests, at its choice): test machinery, one
+//! file for every tolerance, those the library iterates to beside those
+//! only the tests use.
 
 mod convergence;
 mod identities;
@@ -75,7 +73,6 @@ pub use identities::*;
 pub use monte_carlo::*;
 pub use quadrature::*;
 
-#[cfg(feature = "testing")]
 /// Checks `|actual − expected| ≤ tol · |expected|` (exact equality always
 /// passes, so infinities and zeros compare); on failure, the message the
 /// macros print. Used by [`assert_rel_eq!`](crate::assert_rel_eq).
@@ -92,7 +89,6 @@ pub fn check_rel(actual: f64, expected: f64, tol: f64) -> Result<(), String> {
     }
 }
 
-#[cfg(feature = "testing")]
 /// Checks `|actual − expected| ≤ tol`; on failure, the message the macros
 /// print. Used by [`assert_abs_eq!`](crate::assert_abs_eq).
 pub fn check_abs(actual: f64, expected: f64, tol: f64) -> Result<(), String> {
@@ -106,7 +102,6 @@ pub fn check_abs(actual: f64, expected: f64, tol: f64) -> Result<(), String> {
     }
 }
 
-#[cfg(feature = "testing")]
 /// Checks `|value − expected| ≤ k · stderr`; on failure, the message the
 /// macros print. Used by [`assert_within_sigmas!`](crate::assert_within_sigmas).
 pub fn check_sigmas(value: f64, expected: f64, stderr: f64, k: f64) -> Result<(), String> {
@@ -133,7 +128,6 @@ pub fn check_sigmas(value: f64, expected: f64, stderr: f64, k: f64) -> Result<()
 /// assert_rel_eq!(0.1 + 0.2, 0.3);
 /// assert_rel_eq!(2f64.sqrt().powi(2), 2.0, ULPS);
 /// ```
-#[cfg(feature = "testing")]
 #[macro_export]
 macro_rules! assert_rel_eq {
     ($actual:expr, $expected:expr $(,)?) => {
@@ -173,7 +167,6 @@ macro_rules! assert_rel_eq {
 /// assert_abs_eq!(0.1 + 0.2, 0.3);
 /// assert_abs_eq!((0.5f64).sin().asin(), 0.5, ULPS);
 /// ```
-#[cfg(feature = "testing")]
 #[macro_export]
 macro_rules! assert_abs_eq {
     ($actual:expr, $expected:expr $(,)?) => {
@@ -213,7 +206,6 @@ macro_rules! assert_abs_eq {
 /// use v2ref::assert_within_sigmas;
 /// assert_within_sigmas!(1.02, 1.0, 0.01); // 2σ of 5
 /// ```
-#[cfg(feature = "testing")]
 #[macro_export]
 macro_rules! assert_within_sigmas {
     ($value:expr, $expected:expr, $stderr:expr $(,)?) => {

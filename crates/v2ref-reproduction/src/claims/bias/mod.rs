@@ -13,6 +13,11 @@ use crate::bias::finite_scan::{self, Method};
 use crate::bias::integration;
 use crate::bias::line::{self, LineCase};
 use crate::bias::normalization;
+use crate::cases::{disk, k_band, Effort};
+use crate::cases::{ABCD_DX_UM, DISPERSIONS_RAD, FIG0_INDICES, FIG0_MAX_SAMPLES};
+use crate::cases::{ACCURACY, DX_UM, FIG0_EDGE_PER_UM, STROKES_UM};
+use crate::cases::{BANDWIDTHS_NM, DIAMETER_MAS, WAVELENGTH_UM};
+use crate::cases::{S_MAX_CPAS, S_MIN_CPAS};
 use crate::formalism::estimator::{v1_sq, v2_sq, wide_band, WideBand};
 use crate::formalism::interferogram::{sinc, Sampling};
 use crate::formalism::observation::{Frequency, Observation};
@@ -21,11 +26,6 @@ use crate::formalism::source::{Source, SPEED_OF_LIGHT_KM_S};
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::math::special::fresnel::point_source_v2_sq;
 use crate::math::special::{bessel_j1_zero, jinc};
-use crate::cases::{disk, k_band, Effort};
-use crate::cases::{ABCD_DX_UM, DISPERSIONS_RAD, FIG0_INDICES, FIG0_MAX_SAMPLES};
-use crate::cases::{ACCURACY, DX_UM, FIG0_EDGE_PER_UM, STROKES_UM};
-use crate::cases::{BANDWIDTHS_NM, DIAMETER_MAS, WAVELENGTH_UM};
-use crate::cases::{S_MAX_CPAS, S_MIN_CPAS};
 use crate::table::Table;
 use crate::tolerance::{CLOSED_FORM_VS_NUMERICAL, IDENTITY_ABS, IDENTITY_REL};
 use std::f64::consts::PI;
@@ -55,8 +55,7 @@ fn observe(
     s_cpas: f64,
     phase: &SpectralPhase,
 ) -> Observation {
-    crate::cases::observe_at(spectrum, source.clone(), s_cpas, phase)
-        .expect("valid observation")
+    crate::cases::observe_at(spectrum, source.clone(), s_cpas, phase).expect("valid observation")
 }
 
 /// The Nyquist frequency, σ δx: two samples per fringe.
@@ -522,10 +521,7 @@ fn stroke_flat_claim(printed_um: Option<f64>) -> crate::Result<Vec<Computed>> {
     let slopes: Vec<String> = FIG0_INDICES
         .iter()
         .map(|&i| {
-            let column = format!(
-                "dev_v2_index_{}",
-                crate::figures::bias::label(i)
-            );
+            let column = format!("dev_v2_index_{}", crate::figures::bias::label(i));
             Ok(format!("index {i}: {}", fmt(threshold(&column)?)))
         })
         .collect::<crate::Result<_>>()?;

@@ -11,6 +11,7 @@
 //! [`Computed::failed`] for each of its claims.
 
 use super::{settle, Check, Computed, Find};
+use crate::cases::{appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON, APPENDIX_SEED};
 use crate::formalism::interferogram::Interferogram;
 use crate::montecarlo::RunningStats;
 use crate::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
@@ -19,9 +20,6 @@ use crate::noise::{
     self, abcd_detector_variance, appendix_stats, colavita_detector_variance, crossover_samples,
     example_interferogram, moments, published, var_m2, worked_example, ExampleSetup, Formula,
     NoiseModel,
-};
-use crate::cases::{
-    appendix_setup, Effort, APPENDIX_READ_NOISE_PER_PHOTON, APPENDIX_SEED,
 };
 use crate::tolerance::IDENTITY_REL;
 use crate::Result;

@@ -3,7 +3,10 @@
 //! code path as `v2ref piston` and the figure data (`figures::piston`).
 
 use super::{Computed, Find, Finding};
+use crate::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
+use crate::cases::{Effort, SEEING_ARCSEC, WAVELENGTH_UM, WIND_MPS};
 use crate::error::{Error, Result};
+use crate::figures::piston::{fig4, fig5};
 use crate::formalism::estimator::BinWindow;
 use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
@@ -13,9 +16,6 @@ use crate::montecarlo::derive_seed;
 use crate::piston::spectrum::{differential_piston_variance_from_structure_um2, PistonSpectrum};
 use crate::piston::turbulence::r0_from_seeing_m;
 use crate::piston::{simulate_piston, Detector, PistonRun, RunSize, ScanSetup};
-use crate::cases::{paper_turbulence, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED};
-use crate::cases::{Effort, SEEING_ARCSEC, WAVELENGTH_UM, WIND_MPS};
-use crate::figures::piston::{fig4, fig5};
 use crate::table::{Figure, Table};
 use crate::tolerance::{MC_SIGMAS, SIGNIFICANCE_SIGMAS, TURBULENCE_CHECK_REL};
 use num_complex::Complex64;

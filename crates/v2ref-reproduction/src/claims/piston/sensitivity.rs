@@ -19,7 +19,11 @@
 //! to the threshold itself (the grid step that brackets it).
 
 use super::{column, locate, unbiased_from};
+use crate::cases::{
+    fig5_frequencies, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
+};
 use crate::error::Result;
+use crate::figures::piston::fig5_table;
 use crate::formalism::estimator::{BinWindow, BIN_WINDOWS};
 use crate::formalism::observation::{Frequency, Observation};
 use crate::formalism::phase::SpectralPhase;
@@ -27,10 +31,6 @@ use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use crate::piston::{sweep, Detector, PistonReference, RunSize, ScanSetup};
-use crate::cases::{
-    fig5_frequencies, paper_turbulence, Effort, APERTURE_M, FIG5_BASELINE_M, FIGURE_SEED,
-};
-use crate::figures::piston::fig5_table;
 use crate::table::Table;
 use crate::tolerance::SIGNIFICANCE_SIGMAS;
 use serde::Serialize;
