@@ -1,14 +1,14 @@
 //! Speed of the bias studies' inner loops (release, criterion).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use v2ref::bias::finite_scan::{self, Kernel, Method};
-use v2ref::formalism::estimator::wide_band;
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::special::fresnel_cs;
+use v2ref_core::bias::finite_scan::{self, Kernel, Method};
+use v2ref_core::formalism::estimator::wide_band;
+use v2ref_core::formalism::interferogram::Sampling;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::math::special::fresnel_cs;
 use v2ref_reproduction::cases::DX_UM;
 
 fn disk_at(s: f64) -> Observation {
@@ -51,7 +51,7 @@ fn benches(c: &mut Criterion) {
     let samples: Vec<usize> = (2..=930).collect();
     c.bench_function("Fig. 0 curve, 929 strokes", |b| {
         b.iter(|| {
-            v2ref::bias::normalization::deviation_curve(black_box(&flat), DX_UM, &samples).unwrap()
+            v2ref_core::bias::normalization::deviation_curve(black_box(&flat), DX_UM, &samples).unwrap()
         })
     });
     c.bench_function("Fresnel C, S at x = 0.9 and 3.7", |b| {

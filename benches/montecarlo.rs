@@ -9,10 +9,10 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
-use v2ref::noise::{example_interferogram, NoiseModel};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
+use v2ref_core::noise::{example_interferogram, NoiseModel};
 use v2ref_reproduction::cases::appendix_setup;
 
 const TRIALS: u64 = 1 << 16;

@@ -3,13 +3,13 @@
 //! the sampled and the integrating detector, and the sequence synthesis.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::piston::spectrum::PistonSpectrum;
-use v2ref::piston::turbulence::Turbulence;
-use v2ref::piston::{
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::piston::spectrum::PistonSpectrum;
+use v2ref_core::piston::turbulence::Turbulence;
+use v2ref_core::piston::{
     simulate_piston, synthesize_series, Detector, RunSize, ScanSetup, DEFAULT_SUB_SAMPLES,
 };
 

@@ -120,7 +120,7 @@ pub fn check(golden_dir: &Path, tolerance: f64) -> Result<f64, String> {
 #[allow(dead_code)] // also compiled into tests/examples.rs, which calls `check`
 fn main() {
     let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("golden");
-    match check(&golden, v2ref::tolerance::EXAMPLE_GOLDEN_ABS) {
+    match check(&golden, v2ref_core::tolerance::EXAMPLE_GOLDEN_ABS) {
         Ok(_) => println!("PASS: the implementation agrees with v2ref's Fig. 1 to 1e-6"),
         Err(e) => {
             eprintln!("FAIL: {e}");

@@ -18,10 +18,10 @@ mod estimate_floor;
 
 use estimate_floor::estimate_floor;
 use std::time::Instant;
-use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::montecarlo::in_pool;
-use v2ref::simulator::{Inputs, Model};
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::montecarlo::in_pool;
+use v2ref_core::simulator::{Inputs, Model};
 
 type Failure = Box<dyn std::error::Error>;
 

@@ -13,7 +13,7 @@
 //! are in `docs/performance.md`.
 
 use std::time::Instant;
-use v2ref::montecarlo::in_pool;
+use v2ref_core::montecarlo::in_pool;
 use v2ref_reproduction::cases::{
     fig5_frequencies, fig5_size, paper_turbulence, Effort, FIGURE_SEED,
 };

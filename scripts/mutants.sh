@@ -30,19 +30,19 @@ set -euo pipefail
 
 # AREA -> "file globs | test files (modules of tests/suite.rs)"
 declare -A AREAS=(
-    [estimators]="crates/v2ref/src/formalism/estimator.rs|spectral_estimators foundation"
-    [statistics]="crates/v2ref/src/montecarlo/statistics.rs|running_stats montecarlo_noise"
-    [seeding]="crates/v2ref/src/montecarlo/mod.rs|montecarlo_noise noise_mc golden"
-    [special]="crates/v2ref/src/math/special/*.rs crates/v2ref/src/math/quadrature.rs|special foundation bias_dispersion"
-    [spectrum]="crates/v2ref/src/formalism/spectrum.rs crates/v2ref/src/formalism/source.rs|spectral_estimators foundation spectrum_csv bias_line"
-    [interferogram]="crates/v2ref/src/formalism/interferogram.rs crates/v2ref/src/formalism/oracle.rs crates/v2ref/src/formalism/phase.rs|foundation bias_finite_scan properties"
-    [noise]="crates/v2ref/src/noise/window_variance.rs crates/v2ref/src/noise/appendix.rs crates/v2ref/src/noise/calibrated.rs crates/v2ref/src/noise/model.rs|noise noise_calibrated montecarlo_noise"
-    [noise_simulation]="crates/v2ref/src/noise/simulation.rs|noise_mc montecarlo_noise"
-    [dispersion]="crates/v2ref/src/bias/dispersion.rs|bias_dispersion"
-    [finite_scan]="crates/v2ref/src/bias/finite_scan.rs crates/v2ref/src/bias/normalization.rs crates/v2ref/src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
-    [turbulence]="crates/v2ref/src/piston/turbulence.rs|turbulence piston"
-    [piston_spectrum]="crates/v2ref/src/piston/spectrum.rs crates/v2ref/src/piston/transverse.rs|piston_spectrum turbulence piston"
-    [fft]="crates/v2ref/src/math/fft.rs|fft"
+    [estimators]="crates/v2ref-core/src/formalism/estimator.rs|spectral_estimators foundation"
+    [statistics]="crates/v2ref-core/src/montecarlo/statistics.rs|running_stats montecarlo_noise"
+    [seeding]="crates/v2ref-core/src/montecarlo/mod.rs|montecarlo_noise noise_mc golden"
+    [special]="crates/v2ref-core/src/math/special/*.rs crates/v2ref-core/src/math/quadrature.rs|special foundation bias_dispersion"
+    [spectrum]="crates/v2ref-core/src/formalism/spectrum.rs crates/v2ref-core/src/formalism/source.rs|spectral_estimators foundation spectrum_csv bias_line"
+    [interferogram]="crates/v2ref-core/src/formalism/interferogram.rs crates/v2ref-core/src/formalism/oracle.rs crates/v2ref-core/src/formalism/phase.rs|foundation bias_finite_scan properties"
+    [noise]="crates/v2ref-core/src/noise/window_variance.rs crates/v2ref-core/src/noise/appendix.rs crates/v2ref-core/src/noise/calibrated.rs crates/v2ref-core/src/noise/model.rs|noise noise_calibrated montecarlo_noise"
+    [noise_simulation]="crates/v2ref-core/src/noise/simulation.rs|noise_mc montecarlo_noise"
+    [dispersion]="crates/v2ref-core/src/bias/dispersion.rs|bias_dispersion"
+    [finite_scan]="crates/v2ref-core/src/bias/finite_scan.rs crates/v2ref-core/src/bias/normalization.rs crates/v2ref-core/src/bias/bandwidth.rs|bias_finite_scan bias_normalization bias_bandwidth"
+    [turbulence]="crates/v2ref-core/src/piston/turbulence.rs|turbulence piston"
+    [piston_spectrum]="crates/v2ref-core/src/piston/spectrum.rs crates/v2ref-core/src/piston/transverse.rs|piston_spectrum turbulence piston"
+    [fft]="crates/v2ref-core/src/math/fft.rs|fft"
 )
 
 # AREA -> tests (libtest name filters) left out of the first pass: each

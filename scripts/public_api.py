@@ -9,12 +9,16 @@ second path shows), with the public fields of structs, the variants of
 enums, the methods and associated constants of inherent impls and the items
 of traits. Trait impls are left out (their number follows the derives).
 Items hidden from the docs (`#[doc(hidden)]`) are not in rustdoc's JSON and
-so not here. Only the standard library is used (json), so that the check
+so not here. Another crate's items re-exported (the facade `v2ref`
+re-exports `v2ref-core`'s) are followed into that crate's JSON, given after
+the first: each is listed with its members under the path it is re-exported
+by, as if it were defined there. Only the standard library is used (json), so that the check
 needs no package.
 
 `--counts` prints, instead of the listing, how many lines there are of each
-kind and how many of the modules' items (types, functions, constants;
-not their members) are reached by more than one path.
+kind, how many of the modules' items (types, functions, constants; not
+their members) are reached by more than one path, and how many such items
+there are in all (the surface's size, each item once).
 """
 
 import json
@@ -27,12 +31,34 @@ def kind_of(item):
 
 
 class Lister:
-    def __init__(self, doc):
+    def __init__(self, doc, lines=None, reached=None, dependencies=()):
         self.index = doc["index"]
         self.paths = doc["paths"]
-        self.lines = set()
-        # item id -> the paths a module's item (not a member) is listed under
-        self.reached = {}
+        self.name = doc["index"][str(doc["root"])]["name"]
+        self.lines = set() if lines is None else lines
+        # (crate, item id) -> the paths a module's item (not a member) is listed under
+        self.reached = {} if reached is None else reached
+        # crate name -> (its lister, its items' ids by path)
+        self.dependencies = {}
+        for dep in dependencies:
+            lister = Lister(dep, self.lines, self.reached)
+            by_path = {
+                tuple(entry["path"]): item_id
+                for item_id, entry in dep["paths"].items()
+                if entry.get("crate_id") == 0
+            }
+            self.dependencies[lister.name] = (lister, by_path)
+
+    def external(self, item_id):
+        """The lister and id of another crate's item that this crate names."""
+        entry = self.paths.get(str(item_id))
+        if entry is None or not entry["path"]:
+            return None, None
+        lister, by_path = self.dependencies.get(entry["path"][0], (None, None))
+        if lister is None:
+            return None, None
+        dep_id = by_path.get(tuple(entry["path"]))
+        return (lister, dep_id) if dep_id is not None else (None, None)
 
     def item(self, item_id):
         return self.index.get(str(item_id))
@@ -56,6 +82,16 @@ class Lister:
     def reexport(self, use_item, path, visiting):
         use = use_item["inner"]["use"]
         target = self.item(use["id"]) if use["id"] is not None else None
+        if target is None and use["id"] is not None:
+            lister, dep_id = self.external(use["id"])
+            if lister is not None:
+                name = path if use["is_glob"] else f"{path}::{use['name']}"
+                dep_item = lister.item(dep_id)
+                if use["is_glob"] and kind_of(dep_item) == "module":
+                    lister.module(dep_id, path, visiting)
+                else:
+                    lister.named(dep_id, dep_item, name, visiting)
+                return
         if use["is_glob"]:
             if target is not None and kind_of(target) == "module":
                 self.module(use["id"], path, visiting)
@@ -76,7 +112,7 @@ class Lister:
     def named(self, item_id, item, path, visiting):
         kind = kind_of(item)
         if kind != "module":
-            self.reached.setdefault(item_id, set()).add(path)
+            self.reached.setdefault((self.name, str(item_id)), set()).add(path)
         if kind == "module":
             self.emit("mod", path, item_id)
             self.module(item_id, path, visiting)
@@ -135,17 +171,20 @@ def main():
     args = sys.argv[1:]
     counts = "--counts" in args
     args = [a for a in args if a != "--counts"]
-    if len(args) != 1:
-        sys.exit("usage: public_api.py [--counts] RUSTDOC_JSON")
-    with open(args[0], encoding="utf-8") as f:
-        doc = json.load(f)
-    lister = Lister(doc)
-    root = lister.item(doc["root"])
-    lister.module(doc["root"], root["name"], frozenset())
+    if not args:
+        sys.exit("usage: public_api.py [--counts] RUSTDOC_JSON [DEPENDENCY_RUSTDOC_JSON ...]")
+    docs = []
+    for arg in args:
+        with open(arg, encoding="utf-8") as f:
+            docs.append(json.load(f))
+    lister = Lister(docs[0], dependencies=docs[1:])
+    root = lister.item(docs[0]["root"])
+    lister.module(docs[0]["root"], root["name"], frozenset())
     if counts:
         kinds = Counter(line.split(" ", 1)[0] for line in lister.lines)
         twice = sum(1 for paths in lister.reached.values() if len(paths) > 1)
-        print(" ".join(f"{k} {kinds[k]}" for k in sorted(kinds)), f"| items on two or more paths {twice}")
+        print(" ".join(f"{k} {kinds[k]}" for k in sorted(kinds)), f"| items on two or more paths {twice}",
+              f"| module items {len(lister.reached)}")
     else:
         sys.stdout.write("".join(line + "\n" for line in sorted(lister.lines)))
 

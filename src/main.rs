@@ -67,12 +67,12 @@ fn main() -> ExitCode {
     // Every command runs in one pool of `--threads 0`'s size (capped, fewer
     // when the system refuses threads, said on stderr): rayon's global pool,
     // which panics when it cannot start, is never used.
-    v2ref::montecarlo::pool::set_fewer_threads_notice(|asked, granted| {
+    v2ref_core::montecarlo::pool::set_fewer_threads_notice(|asked, granted| {
         cli::output::write_stderr_line(format_args!(
             "note: the system gave {granted} of the {asked} threads asked (a process limit?); running on {granted}"
         ));
     });
-    let result = v2ref::montecarlo::pool::install(0, None, || run(cli.command));
+    let result = v2ref_core::montecarlo::pool::install(0, None, || run(cli.command));
     let code = match result {
         Ok(code) => code,
         Err(e) => cli::fail(&e),
@@ -82,7 +82,7 @@ fn main() -> ExitCode {
 }
 
 /// Runs one command.
-fn run(command: Command) -> v2ref::Result<ExitCode> {
+fn run(command: Command) -> v2ref_core::Result<ExitCode> {
     match command {
         Command::Bias(a) => cli::bias::run(a),
         Command::Claims(a) => cli::claims::run(a),

@@ -1,8 +1,8 @@
 //! The workspace's levels (the oracle's crate docs, "Levels"). Between
 //! crates: each crate depends only on crates of lower levels ([`CRATES`],
-//! checked against each `crates/*/Cargo.toml`). Inside the oracle
-//! `crates/v2ref`: a module uses only modules of its own level or below.
-//! Every path `crate::<module>` in the code of `crates/v2ref/src/`
+//! checked against each `crates/*/Cargo.toml`). Inside the numerics
+//! `crates/v2ref-core`: a module uses only modules of its own level or below.
+//! Every path `crate::<module>` in the code of `crates/v2ref-core/src/`
 //! (comments and doc comments aside: a doc link to a higher module is a
 //! pointer for the reader, not a dependency) is checked against [`LEVELS`],
 //! which must place every module of that folder.
@@ -35,8 +35,8 @@ const LEVELS: &[&[&str]] = &[
 /// repository's root package `v2ref-cli`, is the top): a crate may depend
 /// on crates of lower levels only.
 const CRATES: &[&[&str]] = &[
-    &["v2ref"],
-    &["v2ref-commands"],
+    &["v2ref-core"],
+    &["v2ref", "v2ref-commands"],
     &["v2ref-files"],
     &["v2ref-oifits", "v2ref-reproduction"],
     &["v2ref-python", "v2ref-cli"],
@@ -44,7 +44,7 @@ const CRATES: &[&[&str]] = &[
 
 /// The oracle's sources.
 fn oracle_src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/v2ref/src")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/v2ref-core/src")
 }
 
 /// The level of the top module `name`.
@@ -65,7 +65,7 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// The top module a file of `src/` belongs to: `crates/v2ref-commands/src/report/noise.rs` is
-/// in `noise`, `crates/v2ref/src/record.rs` in `record`.
+/// in `noise`, `crates/v2ref-core/src/record.rs` in `record`.
 fn top_module(src: &Path, file: &Path) -> String {
     let first = file
         .strip_prefix(src)
@@ -133,7 +133,7 @@ fn every_module_uses_only_its_level_and_below() {
     for file in &files {
         let module = top_module(&src, file);
         let own = level(&module).unwrap_or_else(|| {
-            panic!("crates/v2ref/src/{module}: place the module in a level (tests/architecture.rs and the crate docs)")
+            panic!("crates/v2ref-core/src/{module}: place the module in a level (tests/architecture.rs and the crate docs)")
         });
         let text = std::fs::read_to_string(file).expect("a source file");
         for used in modules_used(&code_of(&text)) {
@@ -143,7 +143,7 @@ fn every_module_uses_only_its_level_and_below() {
             if theirs > own {
                 let shown = file.strip_prefix(&src).unwrap_or(file).display();
                 breaches.push(format!(
-                    "crates/v2ref/src/{shown} ({module}) uses crate::{used}"
+                    "crates/v2ref-core/src/{shown} ({module}) uses crate::{used}"
                 ));
             }
         }
@@ -176,7 +176,7 @@ fn every_top_module_has_a_level() {
         let module = top_module(&src, &path);
         assert!(
             level(&module).is_some(),
-            "crates/v2ref/src/{module} has no level"
+            "crates/v2ref-core/src/{module} has no level"
         );
     }
 }

@@ -2,14 +2,14 @@
 //! golden curves are not grid or quadrature artefacts, and the effect
 //! follows its scaling laws.
 
-use v2ref::assert_rel_eq;
-use v2ref::bias::bandwidth::{curve, locate_max};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::{uniform_disk_visibility, Source};
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::quadrature::gauss_legendre;
-use v2ref::tolerance::{
+use v2ref_core::assert_rel_eq;
+use v2ref_core::bias::bandwidth::{curve, locate_max};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::{uniform_disk_visibility, Source};
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::math::quadrature::gauss_legendre;
+use v2ref_core::tolerance::{
     ARGMAX_ABS, GRID_INTERPOLATION_REL, MINIMIZE_BRACKET_REL, QUADRATURE_REL, SCALING_LAW_REL, ULPS,
 };
 use v2ref_reproduction::cases::s_grid;
@@ -79,8 +79,8 @@ fn the_golden_grid_resolves_the_curves() {
         if near_null {
             continue;
         }
-        let d1 = |w: &v2ref::formalism::estimator::WideBand| w.v1 - w.v_mono;
-        let d2 = |w: &v2ref::formalism::estimator::WideBand| w.v2 - w.v_mono;
+        let d1 = |w: &v2ref_core::formalism::estimator::WideBand| w.v1 - w.v_mono;
+        let d2 = |w: &v2ref_core::formalism::estimator::WideBand| w.v2 - w.v_mono;
         let e1 = (d1(m) - 0.5 * (d1(&values[i]) + d1(&values[i + 1]))).abs();
         let e2 = (d2(m) - 0.5 * (d2(&values[i]) + d2(&values[i + 1]))).abs();
         worst = (worst.0.max(e1), worst.1.max(e2));
@@ -94,7 +94,7 @@ fn the_golden_grid_resolves_the_curves() {
 #[test]
 fn located_maxima_are_stable_under_grid_refinement() {
     let sp = band(400.0);
-    let dev = |which: fn(&v2ref::formalism::estimator::WideBand) -> f64| {
+    let dev = |which: fn(&v2ref_core::formalism::estimator::WideBand) -> f64| {
         let sp = sp.clone();
         move |s: f64| {
             let obs = Observation::new(
@@ -104,13 +104,13 @@ fn located_maxima_are_stable_under_grid_refinement() {
                 SpectralPhase::zero(),
             )
             .unwrap();
-            let w = v2ref::formalism::estimator::wide_band(&obs);
+            let w = v2ref_core::formalism::estimator::wide_band(&obs);
             (which(&w) - w.v_mono).abs()
         }
     };
     for which in [
-        |w: &v2ref::formalism::estimator::WideBand| w.v1,
-        |w: &v2ref::formalism::estimator::WideBand| w.v2,
+        |w: &v2ref_core::formalism::estimator::WideBand| w.v1,
+        |w: &v2ref_core::formalism::estimator::WideBand| w.v2,
     ] {
         let (s_a, m_a) = locate_max(dev(which), 0.0, 80.0, 401);
         let (s_b, m_b) = locate_max(dev(which), 0.0, 80.0, 1601);

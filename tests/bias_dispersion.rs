@@ -4,15 +4,15 @@
 //! fluoride-glass dispersion helper.
 
 use proptest::prelude::*;
-use v2ref::assert_rel_eq;
-use v2ref::bias::dispersion;
-use v2ref::formalism::estimator::{v1_sq, v2_sq};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::special::{fresnel_c, fresnel_cs, fresnel_s, point_source_v2_sq};
-use v2ref::tolerance::{
+use v2ref_core::assert_rel_eq;
+use v2ref_core::bias::dispersion;
+use v2ref_core::formalism::estimator::{v1_sq, v2_sq};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::math::special::{fresnel_c, fresnel_cs, fresnel_s, point_source_v2_sq};
+use v2ref_core::tolerance::{
     CLOSED_FORM_VS_NUMERICAL, FINITE_DIFFERENCE_REL, FRESNEL_ABS, GLASS_DISPERSION_REL,
     LEADING_TERM_REL, POWER_FACTOR, RESIDUAL_CUBIC_REL, RESIDUAL_PHASE_REL, ROUNDING_REL,
     SECOND_DIFFERENCE_ABS, SMALL_P_EXPANSION_ABS, ULPS,

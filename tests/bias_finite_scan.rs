@@ -4,15 +4,15 @@
 //! grows.
 
 use num_complex::Complex64;
-use v2ref::assert_rel_eq;
-use v2ref::bias::finite_scan::{self, Kernel, Method};
-use v2ref::formalism::estimator::{dft, BinWindow};
-use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::tolerance::{
+use v2ref_core::assert_rel_eq;
+use v2ref_core::bias::finite_scan::{self, Kernel, Method};
+use v2ref_core::formalism::estimator::{dft, BinWindow};
+use v2ref_core::formalism::interferogram::{sinc, Interferogram, Sampling};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::tolerance::{
     BIN_ORACLE_ABS, DIRECT_SUM_REL, DIRICHLET_VS_SINC_ABS, PATHS_AGREE_ABS as PATHS_AGREE,
     ROUGH_SCALING_REL, ROUNDING_REL,
 };

@@ -2,19 +2,19 @@
 //! bandwidth"): closed forms, limits, and the crate's composite-source path.
 
 use num_complex::Complex64;
-use v2ref::bias::line::{
+use v2ref_core::bias::line::{
     channel_visibility, top_hat_closed_form, width_in_elements, Channel, LineCase, LineProfile,
 };
-use v2ref::formalism::estimator::v2_sq;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::{Component, FluxProfile, Source};
-use v2ref::formalism::spectrum::Spectrum;
-use v2ref::tolerance::{
+use v2ref_core::formalism::estimator::v2_sq;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::{Component, FluxProfile, Source};
+use v2ref_core::formalism::spectrum::Spectrum;
+use v2ref_core::tolerance::{
     EPS, LINEAR_RESPONSE_REL, PRINTED_3_DECIMALS_ABS, PRINTED_5_DECIMALS_ABS, QUADRATURE_CHECK_REL,
     ROUNDING_REL, SINC_TAIL_ABS,
 };
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 
 #[test]
 fn paper_case_numbers() {

@@ -1,15 +1,15 @@
 //! The V2 normalization factor (paper, Fig. 0) and the integrating
 //! detector: identities, limits and an independent synthesis.
 
-use v2ref::bias::integration;
-use v2ref::bias::normalization::{deviation_curve, riemann_deviation, threshold_stroke};
-use v2ref::formalism::estimator::dft;
-use v2ref::formalism::interferogram::{Interferogram, Sampling};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::tolerance::{
+use v2ref_core::bias::integration;
+use v2ref_core::bias::normalization::{deviation_curve, riemann_deviation, threshold_stroke};
+use v2ref_core::formalism::estimator::dft;
+use v2ref_core::formalism::interferogram::{Interferogram, Sampling};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::tolerance::{
     BIN_SUM_REL, INTEGRATION_LOSS_ABS, NARROW_BAND_LIMIT_ABS, QUADRATURE_CHECK_REL, QUADRATURE_REL,
     ROUNDING_REL, SAMPLING_LIMIT_ABS, ULPS,
 };

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 use std::path::Path;
-use v2ref::tolerance::{GOLDEN_ABS, GOLDEN_REL};
+use v2ref_core::tolerance::{GOLDEN_ABS, GOLDEN_REL};
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::table::Table;
 
@@ -89,7 +89,7 @@ fn figure_extrema() {
             let d = fig0.column(&c.name).unwrap();
             (
                 c.name.clone(),
-                v2ref::bias::normalization::threshold_stroke(&strokes, &d, 0.002).map(sig),
+                v2ref_core::bias::normalization::threshold_stroke(&strokes, &d, 0.002).map(sig),
             )
         })
         .collect();
@@ -190,11 +190,11 @@ struct IntegrationRow {
 /// point source seen by the same detector.
 #[test]
 fn integration_vs_samples_per_fringe() {
-    use v2ref::bias::integration;
-    use v2ref::formalism::observation::{Frequency, Observation};
-    use v2ref::formalism::phase::SpectralPhase;
-    use v2ref::formalism::source::Source;
-    use v2ref::formalism::spectrum::{Band, Spectrum};
+    use v2ref_core::bias::integration;
+    use v2ref_core::formalism::observation::{Frequency, Observation};
+    use v2ref_core::formalism::phase::SpectralPhase;
+    use v2ref_core::formalism::source::Source;
+    use v2ref_core::formalism::spectrum::{Band, Spectrum};
     let band = Spectrum::flat(Band::k());
     let obs = |source: Source, s: f64| {
         Observation::new(

@@ -4,8 +4,8 @@
 //! claims as the steering ledger is checked by `.ci/run`, where that ledger
 //! is available.)
 
-use v2ref::tolerance::ROUNDING_REL;
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::tolerance::ROUNDING_REL;
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::claims::{
     compute, decide, ledger, summary, ClaimResult, ClaimSpec, Computed, Finding, Status,
@@ -268,7 +268,7 @@ fn foundation_claims_are_computed() {
 
 #[test]
 fn dynamic_range_formula_holds_its_scaling_laws() {
-    use v2ref::formalism::dynamic_range::dynamic_range;
+    use v2ref_core::formalism::dynamic_range::dynamic_range;
     let a = dynamic_range(100.0, 1e-3, 0.0).unwrap();
     assert_abs_eq!(
         dynamic_range(400.0, 1e-3, 0.0).unwrap() / a,

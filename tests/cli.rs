@@ -1,8 +1,8 @@
 //! The command-line contract: bad input exits 2 with one line naming the
 //! flag, never a panic; `--json` answers parse and carry the contract's fields.
 
-use v2ref::assert_rel_eq;
-use v2ref::tolerance::{QUADRATURE_CHECK_REL, ROUNDING_REL};
+use v2ref_core::assert_rel_eq;
+use v2ref_core::tolerance::{QUADRATURE_CHECK_REL, ROUNDING_REL};
 
 use crate::run::v2ref;
 

@@ -1,8 +1,8 @@
 //! `v2ref snr` and `v2ref simulate` against the CLI contract.
 
 use serde_json::Value;
-use v2ref::assert_within_sigmas;
-use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS};
+use v2ref_core::assert_within_sigmas;
+use v2ref_core::tolerance::{IDENTITY_REL, MC_SIGMAS};
 
 use crate::run::v2ref;
 

@@ -2,8 +2,8 @@
 //! across thread counts, bad input (one line, status 2).
 
 use std::process::Command;
-use v2ref::assert_abs_eq;
-use v2ref::tolerance::PRINTED_2_DECIMALS_ABS;
+use v2ref_core::assert_abs_eq;
+use v2ref_core::tolerance::PRINTED_2_DECIMALS_ABS;
 
 fn v2ref(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_v2ref"))

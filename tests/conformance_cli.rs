@@ -3,9 +3,9 @@
 //! across thread counts, the vectors, and bad input.
 
 use std::path::Path;
-use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::simulator::{Inputs, Model, SourceInput};
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::simulator::{Inputs, Model, SourceInput};
 
 use crate::run::v2ref;
 
@@ -144,11 +144,11 @@ fn same_files_whatever_the_thread_count_and_continuum_convention() {
     let e2 = columns(&ok(&["estimate", "--sidecar", &kept]));
     for (p, q) in e1.iter().zip(&e2) {
         // tol: (M + c) − c rounds at 1 ulp of c per sample.
-        v2ref::assert_rel_eq!(q[0], p[0], 1e-12);
+        v2ref_core::assert_rel_eq!(q[0], p[0], 1e-12);
         // tol: the bias-corrected columns: the same rounding of (M + c) - c, summed over the row's bins, absolute on columns of order one.
-        v2ref::assert_abs_eq!(q[4], p[4], 1e-10);
+        v2ref_core::assert_abs_eq!(q[4], p[4], 1e-10);
         // tol: as above.
-        v2ref::assert_abs_eq!(q[5], p[5], 1e-10);
+        v2ref_core::assert_abs_eq!(q[5], p[5], 1e-10);
     }
 }
 

@@ -8,14 +8,14 @@ use v2ref_files::formats as files;
 use files::{read_estimates, read_matrix, CsvRowWriter, NpyRowWriter};
 use npyz::WriterBuilder;
 use std::path::{Path, PathBuf};
-use v2ref::conformance::estimate::BiasConvention;
-use v2ref::conformance::sidecar::{
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::conformance::sidecar::{
     self, ConventionTruth, DataFiles, EstimatorTruth, ReferenceRun, Sidecar, Truth, TruthSource,
     WindowTruth,
 };
-use v2ref::formalism::estimator::{BinWindow, Pair};
-use v2ref::simulator::Inputs;
-use v2ref::Error;
+use v2ref_core::formalism::estimator::{BinWindow, Pair};
+use v2ref_core::simulator::Inputs;
+use v2ref_core::Error;
 use v2ref_files::atomic::write_text_atomic;
 
 use crate::run::v2ref;

@@ -10,13 +10,13 @@
 //! - Φ⁻¹(1 − 0.05/4) = 2.2414027276049464
 //! - Φ⁻¹(0.9) = 1.2815515655446008
 
-use v2ref::assert_rel_eq;
-use v2ref::conformance::estimate::BiasConvention;
-use v2ref::conformance::score::{
+use v2ref_core::assert_rel_eq;
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::conformance::score::{
     critical_z, score, score_report, Estimator, VarStderrSource, DEFAULT_ALPHA,
 };
-use v2ref::conformance::sidecar::{ConventionTruth, EstimatorTruth, TruthSource};
-use v2ref::Error;
+use v2ref_core::conformance::sidecar::{ConventionTruth, EstimatorTruth, TruthSource};
+use v2ref_core::Error;
 
 const Z_2_TESTS: f64 = 3.4807564043462422;
 const Z_4_TESTS: f64 = 3.662259930887615;
@@ -66,13 +66,13 @@ fn exact_scores_of_a_four_row_set() {
     let t = truth(2.0, 1.0, 0.4, 0.3, Some(0.6), 0.8);
     let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
     assert_eq!(s.rows, 4);
-    assert_rel_eq!(s.mean, 2.5, v2ref::tolerance::ULPS);
-    assert_rel_eq!(s.var, 5.0 / 3.0, v2ref::tolerance::ULPS);
-    assert_rel_eq!(s.stderr_mean_combined, 0.5, v2ref::tolerance::ULPS);
-    assert_rel_eq!(s.stderr_var_combined, 1.0, v2ref::tolerance::ULPS);
+    assert_rel_eq!(s.mean, 2.5, v2ref_core::tolerance::ULPS);
+    assert_rel_eq!(s.var, 5.0 / 3.0, v2ref_core::tolerance::ULPS);
+    assert_rel_eq!(s.stderr_mean_combined, 0.5, v2ref_core::tolerance::ULPS);
+    assert_rel_eq!(s.stderr_var_combined, 1.0, v2ref_core::tolerance::ULPS);
     assert_eq!(s.stderr_var_source, VarStderrSource::Truth);
-    assert_rel_eq!(s.z_mean, 1.0, v2ref::tolerance::ROUNDING_REL);
-    assert_rel_eq!(s.z_var, 2.0 / 3.0, v2ref::tolerance::ROUNDING_REL);
+    assert_rel_eq!(s.z_mean, 1.0, v2ref_core::tolerance::ROUNDING_REL);
+    assert_rel_eq!(s.z_var, 2.0 / 3.0, v2ref_core::tolerance::ROUNDING_REL);
     assert_rel_eq!(s.z_crit, Z_2_TESTS, QUANTILE_REL);
     // (z_crit + Φ⁻¹(0.9)) · 0.5/2 and (z_crit + Φ⁻¹(0.9)) · 1/1.
     assert_rel_eq!(
@@ -112,8 +112,8 @@ fn variance_stderr_falls_back_to_the_sample() {
     let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
     assert_eq!(s.stderr_var_source, VarStderrSource::Sample);
     let se = (707.0f64 / 1728.0).sqrt();
-    assert_rel_eq!(s.stderr_var_combined, se, v2ref::tolerance::ROUNDING_REL);
-    assert_rel_eq!(s.z_var, (2.0 / 3.0) / se, v2ref::tolerance::ROUNDING_REL);
+    assert_rel_eq!(s.stderr_var_combined, se, v2ref_core::tolerance::ROUNDING_REL);
+    assert_rel_eq!(s.z_var, (2.0 / 3.0) / se, v2ref_core::tolerance::ROUNDING_REL);
     assert_eq!(s.z_mean, 0.0);
 }
 
@@ -138,9 +138,9 @@ fn report_shares_alpha_over_every_test_made() {
     assert_rel_eq!(
         r.estimators[1].score.z_mean,
         -4.0,
-        v2ref::tolerance::ROUNDING_REL
+        v2ref_core::tolerance::ROUNDING_REL
     );
-    assert!(r.estimators[1].score.z_var.abs() < v2ref::tolerance::ROUNDING_REL);
+    assert!(r.estimators[1].score.z_var.abs() < v2ref_core::tolerance::ROUNDING_REL);
     assert!(!r.estimators[1].score.pass_mean && r.estimators[1].score.pass_var);
     assert!(!r.pass);
     // One estimator alone: 2 tests.
@@ -273,7 +273,7 @@ const T_4_TESTS: [(u64, f64); 4] = [
 /// exactly) gives Φ⁻¹(3/4); without ν the ratio is unchanged.
 #[test]
 fn t_ratios_are_reported_as_their_normal_equivalents() {
-    use v2ref::conformance::score::normal_equivalent;
+    use v2ref_core::conformance::score::normal_equivalent;
     const PHI_INV_3_4: f64 = 0.6744897501960817;
     assert_rel_eq!(normal_equivalent(1.0, Some(1)), PHI_INV_3_4, QUANTILE_REL);
     assert_rel_eq!(normal_equivalent(-1.0, Some(1)), -PHI_INV_3_4, QUANTILE_REL);
@@ -298,7 +298,7 @@ fn a_spread_over_few_blocks_widens_the_threshold() {
     };
     let a = score(&[1.0, 2.0, 3.0, 4.0], &normal, 4, 1e-3).unwrap();
     let b = score(&[1.0, 2.0, 3.0, 4.0], &t7, 4, 1e-3).unwrap();
-    assert_rel_eq!(a.z_mean, 4.0, v2ref::tolerance::ROUNDING_REL);
+    assert_rel_eq!(a.z_mean, 4.0, v2ref_core::tolerance::ROUNDING_REL);
     assert!(!a.pass_mean && b.pass_mean, "{} {}", a.z_mean, b.z_mean);
     // tol: a bracket, not a tolerance: the normal equivalent of a t(7) ratio of 4 lies well below 4 and above 2.
     assert!(b.z_mean < 3.0 && b.z_mean > 2.0, "{}", b.z_mean);

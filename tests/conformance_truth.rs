@@ -12,14 +12,14 @@
 //! (FALSE_ALARM shared by the verdicts checked).
 
 use statrs::distribution::{Binomial, ChiSquared, ContinuousCDF, DiscreteCDF};
-use v2ref::bounds::{check_set_size, SET_MIN_REFERENCE_BLOCKS};
-use v2ref::conformance::estimate::{BiasConvention, RowEstimator, BIAS_CONVENTIONS};
-use v2ref::conformance::score::score_report;
-use v2ref::conformance::sidecar::{ConventionTruth, EstimatorTruth, Truth};
-use v2ref::conformance::truth::{reference_seed, truth, TruthSize};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::montecarlo::RunningStats;
-use v2ref::simulator::{Inputs, Model, PistonInputs, SourceInput};
+use v2ref_core::bounds::{check_set_size, SET_MIN_REFERENCE_BLOCKS};
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator, BIAS_CONVENTIONS};
+use v2ref_core::conformance::score::score_report;
+use v2ref_core::conformance::sidecar::{ConventionTruth, EstimatorTruth, Truth};
+use v2ref_core::conformance::truth::{reference_seed, truth, TruthSize};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::montecarlo::RunningStats;
+use v2ref_core::simulator::{Inputs, Model, PistonInputs, SourceInput};
 
 /// The score's family-wise rate in these tests.
 const ALPHA: f64 = 0.1;

@@ -8,10 +8,10 @@ mod bias_budget;
 
 use std::f64::consts::PI;
 use std::path::Path;
-use v2ref::assert_abs_eq;
-use v2ref::formalism::source::ARCSEC_PER_MAS;
-use v2ref::math::special::jinc;
-use v2ref::tolerance::{BESSEL_ABS, EXAMPLE_GOLDEN_ABS, IDENTITY_ABS};
+use v2ref_core::assert_abs_eq;
+use v2ref_core::formalism::source::ARCSEC_PER_MAS;
+use v2ref_core::math::special::jinc;
+use v2ref_core::tolerance::{BESSEL_ABS, EXAMPLE_GOLDEN_ABS, IDENTITY_ABS};
 
 #[test]
 fn third_party_check_passes_on_the_golden_data_and_catches_an_error() {

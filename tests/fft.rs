@@ -6,9 +6,9 @@ use num_complex::Complex64;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rustfft::FftPlanner;
-use v2ref::math::fft::{inverse_dft, naive_inverse_dft, split_length};
-use v2ref::montecarlo::in_pool;
-use v2ref::tolerance::{FFT_SUM_REL, FOUR_STEP_REL, ROUNDING_REL};
+use v2ref_core::math::fft::{inverse_dft, naive_inverse_dft, split_length};
+use v2ref_core::montecarlo::in_pool;
+use v2ref_core::tolerance::{FFT_SUM_REL, FOUR_STEP_REL, ROUNDING_REL};
 
 fn random_spectrum(m: usize, seed: u64) -> Vec<Complex64> {
     let mut rng = Pcg64::seed_from_u64(seed);

@@ -3,24 +3,24 @@
 //! against its slow oracle, the DFT identities.
 
 use num_complex::Complex64;
-use v2ref::formalism::estimator::{
+use v2ref_core::formalism::estimator::{
     all_bins, dft, noise_bias, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band,
     BinWindow,
 };
-use v2ref::formalism::interferogram::{sinc, Interferogram, Sampling, SpectralNodes};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::oracle::{interferogram_adaptive, naive_dft};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::{Component, FluxProfile, Source};
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::math::quadrature::{gauss_kronrod_15, gauss_legendre, integrate, Tolerance};
-use v2ref::tolerance::{
+use v2ref_core::formalism::interferogram::{sinc, Interferogram, Sampling, SpectralNodes};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::oracle::{interferogram_adaptive, naive_dft};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::{Component, FluxProfile, Source};
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::math::quadrature::{gauss_kronrod_15, gauss_legendre, integrate, Tolerance};
+use v2ref_core::tolerance::{
     BESSEL_ABS, CONVERGENCE_GROWTH_REL, DIRECT_SUM_REL, EPS, FFT_SUM_REL, NAIVE_DFT_ABS, NODES_REL,
     QUADRATURE_CHECK_REL, QUADRATURE_REL, RIEMANN_SUM_ABS, ROUNDING_REL, SAMPLED_VS_SPECTRAL_ABS,
     SQUARE_LAW_REL, ULPS,
 };
-use v2ref::Error;
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::Error;
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 
 fn disk_obs(spectrum: Spectrum, s_cpas: f64, pp_rad: f64) -> Observation {
     let phase = SpectralPhase::dispersion_peak_to_peak(&spectrum, pp_rad).unwrap();
@@ -730,7 +730,7 @@ fn dispersion_phase_has_its_peak_to_peak_over_the_nominal_band() {
         .is_zero());
     let none = SpectralPhase::zero();
     assert!(none.is_zero() && none.at(0.3) == 0.0 && none.at(0.5) == 0.0);
-    let max = v2ref::bounds::DISPERSION_PP_MAX_RAD;
+    let max = v2ref_core::bounds::DISPERSION_PP_MAX_RAD;
     for bad in [1.5 * max, -1.5 * max, f64::NAN] {
         assert!(
             SpectralPhase::dispersion_peak_to_peak(&Spectrum::flat(band), bad).is_err(),
@@ -802,7 +802,7 @@ fn a_band_is_its_centre_and_width() {
 /// 0.41667–0.5 µm⁻¹) holds 14, 15 and 16 (13/32 = 0.40625 is below).
 #[test]
 fn bin_windows_hold_the_bins_of_their_definition() {
-    use v2ref::formalism::estimator::{band_bins, positive_bins};
+    use v2ref_core::formalism::estimator::{band_bins, positive_bins};
     assert_eq!(positive_bins(8), vec![1, 2, 3]);
     assert_eq!(positive_bins(7), vec![1, 2, 3]);
     assert_eq!(positive_bins(2), Vec::<usize>::new());
@@ -834,7 +834,7 @@ fn bin_windows_hold_the_bins_of_their_definition() {
 /// exact windows on some of them, which shows the test can fail.
 #[test]
 fn band_windows_keep_bins_exactly_on_an_edge() {
-    use v2ref::formalism::estimator::{band_bins, positive_bins};
+    use v2ref_core::formalism::estimator::{band_bins, positive_bins};
     let (mut windows, mut ties, mut quotient_wrong, mut product_wrong) = (0, 0, 0, 0);
     for centre in 20..=50u64 {
         for width in 2..=20u64 {
@@ -891,7 +891,7 @@ fn band_windows_keep_bins_exactly_on_an_edge() {
 #[test]
 fn dft_phase_is_the_reduced_angle() {
     use std::f64::consts::PI;
-    use v2ref::formalism::estimator::dft_phase;
+    use v2ref_core::formalism::estimator::dft_phase;
     assert_rel_eq!(dft_phase(3, 5, 8), -7.0 * PI / 4.0, ULPS);
     assert_eq!(dft_phase(0, 5, 8), 0.0);
     assert_eq!(dft_phase(4, 2, 8), 0.0);
@@ -920,7 +920,7 @@ fn sampling_holds_the_scan_of_its_definition() {
     assert_eq!(opd(4), [0.0, 0.5, -1.0, -0.5]);
     assert_eq!(opd(5), [0.0, 0.5, 1.0, -1.0, -0.5]);
     // Refusals name the parameter.
-    let param = |r: v2ref::Result<Sampling>| r.unwrap_err().param();
+    let param = |r: v2ref_core::Result<Sampling>| r.unwrap_err().param();
     let param = |r| param(r).unwrap();
     assert_eq!(param(Sampling::new(1, 0.5, false)), "samples");
     assert_eq!(param(Sampling::new(4, 0.0, false)), "dx_um");
@@ -979,15 +979,15 @@ fn mean_counts_are_continuum_plus_modulation() {
     assert_eq!(ifg.mean_counts(), [12.5, 6.0, 10.0]);
 }
 
-/// The words of each choice of the library (`crates/v2ref/src/words.rs`).
+/// The words of each choice of the library (`crates/v2ref-core/src/words.rs`).
 mod words {
-    use v2ref::conformance::estimate::BiasConvention;
-    use v2ref::formalism::estimator::BinWindow;
-    use v2ref::noise::Formula;
-    use v2ref::piston::spectrum::PistonPsdModel;
-    use v2ref::piston::PistonReference;
-    use v2ref::simulator::RowLayout;
-    use v2ref::words::Words;
+    use v2ref_core::conformance::estimate::BiasConvention;
+    use v2ref_core::formalism::estimator::BinWindow;
+    use v2ref_core::noise::Formula;
+    use v2ref_core::piston::spectrum::PistonPsdModel;
+    use v2ref_core::piston::PistonReference;
+    use v2ref_core::simulator::RowLayout;
+    use v2ref_core::words::Words;
     use v2ref_commands::parameters::SourceKind;
 
     /// Each word is its value's serde name (what JSON writes), once, and

@@ -1,13 +1,13 @@
 //! The noisy Monte Carlo engine: moment accumulator, fast windowed
 //! estimators against the FFT, Poisson samplers against the Poisson law.
 
-use v2ref::formalism::estimator::{all_bins, band_bins, dft, positive_bins, raw_estimates};
-use v2ref::formalism::oracle::naive_dft;
-use v2ref::montecarlo::{unit_rng, RunningStats};
-use v2ref::noise::simulation::{PoissonSampler, WindowedEstimators};
-use v2ref::noise::{raw_moments_from_cumulants, NoiseModel};
-use v2ref::tolerance::{IDENTITY_REL, MC_SIGMAS, STREAMING_M3_FLOOR, STREAMING_M3_REL};
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::formalism::estimator::{all_bins, band_bins, dft, positive_bins, raw_estimates};
+use v2ref_core::formalism::oracle::naive_dft;
+use v2ref_core::montecarlo::{unit_rng, RunningStats};
+use v2ref_core::noise::simulation::{PoissonSampler, WindowedEstimators};
+use v2ref_core::noise::{raw_moments_from_cumulants, NoiseModel};
+use v2ref_core::tolerance::{IDENTITY_REL, MC_SIGMAS, STREAMING_M3_FLOOR, STREAMING_M3_REL};
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 
 #[test]
 fn moments4_matches_two_pass_and_merges() {
@@ -139,7 +139,7 @@ fn poisson_samplers_follow_the_poisson_law() {
 
 #[test]
 fn noisy_spec_rejects_bad_input() {
-    use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
+    use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec};
     let spec = NoisySpec {
         modulated: vec![-20.0, 1.0],
         continuum: vec![10.0, 10.0],
@@ -196,7 +196,7 @@ fn the_alias_table_leaves_out_less_than_1e_minus_30_of_the_poisson_mass() {
     }
 }
 
-// ---- seeding (crates/v2ref/src/montecarlo/mod.rs) ----------------------------------------
+// ---- seeding (crates/v2ref-core/src/montecarlo/mod.rs) ----------------------------------------
 
 #[test]
 fn the_seed_mixer_is_splitmix64() {
@@ -204,7 +204,7 @@ fn the_seed_mixer_is_splitmix64() {
     // of its argument: the state after k steps from seed 0 is k times the
     // golden gamma, and the published outputs for seed 0 (Vigna,
     // https://prng.di.unimi.it/splitmix64.c) are these three.
-    use v2ref::montecarlo::derive_seed;
+    use v2ref_core::montecarlo::derive_seed;
     let gamma = 0x9E37_79B9_7F4A_7C15u64;
     let published = [
         0xE220_A839_7B1D_CDAF,
@@ -258,8 +258,8 @@ fn units_run_in_unit_order_with_their_own_generators() {
     // run_units and run_unit_range return one result per unit, in unit
     // order, each from unit_rng(seed, unit), whatever the thread count.
     use rand::RngCore;
-    use v2ref::montecarlo::{run_unit_range, run_units};
-    let draw = |u: u64, rng: &mut v2ref::montecarlo::Rng| (u, rng.next_u64());
+    use v2ref_core::montecarlo::{run_unit_range, run_units};
+    let draw = |u: u64, rng: &mut v2ref_core::montecarlo::Rng| (u, rng.next_u64());
     for threads in [1, 3] {
         let all = run_units(11, 5, threads, draw);
         let want: Vec<(u64, u64)> = (0..5).map(|u| (u, unit_rng(11, u).next_u64())).collect();
@@ -272,7 +272,7 @@ fn units_run_in_unit_order_with_their_own_generators() {
 
 #[test]
 fn thread_counts_are_checked_against_four_per_core_at_least_sixteen() {
-    use v2ref::montecarlo::{check_threads, max_threads, MAX_THREADS_FLOOR, MAX_THREADS_PER_CORE};
+    use v2ref_core::montecarlo::{check_threads, max_threads, MAX_THREADS_FLOOR, MAX_THREADS_PER_CORE};
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let max = max_threads();
     assert_eq!(max, (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR));
@@ -282,7 +282,7 @@ fn thread_counts_are_checked_against_four_per_core_at_least_sixteen() {
     }
     assert!(matches!(
         check_threads(max + 1),
-        Err(v2ref::Error::OutOfRange {
+        Err(v2ref_core::Error::OutOfRange {
             param: "threads",
             ..
         })

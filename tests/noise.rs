@@ -3,16 +3,16 @@
 
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
-use v2ref::formalism::estimator::{dft, noise_bias, positive_bins, raw_estimates};
-use v2ref::noise::window_variance::{
+use v2ref_core::formalism::estimator::{dft, noise_bias, positive_bins, raw_estimates};
+use v2ref_core::noise::window_variance::{
     gaussian_cumulant4, quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
 };
-use v2ref::noise::{
+use v2ref_core::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
     raw_moments_from_cumulants, var_m2, worked_example, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::tolerance::{CANCELLATION_ABS, IDENTITY_ABS, IDENTITY_REL, NONNEGATIVE_REL};
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 use v2ref_reproduction::cases::appendix_setup;
 
 fn gauss(s: f64) -> NoiseModel {
@@ -561,7 +561,7 @@ fn gaussian_cumulant4_is_a_sum_of_noncentral_chi_squares() {
 #[test]
 fn window_stats_refuses_unmatched_samples_and_gives_signal_over_root_variance() {
     let noise = NoiseModel::new(0.8, true).unwrap();
-    let param = |e: v2ref::Error| e.param().unwrap_or("none").to_owned();
+    let param = |e: v2ref_core::Error| e.param().unwrap_or("none").to_owned();
     for (m, counts) in [(vec![1.0, 2.0], vec![5.0, 5.0, 5.0]), (vec![], vec![])] {
         let e = window_stats(&m, &counts, &noise, &[0]).unwrap_err();
         assert_eq!(

@@ -1,15 +1,15 @@
 //! The calibrated, bias-subtracted estimators (`noise::calibrated`): closed
 //! forms, and the Monte Carlo against them (as `v2ref simulate` runs it).
 
-use v2ref::formalism::estimator::{dft, raw_estimates, BinWindow};
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::noise::calibrated::{calibrated_run, expectation, CalibratedSetup, Trials};
-use v2ref::noise::window_variance::window_stats;
-use v2ref::noise::{window_bias, Formula, NoiseModel};
+use v2ref_core::formalism::estimator::{dft, raw_estimates, BinWindow};
+use v2ref_core::formalism::interferogram::Sampling;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::noise::calibrated::{calibrated_run, expectation, CalibratedSetup, Trials};
+use v2ref_core::noise::window_variance::window_stats;
+use v2ref_core::noise::{window_bias, Formula, NoiseModel};
 
 const VISIBILITY: f64 = 0.7;
 
@@ -130,7 +130,7 @@ fn the_monte_carlo_mean_and_variance_match_the_expectation() {
     ] {
         let z = (mc.mean - mean) / mc.stderr_mean;
         assert!(
-            z.abs() < v2ref::tolerance::MC_SIGMAS,
+            z.abs() < v2ref_core::tolerance::MC_SIGMAS,
             "{name}: mean {} vs {mean} (z = {z})",
             mc.mean
         );
@@ -142,7 +142,7 @@ fn the_monte_carlo_mean_and_variance_match_the_expectation() {
         );
         let z_var = (mc.var - var) / mc.stderr_var;
         assert!(
-            z_var.abs() < v2ref::tolerance::MC_SIGMAS,
+            z_var.abs() < v2ref_core::tolerance::MC_SIGMAS,
             "{name}: var {} vs {var} (z = {z_var})",
             mc.var
         );

@@ -4,15 +4,15 @@
 //! run rejects the formula multiplied by 1.02 (and the printed formula where
 //! it is wrong).
 
-use v2ref::montecarlo::RunningStats;
-use v2ref::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
-use v2ref::noise::window_variance::{
+use v2ref_core::montecarlo::RunningStats;
+use v2ref_core::noise::simulation::{sample_moments, simulate_noisy, NoisySpec};
+use v2ref_core::noise::window_variance::{
     gaussian_cumulant4, quadratic_forms, two_sided_band_bins, window_stats,
 };
-use v2ref::noise::{
+use v2ref_core::noise::{
     appendix_stats, example_interferogram, published, raw_moment, ExampleSetup, Formula, NoiseModel,
 };
-use v2ref::tolerance::{IDENTITY_REL, MC_POWER_SIGMAS, MC_SIGMAS, POWER_FACTOR};
+use v2ref_core::tolerance::{IDENTITY_REL, MC_POWER_SIGMAS, MC_SIGMAS, POWER_FACTOR};
 use v2ref_reproduction::cases::appendix_setup;
 
 /// Asserts `mc` within MC_SIGMAS·se of `f` and outside MC_SIGMAS·se of 1.02 f.
@@ -206,7 +206,7 @@ fn windowed_variance_gaussian_two_windows() {
     .unwrap();
     let s = 2.0;
     let noise = NoiseModel::detector(s).unwrap();
-    let (lo, hi) = v2ref::noise::example_observation().spectrum.support();
+    let (lo, hi) = v2ref_core::noise::example_observation().spectrum.support();
     let windows = [
         two_sided_band_bins(nn, 0.5, lo, hi),
         (1..nn / 2).collect::<Vec<_>>(),
@@ -268,7 +268,7 @@ fn windowed_variance_photon_third_and_fourth_cumulants() {
     })
     .unwrap();
     let noise = NoiseModel::photon();
-    let (lo, hi) = v2ref::noise::example_observation().spectrum.support();
+    let (lo, hi) = v2ref_core::noise::example_observation().spectrum.support();
     let bins = two_sided_band_bins(nn, 0.5, lo, hi);
     let w = window_stats(&ifg.modulated, &ifg.mean_counts(), &noise, &bins).unwrap();
     let spec = NoisySpec {
@@ -295,14 +295,14 @@ fn windowed_variance_photon_third_and_fourth_cumulants() {
     let cum: Vec<_> = ifg
         .mean_counts()
         .iter()
-        .map(|&n| v2ref::noise::Cumulants {
+        .map(|&n| v2ref_core::noise::Cumulants {
             k2: n,
             k3: 0.0,
             k4: 0.0,
         })
         .collect();
     let (_, _, gauss_var) =
-        v2ref::noise::window_variance::quadratic_form_moments(&a1, &ifg.modulated, &cum);
+        v2ref_core::noise::window_variance::quadratic_form_moments(&a1, &ifg.modulated, &cum);
     assert!(((r.v1_sq.variance() - gauss_var) / r.v1_sq.stderr_variance()).abs() > MC_SIGMAS);
 }
 

@@ -1,9 +1,9 @@
-//! The oracle route (`v2ref::oracle`): the golden vectors regenerated in
+//! The oracle route (`v2ref_core::oracle`): the golden vectors regenerated in
 //! memory bit for bit, and the powered sets' power. The route's use from a
 //! dependent crate, with its planted bugs, is `examples/downstream/`.
 
 use std::path::Path;
-use v2ref::oracle::{
+use v2ref_core::oracle::{
     catalogue, powered_rows, worst_min_detectable, BiasConvention, BinWindow, Estimates, Set,
     BIAS_CONVENTIONS, BIN_WINDOWS, POWERED_REL_ERROR,
 };
@@ -50,7 +50,7 @@ fn the_route_refuses_unknown_and_piston_vectors() {
     let e = powered_rows(&piston).unwrap_err();
     assert_eq!(e.param(), Some("name"));
     assert!(e.to_string().contains("noise_both"), "{e}");
-    let e = Set::synthesize(&v2ref::oracle::Inputs::default(), 1, 3).unwrap_err();
+    let e = Set::synthesize(&v2ref_core::oracle::Inputs::default(), 1, 3).unwrap_err();
     assert_eq!(e.param(), Some("rows"), "{e}");
 }
 
@@ -136,7 +136,7 @@ fn a_powered_set_catches_a_two_percent_error() {
 /// characters for both estimators), says FAIL, and marks the test out.
 #[test]
 fn a_score_report_displays_on_one_screen() {
-    use v2ref::oracle::{Inputs, SourceInput};
+    use v2ref_core::oracle::{Inputs, SourceInput};
     let source = SourceInput::Point;
     let inputs = Inputs {
         samples: 32,

@@ -5,26 +5,26 @@
 
 use std::f64::consts::PI;
 use std::sync::{Arc, OnceLock};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::interferogram::{sinc, Sampling, SpectralNodes};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::montecarlo::{RunningStats, Summary};
-use v2ref::piston::spectrum::PistonSpectrum;
-use v2ref::piston::transverse::TransverseTable;
-use v2ref::piston::turbulence::Turbulence;
-use v2ref::piston::{
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::formalism::interferogram::{sinc, Sampling, SpectralNodes};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::montecarlo::{RunningStats, Summary};
+use v2ref_core::piston::spectrum::PistonSpectrum;
+use v2ref_core::piston::transverse::TransverseTable;
+use v2ref_core::piston::turbulence::Turbulence;
+use v2ref_core::piston::{
     scan_samples, series_variance, simulate_piston, sweep, sweep_seed, synthesize_series, Detector,
     FringeTable, PistonReference, PistonRun, RunSize, ScanSetup,
 };
-use v2ref::tolerance::{
+use v2ref_core::tolerance::{
     ASYMPTOTIC_CORRECTION_REL, FRINGE_ORACLE_ABS, FRINGE_TABLE_CHECK_ABS, FRINGE_TABLE_REL,
     MC_SIGMAS, ROUNDING_REL, ULPS, VISIBILITY_SCALING_REL,
 };
-use v2ref::Error;
-use v2ref::{assert_abs_eq, assert_within_sigmas};
+use v2ref_core::Error;
+use v2ref_core::{assert_abs_eq, assert_within_sigmas};
 
 fn obs(source: Source) -> Observation {
     Observation::new(
@@ -115,7 +115,7 @@ fn periodogram_matches_the_spectrum_within_its_standard_error() {
     let psd = |nu: f64| s.psd_um2_per_hz(nu);
     let (dt, m) = (1e-3, 1 << 21);
     let x = synthesize_series(&psd, dt, m, 7, 0).unwrap();
-    let spec = v2ref::formalism::estimator::dft(&x);
+    let spec = v2ref_core::formalism::estimator::dft(&x);
     let dnu = 1.0 / (m as f64 * dt);
     // P̂_k = |X_k|²/(M² Δν) has mean P(ν_k) and is exponential: average the
     // ratio over the bins from 0.02 to 100 Hz that avoid the cosine's zeros.
@@ -185,10 +185,10 @@ fn lag_structure_function_matches_the_continuous_spectrum() {
         };
         // Up to the sequence's Nyquist frequency, 50 Hz.
         let breaks: Vec<f64> = (0..=1591).map(|i| -12.0 + i as f64 * 0.01).collect();
-        let model = v2ref::math::quadrature::integrate_pieces(
+        let model = v2ref_core::math::quadrature::integrate_pieces(
             &integrand,
             &breaks,
-            v2ref::math::quadrature::Tolerance {
+            v2ref_core::math::quadrature::Tolerance {
                 abs: 0.0,
                 rel: 1e-9,
             },
@@ -227,7 +227,7 @@ fn fringe_table_matches_the_nodes_and_the_adaptive_oracle() {
         }
         assert!(worst < FRINGE_TABLE_CHECK_ABS, "table vs nodes {worst:e}");
         for x in [-41.3, -3.7, 0.0, 0.3, 12.9, 55.0] {
-            let slow = v2ref::formalism::oracle::fringe_adaptive(&o, x, None);
+            let slow = v2ref_core::formalism::oracle::fringe_adaptive(&o, x, None);
             assert!(
                 (table.fringe(x) - slow).abs() < FRINGE_ORACLE_ABS,
                 "x = {x}"
@@ -529,7 +529,7 @@ fn bad_input_is_refused_with_typed_errors() {
 
 #[test]
 fn sequence_length_is_even_smooth_and_short() {
-    use v2ref::piston::sequence_length;
+    use v2ref_core::piston::sequence_length;
     for len in [1usize, 5, 127, 1000, 1_280_004, 128_004, 999_999] {
         let m = sequence_length(len);
         assert!(m >= len && m >= 4 && m.is_multiple_of(2), "{len} -> {m}");
@@ -553,7 +553,7 @@ fn three_slope_series_match_their_spectrum_within_the_standard_error() {
     // against Σ 2PΔν of the three-slope model, with power against 2 %
     // (2000 sequences: 0.3 % standard error).
     let s = spectrum(1.0, 10.0, 2.0)
-        .with_model(v2ref::piston::spectrum::PistonPsdModel::ThreeSlope)
+        .with_model(v2ref_core::piston::spectrum::PistonPsdModel::ThreeSlope)
         .unwrap();
     let psd = |nu: f64| s.psd_um2_per_hz(nu);
     let (dt, len, reps) = (0.02, 4096, 2000);
@@ -582,8 +582,8 @@ fn a_sweep_at_1000_hz_alone_equals_1000_hz_after_100_hz_for_any_model_and_thread
     let o = obs(Source::Point);
     let det = [Detector::Sampled];
     for model in [
-        v2ref::piston::spectrum::PistonPsdModel::TwoAperture,
-        v2ref::piston::spectrum::PistonPsdModel::ThreeSlope,
+        v2ref_core::piston::spectrum::PistonPsdModel::TwoAperture,
+        v2ref_core::piston::spectrum::PistonPsdModel::ThreeSlope,
     ] {
         let s = spectrum(1.0, 10.0, 18.0).with_model(model).unwrap();
         let size = |threads| RunSize {

@@ -1,8 +1,8 @@
 //! Every `piston.*` claim is computed (no `pending`), by the code path the
 //! user runs, at the quick effort; errata carry both values.
 
-use v2ref::tolerance::{ROUNDING_REL, VISIBILITY_SCALING_REL};
-use v2ref::{assert_abs_eq, assert_rel_eq};
+use v2ref_core::tolerance::{ROUNDING_REL, VISIBILITY_SCALING_REL};
+use v2ref_core::{assert_abs_eq, assert_rel_eq};
 use v2ref_reproduction::claims::Status;
 
 #[test]

@@ -13,15 +13,15 @@
 //! 1e-6 per quantity (R in [0.20, 2.64]): the test rejects errors wrong by
 //! a factor 1.6 or more (R off by 2.6), which the naive error is.
 
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::montecarlo::{replicated_summary, RunningStats, Summary};
-use v2ref::piston::spectrum::PistonSpectrum;
-use v2ref::piston::turbulence::Turbulence;
-use v2ref::piston::{
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::montecarlo::{replicated_summary, RunningStats, Summary};
+use v2ref_core::piston::spectrum::PistonSpectrum;
+use v2ref_core::piston::turbulence::Turbulence;
+use v2ref_core::piston::{
     simulate_consecutive, simulate_piston, Detector, PistonReference, PistonRun, RunSize, ScanSetup,
 };
 
@@ -148,9 +148,9 @@ fn replicated_errors_by_hand() {
     ];
     let s = replicated_summary(&groups);
     assert_eq!(s.count, 5);
-    assert!((s.mean - 5.0).abs() < v2ref::tolerance::ULPS);
+    assert!((s.mean - 5.0).abs() < v2ref_core::tolerance::ULPS);
     // K/(K−1) Σ w²(m − m̄)² = 2 [(0.4·−3)² + (0.6·2)²] = 2 (1.44 + 1.44).
-    assert!((s.stderr_mean - (2.0f64 * 2.88).sqrt()).abs() < v2ref::tolerance::ROUNDING_REL);
+    assert!((s.stderr_mean - (2.0f64 * 2.88).sqrt()).abs() < v2ref_core::tolerance::ROUNDING_REL);
     // q_j about the pooled mean: group 1: (16 + 4)/2 = 10; group 2:
     // (0 + 4 + 16)/3 = 20/3; q̄ = 0.4·10 + 0.6·20/3 = 8; var = 8·5/4 = 10.
     // tol: a variance of a few small integers, tens of roundings of numbers up to 100.

@@ -1,5 +1,5 @@
-//! The differential-piston spectrum (crates/v2ref/src/piston/spectrum.rs, its transverse
-//! integrals and table in crates/v2ref/src/piston/transverse.rs) piece by piece,
+//! The differential-piston spectrum (crates/v2ref-core/src/piston/spectrum.rs, its transverse
+//! integrals and table in crates/v2ref-core/src/piston/transverse.rs) piece by piece,
 //! without the 721 quadratures of a real table of G, so that every test but
 //! one runs in milliseconds at opt-level 0 (the mutation runs,
 //! docs/mutation.md):
@@ -22,21 +22,21 @@
 use rand::{Rng, SeedableRng};
 use std::f64::consts::PI;
 use std::sync::Arc;
-use v2ref::math::quadrature::{integrate_pieces, Tolerance};
-use v2ref::piston::spectrum::{
+use v2ref_core::math::quadrature::{integrate_pieces, Tolerance};
+use v2ref_core::piston::spectrum::{
     differential_piston_variance_from_structure_um2, two_one_minus_j0, PistonPsdModel,
     PistonSpectrum,
 };
-use v2ref::piston::three_slope::ThreeSlope;
-use v2ref::piston::transverse::{
+use v2ref_core::piston::three_slope::ThreeSlope;
+use v2ref_core::piston::transverse::{
     aperture_filter, crosswind_integral, transverse_integral, TransverseTable,
 };
-use v2ref::piston::turbulence::Turbulence;
-use v2ref::tolerance::{
+use v2ref_core::piston::turbulence::Turbulence;
+use v2ref_core::tolerance::{
     BESSEL_ABS, CROSSWIND_REL, IDENTITY_REL, LOW_FREQ_VALUE_COEFF, ROUNDING_REL, TABLE_LN_ABS,
     TURBULENCE_CHECK_REL, TURBULENCE_QUADRATURE_REL, ULPS,
 };
-use v2ref::{assert_abs_eq, assert_rel_eq, Error};
+use v2ref_core::{assert_abs_eq, assert_rel_eq, Error};
 
 const D: f64 = 0.45;
 /// The grid of a table: ln(f_x D) from ln 10⁻⁷ in steps of ln 10 / 80

@@ -3,12 +3,12 @@
 //! 10 % and the predicted piston bias within its standard error; the
 //! paper's conclusions come out as cases.
 
-use v2ref::conformance::estimate::BiasConvention;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::noise::calibrated::Trials;
-use v2ref::noise::Formula;
-use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::noise::calibrated::Trials;
+use v2ref_core::noise::Formula;
+use v2ref_core::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
+use v2ref_core::tolerance::MC_SIGMAS;
 use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 
 fn h_band(source: SourceInput, baseline_m: f64, read_noise: f64, photon_noise: bool) -> Inputs {
@@ -250,7 +250,7 @@ fn cli_plan_writes_json_and_svg() {
 
 // --- The magnitude helper (`v2ref_commands::plan::photometry`) --------------------
 
-use v2ref::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
+use v2ref_core::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 
 fn ks_zero(aperture_m: f64, throughput: f64) -> Magnitude {
@@ -268,13 +268,13 @@ fn magnitude_gives_the_hand_computed_photon_rate() {
     // 666.7e-26 / 6.62607015e-34 × ln(2.4/2.0) × 2π/4, worked out by hand
     // (Python, float64) as 2.881590895e9 photons/s.
     let rate = ks_zero(1.0, 1.0).photon_rate_per_s(2.2, 0.4).unwrap();
-    v2ref::assert_rel_eq!(rate, 2.881_590_895e9, HAND_10_DIGITS_REL);
+    v2ref_core::assert_rel_eq!(rate, 2.881_590_895e9, HAND_10_DIGITS_REL);
     // The narrow-band limit: F_ν Δλ/(h λ) per m², 4.660384867e9 photons
     // s⁻¹ m⁻² µm⁻¹ at 2.159 µm (by hand as above; ln(λmax/λmin) differs
     // from Δλ/λ by (Δλ/λ)²/12 = 2e-10 here).
     let area = ks_zero(1.0, 1.0).collecting_area_m2();
     let narrow = ks_zero(1.0, 1.0).photon_rate_per_s(2.159, 1e-4).unwrap() / area / 1e-4;
-    v2ref::assert_rel_eq!(narrow, 4.660_384_867e9, HAND_10_DIGITS_REL);
+    v2ref_core::assert_rel_eq!(narrow, 4.660_384_867e9, HAND_10_DIGITS_REL);
 }
 
 #[test]
@@ -285,17 +285,17 @@ fn magnitude_scaling_laws() {
         magnitude: 5.0,
         ..ks_zero(1.8, 0.02)
     };
-    v2ref::assert_rel_eq!(
+    v2ref_core::assert_rel_eq!(
         faint.photon_rate_per_s(2.2, 0.4).unwrap(),
         base / 100.0,
         ROUNDING_REL
     );
-    v2ref::assert_rel_eq!(
+    v2ref_core::assert_rel_eq!(
         ks_zero(1.8, 0.04).photon_rate_per_s(2.2, 0.4).unwrap(),
         2.0 * base,
         ROUNDING_REL
     );
-    v2ref::assert_rel_eq!(
+    v2ref_core::assert_rel_eq!(
         ks_zero(3.6, 0.02).photon_rate_per_s(2.2, 0.4).unwrap(),
         4.0 * base,
         ROUNDING_REL
@@ -367,7 +367,7 @@ fn cli_plan_from_a_magnitude_echoes_the_photometry() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let rate = json["photometry"]["photon_rate_per_s"].as_f64().unwrap();
     // 1024 Jy × 10^-2 / h × ln(1.8/1.5) × 2π 1.8²/4 × 0.01, by hand.
-    v2ref::assert_rel_eq!(rate, 1.433_992_352e6, HAND_10_DIGITS_REL);
+    v2ref_core::assert_rel_eq!(rate, 1.433_992_352e6, HAND_10_DIGITS_REL);
     assert_eq!(json["inputs"]["photon_rate_per_s"].as_f64(), Some(rate));
     assert_eq!(json["photometry"]["band"], "H");
     // Without the band or the throughput: refused, exit 2.

@@ -13,9 +13,9 @@
 //!   2J1(x)/x from Bessel's integral (no code of the crate), over the band
 //!   flat per unit wavenumber.
 
-use v2ref::piston::PistonReference;
-use v2ref::piston::DEFAULT_SUB_SAMPLES;
-use v2ref::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
+use v2ref_core::piston::PistonReference;
+use v2ref_core::piston::DEFAULT_SUB_SAMPLES;
+use v2ref_core::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref_commands::plan::{default_grid, plan, Estimator, PlanInputs, PlanPoint, Target};
 
@@ -79,7 +79,7 @@ fn case(
             scans: 16_000,
             seed: 1,
             diameter_err_mas: 0.0,
-            bias: v2ref::conformance::estimate::BiasConvention::Model,
+            bias: v2ref_core::conformance::estimate::BiasConvention::Model,
         },
     }
 }

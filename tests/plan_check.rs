@@ -8,8 +8,8 @@
 
 use crate::run::v2ref;
 use serde_json::Value;
-use v2ref::montecarlo::RunningStats;
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref_core::montecarlo::RunningStats;
+use v2ref_core::tolerance::MC_SIGMAS;
 
 /// The site and source both sides share: H band, a 1 mas disk on 10 m,
 /// 20 m/s wind over 0.5 m apertures (B/v = 0.5 s), 1" seeing, 25 m outer

@@ -3,15 +3,15 @@
 
 use num_complex::Complex64;
 use proptest::prelude::*;
-use v2ref::formalism::estimator::{
+use v2ref_core::formalism::estimator::{
     all_bins, dft, raw_estimates, sampled_wide_band, v1_sq, v2_sq, BinWindow,
 };
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::tolerance::{DFT_REL_PER_LOG2N, QUADRATURE_REL, ROUNDING_REL, VISIBILITY_SQ_FLOOR};
+use v2ref_core::formalism::interferogram::Sampling;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::tolerance::{DFT_REL_PER_LOG2N, QUADRATURE_REL, ROUNDING_REL, VISIBILITY_SQ_FLOOR};
 
 fn band() -> impl Strategy<Value = Band> {
     (1.0f64..4.0, 0.01f64..0.3).prop_map(|(l, frac)| Band::new(l, l * frac).unwrap())
@@ -115,7 +115,7 @@ proptest! {
         let ph = SpectralPhase::dispersion_peak_to_peak(&sp, pp).unwrap();
         let o = obs(sp, d, s, ph);
         let sampled = sampled_wide_band(&o, &Sampling::new(4096, 0.25, false).unwrap(), BinWindow::Positive).unwrap();
-        prop_assert!((sampled.v1_sq - v1_sq(&o)).abs() < v2ref::tolerance::SAMPLED_VS_SPECTRAL_ABS);
-        prop_assert!((sampled.v2_sq - v2_sq(&o)).abs() < v2ref::tolerance::SAMPLED_VS_SPECTRAL_ABS);
+        prop_assert!((sampled.v1_sq - v1_sq(&o)).abs() < v2ref_core::tolerance::SAMPLED_VS_SPECTRAL_ABS);
+        prop_assert!((sampled.v2_sq - v2_sq(&o)).abs() < v2ref_core::tolerance::SAMPLED_VS_SPECTRAL_ABS);
     }
 }

@@ -6,16 +6,16 @@
 
 use proptest::prelude::*;
 use std::sync::OnceLock;
-use v2ref::conformance::estimate::estimate_row_oracle;
-use v2ref::formalism::estimator::{all_bins, positive_bins, MAX_BINS};
-use v2ref::math::quadrature::{gauss_legendre, GAUSS_LEGENDRE_MAX_NODES};
-use v2ref::noise::simulation::{simulate_noisy, NoisySpec, MAX_NOISY_TRIALS};
-use v2ref::noise::NoiseModel;
-use v2ref::oracle::{
+use v2ref_core::conformance::estimate::estimate_row_oracle;
+use v2ref_core::formalism::estimator::{all_bins, positive_bins, MAX_BINS};
+use v2ref_core::math::quadrature::{gauss_legendre, GAUSS_LEGENDRE_MAX_NODES};
+use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec, MAX_NOISY_TRIALS};
+use v2ref_core::noise::NoiseModel;
+use v2ref_core::oracle::{
     score_report, BiasConvention, BinWindow, Inputs, Pair, RowEstimator, Set, SourceInput,
 };
-use v2ref::piston::synthesize_series;
-use v2ref::Error;
+use v2ref_core::piston::synthesize_series;
+use v2ref_core::Error;
 
 /// A small set (200 rows of 16 samples), made once.
 fn set() -> &'static Set {

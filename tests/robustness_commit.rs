@@ -230,7 +230,7 @@ fn a_folder_is_replaced_in_one_step() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     let fill =
-        |d: &Path| std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref::Error::file(None, d, e));
+        |d: &Path| std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref_core::Error::file(None, d, e));
     replace_dir_atomically(&dir, fill).unwrap();
     let (done, looks, misses) = (
         AtomicBool::new(false),

@@ -6,20 +6,20 @@
 //!
 //! The one documented exception is an SNR whose variance is exactly zero
 //! (no noise): infinite or undefined by definition, written in words by the
-//! front ends (`v2ref::noise::snr_value`); the test checks that it occurs
+//! front ends (`v2ref_core::noise::snr_value`); the test checks that it occurs
 //! only then.
 
 use proptest::prelude::*;
-use v2ref::formalism::estimator::{sampled_wide_band, wide_band, BinWindow};
-use v2ref::formalism::interferogram::Sampling;
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::noise::calibrated::CalibratedSetup;
-use v2ref::noise::{appendix_stats, Formula, NoiseModel};
-use v2ref::piston::turbulence::{r0_from_seeing_m, Turbulence};
-use v2ref::Error;
+use v2ref_core::formalism::estimator::{sampled_wide_band, wide_band, BinWindow};
+use v2ref_core::formalism::interferogram::Sampling;
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::noise::calibrated::CalibratedSetup;
+use v2ref_core::noise::{appendix_stats, Formula, NoiseModel};
+use v2ref_core::piston::turbulence::{r0_from_seeing_m, Turbulence};
+use v2ref_core::Error;
 
 /// Extreme finite values of either sign, and ordinary ones.
 fn extreme() -> impl Strategy<Value = f64> {
@@ -215,7 +215,7 @@ fn a_byte_order_mark_is_not_part_of_the_header() {
 
 #[test]
 fn the_bounds_are_where_the_refusals_start() {
-    use v2ref::bounds::*;
+    use v2ref_core::bounds::*;
     // Inside: answered; just outside: refused naming the parameter.
     assert!(Band::new(WAVELENGTH_MAX_UM, 1.0).is_ok());
     assert_eq!(
@@ -279,9 +279,9 @@ fn v2_at_the_dispersion_bound_still_follows_the_fresnel_law() {
         .unwrap();
         wide_band(&obs).v2
     };
-    let bound = v2ref::bounds::DISPERSION_PP_MAX_RAD;
+    let bound = v2ref_core::bounds::DISPERSION_PP_MAX_RAD;
     let ratio = v2(bound / 4.0) / v2(bound);
     // A leading-order law (edge terms of relative order 1/sqrt P); a
     // quadrature that no longer resolves the phase is off by 20 % or more.
-    v2ref::assert_rel_eq!(ratio, 2.0, v2ref::tolerance::SCALING_LAW_REL);
+    v2ref_core::assert_rel_eq!(ratio, 2.0, v2ref_core::tolerance::SCALING_LAW_REL);
 }

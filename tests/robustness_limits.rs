@@ -157,7 +157,7 @@ fn a_process_limit_gives_fewer_threads_and_the_same_answer() {
 /// for: under a limit a little above that cap, no thread is refused.
 #[test]
 fn rayon_num_threads_is_capped_like_threads() {
-    let cap = v2ref::montecarlo::max_threads() as u64;
+    let cap = v2ref_core::montecarlo::max_threads() as u64;
     let env = [("RAYON_NUM_THREADS", "999")];
     let Some(out) = limited(cap + 4, &env, SIMULATE) else {
         return;

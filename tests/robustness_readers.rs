@@ -12,7 +12,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use v2ref::Error;
+use v2ref_core::Error;
 use v2ref_files::formats::{read_estimates, read_matrix, NpyRows};
 
 /// The system allocator, recording the largest request since the last

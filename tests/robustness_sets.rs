@@ -439,7 +439,7 @@ fn a_folder_has_one_writer_at_a_time() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     let write = |d: &Path, text: &str| {
-        std::fs::write(d.join("a.txt"), text).map_err(|e| v2ref::Error::file(None, d, e))
+        std::fs::write(d.join("a.txt"), text).map_err(|e| v2ref_core::Error::file(None, d, e))
     };
     replace_dir_atomically(&dir, |d| write(d, "old")).unwrap();
     let inner = replace_dir_atomically(&dir, |d| {
@@ -452,7 +452,7 @@ fn a_folder_has_one_writer_at_a_time() {
     assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "first");
     let failed = replace_dir_atomically(&dir, |d| {
         write(d, "half")?;
-        Err::<(), _>(v2ref::Error::Invalid {
+        Err::<(), _>(v2ref_core::Error::Invalid {
             param: "test",
             reason: "fails".into(),
         })

@@ -4,9 +4,9 @@
 //! n instead of n − 1 survived every other test, which compared the
 //! accumulator only with itself).
 
-use v2ref::assert_rel_eq;
-use v2ref::montecarlo::RunningStats;
-use v2ref::tolerance::{STREAMING_LARGE_MEAN_REL, ULPS};
+use v2ref_core::assert_rel_eq;
+use v2ref_core::montecarlo::RunningStats;
+use v2ref_core::tolerance::{STREAMING_LARGE_MEAN_REL, ULPS};
 
 /// [1, 2, 3, 4]: mean 5/2, Σ(x − x̄)² = 9/4 + 1/4 + 1/4 + 9/4 = 5, so the
 /// unbiased variance is 5/3 (5/4 with the n denominator); Σ(x − x̄)³ = 0

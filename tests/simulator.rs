@@ -3,18 +3,18 @@
 //! ones it replaces (`simulate`'s noise-only reduction, the piston Monte
 //! Carlo), and the truth's reference run against its closed forms.
 
-use v2ref::conformance::estimate::{estimate_row_oracle, BiasConvention, RowEstimator};
-use v2ref::conformance::sidecar::TruthSource;
-use v2ref::conformance::truth::{truth, TruthSize};
-use v2ref::formalism::estimator::{BinWindow, BIN_WINDOWS};
-use v2ref::montecarlo::unit_rng;
-use v2ref::noise::calibrated::Trials;
-use v2ref::noise::simulation::{simulate_noisy, NoisySpec};
-use v2ref::noise::Formula;
-use v2ref::piston::{simulate_piston, Detector, RunSize, ScanSetup};
-use v2ref::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
-use v2ref::tolerance::{MC_SIGMAS, PATHS_AGREE_ABS, ROUNDING_REL};
-use v2ref::{assert_abs_eq, assert_rel_eq, assert_within_sigmas};
+use v2ref_core::conformance::estimate::{estimate_row_oracle, BiasConvention, RowEstimator};
+use v2ref_core::conformance::sidecar::TruthSource;
+use v2ref_core::conformance::truth::{truth, TruthSize};
+use v2ref_core::formalism::estimator::{BinWindow, BIN_WINDOWS};
+use v2ref_core::montecarlo::unit_rng;
+use v2ref_core::noise::calibrated::Trials;
+use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec};
+use v2ref_core::noise::Formula;
+use v2ref_core::piston::{simulate_piston, Detector, RunSize, ScanSetup};
+use v2ref_core::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
+use v2ref_core::tolerance::{MC_SIGMAS, PATHS_AGREE_ABS, ROUNDING_REL};
+use v2ref_core::{assert_abs_eq, assert_rel_eq, assert_within_sigmas};
 
 fn small(samples: usize) -> Inputs {
     Inputs {
@@ -85,14 +85,14 @@ fn noise_only_rows_are_simulates_draws() {
     let est = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
     let parts = set
         .map_units(0..set.units(), 2, |_, block| {
-            let mut s = v2ref::montecarlo::RunningStats::default();
+            let mut s = v2ref_core::montecarlo::RunningStats::default();
             for row in block.chunks_exact(32) {
                 s.push(est.estimate(row).v1_sq_raw);
             }
             Ok(s)
         })
         .unwrap();
-    let mut mine = v2ref::montecarlo::RunningStats::default();
+    let mut mine = v2ref_core::montecarlo::RunningStats::default();
     parts.iter().for_each(|p| mine.merge(p));
     let spec = NoisySpec {
         modulated: model.signal.modulated.clone(),
@@ -182,7 +182,7 @@ fn piston_only_reproduces_the_piston_monte_carlo() {
         .unwrap()
         .spectrum(model.observation.baseline_m)
         .unwrap();
-    let piston_seed = v2ref::piston::sweep_seed(4, 300.0);
+    let piston_seed = v2ref_core::piston::sweep_seed(4, 300.0);
     let rs = RunSize {
         scans: scans as usize,
         seed: piston_seed,
@@ -314,8 +314,8 @@ fn model_convention_is_biased_under_piston_and_counts_is_not() {
                 wind_mps: 10.0,
                 aperture_m: 0.45,
                 outer_scale_m: None,
-                reference: v2ref::piston::PistonReference::Mean,
-                sub_samples: v2ref::piston::DEFAULT_SUB_SAMPLES,
+                reference: v2ref_core::piston::PistonReference::Mean,
+                sub_samples: v2ref_core::piston::DEFAULT_SUB_SAMPLES,
             }),
             ..Inputs::default()
         };
@@ -338,7 +338,7 @@ fn model_convention_is_biased_under_piston_and_counts_is_not() {
     let truth = run(false, BiasConvention::Counts);
     let counts = run(true, BiasConvention::Counts);
     let model = run(true, BiasConvention::Model);
-    let z = |a: &v2ref::montecarlo::Summary, b: &v2ref::montecarlo::Summary| {
+    let z = |a: &v2ref_core::montecarlo::Summary, b: &v2ref_core::montecarlo::Summary| {
         (a.mean - b.mean) / (a.stderr_mean.powi(2) + b.stderr_mean.powi(2)).sqrt()
     };
     assert!(

@@ -1,9 +1,9 @@
 //! Bessel functions against mpmath (tests/data/bessel_reference.csv, 50-digit
 //! reference with its generator beside it).
 
-use v2ref::math::special::SERIES_BELOW;
-use v2ref::math::special::{bessel_j0, bessel_j0_j1, bessel_j1, bessel_j1_zero, jinc};
-use v2ref::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL, FINITE_DIFFERENCE_REL, ROUNDING_REL};
+use v2ref_core::math::special::SERIES_BELOW;
+use v2ref_core::math::special::{bessel_j0, bessel_j0_j1, bessel_j1, bessel_j1_zero, jinc};
+use v2ref_core::tolerance::{BESSEL_ABS, BESSEL_ZERO_REL, FINITE_DIFFERENCE_REL, ROUNDING_REL};
 
 fn reference() -> Vec<Vec<String>> {
     include_str!("data/bessel_reference.csv")

@@ -18,17 +18,17 @@
 
 use proptest::prelude::*;
 use std::f64::consts::PI;
-use v2ref::assert_rel_eq;
-use v2ref::formalism::estimator::{
+use v2ref_core::assert_rel_eq;
+use v2ref_core::formalism::estimator::{
     dft, positive_bins, raw_estimates, sampled_wide_band, v1_sq, v2_sq, v_mono, wide_band,
     BinWindow,
 };
-use v2ref::formalism::interferogram::{Interferogram, Sampling};
-use v2ref::formalism::observation::{Frequency, Observation};
-use v2ref::formalism::phase::SpectralPhase;
-use v2ref::formalism::source::Source;
-use v2ref::formalism::spectrum::{Band, Spectrum};
-use v2ref::tolerance::{
+use v2ref_core::formalism::interferogram::{Interferogram, Sampling};
+use v2ref_core::formalism::observation::{Frequency, Observation};
+use v2ref_core::formalism::phase::SpectralPhase;
+use v2ref_core::formalism::source::Source;
+use v2ref_core::formalism::spectrum::{Band, Spectrum};
+use v2ref_core::tolerance::{
     BESSEL_ABS, POWER_FACTOR, REFERENCE_QUADRATURE_REL, SAMPLED_VS_SPECTRAL_ABS,
     VISIBILITY_SQ_FLOOR,
 };

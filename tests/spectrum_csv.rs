@@ -2,9 +2,9 @@
 //! error naming the line, and never panics on arbitrary input.
 
 use proptest::prelude::*;
-use v2ref::formalism::spectrum::Spectrum;
-use v2ref::tolerance::ROUNDING_REL;
-use v2ref::Error;
+use v2ref_core::formalism::spectrum::Spectrum;
+use v2ref_core::tolerance::ROUNDING_REL;
+use v2ref_core::Error;
 
 fn reason(text: &str) -> String {
     match Spectrum::from_csv_str(text) {
@@ -142,7 +142,7 @@ proptest! {
 
 #[test]
 fn a_file_is_read_up_to_its_size_limit() {
-    use v2ref::formalism::spectrum::MAX_SPECTRUM_CSV_BYTES;
+    use v2ref_core::formalism::spectrum::MAX_SPECTRUM_CSV_BYTES;
     let table = "wavelength_um,weight\n2.0,1\n2.2,1.5\n2.4,1\n";
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("band.csv");
@@ -179,7 +179,7 @@ fn a_file_is_read_up_to_its_size_limit() {
 /// its per-wavenumber form W_σ = λ² W_λ: the weighted moments agree.
 #[test]
 fn weight_per_um_is_converted_by_the_jacobian() {
-    use v2ref::formalism::spectrum::Spectrum;
+    use v2ref_core::formalism::spectrum::Spectrum;
     let lambdas: Vec<f64> = (0..41).map(|i| 1.5 + 0.3 * i as f64 / 40.0).collect();
     let w_lambda = |l: f64| 1.0 + 2.0 * (l - 1.5);
     let per_um: String = std::iter::once("wavelength_um,weight_per_um".to_owned())
@@ -212,11 +212,11 @@ fn weight_per_um_is_converted_by_the_jacobian() {
 /// shape (a two-row ramp is far from the flat band).
 #[test]
 fn a_two_row_table_is_the_flat_band_it_writes_down() {
-    use v2ref::bias::bandwidth::curve;
-    use v2ref::formalism::phase::SpectralPhase;
-    use v2ref::formalism::source::Source;
-    use v2ref::formalism::spectrum::Band;
-    use v2ref::tolerance::QUADRATURE_REL;
+    use v2ref_core::bias::bandwidth::curve;
+    use v2ref_core::formalism::phase::SpectralPhase;
+    use v2ref_core::formalism::source::Source;
+    use v2ref_core::formalism::spectrum::Band;
+    use v2ref_core::tolerance::QUADRATURE_REL;
     let band = Band::k();
     let (lo, hi) = (band.sigma_min_per_um(), band.sigma_max_per_um());
     let table = |w_lo: f64, w_hi: f64| {

@@ -5,12 +5,12 @@
 //! σ²/n — where the atmosphere is slow.
 
 use std::process::Command;
-use v2ref::conformance::estimate::{BiasConvention, RowEstimator};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::montecarlo::{derive_seed, RunningStats};
-use v2ref::piston::PistonReference;
-use v2ref::simulator::{Inputs, Model, PistonInputs, RowLayout, RowTiming, SourceInput};
-use v2ref::tolerance::MC_SIGMAS;
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::montecarlo::{derive_seed, RunningStats};
+use v2ref_core::piston::PistonReference;
+use v2ref_core::simulator::{Inputs, Model, PistonInputs, RowLayout, RowTiming, SourceInput};
+use v2ref_core::tolerance::MC_SIGMAS;
 
 fn synth_sidecar(dir: &std::path::Path, name: &str, extra: &[&str]) -> serde_json::Value {
     let stem = dir.join(name).display().to_string();
@@ -117,7 +117,7 @@ fn slow_sky(samples: usize) -> Inputs {
             aperture_m: 1.8,
             outer_scale_m: None,
             reference: PistonReference::Mean,
-            sub_samples: v2ref::piston::DEFAULT_SUB_SAMPLES,
+            sub_samples: v2ref_core::piston::DEFAULT_SUB_SAMPLES,
         }),
         ..Inputs::default()
     }
@@ -185,7 +185,7 @@ fn consecutive_rows_of_one_observation_have_the_correlated_variance() {
 }
 
 /// Normalized V1² of every row of a set, in row order.
-fn v1_sq_of(model: &Model, set: &v2ref::simulator::Rows<'_>) -> Vec<f64> {
+fn v1_sq_of(model: &Model, set: &v2ref_core::simulator::Rows<'_>) -> Vec<f64> {
     let estimator =
         RowEstimator::new(model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
     let n = model.samples();
@@ -267,7 +267,7 @@ fn observations_are_keyed_by_their_index_and_take_the_dead_time() {
             .rows_in(RowTiming::observation(k, dead).unwrap(), 10 * k, 9, 1)
             .unwrap();
         let mut out = Vec::new();
-        set.fill_unit(0, &mut v2ref::montecarlo::unit_rng(9, 0), &mut out);
+        set.fill_unit(0, &mut v2ref_core::montecarlo::unit_rng(9, 0), &mut out);
         (out, set.layout().unwrap())
     };
     let (two, _) = rows(2, 0.01);

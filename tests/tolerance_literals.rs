@@ -1,5 +1,5 @@
 //! No unexplained literal tolerance in the tests: a tolerance is a named
-//! constant of `v2ref::tolerance` (or of the test file, with its reason in
+//! constant of `v2ref_core::tolerance` (or of the test file, with its reason in
 //! its doc comment), or the literal carries its reason where it stands, in
 //! a comment starting `tol:` on its line or in the comment lines directly
 //! above it.
@@ -287,7 +287,7 @@ fn every_literal_tolerance_of_the_tests_is_named_or_explained() {
     }
     assert!(
         found.is_empty(),
-        "{} literal tolerances without a name or a `// tol:` reason (use a constant of v2ref::tolerance, or say why at the site):\n{}",
+        "{} literal tolerances without a name or a `// tol:` reason (use a constant of v2ref_core::tolerance, or say why at the site):\n{}",
         found.len(),
         found.join("\n")
     );

@@ -4,20 +4,20 @@
 
 use std::f64::consts::PI;
 use std::sync::{Arc, OnceLock};
-use v2ref::piston::spectrum::{
+use v2ref_core::piston::spectrum::{
     differential_piston_variance_from_structure_um2, PistonPsdModel, PistonSpectrum,
 };
-use v2ref::piston::transverse::{transverse_integral, TransverseTable};
-use v2ref::piston::turbulence::{
+use v2ref_core::piston::transverse::{transverse_integral, TransverseTable};
+use v2ref_core::piston::turbulence::{
     profile_integral, psd_coefficient, r0_from_seeing_m, structure_coefficient, Turbulence,
 };
-use v2ref::tolerance::{
+use v2ref_core::tolerance::{
     ASYMPTOTIC_LIMIT_REL, CORNER_REL, DECADE_SLOPE_ABS, GAMMA_REL, LOW_FREQ_SLOPE_COEFF,
     LOW_FREQ_VALUE_COEFF, MID_FREQ_SLOPE_COEFF, MID_FREQ_VALUE_COEFF, PRINTED_3_DECIMALS_ABS,
     PSD_TABLE_CORNER_REL, PSD_TABLE_REL, PSD_TABLE_WIGGLE_REL, ROUNDING_REL, TURBULENCE_CHECK_REL,
     TURBULENCE_SPECTRAL_REL, TURBULENCE_TAIL_REL, ULPS,
 };
-use v2ref::{assert_abs_eq, Error};
+use v2ref_core::{assert_abs_eq, Error};
 
 const D: f64 = 0.45;
 
@@ -231,10 +231,10 @@ fn variance_is_the_integral_of_the_temporal_spectrum() {
     while *breaks.last().unwrap() < hi.ln() {
         breaks.push(breaks.last().unwrap() + 0.01);
     }
-    let body = v2ref::math::quadrature::integrate_pieces(
+    let body = v2ref_core::math::quadrature::integrate_pieces(
         &integrand,
         &breaks,
-        v2ref::math::quadrature::Tolerance {
+        v2ref_core::math::quadrature::Tolerance {
             abs: 0.0,
             rel: TURBULENCE_CHECK_REL,
         },
@@ -356,13 +356,13 @@ fn von_karman_outer_scale_reduces_and_saturates_the_piston() {
 
 #[test]
 fn seeing_quoted_at_another_wavelength_scales_r0_as_lambda_6_5() {
-    use v2ref::piston::turbulence::seeing_at_wavelength_arcsec;
-    use v2ref::tolerance::HAND_10_DIGITS_REL;
+    use v2ref_core::piston::turbulence::seeing_at_wavelength_arcsec;
+    use v2ref_core::tolerance::HAND_10_DIGITS_REL;
     // 1″ at 0.5 µm: r0 = 0.5 µm / 1″ = 0.1031324031 m there, and
     // 0.1031324031 × 4.4^1.2 = 0.6102929447 m at 2.2 µm (by hand).
     let k = seeing_at_wavelength_arcsec(1.0, 0.5, 2.2).unwrap();
     let t = Turbulence::from_seeing(k, 2.2, 10.0, None).unwrap();
-    v2ref::assert_rel_eq!(t.r0_m(), 0.610_292_944_7, HAND_10_DIGITS_REL);
+    v2ref_core::assert_rel_eq!(t.r0_m(), 0.610_292_944_7, HAND_10_DIGITS_REL);
     // Identities: the same wavelength changes nothing; conversions compose;
     // zero seeing stays zero.
     assert_eq!(seeing_at_wavelength_arcsec(0.8, 1.65, 1.65).unwrap(), 0.8);
@@ -372,7 +372,7 @@ fn seeing_quoted_at_another_wavelength_scales_r0_as_lambda_6_5() {
         2.2,
     )
     .unwrap();
-    v2ref::assert_rel_eq!(
+    v2ref_core::assert_rel_eq!(
         via_h,
         seeing_at_wavelength_arcsec(0.8, 0.5, 2.2).unwrap(),
         ROUNDING_REL
@@ -410,10 +410,10 @@ fn cli_seeing_wavelength_flag_converts_before_the_piston() {
     // Quoted at the observing wavelength (the default), nothing changes.
     assert_eq!(r0(&["--seeing-wavelength-um", "2.2"]), r0(&[]));
     // 1″ at 0.5 µm is r0 = 0.6102929447 m in K (by hand, above).
-    v2ref::assert_rel_eq!(
+    v2ref_core::assert_rel_eq!(
         r0(&["--seeing-wavelength-um", "0.5"]),
         0.610_292_944_7,
-        v2ref::tolerance::HAND_10_DIGITS_REL
+        v2ref_core::tolerance::HAND_10_DIGITS_REL
     );
 }
 
@@ -428,10 +428,10 @@ fn two_sided_integral(psd: &dyn Fn(f64) -> f64, lo: f64, hi: f64, low_coeff: f64
     while *breaks.last().unwrap() < hi.ln() {
         breaks.push(breaks.last().unwrap() + 0.01);
     }
-    let body = v2ref::math::quadrature::integrate_pieces(
+    let body = v2ref_core::math::quadrature::integrate_pieces(
         &integrand,
         &breaks,
-        v2ref::math::quadrature::Tolerance {
+        v2ref_core::math::quadrature::Tolerance {
             abs: 0.0,
             rel: TURBULENCE_CHECK_REL,
         },

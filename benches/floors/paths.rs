@@ -5,11 +5,11 @@ use super::estimate_floor::{estimate_floor, positive_sums};
 use super::Case;
 use rayon::prelude::*;
 use realfft::RealFftPlanner;
-use v2ref::formalism::estimator::{positive_bins, BinWindow};
-use v2ref::montecarlo::{in_pool, unit_rng, Rng};
-use v2ref::noise::simulation::{simulate_noisy, NoisySpec, PoissonSampler, TRIALS_PER_UNIT};
-use v2ref::noise::{example_interferogram, NoiseModel};
-use v2ref::simulator::{Inputs, Model};
+use v2ref_core::formalism::estimator::{positive_bins, BinWindow};
+use v2ref_core::montecarlo::{in_pool, unit_rng, Rng};
+use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec, PoissonSampler, TRIALS_PER_UNIT};
+use v2ref_core::noise::{example_interferogram, NoiseModel};
+use v2ref_core::simulator::{Inputs, Model};
 use v2ref_reproduction::cases::appendix_setup;
 
 /// The paths, in the order they run.
@@ -70,7 +70,7 @@ fn estimate(rows: u64, n: usize) -> Case {
     };
     let inputs = model.inputs.clone();
     let v2ref = move |threads: usize| {
-        use v2ref::conformance::estimate::BiasConvention;
+        use v2ref_core::conformance::estimate::BiasConvention;
         use v2ref_commands::commands::estimate::{estimate_rows, estimator, RowsName};
         let name = RowsName {
             param: "interferograms",
@@ -170,7 +170,7 @@ fn simulate(noise: NoiseModel, label: &str) -> Case {
 /// ROWS_PER_UNIT rows), each row written once into a preallocated array,
 /// units over the threads.
 fn synth_rows(rows: u64) -> Case {
-    use v2ref::simulator::ROWS_PER_UNIT;
+    use v2ref_core::simulator::ROWS_PER_UNIT;
     let model = Model::new(&Inputs::default()).expect("the default inputs");
     let n = model.samples();
     let (m, c) = (
@@ -221,8 +221,8 @@ fn synth_rows(rows: u64) -> Case {
 /// inverse FFT of M points (realfft, on one thread: the 2-thread ratio is
 /// against a floor whose transform does not scale).
 fn piston_series() -> Case {
-    use v2ref::piston::synthesize_series;
-    use v2ref::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
+    use v2ref_core::piston::synthesize_series;
+    use v2ref_core::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
     const LEN: usize = 1 << 20;
     const DT_S: f64 = 1e-3;
     let turb = Turbulence::from_seeing(1.0, 2.2, 10.0, None).expect("valid");
@@ -254,7 +254,7 @@ fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: 
     use rand_distr::{Distribution, StandardNormal};
     use realfft::num_complex::Complex;
     const BLOCK: usize = 1 << 15;
-    let m = v2ref::piston::sequence_length(len);
+    let m = v2ref_core::piston::sequence_length(len);
     let (half, dnu) = (m / 2, 1.0 / (m as f64 * dt_s));
     let mut spectrum_half = vec![Complex::new(0.0, 0.0); half + 1];
     spectrum_half[1..half]
@@ -286,16 +286,16 @@ fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: 
 /// same fringe table at each sample, a real-input FFT and, per window, the
 /// two sums and V1, V2 accumulated; one unit per sequence over the threads.
 fn piston_run(scans: usize) -> Case {
-    use v2ref::formalism::estimator::BIN_WINDOWS;
-    use v2ref::formalism::observation::{Frequency, Observation};
-    use v2ref::formalism::phase::SpectralPhase;
-    use v2ref::formalism::source::Source;
-    use v2ref::formalism::spectrum::{Band, Spectrum};
-    use v2ref::piston::{
+    use v2ref_core::formalism::estimator::BIN_WINDOWS;
+    use v2ref_core::formalism::observation::{Frequency, Observation};
+    use v2ref_core::formalism::phase::SpectralPhase;
+    use v2ref_core::formalism::source::Source;
+    use v2ref_core::formalism::spectrum::{Band, Spectrum};
+    use v2ref_core::piston::{
         scan_stride, sequence_seed, sequence_split, simulate_piston, Detector, FringeTable,
         RunSize, ScanSetup,
     };
-    use v2ref::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
+    use v2ref_core::piston::{spectrum::PistonSpectrum, turbulence::Turbulence};
     let turb = Turbulence::from_seeing(1.0, 2.2, 10.0, None).expect("valid");
     let spectrum = std::sync::Arc::new(PistonSpectrum::new(turb, 0.45, 18.0).expect("valid"));
     spectrum.tabulate();

@@ -3,7 +3,7 @@
 use super::common::ObservedArgs;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref::Result;
+use v2ref_core::Result;
 use v2ref_commands::commands::cost::duration_words;
 
 /// N from which the finite scan takes seconds or more and shows a spinner

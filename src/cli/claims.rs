@@ -3,7 +3,7 @@
 use super::common::OutputArgs;
 use super::print_json;
 use std::process::ExitCode;
-use v2ref::Result;
+use v2ref_core::Result;
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::claims::evaluate;
 

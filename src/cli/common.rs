@@ -3,8 +3,8 @@
 //! and the Monte Carlo runs (`--seed`, `--threads`).
 
 use super::flags::physical_flags;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::words::Words;
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::words::Words;
 use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The `--help` of the flag of the physical input `p`, from its one
@@ -42,7 +42,7 @@ physical_flags! {
 
 impl ObservationArgs {
     /// The physical inputs: these flags, the defaults for the rest.
-    pub fn physical(&self) -> v2ref::Result<Physical> {
+    pub fn physical(&self) -> v2ref_core::Result<Physical> {
         let mut p = Physical::default();
         self.apply_to(&mut p)?;
         Ok(p)
@@ -76,7 +76,7 @@ pub struct ObservedArgs {
 
 impl ObservedArgs {
     /// The physical inputs: these flags, the defaults for the rest.
-    pub fn physical(&self) -> v2ref::Result<Physical> {
+    pub fn physical(&self) -> v2ref_core::Result<Physical> {
         let mut p = self.obs.physical()?;
         self.sampling.scan.apply_to(&mut p)?;
         Ok(p)

@@ -1,14 +1,14 @@
 //! `v2ref estimate`: per row of a file of interferograms, V1² and V2² raw,
-//! bias-subtracted and normalized (`v2ref::conformance::estimate`), for a
+//! bias-subtracted and normalized (`v2ref_core::conformance::estimate`), for a
 //! window of bins, a bias convention and a calibrator.
 
 use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::{Error, Result};
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::{Error, Result};
 use v2ref_commands::commands::estimate::{
     estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
 };

@@ -162,7 +162,7 @@ impl Given {
     }
 
     /// Sets the inputs these flags hold in `p`, reading a spectrum's file.
-    pub fn apply_to(&self, p: &mut Physical) -> v2ref::Result<()> {
+    pub fn apply_to(&self, p: &mut Physical) -> v2ref_core::Result<()> {
         for (key, file, value) in &self.0 {
             let value = match file {
                 Some(path) => Value::Spectrum(
@@ -192,7 +192,7 @@ macro_rules! physical_flags {
 
             /// Sets the inputs these flags hold in `p` (a spectrum's file
             /// read here).
-            pub fn apply_to(&self, p: &mut v2ref_commands::parameters::Physical) -> v2ref::Result<()> {
+            pub fn apply_to(&self, p: &mut v2ref_commands::parameters::Physical) -> v2ref_core::Result<()> {
                 self.0.apply_to(p)
             }
         }

@@ -9,7 +9,7 @@ use super::print_json;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use v2ref::{Error, Result};
+use v2ref_core::{Error, Result};
 use v2ref_reproduction::golden;
 
 /// Flags of `golden`.

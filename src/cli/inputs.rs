@@ -1,12 +1,12 @@
 //! The flags of the end-to-end simulator (`simulate`, `synth`, `estimate`):
-//! every physical input, gathered into [`v2ref::simulator::Inputs`].
+//! every physical input, gathered into [`v2ref_core::simulator::Inputs`].
 
 use super::common::{
     warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
 };
 use super::flags::{augment, Given, Hyphen};
-use v2ref::simulator::{Inputs, Model};
-use v2ref::Result;
+use v2ref_core::simulator::{Inputs, Model};
+use v2ref_core::Result;
 use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The differential piston: on when `--fringe-hz` is given.

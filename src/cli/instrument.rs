@@ -3,7 +3,7 @@
 //! overriding its value; `--instrument list` prints the presets.
 
 use std::collections::BTreeSet;
-use v2ref::{Error, Result};
+use v2ref_core::{Error, Result};
 use v2ref_commands::commands::plan::PlanRequest;
 use v2ref_commands::parameters::Physical;
 use v2ref_commands::plan::instrument::{instrument, Instrument, INSTRUMENTS};

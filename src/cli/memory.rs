@@ -2,7 +2,7 @@
 //! files (`estimate`, `score`): the library's budget
 //! (`v2ref_files::formats::budget`) set for the run.
 
-use v2ref::Result;
+use v2ref_core::Result;
 use v2ref_files::formats::{budget_bytes_of_gib, set_memory_budget_gib};
 
 /// The memory budget flag.

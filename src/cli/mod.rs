@@ -48,7 +48,7 @@ pub mod vectors;
 
 use std::io::IsTerminal;
 use std::process::ExitCode;
-use v2ref::Error;
+use v2ref_core::Error;
 
 /// Exit status for bad input.
 pub const EXIT_BAD_INPUT: u8 = 2;
@@ -222,10 +222,10 @@ pub fn count_usize(s: &str) -> Result<usize, String> {
 }
 
 /// Parses `--threads` (clap value parser): 0 (all cores) up to
-/// [`v2ref::montecarlo::max_threads`]; the answer does not depend on it.
+/// [`v2ref_core::montecarlo::max_threads`]; the answer does not depend on it.
 pub fn thread_count(s: &str) -> Result<usize, String> {
     let n = count_usize(s)?;
-    v2ref::montecarlo::check_threads(n).map_err(|e| e.detail())
+    v2ref_core::montecarlo::check_threads(n).map_err(|e| e.detail())
 }
 
 /// Prints `value` as one pretty JSON document on stdout.

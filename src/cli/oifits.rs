@@ -3,12 +3,12 @@
 //! the crate `v2ref-oifits` (which builds and reads every file).
 
 use std::path::Path;
-use v2ref::conformance::estimate::{BiasConvention, RowEstimate};
-use v2ref::conformance::score::Estimator;
-use v2ref::conformance::sidecar::{ConventionTruth, Sidecar};
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::simulator::{Inputs, Model};
-use v2ref::{Error, Result};
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimate};
+use v2ref_core::conformance::score::Estimator;
+use v2ref_core::conformance::sidecar::{ConventionTruth, Sidecar};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::simulator::{Inputs, Model};
+use v2ref_core::{Error, Result};
 use v2ref_files::formats::{read_estimates, Estimates};
 use v2ref_oifits::{self as oifits, docs, Expected, ObservingContext, ObservingSpec};
 

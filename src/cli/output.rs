@@ -14,7 +14,7 @@
 use std::io::{self, Write};
 use std::path::Path;
 use std::sync::atomic::Ordering;
-use v2ref::{Error, Result};
+use v2ref_core::{Error, Result};
 use v2ref_commands::commands::cost::{duration_words, Cost, NOTICE_S};
 
 /// Exit status when the output cannot be written (sysexits' `EX_IOERR`).
@@ -251,7 +251,7 @@ mod tests {
         assert_eq!(seconds_left((2.0, 7), (4.0, 7), 100_000), None);
     }
 
-    use v2ref::Error;
+    use v2ref_core::Error;
 
     fn io(param: Option<&'static str>, errno: i32) -> Error {
         Error::file(param, "x", std::io::Error::from_raw_os_error(errno))

@@ -8,7 +8,7 @@ use super::{print_json, progress_bar};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::{Error, Result};
+use v2ref_core::{Error, Result};
 use v2ref_reproduction::cases::Effort;
 use v2ref_reproduction::claims::{evaluate, status_counts, to_markdown, ClaimResult};
 

@@ -1,16 +1,16 @@
 //! `v2ref score`: a pipeline's per-row estimates of a synth set scored
-//! against the set's truth (formulas in `v2ref::conformance::score`).
+//! against the set's truth (formulas in `v2ref_core::conformance::score`).
 //! Exit status 0 on pass, 1 on fail, 2 on bad input.
 
 use super::{print_json, print_rows};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::conformance::estimate::BiasConvention;
-use v2ref::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
-use v2ref::conformance::sidecar::Sidecar;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::{Error, Result};
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::conformance::score::{score_report, ScoreReport, DEFAULT_ALPHA};
+use v2ref_core::conformance::sidecar::Sidecar;
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::{Error, Result};
 
 /// Exit status of a failed verdict.
 pub const EXIT_FAIL: u8 = 1;
@@ -107,7 +107,7 @@ pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
 /// Runs `score`.
 pub fn run(args: Args) -> Result<ExitCode> {
     args.memory.apply()?;
-    v2ref::conformance::score::critical_z(args.alpha, 1)?;
+    v2ref_core::conformance::score::critical_z(args.alpha, 1)?;
     let sc = read_sidecar(&args.sidecar)?;
     let truth = sc.truth(args.bins, args.bias).ok_or_else(|| {
         Error::data(

@@ -9,12 +9,12 @@ use super::common::{OutputArgs, RunArgs};
 use super::inputs::InputsArgs;
 use super::{print_json, print_rows, progress_bar};
 use std::process::ExitCode;
-use v2ref::conformance::estimate::BiasConvention;
-use v2ref::formalism::estimator::BinWindow;
-use v2ref::noise::calibrated::Trials;
-use v2ref::noise::Formula;
-use v2ref::simulator::{simulate, Model};
-use v2ref::Result;
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::noise::calibrated::Trials;
+use v2ref_core::noise::Formula;
+use v2ref_core::simulator::{simulate, Model};
+use v2ref_core::Result;
 use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 
 /// Flags of `simulate`.
@@ -111,11 +111,11 @@ fn print_table(a: &SimulateReport) {
         ),
         (
             "SNR1 (Monte Carlo)",
-            v2ref::noise::snr_value::snr_text(a.mean_v1_sq / a.var_v1_sq.sqrt(), 4),
+            v2ref_core::noise::snr_value::snr_text(a.mean_v1_sq / a.var_v1_sq.sqrt(), 4),
         ),
         (
             "SNR2 (Monte Carlo)",
-            v2ref::noise::snr_value::snr_text(a.mean_v2_sq / a.var_v2_sq.sqrt(), 4),
+            v2ref_core::noise::snr_value::snr_text(a.mean_v2_sq / a.var_v2_sq.sqrt(), 4),
         ),
     ];
     if let Some(p) = &a.piston {

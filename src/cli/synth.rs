@@ -1,18 +1,18 @@
 //! `v2ref synth`: a set of test interferograms for a pipeline — the rows as
 //! NumPy `.npy` (float64, one row per scan, columns in the order of
 //! `sample_opd_um`), optionally CSV, and a JSON sidecar with every input
-//! and the truth (`v2ref::conformance::sidecar`).
+//! and the truth (`v2ref_core::conformance::sidecar`).
 
 use super::common::RunArgs;
 use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref::conformance::sidecar::Sidecar;
-use v2ref::conformance::synth::{synthesize, SetSize};
-use v2ref::conformance::truth::{default_reference_blocks, reference_rows_per_block};
-use v2ref::simulator::{Model, RowLayout, RowTiming};
-use v2ref::{Error, Result};
+use v2ref_core::conformance::sidecar::Sidecar;
+use v2ref_core::conformance::synth::{synthesize, SetSize};
+use v2ref_core::conformance::truth::{default_reference_blocks, reference_rows_per_block};
+use v2ref_core::simulator::{Model, RowLayout, RowTiming};
+use v2ref_core::{Error, Result};
 use v2ref_commands::commands::cost::SetOutput;
 use v2ref_files::atomic::{set::OutputSet, write_text_atomic};
 use v2ref_files::formats::{CsvRowWriter, NpyRowWriter};
@@ -87,7 +87,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let reference_blocks = args
         .reference_blocks
         .unwrap_or_else(|| default_reference_blocks(inputs.piston.is_some()));
-    v2ref::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
+    v2ref_core::bounds::check_set_size(args.rows, inputs.samples, reference_blocks)?;
     // Every file of the set checked and locked before any work; they
     // appear together at the end, or none does.
     let stem = Stem::new(&args.out)?;

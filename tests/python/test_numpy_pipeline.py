@@ -32,7 +32,7 @@ VECTORS = Path(os.environ.get("V2REF_VECTORS", ROOT / "golden" / "vectors"))
 if not VECTORS.is_absolute():
     VECTORS = ROOT / VECTORS
 
-# The catalogue of crates/v2ref/src/conformance/vectors.rs.
+# The catalogue of crates/v2ref-core/src/conformance/vectors.rs.
 CATALOGUE = [
     "noise_gaussian",
     "noise_poisson",

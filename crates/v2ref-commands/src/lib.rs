@@ -29,7 +29,7 @@
 // The oracle's modules under their own names, so that a path reads the same
 // in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
-pub(crate) use v2ref::{
+pub(crate) use v2ref_core::{
     bias, bounds, cancel, conformance, error, formalism, math, montecarlo, noise, piston,
     simulator, tolerance, words, Error, Result,
 };

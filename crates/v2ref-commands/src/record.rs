@@ -6,7 +6,7 @@
 //! words.
 
 // The plain values of the inputs (the oracle's), beside their records.
-pub use v2ref::record::*;
+pub use v2ref_core::record::*;
 
 use crate::formalism::{estimator::BinWindow, interferogram::Sampling, observation::Observation};
 use serde::Serialize;

@@ -8,7 +8,7 @@
 // The modules of the crates below under their own names, so that a path
 // reads the same in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
-pub(crate) use v2ref::{
+pub(crate) use v2ref_core::{
     bias, bounds, cancel, csv_lines, error, formalism, math, montecarlo, noise, piston, tolerance,
     Error, Result,
 };

@@ -59,30 +59,25 @@
 //!
 //! ## What is public, and what is stable
 //!
-//! A dependent crate sees the stable surface: [`prelude`], [`oracle`], the
+//! This crate is the stable surface — what a pipeline's `cargo test` and a
+//! reader of the paper need, about 150 items: [`prelude`], [`oracle`], the
 //! paper's parts ([`formalism`], [`bias`], [`noise`], [`piston`],
-//! [`simulator`], [`conformance`]), [`math`], [`montecarlo`], [`bounds`],
-//! [`cancel`], and [`Error`] with [`Result`]. Each item has one path; the two
-//! gathering modules, [`prelude`] and [`oracle`], give a second one to what
-//! they collect. The listing of this surface is committed
-//! (`crates/v2ref/public-api/default.txt`) and CI fails when the library's
-//! differs from it; its enums and its error are `#[non_exhaustive]`, so a new
-//! variant is not a breaking change. A function's name says what it runs or
-//! returns: [`simulator::simulate`] (a set of noisy rows with every effect),
+//! [`simulator`], [`conformance`]), [`math`], [`montecarlo`], and [`Error`]
+//! with [`Result`]. Its listing is committed
+//! (`crates/v2ref/public-api/default.txt`) and CI fails when the crate's
+//! differs from it; its enums and its error are `#[non_exhaustive]`, so a
+//! new variant is not a breaking change. Bad input is a typed [`Error`]
+//! naming the parameter and its accepted range, never a silently wrong
+//! number. A function's name says what it runs or returns:
+//! [`simulator::simulate`] (a set of noisy rows with every effect),
 //! [`piston::simulate_piston`] (scans through piston sequences),
 //! [`noise::simulation::simulate_noisy`] (noisy scans without piston), and
 //! [`bias::finite_scan::finite_scan_bias`] (the finite scan's bias).
 //!
-//! The workspace's other crates are the edges, each for its own audience, and
-//! none of them is needed for a pipeline's `cargo test`: `v2ref-commands` (each
-//! command's answer, built once for the command line and Python, and the
-//! planner), `v2ref-files` (the set writer, `.npy`, CSV), `v2ref-oifits`,
-//! `v2ref-reproduction` (the paper's claims, figures and golden files),
-//! `v2ref-python`, and the command line (the repository's root package). They
-//! use [`record`] (what a computation was asked, as plain values), [`words`]
-//! (the words that name each choice) and [`manifest`] (the member list of a set
-//! of files), and [`tolerance`] with its assertion macros `assert_rel_eq!`,
-//! `assert_abs_eq!` and `assert_within_sigmas!` (the workspace's test suites).
+//! The items are those of the crate `v2ref-core`, re-exported: the numerics
+//! with every helper public for the workspace's own crates (the command
+//! line, Python, OIFITS, the reproduction of the paper) and test suite, and
+//! not stable. A pipeline needs only this crate.
 //!
 //! ## The crate, as the paper
 //!
@@ -97,26 +92,7 @@
 //! | the paper's cases, figures, claims, golden files and plots | the crate `v2ref-reproduction` |
 //! | special functions and quadrature | [`math`] |
 //! | the deterministic parallel Monte Carlo driver, seeds, running statistics | [`montecarlo`] |
-//! | the input ranges, cancellation, errors | [`bounds`], [`cancel`], [`Error`] |
-//! | tolerances (one home) | [`tolerance`] and its assertion macros |
-//! | what a computation was asked, as plain values | [`record`] |
-//!
-//! ## Levels
-//!
-//! The crates form levels, and so do the modules of this one: a module uses
-//! only modules of its own level or below (`tests/architecture.rs` checks every
-//! `use` of `crates/v2ref/src/`, and the crate graph does the rest), so that
-//! each can be read, tested and changed with only what is under it in mind:
-//!
-//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`cancel`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files);
-//! 2. [`formalism`];
-//! 3. [`record`] (the inputs of a computation as plain values);
-//! 4. [`bias`];
-//! 5. [`noise`], [`piston`];
-//! 6. [`simulator`];
-//! 7. [`conformance`];
-//! 8. the oracle's gathering modules: [`prelude`], [`oracle`] (a pipeline's `cargo test`);
-//! 9. the crates above this one: `v2ref-commands` (the commands' answers and the planner), then `v2ref-files`, `v2ref-reproduction`, `v2ref-oifits`, and the edges, `v2ref-python` and the command line.
+//! | errors: each names the parameter and its accepted range | [`Error`] |
 //!
 //! ## Units and conventions
 //!
@@ -175,27 +151,210 @@
 //! | Figs. 0–5 as data, golden files, claims | | `v2ref_reproduction::figures::all`, `v2ref_reproduction::golden::check`, `v2ref_reproduction::claims::evaluate` | `tests/golden.rs`, `tests/claims.rs` |
 
 #![warn(missing_docs)]
-// A type a public item shows (a field, an argument, a return) is public too.
-#![warn(unnameable_types)]
+#![forbid(unsafe_code)]
 
-// The stable surface: what a pipeline calls (public-api/default.txt).
-pub mod bias;
-pub mod bounds;
-pub mod cancel;
-pub mod conformance;
-pub mod csv_lines;
-pub mod error;
-pub mod formalism;
-pub mod manifest;
-pub mod math;
-pub mod montecarlo;
-pub mod noise;
-pub mod oracle;
-pub mod piston;
-pub mod prelude;
-pub mod record;
-pub mod simulator;
-pub mod tolerance;
-pub mod words;
+pub use v2ref_core::{Error, Result};
 
-pub use error::{Error, Result};
+/// The dozen items a user calls first.
+pub mod prelude {
+    pub use v2ref_core::prelude::*;
+}
+
+/// A pipeline's `cargo test`: a set of noisy rows and its truth in memory,
+/// the closed forms, the score of the pipeline's per-row estimates with the
+/// test's power, the golden vectors regenerated bit for bit.
+pub mod oracle {
+    pub use v2ref_core::oracle::*;
+}
+
+/// §§1–2, the general formalism: the spectrum and its weight, the source,
+/// the observation, the spectral phase, the sampled interferogram and the
+/// estimators.
+pub mod formalism {
+    /// §1, the dynamic range a visibility's accuracy allows.
+    pub mod dynamic_range {
+        pub use v2ref_core::formalism::dynamic_range::dynamic_range;
+    }
+    /// §3 and the appendix: the estimators V1² and V2², spectral and
+    /// sampled, the DFT, the windows of bins and the noise bias.
+    pub mod estimator {
+        pub use v2ref_core::formalism::estimator::{
+            all_bins, band_bins, dft, noise_bias, positive_bins, raw_estimates, sampled_wide_band,
+            v1_sq, v2_sq, wide_band, BinWindow, Pair, WideBand, BIN_WINDOWS,
+        };
+    }
+    /// §2.2: the sampled (and integrated) interferogram.
+    pub mod interferogram {
+        pub use v2ref_core::formalism::interferogram::{
+            sinc, Interferogram, Sampling, SpectralNodes,
+        };
+    }
+    /// §2.1: a spectrum, a source and where in the (u, v) plane.
+    pub mod observation {
+        pub use v2ref_core::formalism::observation::{Frequency, Observation};
+    }
+    /// The slow, obviously correct DFT beside the fast one.
+    pub mod oracle {
+        pub use v2ref_core::formalism::oracle::naive_dft;
+    }
+    /// §4: the spectral phase of dispersion.
+    pub mod phase {
+        pub use v2ref_core::formalism::phase::SpectralPhase;
+    }
+    /// §3: the source and its visibility.
+    pub mod source {
+        pub use v2ref_core::formalism::source::{Component, FluxProfile, Source};
+    }
+    /// §2.1: the band, a tabulated spectrum, the weight W(σ).
+    pub mod spectrum {
+        pub use v2ref_core::formalism::spectrum::{Band, Spectrum};
+    }
+}
+
+/// §§3–5: the biases of spectral bandwidth, dispersion, finite scan length
+/// and the integrating detector.
+pub mod bias {
+    /// §3, Fig. 1: the bandwidth bias against spatial frequency.
+    pub mod bandwidth {
+        pub use v2ref_core::bias::bandwidth::curve;
+    }
+    /// §4: chromatic dispersion (the ZBLAN fibre's index).
+    pub mod dispersion {
+        pub use v2ref_core::bias::dispersion::{
+            dispersion_coefficient, residual_peak_to_peak, zblan_index, zblan_peak_to_peak_rad,
+            ZBLAN_B1, ZBLAN_B2, ZBLAN_C1_UM, ZBLAN_C2_UM,
+        };
+    }
+    /// §5, Fig. 3: the finite scan's bias.
+    pub mod finite_scan {
+        pub use v2ref_core::bias::finite_scan::{
+            convolution_bins, finite_scan_bias, Bias, Kernel, Method,
+        };
+    }
+    /// §2.2.2: the integrating detector.
+    pub mod integration {
+        pub use v2ref_core::bias::integration::{
+            calibrated, calibrated_bias, monochromatic_contrast, monochromatic_norm_factor,
+            wide_band_loss,
+        };
+    }
+    /// §3: a continuum with a spectral line.
+    pub mod line {
+        pub use v2ref_core::bias::line::{
+            channel_visibility, top_hat_closed_form, Channel, ChannelVisibility, LineCase,
+            LineProfile,
+        };
+    }
+    /// §3, Fig. 0: the normalization of V2² against the stroke.
+    pub mod normalization {
+        pub use v2ref_core::bias::normalization::deviation_curve;
+    }
+}
+
+/// The appendix: the estimators' noise moments, variances and SNR under
+/// detector and photon noise, closed forms and Monte Carlo.
+pub mod noise {
+    pub use v2ref_core::noise::{
+        appendix_stats, moments, worked_example, AppendixStats, Cumulants, ExampleSetup, Formula,
+        Moments, NoiseModel, WorkedExample,
+    };
+    /// The exact mean and variance of the normalized, bias-subtracted
+    /// estimators.
+    pub mod calibrated {
+        pub use v2ref_core::noise::calibrated::{
+            expectation, CalibratedExpectation, CalibratedSetup, Trials,
+        };
+    }
+    /// The Monte Carlo of noisy scans (no piston).
+    pub mod simulation {
+        pub use v2ref_core::noise::simulation::{simulate_noisy, NoisyRun, NoisySpec};
+    }
+    /// Filtered samples: the exact variance of the quadratic form.
+    pub mod window_variance {
+        pub use v2ref_core::noise::window_variance::{window_stats, WindowStats};
+    }
+}
+
+/// §6: differential piston — turbulence, its spectrum, sequences and scans.
+pub mod piston {
+    pub use v2ref_core::piston::{
+        scan_stride, sequence_split, simulate_piston, synthesize_series, Detector, PistonReference,
+        PistonRun, RunSize, ScanSetup, WindowResult,
+    };
+    /// The differential-piston spectrum of two apertures.
+    pub mod spectrum {
+        pub use v2ref_core::piston::spectrum::{PistonPsdModel, PistonSpectrum, TransverseTable};
+    }
+    /// The three-slope spectrum of earlier simulations, for comparison.
+    pub mod three_slope {
+        pub use v2ref_core::piston::three_slope::ThreeSlope;
+    }
+    /// The atmosphere: seeing, r0, wind, outer scale.
+    pub mod turbulence {
+        pub use v2ref_core::piston::turbulence::Turbulence;
+    }
+}
+
+/// All effects at once: noisy interferograms of any instrument, row by row.
+pub mod simulator {
+    pub use v2ref_core::record::{SourceInput, SpectrumInput};
+    pub use v2ref_core::simulator::{
+        simulate, Inputs, Model, PistonEffect, PistonFacts, PistonInputs, RowLayout, RowTiming,
+        Rows, SetLayout, SimulationRun,
+    };
+}
+
+/// The conformance kit: per-row estimates, the truth of a set, the score of
+/// a pipeline.
+pub mod conformance {
+    /// Per-row estimates under a window and a bias convention, and their
+    /// slow oracle.
+    pub mod estimate {
+        pub use v2ref_core::conformance::estimate::{
+            estimate_row_oracle, BiasConvention, RowEstimate, RowEstimator, RowFault,
+            BIAS_CONVENTIONS,
+        };
+    }
+    /// The score of a pipeline's estimates against a set's truth.
+    pub mod score {
+        pub use v2ref_core::conformance::score::{
+            score, score_report, Estimator, EstimatorScore, NamedScore, ScoreReport,
+            VarStderrSource, DEFAULT_ALPHA, POWER,
+        };
+    }
+    /// What a set states of itself: its data, its truth, its members.
+    pub mod sidecar {
+        pub use v2ref_core::conformance::sidecar::{
+            ConventionTruth, DataFiles, EstimatorTruth, ReferenceRun, Sidecar, Truth, TruthSource,
+            WindowTruth,
+        };
+        pub use v2ref_core::manifest::Member;
+    }
+    /// The truth of a set: the reference run beside the closed forms.
+    pub mod truth {
+        pub use v2ref_core::conformance::truth::{truth, TruthSize};
+    }
+    /// The golden vectors' catalogue.
+    pub mod vectors {
+        pub use v2ref_core::conformance::vectors::{catalogue, Vector};
+    }
+}
+
+/// Special functions and quadrature.
+pub mod math {
+    /// Gauss–Legendre and adaptive Gauss–Kronrod quadrature.
+    pub mod quadrature {
+        pub use v2ref_core::math::quadrature::{gauss_legendre, integrate, Tolerance};
+    }
+    /// Bessel J1 and its zeros, jinc, the Fresnel integrals' point source.
+    pub mod special {
+        pub use v2ref_core::math::special::{bessel_j1_zero, jinc, point_source_v2_sq};
+    }
+}
+
+/// The deterministic parallel Monte Carlo: work units keyed by what they
+/// compute, one generator per unit, reduced in unit order; running
+/// statistics and standard errors of correlated samples.
+pub mod montecarlo {
+    pub use v2ref_core::montecarlo::{replicated_summary, run_units, Rng, RunningStats, Summary};
+}

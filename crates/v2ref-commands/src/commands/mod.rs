@@ -12,7 +12,7 @@ pub mod estimate;
 pub mod piston;
 pub mod plan;
 pub mod snr;
-// The oracle's, where its sets in memory are built (`v2ref::oracle`).
+// The oracle's, where its sets in memory are built (`v2ref_core::oracle`).
 pub use crate::conformance::synth;
 
 pub use crate::simulator::estimate::ESTIMATE_COLUMNS;

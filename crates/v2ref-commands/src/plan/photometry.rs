@@ -203,7 +203,7 @@ impl Magnitude {
     /// let m = Magnitude { magnitude: 5.0, band: Band2Mass::H, aperture_m: 1.8, throughput: 0.01 };
     /// let rate = m.photon_rate_per_s(1.65, 0.3)?;
     /// assert!(rate > 1e6 && rate < 1e7);
-    /// # Ok::<(), v2ref::Error>(())
+    /// # Ok::<(), v2ref_core::Error>(())
     /// ```
     pub fn photon_rate_per_s(&self, centre_um: f64, bandwidth_um: f64) -> Result<f64> {
         self.check()?;

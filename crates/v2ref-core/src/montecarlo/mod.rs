@@ -1,0 +1,263 @@
+//! Deterministic parallel Monte Carlo: fixed work units, one generator per
+//! unit derived from (seed, unit index), results reduced in unit order (the
+//! pattern of rand's `examples/rayon-monte-carlo.rs`). The answer is
+//! bit-identical whatever the number of threads.
+//!
+//! Generators are `rand_pcg::Pcg64Mcg` (crate version pinned exactly in
+//! `lib/Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
+//! neighbouring units get unrelated streams.
+
+pub mod pool;
+pub(crate) mod statistics;
+
+pub use statistics::{
+    effective_count, replicated_summary, replicated_t_quantile, variance_stderr, RunningStats,
+    Summary,
+};
+
+use rand::SeedableRng;
+use rand_pcg::Pcg64Mcg;
+use rayon::prelude::*;
+
+/// The generator every Monte Carlo in the crate uses.
+pub type Rng = Pcg64Mcg;
+
+/// SplitMix64 finalizer (Steele, Lea & Flood 2014): a bijective 64-bit mix.
+fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The generator of work unit `unit` for user seed `seed`: its 128-bit
+/// state is two SplitMix64 words of (seed, unit).
+pub fn unit_rng(seed: u64, unit: u64) -> Rng {
+    let a = splitmix64(seed ^ splitmix64(unit));
+    let b = splitmix64(a ^ 0xD1B5_4A32_D192_ED03);
+    let mut state = [0u8; 16];
+    state[..8].copy_from_slice(&a.to_le_bytes());
+    state[8..].copy_from_slice(&b.to_le_bytes());
+    Rng::from_seed(state)
+}
+
+/// Runs `work(unit_index, rng)` for `units` work units, on `threads` threads
+/// (0 = rayon's default), and returns the results in unit order. Each unit
+/// has its own generator from [`unit_rng`], so the results do not depend on
+/// the thread count or on scheduling.
+pub fn run_units<T, F>(seed: u64, units: u64, threads: usize, work: F) -> Vec<T>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> T + Sync + Send,
+{
+    run_unit_range(seed, 0..units, threads, work)
+}
+
+/// [`run_units`] for the units of `range` only (a run processed in
+/// batches: unit u has the same generator whatever batch it is in).
+pub fn run_unit_range<T, F>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+) -> Vec<T>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> T + Sync + Send,
+{
+    in_pool(threads, || {
+        range
+            .into_par_iter()
+            // A panic in `work` (a cancellation checkpoint where panics
+            // unwind) stops the other units at once rather than after every
+            // pending split has run one unit; no effect on the answer.
+            .panic_fuse()
+            .map(|u| {
+                let mut rng = unit_rng(seed, u);
+                work(u, &mut rng)
+            })
+            .collect::<Vec<T>>()
+    })
+}
+
+/// [`run_unit_range`] for work that may fail (a cancelled run:
+/// [`Steps::step`]): the results in unit order, or the error of a unit
+/// (the other units stop at once).
+pub fn try_run_unit_range<T, F>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+) -> crate::Result<Vec<T>>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
+{
+    in_pool(threads, || {
+        range
+            .into_par_iter()
+            .panic_fuse()
+            .map(|u| {
+                let mut rng = unit_rng(seed, u);
+                work(u, &mut rng)
+            })
+            .collect::<crate::Result<Vec<T>>>()
+    })
+}
+
+/// Reports the steps of a loop (trials, rows, scans) to a progress
+/// callback in batches, each batch about [`crate::cancel::WORK_PER_CHECKPOINT`]
+/// operations (a call per step would cost more than a short step), with a
+/// cancellation check after each; [`Steps::finish`] reports the rest and
+/// checks again.
+pub struct Steps<'a> {
+    progress: &'a (dyn Fn(u64) + Sync),
+    every: u64,
+    pending: u64,
+}
+
+impl<'a> Steps<'a> {
+    /// Steps of `work_per_step` elementary operations each, reported to
+    /// `progress`.
+    pub fn new(progress: &'a (dyn Fn(u64) + Sync), work_per_step: usize) -> Steps<'a> {
+        Steps {
+            progress,
+            every: crate::cancel::stride(work_per_step) as u64,
+            pending: 0,
+        }
+    }
+
+    /// One more step done; [`crate::Error::Cancelled`] when the run was
+    /// cancelled ([`crate::cancel::check`]), for the loop to return.
+    pub fn step(&mut self) -> crate::Result<()> {
+        self.pending += 1;
+        if self.pending >= self.every {
+            (self.progress)(self.pending);
+            self.pending = 0;
+            crate::cancel::check()?;
+        }
+        Ok(())
+    }
+
+    /// Reports the steps not yet reported; [`crate::Error::Cancelled`]
+    /// when the run was cancelled (a loop shorter than a batch of steps
+    /// is checked here only).
+    pub fn finish(self) -> crate::Result<()> {
+        if self.pending > 0 {
+            (self.progress)(self.pending);
+        }
+        crate::cancel::check()
+    }
+}
+
+/// Units computed together by [`fold_units`] before their results are
+/// merged: enough to keep every core busy, few enough that the results of
+/// one batch are small (memory does not grow with the number of units).
+pub const FOLD_BATCH_UNITS: u64 = 1024;
+
+/// Runs `work(unit_index, rng)` for the units of `range` as
+/// [`run_unit_range`] does, and hands each result to `merge` in unit order,
+/// [`FOLD_BATCH_UNITS`] units at a time. Memory is that of one batch of
+/// results however many units there are; the answer is the fold of
+/// [`run_unit_range`]'s results in unit order, bit for bit, whatever the
+/// thread count. The first error of a unit (a cancelled run) stops the run
+/// and is returned.
+pub fn fold_units<T, F, M>(
+    seed: u64,
+    range: std::ops::Range<u64>,
+    threads: usize,
+    work: F,
+    merge: M,
+) -> crate::Result<()>
+where
+    T: Send,
+    F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
+    M: FnMut(T) + Send,
+{
+    let mut merge = merge;
+    in_pool(threads, || {
+        let mut first = range.start;
+        while first < range.end {
+            let last = first.saturating_add(FOLD_BATCH_UNITS).min(range.end);
+            let batch: Vec<T> = (first..last)
+                .into_par_iter()
+                .panic_fuse()
+                .map(|u| work(u, &mut unit_rng(seed, u)))
+                .collect::<crate::Result<Vec<T>>>()?;
+            batch.into_iter().for_each(&mut merge);
+            first = last;
+        }
+        Ok(())
+    })
+}
+
+/// Most worker threads per core a run accepts.
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
+/// Fewest worker threads the cap allows, however few the cores (so that
+/// the same command runs on a small machine).
+pub const MAX_THREADS_FLOOR: usize = 16;
+
+/// The most worker threads a run accepts here: [`MAX_THREADS_PER_CORE`] ×
+/// the cores, at least [`MAX_THREADS_FLOOR`]. More only add overhead (the
+/// answer never depends on the thread count), and an unbounded request
+/// would spawn until the system refuses.
+pub fn max_threads() -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR)
+}
+
+/// Checks a thread count: 0 (all cores) to [`max_threads`].
+pub fn check_threads(threads: usize) -> crate::Result<usize> {
+    let max = max_threads();
+    if threads > max {
+        return Err(crate::Error::OutOfRange {
+            param: "threads",
+            value: threads as f64,
+            accepted: format!("0 (all cores) to {max} ({MAX_THREADS_PER_CORE} per core, at least {MAX_THREADS_FLOOR})"),
+        });
+    }
+    Ok(threads)
+}
+
+/// Runs `job` on a pool of `threads` threads; 0: the pool the caller runs
+/// in (the CLI's, of [`pool::default_threads`]), or a new one of
+/// [`pool::default_threads`] outside any pool. A system that refuses
+/// threads gives fewer ([`pool::build_pool`]).
+pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
+    if threads == 0 && rayon::current_thread_index().is_some() {
+        return job();
+    }
+    // The pool's threads work for the caller's computation: they hold its
+    // cancellation token (crate::cancel), if any.
+    let token = crate::cancel::current();
+    let start: pool::StartHandler =
+        std::sync::Arc::new(move |_| crate::cancel::hold(token.clone()));
+    pool::install(threads, Some(start), job)
+}
+
+/// The seed of one independent computation of a run: a SplitMix64 hash of
+/// the run's seed, a `label` naming what is computed (for example
+/// `"fig4"`) and the parameters that identify it (`key`, for example the
+/// diameter, fringe frequency and spatial frequency of a point, by their
+/// bits).
+///
+/// This is the crate's one seed-derivation rule. Keying by what is computed,
+/// never by a position in a list, makes a point's result independent of the
+/// other points asked for in the same run; the hash makes seeds of
+/// neighbouring keys unrelated.
+///
+/// ```
+/// use v2ref_core::montecarlo::derive_seed;
+/// let a = derive_seed(7, "fig5", &[300.0]);
+/// assert_eq!(a, derive_seed(7, "fig5", &[300.0]));
+/// assert_ne!(a, derive_seed(7, "fig5", &[1000.0]));
+/// assert_ne!(a, derive_seed(7, "fig4", &[300.0]));
+/// ```
+pub fn derive_seed(seed: u64, label: &str, key: &[f64]) -> u64 {
+    let words = label
+        .bytes()
+        .map(u64::from)
+        .chain(key.iter().map(|x| x.to_bits()));
+    words.fold(splitmix64(seed), |h, w| splitmix64(h ^ w))
+}

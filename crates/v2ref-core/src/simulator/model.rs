@@ -1,0 +1,137 @@
+//! The noise-free, piston-free model of a configuration: the source's and
+//! the calibrator's interferograms, from which the rows are drawn and the
+//! estimators normalized.
+
+use crate::error::Result;
+use crate::formalism::estimator::BinWindow;
+use crate::formalism::interferogram::{Interferogram, Sampling};
+use crate::formalism::observation::Observation;
+use crate::noise::calibrated::CalibratedSetup;
+use crate::noise::{scaled_interferogram, NoiseModel};
+use crate::piston::turbulence::PistonSpectrum;
+use crate::simulator::inputs::Inputs;
+
+/// A configuration built from its [`Inputs`].
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// The inputs it was built from.
+    pub inputs: Inputs,
+    /// The observation.
+    pub observation: Observation,
+    /// The sampling.
+    pub sampling: Sampling,
+    /// The noise.
+    pub noise: NoiseModel,
+    /// The source: c_i and the modulated m_i scaled by the visibility,
+    /// photons, without piston.
+    pub signal: Interferogram,
+    /// The calibrator: an unresolved, phase-free source with the same
+    /// photons (V = 1).
+    pub calibrator: Interferogram,
+    /// The differential-piston spectrum on the baseline, with piston.
+    pub piston_spectrum: Option<PistonSpectrum>,
+}
+
+impl Model {
+    /// Checks `inputs` and builds the model.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use v2ref_core::simulator::{Inputs, Model};
+    /// let model = Model::new(&Inputs::default())?;
+    /// // The calibrator's fringe peaks at zero OPD with m_0 = c.
+    /// assert!((model.calibrator.modulated[0] - 10.0).abs() < 1e-9);
+    /// # Ok::<(), v2ref_core::Error>(())
+    /// ```
+    pub fn new(inputs: &Inputs) -> Result<Model> {
+        Self::build(inputs, None)
+    }
+
+    /// [`Model::new`] with the differential-piston spectrum given (it is
+    /// the costly part of a model with piston, and depends only on the
+    /// atmosphere, the apertures and the baseline: a caller that builds
+    /// many models under one sky builds it once). It must be the spectrum of
+    /// `inputs.piston` on `inputs.baseline_m`.
+    pub fn with_piston_spectrum(inputs: &Inputs, spectrum: PistonSpectrum) -> Result<Model> {
+        Self::build(inputs, Some(spectrum))
+    }
+
+    fn build(inputs: &Inputs, given: Option<PistonSpectrum>) -> Result<Model> {
+        inputs.validate()?;
+        let observation = inputs.observation()?;
+        let sampling = inputs.sampling()?;
+        let signal =
+            scaled_interferogram(&observation, &sampling, inputs.photons, inputs.visibility)?;
+        let calibrator =
+            scaled_interferogram(&observation.calibrator(), &sampling, inputs.photons, 1.0)?;
+        let piston_spectrum = match (&inputs.piston, given) {
+            (Some(_), Some(s)) => Some(s),
+            (Some(p), None) => Some(p.spectrum(observation.baseline_m)?),
+            (None, _) => None,
+        };
+        Ok(Model {
+            piston_spectrum,
+            inputs: inputs.clone(),
+            noise: inputs.noise()?,
+            observation,
+            sampling,
+            signal,
+            calibrator,
+        })
+    }
+
+    /// N.
+    pub fn samples(&self) -> usize {
+        self.sampling.samples()
+    }
+
+    /// The bins of `window`.
+    pub fn bins(&self, window: BinWindow) -> Vec<usize> {
+        window.bins(
+            self.sampling.samples(),
+            self.sampling.dx_um(),
+            &self.observation.spectrum,
+        )
+    }
+
+    /// The source, its calibrator and the bins of `window`, for the closed
+    /// forms of [`crate::noise::calibrated`].
+    pub fn calibrated_setup(&self, window: BinWindow) -> CalibratedSetup {
+        CalibratedSetup {
+            signal: self.signal.clone(),
+            calibrator: self.calibrator.clone(),
+            bins: self.bins(window),
+        }
+    }
+
+    /// The model of the calibrator as a source of its own (for a
+    /// calibrator's interferograms): same instrument, point source, V = 1.
+    pub fn calibrator_model(&self) -> Result<Model> {
+        let inputs = Inputs {
+            source: crate::simulator::inputs::SourceInput::Point,
+            dispersion_pp_rad: 0.0,
+            visibility: 1.0,
+            ..self.inputs.clone()
+        };
+        Model::new(&inputs)
+    }
+
+    /// x_i of each column at zero piston, µm.
+    pub fn sample_opd_um(&self) -> Vec<f64> {
+        (0..self.samples())
+            .map(|i| self.sampling.opd_um(i))
+            .collect()
+    }
+
+    /// The noise variance of each sample of the source without piston:
+    /// `σ_det² + n_i` with photon noise, `σ_det²` without.
+    pub fn sample_variance(&self) -> Vec<f64> {
+        let read = self.noise.read_noise * self.noise.read_noise;
+        self.signal
+            .mean_counts()
+            .iter()
+            .map(|&n| read + if self.noise.photon { n } else { 0.0 })
+            .collect()
+    }
+}
