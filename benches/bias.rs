@@ -51,7 +51,8 @@ fn benches(c: &mut Criterion) {
     let samples: Vec<usize> = (2..=930).collect();
     c.bench_function("Fig. 0 curve, 929 strokes", |b| {
         b.iter(|| {
-            v2ref_core::bias::normalization::deviation_curve(black_box(&flat), DX_UM, &samples).unwrap()
+            v2ref_core::bias::normalization::deviation_curve(black_box(&flat), DX_UM, &samples)
+                .unwrap()
         })
     });
     c.bench_function("Fresnel C, S at x = 0.9 and 3.7", |b| {

@@ -11,7 +11,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use std::hint::black_box;
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::formalism::spectrum::{Band, Spectrum};
-use v2ref_core::noise::simulation::{draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators};
+use v2ref_core::noise::simulation::{
+    draw_noise_only, simulate_noisy, NoisySpec, WindowedEstimators,
+};
 use v2ref_core::noise::{example_interferogram, NoiseModel};
 use v2ref_reproduction::cases::appendix_setup;
 

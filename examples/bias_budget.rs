@@ -9,7 +9,7 @@
 //! dispersion, 40 µm scans sampled every 0.35 µm. Change the constants to
 //! yours.
 
-use v2ref_core::prelude::*;
+use v2ref::prelude::*;
 
 pub const WAVELENGTH_UM: f64 = 1.65;
 pub const BANDWIDTH_UM: f64 = 0.30;
@@ -37,7 +37,7 @@ pub struct Row {
 }
 
 /// The budget at baselines 20, 50, …, 320 m.
-pub fn budget() -> v2ref_core::Result<Vec<Row>> {
+pub fn budget() -> v2ref::Result<Vec<Row>> {
     let spectrum = Spectrum::flat(Band::new(WAVELENGTH_UM, BANDWIDTH_UM)?);
     let source = Source::uniform_disk(DIAMETER_MAS)?;
     let dispersion = SpectralPhase::dispersion_peak_to_peak(&spectrum, DISPERSION_PP_RAD)?;
@@ -68,7 +68,7 @@ pub fn budget() -> v2ref_core::Result<Vec<Row>> {
         .collect()
 }
 
-pub fn main() -> v2ref_core::Result<()> {
+pub fn main() -> v2ref::Result<()> {
     println!(
         "{:>8} {:>10} {:>9} | {:>10} {:>10} | {:>10} | {:>10} {:>10}",
         "B [m]", "S [c/as]", "V mono", "dV1 band", "dV2 band", "dV2 +disp", "dV1 scan", "dV2 scan"

@@ -99,7 +99,7 @@ for area in "${areas[@]}"; do
     # "--" to the test run only, and would also build the library's unit
     # tests and the examples. The suite needs the binary (the default
     # features) as some of its files run it. The mutated files are the
-    # library's (package v2ref, lib/Cargo.toml), the suite the root
+    # numerics' (package v2ref-core), the suite the root
     # package's (v2ref-cli): mutate the workspace, test the workspace.
     tests=(--workspace --test-workspace=true --cargo-arg=--test=suite)
     for t in ${spec##*|}; do filters+=("$t::"); done

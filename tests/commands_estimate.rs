@@ -5,14 +5,14 @@
 //! refusal (other rows than a set's must have the set's N).
 
 use std::path::Path;
-use v2ref_core::conformance::estimate::{estimate_row_oracle, BiasConvention};
-use v2ref_core::formalism::estimator::{BinWindow, Pair};
-use v2ref_core::simulator::Model;
-use v2ref_core::Error;
 use v2ref_commands::commands::estimate::{
     check_rows, estimate_rows, estimator, CalibratorRows, Configuration, RowsName,
 };
 use v2ref_commands::parameters::Physical;
+use v2ref_core::conformance::estimate::{estimate_row_oracle, BiasConvention};
+use v2ref_core::formalism::estimator::{BinWindow, Pair};
+use v2ref_core::simulator::Model;
+use v2ref_core::Error;
 
 const ARRAY: RowsName<'static> = RowsName {
     param: "interferograms",

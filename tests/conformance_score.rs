@@ -112,8 +112,16 @@ fn variance_stderr_falls_back_to_the_sample() {
     let s = score(&[1.0, 2.0, 3.0, 4.0], &t, 4, 1e-3).unwrap();
     assert_eq!(s.stderr_var_source, VarStderrSource::Sample);
     let se = (707.0f64 / 1728.0).sqrt();
-    assert_rel_eq!(s.stderr_var_combined, se, v2ref_core::tolerance::ROUNDING_REL);
-    assert_rel_eq!(s.z_var, (2.0 / 3.0) / se, v2ref_core::tolerance::ROUNDING_REL);
+    assert_rel_eq!(
+        s.stderr_var_combined,
+        se,
+        v2ref_core::tolerance::ROUNDING_REL
+    );
+    assert_rel_eq!(
+        s.z_var,
+        (2.0 / 3.0) / se,
+        v2ref_core::tolerance::ROUNDING_REL
+    );
     assert_eq!(s.z_mean, 0.0);
 }
 

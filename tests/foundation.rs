@@ -981,6 +981,7 @@ fn mean_counts_are_continuum_plus_modulation() {
 
 /// The words of each choice of the library (`crates/v2ref-core/src/words.rs`).
 mod words {
+    use v2ref_commands::parameters::SourceKind;
     use v2ref_core::conformance::estimate::BiasConvention;
     use v2ref_core::formalism::estimator::BinWindow;
     use v2ref_core::noise::Formula;
@@ -988,7 +989,6 @@ mod words {
     use v2ref_core::piston::PistonReference;
     use v2ref_core::simulator::RowLayout;
     use v2ref_core::words::Words;
-    use v2ref_commands::parameters::SourceKind;
 
     /// Each word is its value's serde name (what JSON writes), once, and
     /// names that value back; a word not listed is refused naming the

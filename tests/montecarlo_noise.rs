@@ -272,7 +272,9 @@ fn units_run_in_unit_order_with_their_own_generators() {
 
 #[test]
 fn thread_counts_are_checked_against_four_per_core_at_least_sixteen() {
-    use v2ref_core::montecarlo::{check_threads, max_threads, MAX_THREADS_FLOOR, MAX_THREADS_PER_CORE};
+    use v2ref_core::montecarlo::{
+        check_threads, max_threads, MAX_THREADS_FLOOR, MAX_THREADS_PER_CORE,
+    };
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let max = max_threads();
     assert_eq!(max, (MAX_THREADS_PER_CORE * cores).max(MAX_THREADS_FLOOR));

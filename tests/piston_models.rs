@@ -6,10 +6,10 @@
 //! states in a note.
 
 use std::process::Command;
+use v2ref_commands::report::model_comparison::{structure_over_lag_um2, PsdComparison};
 use v2ref_core::piston::spectrum::{PistonPsdModel, PistonSpectrum};
 use v2ref_core::piston::turbulence::Turbulence;
 use v2ref_core::tolerance::{TURBULENCE_CHECK_REL, TURBULENCE_SPECTRAL_REL};
-use v2ref_commands::report::model_comparison::{structure_over_lag_um2, PsdComparison};
 
 /// A site of the reference file and its variance, µm².
 struct Site {

@@ -3,13 +3,13 @@
 //! 10 % and the predicted piston bias within its standard error; the
 //! paper's conclusions come out as cases.
 
+use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::Formula;
 use v2ref_core::simulator::{simulate, Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref_core::tolerance::MC_SIGMAS;
-use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 
 fn h_band(source: SourceInput, baseline_m: f64, read_noise: f64, photon_noise: bool) -> Inputs {
     Inputs {
@@ -250,8 +250,8 @@ fn cli_plan_writes_json_and_svg() {
 
 // --- The magnitude helper (`v2ref_commands::plan::photometry`) --------------------
 
-use v2ref_core::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
+use v2ref_core::tolerance::{HAND_10_DIGITS_REL, ROUNDING_REL};
 
 fn ks_zero(aperture_m: f64, throughput: f64) -> Magnitude {
     Magnitude {

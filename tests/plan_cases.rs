@@ -13,11 +13,11 @@
 //!   2J1(x)/x from Bessel's integral (no code of the crate), over the band
 //!   flat per unit wavenumber.
 
+use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
+use v2ref_commands::plan::{default_grid, plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref_core::piston::PistonReference;
 use v2ref_core::piston::DEFAULT_SUB_SAMPLES;
 use v2ref_core::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
-use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
-use v2ref_commands::plan::{default_grid, plan, Estimator, PlanInputs, PlanPoint, Target};
 
 /// One case: its inputs on the default grid.
 struct Case {

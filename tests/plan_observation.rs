@@ -26,6 +26,8 @@
 //!   standard errors, and more than 5 from zero: 37 measured), each
 //!   convention's mean against its own prediction.
 
+use v2ref_commands::plan::verify::{verification_size, verify, Verification};
+use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref_core::assert_within_sigmas;
 use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
 use v2ref_core::formalism::estimator::BinWindow;
@@ -34,8 +36,6 @@ use v2ref_core::piston::PistonReference;
 use v2ref_core::piston::DEFAULT_SUB_SAMPLES;
 use v2ref_core::simulator::{Inputs, Model, PistonInputs, SourceInput, SpectrumInput};
 use v2ref_core::tolerance::{check_sigmas, MC_SIGMAS, PLAN_MEAN_SIGMAS};
-use v2ref_commands::plan::verify::{verification_size, verify, Verification};
-use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 
 /// A plan's inputs on a one-point grid.
 struct Site {

@@ -3,11 +3,11 @@
 //! flag given overrides the preset's value while a flag left out keeps it.
 
 use crate::run::v2ref;
-use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_commands::commands::plan::{prepare, PlanRequest};
 use v2ref_commands::parameters::Physical;
 use v2ref_commands::plan::instrument::{instrument, Instrument, INSTRUMENTS, PRESET_KEYS};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
+use v2ref_core::conformance::estimate::BiasConvention;
 
 /// A plan request as the CLI's defaults make it, with a magnitude (whose
 /// throughput the preset sets) in `band`.

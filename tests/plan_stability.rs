@@ -13,9 +13,9 @@
 //!   library grid faster than the detector is refused naming `fringe_hz`.
 
 use crate::run::v2ref;
+use v2ref_commands::plan::{plan, PlanInputs, Target};
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
-use v2ref_commands::plan::{plan, PlanInputs, Target};
 
 /// An H-band 2 mas disk on 100 m at 1e6 photons/s through 1 m apertures
 /// with a 25 m outer scale: noise and piston both matter.

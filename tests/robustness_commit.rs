@@ -238,8 +238,9 @@ fn a_folder_is_replaced_in_one_step() {
     use v2ref_reproduction::golden::replace_dir_atomically;
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
-    let fill =
-        |d: &Path| std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref_core::Error::file(None, d, e));
+    let fill = |d: &Path| {
+        std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref_core::Error::file(None, d, e))
+    };
     replace_dir_atomically(&dir, fill).unwrap();
     let (done, looks, misses) = (
         AtomicBool::new(false),

@@ -529,8 +529,9 @@ fn a_file_at_a_folder_target_is_never_swapped_out() {
     std::fs::write(&target, "a user's file\n").unwrap();
     let link = tmp.path().join("link");
     std::os::unix::fs::symlink(&target, &link).unwrap();
-    let fill =
-        |d: &Path| std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref_core::Error::file(None, d, e));
+    let fill = |d: &Path| {
+        std::fs::write(d.join("a.txt"), "x").map_err(|e| v2ref_core::Error::file(None, d, e))
+    };
     for t in [&target, &link] {
         assert!(replace_dir_atomically(t, fill).is_err(), "{}", t.display());
     }

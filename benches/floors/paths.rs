@@ -70,8 +70,8 @@ fn estimate(rows: u64, n: usize) -> Case {
     };
     let inputs = model.inputs.clone();
     let v2ref = move |threads: usize| {
-        use v2ref_core::conformance::estimate::BiasConvention;
         use v2ref_commands::commands::estimate::{estimate_rows, estimator, RowsName};
+        use v2ref_core::conformance::estimate::BiasConvention;
         let name = RowsName {
             param: "interferograms",
             path: None,

@@ -3,8 +3,8 @@
 use super::common::ObservedArgs;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref_core::Result;
 use v2ref_commands::commands::cost::duration_words;
+use v2ref_core::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
 /// on a terminal: its cost grows as N² (synthesis of N samples, each a sum

@@ -3,9 +3,9 @@
 //! and the Monte Carlo runs (`--seed`, `--threads`).
 
 use super::flags::physical_flags;
+use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::words::Words;
-use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The `--help` of the flag of the physical input `p`, from its one
 /// declaration ([`Parameter::describe`]; other inputs named by their

@@ -6,12 +6,12 @@ use super::inputs::InputsArgs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref_core::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
-use v2ref_core::formalism::estimator::BinWindow;
-use v2ref_core::{Error, Result};
 use v2ref_commands::commands::estimate::{
     estimate_rows, CalibratorRows, Configuration, RowsName, STREAM_ROWS,
 };
+use v2ref_core::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator};
+use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::{Error, Result};
 use v2ref_files::atomic::set::OutputSet;
 use v2ref_files::formats::{read_matrix, CsvRowWriter, NpyRowWriter, RowStream};
 

@@ -5,9 +5,9 @@ use super::common::{
     warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
 };
 use super::flags::{augment, Given, Hyphen};
+use v2ref_commands::parameters::{Parameter, Physical};
 use v2ref_core::simulator::{Inputs, Model};
 use v2ref_core::Result;
-use v2ref_commands::parameters::{Parameter, Physical};
 
 /// The differential piston: on when `--fringe-hz` is given.
 #[derive(Debug, Clone)]

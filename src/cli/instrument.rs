@@ -3,10 +3,10 @@
 //! overriding its value; `--instrument list` prints the presets.
 
 use std::collections::BTreeSet;
-use v2ref_core::{Error, Result};
 use v2ref_commands::commands::plan::PlanRequest;
 use v2ref_commands::parameters::Physical;
 use v2ref_commands::plan::instrument::{instrument, Instrument, INSTRUMENTS};
+use v2ref_core::{Error, Result};
 
 /// The flag, and which flags the command line gave (they override the
 /// preset; a default does not).

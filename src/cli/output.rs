@@ -14,8 +14,8 @@
 use std::io::{self, Write};
 use std::path::Path;
 use std::sync::atomic::Ordering;
-use v2ref_core::{Error, Result};
 use v2ref_commands::commands::cost::{duration_words, Cost, NOTICE_S};
+use v2ref_core::{Error, Result};
 
 /// Exit status when the output cannot be written (sysexits' `EX_IOERR`).
 pub const EXIT_WRITE_FAILED: u8 = 74;

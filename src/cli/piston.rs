@@ -7,10 +7,10 @@ use super::common::{
 use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
-use v2ref_core::piston::spectrum::PistonPsdModel;
-use v2ref_core::Result;
 use v2ref_commands::commands::piston::{self, PistonRequest};
 use v2ref_commands::report::piston::PistonReport;
+use v2ref_core::piston::spectrum::PistonPsdModel;
+use v2ref_core::Result;
 
 /// Flags of `piston`.
 #[derive(Debug, clap::Args)]

@@ -6,13 +6,13 @@ use super::common::{warn_if_outer_scale_infinite, ObservationArgs, TurbulenceArg
 use super::flags::physical_flags;
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
-use v2ref_core::conformance::estimate::BiasConvention;
-use v2ref_core::piston::spectrum::PistonSpectrum;
-use v2ref_core::{Error, Result};
 use v2ref_commands::commands::plan::{self, PlanRequest};
 use v2ref_commands::parameters::Physical;
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref_commands::plan::{human_duration, Estimator, Plan, PlanInputs, PlanPoint, Target};
+use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::piston::spectrum::PistonSpectrum;
+use v2ref_core::{Error, Result};
 
 /// Flags of `plan`.
 #[derive(Debug, clap::Args)]

@@ -7,9 +7,9 @@
 
 use plotters::prelude::*;
 use std::path::Path;
-use v2ref_core::{Error, Result};
 use v2ref_commands::plan::figure::{figure_time_s, sigma_curve, Drawn};
 use v2ref_commands::plan::{Estimator, Plan, PlanInputs};
+use v2ref_core::{Error, Result};
 
 fn fail(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output {

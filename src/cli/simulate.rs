@@ -9,13 +9,13 @@ use super::common::{OutputArgs, RunArgs};
 use super::inputs::InputsArgs;
 use super::{print_json, print_rows, progress_bar};
 use std::process::ExitCode;
+use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::Formula;
 use v2ref_core::simulator::{simulate, Model};
 use v2ref_core::Result;
-use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 
 /// Flags of `simulate`.
 #[derive(Debug, clap::Args)]

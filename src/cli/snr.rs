@@ -6,10 +6,10 @@
 use super::common::{LightArgs, ObservedArgs};
 use super::{print_json, print_rows};
 use std::process::ExitCode;
+use v2ref_commands::report::noise::SnrReport;
 use v2ref_core::noise::snr_value::snr_text;
 use v2ref_core::noise::Formula;
 use v2ref_core::Result;
-use v2ref_commands::report::noise::SnrReport;
 
 /// Signal and noise flags shared by `snr` and `simulate`.
 #[derive(Debug, Clone, clap::Args)]

@@ -8,12 +8,12 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use v2ref_commands::commands::cost::SetOutput;
 use v2ref_core::conformance::sidecar::Sidecar;
 use v2ref_core::conformance::synth::{synthesize, SetSize};
 use v2ref_core::conformance::truth::{default_reference_blocks, reference_rows_per_block};
 use v2ref_core::simulator::{Model, RowLayout, RowTiming};
 use v2ref_core::{Error, Result};
-use v2ref_commands::commands::cost::SetOutput;
 use v2ref_files::atomic::{set::OutputSet, write_text_atomic};
 use v2ref_files::formats::{CsvRowWriter, NpyRowWriter};
 

@@ -24,11 +24,11 @@
 // The modules of the crates below under their own names, so that a path
 // reads the same in every crate of the workspace (`crate::formats::…`).
 #[allow(unused_imports)]
+pub(crate) use v2ref_commands::{parameters, plan};
+#[allow(unused_imports)]
 pub(crate) use v2ref_core::{
     bounds, conformance, error, formalism, manifest, noise, simulator, Error, Result,
 };
-#[allow(unused_imports)]
-pub(crate) use v2ref_commands::{parameters, plan};
 #[allow(unused_imports)]
 pub(crate) use v2ref_files::{atomic, formats};
 

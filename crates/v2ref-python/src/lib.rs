@@ -13,12 +13,12 @@
 // The modules of the crates below under their own names, so that a path
 // reads the same in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
+use v2ref_commands::{commands, parameters, plan, record, report};
+#[allow(unused_imports)]
 use v2ref_core::{
     bias, bounds, cancel, conformance, error, formalism, montecarlo, noise, piston, simulator,
     words, Error, Result,
 };
-#[allow(unused_imports)]
-use v2ref_commands::{commands, parameters, plan, record, report};
 #[allow(unused_imports)]
 use v2ref_files::{atomic, formats};
 use v2ref_reproduction as reproduction;
