@@ -1,12 +1,11 @@
 //! OIFITS: `estimate --out FILE.fits` holds the same numbers as the CSV
 //! and gets the same verdict from `score`; files written independently of
-//! v2ref's writer (OIFITS v1 and v2, with `fitsio` here) are read, their
+//! v2ref's writer (OIFITS v1 and v2, with the tests' own plain writer, `tests/fits_plain.rs`) are read, their
 //! FLAGged rows left out and counted; mismatched files are refused with
 //! the flag named; `synth --oifits` and `plan --oifits` write files the
 //! reader takes back.
 
-use fitsio::tables::{ColumnDataType, ColumnDescription};
-use fitsio::FitsFile;
+use crate::fits_plain::{self, Card, Column};
 use std::path::Path;
 use v2ref_oifits::read_vis2_tables;
 
@@ -128,51 +127,26 @@ fn csv_and_oifits_hold_the_same_estimates_and_get_the_same_verdict() {
 /// writer): `revn` 1 or 2, one OI_WAVELENGTH per INSNAME, one OI_VIS2
 /// table per entry of `tables` (INSNAME, values, flags), no v2ref keyword.
 fn external(path: &Path, revn: i64, eff_wave_m: f32, tables: &[(&str, &[f64], &[bool])]) {
-    let mut f = FitsFile::create(path).open().unwrap();
-    let col = |n: &str, t: ColumnDataType, r: usize| {
-        ColumnDescription::new(n)
-            .with_type(t)
-            .that_repeats(r)
-            .create()
-            .unwrap()
-    };
+    let mut hdus = Vec::new();
     for (ins, vals, flags) in tables {
-        let w = f
-            .create_table(
-                "OI_WAVELENGTH",
-                &[col("EFF_WAVE", ColumnDataType::Float, 1)],
-            )
-            .unwrap();
-        w.write_key(&mut f, "OI_REVN", revn).unwrap();
-        w.write_key(&mut f, "INSNAME", *ins).unwrap();
-        w.write_col(&mut f, "EFF_WAVE", &[eff_wave_m]).unwrap();
-        let cols = [
-            col("TARGET_ID", ColumnDataType::Short, 1),
-            col("VIS2DATA", ColumnDataType::Double, 1),
-            col("VIS2ERR", ColumnDataType::Double, 1),
-            col("FLAG", ColumnDataType::Logical, 1),
-        ];
-        let v = f.create_table("OI_VIS2", &cols).unwrap();
-        v.write_key(&mut f, "OI_REVN", revn).unwrap();
-        v.write_key(&mut f, "INSNAME", *ins).unwrap();
-        v.write_col(&mut f, "VIS2DATA", vals).unwrap();
-        v.write_col(&mut f, "VIS2ERR", &vec![0.1; vals.len()])
-            .unwrap();
-        let mut fl: Vec<i8> = flags.iter().map(|&b| b as i8).collect();
-        let mut status = 0;
-        unsafe {
-            fitsio::sys::ffpcll(
-                f.as_raw(),
-                4,
-                1,
-                1,
-                fl.len() as i64,
-                fl.as_mut_ptr() as *mut _,
-                &mut status,
-            );
-        }
-        assert_eq!(status, 0);
+        let keys = || vec![("OI_REVN", Card::Int(revn)), ("INSNAME", Card::Str(ins))];
+        hdus.push((
+            "OI_WAVELENGTH",
+            keys(),
+            vec![Column::F32("EFF_WAVE", vec![eff_wave_m])],
+        ));
+        hdus.push((
+            "OI_VIS2",
+            keys(),
+            vec![
+                Column::I16("TARGET_ID", vec![1; vals.len()]),
+                Column::F64("VIS2DATA", vals.to_vec()),
+                Column::F64("VIS2ERR", vec![0.1; vals.len()]),
+                Column::Logical("FLAG", flags.to_vec()),
+            ],
+        ));
     }
+    fits_plain::write(path, &hdus);
 }
 
 #[test]

@@ -4,8 +4,7 @@
 //! refused; FLAG leaving fewer than half the set's rows gives the verdict
 //! "too few rows", not PASS; NaN is flagged on write.
 
-use fitsio::tables::{ColumnDataType, ColumnDescription};
-use fitsio::FitsFile;
+use crate::fits_plain::{self, Card, Column};
 use std::path::Path;
 use std::process::Command;
 
@@ -68,72 +67,35 @@ struct Row {
 /// A pipeline's OIFITS v2 file (not v2ref's writer): OI_TARGET with
 /// `targets`, one OI_WAVELENGTH at 2.2 µm, one OI_VIS2 of `rows`.
 fn pipeline_file(path: &Path, targets: &[&str], rows: &[Row]) {
-    let _ = std::fs::remove_file(path);
-    let mut f = FitsFile::create(path).open().unwrap();
-    let col = |n: &str, t: ColumnDataType, r: usize| {
-        ColumnDescription::new(n)
-            .with_type(t)
-            .that_repeats(r)
-            .create()
-            .unwrap()
-    };
-    let t = f
-        .create_table(
-            "OI_TARGET",
-            &[
-                col("TARGET_ID", ColumnDataType::Short, 1),
-                col("TARGET", ColumnDataType::String, 16),
-            ],
-        )
-        .unwrap();
-    t.write_key(&mut f, "OI_REVN", 2).unwrap();
-    let ids: Vec<i16> = (1..=targets.len() as i16).collect();
-    t.write_col(&mut f, "TARGET_ID", &ids).unwrap();
-    let names: Vec<String> = targets.iter().map(|s| s.to_string()).collect();
-    t.write_col(&mut f, "TARGET", &names).unwrap();
-    let w = f
-        .create_table(
-            "OI_WAVELENGTH",
-            &[col("EFF_WAVE", ColumnDataType::Float, 1)],
-        )
-        .unwrap();
-    w.write_key(&mut f, "OI_REVN", 2).unwrap();
-    w.write_key(&mut f, "INSNAME", "PIPE").unwrap();
-    w.write_col(&mut f, "EFF_WAVE", &[2.2e-6f32]).unwrap();
-    let cols = [
-        col("TARGET_ID", ColumnDataType::Short, 1),
-        col("MJD", ColumnDataType::Double, 1),
-        col("VIS2DATA", ColumnDataType::Double, 1),
-        col("VIS2ERR", ColumnDataType::Double, 1),
-        col("FLAG", ColumnDataType::Logical, 1),
+    let revn = || vec![("OI_REVN", Card::Int(2))];
+    let pipe = || vec![("OI_REVN", Card::Int(2)), ("INSNAME", Card::Str("PIPE"))];
+    let target = vec![
+        Column::I16("TARGET_ID", (1..=targets.len() as i16).collect()),
+        Column::Text(
+            "TARGET",
+            16,
+            targets.iter().map(|s| s.to_string()).collect(),
+        ),
     ];
-    let v = f.create_table("OI_VIS2", &cols).unwrap();
-    v.write_key(&mut f, "OI_REVN", 2).unwrap();
-    v.write_key(&mut f, "INSNAME", "PIPE").unwrap();
-    let id: Vec<i16> = rows.iter().map(|r| r.target_id).collect();
-    let mjd: Vec<f64> = rows.iter().map(|r| r.mjd).collect();
-    let v2: Vec<f64> = rows.iter().map(|r| r.v2).collect();
-    v.write_col(&mut f, "TARGET_ID", &id).unwrap();
-    v.write_col(&mut f, "MJD", &mjd).unwrap();
-    v.write_col(&mut f, "VIS2DATA", &v2).unwrap();
-    v.write_col(&mut f, "VIS2ERR", &vec![0.1; rows.len()])
-        .unwrap();
-    let mut fl: Vec<i8> = rows.iter().map(|r| r.flag as i8).collect();
-    let mut status = 0;
-    // SAFETY: the file is open at the OI_VIS2 table just written, whose
-    // column 5 is FLAG; `fl` holds the `rows.len()` values written.
-    unsafe {
-        fitsio::sys::ffpcll(
-            f.as_raw(),
-            5,
-            1,
-            1,
-            fl.len() as i64,
-            fl.as_mut_ptr() as *mut _,
-            &mut status,
-        );
-    }
-    assert_eq!(status, 0);
+    let vis2 = vec![
+        Column::I16("TARGET_ID", rows.iter().map(|r| r.target_id).collect()),
+        Column::F64("MJD", rows.iter().map(|r| r.mjd).collect()),
+        Column::F64("VIS2DATA", rows.iter().map(|r| r.v2).collect()),
+        Column::F64("VIS2ERR", vec![0.1; rows.len()]),
+        Column::Logical("FLAG", rows.iter().map(|r| r.flag).collect()),
+    ];
+    fits_plain::write(
+        path,
+        &[
+            ("OI_TARGET", revn(), target),
+            (
+                "OI_WAVELENGTH",
+                pipe(),
+                vec![Column::F32("EFF_WAVE", vec![2.2e-6])],
+            ),
+            ("OI_VIS2", pipe(), vis2),
+        ],
+    );
 }
 
 /// `score --json --estimator v2_sq` of `file`: (status, stdout, stderr).

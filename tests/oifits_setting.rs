@@ -2,11 +2,11 @@
 //! target's name and J2000 position, the date, the array's site, set by
 //! `--target-name`, `--ra-deg`, `--dec-deg`, `--date`, `--site` (a known
 //! array, or `--site-lon-deg`/`--site-lat-deg`/`--site-height-m`) on every
-//! command that writes a file, read back with cfitsio (not v2ref's own
+//! command that writes a file, read back with the tests' plain reader (`tests/fits_plain.rs`, not v2ref's own
 //! reader); the defaults unchanged; bad values refused with status 2
 //! naming the flag and the range, nothing written.
 
-use fitsio::FitsFile;
+use crate::fits_plain;
 use std::path::Path;
 use std::process::Command;
 
@@ -16,7 +16,7 @@ fn v2ref(args: &[&str]) -> (i32, String) {
     (code, err)
 }
 
-/// What a file says of the observation, read with cfitsio.
+/// What a file says of the observation, read with the tests' plain reader.
 #[derive(Debug)]
 struct Said {
     object: String,
@@ -31,33 +31,27 @@ struct Said {
 }
 
 fn said(path: &Path) -> Said {
-    let mut f = FitsFile::open(path).unwrap();
-    let p = f.primary_hdu().unwrap();
-    let object: String = p.read_key(&mut f, "OBJECT").unwrap();
-    let date_obs: String = p.read_key(&mut f, "DATE-OBS").unwrap();
-    let t = f.hdu("OI_TARGET").unwrap();
-    let target: Vec<String> = t.read_col(&mut f, "TARGET").unwrap();
-    let ra: Vec<f64> = t.read_col(&mut f, "RAEP0").unwrap();
-    let dec: Vec<f64> = t.read_col(&mut f, "DECEP0").unwrap();
-    let a = f.hdu("OI_ARRAY").unwrap();
-    let arrname: String = a.read_key(&mut f, "ARRNAME").unwrap();
-    let xyz = ["ARRAYX", "ARRAYY", "ARRAYZ"].map(|k| a.read_key::<f64>(&mut f, k).unwrap());
-    let diameter: Vec<f32> = a.read_col(&mut f, "DIAMETER").unwrap();
-    let v = f.hdu("OI_VIS2").unwrap();
-    let vis2_date: String = v.read_key(&mut f, "DATE-OBS").unwrap();
-    assert_eq!(vis2_date, date_obs, "OI_VIS2's DATE-OBS is the primary's");
-    let mjd: Vec<f64> = v.read_col(&mut f, "MJD").unwrap();
-    let int_time: Vec<f64> = v.read_col(&mut f, "INT_TIME").unwrap();
-    Said {
-        object,
+    let hdus = fits_plain::read(path);
+    let p = &hdus[0];
+    let t = fits_plain::hdu(&hdus, "OI_TARGET");
+    let a = fits_plain::hdu(&hdus, "OI_ARRAY");
+    let v = fits_plain::hdu(&hdus, "OI_VIS2");
+    let date_obs = p.key("DATE-OBS").to_owned();
+    assert_eq!(
+        v.key("DATE-OBS"),
         date_obs,
-        target: target[0].clone(),
-        radec_deg: (ra[0], dec[0]),
-        arrname,
-        array_xyz_m: xyz,
-        diameter_m: diameter[0],
-        first_mjd: mjd[0],
-        int_time_s: int_time[0],
+        "OI_VIS2's DATE-OBS is the primary's"
+    );
+    Said {
+        object: p.key("OBJECT").to_owned(),
+        date_obs,
+        target: t.text_col("TARGET")[0].clone(),
+        radec_deg: (t.f64_col("RAEP0")[0], t.f64_col("DECEP0")[0]),
+        arrname: a.key("ARRNAME").to_owned(),
+        array_xyz_m: ["ARRAYX", "ARRAYY", "ARRAYZ"].map(|k| a.f64_key(k)),
+        diameter_m: a.f32_col("DIAMETER")[0],
+        first_mjd: v.f64_col("MJD")[0],
+        int_time_s: v.f64_col("INT_TIME")[0],
     }
 }
 

@@ -31,6 +31,7 @@ mod conformance_truth;
 mod examples;
 mod fft;
 mod figures_render;
+mod fits_plain;
 mod foundation;
 mod golden;
 mod montecarlo_noise;
