@@ -86,14 +86,16 @@ fn push_header(out: &mut Vec<u8>, cards: &[String]) {
 }
 
 fn pad(out: &mut Vec<u8>, with: u8) {
-    while out.len() % 2880 != 0 {
+    while !out.len().is_multiple_of(2880) {
         out.push(with);
     }
 }
 
-/// A FITS file: an empty primary HDU, then the binary tables given, each
-/// `(EXTNAME, keywords, columns)`.
-pub fn write(path: &Path, tables: &[(&str, Vec<(&str, Card)>, Vec<Column>)]) {
+/// One binary table to write: its EXTNAME, its keywords and its columns.
+pub type Table<'a> = (&'a str, Vec<(&'a str, Card<'a>)>, Vec<Column<'a>>);
+
+/// A FITS file: an empty primary HDU, then the binary tables given.
+pub fn write(path: &Path, tables: &[Table]) {
     let mut out = Vec::new();
     let primary = [
         card("SIMPLE", "T"),
