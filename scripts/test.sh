@@ -33,8 +33,10 @@ environment=$!
 # One build makes the library, the binary (target/release/v2ref, which the
 # Python suite also runs) and the one test binary (tests/suite.rs): a
 # separate `cargo build` would build it all again, as the tests'
-# dependencies change the features of shared crates.
-cargo test --release --no-run
+# dependencies change the features of shared crates. The doc examples
+# (each compiled as a program of its own: a minute of CPU) are the slow
+# tier's, which `.ci/run` runs with `cargo test --release --doc`.
+cargo test --release --lib --bins --tests --no-run
 echo "timing: release build of the binary and the tests $((SECONDS - t)) s"
 if ! wait "$environment"; then
     cat "$env_log" >&2
@@ -60,7 +62,7 @@ t=$SECONDS
 ) > "$py_log" 2>&1 &
 python_side=$!
 rust=0
-cargo test --release || rust=$?
+cargo test --release --lib --bins --tests || rust=$?
 echo "timing: Rust tests run $((SECONDS - t)) s"
 status=0
 wait "$python_side" || status=$?

@@ -60,6 +60,7 @@ fn extrema(t: &Table, skip: usize) -> Vec<Extremum> {
 /// one at the same abscissa to the golden tolerance, and the extrema and
 /// thresholds of the recomputed curves are snapshotted for review.
 #[test]
+#[ignore = "slow tier: every figure's extrema (8 s)"]
 fn figure_extrema() {
     let figures = v2ref_reproduction::figures::all(Effort::Quick).unwrap();
     let computed = |name: &str| -> Table {
@@ -144,6 +145,7 @@ struct Row {
 }
 
 #[test]
+#[ignore = "slow tier: every bias claim of the table recomputed (18 s)"]
 fn bias_claims_table() {
     let areas = [
         "bandwidth.",

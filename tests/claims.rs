@@ -118,6 +118,7 @@ fn verdict(spec: &ClaimSpec, f: Finding) -> Status {
 /// the printed one, a published formula made exact, a threshold interval
 /// moved, a predicate reversed. Run on the real computed records.
 #[test]
+#[ignore = "slow tier: every claim re-evaluated with its numbers perturbed (11 s)"]
 fn every_status_changes_when_its_numbers_are_perturbed() {
     for (spec, computed) in records() {
         let id = &spec.id;

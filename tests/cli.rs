@@ -265,6 +265,7 @@ fn the_duplicate_key_check_catches_a_repeated_key() {
 /// where a mismatch is (tests/golden.rs), `golden --update` here on the
 /// conformance vectors (the figures at full effort cost 22 s).
 #[test]
+#[ignore = "slow tier: every command's JSON answer parsed for duplicate keys (11 s)"]
 fn json_answers_have_no_duplicate_keys() {
     let dir = tempfile::tempdir().unwrap();
     let written = dir.path().join("golden");

@@ -220,6 +220,7 @@ fn estimate_without_a_sidecar_and_with_a_calibrator_file() {
 }
 
 #[test]
+#[ignore = "slow tier: the golden vectors regenerated through the CLI (8 s)"]
 fn vectors_regenerate_byte_for_byte() {
     let root = env!("CARGO_MANIFEST_DIR");
     let golden = format!("{root}/golden");

@@ -11,6 +11,7 @@ fn golden_dir() -> PathBuf {
 }
 
 #[test]
+#[ignore = "slow tier: every golden table regenerated and compared (16 s)"]
 fn golden_data_matches_the_code() {
     // What `v2ref golden --check` runs: every figure at full effort.
     let figures =
@@ -192,6 +193,7 @@ fn golden_needs_exactly_one_of_check_and_update() {
 /// The CLI's check names a mismatching file and exits 1 (the vectors: 3 s,
 /// where the figures take 22 s; the two share the report and its printing).
 #[test]
+#[ignore = "slow tier: golden --check of the vectors with one planted mismatch (7 s)"]
 fn cli_check_of_the_vectors_names_the_mismatch_and_exits_1() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("golden");

@@ -108,6 +108,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
 
     #[test]
+    #[ignore = "slow tier: long sampled scans against the spectral form (6 s)"]
     fn long_sampled_scans_agree_with_the_spectral_form(
         d in 5.0f64..60.0, s in 0.0f64..60.0, pp in -2.0f64..2.0,
     ) {

@@ -3,6 +3,7 @@
 use std::process::Command;
 
 #[test]
+#[ignore = "slow tier: the quick reproduction through the CLI (10 s)"]
 fn quick_reproduction_writes_every_expected_file() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("repro");
