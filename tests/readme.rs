@@ -67,13 +67,12 @@ fn run(args: &[String], dir: &Path) {
 const SMALL_GRID: &[&str] = &["--fringe-hz", "300:1000:2:log", "--stroke-um", "32"];
 
 #[test]
-#[ignore = "slow tier: the README's commands run as written (15 s)"]
 fn readme_commands_run_with_a_small_plan_grid() {
     run_readme_commands(SMALL_GRID);
 }
 
 #[test]
-#[ignore = "slow tier: the README's three plans on the full default grid (55 s)"]
+#[ignore = "slow tier: the README's four plans on the full default grid (55 s)"]
 fn readme_commands_run_as_written() {
     run_readme_commands(&[]);
 }
