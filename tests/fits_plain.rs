@@ -215,22 +215,16 @@ impl Hdu {
 /// the text before any comment.
 fn card_value(field: &str) -> String {
     let field = field.trim_start();
-    if let Some(rest) = field.strip_prefix('\'') {
-        let mut s = String::new();
-        let mut chars = rest.chars().peekable();
-        while let Some(c) = chars.next() {
-            if c == '\'' {
-                if chars.peek() == Some(&'\'') {
-                    chars.next();
-                } else {
-                    break;
-                }
-            }
-            s.push(c);
-        }
-        return s.trim_end().to_owned();
+    let Some(quoted) = field.strip_prefix('\'') else {
+        return field.split('/').next().unwrap_or("").trim().to_owned();
+    };
+    // The string ends at the first quote that is not doubled.
+    let bytes = quoted.as_bytes();
+    let mut end = 0;
+    while end < bytes.len() && !(bytes[end] == b'\'' && bytes.get(end + 1) != Some(&b'\'')) {
+        end += if bytes[end] == b'\'' { 2 } else { 1 };
     }
-    field.split('/').next().unwrap_or("").trim().to_owned()
+    quoted[..end].replace("''", "'").trim_end().to_owned()
 }
 
 /// Every HDU of the FITS file at `path` (plain, not gzip).
