@@ -74,6 +74,7 @@ mod simulator;
 mod special;
 mod spectral_estimators;
 mod spectrum_csv;
+mod surface_properties;
 mod synth_layout;
 mod tolerance_literals;
 mod turbulence;
