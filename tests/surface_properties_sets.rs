@@ -26,7 +26,7 @@ proptest! {
             let mut v = vec![t.r0_m(), t.wavelength_um(), t.wind_mps(), t.coherence_time_s(), t.tau0_s(), t.opd_psd_scale()];
             v.extend(t.outer_scale_m());
             if f.is_finite() && f > 0.0 { v.push(t.opd_psd(f)); }
-            if rho.is_finite() && rho >= 0.0 && rho < 1e100 { v.push(t.opd_structure_function_um2(rho)); }
+            if (0.0..1e100).contains(&rho) { v.push(t.opd_structure_function_um2(rho)); }
             if let Err(e) = t.with_wind(wind).map(|w| v.push(w.wind_mps())) { assert!(in_words(&e)); }
             v
         };
@@ -55,7 +55,7 @@ proptest! {
         use v2ref::piston::spectrum::{PistonPsdModel, PistonSpectrum, TransverseTable};
         use v2ref::piston::*;
         let turb = v2ref::piston::turbulence::Turbulence::from_seeing(0.8, 2.2, 10.0, Some(25.0)).unwrap();
-        hold!(held(TransverseTable::new(turb.clone(), aperture), |t| vec![t.aperture_m(), t.g(1.0), t.grid_fx_per_m(0)]));
+        hold!(held(TransverseTable::new(turb, aperture), |t| vec![t.aperture_m(), t.g(1.0), t.grid_fx_per_m(0)]));
         let spectrum = PistonSpectrum::new(turb, aperture, baseline);
         hold!(held(spectrum.clone(), |s| spectrum_facts(s, nu)));
         let Ok(spectrum) = spectrum else { return Ok(()) };
@@ -239,7 +239,7 @@ proptest! {
         use v2ref::conformance::score::score;
         use v2ref::oracle::{score_report, Estimates};
         let truth = set().expected(est::BinWindow::Positive, BiasConvention::Model).unwrap();
-        let mut t = truth.v1_sq.clone();
+        let mut t = truth.v1_sq;
         (t.mean, t.var) = (mean, var);
         let s = |r: &v2ref::oracle::EstimatorScore| vec![r.z_mean, r.z_var, r.mean, r.var];
         hold!(held(score(&v1, &t, rows, alpha), s));
@@ -311,7 +311,7 @@ proptest! {
         let t = s.affine(a, b);
         let sum = t.summary();
         prop_assert!(finite([s.variance(), s.std(), s.stderr_mean(), s.stderr_variance(), s.stderr_std(), sum.mean, sum.var]));
-        let r = replicated_summary(&[s.clone(), t]);
+        let r = replicated_summary(&[s, t]);
         prop_assert!(finite([r.mean, r.stderr_mean]));
         let units = v2ref::montecarlo::run_units(3, 4, 2, |u, _| u);
         prop_assert_eq!(units, vec![0, 1, 2, 3]);
