@@ -211,13 +211,14 @@ fn integration_vs_samples_per_fringe() {
         .iter()
         .map(|&p| {
             let dx = 2.2 / p;
-            let loss = integration::wide_band_loss(&obs(Source::Point, 0.0), dx);
+            let loss = integration::wide_band_loss(&obs(Source::Point, 0.0), dx).unwrap();
             let (mut b1, mut b2) = (0.0_f64, 0.0_f64);
             for k in 0..=80 {
                 let b = integration::calibrated_bias(
                     &obs(Source::UniformDisk { diameter_mas: 43.0 }, k as f64),
                     dx,
-                );
+                )
+                .unwrap();
                 b1 = b1.max(b.v1.abs());
                 b2 = b2.max(b.v2.abs());
             }

@@ -424,7 +424,7 @@ fn a_narrow_line_is_not_stepped_over() {
     assert!(mean_v.re - 0.5 > 4e-5, "the line is in the truth: {mean_v}");
     assert_rel_eq!(v1_sq(&obs), mean_v2, QUADRATURE_CHECK_REL);
     assert_rel_eq!(v2_sq(&obs), mean_v.norm_sqr(), QUADRATURE_CHECK_REL);
-    let nodes = SpectralNodes::new(&obs, 100.0, None);
+    let nodes = SpectralNodes::new(&obs, 100.0, None).unwrap();
     let sum: Complex64 = nodes.amplitude.iter().sum();
     assert!(
         (sum - mean_v).norm() < QUADRATURE_CHECK_REL,

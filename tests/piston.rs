@@ -219,7 +219,7 @@ fn fringe_table_matches_the_nodes_and_the_adaptive_oracle() {
     for source in [Source::Point, Source::uniform_disk(43.0).unwrap()] {
         let o = obs(source);
         let table = FringeTable::new(&o, 60.0).unwrap();
-        let nodes = SpectralNodes::new(&o, 60.0, None);
+        let nodes = SpectralNodes::new(&o, 60.0, None).unwrap();
         let mut worst: f64 = 0.0;
         for i in 0..4000 {
             let x = -59.9 + i as f64 * 0.029_953;
@@ -243,7 +243,7 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
     let setup = ScanSetup::paper(300.0);
     let sampling = Sampling::new(128, 0.5, true).unwrap();
     // No piston: the exact average is the sinc(σδx)-filtered fringe.
-    let exact = SpectralNodes::new(&o, 80.0, Some(0.5));
+    let exact = SpectralNodes::new(&o, 80.0, Some(0.5)).unwrap();
     let err = |k: usize, piston: &dyn Fn(f64) -> f64, drift: f64| {
         let got = scan_samples(
             &table,
@@ -253,7 +253,7 @@ fn integrating_detector_converges_to_the_sinc_filtered_fringe() {
             0.0,
         )
         .unwrap();
-        let nodes = SpectralNodes::new(&o, 80.0, Some(0.5 * (1.0 + drift)));
+        let nodes = SpectralNodes::new(&o, 80.0, Some(0.5 * (1.0 + drift))).unwrap();
         (0..128)
             .map(|i| {
                 let x = sampling.opd_um(i);

@@ -75,6 +75,8 @@ mod simulator;
 mod special;
 mod spectral_estimators;
 mod spectrum_csv;
+mod surface_properties;
+mod surface_properties_sets;
 mod synth_layout;
 mod tolerance_literals;
 mod turbulence;

@@ -68,19 +68,25 @@ pub fn dispersion_coefficient(
     let d2 = (-phi(s + 2.0 * h) + 16.0 * phi(s + h) - 30.0 * f0 + 16.0 * phi(s - h)
         - phi(s - 2.0 * h))
         / (12.0 * h * h);
-    Ok(d2)
+    // An index that is not a number (or a σ0 where φ overflows) leaves none.
+    error::finite("index", d2)
 }
 
 /// The glass phase over a band, with its value and slope at σ0 removed:
 /// `φ(σ) − φ(σ0) − φ'(σ0)(σ − σ0)`, largest value over `[lo, hi]` minus
 /// smallest (the peak-to-peak of everything beyond the linear term, higher
-/// orders included), sampled on 2001 points.
+/// orders included), sampled on 2001 points. The band must be
+/// `0 < lo < hi` (µm⁻¹) and the index finite on it.
 pub fn residual_peak_to_peak(
     index: impl Fn(f64) -> f64,
     lo_per_um: f64,
     hi_per_um: f64,
     length_um: f64,
-) -> f64 {
+) -> Result<f64> {
+    error::positive("lo_per_um", lo_per_um)?;
+    error::positive("hi_per_um", hi_per_um)?;
+    error::in_range("hi_per_um", hi_per_um, lo_per_um, f64::MAX)?;
+    error::finite("length_um", length_um)?;
     let phi = |s: f64| 2.0 * PI * s * index(s) * length_um;
     let s0 = 0.5 * (lo_per_um + hi_per_um);
     let h = SLOPE_STEP_PER_UM;
@@ -93,7 +99,7 @@ pub fn residual_peak_to_peak(
         min = min.min(r);
         max = max.max(r);
     }
-    max - min
+    error::finite("index", max - min)
 }
 
 /// The quadratic peak-to-peak phase `P = ½ |D| (Δσ/2)²` of `length_um` of

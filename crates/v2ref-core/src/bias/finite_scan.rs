@@ -34,7 +34,7 @@
 //!    sinc `N sinc(Nu)` of the printed equation (no replication), to show
 //!    what the replication adds.
 
-use crate::error::Result;
+use crate::error::{self, Result};
 use crate::formalism::estimator::{dft, raw_estimates, wide_band, BinWindow, Pair};
 use crate::formalism::interferogram::{sinc, Interferogram, Sampling, SpectralNodes};
 use crate::formalism::observation::Frequency;
@@ -123,7 +123,7 @@ pub fn convolution_bins(
     let n = sampling.samples();
     let dx = sampling.dx_um();
     let integrating = sampling.integrating().then_some(dx);
-    let nodes = SpectralNodes::new(obs, 0.5 * sampling.stroke_um() + dx, integrating);
+    let nodes = SpectralNodes::new(obs, 0.5 * sampling.stroke_um() + dx, integrating)?;
     let every = crate::cancel::stride(nodes.sigma_per_um.len());
     Ok(bins
         .iter()
@@ -183,13 +183,21 @@ pub fn calibrated(
     };
     let src = raw(obs)?;
     let cal = match calibrator {
-        Some(c) => c,
+        Some(c) => {
+            // A calibrator's raw estimates are positive powers.
+            error::positive("calibrator", c.v1_sq)?;
+            error::positive("calibrator", c.v2_sq)?;
+            c
+        }
         None => raw(&obs.calibrator())?,
     };
-    Ok(Pair {
+    let pair = Pair {
         v1_sq: src.v1_sq / cal.v1_sq,
         v2_sq: src.v2_sq / cal.v2_sq,
-    })
+    };
+    error::finite("calibrator", pair.v1_sq)?;
+    error::finite("calibrator", pair.v2_sq)?;
+    Ok(pair)
 }
 
 /// A bias of both estimators, in visibility (not squared).

@@ -21,6 +21,7 @@
 //! ([`calibrated_bias`]).
 
 use crate::bias::finite_scan::Bias;
+use crate::error::{self, Error, Result};
 use crate::formalism::estimator::Pair;
 use crate::formalism::interferogram::sinc;
 use crate::formalism::observation::Observation;
@@ -39,8 +40,10 @@ pub fn monochromatic_norm_factor(samples_per_fringe: f64) -> f64 {
 }
 
 /// The squared-estimator loss factors (integrating over sampling detector)
-/// of `obs` for sample spacing `dx_um`, infinite scan.
-pub fn wide_band_loss(obs: &Observation, dx_um: f64) -> Pair {
+/// of `obs` for sample spacing `dx_um` (> 0), infinite scan; refused where
+/// the detector's sinc(σδx) washes the band's fringe out (no finite ratio).
+pub fn wide_band_loss(obs: &Observation, dx_um: f64) -> Result<Pair> {
+    error::positive("dx_um", dx_um)?;
     let features = obs.source.features_per_um();
     let vis2 = |s: f64| obs.source.visibility(s, obs.baseline_m).norm_sqr();
     let [num1, den1] = obs.spectrum.mean_w2_split(
@@ -59,16 +62,30 @@ pub fn wide_band_loss(obs: &Observation, dx_um: f64) -> Pair {
             &features,
         )
     };
-    Pair {
+    finite_pair(Pair {
         v1_sq: num1 / den1,
         v2_sq: amp(true).norm_sqr() / amp(false).norm_sqr(),
+    })
+}
+
+/// The pair, or the refusal of a spacing that leaves no finite ratio.
+fn finite_pair(pair: Pair) -> Result<Pair> {
+    if pair.v1_sq.is_finite() && pair.v2_sq.is_finite() {
+        return Ok(pair);
     }
+    Err(Error::Invalid {
+        param: "dx_um",
+        reason: "the integrating detector's sinc(σ δx) washes the fringe out at this spacing"
+            .into(),
+    })
 }
 
 /// `(V1²_int, V2²_int)`: the estimators of an integrating detector
 /// calibrated on a point source seen by the same detector (infinite scan):
-/// `∫W²s²|V|²/∫W²s²` and `|∫W s V e^{iφ}|²/(∫W s)²`.
-pub fn calibrated(obs: &Observation, dx_um: f64) -> Pair {
+/// `∫W²s²|V|²/∫W²s²` and `|∫W s V e^{iφ}|²/(∫W s)²`; `dx_um` as in
+/// [`wide_band_loss`].
+pub fn calibrated(obs: &Observation, dx_um: f64) -> Result<Pair> {
+    error::positive("dx_um", dx_um)?;
     let features = obs.source.features_per_um();
     let [num1, den1] = obs.spectrum.mean_w2_split(
         |s| {
@@ -81,19 +98,19 @@ pub fn calibrated(obs: &Observation, dx_um: f64) -> Pair {
         .spectrum
         .mean_w_split(|s| obs.fringe_amplitude(s) * sinc(s * dx_um), &features);
     let den2 = obs.spectrum.mean_w(|s| sinc(s * dx_um));
-    Pair {
+    finite_pair(Pair {
         v1_sq: num1 / den1,
         v2_sq: num2.norm_sqr() / (den2 * den2),
-    }
+    })
 }
 
 /// The bias of the calibrated integrating-detector estimators against the
 /// sampling detector's, in visibility: `(√V1²_int − V1, √V2²_int − V2)`.
-pub fn calibrated_bias(obs: &Observation, dx_um: f64) -> Bias {
-    let int = calibrated(obs, dx_um);
+pub fn calibrated_bias(obs: &Observation, dx_um: f64) -> Result<Bias> {
+    let int = calibrated(obs, dx_um)?;
     let wb = crate::formalism::estimator::wide_band(obs);
-    Bias {
+    Ok(Bias {
         v1: int.v1_sq.sqrt() - wb.v1,
         v2: int.v2_sq.sqrt() - wb.v2,
-    }
+    })
 }

@@ -21,7 +21,7 @@
 //! general case numerically (Gaussian line, sinc channel of a Fourier
 //! transform spectrometer, line off centre).
 
-use crate::error::{self, Result};
+use crate::error::{self, Error, Result};
 use crate::formalism::source::SPEED_OF_LIGHT_KM_S;
 use crate::math::quadrature::{integrate_pieces, Tolerance};
 
@@ -104,11 +104,7 @@ pub struct ChannelVisibility {
 /// The channel visibility of `case` by adaptive quadrature (σ in units of
 /// spectral elements from the channel centre).
 pub fn channel_visibility(case: &LineCase) -> Result<ChannelVisibility> {
-    error::in_range("continuum_visibility", case.continuum_visibility, -1.0, 1.0)?;
-    error::in_range("line_visibility", case.line_visibility, -1.0, 1.0)?;
-    error::non_negative("flux_ratio", case.flux_ratio)?;
-    error::positive("width_elements", case.width_elements)?;
-    error::finite("offset_elements", case.offset_elements)?;
+    check_case(case)?;
     let (vc, vl, r, w, c) = (
         case.continuum_visibility,
         case.line_visibility,
@@ -162,9 +158,30 @@ pub fn channel_visibility(case: &LineCase) -> Result<ChannelVisibility> {
     })
 }
 
+fn check_case(case: &LineCase) -> Result<()> {
+    error::in_range("continuum_visibility", case.continuum_visibility, -1.0, 1.0)?;
+    error::in_range("line_visibility", case.line_visibility, -1.0, 1.0)?;
+    error::non_negative("flux_ratio", case.flux_ratio)?;
+    error::positive("width_elements", case.width_elements)?;
+    error::finite("offset_elements", case.offset_elements)?;
+    Ok(())
+}
+
 /// The closed forms for a top-hat line inside a top-hat channel (module
-/// docs): `(unweighted, flux_weighted)`.
-pub fn top_hat_closed_form(case: &LineCase) -> ChannelVisibility {
+/// docs): `(unweighted, flux_weighted)`. A line wider than the channel
+/// (`width_elements` above 1) or reaching past its edge is refused: the
+/// forms hold only inside.
+pub fn top_hat_closed_form(case: &LineCase) -> Result<ChannelVisibility> {
+    check_case(case)?;
+    error::in_range("width_elements", case.width_elements, 0.0, 1.0)?;
+    let room = 0.5 * (1.0 - case.width_elements);
+    error::in_range("offset_elements", case.offset_elements, -room, room)?;
+    if case.profile != LineProfile::TopHat || case.channel != Channel::TopHat {
+        return Err(Error::Invalid {
+            param: "case",
+            reason: "the closed forms are for a top-hat line in a top-hat channel".into(),
+        });
+    }
     let (vc, vl, r, w) = (
         case.continuum_visibility,
         case.line_visibility,
@@ -172,8 +189,8 @@ pub fn top_hat_closed_form(case: &LineCase) -> ChannelVisibility {
         case.width_elements,
     );
     let v_in = (vc + r * vl) / (1.0 + r);
-    ChannelVisibility {
+    Ok(ChannelVisibility {
         unweighted: vc + w * (v_in - vc),
         flux_weighted: (vc + w * r * vl) / (1.0 + w * r),
-    }
+    })
 }

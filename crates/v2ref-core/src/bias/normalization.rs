@@ -43,13 +43,20 @@ pub fn deviation_curve(spectrum: &Spectrum, dx_um: f64, samples: &[usize]) -> Re
         Frequency::BaselineM(0.0),
         SpectralPhase::zero(),
     )?;
+    if let Some(&n) = samples.iter().find(|&&n| n < 2) {
+        return Err(crate::Error::OutOfRange {
+            param: "samples",
+            value: n as f64,
+            accepted: "scans of 2 samples or more".into(),
+        });
+    }
     let n_max = samples.iter().copied().max().unwrap_or(2);
     let sampling = crate::formalism::interferogram::Sampling::new(n_max.max(2), dx_um, false)?;
     sampling.check_aliasing(&obs)?;
     // Every scan samples x = j δx, |j| ≤ N/2: one set of nodes for the
     // longest serves all, and the fringe at each j is computed once.
     let j_max = n_max / 2 + 1;
-    let nodes = SpectralNodes::new(&obs, j_max as f64 * dx_um, None);
+    let nodes = SpectralNodes::new(&obs, j_max as f64 * dx_um, None)?;
     let fringe: Vec<f64> = (0..=2 * j_max)
         .map(|i| nodes.fringe((i as f64 - j_max as f64) * dx_um))
         .collect();

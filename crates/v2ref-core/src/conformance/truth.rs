@@ -144,6 +144,9 @@ pub fn truth_laid_out(
     layout: impl Into<RowTiming>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Truth> {
+    // The truth of a set that could not be made is refused before its
+    // reference run (which would run without end on 2^40 rows).
+    crate::bounds::check_set_size(size.rows, model.samples(), size.reference_blocks)?;
     let obs = &model.observation;
     let wb = wide_band(obs);
     let v2 = model.inputs.visibility * model.inputs.visibility;

@@ -67,6 +67,13 @@ impl Sampling {
             });
         }
         error::positive("dx_um", dx_um)?;
+        if !(samples as f64 * dx_um).is_finite() {
+            return Err(Error::OutOfRange {
+                param: "dx_um",
+                value: dx_um,
+                accepted: format!("a spacing whose stroke over {samples} samples is finite"),
+            });
+        }
         Ok(Sampling {
             samples,
             dx_um,
@@ -114,8 +121,14 @@ impl Sampling {
         1.0 / self.stroke_um()
     }
     /// OPD of sample i (DFT order, centred scan), µm.
+    ///
+    /// # Panics
+    ///
+    /// When `i` is not a sample of the scan (`i ≥ N`), as indexing past a
+    /// slice does.
     pub fn opd_um(&self, i: usize) -> f64 {
         let n = self.samples;
+        assert!(i < n, "sample {i} of a scan of {n} samples");
         let j = if i < n.div_ceil(2) {
             i as f64
         } else {
@@ -148,9 +161,16 @@ const SINC_SERIES_BELOW: f64 = 1e-4;
 /// magnitude of the rate matters there.
 const PHASE_STEP_PER_UM: f64 = 1e-6;
 
+/// From 2^52 on, every f64 is an integer.
+const SINC_INTEGERS_FROM: f64 = 4_503_599_627_370_496.0;
+
 /// `sinc(u) = sin(πu)/(πu)`, 1 at 0.
 pub fn sinc(u: f64) -> f64 {
-    if u.abs() < SINC_SERIES_BELOW {
+    if u.abs() >= SINC_INTEGERS_FROM {
+        // Every f64 this large is an integer, a zero of sin(πu) (and π u
+        // itself may overflow to ∞, whose sine is NaN).
+        0.0
+    } else if u.abs() < SINC_SERIES_BELOW {
         let p = std::f64::consts::PI * u;
         1.0 - p * p / 6.0 + p.powi(4) / 120.0
     } else {
@@ -163,6 +183,11 @@ pub fn sinc(u: f64) -> f64 {
 const NODES_PER_PANEL: usize = 16;
 /// Largest phase change of the integrand across one panel, in cycles.
 const CYCLES_PER_PANEL: f64 = 0.25;
+
+/// Most nodes [`SpectralNodes::new`] makes (2^28, 6 GiB of nodes): a
+/// scan of the most samples ([`MAX_SAMPLES`]) at its Nyquist spacing needs
+/// fewer than 2^27.
+pub const MAX_SPECTRAL_NODES: usize = 1 << 28;
 
 /// Panels of [`SpectralNodes::new`] between two cancellation checkpoints
 /// (each panel evaluates the spectrum and the source at its nodes, a
@@ -220,19 +245,35 @@ pub struct SpectralNodes {
 impl SpectralNodes {
     /// Nodes that resolve the fringe spectrum of `obs` for |x| ≤ `max_opd_um`;
     /// `integrating_dx_um` applies the integrating detector's sinc(σδx).
+    /// More than [`MAX_SPECTRAL_NODES`] nodes (an OPD far beyond any scan's)
+    /// are refused before any is made.
     pub fn new(
         obs: &Observation,
         max_opd_um: f64,
         integrating_dx_um: Option<f64>,
-    ) -> SpectralNodes {
+    ) -> Result<SpectralNodes> {
+        error::finite("max_opd_um", max_opd_um)?;
+        if let Some(dx) = integrating_dx_um {
+            error::positive("integrating_dx_um", dx)?;
+        }
+        let count = SpectralNodes::count(obs, max_opd_um);
+        if count > MAX_SPECTRAL_NODES {
+            return Err(Error::OutOfRange {
+                param: "max_opd_um",
+                value: max_opd_um,
+                accepted: format!(
+                    "an OPD resolved by at most {MAX_SPECTRAL_NODES} spectral nodes ({count} needed)"
+                ),
+            });
+        }
         let spectrum = &obs.spectrum;
         let filter = |s: f64| integrating_dx_um.map_or(1.0, |dx| sinc(s * dx));
         if spectrum.is_monochromatic() {
             let s = spectrum.sigma_eff_per_um();
-            return SpectralNodes {
+            return Ok(SpectralNodes {
                 sigma_per_um: vec![s],
                 amplitude: vec![obs.fringe_amplitude(s) * filter(s)],
-            };
+            });
         }
         // NODES_PER_PANEL (16) is within the rule's range: this cannot fail.
         let (gx, gw) = gauss_legendre(NODES_PER_PANEL).expect("16 Gauss-Legendre nodes");
@@ -257,10 +298,10 @@ impl SpectralNodes {
                 }
             }
         }
-        SpectralNodes {
+        Ok(SpectralNodes {
             sigma_per_um: sigma,
             amplitude,
-        }
+        })
     }
 
     /// How many nodes [`SpectralNodes::new`] makes for `obs` and
@@ -351,7 +392,7 @@ impl Interferogram {
             obs,
             max_opd,
             sampling.integrating().then_some(sampling.dx_um()),
-        );
+        )?;
         // N samples × N-proportional nodes: the one long loop of a large N.
         let every = crate::cancel::stride(nodes.sigma_per_um.len());
         let modulated = (0..n)

@@ -66,6 +66,12 @@ impl FluxProfile {
         let centre = 1.0 / wavelength_um;
         let fwhm = centre * fwhm_km_s / SPEED_OF_LIGHT_KM_S;
         let area_per_peak = fwhm * (std::f64::consts::PI / (4.0 * std::f64::consts::LN_2)).sqrt();
+        if !(flux / area_per_peak).is_finite() || flux > f64::MAX / 4.0 {
+            return Err(Error::Invalid {
+                param: "flux",
+                reason: format!("{flux} over a line {fwhm_km_s} km/s wide: its peak overflows"),
+            });
+        }
         Ok(FluxProfile::GaussianLine {
             centre_per_um: centre,
             fwhm_per_um: fwhm,

@@ -509,6 +509,20 @@ impl Spectrum {
     pub fn grid_sums(&self, delta_sigma_per_um: f64) -> Result<(f64, f64)> {
         error::positive("delta_sigma_per_um", delta_sigma_per_um)?;
         let (lo, hi) = self.support();
+        // A scan's bins in the band are fewer than its samples (2^24 at
+        // most) unless it is undersampled many times over: refuse a grid
+        // of more than 2^30 points before summing it.
+        let max_points = (1u64 << 30) as f64;
+        if (hi - lo) / delta_sigma_per_um > max_points {
+            return Err(Error::OutOfRange {
+                param: "delta_sigma_per_um",
+                value: delta_sigma_per_um,
+                accepted: format!(
+                    "a grid of at most {max_points} points over the support ({} µm⁻¹ wide)",
+                    hi - lo
+                ),
+            });
+        }
         let k0 = (lo / delta_sigma_per_um).ceil() as i64;
         let k1 = (hi / delta_sigma_per_um).floor() as i64;
         let (mut s1, mut s2) = (0.0, 0.0);

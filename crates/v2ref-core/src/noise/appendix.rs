@@ -216,14 +216,16 @@ pub fn appendix_stats(
         .zip(continuum)
         .map(|(m, c)| m + c)
         .collect();
-    if noise.photon {
-        if let Some(bad) = counts.iter().find(|&&v| v < 0.0 || v.is_nan()) {
-            return Err(Error::OutOfRange {
-                param: "photons",
-                value: *bad,
-                accepted: "mean counts c + m >= 0 in every sample (|visibility| <= 1)".into(),
-            });
-        }
+    let max = crate::bounds::PHOTONS_MAX;
+    let bad = |v: f64| v.is_nan() || v.abs() > max || (noise.photon && v < 0.0);
+    if let Some(&bad) = counts.iter().find(|&&v| bad(v)) {
+        return Err(Error::OutOfRange {
+            param: "photons",
+            value: bad,
+            accepted: format!(
+                "mean counts c + m within {max} in every sample, >= 0 with photon noise (|visibility| <= 1)"
+            ),
+        });
     }
     let nf = n as f64;
     let sum_m2: f64 = modulated.iter().map(|m| m * m).sum();

@@ -111,6 +111,8 @@ pub fn example_interferogram(setup: &ExampleSetup) -> Result<Interferogram> {
 /// The four SNRs of the worked examples in `formula` (detector noise
 /// σ_det = 0.2 n without photon noise; photon noise alone).
 pub fn worked_example(setup: &ExampleSetup, formula: Formula) -> Result<WorkedExample> {
+    // Σm²/n² and the SNRs are ratios to the photons: none without light.
+    crate::error::positive("photons", setup.photons)?;
     let ifg = example_interferogram(setup)?;
     let det = appendix_stats(
         &ifg.modulated,

@@ -71,8 +71,22 @@ impl NoiseModel {
 
     /// Cumulants of the noise `e = M − m` of a sample whose mean total count
     /// is `mean_count` (`n_i = c_i + m_i`, photons; used only with photon
-    /// noise).
-    pub fn cumulants(&self, mean_count: f64) -> Cumulants {
+    /// noise, where it must be ≥ 0 and finite: a count's variance is not
+    /// negative).
+    pub fn cumulants(&self, mean_count: f64) -> Result<Cumulants> {
+        if self.photon {
+            // (Beyond the library's photon bound, κ2² overflows f64.)
+            crate::bounds::non_negative_at_most(
+                "mean_count",
+                mean_count,
+                crate::bounds::PHOTONS_MAX,
+            )?;
+        }
+        Ok(self.cumulants_at(mean_count))
+    }
+
+    /// [`NoiseModel::cumulants`] of a count the caller has checked.
+    pub(crate) fn cumulants_at(&self, mean_count: f64) -> Cumulants {
         let p = if self.photon { mean_count } else { 0.0 };
         Cumulants {
             k2: self.read_noise * self.read_noise + p,
@@ -96,7 +110,7 @@ pub struct Cumulants {
 /// All cumulants κ_1 … κ_order of `M = m + e` for the noise model: κ1 = m,
 /// κ2 = σ_det² + n, κ_r = n for r ≥ 3 (n counted only with photon noise).
 pub fn cumulants_of_sample(noise: &NoiseModel, m: f64, mean_count: f64, order: usize) -> Vec<f64> {
-    let c = noise.cumulants(mean_count);
+    let c = noise.cumulants_at(mean_count);
     (1..=order)
         .map(|r| match r {
             1 => m,
@@ -140,8 +154,15 @@ pub struct Moments {
 /// Raw and central moments up to order 4 of `M = m + e` (closed forms:
 /// `⟨M²⟩ = m² + κ2`, `⟨M³⟩ = m³ + 3mκ2 + κ3`,
 /// `⟨M⁴⟩ = m⁴ + 6m²κ2 + 4mκ3 + κ4 + 3κ2²`; central `κ2, κ3, κ4 + 3κ2²`).
-pub fn moments(noise: &NoiseModel, m: f64, mean_count: f64) -> Moments {
-    let c = noise.cumulants(mean_count);
+/// `m` must be finite, `mean_count` as in [`NoiseModel::cumulants`].
+pub fn moments(noise: &NoiseModel, m: f64, mean_count: f64) -> Result<Moments> {
+    let max = crate::bounds::PHOTONS_MAX;
+    crate::bounds::check("m", m, -max, max)?;
+    Ok(moments_of(m, noise.cumulants(mean_count)?))
+}
+
+/// [`moments`] from the sample's cumulants.
+pub(crate) fn moments_of(m: f64, c: Cumulants) -> Moments {
     let raw = [
         1.0,
         m,
@@ -155,6 +176,6 @@ pub fn moments(noise: &NoiseModel, m: f64, mean_count: f64) -> Moments {
 
 /// `var(M²) = ⟨M⁴⟩ − ⟨M²⟩² = 4m²κ2 + 4mκ3 + κ4 + 2κ2²` (exact).
 pub fn var_m2(noise: &NoiseModel, m: f64, mean_count: f64) -> f64 {
-    let c = noise.cumulants(mean_count);
+    let c = noise.cumulants_at(mean_count);
     4.0 * m * m * c.k2 + 4.0 * m * c.k3 + c.k4 + 2.0 * c.k2 * c.k2
 }

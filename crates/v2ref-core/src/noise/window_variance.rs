@@ -136,7 +136,14 @@ fn sample_cumulants(noise: &NoiseModel, m: &[f64], counts: &[f64]) -> Result<Vec
             reason: format!("{} modulated values and {} counts", m.len(), counts.len()),
         });
     }
-    Ok(counts.iter().map(|&n| noise.cumulants(n)).collect())
+    counts
+        .iter()
+        .map(|&n| {
+            // A photon count beyond the library's bound squares past f64.
+            crate::bounds::non_negative_at_most("counts", n, crate::bounds::PHOTONS_MAX)?;
+            noise.cumulants(n)
+        })
+        .collect()
 }
 
 /// Exact mean, bias and variance of V1²_K and V2²_K for samples of mean
@@ -191,7 +198,7 @@ pub fn two_sided_band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64)
 pub fn variance_by_moments(a: &DMatrix<f64>, m: &[f64], counts: &[f64], noise: &NoiseModel) -> f64 {
     let n = m.len();
     let raw: Vec<[f64; 5]> = (0..n)
-        .map(|i| crate::noise::moments(noise, m[i], counts[i]).raw)
+        .map(|i| crate::noise::model::moments_of(m[i], noise.cumulants_at(counts[i])).raw)
         .collect();
     let expect = |idx: &[usize]| -> f64 {
         let mut sorted = idx.to_vec();

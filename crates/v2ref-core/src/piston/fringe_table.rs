@@ -51,7 +51,7 @@ impl FringeTable {
         // 16-point rule on one cycle is ~π³²/32!), so ask for a quarter of
         // the range: four times fewer nodes (checked against the full set
         // and the adaptive oracle in tests/piston.rs).
-        let nodes = SpectralNodes::new(obs, 0.25 * max_opd_um, None);
+        let nodes = SpectralNodes::new(obs, 0.25 * max_opd_um, None)?;
         let (lo, hi) = nodes
             .sigma_per_um
             .iter()

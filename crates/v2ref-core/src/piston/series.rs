@@ -64,6 +64,7 @@ pub fn synthesize_series(
     threads: usize,
 ) -> Result<Vec<f64>> {
     error::positive("dt", dt_s)?;
+    crate::montecarlo::check_threads(threads)?;
     if len == 0 || len > MAX_SERIES {
         return Err(Error::OutOfRange {
             param: "scans",

@@ -199,11 +199,12 @@ impl RowEstimator {
 
     /// The same estimator normalized by `calibration` (raw units) instead.
     pub fn with_calibration(self, calibration: Pair) -> Result<RowEstimator> {
-        if !(calibration.v1_sq > 0.0 && calibration.v2_sq > 0.0) {
+        let usable = |c: f64| c > 0.0 && c.is_finite();
+        if !(usable(calibration.v1_sq) && usable(calibration.v2_sq)) {
             return Err(Error::Invalid {
                 param: "calibrator",
                 reason: format!(
-                    "the calibrator's bias-subtracted estimates ({}, {}) are not > 0: nothing to normalize by",
+                    "the calibrator's bias-subtracted estimates ({}, {}) are not finite and > 0: nothing to normalize by",
                     calibration.v1_sq, calibration.v2_sq
                 ),
             });
@@ -323,6 +324,7 @@ impl RowEstimator {
     /// `threads` threads (0: all); each row's answer depends on that row
     /// alone. Refuses the set's first fault ([`RowFault`]).
     pub fn estimate_rows(&self, rows: &[f64], threads: usize) -> Result<Vec<RowEstimate>> {
+        crate::montecarlo::check_threads(threads)?;
         let n = self.samples();
         if rows.len() % n != 0 {
             return Err(Error::Invalid {
@@ -337,10 +339,13 @@ impl RowEstimator {
             })
     }
 
-    /// The estimates of every whole row of `rows` (row-major, N per row) on
-    /// `threads` threads (0: all), or the set's first fault
-    /// ([`RowFault::first`]). One pass over the rows: each is checked while
-    /// it is estimated, blocks of rows written in place by the threads.
+    /// The estimates of every row of `rows` (row-major, N per row) on
+    /// `threads` threads (0: all; more than
+    /// [`crate::montecarlo::max_threads`] run on that many), or the set's
+    /// first fault ([`RowFault::first`]); a last row of fewer than N values
+    /// is a fault, found before any row is estimated. One pass over the
+    /// rows: each is checked while it is estimated, blocks of rows written
+    /// in place by the threads.
     pub fn try_estimate_rows(
         &self,
         rows: &[f64],
@@ -348,6 +353,13 @@ impl RowEstimator {
     ) -> std::result::Result<Vec<RowEstimate>, RowFault> {
         const BLOCK_ROWS: usize = 256;
         let n = self.samples();
+        if rows.len() % n != 0 {
+            return Err(RowFault::Partial {
+                row: rows.len() / n,
+                values: rows.len() % n,
+            });
+        }
+        let threads = threads.min(crate::montecarlo::max_threads());
         let mut out = vec![RowEstimate::default(); rows.len() / n];
         let every = crate::cancel::stride(n);
         let job = || {
@@ -468,6 +480,13 @@ pub enum RowFault {
         /// Row, 0-based.
         row: usize,
     },
+    /// The last row, `row` (0-based), holds `values` values, fewer than N.
+    Partial {
+        /// Row, 0-based.
+        row: usize,
+        /// Its values.
+        values: usize,
+    },
 }
 
 impl RowFault {
@@ -496,6 +515,7 @@ impl RowFault {
         let rank = |f: &RowFault| match *f {
             RowFault::NonFinite { row, col, .. } => (0, row, col),
             RowFault::Dark { row } => (1, row, 0),
+            RowFault::Partial { row, .. } => (2, row, 0),
         };
         match (a, b) {
             (Some(x), Some(y)) => Some(if rank(&y) < rank(&x) { y } else { x }),
@@ -510,7 +530,9 @@ impl RowFault {
             RowFault::NonFinite { row, col, .. } => {
                 format!("row {}, column {} (1-based)", first + row + 1, col + 1)
             }
-            RowFault::Dark { row } => format!("row {} (1-based)", first + row + 1),
+            RowFault::Dark { row } | RowFault::Partial { row, .. } => {
+                format!("row {} (1-based)", first + row + 1)
+            }
         }
     }
 
@@ -521,6 +543,9 @@ impl RowFault {
                 format!("{value} is not a finite number; every value must be finite")
             }
             RowFault::Dark { .. } => DARK_ROW.to_owned(),
+            RowFault::Partial { values, .. } => {
+                format!("{values} values: fewer than a row's samples, the rows are cut short")
+            }
         }
     }
 }

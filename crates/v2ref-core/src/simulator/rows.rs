@@ -353,6 +353,10 @@ impl Rows<'_> {
     }
 
     /// The noise-free modulated samples of row `s` (with its piston).
+    ///
+    /// # Panics
+    ///
+    /// When `out` does not hold N samples, as `copy_from_slice` does.
     pub fn noise_free_row(&self, s: u64, out: &mut [f64]) {
         match &self.piston {
             None => out.copy_from_slice(&self.model.signal.modulated),

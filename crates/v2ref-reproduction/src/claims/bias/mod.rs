@@ -86,7 +86,7 @@ fn integration_claims(out: &mut Vec<Computed>) {
     let measured = integrating_contrast_loss(SAMPLES_PER_FRINGE);
     // Wide band: the two estimators lose differently.
     let obs = observe(&k_band(), &Source::Point, 0.0, &SpectralPhase::zero());
-    let loss = integration::wide_band_loss(&obs, DX_UM);
+    let loss = integration::wide_band_loss(&obs, DX_UM).expect("the K band at 0.55 um");
     let worst = crate::cases::s_grid(1.0)
         .iter()
         .map(|&s| {
@@ -94,6 +94,7 @@ fn integration_claims(out: &mut Vec<Computed>) {
                 &observe(&k_band(), &disk(), s, &SpectralPhase::zero()),
                 DX_UM,
             )
+            .expect("the K band at 0.55 um")
         })
         .fold((0.0_f64, 0.0_f64), |(a, b), x| {
             (a.max(x.v1.abs()), b.max(x.v2.abs()))
@@ -440,7 +441,8 @@ fn dispersion_claims(find: &Find<'_>, out: &mut Vec<Computed>) {
     let (lo, hi) = (band.support().0, band.support().1);
     let length_um = 1e3 * FIBRE_GLASS_MM;
     let p = dispersion::zblan_peak_to_peak_rad(lo, hi, length_um).expect("valid");
-    let full = dispersion::residual_peak_to_peak(dispersion::zblan_index, lo, hi, length_um);
+    let full = dispersion::residual_peak_to_peak(dispersion::zblan_index, lo, hi, length_um)
+        .expect("valid");
     let n = dispersion::zblan_index(0.5 * (lo + hi));
     let printed = spec(find, "dispersion.fiber_1K_1km_rad").paper;
     out.push(Computed::number(

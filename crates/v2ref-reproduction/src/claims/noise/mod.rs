@@ -432,6 +432,7 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
 fn half_sample_m0(setup: &ExampleSetup) -> f64 {
     let obs = noise::example_observation();
     crate::formalism::interferogram::SpectralNodes::new(&obs, setup.dx_um, None)
+        .expect("the example's nodes")
         .fringe(0.5 * setup.dx_um)
 }
 
