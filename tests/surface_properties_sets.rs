@@ -14,7 +14,7 @@ use v2ref::Error;
 // ---- piston ------------------------------------------------------------------
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(8))]
+    #![proptest_config(crate::surface_properties::fixed_seed(8))]
 
     #[test]
     fn the_atmosphere_is_finite_or_refused(
@@ -133,7 +133,7 @@ fn set() -> &'static Set {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(CASES))]
+    #![proptest_config(crate::surface_properties::fixed_seed(CASES))]
 
     /// Any physical inputs: a model whose facts are finite, or a typed error.
     #[test]
@@ -299,7 +299,7 @@ fn a_set_states_finite_facts() {
 // ---- montecarlo, errors ------------------------------------------------------
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(CASES))]
+    #![proptest_config(crate::surface_properties::fixed_seed(CASES))]
 
     /// Statistics of finite values are finite from two values on.
     #[test]

@@ -42,6 +42,10 @@ pub const SPATIAL_FREQ_MAX_CPAS: f64 = 1e13;
 /// below 1e70, far inside the floating-point range.
 pub const PHOTONS_MAX: f64 = 1e12;
 
+/// Largest mean total count `c + m` of one sample: a continuum within
+/// [`PHOTONS_MAX`] plus a fringe of |visibility| ≤ 1.
+pub const MEAN_COUNT_MAX: f64 = 2.0 * PHOTONS_MAX;
+
 /// Fastest wind of the frozen-flow turbulence, m/s (the speed of sound at
 /// ground level: no layer of the atmosphere moves faster).
 pub const WIND_MAX_MPS: f64 = 343.0;

@@ -105,7 +105,10 @@ pub fn residual_peak_to_peak(
 /// The quadratic peak-to-peak phase `P = ½ |D| (Δσ/2)²` of `length_um` of
 /// ZBLAN over the band `[lo, hi]` (µm⁻¹), D at the band centre.
 pub fn zblan_peak_to_peak_rad(lo_per_um: f64, hi_per_um: f64, length_um: f64) -> Result<f64> {
+    error::positive("lo_per_um", lo_per_um)?;
+    error::in_range("hi_per_um", hi_per_um, lo_per_um, f64::MAX)?;
     let d = dispersion_coefficient(zblan_index, 0.5 * (lo_per_um + hi_per_um), length_um)?;
     let half = 0.5 * (hi_per_um - lo_per_um);
-    Ok(0.5 * d.abs() * half * half)
+    // A band so wide that the quadratic phase overflows leaves none.
+    error::finite("hi_per_um", 0.5 * d.abs() * half * half)
 }

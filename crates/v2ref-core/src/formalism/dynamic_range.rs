@@ -20,5 +20,6 @@ pub fn dynamic_range(n_vis: f64, dv_over_v: f64, dphi_rad: f64) -> Result<f64> {
                 .into(),
         });
     }
-    Ok((n_vis / e2).sqrt())
+    // Errors so small that n_vis over their square overflows leave none.
+    error::finite("dv_over_v", (n_vis / e2).sqrt())
 }

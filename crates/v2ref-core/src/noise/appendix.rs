@@ -216,7 +216,7 @@ pub fn appendix_stats(
         .zip(continuum)
         .map(|(m, c)| m + c)
         .collect();
-    let max = crate::bounds::PHOTONS_MAX;
+    let max = crate::bounds::MEAN_COUNT_MAX;
     let bad = |v: f64| v.is_nan() || v.abs() > max || (noise.photon && v < 0.0);
     if let Some(&bad) = counts.iter().find(|&&v| bad(v)) {
         return Err(Error::OutOfRange {

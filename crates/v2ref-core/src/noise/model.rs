@@ -79,7 +79,7 @@ impl NoiseModel {
             crate::bounds::non_negative_at_most(
                 "mean_count",
                 mean_count,
-                crate::bounds::PHOTONS_MAX,
+                crate::bounds::MEAN_COUNT_MAX,
             )?;
         }
         Ok(self.cumulants_at(mean_count))

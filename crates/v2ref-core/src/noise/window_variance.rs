@@ -140,7 +140,7 @@ fn sample_cumulants(noise: &NoiseModel, m: &[f64], counts: &[f64]) -> Result<Vec
         .iter()
         .map(|&n| {
             // A photon count beyond the library's bound squares past f64.
-            crate::bounds::non_negative_at_most("counts", n, crate::bounds::PHOTONS_MAX)?;
+            crate::bounds::non_negative_at_most("counts", n, crate::bounds::MEAN_COUNT_MAX)?;
             noise.cumulants(n)
         })
         .collect()

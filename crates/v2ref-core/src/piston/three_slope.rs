@@ -35,7 +35,7 @@
 //! the two-aperture cosine around v/B; the model puts the same variance in
 //! sharp corners.
 
-use crate::error::{self, Result};
+use crate::error::{self, Error, Result};
 
 /// Low corner `ν1 = LOW_CORNER_TIMES_V_OVER_B · v/B` (Conan et al. 1995).
 pub const LOW_CORNER_TIMES_V_OVER_B: f64 = 0.2;
@@ -83,6 +83,14 @@ impl ThreeSlope {
         error::non_negative("baseline_m", baseline_m)?;
         error::positive("aperture_m", aperture_m)?;
         let corner_high_hz = HIGH_CORNER_TIMES_V_OVER_D * wind_mps / aperture_m;
+        if !corner_high_hz.is_finite() {
+            return Err(Error::Invalid {
+                param: "aperture_m",
+                reason: format!(
+                    "{aperture_m:e} m makes the high corner (wind over aperture) infinite; accepted: an aperture whose corner frequency is finite"
+                ),
+            });
+        }
         if variance_um2 == 0.0 || baseline_m == 0.0 {
             return Ok(ThreeSlope {
                 corner_low_hz: corner_high_hz,
@@ -91,7 +99,19 @@ impl ThreeSlope {
             });
         }
         let corner_low_hz = (LOW_CORNER_TIMES_V_OVER_B * wind_mps / baseline_m).min(corner_high_hz);
-        let scale = variance_um2 / (2.0 * shape_integral(corner_low_hz, corner_high_hz));
+        let shape = shape_integral(corner_low_hz, corner_high_hz);
+        // Corners so low (apertures or baseline of astronomical size for
+        // the wind) that the shape's integral overflows: no finite scale
+        // gives the variance asked.
+        if !(shape.is_finite() && shape > 0.0) {
+            return Err(Error::Invalid {
+                param: "aperture_m",
+                reason: format!(
+                    "the spectrum's corners ({corner_low_hz:e} and {corner_high_hz:e} Hz) are too low for a finite spectrum; accepted: a baseline and an aperture whose corner frequencies (wind over baseline and over aperture) give a finite spectrum"
+                ),
+            });
+        }
+        let scale = variance_um2 / (2.0 * shape);
         Ok(ThreeSlope {
             corner_low_hz,
             corner_high_hz,
@@ -128,6 +148,9 @@ impl ThreeSlope {
     /// `∫_{−∞}^{∞} P dν`, µm² (the variance it was built with, from the
     /// closed form of the shape integral).
     pub fn variance_um2(&self) -> f64 {
+        if self.scale == 0.0 {
+            return 0.0;
+        }
         2.0 * self.scale * shape_integral(self.corner_low_hz, self.corner_high_hz)
     }
 }

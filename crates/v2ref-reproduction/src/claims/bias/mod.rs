@@ -86,7 +86,7 @@ fn integration_claims(out: &mut Vec<Computed>) {
     let measured = integrating_contrast_loss(SAMPLES_PER_FRINGE);
     // Wide band: the two estimators lose differently.
     let obs = observe(&k_band(), &Source::Point, 0.0, &SpectralPhase::zero());
-    let loss = integration::wide_band_loss(&obs, DX_UM).expect("the K band at 0.55 um");
+    let loss = integration::wide_band_loss(&obs, DX_UM).expect("the K band of the claims");
     let worst = crate::cases::s_grid(1.0)
         .iter()
         .map(|&s| {
@@ -94,7 +94,7 @@ fn integration_claims(out: &mut Vec<Computed>) {
                 &observe(&k_band(), &disk(), s, &SpectralPhase::zero()),
                 DX_UM,
             )
-            .expect("the K band at 0.55 um")
+            .expect("the K band of the claims")
         })
         .fold((0.0_f64, 0.0_f64), |(a, b), x| {
             (a.max(x.v1.abs()), b.max(x.v2.abs()))
