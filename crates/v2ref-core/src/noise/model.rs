@@ -34,7 +34,7 @@ use serde::Serialize;
 /// // Read noise 2 photons plus photon noise: the variance of a sample of mean
 /// // count 10 is 4 + 10.
 /// let noise = NoiseModel::new(2.0, true)?;
-/// let c = noise.cumulants(10.0);
+/// let c = noise.cumulants(10.0)?;
 /// assert!((c.k2 - 14.0).abs() < 1e-12);
 /// // A negative read noise is refused, naming the parameter.
 /// assert_eq!(NoiseModel::new(-1.0, false).unwrap_err().param(), Some("read_noise"));
