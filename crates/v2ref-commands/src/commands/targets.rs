@@ -256,17 +256,18 @@ pub fn parse_targets(text: &str) -> Result<Vec<std::result::Result<Target, RowFa
         if rows.len() == MAX_TARGETS {
             return Err(invalid(format!("more than {MAX_TARGETS} targets")));
         }
-        let row = target(line, &columns, text).and_then(|t| match seen.get(&t.name) {
-            Some(first) => Err(RowFault {
+        let mut row = target(line, &columns, text);
+        let name = row.as_ref().map_or_else(|f| &f.name, |t| &t.name).clone();
+        // A name is taken by its first row, read or not.
+        if let Some(first) = seen.get(&name).filter(|_| !name.is_empty()) {
+            row = Err(RowFault {
                 line,
-                name: t.name.clone(),
-                reason: format!("name: '{}' already on line {first}", t.name),
-            }),
-            None => {
-                seen.insert(t.name.clone(), line);
-                Ok(t)
-            }
-        });
+                reason: format!("name: '{name}' already on line {first}"),
+                name,
+            });
+        } else {
+            seen.insert(name, line);
+        }
         rows.push(row);
     }
     if rows.is_empty() {
