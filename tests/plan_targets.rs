@@ -336,3 +336,34 @@ fn the_table_file_is_written_whole_and_not_replaced_without_force() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("regular file"));
 }
+
+/// With verification, a planned row carries the verdict (the ratio inside
+/// its interval); a row no setting reaches is `unreachable` with the
+/// plan's reason, not an error, and is not verified.
+#[test]
+fn verified_rows_carry_the_verdict_and_unreachable_rows_their_reason() {
+    let mut verified = shared();
+    verified.verify_observations = Some(32);
+    let rows = parse_targets("name,magnitude,band,diameter_mas\nbright,4,H,1\n").unwrap();
+    let table = plan_targets(&verified, &rows, 1, &|_| {}).unwrap();
+    let row = &table[0];
+    assert_eq!(row.status, Status::Ok);
+    let ratio = row.verify_sigma_ratio.unwrap();
+    let (lo, hi) = (
+        row.verify_sigma_ratio_lower.unwrap(),
+        row.verify_sigma_ratio_upper.unwrap(),
+    );
+    assert!(lo <= ratio && ratio <= hi && lo > 0.0, "{row:?}");
+    assert!(row.verify_sigma_kept.is_some() && row.verify_mean_kept.is_some());
+    // A target below the piston bias of a 1 mas disk at this setting
+    // (about 1e-3).
+    verified.request.target_sigma_v2 = Some(1e-4);
+    let table = plan_targets(&verified, &rows, 1, &|_| {}).unwrap();
+    let row = &table[0];
+    assert_eq!(row.status, Status::Unreachable, "{row:?}");
+    assert!(
+        row.reason.as_deref().unwrap().contains("piston bias"),
+        "{row:?}"
+    );
+    assert_eq!((row.estimator, row.verify_sigma_ratio), (None, None));
+}
