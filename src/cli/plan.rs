@@ -16,6 +16,7 @@ use v2ref_core::{Error, Result};
 
 /// Flags of `plan`.
 #[derive(Debug, clap::Args)]
+#[command(group = clap::ArgGroup::new("brightness").multiple(true))]
 pub struct Args {
     #[command(flatten)]
     instrument: super::instrument::InstrumentArgs,
@@ -37,7 +38,7 @@ pub struct Args {
     /// --throughput. From -10 to 30.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true,
           conflicts_with_all = ["photon_rate_per_s", "spectrum_csv"],
-          requires = "magnitude_band")]
+          requires = "magnitude_band", group = "brightness")]
     magnitude: Option<f64>,
     /// The band of --magnitude: 2MASS J, H, Ks or Johnson–Cousins V, R, I.
     #[arg(long, value_enum, requires = "magnitude")]
@@ -45,8 +46,8 @@ pub struct Args {
     /// Fraction of the source's photons counted in the sampled
     /// interferogram (atmosphere, optics, combiner outputs sampled, detector
     /// QE), 0 < T <= 1; with --magnitude (needed, unless --instrument's
-    /// preset gives it).
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
+    /// preset gives it), or with --targets for its rows' magnitudes.
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "brightness")]
     throughput: Option<f64>,
     #[command(flatten)]
     noise: NoiseArgs,
@@ -135,6 +136,8 @@ pub struct Args {
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
+    #[command(flatten)]
+    targets: super::targets::TargetsArgs,
 }
 
 physical_flags! {
@@ -215,10 +218,26 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
     Ok((p, req))
 }
 
+/// How `--targets` runs, from the other flags.
+fn targets_options(args: &Args) -> Result<super::targets::Options> {
+    let preset = args.instrument.preset()?.map(|i| i.throughput);
+    Ok(super::targets::Options {
+        throughput: args.throughput.or(preset),
+        verify_observations: args.verify.then_some(args.verify_observations),
+        threads: args.threads,
+        quiet: args.quiet,
+        json: args.json,
+        force: args.force,
+    })
+}
+
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
     if args.instrument.print_list() {
         return Ok(ExitCode::SUCCESS);
+    }
+    if args.targets.targets.is_some() {
+        return super::targets::run(&args.targets, request(&args)?, targets_options(&args)?);
     }
     if let Some(p) = &args.oifits {
         v2ref_oifits::check_fits_extension(p, "oifits")?;
