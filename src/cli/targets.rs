@@ -30,27 +30,15 @@ pub struct TargetsArgs {
     pub out: Option<PathBuf>,
 }
 
-/// How the target list is run, from `plan`'s other flags.
-pub struct Options {
-    /// Throughput for rows with a magnitude: --throughput or the preset's.
-    pub throughput: Option<f64>,
-    /// --verify-observations with --verify.
-    pub verify_observations: Option<u64>,
-    /// --threads.
-    pub threads: usize,
-    /// --quiet.
-    pub quiet: bool,
-    /// --json: the table as JSON on stdout (the --out file stays CSV).
-    pub json: bool,
-    /// --force.
-    pub force: bool,
-}
-
-/// Runs `plan --targets` with the shared inputs `(physical, request)`.
-pub fn run(args: &TargetsArgs, shared: (Physical, PlanRequest), o: Options) -> Result<ExitCode> {
+/// Runs `plan --targets` with `plan`'s flags `o` and the shared inputs
+/// `(physical, request)` they give.
+pub fn run(o: &super::plan::Args, shared: (Physical, PlanRequest)) -> Result<ExitCode> {
+    let args = &o.targets;
     let Some(list) = &args.targets else {
         return Ok(ExitCode::SUCCESS);
     };
+    // A row's magnitude is collected with --throughput, else the preset's.
+    let preset = o.instrument.preset()?.map(|i| i.throughput);
     let outputs: Vec<(&Path, &'static str)> =
         args.out.iter().map(|p| (p.as_path(), "out")).collect();
     let set = v2ref_files::atomic::set::OutputSet::begin(&outputs, o.force)?;
@@ -59,8 +47,8 @@ pub fn run(args: &TargetsArgs, shared: (Physical, PlanRequest), o: Options) -> R
     let shared = SharedPlan {
         physical,
         request,
-        throughput: o.throughput,
-        verify_observations: o.verify_observations,
+        throughput: o.throughput.or(preset),
+        verify_observations: o.verify.then_some(o.verify_observations),
     };
     let bar = super::progress_bar(rows.len() as u64, o.quiet, "plan --targets");
     let table = targets::plan_targets(&shared, &rows, o.threads, &|k| bar.inc(k))?;
