@@ -26,6 +26,7 @@ use v2ref_reproduction as reproduction;
 mod answers;
 mod inputs;
 mod oifits;
+mod units;
 pub mod output;
 pub mod values;
 
@@ -235,5 +236,6 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // (Python would end it by unwinding through Rust: an abort).
     let atexit = m.py().import("atexit")?;
     atexit.call_method1("register", (wrap_pyfunction!(mark_exiting, m)?,))?;
+    units::register(m)?;
     answers::register(m)
 }

@@ -12,7 +12,7 @@
 mod data;
 mod paper;
 mod plan;
-mod simulator;
+pub(crate) mod simulator;
 
 use super::ok;
 use crate::conformance::estimate::BiasConvention;
