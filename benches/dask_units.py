@@ -18,7 +18,7 @@ import v2ref
 from v2ref import dask as v2dask
 
 
-def simulate_args(samples, trials):
+def simulate_args(samples, trials, **kw):
     """The arguments ``v2ref.simulate`` hands ``v2ref.dask`` (threads 1)."""
     seen = {}
 
@@ -29,7 +29,7 @@ def simulate_args(samples, trials):
     real = v2dask._run_units
     v2dask._run_units = capture
     try:
-        v2ref.simulate(trials=trials, samples=samples, threads=1, checkpoint="-")
+        v2ref.simulate(trials=trials, samples=samples, threads=1, checkpoint="-", **kw)
     finally:
         v2dask._run_units = real
     return seen["args"]
@@ -50,7 +50,7 @@ def noop(x):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--units", type=int, default=24, help="work units of the speed-up run")
+    ap.add_argument("--units", type=int, default=512, help="work units of the speed-up run")
     ap.add_argument("--samples", type=int, default=128)
     opts = ap.parse_args()
     print(f"load average before: {os.getloadavg()}, cores: {os.cpu_count()}")
@@ -58,6 +58,10 @@ def main():
     args = simulate_args(opts.samples, 4 * 8192)
     unit_s = best_of(3, lambda: v2ref._v2ref._units_run("simulate", args, 0, 4)) / 4
     print(f"one unit (8192 rows, {opts.samples} samples, 1 thread): {unit_s * 1e3:.1f} ms")
+    rows_args = simulate_args(opts.samples, 2 * 8192, bias="counts")
+    rows_s = best_of(2, lambda: v2ref._v2ref._units_run("simulate", rows_args, 0, 2)) / 2
+    print(f"one unit with every row estimated (bias counts): {rows_s * 1e3:.1f} ms "
+          f"({rows_s / 8192 * 1e6:.2f} us a row)")
 
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:

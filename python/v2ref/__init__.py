@@ -818,6 +818,8 @@ def piston(
     seed: int = 1,
     threads: int = 0,
     bins: str = "positive",
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -856,6 +858,13 @@ def piston(
         Worker threads (0: all cores); the answer does not depend on it.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
+    client : distributed.Client, optional
+        Runs each fringe frequency as a task on this Dask cluster
+        (``threads`` then counts per task, 0 meaning 1); the answer is the
+        same bits (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished frequency; a rerun with the same
+        arguments computes only those it lacks.
     {physical}
     psd : {"two-aperture", "three-slope"}
         The differential-piston spectrum the sequences are drawn from: the
@@ -881,16 +890,24 @@ def piston(
         freqs = [_to_float("fringe_hz", fringe_hz)]
     else:
         freqs = [_to_float("fringe_hz", f) for f in fringe_hz]
-    return _v2ref.piston(
+    threads = _uint("threads", threads)
+    if client is not None and threads == 0:
+        threads = 1
+    args = (
         _physical(values, exclude=("fringe_hz",)),
         freqs,
         _word("bins", bins),
         _uint("scans", scans),
         _uint("seed", seed),
-        _v2ref.check_threads(_uint("threads", threads)),
+        _v2ref.check_threads(threads),
         _word("psd", psd),
         _float("wind_angle_deg", wind_angle_deg),
     )
+    if client is None and checkpoint is None:
+        return _v2ref.piston(*args)
+    from . import dask as _dask
+
+    return _dask._run_units("piston", args, client, checkpoint, 1)[0]
 
 
 #: The keyword arguments of :func:`plan` named as physical inputs that are

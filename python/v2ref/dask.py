@@ -27,10 +27,12 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import _v2ref
 
-#: Fewest units per task: a task then computes for well over 20 times its
-#: round trip through the scheduler (benches/dask_units.py: a unit of the
-#: default simulate is ~40 ms, a task's round trip ~10 ms).
-MIN_UNITS_PER_TASK = 4
+#: Fewest units of ``simulate`` per task: a task then computes for over
+#: 20 times its overhead (benches/dask_units.py, on 2 shared cores: a unit
+#: of the default simulate ~12.5 ms on one thread, a range's round trip
+#: and setup ~27 ms, so 43 units or more keep the overhead under 5 %).
+#: ``piston``'s units (one fringe frequency each) run one per task.
+MIN_UNITS_PER_TASK = 64
 
 #: Tasks per worker thread a run is split into when not told (enough to
 #: balance the load and lose little to a worker lost, few enough to keep

@@ -26,8 +26,8 @@ use v2ref_reproduction as reproduction;
 mod answers;
 mod inputs;
 mod oifits;
-mod units;
 pub mod output;
+mod units;
 pub mod values;
 
 use crate::cancel::{run_cancellable, Token};

@@ -4,19 +4,28 @@
 //! `args` are the positional arguments its binding takes, parsed by the
 //! same code ([`crate::answers::simulator::simulate_job`]).
 
+use crate::answers::paper::piston_job;
 use crate::answers::simulator::{simulate_answer, simulate_job};
+use crate::values::to_py;
 use crate::{interruptible, ok};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
+use v2ref_commands::units::piston::PistonJob;
 use v2ref_commands::units::simulate::SimulateJob;
 use v2ref_commands::units::{Partial, UnitJob};
 
 /// The commands that run in ranges of units.
-const COMMANDS: &str = "simulate";
+const COMMANDS: &str = "simulate, piston";
+
+/// A command's job.
+enum Job {
+    Simulate(SimulateJob),
+    Piston(PistonJob),
+}
 
 /// The job of `command` from its binding's arguments.
-fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<SimulateJob> {
+fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<Job> {
     match command {
         "simulate" => {
             let (physical, bins, bias, formula, trials, seed, threads): (
@@ -28,7 +37,31 @@ fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<SimulateJob> {
                 u64,
                 usize,
             ) = args.extract()?;
-            simulate_job(&physical, &bins, &bias, &formula, trials, seed, threads)
+            let job = simulate_job(&physical, &bins, &bias, &formula, trials, seed, threads)?;
+            Ok(Job::Simulate(job))
+        }
+        "piston" => {
+            let (physical, fringe_hz, bins, scans, seed, threads, psd, wind_angle_deg): (
+                Bound<'_, PyDict>,
+                Vec<f64>,
+                String,
+                usize,
+                u64,
+                usize,
+                String,
+                f64,
+            ) = args.extract()?;
+            let job = piston_job(
+                &physical,
+                fringe_hz,
+                &bins,
+                scans,
+                seed,
+                threads,
+                &psd,
+                wind_angle_deg,
+            )?;
+            Ok(Job::Piston(job))
         }
         _ => Err(PyValueError::new_err(format!(
             "command: {command:?} does not run in units (accepted: {COMMANDS})"
@@ -36,10 +69,54 @@ fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<SimulateJob> {
     }
 }
 
+impl Job {
+    fn key(&self) -> u64 {
+        match self {
+            Job::Simulate(j) => j.key(),
+            Job::Piston(j) => j.key(),
+        }
+    }
+
+    fn unit_count(&self) -> crate::Result<u64> {
+        match self {
+            Job::Simulate(j) => j.unit_count(),
+            Job::Piston(j) => j.unit_count(),
+        }
+    }
+
+    fn run_range(
+        &self,
+        range: std::ops::Range<u64>,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> crate::Result<Partial> {
+        match self {
+            Job::Simulate(j) => j.run_range(range, progress),
+            Job::Piston(j) => j.run_range(range, progress),
+        }
+    }
+
+    fn reduce(&self, py: Python<'_>, partials: &[Partial]) -> PyResult<PyObject> {
+        match self {
+            Job::Simulate(j) => {
+                let run = interruptible(py, |_| j.reduce(partials))?;
+                simulate_answer(py, j, &run)
+            }
+            Job::Piston(j) => {
+                let report = interruptible(py, |_| j.reduce(partials))?;
+                to_py(py, &report)
+            }
+        }
+    }
+}
+
 /// `(units, key)`: the number of work units and the request's key (16 hex
 /// digits; the same for every thread count).
 #[pyfunction]
-fn _units_count(py: Python<'_>, command: &str, args: &Bound<'_, PyTuple>) -> PyResult<(u64, String)> {
+fn _units_count(
+    py: Python<'_>,
+    command: &str,
+    args: &Bound<'_, PyTuple>,
+) -> PyResult<(u64, String)> {
     let job = job(command, args)?;
     let units = interruptible(py, |_| job.unit_count())?;
     Ok((units, format!("{:016x}", job.key())))
@@ -83,8 +160,7 @@ fn _units_reduce(
         .iter()
         .map(|b| ok(Partial::from_bytes(b, key)))
         .collect::<PyResult<_>>()?;
-    let run = interruptible(py, |_| job.reduce(&partials))?;
-    simulate_answer(py, &job, &run)
+    job.reduce(py, &partials)
 }
 
 /// Adds the functions to the module.

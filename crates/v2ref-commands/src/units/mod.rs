@@ -11,6 +11,7 @@
 //! merge of them: the one-process reduction merges unit by unit, and
 //! floating-point merges regrouped by range would round differently.
 
+pub mod piston;
 pub mod simulate;
 
 use crate::error::{Error, Result};

@@ -10,7 +10,7 @@
 //! the answers are parsed and built here.
 
 mod data;
-mod paper;
+pub(crate) mod paper;
 mod plan;
 pub(crate) mod simulator;
 

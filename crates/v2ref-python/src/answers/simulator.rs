@@ -13,7 +13,6 @@ use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::Trials;
 use crate::report::simulator::{check_trials, Estimation, SimulateReport};
 use crate::simulator::{simulate as run_simulation, Model, SimulationRun};
-use v2ref_commands::units::simulate::SimulateJob;
 use crate::values::to_py;
 use crate::{interruptible, ok, warn_cost};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -21,6 +20,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
+use v2ref_commands::units::simulate::SimulateJob;
 
 use crate::commands::ESTIMATE_COLUMNS;
 
@@ -260,7 +260,11 @@ pub(super) fn simulate(
 ) -> PyResult<PyObject> {
     let job = simulate_job(physical, bins, bias, formula, trials, seed, threads)?;
     let (inputs, size) = (&job.inputs, job.size);
-    warn_cost(py, "simulate", &ok(cost::simulate(inputs, trials, threads))?)?;
+    warn_cost(
+        py,
+        "simulate",
+        &ok(cost::simulate(inputs, trials, threads))?,
+    )?;
     let run = interruptible(py, |tick| {
         let model = Model::new(inputs)?;
         let e = job.estimation;
