@@ -58,8 +58,9 @@ const MAGIC: &[u8; 8] = b"v2rpart1";
 const HEADER_BYTES: usize = 8 + 4 * 8;
 
 impl Partial {
-    /// The encoding: [`MAGIC`], then key, range start, range end, word
-    /// count and the words, little-endian.
+    /// The encoding: the 8 bytes `v2rpart1` (format version 1), then
+    /// key, range start, range end, word count and the words,
+    /// little-endian.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(HEADER_BYTES + 8 * self.words.len());
         out.extend_from_slice(MAGIC);
@@ -221,7 +222,7 @@ mod tests {
             4
         );
         assert!(unit_words(&[b.clone(), a.clone()], 7, 4, 2).is_err());
-        assert!(unit_words(&[a.clone()], 7, 4, 2).is_err());
+        assert!(unit_words(std::slice::from_ref(&a), 7, 4, 2).is_err());
         assert!(unit_words(&[a.clone(), b.clone()], 7, 4, 1).is_err());
         assert!(unit_words(&[a, b], 9, 4, 2).is_err());
         assert!(check_range(&(3..3), 4).is_err() && check_range(&(3..5), 4).is_err());

@@ -1,6 +1,7 @@
 //! `simulate` as ranges of work units ([`super::UnitJob`]): each unit's
 //! accumulators ([`UnitStats`], one per piston sequence) travel as words,
-//! and the reduction merges them in unit order as [`simulate`] does.
+//! and the reduction merges them in unit order as
+//! [`simulate`](crate::simulator::simulate) does.
 
 use super::{check_range, key_of, unit_words, Partial, UnitJob};
 use crate::error::{Error, Result};
