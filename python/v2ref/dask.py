@@ -78,7 +78,7 @@ def _chunk_units(units: int, client: Any, chunk_units: Optional[int]) -> int:
 class _Checkpoint:
     """A checkpoint folder, opened once (entries are reached through it)."""
 
-    def __init__(self, path: Any, command: str, key: str):
+    def __init__(self, path: Any, command: str, key: str, size: Tuple[int, int]):
         path = _os.fspath(path)
         try:
             _os.mkdir(path)
@@ -90,6 +90,9 @@ class _Checkpoint:
         except NotADirectoryError:
             raise ValueError(f"checkpoint: {path!r} is not a folder") from None
         self.path, self.command, self.key = path, command, key
+        # A partial of n units is size[0] + n * size[1] bytes: nothing
+        # longer is read.
+        self.size = size
         self._pattern = _re.compile(
             rf"v2ref-{_re.escape(command)}-{key}-([0-9]{{1,20}})-([0-9]{{1,20}}){_re.escape(_SUFFIX)}"
         )
@@ -105,14 +108,15 @@ class _Checkpoint:
             m = self._pattern.fullmatch(name)
             if m is None:
                 continue
-            data = self._read(name)
+            start, end = int(m.group(1)), int(m.group(2))
+            data = self._read(name, self.size[0] + max(end - start, 0) * self.size[1])
             rng = _v2ref._units_check(self.command, args, data)
-            if rng != (int(m.group(1)), int(m.group(2))):
+            if rng != (start, end):
                 raise ValueError(f"checkpoint: {name} holds units {rng[0]}..{rng[1]}, not those of its name")
             found[rng] = data
         return found
 
-    def _read(self, name: str) -> bytes:
+    def _read(self, name: str, size: int) -> bytes:
         flags = _os.O_RDONLY | _os.O_NOFOLLOW | getattr(_os, "O_NONBLOCK", 0) | getattr(_os, "O_CLOEXEC", 0)
         try:
             fd = _os.open(name, flags, dir_fd=self.fd)
@@ -122,7 +126,9 @@ class _Checkpoint:
             st = _os.fstat(fd)
             if not _stat.S_ISREG(st.st_mode):
                 raise ValueError(f"checkpoint: {name} is not a regular file")
-            chunks, left = [], st.st_size
+            if st.st_size != size:
+                raise ValueError(f"checkpoint: {name} is {st.st_size} bytes, not the {size} of its units' results")
+            chunks, left = [], size
             while left > 0:
                 chunk = _os.read(fd, min(left, 1 << 20))
                 if not chunk:
@@ -183,9 +189,9 @@ def _run_units(
     chunk_units: Optional[int] = None,
 ) -> Tuple[Any, int]:
     """``(answer, ranges computed)`` of ``command`` run in ranges of units."""
-    units, key = _v2ref._units_count(command, args)
+    units, key, size = _v2ref._units_count(command, args)
     chunk = _chunk_units(units, client, chunk_units)
-    store = _Checkpoint(checkpoint, command, key) if checkpoint is not None else None
+    store = _Checkpoint(checkpoint, command, key, size) if checkpoint is not None else None
     try:
         found = store.load(args) if store is not None else {}
         kept, gaps = _missing(units, list(found))

@@ -139,6 +139,13 @@ def test_a_checkpoint_link_or_foreign_file_is_refused_never_followed(tmp_path):
     with pytest.raises(ValueError, match="checkpoint: .* link is never followed"):
         v2dask._run_units("simulate", args, None, folder, 3)
     first.unlink()
+    # A partial grown by one byte: refused before it is read.
+    moved.rename(first)
+    with open(first, "ab") as f:
+        f.write(b"\0")
+    with pytest.raises(ValueError, match="checkpoint: .* bytes, not the"):
+        v2dask._run_units("simulate", args, None, folder, 3)
+    first.unlink()
     # Another request's partial under this request's name: refused.
     other = args_of(**{**SMALL, "seed": 99})
     foreign = v2dask._run_units("simulate", other, None, tmp_path / "other", 3)

@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use v2ref_commands::units::piston::PistonJob;
 use v2ref_commands::units::simulate::SimulateJob;
-use v2ref_commands::units::{Partial, UnitJob};
+use v2ref_commands::units::{Partial, UnitJob, HEADER_BYTES};
 
 /// The commands that run in ranges of units.
 const COMMANDS: &str = "simulate, piston";
@@ -84,6 +84,13 @@ impl Job {
         }
     }
 
+    fn words_per_unit(&self) -> crate::Result<usize> {
+        match self {
+            Job::Simulate(j) => j.words_per_unit(),
+            Job::Piston(j) => j.words_per_unit(),
+        }
+    }
+
     fn run_range(
         &self,
         range: std::ops::Range<u64>,
@@ -109,17 +116,19 @@ impl Job {
     }
 }
 
-/// `(units, key)`: the number of work units and the request's key (16 hex
-/// digits; the same for every thread count).
+/// `(units, key, bytes)`: the number of work units, the request's key
+/// (16 hex digits; the same for every thread count) and the size in bytes
+/// of a partial result of `n` units, `bytes[0] + n * bytes[1]`.
 #[pyfunction]
 fn _units_count(
     py: Python<'_>,
     command: &str,
     args: &Bound<'_, PyTuple>,
-) -> PyResult<(u64, String)> {
+) -> PyResult<(u64, String, (usize, usize))> {
     let job = job(command, args)?;
-    let units = interruptible(py, |_| job.unit_count())?;
-    Ok((units, format!("{:016x}", job.key())))
+    let (units, words) = interruptible(py, |_| Ok((job.unit_count()?, job.words_per_unit()?)))?;
+    let bytes = (HEADER_BYTES, 8 * words);
+    Ok((units, format!("{:016x}", job.key()), bytes))
 }
 
 /// The partial result (bytes) of units `start..end`.

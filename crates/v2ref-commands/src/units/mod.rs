@@ -30,6 +30,10 @@ pub trait UnitJob {
     /// Number of work units.
     fn unit_count(&self) -> Result<u64>;
 
+    /// Words of each unit's result (a partial of n units holds n times
+    /// as many: what a reader of partials may expect, and no more).
+    fn words_per_unit(&self) -> Result<usize>;
+
     /// Runs the units of `range` (within `0..unit_count()`); `progress`
     /// as the command's.
     fn run_range(&self, range: Range<u64>, progress: &(dyn Fn(u64) + Sync)) -> Result<Partial>;
@@ -55,7 +59,7 @@ pub struct Partial {
 const MAGIC: &[u8; 8] = b"v2rpart1";
 
 /// Header: magic, key, range start, range end, word count.
-const HEADER_BYTES: usize = 8 + 4 * 8;
+pub const HEADER_BYTES: usize = 8 + 4 * 8;
 
 impl Partial {
     /// The encoding: the 8 bytes `v2rpart1` (format version 1), then

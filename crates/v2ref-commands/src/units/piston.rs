@@ -43,6 +43,10 @@ impl UnitJob for PistonJob {
         Ok(prepare(&self.physical, &self.request)?.fringe_hz.len() as u64)
     }
 
+    fn words_per_unit(&self) -> Result<usize> {
+        Ok(RUN_WORDS)
+    }
+
     fn run_range(&self, range: Range<u64>, progress: &(dyn Fn(u64) + Sync)) -> Result<Partial> {
         let prepared = prepare(&self.physical, &self.request)?;
         check_range(&range, prepared.fringe_hz.len() as u64)?;

@@ -51,6 +51,10 @@ impl UnitJob for SimulateJob {
         self.with_units(|u| Ok(u.units()))
     }
 
+    fn words_per_unit(&self) -> Result<usize> {
+        self.with_units(|u| Ok(u.empty().len() * UNIT_STATS_WORDS))
+    }
+
     fn run_range(&self, range: Range<u64>, progress: &(dyn Fn(u64) + Sync)) -> Result<Partial> {
         self.with_units(|units| {
             check_range(&range, units.units())?;
