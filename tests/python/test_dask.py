@@ -74,8 +74,11 @@ def test_a_worker_killed_mid_run_changes_no_bit(client, tmp_path):
 
         def transition(self, key, start, finish, **kwargs):
             name = key if isinstance(key, str) else str(key)
-            if finish == "executing" and name.startswith("v2ref-") and not marker.exists():
-                marker.write_text("killed")
+            if finish == "executing" and name.startswith("v2ref-"):
+                try:  # created new: one worker only, even two starting at once
+                    os.close(os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+                except FileExistsError:
+                    return
                 os._exit(1)
 
     one = v2ref.simulate(**SMALL)
