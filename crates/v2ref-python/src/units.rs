@@ -77,17 +77,10 @@ impl Job {
         }
     }
 
-    fn unit_count(&self) -> crate::Result<u64> {
+    fn shape(&self) -> crate::Result<(u64, usize)> {
         match self {
-            Job::Simulate(j) => j.unit_count(),
-            Job::Piston(j) => j.unit_count(),
-        }
-    }
-
-    fn words_per_unit(&self) -> crate::Result<usize> {
-        match self {
-            Job::Simulate(j) => j.words_per_unit(),
-            Job::Piston(j) => j.words_per_unit(),
+            Job::Simulate(j) => j.shape(),
+            Job::Piston(j) => j.shape(),
         }
     }
 
@@ -126,7 +119,7 @@ fn _units_count(
     args: &Bound<'_, PyTuple>,
 ) -> PyResult<(u64, String, (usize, usize))> {
     let job = job(command, args)?;
-    let (units, words) = interruptible(py, |_| Ok((job.unit_count()?, job.words_per_unit()?)))?;
+    let (units, words) = interruptible(py, |_| job.shape())?;
     let bytes = (HEADER_BYTES, 8 * words);
     Ok((units, format!("{:016x}", job.key()), bytes))
 }

@@ -34,6 +34,12 @@ pub trait UnitJob {
     /// as many: what a reader of partials may expect, and no more).
     fn words_per_unit(&self) -> Result<usize>;
 
+    /// [`UnitJob::unit_count`] and [`UnitJob::words_per_unit`] together
+    /// (a job whose setup is costly overrides it to set up once).
+    fn shape(&self) -> Result<(u64, usize)> {
+        Ok((self.unit_count()?, self.words_per_unit()?))
+    }
+
     /// Runs the units of `range` (within `0..unit_count()`); `progress`
     /// as the command's.
     fn run_range(&self, range: Range<u64>, progress: &(dyn Fn(u64) + Sync)) -> Result<Partial>;

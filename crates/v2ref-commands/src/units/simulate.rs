@@ -52,7 +52,11 @@ impl UnitJob for SimulateJob {
     }
 
     fn words_per_unit(&self) -> Result<usize> {
-        self.with_units(|u| Ok(u.empty().len() * UNIT_STATS_WORDS))
+        Ok(self.shape()?.1)
+    }
+
+    fn shape(&self) -> Result<(u64, usize)> {
+        self.with_units(|u| Ok((u.units(), u.empty().len() * UNIT_STATS_WORDS)))
     }
 
     fn run_range(&self, range: Range<u64>, progress: &(dyn Fn(u64) + Sync)) -> Result<Partial> {
