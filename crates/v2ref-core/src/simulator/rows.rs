@@ -441,7 +441,7 @@ impl Rows<'_> {
 
     /// [`Rows::fold_units`] over the units of `range` only (a run split
     /// over processes: unit u has the same rows whatever range it is in).
-    pub fn fold_unit_range<T: Send>(
+    pub(crate) fn fold_unit_range<T: Send>(
         &self,
         range: std::ops::Range<u64>,
         threads: usize,
