@@ -633,6 +633,9 @@ def simulate(
     bins: str = "positive",
     bias: str = "model",
     formula: str = "exact",
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
+    chunk_units: Optional[int] = None,
     # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -676,6 +679,16 @@ def simulate(
         Where the photon bias takes the mean counts from.
     formula : {"exact", "published"}
         Formula of the subtracted bias: exact, or as printed in the paper.
+    client : distributed.Client, optional
+        Runs the work units as tasks on this Dask cluster (``threads`` then
+        counts per task, 0 meaning 1); the answer is the same bits
+        (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of units; a rerun with the
+        same arguments computes only the ranges it lacks.
+    chunk_units : int, optional
+        Work units (8192 rows each) per task (default: about four tasks
+        per worker thread, at least ``v2ref.dask.MIN_UNITS_PER_TASK``).
     {physical}
 
     Returns
@@ -686,15 +699,23 @@ def simulate(
         ``seed``, ``piston``, ``piston_effect`` and every input.
     """
     values = dict(locals())
-    return _v2ref.simulate(
+    threads = _uint("threads", threads)
+    if client is not None and threads == 0:
+        threads = 1
+    args = (
         _physical(values),
         _word("bins", bins),
         _word("bias", bias),
         _word("formula", formula),
         _uint("trials", trials),
         _uint("seed", seed),
-        _v2ref.check_threads(_uint("threads", threads)),
+        _v2ref.check_threads(threads),
     )
+    if client is None and checkpoint is None:
+        return _v2ref.simulate(*args)
+    from . import dask as _dask
+
+    return _dask._run_units("simulate", args, client, checkpoint, chunk_units)[0]
 
 
 @_documented()
@@ -798,6 +819,8 @@ def piston(
     seed: int = 1,
     threads: int = 0,
     bins: str = "positive",
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -836,6 +859,13 @@ def piston(
         Worker threads (0: all cores); the answer does not depend on it.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
+    client : distributed.Client, optional
+        Runs each fringe frequency as a task on this Dask cluster
+        (``threads`` then counts per task, 0 meaning 1); the answer is the
+        same bits (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished frequency; a rerun with the same
+        arguments computes only those it lacks.
     {physical}
     psd : {"two-aperture", "three-slope"}
         The differential-piston spectrum the sequences are drawn from: the
@@ -861,16 +891,24 @@ def piston(
         freqs = [_to_float("fringe_hz", fringe_hz)]
     else:
         freqs = [_to_float("fringe_hz", f) for f in fringe_hz]
-    return _v2ref.piston(
+    threads = _uint("threads", threads)
+    if client is not None and threads == 0:
+        threads = 1
+    args = (
         _physical(values, exclude=("fringe_hz",)),
         freqs,
         _word("bins", bins),
         _uint("scans", scans),
         _uint("seed", seed),
-        _v2ref.check_threads(_uint("threads", threads)),
+        _v2ref.check_threads(threads),
         _word("psd", psd),
         _float("wind_angle_deg", wind_angle_deg),
     )
+    if client is None and checkpoint is None:
+        return _v2ref.piston(*args)
+    from . import dask as _dask
+
+    return _dask._run_units("piston", args, client, checkpoint, 1)[0]
 
 
 #: The keyword arguments of :func:`plan` named as physical inputs that are

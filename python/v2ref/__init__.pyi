@@ -288,7 +288,7 @@ def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins:
         minimum detectable biases, pass), ``pass``.
     """
 
-def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', client: Any=None, checkpoint: Optional[_PathLike]=None, chunk_units: Optional[int]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
     Parameters
@@ -305,6 +305,16 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
         Where the photon bias takes the mean counts from.
     formula : {"exact", "published"}
         Formula of the subtracted bias: exact, or as printed in the paper.
+    client : distributed.Client, optional
+        Runs the work units as tasks on this Dask cluster (``threads`` then
+        counts per task, 0 meaning 1); the answer is the same bits
+        (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of units; a rerun with the
+        same arguments computes only the ranges it lacks.
+    chunk_units : int, optional
+        Work units (8192 rows each) per task (default: about four tasks
+        per worker thread, at least ``v2ref.dask.MIN_UNITS_PER_TASK``).
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per
@@ -519,7 +529,7 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
         the exact window statistics take).
     """
 
-def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
+def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
 
     Parameters
@@ -534,6 +544,13 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         Worker threads (0: all cores); the answer does not depend on it.
     bins : {"positive", "band", "all"}
         Fourier bins the estimators sum.
+    client : distributed.Client, optional
+        Runs each fringe frequency as a task on this Dask cluster
+        (``threads`` then counts per task, 0 meaning 1); the answer is the
+        same bits (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished frequency; a rerun with the same
+        arguments computes only those it lacks.
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per

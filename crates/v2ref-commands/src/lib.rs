@@ -39,3 +39,4 @@ pub mod parameters;
 pub mod plan;
 pub mod record;
 pub mod report;
+pub mod units;

@@ -27,6 +27,7 @@ mod answers;
 mod inputs;
 mod oifits;
 pub mod output;
+mod units;
 pub mod values;
 
 use crate::cancel::{run_cancellable, Token};
@@ -235,5 +236,6 @@ fn _v2ref(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // (Python would end it by unwinding through Rust: an abort).
     let atexit = m.py().import("atexit")?;
     atexit.call_method1("register", (wrap_pyfunction!(mark_exiting, m)?,))?;
+    units::register(m)?;
     answers::register(m)
 }

@@ -120,7 +120,8 @@ pub struct Prepared {
     sampling: Sampling,
     /// The differential-piston spectrum (its rms, for the edge's warning).
     pub spectrum: PistonSpectrum,
-    detector: Detector,
+    /// The detector of every run.
+    pub detector: Detector,
     /// The fringe frequencies, Hz, checked.
     pub fringe_hz: Vec<f64>,
 }
@@ -191,12 +192,26 @@ pub fn run(
     req: &PistonRequest,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<PistonReport> {
+    let runs = run_frequencies(prepared, p, req, &prepared.fringe_hz, progress)?;
+    report(prepared, p, req, &runs)
+}
+
+/// The runs of [`run`] at the frequencies `fringe_hz` (some of the
+/// prepared ones: each frequency's run depends on its value only), one
+/// per frequency.
+pub fn run_frequencies(
+    prepared: &Prepared,
+    p: &Physical,
+    req: &PistonRequest,
+    fringe_hz: &[f64],
+    progress: Option<&(dyn Fn(u64) + Sync)>,
+) -> Result<Vec<PistonRun>> {
     let Prepared {
         obs,
         sampling,
         spectrum,
         detector,
-        fringe_hz,
+        ..
     } = prepared;
     let setup = ScanSetup {
         samples: sampling.samples(),
@@ -221,7 +236,30 @@ pub fn run(
         &size,
         progress,
     )?;
-    let runs: Vec<PistonRun> = runs.into_iter().flatten().collect();
+    Ok(runs.into_iter().flatten().collect())
+}
+
+/// [`run`]'s report of the runs at every prepared frequency, in order.
+pub fn report(
+    prepared: &Prepared,
+    p: &Physical,
+    req: &PistonRequest,
+    runs: &[PistonRun],
+) -> Result<PistonReport> {
+    let Prepared {
+        obs,
+        sampling,
+        spectrum,
+        detector,
+        fringe_hz,
+    } = prepared;
+    let setup = ScanSetup {
+        samples: sampling.samples(),
+        dx_um: sampling.dx_um(),
+        wavelength_um: p.wavelength_um,
+        fringe_hz: fringe_hz[0],
+        reference: p.reference,
+    };
     let inputs = InputsRecord {
         observation: p.record(obs),
         sampling: Some(SamplingRecord::new(sampling, req.bins)),
@@ -235,7 +273,7 @@ pub fn run(
         window: req.bins,
         reference: p.reference,
     };
-    let mut report = PistonReport::new(inputs, setting, &runs);
+    let mut report = PistonReport::new(inputs, setting, runs);
     if spectrum.model() == PistonPsdModel::ThreeSlope {
         report.three_slope_comparison = three_slope_notes(spectrum, &setup, fringe_hz)?;
     }

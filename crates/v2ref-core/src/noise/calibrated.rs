@@ -21,7 +21,7 @@ use crate::formalism::estimator::{dft, raw_estimates, BinWindow, Pair};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::montecarlo::{RunningStats, Summary};
-use crate::noise::simulation::{simulate_noisy, NoisySpec};
+use crate::noise::simulation::{simulate_noisy, NoisyRun, NoisySpec};
 use crate::noise::window_variance::window_stats;
 use crate::noise::{scaled_interferogram, window_bias, Formula, NoiseModel};
 use serde::Serialize;
@@ -184,21 +184,31 @@ pub fn calibrated_run(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<CalibratedRun> {
     let expected = expectation(setup, noise, formula)?;
-    let spec = NoisySpec {
+    let spec = noisy_spec(setup, noise);
+    let run = simulate_noisy(&spec, size.trials, size.seed, size.threads, progress)?;
+    Ok(normalize(&run, expected))
+}
+
+/// The noisy interferograms [`calibrated_run`] simulates.
+pub fn noisy_spec(setup: &CalibratedSetup, noise: &NoiseModel) -> NoisySpec {
+    NoisySpec {
         modulated: setup.signal.modulated.clone(),
         continuum: setup.signal.continuum.clone(),
         noise: *noise,
         bins: setup.bins.clone(),
-    };
-    let run = simulate_noisy(&spec, size.trials, size.seed, size.threads, progress)?;
-    // (x − bias)/calibration, exactly, on the accumulated moments.
+    }
+}
+
+/// The calibrated run of the raw statistics `run`: `(x − bias)/calibration`
+/// of `expected`, exactly, on the accumulated moments.
+pub fn normalize(run: &NoisyRun, expected: CalibratedExpectation) -> CalibratedRun {
     let normalized = |raw: &RunningStats, bias: f64, scale: f64| {
         raw.affine(1.0 / scale, -bias / scale).summary()
     };
     let (bias, calib) = (expected.subtracted_bias, expected.calibration);
-    Ok(CalibratedRun {
+    CalibratedRun {
         v1_sq: normalized(&run.v1_sq, bias.v1_sq, calib.v1_sq),
         v2_sq: normalized(&run.v2_sq, bias.v2_sq, calib.v2_sq),
         expected,
-    })
+    }
 }

@@ -440,38 +440,70 @@ pub fn simulate_noisy(
     threads: usize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> crate::Result<NoisyRun> {
-    if !(1..=MAX_NOISY_TRIALS).contains(&trials) {
-        return Err(crate::Error::OutOfRange {
-            param: "trials",
-            value: trials as f64,
-            accepted: format!("1 to {MAX_NOISY_TRIALS}"),
-        });
-    }
-    let noise = SampleNoise::new(spec)?;
-    let est = WindowedEstimators::new(spec.modulated.len(), &spec.bins);
-    let units = trials.div_ceil(TRIALS_PER_UNIT);
-    let n = spec.modulated.len();
+    let units = NoisyUnits::new(spec, trials)?;
     let mut total = NoisyRun::default();
-    let work = |u, rng: &mut Rng| {
+    let work = |u, rng: &mut Rng| units.unit(u, rng, progress);
+    fold_units(seed, 0..units.units(), threads, work, |p: NoisyRun| {
+        total.v1_sq.merge(&p.v1_sq);
+        total.v2_sq.merge(&p.v2_sq);
+    })?;
+    Ok(total)
+}
+
+/// The work units of [`simulate_noisy`] one by one, for a run split over
+/// processes (each unit drawn from `unit_rng(seed, u)`; the results
+/// merged in unit order give [`simulate_noisy`]'s bits).
+pub struct NoisyUnits {
+    noise: SampleNoise,
+    est: WindowedEstimators,
+    trials: u64,
+}
+
+impl NoisyUnits {
+    /// The units of `trials` interferograms of `spec`; refuses `trials`
+    /// outside 1 to [`MAX_NOISY_TRIALS`].
+    pub fn new(spec: &NoisySpec, trials: u64) -> crate::Result<NoisyUnits> {
+        if !(1..=MAX_NOISY_TRIALS).contains(&trials) {
+            return Err(crate::Error::OutOfRange {
+                param: "trials",
+                value: trials as f64,
+                accepted: format!("1 to {MAX_NOISY_TRIALS}"),
+            });
+        }
+        Ok(NoisyUnits {
+            noise: SampleNoise::new(spec)?,
+            est: WindowedEstimators::new(spec.modulated.len(), &spec.bins),
+            trials,
+        })
+    }
+
+    /// Number of units ([`TRIALS_PER_UNIT`] trials each, the last fewer).
+    pub fn units(&self) -> u64 {
+        self.trials.div_ceil(TRIALS_PER_UNIT)
+    }
+
+    /// Unit `u`'s raw statistics; `rng` must be `unit_rng(seed, u)`.
+    pub fn unit(
+        &self,
+        u: u64,
+        rng: &mut Rng,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> crate::Result<NoisyRun> {
+        let n = self.est.samples();
         let mut run = NoisyRun::default();
         let mut buf = vec![0.0; n];
         let mut scratch = Vec::new();
         let mut steps = Steps::new(progress, n);
-        for _ in 0..unit_trials(trials, u) {
-            noise.draw(rng, &mut buf);
-            let r = est.raw(&buf, &mut scratch);
+        for _ in 0..unit_trials(self.trials, u) {
+            self.noise.draw(rng, &mut buf);
+            let r = self.est.raw(&buf, &mut scratch);
             run.v1_sq.push(r.v1_sq);
             run.v2_sq.push(r.v2_sq);
             steps.step()?;
         }
         steps.finish()?;
         Ok(run)
-    };
-    fold_units(seed, 0..units, threads, work, |p: NoisyRun| {
-        total.v1_sq.merge(&p.v1_sq);
-        total.v2_sq.merge(&p.v2_sq);
-    })?;
-    Ok(total)
+    }
 }
 
 /// The noise draws of [`simulate_noisy`] alone (same generators, same

@@ -436,12 +436,24 @@ impl Rows<'_> {
         work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
         merge: impl FnMut(T) + Send,
     ) -> Result<()> {
+        self.fold_unit_range(0..self.units(), threads, work, merge)
+    }
+
+    /// [`Rows::fold_units`] over the units of `range` only (a run split
+    /// over processes: unit u has the same rows whatever range it is in).
+    pub(crate) fn fold_unit_range<T: Send>(
+        &self,
+        range: std::ops::Range<u64>,
+        threads: usize,
+        work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
+        merge: impl FnMut(T) + Send,
+    ) -> Result<()> {
         let unit = |u, rng: &mut Rng| {
             let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
             self.fill_unit(u, rng, &mut rows);
             work(u * ROWS_PER_UNIT, &rows)
         };
-        fold_units(self.seed, 0..self.units(), threads, unit, merge)
+        fold_units(self.seed, range, threads, unit, merge)
     }
 
     /// Hands every row to `sink` in row order, `batch` units at a time

@@ -9,8 +9,9 @@
 
 use crate::error::{Error, Result};
 use crate::formalism::estimator::BinWindow;
-use crate::montecarlo::{replicated_summary, RunningStats, Steps, Summary};
-use crate::noise::calibrated::{calibrated_run, expectation, CalibratedExpectation, Trials};
+use crate::montecarlo::{fold_units, replicated_summary, Rng, RunningStats, Steps, Summary};
+use crate::noise::calibrated::{expectation, noisy_spec, normalize, CalibratedExpectation, Trials};
+use crate::noise::simulation::{NoisyRun, NoisyUnits};
 use crate::noise::Formula;
 use crate::simulator::estimate::{BiasConvention, RowEstimator};
 use crate::simulator::rows::{PistonFacts, Rows};
@@ -83,71 +84,167 @@ pub fn simulate(
     size: Trials,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<SimulationRun> {
-    let rows = model
-        .rows(size.trials, size.seed, size.threads)
-        .map_err(|e| e.renamed("rows", "trials"))?;
-    let setup = model.calibrated_setup(window);
-    let expected = match rows.piston_facts() {
-        None => Some(expectation(&setup, &model.noise, formula)?),
-        Some(_) => None,
-    };
-    let fast = expected.is_some() && bias == BiasConvention::Model;
-    if !fast && formula != Formula::Exact {
-        return Err(Error::Invalid {
-            param: "formula",
-            reason: "the paper's printed bias applies to the noise-only run with the model bias convention; use the exact formula with piston or --bias counts".into(),
-        });
-    }
-    let (v1_sq, v2_sq, piston_effect) = if fast {
-        let run = calibrated_run(&setup, &model.noise, formula, size, progress)?;
-        (run.v1_sq, run.v2_sq, None)
-    } else {
-        let est = RowEstimator::new(model, window, bias, true)?;
-        reduce_rows(&rows, &est, size.threads, progress)?
-    };
-    Ok(SimulationRun {
-        window,
-        bias,
-        rows: size.trials,
-        seed: size.seed,
-        v1_sq,
-        v2_sq,
-        expected,
-        piston: rows.piston_facts(),
-        piston_effect,
-    })
+    let units = SimulationUnits::new(model, window, bias, formula, size)?;
+    let mut total = units.empty();
+    units.fold(0..units.units(), progress, |p| merge(&mut total, &p))?;
+    Ok(units.finish(&total))
 }
 
 /// Running statistics of one unit's rows: V1², V2², and V1, V2 minus their
-/// piston-free values.
-#[derive(Clone, Copy, Default)]
-struct UnitStats {
-    v1_sq: RunningStats,
-    v2_sq: RunningStats,
-    v1: RunningStats,
-    v2: RunningStats,
+/// piston-free values (the last two unused on the noise-only fast path).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct UnitStats {
+    /// Normalized V1² (raw V1² on the fast path).
+    pub v1_sq: RunningStats,
+    /// Normalized V2² (raw V2² on the fast path).
+    pub v2_sq: RunningStats,
+    /// V1 − V1(no piston).
+    pub v1: RunningStats,
+    /// V2 − V2(no piston).
+    pub v2: RunningStats,
 }
 
-/// The general path: every row estimated, its normalized values
-/// accumulated; with piston and no noise, V − V(no piston) as well.
-fn reduce_rows(
-    rows: &Rows,
-    est: &RowEstimator,
-    threads: usize,
-    progress: &(dyn Fn(u64) + Sync),
-) -> Result<(Summary, Summary, Option<PistonEffect>)> {
-    let noiseless = !rows_noisy(rows);
-    let piston_free = est.estimate(&rows.piston_free_row());
-    let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
-    let n = rows.samples();
-    // One accumulator per piston sequence: the rows of one sequence are
-    // correlated, so the errors come from the spread between sequences.
-    let mut total = vec![UnitStats::default(); rows.sequences()];
-    let work = |first_row: u64, block: &[f64]| {
-        let mut s = vec![UnitStats::default(); rows.sequences()];
+/// Merges a unit's accumulators (one per piston sequence) into `total`:
+/// [`simulate`]'s reduction, applied in unit order.
+pub fn merge(total: &mut [UnitStats], part: &[UnitStats]) {
+    for (t, p) in total.iter_mut().zip(part) {
+        t.v1_sq.merge(&p.v1_sq);
+        t.v2_sq.merge(&p.v2_sq);
+        t.v1.merge(&p.v1);
+        t.v2.merge(&p.v2);
+    }
+}
+
+/// [`simulate`]'s work: its units one by one (for a run split over
+/// processes) and the answer from their merged results. Merging the
+/// results of [`SimulationUnits::fold`] over any split of the units, in
+/// unit order, gives [`simulate`]'s bits.
+pub struct SimulationUnits<'m> {
+    rows: Rows<'m>,
+    window: BinWindow,
+    bias: BiasConvention,
+    size: Trials,
+    expected: Option<CalibratedExpectation>,
+    path: UnitPath,
+}
+
+/// Without piston and with the `model` convention the raw moments are
+/// accumulated and normalized at the end; otherwise each row is estimated.
+enum UnitPath {
+    Fast(NoisyUnits),
+    Rows { est: RowEstimator, v0: (f64, f64) },
+}
+
+impl<'m> SimulationUnits<'m> {
+    /// The units of [`simulate`]'s run (same arguments, same errors).
+    pub fn new(
+        model: &'m Model,
+        window: BinWindow,
+        bias: BiasConvention,
+        formula: Formula,
+        size: Trials,
+    ) -> Result<SimulationUnits<'m>> {
+        let rows = model
+            .rows(size.trials, size.seed, size.threads)
+            .map_err(|e| e.renamed("rows", "trials"))?;
+        let setup = model.calibrated_setup(window);
+        let expected = match rows.piston_facts() {
+            None => Some(expectation(&setup, &model.noise, formula)?),
+            Some(_) => None,
+        };
+        let fast = expected.is_some() && bias == BiasConvention::Model;
+        if !fast && formula != Formula::Exact {
+            return Err(Error::Invalid {
+                param: "formula",
+                reason: "the paper's printed bias applies to the noise-only run with the model bias convention; use the exact formula with piston or --bias counts".into(),
+            });
+        }
+        let path = if fast {
+            UnitPath::Fast(NoisyUnits::new(
+                &noisy_spec(&setup, &model.noise),
+                size.trials,
+            )?)
+        } else {
+            let est = RowEstimator::new(model, window, bias, true)?;
+            let piston_free = est.estimate(&rows.piston_free_row());
+            let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
+            UnitPath::Rows { est, v0 }
+        };
+        Ok(SimulationUnits {
+            rows,
+            window,
+            bias,
+            size,
+            expected,
+            path,
+        })
+    }
+
+    /// Number of work units.
+    pub fn units(&self) -> u64 {
+        match &self.path {
+            UnitPath::Fast(noisy) => noisy.units(),
+            UnitPath::Rows { .. } => self.rows.units(),
+        }
+    }
+
+    /// Empty accumulators, one per piston sequence (one without piston):
+    /// the length of every unit's result.
+    pub fn empty(&self) -> Vec<UnitStats> {
+        let groups = match &self.path {
+            UnitPath::Fast(_) => 1,
+            UnitPath::Rows { .. } => self.rows.sequences(),
+        };
+        vec![UnitStats::default(); groups]
+    }
+
+    /// Runs the units of `range` and hands each one's accumulators to
+    /// `merge` in unit order.
+    pub fn fold(
+        &self,
+        range: std::ops::Range<u64>,
+        progress: &(dyn Fn(u64) + Sync),
+        merge: impl FnMut(Vec<UnitStats>) + Send,
+    ) -> Result<()> {
+        let threads = self.size.threads;
+        match &self.path {
+            UnitPath::Fast(noisy) => {
+                let work = |u, rng: &mut Rng| {
+                    let r = noisy.unit(u, rng, progress)?;
+                    let (v1_sq, v2_sq) = (r.v1_sq, r.v2_sq);
+                    Ok(vec![UnitStats {
+                        v1_sq,
+                        v2_sq,
+                        ..UnitStats::default()
+                    }])
+                };
+                fold_units(self.size.seed, range, threads, work, merge)
+            }
+            UnitPath::Rows { est, v0 } => {
+                let work = |first_row, block: &[f64]| {
+                    self.estimate_rows(est, *v0, first_row, block, progress)
+                };
+                self.rows.fold_unit_range(range, threads, work, merge)
+            }
+        }
+    }
+
+    /// One unit's rows estimated, their normalized values accumulated per
+    /// piston sequence (the rows of one sequence are correlated, so the
+    /// errors come from the spread between sequences).
+    fn estimate_rows(
+        &self,
+        est: &RowEstimator,
+        v0: (f64, f64),
+        first_row: u64,
+        block: &[f64],
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Vec<UnitStats>> {
+        let n = self.rows.samples();
+        let mut s = self.empty();
         let mut steps = Steps::new(progress, n);
         for (i, row) in block.chunks_exact(n).enumerate() {
-            let acc = &mut s[rows.sequence_of(first_row + i as u64)];
+            let acc = &mut s[self.rows.sequence_of(first_row + i as u64)];
             let e = est.estimate(row);
             acc.v1_sq.push(e.v1_sq);
             acc.v2_sq.push(e.v2_sq);
@@ -157,30 +254,60 @@ fn reduce_rows(
         }
         steps.finish()?;
         Ok(s)
-    };
-    rows.fold_units(threads, work, |p: Vec<UnitStats>| {
-        for (t, p) in total.iter_mut().zip(&p) {
-            t.v1_sq.merge(&p.v1_sq);
-            t.v2_sq.merge(&p.v2_sq);
-            t.v1.merge(&p.v1);
-            t.v2.merge(&p.v2);
+    }
+
+    /// The answer from the accumulators of every unit merged in unit order
+    /// ([`merge`] into [`SimulationUnits::empty`]).
+    pub fn finish(&self, total: &[UnitStats]) -> SimulationRun {
+        let (v1_sq, v2_sq, piston_effect) = match (&self.path, self.expected) {
+            (UnitPath::Fast(_), Some(expected)) => {
+                let raw = NoisyRun {
+                    v1_sq: total[0].v1_sq,
+                    v2_sq: total[0].v2_sq,
+                };
+                let run = normalize(&raw, expected);
+                (run.v1_sq, run.v2_sq, None)
+            }
+            (_, _) => self.summaries(total),
+        };
+        SimulationRun {
+            window: self.window,
+            bias: self.bias,
+            rows: self.size.trials,
+            seed: self.size.seed,
+            v1_sq,
+            v2_sq,
+            expected: self.expected,
+            piston: self.rows.piston_facts(),
+            piston_effect,
         }
-    })?;
-    let summary = |pick: fn(&UnitStats) -> RunningStats| {
-        let groups: Vec<RunningStats> = total.iter().map(pick).collect();
-        if groups.len() > 1 {
-            replicated_summary(&groups)
-        } else {
-            groups[0].summary()
-        }
-    };
-    let effect = (noiseless && rows.piston_facts().is_some()).then(|| PistonEffect {
-        v1_no_piston: v0.0,
-        v2_no_piston: v0.1,
-        v1: summary(|s| s.v1),
-        v2: summary(|s| s.v2),
-    });
-    Ok((summary(|s| s.v1_sq), summary(|s| s.v2_sq), effect))
+    }
+
+    /// The general path's summaries: over the sequences when there are
+    /// several; with piston and no noise, V − V(no piston) as well.
+    fn summaries(&self, total: &[UnitStats]) -> (Summary, Summary, Option<PistonEffect>) {
+        let summary = |pick: fn(&UnitStats) -> RunningStats| {
+            let groups: Vec<RunningStats> = total.iter().map(pick).collect();
+            if groups.len() > 1 {
+                replicated_summary(&groups)
+            } else {
+                groups[0].summary()
+            }
+        };
+        let noiseless = !rows_noisy(&self.rows);
+        let effect = match &self.path {
+            UnitPath::Rows { v0, .. } if noiseless && self.rows.piston_facts().is_some() => {
+                Some(PistonEffect {
+                    v1_no_piston: v0.0,
+                    v2_no_piston: v0.1,
+                    v1: summary(|s| s.v1),
+                    v2: summary(|s| s.v2),
+                })
+            }
+            _ => None,
+        };
+        (summary(|s| s.v1_sq), summary(|s| s.v2_sq), effect)
+    }
 }
 
 fn rows_noisy(rows: &Rows) -> bool {

@@ -10,9 +10,9 @@
 //! the answers are parsed and built here.
 
 mod data;
-mod paper;
+pub(crate) mod paper;
 mod plan;
-mod simulator;
+pub(crate) mod simulator;
 mod targets;
 
 use super::ok;

@@ -9,6 +9,7 @@ use crate::words::Words;
 use crate::{interruptible, ok, warn_cost};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use v2ref_commands::units::piston::PistonJob;
 
 /// `bias`: `v2ref bias --json`.
 #[pyfunction]
@@ -59,9 +60,41 @@ pub(super) fn piston(
     psd: &str,
     wind_angle_deg: f64,
 ) -> PyResult<PyObject> {
+    let job = piston_job(
+        physical,
+        fringe_hz,
+        bins,
+        scans,
+        seed,
+        threads,
+        psd,
+        wind_angle_deg,
+    )?;
+    let (p, req) = (&job.physical, &job.request);
+    let prepared = ok(commands::piston::prepare(p, req))?;
+    warn_cost(py, "piston", &prepared.cost(req))?;
+    let answer = interruptible(py, |tick| {
+        commands::piston::run(&prepared, p, req, Some(tick))
+    })?;
+    to_py(py, &answer)
+}
+
+/// The request of [`piston`] from its arguments (also parsed so by the
+/// functions of a run split in ranges of units, `crate::units`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn piston_job(
+    physical: &Bound<'_, PyDict>,
+    fringe_hz: Vec<f64>,
+    bins: &str,
+    scans: usize,
+    seed: u64,
+    threads: usize,
+    psd: &str,
+    wind_angle_deg: f64,
+) -> PyResult<PistonJob> {
     let psd = ok(PistonPsdModel::from_word("psd", psd))?;
-    let p = crate::inputs::physical_from_dict(physical)?;
-    let req = PistonRequest {
+    let physical = crate::inputs::physical_from_dict(physical)?;
+    let request = PistonRequest {
         fringe_hz,
         bins: ok(window(bins))?,
         scans,
@@ -71,12 +104,7 @@ pub(super) fn piston(
         wind_angle_deg,
         observation: None,
     };
-    let prepared = ok(commands::piston::prepare(&p, &req))?;
-    warn_cost(py, "piston", &prepared.cost(&req))?;
-    let answer = interruptible(py, |tick| {
-        commands::piston::run(&prepared, &p, &req, Some(tick))
-    })?;
-    to_py(py, &answer)
+    Ok(PistonJob { physical, request })
 }
 
 /// `claims`: `v2ref claims --json` (`quick`: `--quick`).

@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::Trials;
 use crate::report::simulator::{check_trials, Estimation, SimulateReport};
-use crate::simulator::{simulate as run_simulation, Model};
+use crate::simulator::{simulate as run_simulation, Model, SimulationRun};
 use crate::values::to_py;
 use crate::{interruptible, ok, warn_cost};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -20,6 +20,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
+use v2ref_commands::units::simulate::SimulateJob;
 
 use crate::commands::ESTIMATE_COLUMNS;
 
@@ -257,11 +258,38 @@ pub(super) fn simulate(
     seed: u64,
     threads: usize,
 ) -> PyResult<PyObject> {
-    let (window, bias, formula) = (
-        ok(window(bins))?,
-        ok(convention(bias))?,
-        ok(self::formula(formula))?,
-    );
+    let job = simulate_job(physical, bins, bias, formula, trials, seed, threads)?;
+    let (inputs, size) = (&job.inputs, job.size);
+    warn_cost(
+        py,
+        "simulate",
+        &ok(cost::simulate(inputs, trials, threads))?,
+    )?;
+    let run = interruptible(py, |tick| {
+        let model = Model::new(inputs)?;
+        let e = job.estimation;
+        run_simulation(&model, e.window, e.bias, e.formula, size, tick)
+    })?;
+    simulate_answer(py, &job, &run)
+}
+
+/// The request of [`simulate`] from its arguments (also parsed so by the
+/// functions of a run split in ranges of units, `crate::units`).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn simulate_job(
+    physical: &Bound<'_, PyDict>,
+    bins: &str,
+    bias: &str,
+    formula: &str,
+    trials: u64,
+    seed: u64,
+    threads: usize,
+) -> PyResult<SimulateJob> {
+    let estimation = Estimation {
+        window: ok(window(bins))?,
+        bias: ok(convention(bias))?,
+        formula: ok(self::formula(formula))?,
+    };
     ok(check_trials(trials))?;
     let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
     let size = Trials {
@@ -269,21 +297,21 @@ pub(super) fn simulate(
         seed,
         threads,
     };
-    warn_cost(
-        py,
-        "simulate",
-        &ok(cost::simulate(&inputs, trials, threads))?,
-    )?;
-    let run = interruptible(py, |tick| {
-        let model = Model::new(&inputs)?;
-        run_simulation(&model, window, bias, formula, size, tick)
-    })?;
-    let estimation = Estimation {
-        window,
-        bias,
-        formula,
-    };
-    to_py(py, &SimulateReport::new(inputs, estimation, size, &run))
+    Ok(SimulateJob {
+        inputs,
+        estimation,
+        size,
+    })
+}
+
+/// [`simulate`]'s answer from the run of `job`.
+pub(crate) fn simulate_answer(
+    py: Python<'_>,
+    job: &SimulateJob,
+    run: &SimulationRun,
+) -> PyResult<PyObject> {
+    let report = SimulateReport::new(job.inputs.clone(), job.estimation, job.size, run);
+    to_py(py, &report)
 }
 
 #[derive(Serialize)]
