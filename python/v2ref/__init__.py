@@ -33,7 +33,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
-from . import _declaration, _docstrings, _v2ref
+from . import _docstrings, _v2ref
 
 __version__: str = _v2ref.__version__
 
@@ -54,8 +54,9 @@ __all__ = [
 #: The columns of :func:`estimate`'s answer, in the order of ``v2ref estimate``.
 ESTIMATE_COLUMNS = tuple(_v2ref.ESTIMATE_COLUMNS)
 
-#: The defaults of the physical inputs, from the library's one declaration
-#: (``v2ref::parameters::Physical::DEFAULT``, also the CLI's defaults).
+#: The physical inputs as the library states them (``Physical::DEFAULT``,
+#: also the CLI's defaults, and the help text of each).
+_declaration = _docstrings.declaration(_v2ref)
 _DEFAULTS: Dict[str, Any] = _declaration.DEFAULTS
 
 _PathLike = Union[str, _os.PathLike[str]]
@@ -254,7 +255,7 @@ def estimate(
     calibrator: Any = None,
     continuum_subtracted: Optional[bool] = None,
     threads: int = 0,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -277,7 +278,6 @@ def estimate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
@@ -365,7 +365,7 @@ def synthesize(
     dead_time_s: float = 0.0,
     out: Optional[_PathLike] = None,
     force: bool = False,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -390,7 +390,6 @@ def synthesize(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
@@ -632,7 +631,7 @@ def simulate(
     bins: str = "positive",
     bias: str = "model",
     formula: str = "exact",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -657,7 +656,6 @@ def simulate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
@@ -701,7 +699,7 @@ def bias(
     *,
     finite_scan: bool = False,
     bins: str = "positive",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -714,7 +712,6 @@ def bias(
     dx_um: float = 0.5,
     samples: int = 128,
     integrating: bool = False,
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
 
@@ -745,7 +742,7 @@ def snr(
     *,
     bins: str = "positive",
     formula: str = "exact",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -762,7 +759,6 @@ def snr(
     photons: float = 10.0,
     read_noise: float = 0.0,
     photon_noise: bool = True,
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
 
@@ -797,7 +793,7 @@ def piston(
     seed: int = 1,
     threads: int = 0,
     bins: str = "positive",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -817,7 +813,6 @@ def piston(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
     psd: str = "two-aperture",
     wind_angle_deg: float = 0.0,
 ) -> Dict[str, Any]:
@@ -908,7 +903,7 @@ def plan(
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -928,7 +923,6 @@ def plan(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
@@ -1075,11 +1069,10 @@ def photon_rate(
     *,
     band: str,
     throughput: float,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     aperture_m: float = 0.45,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
-    # End of the generated keyword arguments.
 ) -> float:
     """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 

@@ -267,8 +267,8 @@ impl Physical {
         };
         all.remove("spectrum_csv");
         for (name, value) in given.into_iter().filter(|(_, v)| !v.is_null()) {
-            let param = match Parameter::named(&name) {
-                Some(p) if p.name != "spectrum_csv" => p.name,
+            let entry = match Parameter::named(&name) {
+                Some(p) if p.name != "spectrum_csv" => p,
                 Some(p) => {
                     return Err(Error::Invalid {
                         param: p.name,
@@ -284,9 +284,19 @@ impl Physical {
             };
             let alone = Value::Object(Map::from_iter([(name.clone(), value.clone())]));
             if let Err(e) = serde_json::from_value::<Physical>(alone) {
+                let reason = match (&value, &all[&name]) {
+                    // A choice: its words, as the library's parsers say them.
+                    (Value::String(w), Value::String(_)) => {
+                        format!(
+                            "'{w}' is not one of: {}",
+                            entry.accepted.replace(" or ", ", ")
+                        )
+                    }
+                    _ => e.to_string(),
+                };
                 return Err(Error::Invalid {
-                    param,
-                    reason: e.to_string(),
+                    param: entry.name,
+                    reason,
                 });
             }
             all.insert(name, value);
@@ -549,6 +559,10 @@ mod tests {
         assert_eq!(e.param(), Some("samples"));
         let e = p.overlay(json!({"source": "disk"})).unwrap_err();
         assert_eq!(e.param(), Some("source"));
+        assert!(
+            e.to_string().contains("'disk' is not one of: point, ud"),
+            "{e}"
+        );
         let e = p.overlay(json!({"spectrum_csv": "a.csv"})).unwrap_err();
         assert_eq!(e.param(), Some("spectrum_csv"));
         assert_eq!(p, Physical::default());

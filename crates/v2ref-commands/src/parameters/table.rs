@@ -483,4 +483,34 @@ mod tests {
             [&words[..], &["photon_noise", "reference"]].concat()
         );
     }
+
+    /// The input table of `docs/conventions.md` §14, kept by hand, states
+    /// each entry: its row starts with the name, what it is and the unit
+    /// and ends with the accepted range and why (an entry changed on one
+    /// side fails).
+    #[test]
+    fn the_docs_table_states_each_entry() {
+        let docs = include_str!("../../../../docs/conventions.md");
+        let code = |n: &str| format!("`{n}`");
+        for p in &PARAMETERS {
+            let head = format!(
+                "| `{}` | {} | {} |",
+                p.name,
+                refer_to(p.what, &code),
+                p.unit
+            );
+            let tail = format!(
+                "| {} | {} |",
+                refer_to(p.accepted, &code),
+                refer_to(p.why, &code)
+            );
+            let tail = tail.replace("|  |", "| |").replace(" | |", " |  |");
+            let row = docs.lines().find(|l| l.starts_with(&head));
+            let row = row.unwrap_or_else(|| panic!("no row {head}"));
+            assert!(
+                row.ends_with(&tail) || row.ends_with(&tail.replace("|  |", "| |")),
+                "{row}\n{tail}"
+            );
+        }
+    }
 }
