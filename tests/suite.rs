@@ -55,6 +55,7 @@ mod plan_check;
 mod plan_observation;
 mod plan_presets;
 mod plan_stability;
+mod plan_targets;
 mod properties;
 mod public_misuse;
 mod readme;

@@ -29,7 +29,7 @@ import os as _os
 # The names of typing used in the signatures below; deleted at the end of the
 # module so that the namespace holds the API only (the signatures keep the
 # types themselves: help() shows them).
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -46,6 +46,7 @@ __all__ = [
     "snr",
     "piston",
     "plan",
+    "plan_targets",
     "photon_rate",
     "claims",
     "ESTIMATE_COLUMNS",
@@ -1001,38 +1002,147 @@ def plan(
         ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
         with ``verify``.
     """
-    values = dict(locals())
+    return _v2ref.plan(**_plan_arguments(dict(locals())))
+
+
+def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
+    """:func:`plan`'s keywords (all of them, defaults included) checked and
+    converted into the extension's arguments; :func:`plan_targets` shares them."""
     from .oifits import _observing
 
     observing = _observing(values)
+    oifits = values["oifits"]
     out = None if oifits is None else _os.fspath(oifits)
     if out is not None and not isinstance(out, str):
         raise TypeError(f"oifits: {oifits!r} is not a path")
     opt = lambda name, v: None if v is None else _float(name, v)
-    if not isinstance(verify, bool):
-        raise TypeError(f"verify: {verify!r} is not a bool")
-    observations = _uint("verify_observations", verify_observations)
-    return _v2ref.plan(
-        _physical(values, exclude=_PLAN_GRID),
-        _float("samples_per_fringe", samples_per_fringe),
-        _float("photon_rate_per_s", 1e6 if photon_rate_per_s is None else photon_rate_per_s),
-        _float("dead_time_s", dead_time_s),
-        [_to_float("fringe_hz", f) for f in (fringe_hz or [])],
-        [_to_float("stroke_um", s) for s in (stroke_um or [])],
-        opt("target_sigma_v2", target_sigma_v2),
-        opt("time_budget_s", time_budget_s),
-        _uint("scans", scans),
-        _uint("seed", seed),
-        _v2ref.check_threads(_uint("threads", threads)),
-        _float("diameter_err_mas", diameter_err_mas),
-        out,
-        _word("bias", bias),
-        observations if verify else None,
-        observing,
-        _flag("force", force),
-        _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv),
-        opt("frame_rate_hz", frame_rate_hz),
+    if not isinstance(values["verify"], bool):
+        raise TypeError(f"verify: {values['verify']!r} is not a bool")
+    observations = _uint("verify_observations", values["verify_observations"])
+    rate = values["photon_rate_per_s"]
+    return dict(
+        physical=_physical(values, exclude=_PLAN_GRID),
+        samples_per_fringe=_float("samples_per_fringe", values["samples_per_fringe"]),
+        photon_rate_per_s=_float("photon_rate_per_s", 1e6 if rate is None else rate),
+        dead_time_s=_float("dead_time_s", values["dead_time_s"]),
+        fringe_hz=[_to_float("fringe_hz", f) for f in (values["fringe_hz"] or [])],
+        stroke_um=[_to_float("stroke_um", s) for s in (values["stroke_um"] or [])],
+        target_sigma_v2=opt("target_sigma_v2", values["target_sigma_v2"]),
+        time_budget_s=opt("time_budget_s", values["time_budget_s"]),
+        scans=_uint("scans", values["scans"]),
+        seed=_uint("seed", values["seed"]),
+        threads=_v2ref.check_threads(_uint("threads", values["threads"])),
+        diameter_err_mas=_float("diameter_err_mas", values["diameter_err_mas"]),
+        oifits=out,
+        bias=_word("bias", values["bias"]),
+        verify_observations=observations if values["verify"] else None,
+        observing=observing,
+        force=_flag("force", values["force"]),
+        magnitude=_plan_magnitude(
+            rate,
+            values["magnitude"],
+            values["magnitude_band"],
+            values["throughput"],
+            values["spectrum_csv"],
+        ),
+        frame_rate_hz=opt("frame_rate_hz", values["frame_rate_hz"]),
     )
+
+
+#: Keywords of :func:`plan` that :func:`plan_targets` does not take: it
+#: writes no OIFITS file, and a row's coordinates are its own columns.
+_NOT_FOR_TARGETS = (
+    "oifits", "force", "target_name", "ra_deg", "dec_deg", "date",
+    "site", "site_lon_deg", "site_lat_deg", "site_height_m",
+)
+
+
+def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
+    """Plans every target of a list with :func:`plan`'s keywords shared, as ``v2ref plan --targets``.
+
+    Parameters
+    ----------
+    targets : path, astropy Table or list of dicts
+        The targets, one per row, with the columns ``name`` (required),
+        ``magnitude`` and ``band`` (together: J, H, Ks, V, R, I),
+        ``diameter_mas`` (the uniform disk's, mas), ``ra_deg`` and
+        ``dec_deg`` (echoed, not used by the plan). A missing column, a
+        None or a masked cell takes the shared keyword. A path is read as
+        the CSV file of ``v2ref plan --targets``.
+    **keywords
+        Any keyword of :func:`plan` but its files and observing details
+        (``oifits``, ``force``, ``target_name``, ``ra_deg`` ... ``site_height_m``):
+        shared by every row, a row's cell overriding it. ``throughput``
+        (without a shared ``magnitude``) is the rows' magnitudes'.
+
+    Returns
+    -------
+    list of dict
+        One per target, in order, with the columns of the CSV table
+        (``TARGET``, ``RAEP0``, ``DECEP0`` as OI_TARGET names them,
+        ``line``, ``status`` ("ok", "unreachable" or "error"), ``reason``,
+        the recommendation and its promise). A row that cannot be read or
+        planned is marked ``error`` with its reason, not raised; ``line`` is
+        its line in the file, or for a Table or list its index + 2 (its line
+        in the same rows written as CSV under a header). Each row's seed is
+        keyed by its content and ``seed``, so that its plan does not depend
+        on its place or the other rows; ``astropy.table.Table(result)``
+        makes a table of it.
+    """
+    for k in _NOT_FOR_TARGETS:
+        if k in keywords:
+            raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")
+    throughput = None
+    if keywords.get("magnitude") is None and keywords.get("throughput") is not None:
+        throughput = _float("throughput", keywords.pop("throughput"))
+    try:
+        bound = _inspect.signature(plan).bind(**keywords)
+    except TypeError as e:
+        raise TypeError(f"plan_targets: {e}") from None
+    bound.apply_defaults()
+    args = _plan_arguments(bound.arguments)
+    for k in ("oifits", "observing", "force"):
+        del args[k]
+    path, text = _target_list(targets)
+    return _v2ref.plan_targets(path, text, throughput, **args)
+
+
+def _target_list(targets: Any) -> Tuple[Optional[str], Optional[str]]:
+    """A target list as the extension takes it: a path, or CSV text."""
+    if isinstance(targets, (str, _os.PathLike)):
+        return _utf8_path("targets", targets), None
+    if hasattr(targets, "colnames"):
+        names = list(targets.colnames)
+        rows = [{c: row[c] for c in names} for row in targets]
+    elif isinstance(targets, _abc.Sequence) and all(isinstance(r, _abc.Mapping) for r in targets):
+        rows = list(targets)
+    else:
+        raise TypeError(f"targets: {type(targets).__name__} is not a path, an astropy Table or a list of dicts")
+    columns: list = []
+    for row in rows:
+        for k in row:
+            if not isinstance(k, str):
+                raise TypeError(f"targets: the column name {k!r} is not a str")
+            if k not in columns:
+                columns.append(k)
+    lines = [",".join(_csv_cell("targets", c) for c in columns)]
+    for i, row in enumerate(rows):
+        lines.append(",".join(_csv_cell(f"targets[{i}][{c!r}]", row.get(c)) for c in columns))
+    return None, "\n".join(lines) + "\n"
+
+
+def _csv_cell(name: str, v: Any) -> str:
+    """One value as a CSV cell: None or masked empty, a float in full."""
+    if v is None or _np.ma.is_masked(v):
+        return ""
+    if isinstance(v, _np.generic):
+        v = v.item()
+    text = repr(v) if isinstance(v, float) else str(v)
+    if "\n" in text or "\r" in text:
+        raise ValueError(f"{name}: {text!r} holds a line break")
+    if any(c in text for c in ',"') or text != text.strip():
+        text = '"' + text.replace('"', '""') + '"'
+    return text
 
 
 def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv):

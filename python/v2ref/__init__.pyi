@@ -750,6 +750,39 @@ def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float
         with ``verify``.
     """
 
+def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
+    """Plans every target of a list with :func:`plan`'s keywords shared, as ``v2ref plan --targets``.
+
+    Parameters
+    ----------
+    targets : path, astropy Table or list of dicts
+        The targets, one per row, with the columns ``name`` (required),
+        ``magnitude`` and ``band`` (together: J, H, Ks, V, R, I),
+        ``diameter_mas`` (the uniform disk's, mas), ``ra_deg`` and
+        ``dec_deg`` (echoed, not used by the plan). A missing column, a
+        None or a masked cell takes the shared keyword. A path is read as
+        the CSV file of ``v2ref plan --targets``.
+    **keywords
+        Any keyword of :func:`plan` but its files and observing details
+        (``oifits``, ``force``, ``target_name``, ``ra_deg`` ... ``site_height_m``):
+        shared by every row, a row's cell overriding it. ``throughput``
+        (without a shared ``magnitude``) is the rows' magnitudes'.
+
+    Returns
+    -------
+    list of dict
+        One per target, in order, with the columns of the CSV table
+        (``TARGET``, ``RAEP0``, ``DECEP0`` as OI_TARGET names them,
+        ``line``, ``status`` ("ok", "unreachable" or "error"), ``reason``,
+        the recommendation and its promise). A row that cannot be read or
+        planned is marked ``error`` with its reason, not raised; ``line`` is
+        its line in the file, or for a Table or list its index + 2 (its line
+        in the same rows written as CSV under a header). Each row's seed is
+        keyed by its content and ``seed``, so that its plan does not depend
+        on its place or the other rows; ``astropy.table.Table(result)``
+        makes a table of it.
+    """
+
 def photon_rate(magnitude: float, *, band: str, throughput: float, aperture_m: float=0.45, wavelength_um: float=2.2, bandwidth_nm: float=400.0) -> float:
     """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 

@@ -42,6 +42,7 @@ pub mod signals;
 pub mod simulate;
 pub mod snr;
 pub mod synth;
+pub mod targets;
 pub mod vectors;
 
 use std::io::IsTerminal;

@@ -16,9 +16,10 @@ use v2ref_core::{Error, Result};
 
 /// Flags of `plan`.
 #[derive(Debug, clap::Args)]
+#[command(group = clap::ArgGroup::new("brightness").multiple(true))]
 pub struct Args {
     #[command(flatten)]
-    instrument: super::instrument::InstrumentArgs,
+    pub(super) instrument: super::instrument::InstrumentArgs,
     #[command(flatten)]
     obs: ObservationArgs,
     /// Samples per fringe at λ0 (δx = λ0 / this): 2 to 1000.
@@ -37,7 +38,7 @@ pub struct Args {
     /// --throughput. From -10 to 30.
     #[arg(long, value_parser = finite_f64, allow_negative_numbers = true,
           conflicts_with_all = ["photon_rate_per_s", "spectrum_csv"],
-          requires = "magnitude_band")]
+          requires = "magnitude_band", group = "brightness")]
     magnitude: Option<f64>,
     /// The band of --magnitude: 2MASS J, H, Ks or Johnson–Cousins V, R, I.
     #[arg(long, value_enum, requires = "magnitude")]
@@ -45,9 +46,9 @@ pub struct Args {
     /// Fraction of the source's photons counted in the sampled
     /// interferogram (atmosphere, optics, combiner outputs sampled, detector
     /// QE), 0 < T <= 1; with --magnitude (needed, unless --instrument's
-    /// preset gives it).
-    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "magnitude")]
-    throughput: Option<f64>,
+    /// preset gives it), or with --targets for its rows' magnitudes.
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, requires = "brightness")]
+    pub(super) throughput: Option<f64>,
     #[command(flatten)]
     noise: NoiseArgs,
     /// Dead time between scans, s: 0 to 3.2e7 (a year).
@@ -102,22 +103,22 @@ pub struct Args {
     /// σ(V²) and mean achieved, with intervals, beside the promise. Its
     /// duration is announced before it starts.
     #[arg(long)]
-    verify: bool,
+    pub(super) verify: bool,
     /// Observations simulated by --verify: 32 to 1e6.
     #[arg(long, value_parser = super::count_u64, default_value = "256", allow_negative_numbers = true, requires = "verify")]
-    verify_observations: u64,
+    pub(super) verify_observations: u64,
     /// Seed of the piston Monte Carlo.
     #[arg(long, value_parser = super::count_u64, default_value = "1", allow_negative_numbers = true)]
     seed: u64,
     /// Worker threads (0 = all cores); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
-    threads: usize,
+    pub(super) threads: usize,
     /// One JSON document (every term of every grid point) instead of the table.
     #[arg(long)]
-    json: bool,
+    pub(super) json: bool,
     /// No progress bar.
     #[arg(long)]
-    quiet: bool,
+    pub(super) quiet: bool,
     /// Also write the figure of σ(V²) reached against fringe frequency (SVG):
     /// the promise as lines, settings not solved for consecutive scans as open
     /// circles (σ_scan/√n, no promise).
@@ -131,10 +132,12 @@ pub struct Args {
     observing: super::oifits::ObservingArgs,
     /// Replace an existing output file (never a link, folder or device).
     #[arg(long)]
-    force: bool,
+    pub(super) force: bool,
     /// Print every grid point (default: the five fastest of each estimator).
     #[arg(long)]
     all: bool,
+    #[command(flatten)]
+    pub(super) targets: super::targets::TargetsArgs,
 }
 
 /// The band of `--magnitude`: 2MASS (Cohen et al. 2003) or Johnson–Cousins
@@ -209,6 +212,9 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
 pub fn run(args: Args) -> Result<ExitCode> {
     if args.instrument.print_list() {
         return Ok(ExitCode::SUCCESS);
+    }
+    if args.targets.targets.is_some() {
+        return super::targets::run(&args, request(&args)?);
     }
     if let Some(p) = &args.oifits {
         v2ref_oifits::check_fits_extension(p, "oifits")?;

@@ -302,6 +302,7 @@ pub mod simulator {
         simulate, Inputs, Model, PistonEffect, PistonFacts, PistonInputs, RowLayout, RowTiming,
         Rows, SetLayout, SimulationRun,
     };
+    pub use v2ref_core::piston::FringeTables;
 }
 
 /// The conformance kit: per-row estimates, the truth of a set, the score of

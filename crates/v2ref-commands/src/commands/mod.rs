@@ -12,6 +12,8 @@ pub mod estimate;
 pub mod piston;
 pub mod plan;
 pub mod snr;
+pub mod targets;
+mod targets_table;
 // The oracle's, where its sets in memory are built (`v2ref_core::oracle`).
 pub use crate::conformance::synth;
 

@@ -15,6 +15,7 @@ use crate::noise::calibrated::Trials;
 use crate::noise::Formula;
 use crate::piston::sequences::correlation_time_s;
 use crate::piston::spectrum::PistonSpectrum;
+use crate::piston::FringeTables;
 use crate::simulator::{simulate, Model};
 
 /// Settings of each estimator re-solved at the observation level: the
@@ -73,14 +74,16 @@ fn sigma_noise_per_scan(inputs: &PlanInputs, noisy: &Model, p: &PlanPoint) -> Re
 /// on the setting and the atmosphere only, their seed on the setting).
 fn contiguous(
     inputs: &PlanInputs,
-    sky: &PistonSpectrum,
+    (sky, tables): (&PistonSpectrum, &FringeTables),
     (fringe_hz, stroke_um): (f64, f64),
 ) -> Result<ContiguousScans> {
-    let piston = Model::with_piston_spectrum(
-        &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
-        sky.clone(),
-    )?;
     let noisy = Model::new(&inputs.point_inputs(fringe_hz, stroke_um, true, false)?)?;
+    let piston = noisy
+        .sibling_with_piston_spectrum(
+            &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
+            sky.clone(),
+        )?
+        .sharing_fringe_tables(tables);
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
     let stride = stride_samples(inputs, &piston, fringe_hz);
     let shape = (piston.samples(), stride, t_s);
@@ -167,7 +170,7 @@ fn least_time_s(noise_lower: f64, target: f64, period_s: f64) -> f64 {
 /// keeps its independent-scan estimate, marked as not solved.
 pub(super) fn resolve_candidates(
     inputs: &PlanInputs,
-    sky: &PistonSpectrum,
+    (sky, tables): (&PistonSpectrum, &FringeTables),
     points: &mut [PlanPoint],
     target: f64,
 ) -> Result<()> {
@@ -187,7 +190,7 @@ pub(super) fn resolve_candidates(
             .par_iter()
             .filter(|s| !s.points.is_empty())
             .map(|s| {
-                let scans = contiguous(inputs, sky, s.key)?;
+                let scans = contiguous(inputs, (sky, tables), s.key)?;
                 Ok(s.points
                     .iter()
                     .map(|&(i, noise)| {

@@ -85,6 +85,7 @@ use crate::montecarlo::{derive_seed, replicated_t_quantile};
 use crate::noise::calibrated::{expectation, Trials};
 use crate::noise::Formula;
 use crate::piston::spectrum::PistonSpectrum;
+use crate::piston::FringeTables;
 use crate::simulator::{simulate, Inputs, Model, PistonInputs};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -458,6 +459,9 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     // inside the grid, by one point while the others wait (5.8e9 of the
     // 11.4e9 instructions of a one-frequency plan).
     crate::montecarlo::in_pool(threads, || sky.tabulate());
+    // One fringe table per rung of range for the whole grid, not one per
+    // setting (their building was 59 % of a visible plan's time).
+    let tables = FringeTables::new();
     let grid: Vec<(f64, f64)> = inputs
         .fringe_hz
         .iter()
@@ -466,7 +470,7 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     let points = crate::montecarlo::in_pool(threads, || {
         grid.par_iter()
             .map(|&(f, s)| {
-                let r = grid_point(inputs, &sky, f, s);
+                let r = grid_point(inputs, (&sky, &tables), f, s);
                 progress(1);
                 crate::cancel::check()?;
                 r
@@ -476,7 +480,7 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     let mut points: Vec<PlanPoint> = points.into_iter().flatten().collect();
     if let Target::SigmaV2(target) = inputs.target {
         crate::montecarlo::in_pool(threads, || {
-            candidates::resolve_candidates(inputs, &sky, &mut points, target)
+            candidates::resolve_candidates(inputs, (&sky, &tables), &mut points, target)
         })?;
     }
     let (best_v1, best_v2) = (best(&points, Estimator::V1), best(&points, Estimator::V2));

@@ -7,7 +7,7 @@ use super::*;
 /// The two estimators' points at one grid point.
 pub(super) fn grid_point(
     inputs: &PlanInputs,
-    sky: &PistonSpectrum,
+    (sky, tables): (&PistonSpectrum, &FringeTables),
     fringe_hz: f64,
     stroke_um: f64,
 ) -> Result<[PlanPoint; 2]> {
@@ -20,10 +20,12 @@ pub(super) fn grid_point(
     )?;
     let wb = wide_band(&noisy.observation);
     let vis2 = noisy.inputs.visibility * noisy.inputs.visibility;
-    let piston_model = Model::with_piston_spectrum(
-        &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
-        sky.clone(),
-    )?;
+    let piston_model = noisy
+        .sibling_with_piston_spectrum(
+            &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
+            sky.clone(),
+        )?
+        .sharing_fringe_tables(tables);
     let scans = point_scans(inputs.scans, noisy.samples());
     let size = Trials {
         trials: scans,

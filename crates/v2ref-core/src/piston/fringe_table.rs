@@ -14,7 +14,9 @@ use crate::error::{self, Result};
 use crate::formalism::interferogram::SpectralNodes;
 use crate::formalism::observation::Observation;
 use num_complex::Complex64;
+use rayon::prelude::*;
 use std::f64::consts::PI;
+use std::sync::{Arc, Mutex};
 
 /// Largest OPD (µm) a scan may reach with its piston: beyond, the fringe
 /// table would cost more memory and time than any realistic case needs.
@@ -37,6 +39,67 @@ pub struct FringeTable {
 /// carrier rotation is evaluated by its Taylor series to θ⁷, whose error
 /// θ⁸/8! stays below 1e-15 there.
 const MAX_STEP_PHASE: f64 = 0.06;
+
+/// Per node, e^{2πiδ_j x} is marched along the grid by complex
+/// multiplication, re-anchored exactly every `RESYNC` steps.
+const RESYNC: usize = 128;
+
+/// Grid points summed over all the nodes at a time: their values and
+/// slopes (32 KiB) stay in the L1 cache while the nodes stream past, where
+/// a whole table (megabytes) would be read and written once per node. A
+/// multiple of `RESYNC`, so that each block starts on an exact anchor and
+/// every sum has the same terms in the same order as node by node.
+const BLOCK: usize = 8 * RESYNC;
+
+/// A node's term: 2πδ_j, the phase step e^{2πiδ_j h}, a_j and a_j·2πiδ_j.
+type NodeTerm = (f64, Complex64, Complex64, Complex64);
+
+/// Nodes marched together: their phase recurrences are independent, so
+/// the processor runs them side by side instead of waiting on one chain of
+/// complex products (each sum still takes the nodes in order).
+const LANES: usize = 4;
+
+/// Adds every node's term to the grid points `start..start + value.len()`
+/// of the grid `(x0, h)`, node after node (the order of the sums).
+fn add_nodes(
+    terms: &[NodeTerm],
+    grid: (f64, f64),
+    start: usize,
+    value: &mut [Complex64],
+    slope: &mut [Complex64],
+) {
+    let mut lanes = terms.chunks_exact(LANES);
+    for group in &mut lanes {
+        let group: &[NodeTerm; LANES] = group.try_into().expect("chunks_exact");
+        add_lanes(group, grid, start, value, slope);
+    }
+    for term in lanes.remainder() {
+        add_lanes(std::array::from_ref(term), grid, start, value, slope);
+    }
+}
+
+/// [`add_nodes`] for `L` nodes at a time.
+fn add_lanes<const L: usize>(
+    terms: &[NodeTerm; L],
+    (x0, h): (f64, f64),
+    start: usize,
+    value: &mut [Complex64],
+    slope: &mut [Complex64],
+) {
+    let mut phase = [Complex64::new(0.0, 0.0); L];
+    for (k, (v, s)) in value.iter_mut().zip(slope.iter_mut()).enumerate() {
+        let i = start + k;
+        for (p, &(w, step, a, da)) in phase.iter_mut().zip(terms) {
+            if i % RESYNC == 0 {
+                *p = Complex64::from_polar(1.0, w * (x0 + i as f64 * h));
+            } else {
+                *p *= step;
+            }
+            *v += a * *p;
+            *s += da * *p;
+        }
+    }
+}
 
 /// Interpolation error target of [`FringeTable`], relative to Σ|a_j|.
 const TABLE_REL: f64 = crate::tolerance::FRINGE_TABLE_REL;
@@ -76,29 +139,29 @@ impl FringeTable {
         let x0 = -max_opd_um;
         let mut value = vec![Complex64::new(0.0, 0.0); n];
         let mut slope = vec![Complex64::new(0.0, 0.0); n];
-        // Per node, march e^{2πiδ_j x} along the grid by complex
-        // multiplication, re-anchored exactly every RESYNC steps.
-        const RESYNC: usize = 128;
-        let every = crate::cancel::stride(n);
-        for (j, (&s, &a)) in nodes.sigma_per_um.iter().zip(&nodes.amplitude).enumerate() {
-            if j % every == 0 {
+        let terms: Vec<NodeTerm> = nodes
+            .sigma_per_um
+            .iter()
+            .zip(&nodes.amplitude)
+            .map(|(&s, &a)| {
+                let w = 2.0 * PI * (s - sigma_c);
+                (
+                    w,
+                    Complex64::from_polar(1.0, w * h),
+                    a,
+                    a * Complex64::new(0.0, w),
+                )
+            })
+            .collect();
+        value
+            .par_chunks_mut(BLOCK)
+            .zip(slope.par_chunks_mut(BLOCK))
+            .enumerate()
+            .try_for_each(|(b, (value, slope))| {
                 crate::cancel::check()?;
-            }
-            let d = s - sigma_c;
-            let w = 2.0 * PI * d;
-            let step = Complex64::from_polar(1.0, w * h);
-            let da = a * Complex64::new(0.0, w);
-            let mut phase = Complex64::new(0.0, 0.0);
-            for i in 0..n {
-                if i % RESYNC == 0 {
-                    phase = Complex64::from_polar(1.0, w * (x0 + i as f64 * h));
-                } else {
-                    phase *= step;
-                }
-                value[i] += a * phase;
-                slope[i] += da * phase;
-            }
-        }
+                add_nodes(&terms, (x0, h), b * BLOCK, value, slope);
+                Ok::<(), crate::Error>(())
+            })?;
         let carrier = (0..n)
             .map(|i| Complex64::from_polar(1.0, 2.0 * PI * sigma_c * (x0 + i as f64 * h)))
             .collect();
@@ -152,5 +215,139 @@ impl FringeTable {
         let c = self.carrier[i];
         let (zr, zi) = (c.re * cos - c.im * sin, c.re * sin + c.im * cos);
         a.re * zr - a.im * zi
+    }
+}
+
+/// Rungs per octave of [`FringeTables`]' ranges: a table is at most 2^¼
+/// (19 %) wider than the range asked, so at most ~1.4 times the cost of the
+/// exact one (its cost grows as the range squared), and a grid's settings
+/// share a few rungs instead of building one table each.
+const RUNGS_PER_OCTAVE: f64 = 4.0;
+
+/// The fringe tables of the settings of one plan, shared: a table is built
+/// once per observation and rung of range (the range asked rounded up to
+/// the next 2^(k/4) µm), whoever asks first, and read by every setting
+/// whose range falls on that rung.
+///
+/// The table a setting reads depends only on its observation and the range
+/// it needs, not on which settings ran before or on how many threads, so
+/// the answer has the same bits whatever the order. It differs from the
+/// exact-range table of [`FringeTable::new`] by the interpolation error
+/// only (below [`crate::tolerance::FRINGE_TABLE_REL`] of the fringe's
+/// amplitude), so the conformance vectors, which build their own exact
+/// tables, do not move. Clones share the tables.
+#[derive(Debug, Clone, Default)]
+pub struct FringeTables {
+    #[allow(clippy::type_complexity)]
+    built: Arc<Mutex<Vec<(Observation, i32, Arc<Mutex<Option<Arc<FringeTable>>>>)>>>,
+}
+
+impl FringeTables {
+    /// No table yet.
+    pub fn new() -> FringeTables {
+        FringeTables::default()
+    }
+
+    /// The table of `obs` over at least |x| ≤ `max_opd_um` (≤ [`MAX_OPD_UM`]).
+    pub fn get(&self, obs: &Observation, max_opd_um: f64) -> Result<Arc<FringeTable>> {
+        error::positive("max_opd", max_opd_um)?;
+        let rung = (RUNGS_PER_OCTAVE * max_opd_um.log2()).ceil();
+        let range = (rung / RUNGS_PER_OCTAVE)
+            .exp2()
+            .min(MAX_OPD_UM)
+            .max(max_opd_um);
+        let slot = {
+            let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
+            let found = built
+                .iter()
+                .find(|(o, r, _)| *r == rung as i32 && o == obs)
+                .map(|(_, _, slot)| slot.clone());
+            found.unwrap_or_else(|| {
+                let slot = Arc::new(Mutex::new(None));
+                built.push((obs.clone(), rung as i32, slot.clone()));
+                slot
+            })
+        };
+        // Held while the table is built: a second setting on this rung
+        // waits for it rather than building it again.
+        let mut table = slot.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(t) = table.as_ref() {
+            return Ok(t.clone());
+        }
+        let made = Arc::new(FringeTable::new(obs, range)?);
+        *table = Some(made.clone());
+        Ok(made)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::formalism::observation::Frequency;
+    use crate::formalism::phase::SpectralPhase;
+    use crate::formalism::source::Source;
+    use crate::formalism::spectrum::{Band, Spectrum};
+    use crate::tolerance::FRINGE_TABLE_CHECK_ABS;
+
+    fn obs(diameter_mas: f64) -> Observation {
+        Observation::new(
+            Spectrum::flat(Band::k()),
+            Source::uniform_disk(diameter_mas).unwrap(),
+            Frequency::BaselineM(18.0),
+            SpectralPhase::zero(),
+        )
+        .unwrap()
+    }
+
+    /// The table summed block by block, four nodes at a time, has the bits
+    /// of the plain sum node after node over the whole grid (the oracle
+    /// below: the same terms in the same order).
+    #[test]
+    fn blocked_sums_have_the_bits_of_the_node_by_node_sums() {
+        let table = FringeTable::new(&obs(43.0), 37.3).unwrap();
+        let n = table.value.len();
+        // A last block shorter than the others.
+        assert!(n % BLOCK != 0);
+        let (mut value, mut slope) = (
+            vec![Complex64::new(0.0, 0.0); n],
+            vec![Complex64::new(0.0, 0.0); n],
+        );
+        for (&s, &a) in table.nodes.sigma_per_um.iter().zip(&table.nodes.amplitude) {
+            let w = 2.0 * PI * (s - table.sigma_c);
+            let step = Complex64::from_polar(1.0, w * table.h);
+            let mut phase = Complex64::new(0.0, 0.0);
+            for i in 0..n {
+                phase = if i % RESYNC == 0 {
+                    Complex64::from_polar(1.0, w * (table.x0 + i as f64 * table.h))
+                } else {
+                    phase * step
+                };
+                value[i] += a * phase;
+                slope[i] += a * Complex64::new(0.0, w) * phase;
+            }
+        }
+        assert!(value == table.value && slope == table.slope);
+    }
+
+    /// Settings on one rung read one table, the table of that rung's range
+    /// whoever asked first; another observation has its own; every table
+    /// covers the range asked and agrees with the exact one.
+    #[test]
+    fn shared_tables_are_one_per_observation_and_rung() {
+        let tables = FringeTables::new();
+        let (a, b) = (obs(43.0), obs(20.0));
+        let first = tables.get(&a, 45.5).unwrap();
+        let same = tables.get(&a, 46.0).unwrap();
+        assert!(Arc::ptr_eq(&first, &same));
+        assert!(first.max_opd_um() >= 45.5 && first.max_opd_um() <= 45.5 * 2f64.powf(0.25));
+        assert!(!Arc::ptr_eq(&first, &tables.get(&b, 45.5).unwrap()));
+        let alone = FringeTable::new(&a, first.max_opd_um()).unwrap();
+        assert!(alone.value == first.value);
+        let exact = FringeTable::new(&a, 45.5).unwrap();
+        let worst = (0..2000)
+            .map(|i| -45.0 + i as f64 * 0.045)
+            .map(|x| (first.fringe(x) - exact.fringe(x)).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < FRINGE_TABLE_CHECK_ABS, "{worst:e}");
     }
 }

@@ -8,8 +8,10 @@ use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::noise::calibrated::CalibratedSetup;
 use crate::noise::{scaled_interferogram, NoiseModel};
+use crate::piston::fringe_table::{FringeTable, FringeTables};
 use crate::piston::turbulence::PistonSpectrum;
 use crate::simulator::inputs::Inputs;
+use std::sync::Arc;
 
 /// A configuration built from its [`Inputs`].
 #[derive(Debug, Clone)]
@@ -30,6 +32,9 @@ pub struct Model {
     pub calibrator: Interferogram,
     /// The differential-piston spectrum on the baseline, with piston.
     pub piston_spectrum: Option<PistonSpectrum>,
+    /// Fringe tables shared with other models ([`Model::sharing_fringe_tables`]);
+    /// none: each set builds the exact table its piston needs.
+    fringe_tables: Option<FringeTables>,
 }
 
 impl Model {
@@ -45,7 +50,7 @@ impl Model {
     /// # Ok::<(), v2ref_core::Error>(())
     /// ```
     pub fn new(inputs: &Inputs) -> Result<Model> {
-        Self::build(inputs, None)
+        Self::build(inputs, None, None)
     }
 
     /// [`Model::new`] with the differential-piston spectrum given (it is
@@ -54,17 +59,63 @@ impl Model {
     /// many models under one sky builds it once). It must be the spectrum of
     /// `inputs.piston` on `inputs.baseline_m`.
     pub fn with_piston_spectrum(inputs: &Inputs, spectrum: PistonSpectrum) -> Result<Model> {
-        Self::build(inputs, Some(spectrum))
+        Self::build(inputs, Some(spectrum), None)
     }
 
-    fn build(inputs: &Inputs, given: Option<PistonSpectrum>) -> Result<Model> {
+    /// [`Model::with_piston_spectrum`] for `inputs` that differ from this
+    /// model's in their noise and piston only: the interferograms (the
+    /// costly part after the piston spectrum: a planner builds each
+    /// setting's noise model and piston model from one) are this model's
+    /// when `inputs` has the same observation, sampling, photons and
+    /// visibility, and built anew otherwise; the same model either way.
+    pub fn sibling_with_piston_spectrum(
+        &self,
+        inputs: &Inputs,
+        spectrum: PistonSpectrum,
+    ) -> Result<Model> {
+        Self::build(inputs, Some(spectrum), Some(self))
+    }
+
+    /// This model, its sets reading their piston's fringe table from
+    /// `tables` (shared with the other models given them: a planner's
+    /// settings under one sky), a table of a slightly wider range than the
+    /// exact one the set would build alone ([`FringeTables`]: the same
+    /// numbers within the table's interpolation error, far less time for
+    /// many settings).
+    pub fn sharing_fringe_tables(mut self, tables: &FringeTables) -> Model {
+        self.fringe_tables = Some(tables.clone());
+        self
+    }
+
+    /// The fringe table of a set whose piston needs |x| ≤ `max_opd_um`.
+    pub(crate) fn fringe_table(&self, max_opd_um: f64) -> Result<Arc<FringeTable>> {
+        match &self.fringe_tables {
+            Some(tables) => tables.get(&self.observation, max_opd_um),
+            None => Ok(Arc::new(FringeTable::new(&self.observation, max_opd_um)?)),
+        }
+    }
+
+    fn build(
+        inputs: &Inputs,
+        given: Option<PistonSpectrum>,
+        like: Option<&Model>,
+    ) -> Result<Model> {
         inputs.validate()?;
         let observation = inputs.observation()?;
         let sampling = inputs.sampling()?;
-        let signal =
-            scaled_interferogram(&observation, &sampling, inputs.photons, inputs.visibility)?;
-        let calibrator =
-            scaled_interferogram(&observation.calibrator(), &sampling, inputs.photons, 1.0)?;
+        let same_signal = like.filter(|m| {
+            m.observation == observation
+                && m.sampling == sampling
+                && m.inputs.photons == inputs.photons
+                && m.inputs.visibility == inputs.visibility
+        });
+        let (signal, calibrator) = match same_signal {
+            Some(m) => (m.signal.clone(), m.calibrator.clone()),
+            None => (
+                scaled_interferogram(&observation, &sampling, inputs.photons, inputs.visibility)?,
+                scaled_interferogram(&observation.calibrator(), &sampling, inputs.photons, 1.0)?,
+            ),
+        };
         let piston_spectrum = match (&inputs.piston, given) {
             (Some(_), Some(s)) => Some(s),
             (Some(p), None) => Some(p.spectrum(observation.baseline_m)?),
@@ -72,6 +123,7 @@ impl Model {
         };
         Ok(Model {
             piston_spectrum,
+            fringe_tables: None,
             inputs: inputs.clone(),
             noise: inputs.noise()?,
             observation,

@@ -39,7 +39,7 @@ pub const ROWS_PER_UNIT: u64 = TRIALS_PER_UNIT;
 struct PistonScans {
     timing: RowTiming,
     sequence: PistonSequence,
-    table: FringeTable,
+    table: std::sync::Arc<FringeTable>,
     setup: ScanSetup,
     sub: (Vec<f64>, Vec<f64>),
     /// photons · V: the modulated signal per unit fringe.
@@ -207,7 +207,7 @@ impl Model {
             }
         };
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
-        let table = FringeTable::new(&self.observation, table_range_um(&setup, excursion)?)?;
+        let table = self.fringe_table(table_range_um(&setup, excursion)?)?;
         Ok(PistonScans {
             timing: match layout {
                 Layout::Named(named) => named,

@@ -22,6 +22,7 @@ pub mod budget;
 pub mod csv;
 pub(crate) mod npy;
 pub mod spectrum_csv;
+pub mod targets_csv;
 
 pub use budget::{budget_bytes_of_gib, check_budget, memory_budget, set_memory_budget_gib};
 pub use csv::{CsvRowWriter, CsvRows, MAX_CSV_LINE_BYTES};

@@ -13,6 +13,7 @@ mod data;
 mod paper;
 mod plan;
 mod simulator;
+mod targets;
 
 use super::ok;
 use crate::conformance::estimate::BiasConvention;
@@ -49,6 +50,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_threads, m)?)?;
     m.add_function(wrap_pyfunction!(plan::photon_rate, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
+    m.add_function(wrap_pyfunction!(targets::plan_targets, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::estimate, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::synthesize, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::simulate, m)?)?;

@@ -35,7 +35,7 @@ pub(super) fn plan(
     verify_observations: Option<u64>,
     observing: Option<crate::oifits::ObservingKeywords>,
     force: bool,
-    magnitude: Option<(f64, String, f64)>,
+    magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
@@ -50,6 +50,49 @@ pub(super) fn plan(
         None => None,
     };
     let observing = crate::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
+    let (p, req) = request(
+        physical,
+        (samples_per_fringe, photon_rate_per_s, dead_time_s),
+        (fringe_hz, stroke_um),
+        (target_sigma_v2, time_budget_s, scans, seed),
+        (diameter_err_mas, bias, magnitude, frame_rate_hz),
+    )?;
+    let prepared = ok(commands::plan::prepare(&p, &req))?;
+    warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
+    let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
+    if let Some(observations) = verify_observations {
+        // `plan --verify`: its cost warned about before it starts.
+        let size = ok(commands::plan::verification(&answer, observations))?;
+        warn_cost(
+            py,
+            "plan(verify=True)",
+            &commands::cost::plan_verification(&size, threads),
+        )?;
+        interruptible(py, |tick| {
+            commands::plan::verify(&mut answer, &size, threads, tick)
+        })?;
+    }
+    if let (Some(path), Some(set)) = (&oifits, set) {
+        // Nothing is written when no setting reaches the target: the
+        // answer's `recommended` is then null, as the CLI says in a note.
+        ok(set.write(|| {
+            v2ref_oifits::write_plan(path, "oifits", (&answer.inputs, &answer.plan), &observing)
+        }))?;
+    }
+    to_py(py, &answer)
+}
+
+/// The keywords of `plan` as the library's inputs (shared by
+/// `plan_targets`, whose rows replace some of them), grouped as they are
+/// listed: the sampling and rate, the grid, the target and Monte Carlo, the
+/// source's details.
+pub(super) fn request(
+    physical: &Bound<'_, PyDict>,
+    (samples_per_fringe, photon_rate_per_s, dead_time_s): (f64, f64, f64),
+    (fringe_hz, stroke_um): (Vec<f64>, Vec<f64>),
+    (target_sigma_v2, time_budget_s, scans, seed): (Option<f64>, Option<f64>, u64, u64),
+    (diameter_err_mas, bias, magnitude, frame_rate_hz): (f64, &str, Magnitude3, Option<f64>),
+) -> PyResult<(crate::parameters::Physical, PlanRequest)> {
     let p = crate::inputs::physical_from_dict(physical)?;
     let magnitude = match magnitude {
         Some((magnitude, band, throughput)) => Some(crate::plan::photometry::Magnitude {
@@ -78,30 +121,11 @@ pub(super) fn plan(
         diameter_err_mas,
         bias: ok(BiasConvention::from_word("bias", bias))?,
     };
-    let prepared = ok(commands::plan::prepare(&p, &req))?;
-    warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
-    let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
-    if let Some(observations) = verify_observations {
-        // `plan --verify`: its cost warned about before it starts.
-        let size = ok(commands::plan::verification(&answer, observations))?;
-        warn_cost(
-            py,
-            "plan(verify=True)",
-            &commands::cost::plan_verification(&size, threads),
-        )?;
-        interruptible(py, |tick| {
-            commands::plan::verify(&mut answer, &size, threads, tick)
-        })?;
-    }
-    if let (Some(path), Some(set)) = (&oifits, set) {
-        // Nothing is written when no setting reaches the target: the
-        // answer's `recommended` is then null, as the CLI says in a note.
-        ok(set.write(|| {
-            v2ref_oifits::write_plan(path, "oifits", (&answer.inputs, &answer.plan), &observing)
-        }))?;
-    }
-    to_py(py, &answer)
+    Ok((p, req))
 }
+
+/// `plan`'s `magnitude`: (magnitude, band, throughput).
+pub(super) type Magnitude3 = Option<(f64, String, f64)>;
 
 /// `photon_rate`: the photon rate at the detector from a magnitude (2MASS
 /// or Johnson–Cousins; `v2ref plan --magnitude`).

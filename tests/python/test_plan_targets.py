@@ -1,0 +1,89 @@
+"""``v2ref.plan_targets``: the target list of ``v2ref plan --targets``
+from a list of dicts, an astropy Table or a file, with ``plan``'s keywords
+shared; the numbers are the CLI's, bit for bit, and a bad row is marked,
+not raised."""
+
+import csv
+import io
+import subprocess
+
+import pytest
+
+import v2ref
+from conftest import release_binary
+
+# One grid point of a bright H-band source, a short Monte Carlo, a target
+# every row reaches (well under a second a row).
+SHARED = dict(
+    wavelength_um=1.65,
+    bandwidth_nm=300.0,
+    fringe_hz=[500.0],
+    stroke_um=[32.0],
+    scans=50,
+    aperture_m=1.8,
+    target_sigma_v2=1e-2,
+    seed=7,
+    throughput=0.01,
+)
+FLAGS = [
+    "--wavelength-um", "1.65", "--bandwidth-nm", "300", "--fringe-hz", "500",
+    "--stroke-um", "32", "--scans", "50", "--aperture-m", "1.8",
+    "--target-sigma-v2", "1e-2", "--seed", "7", "--throughput", "0.01", "--quiet",
+]
+ROWS = [
+    {"name": "alpha", "magnitude": 5.0, "band": "H", "diameter_mas": 1.0, "ra_deg": 10.5, "dec_deg": -20.0},
+    {"name": "beta", "magnitude": "5x", "band": "H"},
+    {"name": "gamma", "magnitude": 6.0, "band": "h", "diameter_mas": None},
+]
+
+
+def _number(v):
+    return None if v == "" else float(v)
+
+
+def test_a_list_of_dicts_is_planned_and_a_bad_row_marked():
+    rows = v2ref.plan_targets(ROWS, **SHARED)
+    assert [r["TARGET"] for r in rows] == ["alpha", "beta", "gamma"]
+    assert [r["status"] for r in rows] == ["ok", "error", "ok"]
+    # Line of the same rows written as CSV under a header: index + 2.
+    assert rows[1]["line"] == 3
+    assert rows[1]["reason"].startswith("magnitude: '5x' is not a number")
+    assert rows[0]["RAEP0"] == 10.5 and rows[0]["DECEP0"] == -20.0
+    assert rows[2]["diameter_mas"] == 43.0, "a None cell takes the shared diameter"
+    assert rows[0]["time_s"] > 0 and rows[0]["estimator"] == "v1"
+
+
+@pytest.mark.needs_bin
+def test_the_numbers_are_the_clis_from_a_table_and_from_a_file(tmp_path):
+    from astropy.table import Table
+
+    good = [ROWS[0], ROWS[2]]
+    table = Table(rows=[[r["name"], r["magnitude"], r["band"]] for r in good], names=["name", "magnitude", "band"])
+    from_table = v2ref.plan_targets(table, **SHARED)
+    path = tmp_path / "list.csv"
+    path.write_text("name,magnitude,band\nalpha,5,H\ngamma,6,h\n")
+    from_file = v2ref.plan_targets(path, **SHARED)
+    out = subprocess.run(
+        [str(release_binary()), "plan", "--targets", str(path), *FLAGS],
+        capture_output=True, text=True, check=True,
+    ).stdout
+    cli = list(csv.DictReader(io.StringIO(out)))
+    assert len(cli) == len(from_table) == len(from_file) == 2
+    for c, t, f in zip(cli, from_table, from_file):
+        assert t == f, "a Table and a file give the same rows"
+        for k in ("time_s", "scans", "sigma_v2", "sigma_v2_lower", "fringe_hz", "photon_rate_per_s"):
+            assert _number(c[k]) == t[k], k
+        assert int(c["seed"]) == t["seed"]
+
+
+def test_bad_lists_and_keywords_are_refused_by_name():
+    with pytest.raises(TypeError, match="^targets"):
+        v2ref.plan_targets(42, **SHARED)
+    with pytest.raises(ValueError, match="^targets"):
+        v2ref.plan_targets([{"name": "a", "colour": "red"}], **SHARED)
+    with pytest.raises(TypeError, match="^oifits"):
+        v2ref.plan_targets(ROWS, oifits="x.fits", **SHARED)
+    with pytest.raises(TypeError, match="plan_targets"):
+        v2ref.plan_targets(ROWS, no_such_keyword=1, **SHARED)
+    with pytest.raises(ValueError, match=r"^targets\[0\]\['name'\]"):
+        v2ref.plan_targets([{"name": "a\nb"}], **SHARED)
