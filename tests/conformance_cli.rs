@@ -300,8 +300,8 @@ fn bad_input_is_one_line_naming_the_file() {
     // Every physical flag with a sidecar is refused by the parser, naming
     // it (`--fringe-hz` was taken and ignored).
     for p in &v2ref_commands::parameters::PARAMETERS {
-        let default = &serde_json::to_value(v2ref_commands::parameters::Physical::DEFAULT)
-            .unwrap()[p.name];
+        let default =
+            &serde_json::to_value(v2ref_commands::parameters::Physical::DEFAULT).unwrap()[p.name];
         let flag = match default {
             serde_json::Value::Bool(true) => format!("--no-{}", p.name.replace('_', "-")),
             _ => format!("--{}", p.name.replace('_', "-")),

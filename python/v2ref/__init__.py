@@ -22,6 +22,8 @@ photons per sample for fluxes and noise.
 """
 
 import collections.abc as _abc
+import contextvars as _contextvars
+import functools as _functools
 import inspect as _inspect
 import json as _json
 import os as _os
@@ -873,9 +875,31 @@ def piston(
 _PLAN_GRID = ("fringe_hz", "stroke_um")
 
 
+#: The keyword arguments given to the running :func:`plan`: its
+#: ``instrument`` preset fills only the others, as the CLI's does the flags
+#: not given (a keyword given at its default value included).
+_GIVEN: "_contextvars.ContextVar[frozenset]" = _contextvars.ContextVar("v2ref_given", default=frozenset())
+
+
+def _keywords_given(f):
+    """``f`` recording in ``_GIVEN`` the keyword arguments it was given."""
+
+    @_functools.wraps(f)
+    def wrapper(*args, **kwargs):
+        token = _GIVEN.set(frozenset(kwargs))
+        try:
+            return f(*args, **kwargs)
+        finally:
+            _GIVEN.reset(token)
+
+    return wrapper
+
+
+@_keywords_given
 @_documented(exclude=_PLAN_GRID)
 def plan(
     *,
+    instrument: Optional[str] = None,
     target_sigma_v2: Optional[float] = None,
     time_budget_s: Optional[float] = None,
     photon_rate_per_s: Optional[float] = None,
@@ -929,6 +953,12 @@ def plan(
 
     Parameters
     ----------
+    instrument : str, optional
+        A preset's name (as ``v2ref plan --instrument``; ``v2ref plan
+        --instrument list`` lists them, docs/instruments.md cites their
+        values): its band, aperture, baseline, read noise, dead time, frame
+        rate and throughput fill every keyword not given here (one given,
+        even at its default value, is kept).
     target_sigma_v2 : float, optional
         σ of the averaged V² to reach (default 1e-3 when no time budget).
     time_budget_s : float, optional
@@ -1002,7 +1032,10 @@ def plan(
         ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
         with ``verify``.
     """
-    return _v2ref.plan(**_plan_arguments(dict(locals())))
+    arguments = _plan_arguments(dict(locals()))
+    if instrument is not None:
+        arguments["instrument"] = (_word("instrument", instrument), sorted(_GIVEN.get()))
+    return _v2ref.plan(**arguments)
 
 
 def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
@@ -1044,6 +1077,7 @@ def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
             values["magnitude_band"],
             values["throughput"],
             values["spectrum_csv"],
+            values.get("instrument") is not None,
         ),
         frame_rate_hz=opt("frame_rate_hz", values["frame_rate_hz"]),
     )
@@ -1145,7 +1179,7 @@ def _csv_cell(name: str, v: Any) -> str:
     return text
 
 
-def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv):
+def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv, preset=False):
     """``plan``'s magnitude keywords as the extension takes them (None
     without ``magnitude``), refused half given or beside a photon rate."""
     given = {
@@ -1163,14 +1197,16 @@ def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, sp
     if spectrum_csv is not None:
         raise ValueError("magnitude: converted over the flat band (wavelength_um, bandwidth_nm), not with spectrum_csv")
     for name, v in given.items():
-        if v is None:
+        if v is None and not (name == "throughput" and preset):
             raise ValueError(f"{name}: needed with magnitude (magnitude, magnitude_band and throughput together)")
     if not isinstance(magnitude_band, str):
         raise TypeError(f"magnitude_band: {magnitude_band!r} is not a str (J, H, Ks, V, R or I)")
     # Any case, as the CLI's --magnitude-band takes it (h, H; ks, Ks).
     bands = {b.lower(): b for b in ("J", "H", "Ks", "V", "R", "I")}
     band = bands.get(magnitude_band.strip().lower(), magnitude_band)
-    return (_float("magnitude", magnitude), band, _float("throughput", throughput))
+    # NaN: none given, the preset's (refused by the extension without one).
+    rate_throughput = float("nan") if throughput is None else _float("throughput", throughput)
+    return (_float("magnitude", magnitude), band, rate_throughput)
 
 
 @_documented()

@@ -56,7 +56,7 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
 /// and `PHYSICAL_PARAMETERS` (a list of dicts: [`PARAMETERS`], each with its
 /// help text `doc` and what leaving it unset means, `unset_doc`, other
 /// inputs named ``` ``name`` ```). The package reads the same declaration
-/// from `_declaration.py`, generated from it.
+/// at import (`_docstrings.declaration`) for its docstrings.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
