@@ -56,7 +56,7 @@ pub struct Physical {
     /// Uniform-disk diameter θ, mas.
     pub diameter_mas: f64,
     /// Spatial frequency S = B σ_eff, cycles/arcsec (default
-    /// [`super::DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
+    /// [`DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
     pub spatial_freq_cpas: Option<f64>,
     /// Projected baseline B, m (instead of the spatial frequency).
     pub baseline_m: Option<f64>,

@@ -1,5 +1,5 @@
 //! The help text of each physical input, kept by hand beside the struct
-//! [`Physical`] (one entry per field, in its order; a test holds the names
+//! [`super::Physical`] (one entry per field, in its order; a test holds the names
 //! to the struct's serde fields): unit, accepted range, what it is. The
 //! CLI's flags state the same text in their doc comments (a test of the
 //! binary holds each to its entry), Python's docstrings are written from it
@@ -82,7 +82,7 @@ pub fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
     out
 }
 
-/// Every field of [`Physical`], in declaration order, with its help text.
+/// Every field of [`super::Physical`], in declaration order, with its help text.
 pub const PARAMETERS: [Parameter; 24] = [
     Parameter {
         name: "wavelength_um",
