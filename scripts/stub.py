@@ -3,10 +3,10 @@
 Each public function of ``python/v2ref/__init__.py`` and
 ``python/v2ref/oifits.py`` (those in ``__all__``) gets its signature as
 written in the source and the docstring ``help()`` shows: the physical
-keyword arguments' entries are filled in from the declaration
-(``_declaration.py``, generated from the library's) as the package does at
-import (``_docstrings.fill``). Needs only the standard library, not the
-built package. ``scripts/regenerate.sh`` runs it; ``--check`` exits 1
+keyword arguments' entries are filled in from the built library's table
+(``v2ref._v2ref.PHYSICAL_PARAMETERS``) as the package does at import
+(``_docstrings.fill``): run it with the built package importable
+(``python3 scripts/stub.py``); ``--check`` exits 1
 (printing a diff) when the stub is not what the source makes, as
 ``tests/python/test_parameters.py`` does.
 """
@@ -130,7 +130,8 @@ def public_names():
 
 def stub():
     """The stub's text."""
-    declaration, docstrings = load("_declaration"), load("_docstrings")
+    docstrings = load("_docstrings")
+    declaration = docstrings.declaration(importlib.import_module("v2ref._v2ref"))
     public = public_names()
     lines = HEADER.rstrip("\n").split("\n")
     for name in ("__init__.py", "oifits.py"):
@@ -146,7 +147,7 @@ def main():
             sys.stdout.writelines(
                 difflib.unified_diff(now.splitlines(True), want.splitlines(True), str(STUB), "made")
             )
-            print(f"{STUB} is out of date: run scripts/regenerate.sh", file=sys.stderr)
+            print(f"{STUB} is out of date: run python3 scripts/stub.py", file=sys.stderr)
             sys.exit(1)
         return
     STUB.write_text(want, encoding="utf-8")

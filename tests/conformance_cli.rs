@@ -300,16 +300,17 @@ fn bad_input_is_one_line_naming_the_file() {
     // Every physical flag with a sidecar is refused by the parser, naming
     // it (`--fringe-hz` was taken and ignored).
     for p in &v2ref_commands::parameters::PARAMETERS {
-        use v2ref_commands::parameters::{Kind, Physical, Value};
-        let flag = match Physical::DEFAULT.get(p) {
-            Value::Flag(true) => format!("--no-{}", p.name.replace('_', "-")),
+        let default =
+            &serde_json::to_value(v2ref_commands::parameters::Physical::DEFAULT).unwrap()[p.name];
+        let flag = match default {
+            serde_json::Value::Bool(true) => format!("--no-{}", p.name.replace('_', "-")),
             _ => format!("--{}", p.name.replace('_', "-")),
         };
-        let value = match p.kind {
-            Kind::Flag => None,
-            Kind::Word => Some(Physical::words(p)[0].0.to_owned()),
-            Kind::File => Some(sidecar.clone()),
-            Kind::Number | Kind::Count => Some("64".to_owned()),
+        let value = match default {
+            serde_json::Value::Bool(_) => None,
+            serde_json::Value::String(w) => Some(w.clone()),
+            _ if p.name == "spectrum_csv" => Some(sidecar.clone()),
+            _ => Some("64".to_owned()),
         };
         let mut args = vec!["estimate", "--sidecar", &sidecar, &flag];
         args.extend(value.as_deref());

@@ -22,6 +22,8 @@ photons per sample for fluxes and noise.
 """
 
 import collections.abc as _abc
+import contextvars as _contextvars
+import functools as _functools
 import inspect as _inspect
 import json as _json
 import os as _os
@@ -33,7 +35,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
-from . import _declaration, _docstrings, _v2ref
+from . import _docstrings, _v2ref
 
 __version__: str = _v2ref.__version__
 
@@ -55,8 +57,9 @@ __all__ = [
 #: The columns of :func:`estimate`'s answer, in the order of ``v2ref estimate``.
 ESTIMATE_COLUMNS = tuple(_v2ref.ESTIMATE_COLUMNS)
 
-#: The defaults of the physical inputs, from the library's one declaration
-#: (``v2ref::parameters::Physical::DEFAULT``, also the CLI's defaults).
+#: The physical inputs as the library states them (``Physical::DEFAULT``,
+#: also the CLI's defaults, and the help text of each).
+_declaration = _docstrings.declaration(_v2ref)
 _DEFAULTS: Dict[str, Any] = _declaration.DEFAULTS
 
 _PathLike = Union[str, _os.PathLike[str]]
@@ -255,7 +258,7 @@ def estimate(
     calibrator: Any = None,
     continuum_subtracted: Optional[bool] = None,
     threads: int = 0,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -278,7 +281,6 @@ def estimate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
@@ -366,7 +368,7 @@ def synthesize(
     dead_time_s: float = 0.0,
     out: Optional[_PathLike] = None,
     force: bool = False,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -391,7 +393,6 @@ def synthesize(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
@@ -636,7 +637,7 @@ def simulate(
     client: Any = None,
     checkpoint: Optional[_PathLike] = None,
     chunk_units: Optional[int] = None,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -661,7 +662,6 @@ def simulate(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
@@ -723,7 +723,7 @@ def bias(
     *,
     finite_scan: bool = False,
     bins: str = "positive",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -736,7 +736,6 @@ def bias(
     dx_um: float = 0.5,
     samples: int = 128,
     integrating: bool = False,
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
 
@@ -767,7 +766,7 @@ def snr(
     *,
     bins: str = "positive",
     formula: str = "exact",
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -784,7 +783,6 @@ def snr(
     photons: float = 10.0,
     read_noise: float = 0.0,
     photon_noise: bool = True,
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
 
@@ -821,7 +819,7 @@ def piston(
     bins: str = "positive",
     client: Any = None,
     checkpoint: Optional[_PathLike] = None,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -841,7 +839,6 @@ def piston(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
     psd: str = "two-aperture",
     wind_angle_deg: float = 0.0,
 ) -> Dict[str, Any]:
@@ -916,9 +913,31 @@ def piston(
 _PLAN_GRID = ("fringe_hz", "stroke_um")
 
 
+#: The keyword arguments given to the running :func:`plan`: its
+#: ``instrument`` preset fills only the others, as the CLI's does the flags
+#: not given (a keyword given at its default value included).
+_GIVEN: "_contextvars.ContextVar[frozenset]" = _contextvars.ContextVar("v2ref_given", default=frozenset())
+
+
+def _keywords_given(f):
+    """``f`` recording in ``_GIVEN`` the keyword arguments it was given."""
+
+    @_functools.wraps(f)
+    def wrapper(*args, **kwargs):
+        token = _GIVEN.set(frozenset(kwargs))
+        try:
+            return f(*args, **kwargs)
+        finally:
+            _GIVEN.reset(token)
+
+    return wrapper
+
+
+@_keywords_given
 @_documented(exclude=_PLAN_GRID)
 def plan(
     *,
+    instrument: Optional[str] = None,
     target_sigma_v2: Optional[float] = None,
     time_budget_s: Optional[float] = None,
     photon_rate_per_s: Optional[float] = None,
@@ -947,7 +966,7 @@ def plan(
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
@@ -967,12 +986,17 @@ def plan(
     outer_scale_m: Optional[float] = None,
     sub_samples: int = 6,
     reference: str = "mean",
-    # End of the generated keyword arguments.
 ) -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
     ----------
+    instrument : str, optional
+        A preset's name (as ``v2ref plan --instrument``; ``v2ref plan
+        --instrument list`` lists them, docs/instruments.md cites their
+        values): its band, aperture, baseline, read noise, dead time, frame
+        rate and throughput fill every keyword not given here (one given,
+        even at its default value, is kept).
     target_sigma_v2 : float, optional
         σ of the averaged V² to reach (default 1e-3 when no time budget).
     time_budget_s : float, optional
@@ -1046,7 +1070,10 @@ def plan(
         ``best_v1``, ``best_v2``, ``recommended``, and ``verification``
         with ``verify``.
     """
-    return _v2ref.plan(**_plan_arguments(dict(locals())))
+    arguments = _plan_arguments(dict(locals()))
+    if instrument is not None:
+        arguments["instrument"] = (_word("instrument", instrument), sorted(_GIVEN.get()))
+    return _v2ref.plan(**arguments)
 
 
 def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
@@ -1088,6 +1115,7 @@ def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
             values["magnitude_band"],
             values["throughput"],
             values["spectrum_csv"],
+            values.get("instrument") is not None,
         ),
         frame_rate_hz=opt("frame_rate_hz", values["frame_rate_hz"]),
     )
@@ -1189,7 +1217,7 @@ def _csv_cell(name: str, v: Any) -> str:
     return text
 
 
-def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv):
+def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, spectrum_csv, preset=False):
     """``plan``'s magnitude keywords as the extension takes them (None
     without ``magnitude``), refused half given or beside a photon rate."""
     given = {
@@ -1207,14 +1235,16 @@ def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, sp
     if spectrum_csv is not None:
         raise ValueError("magnitude: converted over the flat band (wavelength_um, bandwidth_nm), not with spectrum_csv")
     for name, v in given.items():
-        if v is None:
+        if v is None and not (name == "throughput" and preset):
             raise ValueError(f"{name}: needed with magnitude (magnitude, magnitude_band and throughput together)")
     if not isinstance(magnitude_band, str):
         raise TypeError(f"magnitude_band: {magnitude_band!r} is not a str (J, H, Ks, V, R or I)")
     # Any case, as the CLI's --magnitude-band takes it (h, H; ks, Ks).
     bands = {b.lower(): b for b in ("J", "H", "Ks", "V", "R", "I")}
     band = bands.get(magnitude_band.strip().lower(), magnitude_band)
-    return (_float("magnitude", magnitude), band, _float("throughput", throughput))
+    # NaN: none given, the preset's (refused by the extension without one).
+    rate_throughput = float("nan") if throughput is None else _float("throughput", throughput)
+    return (_float("magnitude", magnitude), band, rate_throughput)
 
 
 @_documented()
@@ -1223,11 +1253,10 @@ def photon_rate(
     *,
     band: str,
     throughput: float,
-    # The physical keyword arguments, generated (scripts/regenerate.sh).
+    # The physical keyword arguments (fields of the library's Physical).
     aperture_m: float = 0.45,
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
-    # End of the generated keyword arguments.
 ) -> float:
     """Photons per second at the detector in the band from a magnitude, as ``v2ref plan --magnitude``.
 

@@ -629,11 +629,17 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
     ----------
+    instrument : str, optional
+        A preset's name (as ``v2ref plan --instrument``; ``v2ref plan
+        --instrument list`` lists them, docs/instruments.md cites their
+        values): its band, aperture, baseline, read noise, dead time, frame
+        rate and throughput fill every keyword not given here (one given,
+        even at its default value, is kept).
     target_sigma_v2 : float, optional
         σ of the averaged V² to reach (default 1e-3 when no time budget).
     time_budget_s : float, optional

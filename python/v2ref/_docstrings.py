@@ -1,10 +1,31 @@
 """The docstring entries of the physical keyword arguments, written from
-the library's declaration (``_declaration``, generated from it): the
-package fills them in at import and ``scripts/stub.py`` into the stub, so
-that ``help()`` and editors read the same text.
+the library's table of them (``_v2ref.PHYSICAL_PARAMETERS`` and
+``PHYSICAL_DEFAULTS``, read by :func:`declaration`): the package fills
+them in at import and ``scripts/stub.py`` into the stub, so that
+``help()`` and editors read the same text.
 """
 
 import textwrap
+import types
+
+
+def declaration(library):
+    """The physical inputs as the built ``library`` (``v2ref._v2ref``)
+    states them: ``DEFAULTS`` (None: unset), ``KINDS`` (float, int, bool,
+    word or path, from the default's type), ``DOCS`` and ``UNSET_DOCS``."""
+    defaults = dict(library.PHYSICAL_DEFAULTS)
+    kind_of_type = {bool: "bool", int: "int", str: "word", float: "float"}
+    kinds = {
+        k: "path" if k == "spectrum_csv" else kind_of_type.get(type(v), "float")
+        for k, v in defaults.items()
+    }
+    table = library.PHYSICAL_PARAMETERS
+    return types.SimpleNamespace(
+        DEFAULTS=defaults,
+        KINDS=kinds,
+        DOCS={p["name"]: p["doc"] for p in table},
+        UNSET_DOCS={p["name"]: p["unset_doc"] for p in table},
+    )
 
 #: The type a docstring entry states for each kind of input.
 _TYPE_WORDS = {"float": "float", "int": "int", "bool": "bool", "word": "str", "path": "path"}

@@ -2,27 +2,11 @@
 //! (`bias`, `snr`, `simulate`, `piston`), the output (`--json`, `--quiet`)
 //! and the Monte Carlo runs (`--seed`, `--threads`).
 
-use super::flags::physical_flags;
-use v2ref_commands::parameters::{Parameter, Physical};
+use super::flags::Flags;
+pub use super::flags::{LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
+use v2ref_commands::parameters::Physical;
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::words::Words;
-
-/// The `--help` of the flag of the physical input `p`, from its one
-/// declaration ([`Parameter::describe`]; other inputs named by their
-/// flags), with what leaving it unset means where it may be unset.
-pub fn help(p: &Parameter) -> String {
-    let text = p.describe(&|n| super::flag_of(n));
-    let text = text.trim_end_matches('.');
-    match p.unset(&|n| super::flag_of(n)) {
-        unset if unset.is_empty() => text.to_owned(),
-        unset => format!("{text} [default: {unset}]"),
-    }
-}
-
-/// The `--help` of `--no-NAME`, the flag that turns the input `p` off.
-pub fn help_off(p: &Parameter) -> String {
-    format!("Turns off: {}", help(p))
-}
 
 /// The parser of a choice of the library: its words ([`Words::WORDS`]),
 /// each with its help, offered as clap's possible values.
@@ -32,26 +16,6 @@ pub fn choice<T: Words + Clone + Send + Sync>() -> impl clap::builder::TypedValu
         .iter()
         .map(|w| PossibleValue::new(w.word).help(w.help));
     PossibleValuesParser::new(values).try_map(|word| T::from_word("", &word))
-}
-
-physical_flags! {
-    /// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
-    ObservationArgs, NegativeNumbers: WAVELENGTH_UM, BANDWIDTH_NM, SPECTRUM_CSV, SOURCE,
-        DIAMETER_MAS, SPATIAL_FREQ_CPAS, BASELINE_M, DISPERSION_PP_RAD
-}
-
-impl ObservationArgs {
-    /// The physical inputs: these flags, the defaults for the rest.
-    pub fn physical(&self) -> v2ref_core::Result<Physical> {
-        let mut p = Physical::default();
-        self.apply_to(&mut p)?;
-        Ok(p)
-    }
-}
-
-physical_flags! {
-    /// How the interferogram is scanned and sampled.
-    ScanArgs, NegativeNumbers: STROKE_UM, DX_UM, SAMPLES, INTEGRATING
 }
 
 /// How the interferogram is sampled, and the bins the estimators sum.
@@ -81,12 +45,6 @@ impl ObservedArgs {
         self.sampling.scan.apply_to(&mut p)?;
         Ok(p)
     }
-}
-
-physical_flags! {
-    /// The turbulence, the telescopes and the scans through the piston (§6).
-    TurbulenceArgs, NegativeNumbers: WIND_MPS, SEEING_ARCSEC, SEEING_WAVELENGTH_UM,
-        APERTURE_M, OUTER_SCALE_M, SUB_SAMPLES, REFERENCE
 }
 
 /// Baselines beyond which an infinite outer scale overstates the piston
@@ -131,9 +89,4 @@ pub struct RunArgs {
     /// allowed); the answer does not depend on it.
     #[arg(long, value_parser = super::thread_count, default_value = "0", allow_negative_numbers = true)]
     pub threads: usize,
-}
-
-physical_flags! {
-    /// The light: the fringe's visibility scale, the photons, the noise.
-    LightArgs, Values: VISIBILITY, PHOTONS, READ_NOISE, PHOTON_NOISE
 }

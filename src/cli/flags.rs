@@ -1,225 +1,246 @@
-//! The physical flags, made from the library's one declaration
-//! ([`v2ref_commands::parameters::PARAMETERS`]): each input's flag (its name, value
-//! parser, default, help) follows from its entry, and a group of flags
-//! ([`physical_flags!`]) only lists the keys of the inputs it holds, in
-//! the order `--help` shows them. Reading the flags back sets each input by
-//! its key ([`Physical::set`]); a spectrum's file is read here, at the edge.
+//! The physical flags: clap's derive over `Option` fields (so that a flag
+//! given is told from a default, which a preset may fill), each doc comment
+//! the help text of the input's entry in
+//! [`v2ref_commands::parameters::PARAMETERS`] (a test holds them to it).
+//! The flags given are serialized (the others skipped) and read over the
+//! defaults by [`Physical::overlay`], the same route as Python's keyword
+//! arguments; a spectrum's file is read here, at the edge.
 
-use super::common::{help, help_off};
-use clap::builder::{PossibleValue, PossibleValuesParser};
-use clap::{Arg, ArgAction, ArgMatches, Command};
+use super::common::choice;
+use super::{count_usize, finite_f64};
+use serde::{Serialize, Serializer};
 use std::path::PathBuf;
-use std::sync::OnceLock;
-use v2ref_commands::parameters::{Kind, Parameter, Physical, Value, PARAMETERS};
+use v2ref_commands::parameters::{Physical, SourceKind};
+use v2ref_core::record::PistonReference;
+use v2ref_core::Result;
 
-/// How a group's number flags take a value that starts with `-`: as a
-/// negative number only, or whatever follows (then the value parser says
-/// what is wrong with it).
-#[derive(Debug, Clone, Copy)]
-pub enum Hyphen {
-    /// `allow_negative_numbers`.
-    NegativeNumbers,
-    /// `allow_hyphen_values`.
-    Values,
-}
-
-/// Flags that cannot be given together: the first names the second.
-const CONFLICTS: [(Parameter, Parameter); 1] =
-    [(Parameter::SPATIAL_FREQ_CPAS, Parameter::BASELINE_M)];
-
-/// An input's flag names and default as clap keeps them (`'static`).
-struct Names {
-    /// The argument's id: the input's name, `no_` before it for a flag on
-    /// by default (which the flag turns off).
-    id: String,
-    /// `--` this.
-    long: String,
-    /// The value's placeholder in `--help`.
-    value_name: String,
-    /// The default shown and used, for an input that is not unset by default.
-    default: Option<String>,
-    /// The flag turns the input off.
-    off: bool,
-}
-
-impl Names {
-    /// The names of the flag of `p`, from its declaration and default.
-    fn of(p: &Parameter) -> Names {
-        let off = Physical::DEFAULT.get(p) == Value::Flag(true);
-        let id = if off {
-            format!("no_{}", p.name)
-        } else {
-            p.name.to_owned()
-        };
-        let default = match Physical::DEFAULT.get(p) {
-            Value::Number(x) => Some(x.to_string()),
-            Value::Count(n) => Some(n.to_string()),
-            Value::Word(w) => Some(w),
-            _ => None,
-        };
-        Names {
-            long: id.replace('_', "-"),
-            value_name: match p.kind {
-                Kind::File => "FILE".to_owned(),
-                _ => p.name.to_uppercase(),
-            },
-            id,
-            default,
-            off,
-        }
+/// A group of physical flags: the inputs it was given set in `p`.
+pub trait Flags: Serialize {
+    /// Sets the inputs given by these flags in `p` (the rest as they are).
+    fn apply_to(&self, p: &mut Physical) -> Result<()> {
+        p.overlay(serde_json::to_value(self).expect("flags serialize as JSON"))
     }
 }
 
-/// The names of the input `p` (a declared one: the keys are the
-/// declaration's constants).
-fn names(p: &Parameter) -> &'static Names {
-    static ALL: OnceLock<Vec<Names>> = OnceLock::new();
-    let all = ALL.get_or_init(|| PARAMETERS.iter().map(Names::of).collect());
-    let i = PARAMETERS.iter().position(|q| q.name == p.name);
-    &all[i.expect("a key of the declaration")]
+/// A flag left off is not serialized (it gives nothing).
+fn is_false(on: &bool) -> bool {
+    !on
 }
 
-/// The flag of the input `p`.
-pub fn arg(p: &Parameter, hyphen: Hyphen) -> Arg {
-    let n = names(p);
-    let arg = Arg::new(n.id.as_str()).long(n.long.as_str());
-    if p.kind == Kind::Flag {
-        let text = if n.off { help_off(p) } else { help(p) };
-        return arg.action(ArgAction::SetTrue).help(text);
-    }
-    let arg = arg
-        .value_name(n.value_name.as_str())
-        .required(false)
-        .action(ArgAction::Set)
-        .help(help(p));
-    let arg = match p.kind {
-        Kind::Count => arg.value_parser(super::count_usize),
-        Kind::Word => {
-            let words = Physical::words(p).into_iter();
-            arg.value_parser(PossibleValuesParser::new(
-                words.map(|(w, h)| PossibleValue::new(w).help(h)),
-            ))
+/// `--no-NAME` given: the input `NAME` is false.
+fn negated<S: Serializer>(off: &bool, s: S) -> std::result::Result<S::Ok, S::Error> {
+    (!off).serialize(s)
+}
+
+impl ObservationArgs {
+    /// The physical inputs: these flags (the spectrum's file read), the
+    /// defaults for the rest.
+    pub fn physical(&self) -> Result<Physical> {
+        let mut p = Physical::default();
+        self.apply_to(&mut p)?;
+        if let Some(path) = &self.spectrum_csv {
+            let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?;
+            p.spectrum_csv = Some(table);
         }
-        Kind::File => arg.value_parser(clap::value_parser!(PathBuf)),
-        _ => arg.value_parser(super::finite_f64),
-    };
-    let arg = match &n.default {
-        Some(d) => arg.default_value(d.as_str()),
-        None => arg,
-    };
-    let arg = match CONFLICTS.iter().find(|(a, _)| a.name == p.name) {
-        Some((_, b)) => arg.conflicts_with(names(b).id.as_str()),
-        None => arg,
-    };
-    match (p.kind, hyphen) {
-        (Kind::Number | Kind::Count, Hyphen::NegativeNumbers) => arg.allow_negative_numbers(true),
-        (Kind::Number | Kind::Count, Hyphen::Values) => arg.allow_hyphen_values(true),
-        _ => arg,
+        Ok(p)
     }
 }
 
-/// `cmd` with the flags of `keys` and their group `group` (what
-/// `--sidecar` of `estimate` conflicts with).
-pub fn augment(cmd: Command, group: &'static str, keys: &[&Parameter], hyphen: Hyphen) -> Command {
-    let members = keys.iter().map(|p| names(p).id.as_str());
-    let group = clap::ArgGroup::new(group).multiple(true).args(members);
-    keys.iter()
-        .fold(cmd.group(group), |cmd, p| cmd.arg(arg(p, hyphen)))
+/// The band, the spectrum, the source, where in the (u, v) plane, dispersion.
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct ObservationArgs {
+    /// Centre wavelength λ0, µm: 0.001 to 100000. With --spectrum-csv it still
+    /// sets λ0 of the fringe frequency f = v/λ0, of the samples per fringe and
+    /// of the seeing: give the spectrum's centre [default: 2.2]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wavelength_um: Option<f64>,
+    /// Full bandwidth Δλ, nm: 1e-12 λ0 to under 2 λ0. The band [λ0 − Δλ/2, λ0 +
+    /// Δλ/2], flat per unit wavenumber σ = 1/λ (not per unit wavelength: W(σ)
+    /// is constant between 1/(λ0 + Δλ/2) and 1/(λ0 − Δλ/2)) [default: 400]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bandwidth_nm: Option<f64>,
+    /// A tabulated S(σ)F(σ) instead of the flat band: a CSV file of at most
+    /// 100000 rows, 16 MiB. Header `wavelength_um,weight` or
+    /// `wavenumber_per_um,weight`, the weight per unit wavenumber
+    /// (`weight_per_wavenumber` says so explicitly; `weight_per_um` is per unit
+    /// wavelength and is converted by λ²); a leading byte-order mark is fine
+    /// [default: the flat band of --wavelength-um and --bandwidth-nm]
+    #[arg(long, value_name = "FILE", value_parser = clap::value_parser!(PathBuf))]
+    #[serde(skip)]
+    pub spectrum_csv: Option<PathBuf>,
+    /// Source model: point or ud. ud: a uniform disk of diameter
+    /// --diameter-mas; point: unresolved (V = 1) [default: ud]
+    #[arg(long, value_parser = choice::<SourceKind>())]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub source: Option<SourceKind>,
+    /// Uniform-disk diameter θ, mas: > 0 to 3.6e6 [default: 43]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diameter_mas: Option<f64>,
+    /// Spatial frequency S = B σ_eff, cycles/arcsec: 0 to 1e13 (and B = S/σ_eff
+    /// at most 1e9 m) [default: 40, the paper's 18 m baseline in K (or from
+    /// --baseline-m)]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true, conflicts_with = "baseline_m")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spatial_freq_cpas: Option<f64>,
+    /// Projected baseline B, m: 0 to 1e9. Instead of --spatial-freq-cpas
+    /// [default: from --spatial-freq-cpas]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baseline_m: Option<f64>,
+    /// Quadratic dispersion phase, peak-to-peak over the band, rad: -1e4 to 1e4
+    /// [default: 0]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dispersion_pp_rad: Option<f64>,
 }
 
-/// What a group's flags gave: each input's value, or the name of a
-/// spectrum's file, read when the inputs are set.
-#[derive(Debug, Clone, Default)]
-pub struct Given(Vec<(&'static Parameter, Option<PathBuf>, Value)>);
+impl Flags for ObservationArgs {}
 
-impl Given {
-    /// The values of the flags of `keys` in `m` (their defaults when not
-    /// given).
-    pub fn read(m: &ArgMatches, keys: &[&'static Parameter]) -> Given {
-        let given = keys.iter().map(|&p| {
-            let id = names(p).id.as_str();
-            let (file, value) = match p.kind {
-                Kind::Flag => (None, Value::Flag(m.get_flag(id) != names(p).off)),
-                Kind::Number => (
-                    None,
-                    m.get_one(id).copied().map_or(Value::Unset, Value::Number),
-                ),
-                Kind::Count => (
-                    None,
-                    m.get_one(id).copied().map_or(Value::Unset, Value::Count),
-                ),
-                Kind::Word => (
-                    None,
-                    m.get_one::<String>(id)
-                        .cloned()
-                        .map_or(Value::Unset, Value::Word),
-                ),
-                Kind::File => (m.get_one::<PathBuf>(id).cloned(), Value::Unset),
-            };
-            (p, file, value)
-        });
-        Given(given.collect())
-    }
-
-    /// Sets the inputs these flags hold in `p`, reading a spectrum's file.
-    pub fn apply_to(&self, p: &mut Physical) -> v2ref_core::Result<()> {
-        for (key, file, value) in &self.0 {
-            let value = match file {
-                Some(path) => Value::Spectrum(
-                    v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?,
-                ),
-                None => value.clone(),
-            };
-            p.set(key, value)?;
-        }
-        Ok(())
-    }
+/// How the interferogram is scanned and sampled.
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct ScanArgs {
+    /// OPD stroke Δx, µm: N = Δx/δx, rounded, from 2 to 2^24 [default:
+    /// --samples × --dx-um]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stroke_um: Option<f64>,
+    /// Sample spacing δx, µm: > 0 [default: 0.5]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dx_um: Option<f64>,
+    /// Number of samples N: 2 to 2^24. Ignored when --stroke-um is given. The
+    /// finite scan costs about N² (N = 16384: about 10 s on two cores)
+    /// [default: 128]
+    #[arg(long, value_parser = count_usize, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<usize>,
+    /// Integrating detector (each sample averages the fringe over δx)
+    #[arg(long)]
+    #[serde(skip_serializing_if = "is_false")]
+    pub integrating: bool,
 }
 
-/// A group of physical flags, `Name, Hyphen: KEY, KEY, …` (the keys of
-/// [`Parameter`], in the order of `--help`): a clap [`clap::Args`] whose
-/// group is `Name`, and `apply_to` setting the inputs they hold.
-macro_rules! physical_flags {
-    ($(#[$doc:meta])* $name:ident, $hyphen:ident: $($key:ident),+ $(,)?) => {
-        $(#[$doc])*
-        #[derive(Debug, Clone)]
-        pub struct $name($crate::cli::flags::Given);
+impl Flags for ScanArgs {}
 
-        impl $name {
-            /// The inputs of these flags.
-            const KEYS: &'static [&'static v2ref_commands::parameters::Parameter] =
-                &[$(&v2ref_commands::parameters::Parameter::$key),+];
-
-            /// Sets the inputs these flags hold in `p` (a spectrum's file
-            /// read here).
-            pub fn apply_to(&self, p: &mut v2ref_commands::parameters::Physical) -> v2ref_core::Result<()> {
-                self.0.apply_to(p)
-            }
-        }
-
-        impl clap::FromArgMatches for $name {
-            fn from_arg_matches(m: &clap::ArgMatches) -> ::std::result::Result<Self, clap::Error> {
-                Ok($name($crate::cli::flags::Given::read(m, Self::KEYS)))
-            }
-            fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> ::std::result::Result<(), clap::Error> {
-                *self = Self::from_arg_matches(m)?;
-                Ok(())
-            }
-        }
-
-        impl clap::Args for $name {
-            fn group_id() -> Option<clap::Id> {
-                Some(clap::Id::from(stringify!($name)))
-            }
-            fn augment_args(cmd: clap::Command) -> clap::Command {
-                use $crate::cli::flags::{augment, Hyphen};
-                augment(cmd, stringify!($name), Self::KEYS, Hyphen::$hyphen)
-            }
-            fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
-                Self::augment_args(cmd)
-            }
-        }
-    };
+/// The light: the fringe's visibility scale, the photons, the noise.
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct LightArgs {
+    /// Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point source (a
+    /// source of known V: --source point) [default: 1]
+    #[arg(long, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub visibility: Option<f64>,
+    /// Continuum n (c = n), photons per sample: > 0 to 1e12 [default: 10]
+    #[arg(long, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photons: Option<f64>,
+    /// Detector noise standard deviation σ_det, photons per sample: 0 to 1e12
+    /// [default: 0]
+    #[arg(long, value_parser = finite_f64, allow_hyphen_values = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub read_noise: Option<f64>,
+    /// Turns off: Poisson photon noise (when off, detector noise only)
+    #[arg(long)]
+    #[serde(
+        rename = "photon_noise",
+        serialize_with = "negated",
+        skip_serializing_if = "is_false"
+    )]
+    pub no_photon_noise: bool,
 }
 
-pub(crate) use physical_flags;
+impl Flags for LightArgs {}
+
+/// The turbulence, the telescopes and the scans through the piston (§6).
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct TurbulenceArgs {
+    /// Wind speed, m/s: 0.001 to 343. Frozen flow along the baseline [default:
+    /// 10]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wind_mps: Option<f64>,
+    /// Seeing λ/r0, arcsec: 0 to 100. Quoted at --seeing-wavelength-um; 0: no
+    /// turbulence [default: 1]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seeing_arcsec: Option<f64>,
+    /// Wavelength at which --seeing-arcsec is quoted, µm: 0.3 to 30. Site
+    /// monitors quote 0.5. Converted to the observing wavelength by r0 ∝
+    /// λ^(6/5) [default: the observing wavelength --wavelength-um]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seeing_wavelength_um: Option<f64>,
+    /// Telescope aperture diameter, m: 0.001 to 1000 [default: 0.45]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aperture_m: Option<f64>,
+    /// von Kármán outer scale, m: > 0 [default: infinite]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outer_scale_m: Option<f64>,
+    /// Sub-samples per sample of the integrating detector under piston: 1 to 64
+    /// [default: 6]
+    #[arg(long, value_parser = count_usize, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sub_samples: Option<usize>,
+    /// Where the fringe packet sits in each scan: centre, mean or absolute
+    /// [default: mean]
+    #[arg(long, value_parser = choice::<PistonReference>())]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<PistonReference>,
+}
+
+impl Flags for TurbulenceArgs {}
+
+/// The differential piston: on when `--fringe-hz` is given (its turbulence
+/// is [`TurbulenceArgs`], flattened after it).
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct PistonArgs {
+    /// Fringe frequency f = v/λ0, Hz: 0.001 to 1e7. Adds the differential
+    /// piston of §6 (consecutive scans through one piston sequence) [default:
+    /// no piston]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fringe_hz: Option<f64>,
+}
+
+impl Flags for PistonArgs {}
+
+/// The detector and the fringe's visibility scale, among `plan`'s flags.
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct DetectorArgs {
+    /// Integrating detector (each sample averages the fringe over δx)
+    #[arg(long)]
+    #[serde(skip_serializing_if = "is_false")]
+    pub integrating: bool,
+    /// Visibility V scaling the fringe: 0 to 1. m_0 = n V for a point source (a
+    /// source of known V: --source point) [default: 1]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub visibility: Option<f64>,
+}
+
+impl Flags for DetectorArgs {}
+
+/// The detector's noise, among `plan`'s flags.
+#[derive(Debug, Clone, Default, clap::Args, Serialize)]
+pub struct NoiseArgs {
+    /// Detector noise standard deviation σ_det, photons per sample: 0 to 1e12
+    /// [default: 0]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub read_noise: Option<f64>,
+    /// Turns off: Poisson photon noise (when off, detector noise only)
+    #[arg(long)]
+    #[serde(
+        rename = "photon_noise",
+        serialize_with = "negated",
+        skip_serializing_if = "is_false"
+    )]
+    pub no_photon_noise: bool,
+}
+
+impl Flags for NoiseArgs {}

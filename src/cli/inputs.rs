@@ -4,61 +4,10 @@
 use super::common::{
     warn_if_outer_scale_infinite, LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs,
 };
-use super::flags::{augment, Given, Hyphen};
-use v2ref_commands::parameters::{Parameter, Physical};
+use super::flags::{Flags, PistonArgs};
+use v2ref_commands::parameters::Physical;
 use v2ref_core::simulator::{Inputs, Model};
 use v2ref_core::Result;
-
-/// The differential piston: on when `--fringe-hz` is given.
-#[derive(Debug, Clone)]
-pub struct PistonArgs {
-    fringe: Given,
-    /// The turbulence the piston is made of.
-    pub turbulence: TurbulenceArgs,
-}
-
-impl PistonArgs {
-    /// The inputs of these flags, but the turbulence's.
-    const KEYS: &'static [&'static Parameter] = &[&Parameter::FRINGE_HZ];
-
-    /// Sets the inputs these flags hold in `p`.
-    pub fn apply_to(&self, p: &mut Physical) -> Result<()> {
-        self.fringe.apply_to(p)?;
-        self.turbulence.apply_to(p)
-    }
-}
-
-impl clap::FromArgMatches for PistonArgs {
-    fn from_arg_matches(m: &clap::ArgMatches) -> std::result::Result<Self, clap::Error> {
-        Ok(PistonArgs {
-            fringe: Given::read(m, Self::KEYS),
-            turbulence: TurbulenceArgs::from_arg_matches(m)?,
-        })
-    }
-    fn update_from_arg_matches(
-        &mut self,
-        m: &clap::ArgMatches,
-    ) -> std::result::Result<(), clap::Error> {
-        *self = Self::from_arg_matches(m)?;
-        Ok(())
-    }
-}
-
-impl clap::Args for PistonArgs {
-    fn group_id() -> Option<clap::Id> {
-        Some(clap::Id::from("PistonArgs"))
-    }
-    /// Its flag, then the turbulence's. Its group holds its flag (clap's
-    /// derive leaves the group of a struct with flattened flags empty: then
-    /// `estimate --sidecar` took `--fringe-hz` and ignored it).
-    fn augment_args(cmd: clap::Command) -> clap::Command {
-        let cmd = augment(cmd, "PistonArgs", Self::KEYS, Hyphen::NegativeNumbers);
-        TurbulenceArgs::augment_args(cmd)
-    }
-    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
-        Self::augment_args(cmd)
-    }
-}
 
 /// Every physical input of one configuration.
 #[derive(Debug, Clone, clap::Args)]
@@ -71,6 +20,9 @@ pub struct InputsArgs {
     pub light: LightArgs,
     #[command(flatten)]
     pub piston: PistonArgs,
+    /// The turbulence the piston is made of.
+    #[command(flatten)]
+    pub turbulence: TurbulenceArgs,
 }
 
 impl InputsArgs {
@@ -85,7 +37,7 @@ impl InputsArgs {
     /// [`warn_if_outer_scale_infinite`]).
     pub fn warn_about(&self, model: &Model) {
         let mut turbulence = Physical::default();
-        let set = self.piston.turbulence.apply_to(&mut turbulence);
+        let set = self.turbulence.apply_to(&mut turbulence);
         if let (Some(s), Ok(())) = (&model.piston_spectrum, set) {
             warn_if_outer_scale_infinite(&turbulence, s.baseline_m(), s.rms_um());
         }
@@ -97,6 +49,7 @@ impl InputsArgs {
         self.scan.apply_to(&mut p)?;
         self.light.apply_to(&mut p)?;
         self.piston.apply_to(&mut p)?;
+        self.turbulence.apply_to(&mut p)?;
         Ok(p)
     }
 
@@ -112,9 +65,9 @@ mod tests {
     use super::InputsArgs;
     use crate::cli::flag_of;
     use clap::{CommandFactory, Parser};
-    use serde_json::Value as Json;
+    use serde_json::{json, Value as Json};
     use std::collections::BTreeSet;
-    use v2ref_commands::parameters::{Kind, Parameter, Physical, Value, PARAMETERS};
+    use v2ref_commands::parameters::{Parameter, Physical, PARAMETERS};
 
     #[derive(Parser)]
     struct Cli {
@@ -122,52 +75,53 @@ mod tests {
         inputs: InputsArgs,
     }
 
-    /// The flags' defaults are the library's one declaration of them.
+    /// No flag given: the library's defaults.
     #[test]
     fn flag_defaults_are_the_declared_defaults() {
         let cli = Cli::try_parse_from(["v2ref"]).unwrap();
         assert_eq!(cli.inputs.physical().unwrap(), Physical::default());
     }
 
+    /// A word of the choice `--name` other than `now`.
+    fn another_word(name: &str, now: &str) -> String {
+        let cmd = Cli::command();
+        let arg = cmd.get_arguments().find(|a| a.get_long() == Some(name));
+        let values = arg.unwrap().get_possible_values();
+        let other = values.iter().find(|v| v.get_name() != now).unwrap();
+        other.get_name().to_owned()
+    }
+
     /// Each flag reaches its own field: a non-default value of every
-    /// declared input's flag moves exactly that field (a flag copied into
-    /// the wrong field, or not at all, fails). The spectrum's file is read.
+    /// input's flag moves exactly that field (a flag copied into the wrong
+    /// field, or not at all, fails). The spectrum's file is read.
     #[test]
     fn each_flag_sets_its_field() {
         let dir = tempfile::tempdir().unwrap();
         let csv = dir.path().join("band.csv");
         std::fs::write(&csv, "wavelength_um,weight\n2.0,1\n2.4,2\n").unwrap();
-        let d = Physical::default();
+        let csv = csv.display().to_string();
+        let d = serde_json::to_value(Physical::default()).unwrap();
         for p in &PARAMETERS {
             let name = p.name.replace('_', "-");
-            let (flags, want) = match d.get(p) {
-                Value::Flag(true) => (vec![format!("--no-{name}")], Value::Flag(false)),
-                Value::Flag(false) => (vec![format!("--{name}")], Value::Flag(true)),
-                Value::Number(x) => (
-                    vec![format!("--{name}"), format!("{}", x + 0.5)],
-                    Value::Number(x + 0.5),
-                ),
-                Value::Count(n) => (
-                    vec![format!("--{name}"), format!("{}", n + 1)],
-                    Value::Count(n + 1),
-                ),
-                Value::Word(w) => {
-                    let words = Physical::words(p);
-                    let other = words.iter().find(|(o, _)| *o != w).unwrap().0;
-                    (
-                        vec![format!("--{name}"), other.to_owned()],
-                        Value::Word(other.to_owned()),
-                    )
+            let (flags, want) = match &d[p.name] {
+                Json::Bool(true) => (vec![format!("--no-{name}")], json!(false)),
+                Json::Bool(false) => (vec![format!("--{name}")], json!(true)),
+                Json::Number(n) if n.is_u64() => {
+                    let n = n.as_u64().unwrap() + 1;
+                    (vec![format!("--{name}"), n.to_string()], json!(n))
                 }
-                Value::Unset if p.kind == Kind::File => {
-                    let table =
-                        v2ref_files::formats::spectrum_csv::read_spectrum_file(&csv).unwrap();
-                    (
-                        vec![format!("--{name}"), csv.display().to_string()],
-                        Value::Spectrum(table),
-                    )
+                Json::Number(x) => {
+                    let x = x.as_f64().unwrap() + 0.5;
+                    (vec![format!("--{name}"), x.to_string()], json!(x))
                 }
-                Value::Unset => (vec![format!("--{name}"), "1.5".into()], Value::Number(1.5)),
+                Json::String(w) => {
+                    let other = another_word(&name, w);
+                    (vec![format!("--{name}"), other.clone()], json!(other))
+                }
+                Json::Null if p.name == "spectrum_csv" => {
+                    (vec![format!("--{name}"), csv.clone()], json!(csv))
+                }
+                Json::Null => (vec![format!("--{name}"), "1.5".into()], json!(1.5)),
                 v => panic!("{}: {v:?}", p.name),
             };
             let args = std::iter::once("v2ref".to_owned()).chain(flags.iter().cloned());
@@ -176,9 +130,13 @@ mod tests {
                 .inputs
                 .physical()
                 .unwrap();
-            assert_eq!(got.get(p), want, "{flags:?}");
+            if p.name == "spectrum_csv" {
+                assert!(got.spectrum_csv.is_some(), "the file is read");
+            }
+            let got = serde_json::to_value(got).unwrap();
+            assert_eq!(got[p.name], want, "{flags:?}");
             for o in PARAMETERS.iter().filter(|o| o.name != p.name) {
-                assert_eq!(got.get(o), d.get(o), "{flags:?} moved {}", o.name);
+                assert_eq!(got[o.name], d[o.name], "{flags:?} moved {}", o.name);
             }
         }
     }
@@ -192,7 +150,7 @@ mod tests {
     ];
 
     /// Every flag of every command that sets a physical input: (`command
-    /// --flag`, the flag, its declaration, whether it turns the input off).
+    /// --flag`, the flag, its entry, whether it turns the input off).
     fn physical_flags() -> Vec<(String, clap::Arg, &'static Parameter, bool)> {
         let mut out = Vec::new();
         for sub in crate::Cli::command().get_subcommands() {
@@ -202,7 +160,7 @@ mod tests {
                     Some(n) => (n.replace('-', "_"), true),
                     None => (long.replace('-', "_"), false),
                 };
-                let Some(p) = PARAMETERS.iter().find(|p| p.name == name) else {
+                let Some(p) = Parameter::named(&name) else {
                     continue;
                 };
                 if !NOT_PHYSICAL.contains(&(sub.get_name(), long)) {
@@ -213,10 +171,9 @@ mod tests {
         out
     }
 
-    /// Every physical flag of every command states its one declaration:
-    /// its help starts with the declared text, unit and accepted range
-    /// (what leaving it unset means at its end), and every declared input
-    /// has a flag somewhere.
+    /// Every physical flag of every command states its entry in
+    /// [`PARAMETERS`]: its help (its doc comment) starts with the entry's
+    /// text, unit and accepted range, and every input has a flag somewhere.
     #[test]
     fn every_physical_flag_states_its_declaration() {
         let mut seen = BTreeSet::new();
@@ -229,33 +186,31 @@ mod tests {
                 head = format!("Turns off: {head}");
             }
             assert!(help.starts_with(&head), "{at}: {help:?} for {head:?}");
-            if !p.unset.is_empty() {
-                let unset = format!("[default: {}]", p.unset(&flags));
-                assert!(help.ends_with(&unset), "{at}: {help:?}");
-            }
             seen.insert(p.name);
         }
         let declared: BTreeSet<_> = PARAMETERS.iter().map(|p| p.name).collect();
         assert_eq!(seen, declared);
     }
 
-    /// Every physical flag's default is the declared one (none where the
-    /// input may be unset), and a choice offers the declared words.
+    /// Every physical flag's help ends with the library's default (what
+    /// leaving it unset means where it may be unset; none for a flag), and
+    /// a choice offers the words its entry lists.
     #[test]
-    fn every_physical_flag_has_the_declared_default() {
+    fn every_physical_flag_states_the_default() {
         let defaults = serde_json::to_value(Physical::default()).unwrap();
-        for (at, arg, p, off) in physical_flags() {
-            let shown: Vec<String> = arg
-                .get_default_values()
-                .iter()
-                .map(|v| v.to_string_lossy().into_owned())
-                .collect();
+        for (at, arg, p, _) in physical_flags() {
+            let help = arg.get_help().unwrap().to_string();
+            let shown = help
+                .rsplit_once("[default: ")
+                .map(|(_, d)| d.trim_end_matches(']'));
             match &defaults[p.name] {
-                Json::Null => assert!(shown.is_empty(), "{at}: {shown:?}"),
-                Json::Bool(b) => assert_eq!(*b, off, "{at}"),
-                Json::Number(x) => assert_eq!(shown[0].parse().ok(), x.as_f64(), "{at}"),
+                Json::Null => assert_eq!(shown, Some(&*p.unset(&flag_of)), "{at}"),
+                Json::Bool(_) => assert_eq!(shown, None, "{at}"),
+                Json::Number(x) => {
+                    assert_eq!(shown.and_then(|s| s.parse().ok()), x.as_f64(), "{at}")
+                }
                 Json::String(w) => {
-                    assert_eq!(shown, [w.as_str()], "{at}");
+                    assert_eq!(shown, Some(w.as_str()), "{at}");
                     let words: Vec<String> = arg
                         .get_possible_values()
                         .iter()

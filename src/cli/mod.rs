@@ -24,8 +24,6 @@ pub mod claims;
 pub mod common;
 pub mod estimate;
 pub mod flags;
-#[cfg(test)]
-mod generated;
 pub mod golden;
 pub mod grid;
 pub mod inputs;

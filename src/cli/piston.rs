@@ -4,6 +4,7 @@
 use super::common::{
     warn_if_outer_scale_infinite, ObservedArgs, OutputArgs, RunArgs, TurbulenceArgs,
 };
+use super::flags::Flags;
 use super::grid::{flatten, parse_fringe_hz, Grid};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;

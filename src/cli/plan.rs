@@ -3,7 +3,7 @@
 //! instrument, a source and a site (`v2ref_commands::plan`).
 
 use super::common::{warn_if_outer_scale_infinite, ObservationArgs, TurbulenceArgs};
-use super::flags::physical_flags;
+use super::flags::{DetectorArgs, Flags, NoiseArgs};
 use super::{finite_f64, print_json, progress_bar};
 use std::process::ExitCode;
 use v2ref_commands::commands::plan::{self, PlanRequest};
@@ -138,16 +138,6 @@ pub struct Args {
     all: bool,
     #[command(flatten)]
     pub(super) targets: super::targets::TargetsArgs,
-}
-
-physical_flags! {
-    /// The detector and the fringe's visibility scale, among `plan`'s flags.
-    DetectorArgs, NegativeNumbers: INTEGRATING, VISIBILITY
-}
-
-physical_flags! {
-    /// The detector's noise, among `plan`'s flags.
-    NoiseArgs, NegativeNumbers: READ_NOISE, PHOTON_NOISE
 }
 
 /// The band of `--magnitude`: 2MASS (Cohen et al. 2003) or Johnson–Cousins

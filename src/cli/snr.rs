@@ -4,6 +4,7 @@
 //! bin window beside it.
 
 use super::common::{LightArgs, ObservedArgs};
+use super::flags::Flags;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
 use v2ref_commands::report::noise::SnrReport;

@@ -1,11 +1,10 @@
-"""The physical inputs are declared once, in the library
-(``v2ref::parameters``): their names, defaults, units and ranges. What the
-package holds of them is generated from that declaration
-(``scripts/regenerate.sh``): ``_declaration.py``, the physical keyword
-arguments of each signature (checked by the Rust test
-``generated_files_are_the_declarations``) and the stub. These tests check
-the generated output against the built library and the package's source,
-and that each keyword reaches the library.
+"""The physical inputs are one struct in the library
+(``v2ref_commands::parameters::Physical``, serde) with a table of their
+help texts (``PARAMETERS``). The package's signatures are kept by hand and
+checked here against the built library's defaults and the CLI's flags; the
+docstring entries are filled from the library's table at import; the stub
+is generated from the source (``python3 scripts/stub.py``). These tests
+also check that each keyword reaches the library.
 """
 
 from __future__ import annotations
@@ -22,7 +21,8 @@ import numpy as np
 import pytest
 
 import v2ref
-from v2ref import _declaration, _v2ref
+from conftest import release_binary
+from v2ref import _v2ref
 
 ROOT = Path(__file__).resolve().parents[2]
 STUB = ROOT / "python" / "v2ref" / "__init__.pyi"
@@ -34,16 +34,46 @@ FUNCTIONS = ["estimate", "synthesize", "simulate", "bias", "snr", "piston", "pla
 NOT_PHYSICAL = {"plan": {"fringe_hz", "stroke_um"}, "piston": {"fringe_hz"}}
 
 
-def test_the_generated_declaration_is_the_librarys():
-    """``_declaration.py`` holds what the built library declares: names in
-    order, defaults, help texts (a stale generated file, or a build of
-    another declaration, fails)."""
-    assert list(_declaration.DEFAULTS) == list(_v2ref.PHYSICAL_KEYWORDS)
-    assert _declaration.DEFAULTS == _v2ref.PHYSICAL_DEFAULTS
-    for p in _v2ref.PHYSICAL_PARAMETERS:
-        assert _declaration.DOCS[p["name"]] == p["doc"], p["name"]
-        assert _declaration.UNSET_DOCS[p["name"]] == p["unset_doc"], p["name"]
-    assert len(_declaration.DEFAULTS) == 24
+@pytest.mark.parametrize("name", FUNCTIONS)
+def test_each_physical_keyword_defaults_to_the_librarys(name):
+    """The signatures are kept by hand: each physical keyword's default is
+    the library's (``Physical::DEFAULT``; a default changed on one side
+    fails)."""
+    sig = inspect.signature(getattr(v2ref, name))
+    for k in _physical_keywords(name):
+        assert sig.parameters[k].default == _v2ref.PHYSICAL_DEFAULTS[k], (name, k)
+    assert list(_v2ref.PHYSICAL_DEFAULTS) == list(_v2ref.PHYSICAL_KEYWORDS)
+    assert len(_v2ref.PHYSICAL_DEFAULTS) == 24
+
+
+COMMANDS = {"synthesize": "synth"}
+# The CLI's flags a function does without: estimate's N is the array's width.
+CLI_ONLY = {"estimate": {"samples", "stroke_um"}}
+
+
+@pytest.mark.needs_bin
+@pytest.mark.parametrize("name", FUNCTIONS)
+def test_each_function_takes_its_commands_physical_flags(name):
+    """Each function's physical keywords are the physical flags of its CLI
+    command (``--no-photon-noise`` as ``photon_noise``): a keyword missing
+    on one side fails."""
+    command = COMMANDS.get(name, name)
+    help_text = subprocess.run(
+        [str(release_binary()), command, "--help"], capture_output=True, text=True, check=True
+    ).stdout
+    flags = {w.split("=")[0].rstrip(",") for w in help_text.split() if w.startswith("--")}
+    names = {f[2:].replace("-", "_").removeprefix("no_") for f in flags}
+    physical = set(_v2ref.PHYSICAL_KEYWORDS) - NOT_PHYSICAL.get(name, set()) - CLI_ONLY.get(name, set())
+    assert names & physical == set(_physical_keywords(name)), name
+
+
+def test_an_unknown_physical_name_offers_the_nearest():
+    """A name that is no physical input reaching the library is refused
+    with a TypeError offering the nearest; a wrong type names its keyword."""
+    with pytest.raises(TypeError, match="did you mean 'wavelength_um'"):
+        _v2ref.bias({"wavelenth_um": 2.0}, "positive", False)
+    with pytest.raises(TypeError, match="^samples: "):
+        _v2ref.bias({"samples": 1.5}, "positive", False)
 
 
 def _load_stub_script():
@@ -73,7 +103,7 @@ def test_a_changed_source_changes_the_stub(tmp_path, monkeypatch):
     plants = [
         ("__init__.py", "    rows: int = 1000,", "    rows: int = 1001,"),
         ("__init__.py", "Number of rows (scans)", "Number of rows"),
-        ("_declaration.py", "Centre wavelength λ0", "Center wavelength λ0"),
+        ("_docstrings.py", 'f"{kind}, default {default!r}"', 'f"{kind}, defaults to {default!r}"'),
     ]
     for name, old, new in plants:
         path = package / name
@@ -114,7 +144,7 @@ def _physical_keywords(name):
     """The physical keyword arguments of ``v2ref.<name>``, in order."""
     sig = inspect.signature(getattr(v2ref, name))
     return [
-        k for k in sig.parameters if k in _declaration.DEFAULTS and k not in NOT_PHYSICAL.get(name, ())
+        k for k in sig.parameters if k in _v2ref.PHYSICAL_DEFAULTS and k not in NOT_PHYSICAL.get(name, ())
     ]
 
 

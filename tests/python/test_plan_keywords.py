@@ -3,6 +3,7 @@ from the binary's ``--help`` (not from a list kept here), so a flag added
 to the command line without its keyword fails this test. The magnitude
 keywords give the CLI's photon rate, and half of them is refused by name."""
 
+import json
 import re
 import subprocess
 
@@ -18,10 +19,9 @@ CLI_ONLY = {"json", "quiet", "all", "svg", "force", "help"}
 # The target list is its own function (v2ref.plan_targets), which returns
 # the table rather than writing it (--out).
 CLI_ONLY |= {"targets", "out"}
-# Not yet in Python (issue 44 left open for it): `instrument`, whose
-# preset yields to the flags given, needs plan()'s keywords to tell a
-# value given from a default (Optional defaults).
-NOT_YET = {"instrument"}
+# Every flag of `plan` has its keyword (`instrument` included: plan()
+# records the keywords given, so that its preset fills only the others).
+NOT_YET = set()
 
 
 def _cli_flags():
@@ -78,3 +78,25 @@ def test_magnitude_gives_the_clis_photon_rate():
 def test_bad_plan_keywords_are_refused_by_name(kw, name):
     with pytest.raises(ValueError, match=f"^{name}"):
         v2ref.plan(fringe_hz=[500.0], stroke_um=[16.0], scans=32, time_budget_s=1.0, **kw)
+
+
+@pytest.mark.needs_bin
+def test_a_preset_with_one_keyword_given_is_the_clis_plan():
+    """``instrument=`` fills what was not given, as ``--instrument`` does:
+    a preset with its read noise overridden gives the CLI's plan, number for
+    number; and a keyword given at its default value is kept (the preset's
+    band would move the plan's band otherwise)."""
+    grid = dict(fringe_hz=[50.0, 200.0], stroke_um=[32.0], scans=64)
+    flags = ["--fringe-hz", "50", "--fringe-hz", "200", "--stroke-um", "32", "--scans", "64"]
+    cli = subprocess.run(
+        [str(release_binary()), "plan", "--quiet", "--json", "--instrument", "vlti-pionier",
+         "--read-noise", "2.5", *flags],
+        capture_output=True, text=True, check=True,
+    ).stdout
+    py = v2ref.plan(instrument="vlti-pionier", read_noise=2.5, **grid)
+    assert py == json.loads(cli)
+    assert py["inputs"]["instrument"]["read_noise"] == 2.5
+    assert py["inputs"]["instrument"]["spectrum"]["wavelength_um"] == 1.65
+    kept = v2ref.plan(instrument="vlti-pionier", wavelength_um=2.2, **grid)
+    assert kept["inputs"]["instrument"]["spectrum"]["wavelength_um"] == 2.2
+    assert kept["inputs"]["instrument"]["read_noise"] == 1.0

@@ -10,11 +10,14 @@
 //! default, a conversion or a check lives in one place; tests check that
 //! the CLI's flag defaults and the Python signatures agree with it.
 //!
-//! [`PARAMETERS`] states each one's unit, accepted range and help text (the
-//! library's checks in [`crate::bounds`] and the constructors enforce the
-//! ranges): the CLI's `--help`, the Python docstrings and the docs' input
-//! table are rendered from it. Both are written by one list of entries in
-//! `parameters/table.rs`: adding a physical input is one entry there.
+//! The edges fill it through serde: the CLI serializes the flags it was
+//! given and Python converts its keyword arguments to JSON, and
+//! [`Physical::overlay`] deserializes them over the defaults (an unknown
+//! name refused with the nearest one, a value of the wrong type naming its
+//! field). [`PARAMETERS`] states each one's unit, accepted range and help
+//! text (the library's checks in [`crate::bounds`] and the constructors
+//! enforce the ranges): adding a physical input is a field here and an
+//! entry there.
 
 use crate::error::{Error, Result};
 use crate::formalism::interferogram::Sampling;
@@ -24,16 +27,107 @@ use crate::formalism::source::Source;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::NoiseModel;
 use crate::piston::turbulence::{seeing_at_wavelength_arcsec, Turbulence};
-use crate::record::{AtmosphereRecord, ObservationRecord};
+use crate::record::{AtmosphereRecord, ObservationRecord, PistonReference};
 use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-mod declare;
 mod table;
 
-pub use declare::{Input, Kind, Value};
-pub use table::{refer_to, Parameter, Physical, PARAMETERS};
+pub use table::{refer_to, Parameter, PARAMETERS};
+
+/// Every physical input of one configuration (see the module doc). Field
+/// names are the Python keyword arguments and, with `_` as `-`, the CLI's
+/// flags (`photon_noise` is turned off by `--no-photon-noise`). Missing
+/// fields take [`Physical::DEFAULT`]'s; an unknown one is refused.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Physical {
+    /// Centre wavelength λ0, µm.
+    pub wavelength_um: f64,
+    /// Full bandwidth Δλ, nm (flat per unit wavenumber).
+    pub bandwidth_nm: f64,
+    /// A tabulated S(σ)F(σ) instead of the flat band: a CSV file's table,
+    /// read by the edges ([`SpectrumFile`]).
+    #[serde(skip_deserializing)]
+    pub spectrum_csv: Option<SpectrumFile>,
+    /// Source model.
+    pub source: SourceKind,
+    /// Uniform-disk diameter θ, mas.
+    pub diameter_mas: f64,
+    /// Spatial frequency S = B σ_eff, cycles/arcsec (default
+    /// [`DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
+    pub spatial_freq_cpas: Option<f64>,
+    /// Projected baseline B, m (instead of the spatial frequency).
+    pub baseline_m: Option<f64>,
+    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
+    pub dispersion_pp_rad: f64,
+    /// OPD stroke Δx, µm (sets N = Δx/δx; else N = `samples`).
+    pub stroke_um: Option<f64>,
+    /// Sample spacing δx, µm.
+    pub dx_um: f64,
+    /// Number of samples N (ignored when `stroke_um` is given).
+    pub samples: usize,
+    /// Integrating detector (each sample averages the fringe over δx).
+    pub integrating: bool,
+    /// Visibility V scaling the fringe.
+    pub visibility: f64,
+    /// Continuum photons per sample n.
+    pub photons: f64,
+    /// Detector noise standard deviation σ_det, photons per sample.
+    pub read_noise: f64,
+    /// Poisson photon noise on (else detector noise only).
+    pub photon_noise: bool,
+    /// Fringe frequency f = v/λ0, Hz: the differential piston is on when
+    /// given.
+    pub fringe_hz: Option<f64>,
+    /// Wind speed, m/s (frozen flow along the baseline).
+    pub wind_mps: f64,
+    /// Seeing λ/r0, arcsec, at `seeing_wavelength_um`.
+    pub seeing_arcsec: f64,
+    /// Where the seeing is quoted, µm (default: the observing wavelength).
+    pub seeing_wavelength_um: Option<f64>,
+    /// Telescope aperture diameter, m.
+    pub aperture_m: f64,
+    /// von Kármán outer scale, m (None: infinite).
+    pub outer_scale_m: Option<f64>,
+    /// Sub-samples per sample of the integrating detector under piston.
+    pub sub_samples: usize,
+    /// Where the fringe packet sits in each scan.
+    pub reference: PistonReference,
+}
+
+impl Physical {
+    /// The defaults: the paper's K-band case, a 43 mas disk at 40
+    /// cycles/arcsec, 400 nm at 2.2 µm, 128 samples of 0.5 µm, 10 photons
+    /// per sample.
+    pub const DEFAULT: Physical = Physical {
+        wavelength_um: 2.2,
+        bandwidth_nm: 400.0,
+        spectrum_csv: None,
+        source: SourceKind::Ud,
+        diameter_mas: 43.0,
+        spatial_freq_cpas: None,
+        baseline_m: None,
+        dispersion_pp_rad: 0.0,
+        stroke_um: None,
+        dx_um: 0.5,
+        samples: 128,
+        integrating: false,
+        visibility: 1.0,
+        photons: 10.0,
+        read_noise: 0.0,
+        photon_noise: true,
+        fringe_hz: None,
+        wind_mps: 10.0,
+        seeing_arcsec: 1.0,
+        seeing_wavelength_um: None,
+        aperture_m: 0.45,
+        outer_scale_m: None,
+        sub_samples: crate::piston::DEFAULT_SUB_SAMPLES,
+        reference: PistonReference::Mean,
+    };
+}
 
 /// The source model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -124,6 +218,27 @@ impl Serialize for SpectrumFile {
     }
 }
 
+/// The message for `name`, which is no physical input: the nearest
+/// input's name offered when it is close (at most a third of its letters
+/// changed).
+pub fn unknown_input(name: &str) -> String {
+    match nearest_input(name) {
+        Some(near) => format!("{name}: not a physical input; did you mean '{near}'?"),
+        None => format!("{name}: not a physical input"),
+    }
+}
+
+/// The physical input's name nearest to `name` in edits, when at most a
+/// third of its letters differ.
+pub fn nearest_input(name: &str) -> Option<&'static str> {
+    PARAMETERS
+        .iter()
+        .map(|p| (strsim::levenshtein(name, p.name), p.name))
+        .min()
+        .filter(|(d, near)| 3 * d <= near.len().max(name.len()))
+        .map(|(_, near)| near)
+}
+
 impl Default for Physical {
     /// [`Physical::DEFAULT`].
     fn default() -> Self {
@@ -132,18 +247,95 @@ impl Default for Physical {
 }
 
 impl Physical {
+    /// These inputs with the values of `given`, a JSON object of field names
+    /// and values as serde reads [`Physical`] (a null leaves the field as
+    /// it is), or [`Error::Invalid`] naming the first field refused: a name
+    /// that is no field (with the nearest one), a spectrum's table (which
+    /// the edges read from its file), a value of the wrong type. Nothing is
+    /// changed unless every value is taken.
+    pub fn overlay(&mut self, given: serde_json::Value) -> Result<()> {
+        use serde_json::{Map, Value};
+        let Value::Object(given) = given else {
+            return Err(Error::Invalid {
+                param: "physical inputs",
+                reason: format!("{given}: not a map of input names to values"),
+            });
+        };
+        let mut all = match serde_json::to_value(&*self) {
+            Ok(Value::Object(m)) => m,
+            _ => unreachable!("a struct serializes as a JSON object"),
+        };
+        all.remove("spectrum_csv");
+        for (name, value) in given.into_iter().filter(|(_, v)| !v.is_null()) {
+            let entry = match Parameter::named(&name) {
+                Some(p) if p.name != "spectrum_csv" => p,
+                Some(p) => {
+                    return Err(Error::Invalid {
+                        param: p.name,
+                        reason: "a spectrum's table is read by the edges from its file".into(),
+                    })
+                }
+                None => {
+                    return Err(Error::Invalid {
+                        param: "physical inputs",
+                        reason: unknown_input(&name),
+                    })
+                }
+            };
+            let alone = Value::Object(Map::from_iter([(name.clone(), value.clone())]));
+            if let Err(e) = serde_json::from_value::<Physical>(alone) {
+                let reason = match (&value, &all[&name]) {
+                    // A choice: its words, as the library's parsers say them.
+                    (Value::String(w), Value::String(_)) => {
+                        format!(
+                            "'{w}' is not one of: {}",
+                            entry.accepted.replace(" or ", ", ")
+                        )
+                    }
+                    _ => e.to_string(),
+                };
+                return Err(Error::Invalid {
+                    param: entry.name,
+                    reason,
+                });
+            }
+            all.insert(name, value);
+        }
+        let mut next: Physical =
+            serde_json::from_value(Value::Object(all)).expect("each value was read alone");
+        next.spectrum_csv = self.spectrum_csv.take();
+        *self = next;
+        Ok(())
+    }
+
     /// Refuses a non-finite number and the spatial frequency given with the
     /// baseline (each edge calls it once, after filling the inputs).
     pub fn check(&self) -> Result<()> {
-        for p in &PARAMETERS {
-            match self.get(p) {
-                Value::Number(v) if !v.is_finite() => {
-                    return Err(Error::Invalid {
-                        param: p.name,
-                        reason: format!("{v} is not a finite number"),
-                    })
-                }
-                _ => {}
+        let numbers = [
+            ("wavelength_um", Some(self.wavelength_um)),
+            ("bandwidth_nm", Some(self.bandwidth_nm)),
+            ("diameter_mas", Some(self.diameter_mas)),
+            ("spatial_freq_cpas", self.spatial_freq_cpas),
+            ("baseline_m", self.baseline_m),
+            ("dispersion_pp_rad", Some(self.dispersion_pp_rad)),
+            ("stroke_um", self.stroke_um),
+            ("dx_um", Some(self.dx_um)),
+            ("visibility", Some(self.visibility)),
+            ("photons", Some(self.photons)),
+            ("read_noise", Some(self.read_noise)),
+            ("fringe_hz", self.fringe_hz),
+            ("wind_mps", Some(self.wind_mps)),
+            ("seeing_arcsec", Some(self.seeing_arcsec)),
+            ("seeing_wavelength_um", self.seeing_wavelength_um),
+            ("aperture_m", Some(self.aperture_m)),
+            ("outer_scale_m", self.outer_scale_m),
+        ];
+        for (param, v) in numbers {
+            if let Some(v) = v.filter(|v| !v.is_finite()) {
+                return Err(Error::Invalid {
+                    param,
+                    reason: format!("{v} is not a finite number"),
+                });
             }
         }
         if self.spatial_freq_cpas.is_some() && self.baseline_m.is_some() {
@@ -312,5 +504,67 @@ impl Physical {
             photon_noise: self.photon_noise,
             piston: self.fringe_hz.map(|f| self.piston_inputs(f)).transpose()?,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Physical, PARAMETERS};
+    use serde_json::{json, Value};
+
+    /// Each field, given alone, moves exactly that field (a value read
+    /// into the wrong field, or dropped, fails); a null changes nothing.
+    #[test]
+    fn each_field_overlays_itself() {
+        let d = serde_json::to_value(Physical::default()).unwrap();
+        for p in PARAMETERS.iter().filter(|p| p.name != "spectrum_csv") {
+            let want = match &d[p.name] {
+                Value::Bool(b) => json!(!b),
+                Value::Number(n) if n.is_u64() => json!(n.as_u64().unwrap() + 1),
+                Value::Number(x) => json!(x.as_f64().unwrap() + 0.5),
+                Value::String(w) if w == "ud" => json!("point"),
+                Value::String(_) => json!("centre"),
+                _ => json!(1.5),
+            };
+            let mut q = Physical::default();
+            let mut given = json!({ p.name: want });
+            if p.name != "samples" {
+                given["samples"] = Value::Null;
+            }
+            q.overlay(given).unwrap();
+            let got = serde_json::to_value(q).unwrap();
+            for o in &PARAMETERS {
+                let expected = if o.name == p.name { &want } else { &d[o.name] };
+                assert_eq!(&got[o.name], expected, "{} moved {}", p.name, o.name);
+            }
+        }
+    }
+
+    /// An unknown name is refused with the nearest one, a value of the
+    /// wrong type or a spectrum's table naming the field, and nothing is
+    /// changed by a refused overlay.
+    #[test]
+    fn a_bad_name_or_value_is_refused_naming_it() {
+        let mut p = Physical::default();
+        let e = p.overlay(json!({"wavelenth_um": 1.0})).unwrap_err();
+        assert!(
+            e.to_string().contains("did you mean 'wavelength_um'?"),
+            "{e}"
+        );
+        let e = p.overlay(json!({"zzz": 1.0})).unwrap_err().to_string();
+        assert!(!e.contains("did you mean"), "{e}");
+        let e = p
+            .overlay(json!({"photons": 3.0, "samples": 1.5}))
+            .unwrap_err();
+        assert_eq!(e.param(), Some("samples"));
+        let e = p.overlay(json!({"source": "disk"})).unwrap_err();
+        assert_eq!(e.param(), Some("source"));
+        assert!(
+            e.to_string().contains("'disk' is not one of: point, ud"),
+            "{e}"
+        );
+        let e = p.overlay(json!({"spectrum_csv": "a.csv"})).unwrap_err();
+        assert_eq!(e.param(), Some("spectrum_csv"));
+        assert_eq!(p, Physical::default());
     }
 }

@@ -1,81 +1,52 @@
 //! The physical keyword arguments of the Python functions, read into the
-//! library's [`Physical`] (its defaults, its builders: the same as the
-//! CLI's flags).
+//! library's [`Physical`] the way the CLI reads its flags: made a JSON
+//! object and deserialized over the defaults ([`Physical::overlay`]).
 
-use super::values::to_py;
+use super::values::{to_json, to_py};
 use super::Fail;
-use crate::parameters::{Kind, Parameter, Value, PARAMETERS};
+use crate::parameters::{unknown_input, Parameter, PARAMETERS};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
 
 pub use crate::parameters::Physical;
 
-/// The value of the keyword argument `key` (`v`, not None) as its
-/// declaration's kind takes it, or a TypeError naming it.
-fn extract<'py, T: FromPyObject<'py>>(v: &Bound<'py, PyAny>, key: &str) -> PyResult<T> {
-    v.extract().map_err(|e| {
-        pyo3::exceptions::PyTypeError::new_err(format!(
-            "{key}: {}",
-            e.value(v.py())
-                .str()
-                .map(|s| s.to_string())
-                .unwrap_or_default()
-        ))
-    })
-}
-
-/// The keyword argument `v` of the input `p`, as its kind is given; a
-/// spectrum's file is only named here ([`Given::File`]), read after the
-/// checks.
-fn given(p: &Parameter, v: &Bound<'_, PyAny>) -> PyResult<Given> {
-    Ok(Given::Value(match p.kind {
-        Kind::Number => Value::Number(extract(v, p.name)?),
-        Kind::Count => Value::Count(extract(v, p.name)?),
-        Kind::Flag => Value::Flag(extract(v, p.name)?),
-        Kind::Word => Value::Word(extract(v, p.name)?),
-        Kind::File => return Ok(Given::File(extract(v, p.name)?)),
-    }))
-}
-
-/// A keyword argument as given: a value, or the name of a file to read.
-enum Given {
-    Value(Value),
-    File(PathBuf),
-}
-
 /// The physical inputs in `d` (missing or None: [`Physical::default`]),
-/// checked ([`Physical::check`]), each set by its key in the one
-/// declaration ([`PARAMETERS`]); a spectrum's file is read here, at the
-/// edge, after the checks.
+/// checked ([`Physical::check`]): an unknown name a TypeError offering the
+/// nearest one, a value of the wrong type a TypeError and one out of range
+/// a ValueError, each naming its keyword. A spectrum's file is read here,
+/// at the edge, after the checks.
 pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
-    for (k, _) in d.iter() {
+    let mut given = serde_json::Map::new();
+    let mut file = None;
+    for (k, v) in d.iter() {
         let k: String = k.extract()?;
-        if !PARAMETERS.iter().any(|p| p.name == k) {
-            let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
-            return Err(pyo3::exceptions::PyTypeError::new_err(format!(
-                "{k}: not a keyword argument (accepted: {})",
-                names.join(", ")
-            )));
+        match Parameter::named(&k) {
+            None => return Err(PyTypeError::new_err(unknown_input(&k))),
+            Some(_) if v.is_none() => {}
+            Some(p) if p.name == "spectrum_csv" => file = Some(v.extract::<PathBuf>()?),
+            Some(_) => match v.extract::<f64>() {
+                Ok(x) if !x.is_finite() => {
+                    let e = format!("{k}: {x} is not a finite number");
+                    return Err(pyo3::exceptions::PyValueError::new_err(e));
+                }
+                _ => {
+                    given.insert(k.clone(), to_json(&k, &v)?);
+                }
+            },
         }
     }
     let mut p = Physical::default();
-    let mut files = Vec::new();
-    for key in &PARAMETERS {
-        let Some(v) = d.get_item(key.name)?.filter(|v| !v.is_none()) else {
-            continue;
-        };
-        match given(key, &v)? {
-            Given::Value(value) => p.set(key, value).map_err(|e| e.into_py_err())?,
-            Given::File(path) => files.push((key, path)),
-        }
-    }
+    p.overlay(given.into()).map_err(|e| match e.to_string() {
+        m if m.contains("invalid type") => PyTypeError::new_err(m),
+        _ => e.into_py_err(),
+    })?;
     p.check().map_err(|e| e.into_py_err())?;
-    for (key, path) in files {
+    if let Some(path) = file {
         let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&path)
             .map_err(|e| e.into_py_err())?;
-        p.set(key, Value::Spectrum(table))
-            .map_err(|e| e.into_py_err())?;
+        p.spectrum_csv = Some(table);
     }
     Ok(p)
 }
@@ -85,7 +56,7 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
 /// and `PHYSICAL_PARAMETERS` (a list of dicts: [`PARAMETERS`], each with its
 /// help text `doc` and what leaving it unset means, `unset_doc`, other
 /// inputs named ``` ``name`` ```). The package reads the same declaration
-/// from `_declaration.py`, generated from it.
+/// at import (`_docstrings.declaration`) for its docstrings.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();

@@ -1,21 +1,11 @@
-//! The one declaration of the physical inputs: each input's field of
-//! [`Physical`] (its type, its default) with its unit, accepted range and
-//! help text, written once in the list below ([`physical_inputs!`]
-//! makes the struct, [`PARAMETERS`] and a constant of [`Parameter`] for
-//! each). Adding a physical input is one entry there (then
-//! `scripts/regenerate.sh` rewrites the Python signatures, the stub and
-//! the docs' table; a CLI group lists its key where its flag belongs). The
-//! CLI's `--help` is rendered from it ([`Parameter::describe`]); the Python
-//! package's keyword arguments, their docstrings, the stub and the input
-//! table of `docs/conventions.md` are generated from it (the test
-//! `generated_files_are_the_declarations` of the binary, run by
-//! `scripts/regenerate.sh`). The tests below hold the accepted ranges to
-//! what the library's checks do.
+//! The help text of each physical input, kept by hand beside the struct
+//! [`super::Physical`] (one entry per field, in its order; a test holds the names
+//! to the struct's serde fields): unit, accepted range, what it is. The
+//! CLI's flags state the same text in their doc comments (a test of the
+//! binary holds each to its entry), Python's docstrings are written from it
+//! at import, and the tests below hold the accepted ranges to what the
+//! library's checks do.
 
-use super::declare::{physical_inputs, Kind};
-use super::{SourceKind, SpectrumFile};
-use crate::error::{Error, Result};
-use crate::piston::PistonReference;
 use serde::Serialize;
 
 /// One physical input, declared once. In the texts, `{name}` names another
@@ -39,10 +29,6 @@ pub struct Parameter {
     pub unset: &'static str,
     /// Why the accepted range is what it is (the docs' table), or empty.
     pub why: &'static str,
-    /// How it is given at the edges: its field's type's
-    /// ([`super::Input::KIND`]).
-    #[serde(skip)]
-    pub kind: Kind,
 }
 
 impl Parameter {
@@ -72,6 +58,11 @@ impl Parameter {
     pub fn is_flag(&self) -> bool {
         self.accepted == FLAG
     }
+
+    /// The entry of the field `name`, if it is one.
+    pub fn named(name: &str) -> Option<&'static Parameter> {
+        PARAMETERS.iter().find(|p| p.name == name)
+    }
 }
 
 /// The accepted values of a flag.
@@ -91,9 +82,10 @@ pub fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
     out
 }
 
-physical_inputs! {
-    /// Centre wavelength λ0, µm.
-    wavelength_um: f64 = 2.2, WAVELENGTH_UM {
+/// Every field of [`super::Physical`], in declaration order, with its help text.
+pub const PARAMETERS: [Parameter; 24] = [
+    Parameter {
+        name: "wavelength_um",
         unit: "µm",
         accepted: "0.001 to 100000",
         what: "Centre wavelength λ0",
@@ -101,9 +93,9 @@ physical_inputs! {
                    of the samples per fringe and of the seeing: give the spectrum's centre.",
         unset: "",
         why: "1 nm (X-rays, no fringe-scanning interferometer) to 10 cm (radio)",
-    }
-    /// Full bandwidth Δλ, nm (flat per unit wavenumber).
-    bandwidth_nm: f64 = 400.0, BANDWIDTH_NM {
+    },
+    Parameter {
+        name: "bandwidth_nm",
         unit: "nm",
         accepted: "1e-12 λ0 to under 2 λ0",
         what: "Full bandwidth Δλ",
@@ -112,10 +104,9 @@ physical_inputs! {
                    1/(λ0 − Δλ/2)).",
         unset: "",
         why: "narrower is lost in the rounding of λ0 (use a line); wider reaches zero wavelength",
-    }
-    /// A tabulated S(σ)F(σ) instead of the flat band: a CSV file's table,
-    /// read by the edges ([`SpectrumFile`]).
-    spectrum_csv: Option<SpectrumFile> = None, SPECTRUM_CSV {
+    },
+    Parameter {
+        name: "spectrum_csv",
         unit: "",
         accepted: "a CSV file of at most 100000 rows, 16 MiB",
         what: "A tabulated S(σ)F(σ) instead of the flat band",
@@ -126,73 +117,72 @@ physical_inputs! {
         unset: "the flat band of {wavelength_um} and {bandwidth_nm}",
         why: "far more than the bias integrals need; a longer file (or `/dev/zero`) is \
                   refused at once",
-    }
-    /// Source model.
-    source: SourceKind = SourceKind::Ud, SOURCE {
+    },
+    Parameter {
+        name: "source",
         unit: "",
         accepted: "point or ud",
         what: "Source model",
         note: "ud: a uniform disk of diameter {diameter_mas}; point: unresolved (V = 1).",
         unset: "",
         why: "",
-    }
-    /// Uniform-disk diameter θ, mas.
-    diameter_mas: f64 = 43.0, DIAMETER_MAS {
+    },
+    Parameter {
+        name: "diameter_mas",
         unit: "mas",
         accepted: "> 0 to 3.6e6",
         what: "Uniform-disk diameter θ",
         note: "",
         unset: "",
         why: "up to 1°: the visibility is that of a small source",
-    }
-    /// Spatial frequency S = B σ_eff, cycles/arcsec (default
-    /// [`super::DEFAULT_SPATIAL_FREQ_CPAS`] when no baseline is given either).
-    spatial_freq_cpas: Option<f64> = None, SPATIAL_FREQ_CPAS {
+    },
+    Parameter {
+        name: "spatial_freq_cpas",
         unit: "cycles/arcsec",
         accepted: "0 to 1e13 (and B = S/σ_eff at most 1e9 m)",
         what: "Spatial frequency S = B σ_eff",
         note: "",
         unset: "40, the paper's 18 m baseline in K (or from {baseline_m})",
         why: "the frequency of a 1e9 m baseline at 1 nm",
-    }
-    /// Projected baseline B, m (instead of the spatial frequency).
-    baseline_m: Option<f64> = None, BASELINE_M {
+    },
+    Parameter {
+        name: "baseline_m",
         unit: "m",
         accepted: "0 to 1e9",
         what: "Projected baseline B",
         note: "Instead of {spatial_freq_cpas}.",
         unset: "from {spatial_freq_cpas}",
         why: "beyond any interferometer, space included",
-    }
-    /// Quadratic dispersion phase, peak-to-peak over the band, rad.
-    dispersion_pp_rad: f64 = 0.0, DISPERSION_PP_RAD {
+    },
+    Parameter {
+        name: "dispersion_pp_rad",
         unit: "rad",
         accepted: "-1e4 to 1e4",
         what: "Quadratic dispersion phase, peak-to-peak over the band",
         note: "",
         unset: "",
         why: "the V2 quadrature follows the Fresnel 1/√P law up to here (20 % off at 3e4)",
-    }
-    /// OPD stroke Δx, µm (sets N = Δx/δx; else N = `samples`).
-    stroke_um: Option<f64> = None, STROKE_UM {
+    },
+    Parameter {
+        name: "stroke_um",
         unit: "µm",
         accepted: "N = Δx/δx, rounded, from 2 to 2^24",
         what: "OPD stroke Δx",
         note: "",
         unset: "{samples} × {dx_um}",
         why: "",
-    }
-    /// Sample spacing δx, µm.
-    dx_um: f64 = 0.5, DX_UM {
+    },
+    Parameter {
+        name: "dx_um",
         unit: "µm",
         accepted: "> 0",
         what: "Sample spacing δx",
         note: "",
         unset: "",
         why: "",
-    }
-    /// Number of samples N (ignored when `stroke_um` is given).
-    samples: usize = 128, SAMPLES {
+    },
+    Parameter {
+        name: "samples",
         unit: "",
         accepted: "2 to 2^24",
         what: "Number of samples N",
@@ -200,55 +190,54 @@ physical_inputs! {
                    (N = 16384: about 10 s on two cores).",
         unset: "",
         why: "",
-    }
-    /// Integrating detector (each sample averages the fringe over δx).
-    integrating: bool = false, INTEGRATING {
+    },
+    Parameter {
+        name: "integrating",
         unit: "",
         accepted: FLAG,
         what: "Integrating detector (each sample averages the fringe over δx)",
         note: "",
         unset: "",
         why: "",
-    }
-    /// Visibility V scaling the fringe.
-    visibility: f64 = 1.0, VISIBILITY {
+    },
+    Parameter {
+        name: "visibility",
         unit: "",
         accepted: "0 to 1",
         what: "Visibility V scaling the fringe",
         note: "m_0 = n V for a point source (a source of known V: {source} point).",
         unset: "",
         why: "",
-    }
-    /// Continuum photons per sample n.
-    photons: f64 = 10.0, PHOTONS {
+    },
+    Parameter {
+        name: "photons",
         unit: "photons per sample",
         accepted: "> 0 to 1e12",
         what: "Continuum n (c = n)",
         note: "",
         unset: "",
         why: "beyond any full well; keeps the fourth moments of the variances far from overflow",
-    }
-    /// Detector noise standard deviation σ_det, photons per sample.
-    read_noise: f64 = 0.0, READ_NOISE {
+    },
+    Parameter {
+        name: "read_noise",
         unit: "photons per sample",
         accepted: "0 to 1e12",
         what: "Detector noise standard deviation σ_det",
         note: "",
         unset: "",
         why: "as the photons",
-    }
-    /// Poisson photon noise on (else detector noise only).
-    photon_noise: bool = true, PHOTON_NOISE {
+    },
+    Parameter {
+        name: "photon_noise",
         unit: "",
         accepted: FLAG,
         what: "Poisson photon noise (when off, detector noise only)",
         note: "",
         unset: "",
         why: "",
-    }
-    /// Fringe frequency f = v/λ0, Hz: the differential piston is on when
-    /// given.
-    fringe_hz: Option<f64> = None, FRINGE_HZ {
+    },
+    Parameter {
+        name: "fringe_hz",
         unit: "Hz",
         accepted: "0.001 to 1e7",
         what: "Fringe frequency f = v/λ0",
@@ -256,9 +245,9 @@ physical_inputs! {
                    piston sequence).",
         unset: "no piston",
         why: "",
-    }
-    /// Wind speed, m/s (frozen flow along the baseline).
-    wind_mps: f64 = 10.0, WIND_MPS {
+    },
+    Parameter {
+        name: "wind_mps",
         unit: "m/s",
         accepted: "0.001 to 343",
         what: "Wind speed",
@@ -266,18 +255,18 @@ physical_inputs! {
         unset: "",
         why: "no atmospheric layer moves faster than sound; below a millimetre a second the \
                   piston's time scales leave the range where its spectrum is finite",
-    }
-    /// Seeing λ/r0, arcsec, at `seeing_wavelength_um`.
-    seeing_arcsec: f64 = 1.0, SEEING_ARCSEC {
+    },
+    Parameter {
+        name: "seeing_arcsec",
         unit: "arcsec",
         accepted: "0 to 100",
         what: "Seeing λ/r0",
         note: "Quoted at {seeing_wavelength_um}; 0: no turbulence.",
         unset: "",
         why: "r0 of 4.5 mm in K: no fringe can be tracked beyond",
-    }
-    /// Where the seeing is quoted, µm (default: the observing wavelength).
-    seeing_wavelength_um: Option<f64> = None, SEEING_WAVELENGTH_UM {
+    },
+    Parameter {
+        name: "seeing_wavelength_um",
         unit: "µm",
         accepted: "0.3 to 30",
         what: "Wavelength at which {seeing_arcsec} is quoted",
@@ -285,9 +274,9 @@ physical_inputs! {
                    r0 ∝ λ^(6/5).",
         unset: "the observing wavelength {wavelength_um}",
         why: "where seeing is measured, and where the λ^(-1/5) law that converts it holds",
-    }
-    /// Telescope aperture diameter, m.
-    aperture_m: f64 = 0.45, APERTURE_M {
+    },
+    Parameter {
+        name: "aperture_m",
         unit: "m",
         accepted: "0.001 to 1000",
         what: "Telescope aperture diameter",
@@ -295,40 +284,40 @@ physical_inputs! {
         unset: "",
         why: "a millimetre to a kilometre; at 1e300 m or 1e-308 m the aperture filter under- \
                   or overflows and every piston statistic was undefined",
-    }
-    /// von Kármán outer scale, m (None: infinite).
-    outer_scale_m: Option<f64> = None, OUTER_SCALE_M {
+    },
+    Parameter {
+        name: "outer_scale_m",
         unit: "m",
         accepted: "> 0",
         what: "von Kármán outer scale",
         note: "",
         unset: "infinite",
         why: "",
-    }
-    /// Sub-samples per sample of the integrating detector under piston.
-    sub_samples: usize = crate::piston::DEFAULT_SUB_SAMPLES, SUB_SAMPLES {
+    },
+    Parameter {
+        name: "sub_samples",
         unit: "",
         accepted: "1 to 64",
         what: "Sub-samples per sample of the integrating detector under piston",
         note: "",
         unset: "",
         why: "",
-    }
-    /// Where the fringe packet sits in each scan.
-    reference: PistonReference = PistonReference::Mean, REFERENCE {
+    },
+    Parameter {
+        name: "reference",
         unit: "",
         accepted: "centre, mean or absolute",
         what: "Where the fringe packet sits in each scan",
         note: "",
         unset: "",
         why: "",
-    }
-}
+    },
+];
 
 #[cfg(test)]
 mod tests {
     use super::{refer_to, Parameter, PARAMETERS};
-    use crate::parameters::{Kind, Physical, Value, DEFAULT_SPATIAL_FREQ_CPAS};
+    use crate::parameters::{Physical, DEFAULT_SPATIAL_FREQ_CPAS};
 
     /// Every text names other inputs by declared names only, and an input
     /// may be unset exactly where its field is an `Option` (unset by
@@ -356,7 +345,7 @@ mod tests {
             );
             assert_eq!(p.is_flag(), defaults[p.name].is_boolean(), "{}", p.name);
         }
-        let s = Parameter::SPATIAL_FREQ_CPAS.unset;
+        let s = Parameter::named("spatial_freq_cpas").unwrap().unset;
         assert!(
             s.starts_with(&format!("{DEFAULT_SPATIAL_FREQ_CPAS}, ")),
             "{s}"
@@ -374,11 +363,11 @@ mod tests {
             format!("{} or {last}", rest.join(", "))
         }
         assert_eq!(
-            Parameter::SOURCE.accepted,
+            Parameter::named("source").unwrap().accepted,
             listed::<super::super::SourceKind>()
         );
         let reference = listed::<crate::piston::PistonReference>();
-        assert_eq!(Parameter::REFERENCE.accepted, reference);
+        assert_eq!(Parameter::named("reference").unwrap().accepted, reference);
     }
 
     /// The bounds of `accepted` in words: (low, low included, high, high
@@ -414,17 +403,16 @@ mod tests {
     /// (Err), or accepted (Ok): the default configuration, with the piston
     /// on and an integrating detector so that every input is checked.
     fn probe(name: &str, value: f64) -> Result<(), String> {
-        let key = PARAMETERS.iter().find(|p| p.name == name).unwrap();
         let mut p = Physical {
             fringe_hz: Some(300.0),
             integrating: true,
             ..Physical::DEFAULT
         };
-        let given = match key.kind {
-            Kind::Count => Value::Count(value as usize),
-            _ => Value::Number(value),
+        let given = match name.contains("samples") {
+            true => serde_json::json!(value as usize),
+            false => serde_json::json!(value),
         };
-        p.set(key, given).unwrap();
+        p.overlay(serde_json::json!({ name: given })).unwrap();
         if name == "wavelength_um" {
             // The band follows λ0, as a user's would.
             p.bandwidth_nm = value * 100.0;
@@ -494,5 +482,35 @@ mod tests {
             untested,
             [&words[..], &["photon_noise", "reference"]].concat()
         );
+    }
+
+    /// The input table of `docs/conventions.md` §14, kept by hand, states
+    /// each entry: its row starts with the name, what it is and the unit
+    /// and ends with the accepted range and why (an entry changed on one
+    /// side fails).
+    #[test]
+    fn the_docs_table_states_each_entry() {
+        let docs = include_str!("../../../../docs/conventions.md");
+        let code = |n: &str| format!("`{n}`");
+        for p in &PARAMETERS {
+            let head = format!(
+                "| `{}` | {} | {} |",
+                p.name,
+                refer_to(p.what, &code),
+                p.unit
+            );
+            let tail = format!(
+                "| {} | {} |",
+                refer_to(p.accepted, &code),
+                refer_to(p.why, &code)
+            );
+            let tail = tail.replace("|  |", "| |").replace(" | |", " |  |");
+            let row = docs.lines().find(|l| l.starts_with(&head));
+            let row = row.unwrap_or_else(|| panic!("no row {head}"));
+            assert!(
+                row.ends_with(&tail) || row.ends_with(&tail.replace("|  |", "| |")),
+                "{row}\n{tail}"
+            );
+        }
     }
 }

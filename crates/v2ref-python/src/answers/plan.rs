@@ -14,7 +14,7 @@ use std::path::PathBuf;
 /// `oifits`: `--oifits`; `observing`: its target, date and site (the
 /// wrapper's keywords, as `--target-name` ... `--site-height-m`).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None, instrument=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -37,6 +37,7 @@ pub(super) fn plan(
     force: bool,
     magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
+    instrument: Option<(String, Vec<String>)>,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(v2ref_oifits::check_fits_extension(path, "oifits"))?;
@@ -50,13 +51,14 @@ pub(super) fn plan(
         None => None,
     };
     let observing = crate::oifits::observing_of(observing, oifits.is_some(), "oifits")?;
-    let (p, req) = request(
+    let (mut p, mut req) = request(
         physical,
         (samples_per_fringe, photon_rate_per_s, dead_time_s),
         (fringe_hz, stroke_um),
         (target_sigma_v2, time_budget_s, scans, seed),
         (diameter_err_mas, bias, magnitude, frame_rate_hz),
     )?;
+    preset(instrument, &mut p, &mut req)?;
     let prepared = ok(commands::plan::prepare(&p, &req))?;
     warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
     let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
@@ -122,6 +124,28 @@ pub(super) fn request(
         bias: ok(BiasConvention::from_word("bias", bias))?,
     };
     Ok((p, req))
+}
+
+/// `instrument`: (the preset's name, the keywords the caller gave) applied
+/// as `v2ref plan --instrument` applies it, filling only what was not given
+/// ([`crate::plan::instrument::Instrument::apply`]); then a magnitude needs
+/// a throughput (NaN: none given), the caller's or the preset's.
+fn preset(
+    instrument: Option<(String, Vec<String>)>,
+    p: &mut crate::parameters::Physical,
+    req: &mut PlanRequest,
+) -> PyResult<()> {
+    if let Some((name, given)) = instrument {
+        let preset = ok(crate::plan::instrument::instrument(&name))?;
+        preset.apply(p, req, &|key| given.iter().any(|g| g == key));
+    }
+    match req.magnitude {
+        Some(m) if m.throughput.is_nan() => Err(pyo3::exceptions::PyValueError::new_err(
+            "throughput: needed with magnitude: give throughput, or an instrument whose \
+             preset has one",
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// `plan`'s `magnitude`: (magnitude, band, throughput).
