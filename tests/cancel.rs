@@ -1,4 +1,4 @@
-//! Cancellation returns through `Result` (`v2ref_core::cancel`): a Monte Carlo
+//! Cancellation returns through `Result` (`v2ref_core::montecarlo::cancel`): a Monte Carlo
 //! cancelled midway returns `Error::Cancelled` from the call that ran it,
 //! with no panic unwound (so that a crate built with `panic = "abort"`
 //! gets the error too, not an abort).
@@ -6,9 +6,9 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
-use v2ref_core::cancel::{self, run_cancellable, Token};
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::montecarlo::cancel::{self, run_cancellable, Token};
 use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec};
 use v2ref_core::noise::Formula;

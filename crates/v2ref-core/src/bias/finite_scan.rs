@@ -124,14 +124,9 @@ pub fn convolution_bins(
     let dx = sampling.dx_um();
     let integrating = sampling.integrating().then_some(dx);
     let nodes = SpectralNodes::new(obs, 0.5 * sampling.stroke_um() + dx, integrating)?;
-    let every = crate::cancel::stride(nodes.sigma_per_um.len());
     Ok(bins
         .iter()
-        .enumerate()
-        .map(|(j, &k)| {
-            if j % every == 0 {
-                crate::cancel::checkpoint();
-            }
+        .map(|&k| {
             let kn = k as f64 / n as f64;
             nodes
                 .sigma_per_um

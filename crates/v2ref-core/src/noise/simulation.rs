@@ -496,7 +496,7 @@ pub fn draw_noise_only(
             acc += buf[0];
         }
         acc
-    });
+    })?;
     Ok(parts.iter().sum())
 }
 

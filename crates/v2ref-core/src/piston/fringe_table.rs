@@ -79,10 +79,10 @@ impl FringeTable {
         // Per node, march e^{2πiδ_j x} along the grid by complex
         // multiplication, re-anchored exactly every RESYNC steps.
         const RESYNC: usize = 128;
-        let every = crate::cancel::stride(n);
+        let every = crate::montecarlo::cancel::stride(n);
         for (j, (&s, &a)) in nodes.sigma_per_um.iter().zip(&nodes.amplitude).enumerate() {
             if j % every == 0 {
-                crate::cancel::check()?;
+                crate::montecarlo::cancel::check()?;
             }
             let d = s - sigma_c;
             let w = 2.0 * PI * d;
