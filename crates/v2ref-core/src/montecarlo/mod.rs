@@ -116,6 +116,28 @@ where
     })
 }
 
+/// `item(i)` for `i` in `0..n`, in order on the calling thread, for a long
+/// deterministic loop that is not a Monte Carlo (an interferogram of a
+/// long scan, a finite-scan bias): its items are the units of the run, a
+/// cancelled run ([`cancel`]) stopping between them with
+/// [`crate::Error::Cancelled`] (checked every [`cancel::stride`] items of
+/// `work_per_item` operations, a few milliseconds).
+pub fn map_items<T>(
+    n: usize,
+    work_per_item: usize,
+    mut item: impl FnMut(usize) -> T,
+) -> crate::Result<Vec<T>> {
+    let every = cancel::stride(work_per_item);
+    (0..n)
+        .map(|i| {
+            if i % every == 0 {
+                cancel::check()?;
+            }
+            Ok(item(i))
+        })
+        .collect()
+}
+
 /// Reports the steps of a loop (trials, rows, scans) to a progress
 /// callback in batches, each batch about [`cancel::WORK_PER_CHECKPOINT`]
 /// operations (a call per step would cost more than a short step), with a
