@@ -29,12 +29,12 @@ use std::sync::Arc;
 /// 20 ms on one core, so a cancelled computation stops well within a
 /// second, and the checks
 /// (a thread-local read each) cost nothing measurable.
-pub const WORK_PER_CHECKPOINT: usize = 1 << 20;
+pub const WORK_PER_CHECK: usize = 1 << 20;
 
 /// Iterations of a loop between two checks when one iteration costs
 /// `work_per_item` elementary operations (at least 1).
 pub fn stride(work_per_item: usize) -> usize {
-    (WORK_PER_CHECKPOINT / work_per_item.max(1)).max(1)
+    (WORK_PER_CHECK / work_per_item.max(1)).max(1)
 }
 
 /// A cancellation flag shared by the threads of one computation.
@@ -176,7 +176,7 @@ mod tests {
 
     #[test]
     fn stride_keeps_the_work_between_checks_bounded() {
-        assert_eq!(stride(0), WORK_PER_CHECKPOINT);
+        assert_eq!(stride(0), WORK_PER_CHECK);
         assert_eq!(stride(1 << 10), 1 << 10);
         assert_eq!(stride(usize::MAX), 1);
     }

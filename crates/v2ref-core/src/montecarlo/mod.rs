@@ -139,7 +139,7 @@ pub fn map_items<T>(
 }
 
 /// Reports the steps of a loop (trials, rows, scans) to a progress
-/// callback in batches, each batch about [`cancel::WORK_PER_CHECKPOINT`]
+/// callback in batches, each batch about [`cancel::WORK_PER_CHECK`]
 /// operations (a call per step would cost more than a short step), with a
 /// cancellation check after each; [`Steps::finish`] reports the rest and
 /// checks again.
