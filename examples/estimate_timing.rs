@@ -20,7 +20,7 @@ use estimate_floor::estimate_floor;
 use std::time::Instant;
 use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
 use v2ref_core::formalism::estimator::BinWindow;
-use v2ref_core::montecarlo::in_pool;
+use v2ref_core::montecarlo::in_pool_capped as in_pool;
 use v2ref_core::simulator::{Inputs, Model};
 
 type Failure = Box<dyn std::error::Error>;

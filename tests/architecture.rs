@@ -15,7 +15,6 @@ const LEVELS: &[&[&str]] = &[
         "error",
         "tolerance",
         "bounds",
-        "cancel",
         "csv_lines",
         "manifest",
         "math",

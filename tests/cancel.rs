@@ -1,4 +1,4 @@
-//! Cancellation returns through `Result` (`v2ref_core::cancel`): a Monte Carlo
+//! Cancellation returns through `Result` (`v2ref_core::montecarlo::cancel`): a Monte Carlo
 //! cancelled midway returns `Error::Cancelled` from the call that ran it,
 //! with no panic unwound (so that a crate built with `panic = "abort"`
 //! gets the error too, not an abort).
@@ -6,9 +6,9 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
-use v2ref_core::cancel::{self, run_cancellable, Token};
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::formalism::estimator::BinWindow;
+use v2ref_core::montecarlo::cancel::{self, run_cancellable, Token};
 use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec};
 use v2ref_core::noise::Formula;
@@ -148,4 +148,25 @@ fn an_uncancelled_token_changes_no_bit() {
     let plain = run().unwrap();
     let under_token = run_cancellable(&Token::new(), run).unwrap();
     assert_eq!(plain, under_token);
+}
+
+#[test]
+fn the_runners_stop_between_units_and_the_kernels_need_no_check() {
+    use v2ref_core::montecarlo::{map_items, run_units};
+    let token = Token::new();
+    token.cancel();
+    let ran = AtomicU64::new(0);
+    // A cancelled run: the runners return the error before a unit runs.
+    let out = held(&token, || {
+        let units = run_units(1, 1000, 2, |_, _| ran.fetch_add(1, Ordering::Relaxed));
+        let items = map_items(1000, 1, |i| i);
+        (units.map(|_| ()), items.map(|_| ()))
+    });
+    assert_eq!(out.unwrap(), (Err(Error::Cancelled), Err(Error::Cancelled)));
+    assert_eq!(ran.load(Ordering::Relaxed), 0);
+    // A kernel (here the FFT) runs to its end under a cancelled token:
+    // only the runner around it decides.
+    let x = vec![num_complex::Complex64::new(1.0, 0.0); 64];
+    let spectrum = held(&token, || v2ref_core::math::fft::inverse_dft(&x));
+    assert_eq!(spectrum.unwrap().len(), 64);
 }

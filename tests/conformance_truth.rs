@@ -50,7 +50,7 @@ fn rows_of(model: &Model, rows: u64, seed: u64) -> Vec<f64> {
     let set = model.rows(rows, seed, 0).unwrap();
     set.stream(0, 8, |b: &[f64]| {
         out.extend_from_slice(b);
-        Ok::<(), ()>(())
+        Ok(())
     })
     .unwrap();
     out

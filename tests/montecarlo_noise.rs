@@ -261,10 +261,10 @@ fn units_run_in_unit_order_with_their_own_generators() {
     use v2ref_core::montecarlo::{run_unit_range, run_units};
     let draw = |u: u64, rng: &mut v2ref_core::montecarlo::Rng| (u, rng.next_u64());
     for threads in [1, 3] {
-        let all = run_units(11, 5, threads, draw);
+        let all = run_units(11, 5, threads, draw).unwrap();
         let want: Vec<(u64, u64)> = (0..5).map(|u| (u, unit_rng(11, u).next_u64())).collect();
         assert_eq!(all, want);
-        let part = run_unit_range(11, 3..7, threads, draw);
+        let part = run_unit_range(11, 3..7, threads, draw).unwrap();
         let want: Vec<(u64, u64)> = (3..7).map(|u| (u, unit_rng(11, u).next_u64())).collect();
         assert_eq!(part, want);
     }

@@ -241,3 +241,66 @@ fn a_set_larger_than_half_the_memory_is_refused_at_once() {
     let e = Set::synthesize(&inputs, rows, 1).unwrap_err();
     assert!(param(&e).contains("memory"), "{e}");
 }
+
+#[test]
+fn unit_counts_past_a_day_of_work_are_refused_before_any_unit() {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use v2ref_core::montecarlo::{
+        check_units, fold_units, run_unit_range, run_units, try_run_unit_range, MAX_UNITS,
+    };
+    // Before: 2^40 units ran (days) and collected 2^40 results (terabytes).
+    let ran = AtomicU64::new(0);
+    let work = |_: u64, _: &mut v2ref_core::montecarlo::Rng| {
+        ran.fetch_add(1, Ordering::Relaxed);
+        0u8
+    };
+    let e = run_units(1, 1 << 40, 1, work).unwrap_err();
+    assert!(
+        param(&e).contains("units") && param(&e).contains(&MAX_UNITS.to_string()),
+        "{e}"
+    );
+    assert!(run_unit_range(1, 5..6 + MAX_UNITS, 1, work).is_err());
+    assert!(try_run_unit_range(1, 0..u64::MAX, 1, |u, r| Ok(work(u, r))).is_err());
+    assert!(fold_units(1, 0..1 << 40, 1, |u, r| Ok(work(u, r)), |_| ()).is_err());
+    assert_eq!(ran.load(Ordering::Relaxed), 0);
+    // The bound itself is accepted (not run here: 2^27 units).
+    assert!(check_units(&(7..7 + MAX_UNITS)).is_ok());
+    assert_eq!(run_units(1, 3, 1, work).unwrap().len(), 3);
+}
+
+#[test]
+fn a_pool_of_more_threads_than_the_cap_is_refused_before_spawning() {
+    use v2ref_core::montecarlo::{in_pool, max_threads};
+    // Before: in_pool(huge) asked the system for that many threads. The
+    // refusal comes before any pool is built (none is here: the job would
+    // flag it), so no thread is spawned by this test.
+    for threads in [max_threads() + 1, 1 << 20, usize::MAX] {
+        let mut ran = false;
+        let e = in_pool(threads, || {
+            ran = true;
+            Ok(())
+        })
+        .unwrap_err();
+        assert!(param(&e).contains("threads"), "{e}");
+        assert!(!ran);
+    }
+}
+
+#[test]
+fn rows_whose_estimates_overflow_are_refused_naming_the_row() {
+    use v2ref_core::conformance::estimate::RowFault;
+    let est = estimator();
+    // Before: finite values of 1e154 gave infinite estimates, returned.
+    let mut rows = vec![1.0; 3 * 16];
+    rows[16..32]
+        .iter_mut()
+        .enumerate()
+        .for_each(|(i, v)| *v = 1e154 * (1.0 + i as f64));
+    let fault = est.try_estimate_rows(&rows, 1).unwrap_err();
+    assert_eq!(fault, RowFault::Overflow { row: 1 });
+    assert!(fault.location(0).contains("row 2") && fault.reason().contains("overflow"));
+    // The same row scaled down by 1e150 is estimated, finite.
+    rows[16..32].iter_mut().for_each(|v| *v *= 1e-150);
+    let ok = est.try_estimate_rows(&rows, 1).unwrap();
+    assert!(ok.iter().all(|e| e.values().iter().all(|x| x.is_finite())));
+}

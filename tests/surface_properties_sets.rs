@@ -186,7 +186,7 @@ proptest! {
         prop_assert!(row.map_or(len != 16, finite), "documented panic: a row of another length");
         if rows > 50 { return Ok(()); }
         let mut seen = 0u64;
-        let streamed = r.stream(1, batch, |b: &[f64]| { seen += b.len() as u64; Ok::<(), ()>(()) });
+        let streamed = r.stream(1, batch, |b: &[f64]| { seen += b.len() as u64; Ok(()) });
         prop_assert!(streamed.is_ok() && seen == rows * 16);
         let mapped = r.map_units(0..r.units().min(3), 1, |_, b| Ok(b.len()));
         prop_assert!(mapped.is_ok());
@@ -195,7 +195,7 @@ proptest! {
         let filled = v2ref::montecarlo::run_units(1, 1, 1, |_, rng| {
             let mut out = Vec::new();
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| r.fill_unit(u, rng, &mut out))).map(|()| out)
-        });
+        }).unwrap();
         prop_assert!(filled[0].as_ref().map_or(u >= r.units(), |o| finite(o.iter().copied())));
         if let Some(layout) = r.layout() { let _ = layout.row_start(u); }
     }
@@ -313,7 +313,7 @@ proptest! {
         prop_assert!(finite([s.variance(), s.std(), s.stderr_mean(), s.stderr_variance(), s.stderr_std(), sum.mean, sum.var]));
         let r = replicated_summary(&[s, t]);
         prop_assert!(finite([r.mean, r.stderr_mean]));
-        let units = v2ref::montecarlo::run_units(3, 4, 2, |u, _| u);
+        let units = v2ref::montecarlo::run_units(3, 4, 2, |u, _| u).unwrap();
         prop_assert_eq!(units, vec![0, 1, 2, 3]);
     }
 

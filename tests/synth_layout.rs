@@ -130,7 +130,7 @@ fn v1_sq_of_rows(model: &Model, layout: RowLayout, rows: u64, seed: u64) -> Vec<
     let set = model.rows_in(layout, rows, seed, 0).unwrap();
     let n = model.samples();
     let mut out = Vec::with_capacity(rows as usize);
-    set.stream(0, 8, |block: &[f64]| -> Result<(), ()> {
+    set.stream(0, 8, |block: &[f64]| {
         out.extend(block.chunks_exact(n).map(|r| estimator.estimate(r).v1_sq));
         Ok(())
     })
@@ -190,7 +190,7 @@ fn v1_sq_of(model: &Model, set: &v2ref_core::simulator::Rows<'_>) -> Vec<f64> {
         RowEstimator::new(model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
     let n = model.samples();
     let mut out = Vec::new();
-    set.stream(0, 8, |block: &[f64]| -> Result<(), ()> {
+    set.stream(0, 8, |block: &[f64]| {
         out.extend(block.chunks_exact(n).map(|r| estimator.estimate(r).v1_sq));
         Ok(())
     })

@@ -6,7 +6,7 @@ use super::Case;
 use rayon::prelude::*;
 use realfft::RealFftPlanner;
 use v2ref_core::formalism::estimator::{positive_bins, BinWindow};
-use v2ref_core::montecarlo::{in_pool, unit_rng, Rng};
+use v2ref_core::montecarlo::{in_pool_capped as in_pool, unit_rng, Rng};
 use v2ref_core::noise::simulation::{simulate_noisy, NoisySpec, PoissonSampler, TRIALS_PER_UNIT};
 use v2ref_core::noise::{example_interferogram, NoiseModel};
 use v2ref_core::simulator::{Inputs, Model};
@@ -49,7 +49,7 @@ fn noisy_rows(rows: u64, n: usize) -> (Model, Vec<f64>) {
     let set = model.rows(rows, 1, 0).expect("rows");
     set.stream(0, 8, |block| {
         data.extend_from_slice(block);
-        Ok::<(), ()>(())
+        Ok(())
     })
     .expect("no sink error");
     drop(set);
@@ -203,7 +203,7 @@ fn synth_rows(rows: u64) -> Case {
         let mut out = Vec::with_capacity(rows as usize * n);
         set.stream(threads, 8, |block| {
             out.extend_from_slice(block);
-            Ok::<(), ()>(())
+            Ok(())
         })
         .expect("no sink error");
         out.iter().sum()

@@ -30,8 +30,8 @@
 // in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
 pub(crate) use v2ref_core::{
-    bias, bounds, cancel, conformance, error, formalism, math, montecarlo, noise, piston,
-    simulator, tolerance, words, Error, Result,
+    bias, bounds, conformance, error, formalism, math, montecarlo, noise, piston, simulator,
+    tolerance, words, Error, Result,
 };
 
 pub mod commands;

@@ -106,7 +106,7 @@ pub enum Error {
         /// The system's error (shared so that `Error` stays `Clone`).
         source: Arc<std::io::Error>,
     },
-    /// The computation was cancelled from outside it ([`crate::cancel`]):
+    /// The computation was cancelled from outside it ([`crate::montecarlo::cancel`]):
     /// nothing of it is returned.
     #[error("cancelled")]
     Cancelled,

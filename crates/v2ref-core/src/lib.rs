@@ -11,7 +11,7 @@
 //! The modules follow the paper: [`formalism`] (§§1–2), [`bias`] (§§3–5),
 //! [`piston`] (§6), [`noise`] (the appendix), [`simulator`] (all effects at
 //! once), [`conformance`] (the conformance kit), [`oracle`] (a pipeline's
-//! `cargo test`); with [`math`], [`montecarlo`], [`bounds`], [`cancel`],
+//! `cargo test`); with [`math`], [`montecarlo`], [`bounds`],
 //! [`tolerance`] (one home for tolerances, and the assertion macros) and
 //! [`Error`].
 //!
@@ -22,7 +22,7 @@
 //! `use` of `crates/v2ref-core/src/`, and the crate graph does the rest), so that
 //! each can be read, tested and changed with only what is under it in mind:
 //!
-//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`cancel`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files);
+//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files);
 //! 2. [`formalism`];
 //! 3. [`record`] (the inputs of a computation as plain values);
 //! 4. [`bias`];
@@ -40,7 +40,6 @@
 // The modules; the stable surface is the crate `v2ref`'s re-exports.
 pub mod bias;
 pub mod bounds;
-pub mod cancel;
 pub mod conformance;
 pub mod csv_lines;
 pub mod error;

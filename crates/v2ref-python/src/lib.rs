@@ -7,8 +7,8 @@
 //!
 //! Long calls release the GIL and run on worker threads; the calling
 //! thread checks for signals every 100 ms and, on Ctrl-C, raises
-//! `KeyboardInterrupt` after stopping the work at its next checkpoint
-//! ([`crate::cancel`]).
+//! `KeyboardInterrupt` after stopping the work at its next unit boundary
+//! ([`crate::montecarlo::cancel`]).
 
 // The modules of the crates below under their own names, so that a path
 // reads the same in every crate of the workspace (`crate::formalism::…`).
@@ -16,8 +16,8 @@
 use v2ref_commands::{commands, parameters, plan, record, report};
 #[allow(unused_imports)]
 use v2ref_core::{
-    bias, bounds, cancel, conformance, error, formalism, montecarlo, noise, piston, simulator,
-    words, Error, Result,
+    bias, bounds, conformance, error, formalism, montecarlo, noise, piston, simulator, words,
+    Error, Result,
 };
 #[allow(unused_imports)]
 use v2ref_files::{atomic, formats};
@@ -30,7 +30,7 @@ pub mod output;
 mod units;
 pub mod values;
 
-use crate::cancel::{run_cancellable, Token};
+use crate::montecarlo::cancel::{run_cancellable, Token};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -95,8 +95,8 @@ pub fn warn_cost(py: Python<'_>, what: &str, cost: &crate::commands::cost::Cost)
 
 /// Runs `work` on threads of its own with the GIL released, handing it a
 /// progress callback; checks for signals (Ctrl-C) every 100 ms meanwhile.
-/// On a signal the work is cancelled ([`crate::cancel`]: it stops at its
-/// next checkpoint, a few milliseconds of work away) and the signal's
+/// On a signal the work is cancelled ([`crate::montecarlo::cancel`]: it stops at its
+/// next unit or batch of steps, a few milliseconds of work away) and the signal's
 /// exception is raised once its threads have stopped. A panic in the work
 /// becomes a `RuntimeError` (nothing unwinds into Python).
 pub fn interruptible<T: Send>(

@@ -9,8 +9,8 @@
 // reads the same in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
 pub(crate) use v2ref_core::{
-    bias, bounds, cancel, csv_lines, error, formalism, math, montecarlo, noise, piston, tolerance,
-    Error, Result,
+    bias, bounds, csv_lines, error, formalism, math, montecarlo, noise, piston, tolerance, Error,
+    Result,
 };
 #[allow(unused_imports)]
 pub(crate) use v2ref_files::atomic;

@@ -207,7 +207,7 @@ pub(super) fn resolve_candidates(
             }
             points[i] = p;
         }
-        crate::cancel::check()?;
+        crate::montecarlo::cancel::check()?;
     }
     Ok(())
 }

@@ -458,7 +458,10 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     // The spectrum's tables on the whole pool first: built on first use
     // inside the grid, by one point while the others wait (5.8e9 of the
     // 11.4e9 instructions of a one-frequency plan).
-    crate::montecarlo::in_pool(threads, || sky.tabulate());
+    crate::montecarlo::in_pool(threads, || {
+        sky.tabulate();
+        Ok(())
+    })?;
     // One fringe table per rung of range for the whole grid, not one per
     // setting (their building was 59 % of a visible plan's time).
     let tables = FringeTables::new();
@@ -472,7 +475,7 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
             .map(|&(f, s)| {
                 let r = grid_point(inputs, (&sky, &tables), f, s);
                 progress(1);
-                crate::cancel::check()?;
+                crate::montecarlo::cancel::check()?;
                 r
             })
             .collect::<Result<Vec<_>>>()

@@ -124,25 +124,19 @@ pub fn convolution_bins(
     let dx = sampling.dx_um();
     let integrating = sampling.integrating().then_some(dx);
     let nodes = SpectralNodes::new(obs, 0.5 * sampling.stroke_um() + dx, integrating)?;
-    let every = crate::cancel::stride(nodes.sigma_per_um.len());
-    Ok(bins
-        .iter()
-        .enumerate()
-        .map(|(j, &k)| {
-            if j % every == 0 {
-                crate::cancel::checkpoint();
-            }
-            let kn = k as f64 / n as f64;
-            nodes
-                .sigma_per_um
-                .iter()
-                .zip(&nodes.amplitude)
-                .map(|(&s, a)| {
-                    0.5 * (a * kernel.at(s * dx - kn, n) + a.conj() * kernel.at(-s * dx - kn, n))
-                })
-                .sum()
-        })
-        .collect())
+    // |K| bins × N-proportional nodes, stopped between bins when cancelled.
+    crate::montecarlo::map_items(bins.len(), nodes.sigma_per_um.len(), |j| {
+        let k = bins[j];
+        let kn = k as f64 / n as f64;
+        nodes
+            .sigma_per_um
+            .iter()
+            .zip(&nodes.amplitude)
+            .map(|(&s, a)| {
+                0.5 * (a * kernel.at(s * dx - kn, n) + a.conj() * kernel.at(-s * dx - kn, n))
+            })
+            .sum()
+    })
 }
 
 /// Raw estimates from [`convolution_bins`] over the window [`WINDOW`].

@@ -352,15 +352,10 @@ pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
 pub fn noise_bias(variance: &[f64], bins: &[usize]) -> Pair {
     let n = variance.len();
     let total: f64 = variance.iter().sum();
-    // N samples × |K| bins: as long as the synthesis at large N.
-    let every = crate::cancel::stride(bins.len());
     let v2 = variance
         .iter()
         .enumerate()
         .map(|(i, &v)| {
-            if i % every == 0 {
-                crate::cancel::checkpoint();
-            }
             let kernel: Complex64 = bins
                 .iter()
                 .map(|&k| Complex64::from_polar(1.0, dft_phase(i, k, n)))

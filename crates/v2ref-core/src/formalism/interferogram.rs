@@ -189,11 +189,6 @@ const CYCLES_PER_PANEL: f64 = 0.25;
 /// fewer than 2^27.
 pub const MAX_SPECTRAL_NODES: usize = 1 << 28;
 
-/// Panels of [`SpectralNodes::new`] between two cancellation checkpoints
-/// (each panel evaluates the spectrum and the source at its nodes, a
-/// Bessel function among them).
-const PANELS_PER_CHECKPOINT: usize = 1 << 12;
-
 /// The panels of [`SpectralNodes`]: for each piece `(a, b)` of the
 /// spectrum (σ, µm⁻¹), as many panels as keep the phase change of the
 /// integrand across one within [`CYCLES_PER_PANEL`] for |x| ≤ `max_opd_um`.
@@ -282,10 +277,6 @@ impl SpectralNodes {
         for (a, b, panels) in panel_plan(obs, max_opd_um) {
             let h = (b - a) / panels as f64;
             for p in 0..panels {
-                // Millions of panels at the longest scans.
-                if p % PANELS_PER_CHECKPOINT == 0 {
-                    crate::cancel::checkpoint();
-                }
                 let c = a + (p as f64 + 0.5) * h;
                 for (x, wt) in gx.iter().zip(&gw) {
                     let s = c + 0.5 * h * x;
@@ -393,16 +384,11 @@ impl Interferogram {
             max_opd,
             sampling.integrating().then_some(sampling.dx_um()),
         )?;
-        // N samples × N-proportional nodes: the one long loop of a large N.
-        let every = crate::cancel::stride(nodes.sigma_per_um.len());
-        let modulated = (0..n)
-            .map(|i| {
-                if i % every == 0 {
-                    crate::cancel::checkpoint();
-                }
-                photons_per_sample * nodes.fringe(x(i))
-            })
-            .collect();
+        // N samples × N-proportional nodes: the one long loop of a large N
+        // (5 s at N = 16384), stopped between samples when cancelled.
+        let modulated = crate::montecarlo::map_items(n, nodes.sigma_per_um.len(), |i| {
+            photons_per_sample * nodes.fringe(x(i))
+        })?;
         Ok(Interferogram {
             continuum: vec![photons_per_sample; n],
             modulated,

@@ -95,8 +95,6 @@ fn rows_in_parallel(
     data.par_chunks_mut(len).enumerate().for_each_init(
         || vec![zero; fft.get_inplace_scratch_len()],
         |scratch, (i, row)| {
-            // A row is a short transform: a checkpoint each costs nothing.
-            crate::cancel::checkpoint();
             fill(i, row);
             fft.process_with_scratch(row, scratch);
         },

@@ -7,6 +7,7 @@
 //! `lib/Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
 //! neighbouring units get unrelated streams.
 
+pub mod cancel;
 pub mod pool;
 pub(crate) mod statistics;
 
@@ -41,11 +42,32 @@ pub fn unit_rng(seed: u64, unit: u64) -> Rng {
     Rng::from_seed(state)
 }
 
+/// Most work units one run accepts: 2^27. A unit is a batch of thousands
+/// of trials or rows, 1 ms of one core or more, so 2^27 units are more than
+/// 37 hours of one core: past what a run does in a day, and far below a
+/// count whose bookkeeping (one result per unit) would exhaust memory.
+pub const MAX_UNITS: u64 = 1 << 27;
+
+/// Checks the units of a run: at most [`MAX_UNITS`].
+pub fn check_units(range: &std::ops::Range<u64>) -> crate::Result<()> {
+    let units = range.end.saturating_sub(range.start);
+    if units > MAX_UNITS {
+        return Err(crate::Error::OutOfRange {
+            param: "units",
+            value: units as f64,
+            accepted: format!("0 to {MAX_UNITS} work units (2^27) per run"),
+        });
+    }
+    Ok(())
+}
+
 /// Runs `work(unit_index, rng)` for `units` work units, on `threads` threads
 /// (0 = rayon's default), and returns the results in unit order. Each unit
 /// has its own generator from [`unit_rng`], so the results do not depend on
-/// the thread count or on scheduling.
-pub fn run_units<T, F>(seed: u64, units: u64, threads: usize, work: F) -> Vec<T>
+/// the thread count or on scheduling. Refuses more than [`MAX_UNITS`] units
+/// and more than [`max_threads`] threads; a cancelled run ([`cancel`])
+/// returns [`crate::Error::Cancelled`], checked before each unit.
+pub fn run_units<T, F>(seed: u64, units: u64, threads: usize, work: F) -> crate::Result<Vec<T>>
 where
     T: Send,
     F: Fn(u64, &mut Rng) -> T + Sync + Send,
@@ -60,29 +82,18 @@ pub fn run_unit_range<T, F>(
     range: std::ops::Range<u64>,
     threads: usize,
     work: F,
-) -> Vec<T>
+) -> crate::Result<Vec<T>>
 where
     T: Send,
     F: Fn(u64, &mut Rng) -> T + Sync + Send,
 {
-    in_pool(threads, || {
-        range
-            .into_par_iter()
-            // A panic in `work` (a cancellation checkpoint where panics
-            // unwind) stops the other units at once rather than after every
-            // pending split has run one unit; no effect on the answer.
-            .panic_fuse()
-            .map(|u| {
-                let mut rng = unit_rng(seed, u);
-                work(u, &mut rng)
-            })
-            .collect::<Vec<T>>()
-    })
+    try_run_unit_range(seed, range, threads, |u, rng| Ok(work(u, rng)))
 }
 
-/// [`run_unit_range`] for work that may fail (a cancelled run:
-/// [`Steps::step`]): the results in unit order, or the error of a unit
-/// (the other units stop at once).
+/// [`run_unit_range`] for work that may fail: the results in unit order,
+/// or the error of a unit (the other units stop at once). A cancelled run
+/// ([`cancel`]) is checked before each unit and returns
+/// [`crate::Error::Cancelled`].
 pub fn try_run_unit_range<T, F>(
     seed: u64,
     range: std::ops::Range<u64>,
@@ -93,20 +104,42 @@ where
     T: Send,
     F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
 {
+    check_units(&range)?;
     in_pool(threads, || {
         range
             .into_par_iter()
-            .panic_fuse()
             .map(|u| {
-                let mut rng = unit_rng(seed, u);
-                work(u, &mut rng)
+                cancel::check()?;
+                work(u, &mut unit_rng(seed, u))
             })
             .collect::<crate::Result<Vec<T>>>()
     })
 }
 
+/// `item(i)` for `i` in `0..n`, in order on the calling thread, for a long
+/// deterministic loop that is not a Monte Carlo (an interferogram of a
+/// long scan, a finite-scan bias): its items are the units of the run, a
+/// cancelled run ([`cancel`]) stopping between them with
+/// [`crate::Error::Cancelled`] (checked every [`cancel::stride`] items of
+/// `work_per_item` operations, a few milliseconds).
+pub fn map_items<T>(
+    n: usize,
+    work_per_item: usize,
+    mut item: impl FnMut(usize) -> T,
+) -> crate::Result<Vec<T>> {
+    let every = cancel::stride(work_per_item);
+    (0..n)
+        .map(|i| {
+            if i % every == 0 {
+                cancel::check()?;
+            }
+            Ok(item(i))
+        })
+        .collect()
+}
+
 /// Reports the steps of a loop (trials, rows, scans) to a progress
-/// callback in batches, each batch about [`crate::cancel::WORK_PER_CHECKPOINT`]
+/// callback in batches, each batch about [`cancel::WORK_PER_CHECK`]
 /// operations (a call per step would cost more than a short step), with a
 /// cancellation check after each; [`Steps::finish`] reports the rest and
 /// checks again.
@@ -122,19 +155,19 @@ impl<'a> Steps<'a> {
     pub fn new(progress: &'a (dyn Fn(u64) + Sync), work_per_step: usize) -> Steps<'a> {
         Steps {
             progress,
-            every: crate::cancel::stride(work_per_step) as u64,
+            every: cancel::stride(work_per_step) as u64,
             pending: 0,
         }
     }
 
     /// One more step done; [`crate::Error::Cancelled`] when the run was
-    /// cancelled ([`crate::cancel::check`]), for the loop to return.
+    /// cancelled ([`cancel::check`]), for the loop to return.
     pub fn step(&mut self) -> crate::Result<()> {
         self.pending += 1;
         if self.pending >= self.every {
             (self.progress)(self.pending);
             self.pending = 0;
-            crate::cancel::check()?;
+            cancel::check()?;
         }
         Ok(())
     }
@@ -146,7 +179,7 @@ impl<'a> Steps<'a> {
         if self.pending > 0 {
             (self.progress)(self.pending);
         }
-        crate::cancel::check()
+        cancel::check()
     }
 }
 
@@ -160,8 +193,8 @@ pub const FOLD_BATCH_UNITS: u64 = 1024;
 /// [`FOLD_BATCH_UNITS`] units at a time. Memory is that of one batch of
 /// results however many units there are; the answer is the fold of
 /// [`run_unit_range`]'s results in unit order, bit for bit, whatever the
-/// thread count. The first error of a unit (a cancelled run) stops the run
-/// and is returned.
+/// thread count. The first error of a unit stops the run and is returned;
+/// a cancelled run ([`cancel`]) is checked before each unit.
 pub fn fold_units<T, F, M>(
     seed: u64,
     range: std::ops::Range<u64>,
@@ -174,6 +207,7 @@ where
     F: Fn(u64, &mut Rng) -> crate::Result<T> + Sync + Send,
     M: FnMut(T) + Send,
 {
+    check_units(&range)?;
     let mut merge = merge;
     in_pool(threads, || {
         let mut first = range.start;
@@ -181,8 +215,10 @@ where
             let last = first.saturating_add(FOLD_BATCH_UNITS).min(range.end);
             let batch: Vec<T> = (first..last)
                 .into_par_iter()
-                .panic_fuse()
-                .map(|u| work(u, &mut unit_rng(seed, u)))
+                .map(|u| {
+                    cancel::check()?;
+                    work(u, &mut unit_rng(seed, u))
+                })
                 .collect::<crate::Result<Vec<T>>>()?;
             batch.into_iter().for_each(&mut merge);
             first = last;
@@ -222,17 +258,27 @@ pub fn check_threads(threads: usize) -> crate::Result<usize> {
 
 /// Runs `job` on a pool of `threads` threads; 0: the pool the caller runs
 /// in (the CLI's, of [`pool::default_threads`]), or a new one of
-/// [`pool::default_threads`] outside any pool. A system that refuses
-/// threads gives fewer ([`pool::build_pool`]).
-pub fn in_pool<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
+/// [`pool::default_threads`] outside any pool. Refuses more than
+/// [`max_threads`] threads ([`check_threads`]) before spawning any; a
+/// system that refuses threads gives fewer ([`pool::build_pool`]).
+pub fn in_pool<T: Send>(
+    threads: usize,
+    job: impl FnOnce() -> crate::Result<T> + Send,
+) -> crate::Result<T> {
+    in_pool_capped(check_threads(threads)?, job)
+}
+
+/// [`in_pool`] with `threads` capped at [`max_threads`] rather than
+/// refused (for a caller whose error type is not [`crate::Error`]).
+pub fn in_pool_capped<T: Send>(threads: usize, job: impl FnOnce() -> T + Send) -> T {
+    let threads = threads.min(max_threads());
     if threads == 0 && rayon::current_thread_index().is_some() {
         return job();
     }
     // The pool's threads work for the caller's computation: they hold its
-    // cancellation token (crate::cancel), if any.
-    let token = crate::cancel::current();
-    let start: pool::StartHandler =
-        std::sync::Arc::new(move |_| crate::cancel::hold(token.clone()));
+    // cancellation token ([`cancel`]), if any.
+    let token = cancel::current();
+    let start: pool::StartHandler = std::sync::Arc::new(move |_| cancel::hold(token.clone()));
     pool::install(threads, Some(start), job)
 }
 

@@ -528,7 +528,7 @@ pub fn draw_noise_only(
             acc += buf[0];
         }
         acc
-    });
+    })?;
     Ok(parts.iter().sum())
 }
 

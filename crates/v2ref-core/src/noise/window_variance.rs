@@ -38,22 +38,12 @@ use serde::Serialize;
 /// The matrices A₁ (V1²) and A₂ (V2²) of the window `bins` for N = `n`.
 pub fn quadratic_forms(n: usize, bins: &[usize]) -> (DMatrix<f64>, DMatrix<f64>) {
     // cos(2π d k/N) for every lag d, summed over the window.
-    let every = crate::cancel::stride(bins.len());
-    let checkpoint = |i: usize| {
-        if i % every == 0 {
-            crate::cancel::checkpoint();
-        }
-    };
     let lag: Vec<f64> = (0..n)
-        .map(|d| {
-            checkpoint(d);
-            bins.iter().map(|&k| dft_phase(d, k, n).cos()).sum()
-        })
+        .map(|d| bins.iter().map(|&k| dft_phase(d, k, n).cos()).sum())
         .collect();
     let a1 = DMatrix::from_fn(n, n, |i, j| lag[(i + n - j) % n]);
     let (ure, uim): (Vec<f64>, Vec<f64>) = (0..n)
         .map(|i| {
-            checkpoint(i);
             bins.iter().fold((0.0, 0.0), |(re, im), &k| {
                 let ph = dft_phase(i, k, n);
                 (re + ph.cos(), im + ph.sin())
@@ -72,11 +62,7 @@ pub fn quadratic_form_moments(a: &DMatrix<f64>, m: &[f64], cum: &[Cumulants]) ->
     let signal = mv.dot(&am);
     let mut bias = 0.0;
     let mut var = 0.0;
-    let every = crate::cancel::stride(n);
     for i in 0..n {
-        if i % every == 0 {
-            crate::cancel::checkpoint();
-        }
         let aii = a[(i, i)];
         bias += aii * cum[i].k2;
         var +=

@@ -158,7 +158,7 @@ impl FringeTable {
             .zip(slope.par_chunks_mut(BLOCK))
             .enumerate()
             .try_for_each(|(b, (value, slope))| {
-                crate::cancel::check()?;
+                crate::montecarlo::cancel::check()?;
                 add_nodes(&terms, (x0, h), b * BLOCK, value, slope);
                 Ok::<(), crate::Error>(())
             })?;

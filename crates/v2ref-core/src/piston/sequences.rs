@@ -193,7 +193,6 @@ impl PistonSequence {
         let mut segments = Vec::with_capacity(observations);
         let mut period = 0;
         for j in 0..observations {
-            crate::cancel::check()?;
             let series = synthesize_series(
                 &psd,
                 setup.sample_time_s(),
@@ -335,11 +334,7 @@ impl PistonSequence {
         let n = self.samples;
         let (mut excursion, mut resid2) = (0.0_f64, 0.0);
         let scans = self.first_scan[self.sequences()];
-        let every = crate::cancel::stride(n);
         for s in 0..scans {
-            if s % every == 0 {
-                crate::cancel::checkpoint();
-            }
             let (series, local) = self.locate(s);
             let m = series.len();
             let r = self.reference_um(s);

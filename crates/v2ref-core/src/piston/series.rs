@@ -16,7 +16,7 @@
 
 use crate::error::{self, Error, Result};
 use crate::math::fft::inverse_dft;
-use crate::montecarlo::{in_pool, run_units};
+use crate::montecarlo::{in_pool, try_run_unit_range};
 use num_complex::Complex64;
 use rand_distr::{Distribution, StandardNormal};
 
@@ -76,19 +76,20 @@ pub fn synthesize_series(
     let half = m / 2;
     let dnu = 1.0 / (m as f64 * dt_s);
     let units = (half - 1).div_ceil(COEFF_BLOCK) as u64;
-    let blocks = run_units(seed, units, threads, |u, rng| {
-        crate::cancel::checkpoint();
+    // The runner checks for a cancellation between blocks.
+    let blocks = try_run_unit_range(seed, 0..units, threads, |u, rng| {
         let first = 1 + u as usize * COEFF_BLOCK;
         let last = (first + COEFF_BLOCK).min(half);
-        (first..last)
+        let block = (first..last)
             .map(|k| {
                 let s = (psd(k as f64 * dnu) * dnu).sqrt();
                 let g: f64 = StandardNormal.sample(rng);
                 let h: f64 = StandardNormal.sample(rng);
                 Complex64::new(s * g, s * h)
             })
-            .collect::<Vec<_>>()
-    });
+            .collect::<Vec<_>>();
+        Ok(block)
+    })?;
     // A spectrum that is not a finite number >= 0 somewhere leaves a
     // coefficient that is not finite: refused, naming the frequency.
     let coefficients = blocks.iter().flatten();
@@ -111,7 +112,7 @@ pub fn synthesize_series(
     }
     // The M-point transform split into rows over the threads
     // (crate::math::fft): same bits for any thread count.
-    let series = in_pool(threads, || inverse_dft(&buf));
+    let series = in_pool(threads, || Ok(inverse_dft(&buf)))?;
     let root2 = std::f64::consts::SQRT_2;
     Ok(series.iter().map(|z| root2 * z.re).collect())
 }

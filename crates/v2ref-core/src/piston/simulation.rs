@@ -342,7 +342,10 @@ fn simulate_through(
         d.sub_samples()?;
     }
     Sampling::new(setup.samples, setup.dx_um, false)?.check_aliasing(obs)?;
-    crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
+    crate::montecarlo::in_pool(size.threads, || {
+        spectrum.tabulate();
+        Ok(())
+    })?;
     let sequence = make_sequence(size)?;
     let (excursion, residual_rms_um) = sequence.excursion_and_residual();
     let ctx = ScanContext::new(obs, setup, table_range_um(setup, excursion)?)?;

@@ -211,11 +211,7 @@ impl TransverseTable {
             use rayon::prelude::*;
             (0..TABLE_POINTS)
                 .into_par_iter()
-                .map(|i| {
-                    // One adaptive integral each: a checkpoint between them.
-                    crate::cancel::checkpoint();
-                    self.integral(self.grid_fx_per_m(i)).ln()
-                })
+                .map(|i| self.integral(self.grid_fx_per_m(i)).ln())
                 .collect()
         })
     }

@@ -283,18 +283,10 @@ impl RowEstimator {
             });
         }
         let e = self.estimate_row(row, &mut Vec::new(), &mut Vec::new());
-        let all = [
-            e.v1_sq_raw,
-            e.v2_sq_raw,
-            e.v1_sq_bias,
-            e.v2_sq_bias,
-            e.v1_sq,
-            e.v2_sq,
-        ];
-        if all.iter().any(|x| !x.is_finite()) {
+        if let Some(fault) = RowFault::of_estimate(0, &e) {
             return Err(Error::Invalid {
                 param: "row",
-                reason: "its values are so large that the estimates overflow a float64".into(),
+                reason: fault.reason(),
             });
         }
         Ok(e)
@@ -359,9 +351,7 @@ impl RowEstimator {
                 values: rows.len() % n,
             });
         }
-        let threads = threads.min(crate::montecarlo::max_threads());
         let mut out = vec![RowEstimate::default(); rows.len() / n];
-        let every = crate::cancel::stride(n);
         let job = || {
             out.par_chunks_mut(BLOCK_ROWS)
                 .zip(rows.par_chunks(n * BLOCK_ROWS))
@@ -369,19 +359,19 @@ impl RowEstimator {
                 .map(|(b, (out, block))| {
                     let (mut buf, mut scratch, mut fault) = (Vec::new(), Vec::new(), None);
                     for (i, (o, row)) in out.iter_mut().zip(block.chunks_exact(n)).enumerate() {
-                        if i % every == 0 {
-                            crate::cancel::checkpoint();
-                        }
                         if let Some(f) = RowFault::of_row(b * BLOCK_ROWS + i, row) {
                             fault = RowFault::first(fault, Some(f));
                         }
                         *o = self.estimate_row(row, &mut buf, &mut scratch);
+                        if let Some(f) = RowFault::of_estimate(b * BLOCK_ROWS + i, o) {
+                            fault = RowFault::first(fault, Some(f));
+                        }
                     }
                     fault
                 })
                 .reduce(|| None, RowFault::first)
         };
-        match crate::montecarlo::in_pool(threads, job) {
+        match crate::montecarlo::in_pool_capped(threads, job) {
             None => Ok(out),
             Some(fault) => Err(fault),
         }
@@ -459,8 +449,13 @@ pub fn estimate_row_oracle(
 pub const DARK_ROW: &str =
     "every sample is 0 (no light at all, or no data); an interferogram with light is needed";
 
+/// √(f64::MAX): a row's estimates square sums of its N values, so values
+/// of magnitude `a` overflow them once `N a` nears this scale.
+pub const OVERFLOW_SCALE: f64 = 1.3e154;
+
 /// What makes a set of rows unusable: a value that is not a finite number,
-/// or a dark row (every sample 0: no light reached the detector, or the
+/// values so large that the estimates overflow, or a dark row (every
+/// sample 0: no light reached the detector, or the
 /// file holds no data, and the estimators would return a bias-subtracted
 /// number of no meaning).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -477,6 +472,12 @@ pub enum RowFault {
     },
     /// Every sample of `row` (0-based) is 0.
     Dark {
+        /// Row, 0-based.
+        row: usize,
+    },
+    /// The values of `row` (0-based), finite, are so large that its
+    /// estimates (sums of squares) overflow a float64.
+    Overflow {
         /// Row, 0-based.
         row: usize,
     },
@@ -508,6 +509,13 @@ impl RowFault {
         (!lit).then_some(RowFault::Dark { row: index })
     }
 
+    /// The fault of `estimate`, row `index` of its set, if any: an estimate
+    /// that overflowed (the row's values were finite but too large).
+    pub fn of_estimate(index: usize, estimate: &RowEstimate) -> Option<RowFault> {
+        let finite = estimate.values().iter().all(|x| x.is_finite());
+        (!finite).then_some(RowFault::Overflow { row: index })
+    }
+
     /// The fault a set reports of `a` and `b`: a non-finite value before
     /// any dark row, then the earlier row (the same whatever order the
     /// rows were checked in).
@@ -515,7 +523,8 @@ impl RowFault {
         let rank = |f: &RowFault| match *f {
             RowFault::NonFinite { row, col, .. } => (0, row, col),
             RowFault::Dark { row } => (1, row, 0),
-            RowFault::Partial { row, .. } => (2, row, 0),
+            RowFault::Overflow { row } => (2, row, 0),
+            RowFault::Partial { row, .. } => (3, row, 0),
         };
         match (a, b) {
             (Some(x), Some(y)) => Some(if rank(&y) < rank(&x) { y } else { x }),
@@ -530,7 +539,7 @@ impl RowFault {
             RowFault::NonFinite { row, col, .. } => {
                 format!("row {}, column {} (1-based)", first + row + 1, col + 1)
             }
-            RowFault::Dark { row } | RowFault::Partial { row, .. } => {
+            RowFault::Dark { row } | RowFault::Overflow { row } | RowFault::Partial { row, .. } => {
                 format!("row {} (1-based)", first + row + 1)
             }
         }
@@ -543,6 +552,10 @@ impl RowFault {
                 format!("{value} is not a finite number; every value must be finite")
             }
             RowFault::Dark { .. } => DARK_ROW.to_owned(),
+            RowFault::Overflow { .. } => format!(
+                "its values are so large that the estimates overflow a float64; \
+                 every |value| must stay well below {OVERFLOW_SCALE:e} / samples"
+            ),
             RowFault::Partial { values, .. } => {
                 format!("{values} values: fewer than a row's samples, the rows are cut short")
             }

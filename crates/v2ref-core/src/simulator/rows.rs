@@ -194,7 +194,10 @@ impl Model {
         }
         // The spectrum's tables on the whole pool, not by the first
         // coefficient block while the others wait.
-        crate::montecarlo::in_pool(size.threads, || spectrum.tabulate());
+        crate::montecarlo::in_pool(size.threads, || {
+            spectrum.tabulate();
+            Ok(())
+        })?;
         let sequence = match layout {
             Layout::Named(t) if t.layout == RowLayout::Observation => {
                 let shape = observation_shape(&setup, t, size.scans)?;
@@ -392,11 +395,7 @@ impl Rows<'_> {
     pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) {
         let n = self.samples();
         let first = u * ROWS_PER_UNIT;
-        let every = crate::cancel::stride(n) as u64;
         for s in first..first + self.unit_rows(u) {
-            if (s - first) % every == 0 {
-                crate::cancel::checkpoint();
-            }
             let start = out.len();
             out.resize(start + n, 0.0);
             let row = &mut out[start..];
@@ -459,13 +458,13 @@ impl Rows<'_> {
     /// Hands every row to `sink` in row order, `batch` units at a time
     /// (generated in parallel on `threads` threads, so memory stays at
     /// about `batch · ROWS_PER_UNIT · N` values); stops at the first error
-    /// of `sink`.
-    pub fn stream<E>(
+    /// of `sink`, or of the runner (a cancelled run: [`run_unit_range`]).
+    pub fn stream(
         &self,
         threads: usize,
         batch: u64,
-        mut sink: impl FnMut(&[f64]) -> std::result::Result<(), E>,
-    ) -> std::result::Result<(), E> {
+        mut sink: impl FnMut(&[f64]) -> Result<()>,
+    ) -> Result<()> {
         let batch = batch.max(1);
         let mut first = 0;
         while first < self.units() {
@@ -475,7 +474,7 @@ impl Rows<'_> {
                 let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
                 self.fill_unit(u, rng, &mut rows);
                 rows
-            });
+            })?;
             for block in blocks {
                 sink(&block)?;
             }
