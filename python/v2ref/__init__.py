@@ -1175,6 +1175,8 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     args = _plan_arguments(bound.arguments)
     for k in ("oifits", "observing", "force"):
         del args[k]
+    if keywords.get("instrument") is not None:
+        args["instrument"] = (_word("instrument", keywords["instrument"]), sorted(keywords))
     path, text = _target_list(targets)
     return _v2ref.plan_targets(path, text, throughput, **args)
 

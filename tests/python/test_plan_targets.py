@@ -87,3 +87,26 @@ def test_bad_lists_and_keywords_are_refused_by_name():
         v2ref.plan_targets(ROWS, no_such_keyword=1, **SHARED)
     with pytest.raises(ValueError, match=r"^targets\[0\]\['name'\]"):
         v2ref.plan_targets([{"name": "a\nb"}], **SHARED)
+
+
+@pytest.mark.needs_bin
+def test_an_instrument_preset_fills_what_was_not_given_as_the_cli(tmp_path):
+    # The preset sets the band, apertures, throughput and detector; the
+    # read noise given overrides it; the rows' magnitudes take the preset's
+    # throughput (none given), as `plan --targets --instrument` does.
+    path = tmp_path / "list.csv"
+    path.write_text("name,magnitude,band\nalpha,4,H\n")
+    keywords = dict(fringe_hz=[500.0], stroke_um=[32.0], scans=50, target_sigma_v2=1e-2, seed=7)
+    rows = v2ref.plan_targets(path, instrument="vlti-pionier", read_noise=2.5, **keywords)
+    out = subprocess.run(
+        [str(release_binary()), "plan", "--targets", str(path), "--instrument", "vlti-pionier",
+         "--read-noise", "2.5", "--fringe-hz", "500", "--stroke-um", "32", "--scans", "50",
+         "--target-sigma-v2", "1e-2", "--seed", "7", "--quiet"],
+        capture_output=True, text=True, check=True,
+    ).stdout
+    (cli,) = list(csv.DictReader(io.StringIO(out)))
+    assert rows[0]["status"] == "ok", rows[0]["reason"]
+    for k in ("time_s", "scans", "sigma_v2", "photon_rate_per_s"):
+        assert _number(cli[k]) == rows[0][k], k
+    without = v2ref.plan_targets(path, instrument="vlti-pionier", **keywords)
+    assert without[0]["sigma_v2"] != rows[0]["sigma_v2"], "the read noise given counts"

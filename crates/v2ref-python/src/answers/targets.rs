@@ -14,7 +14,7 @@ use std::path::PathBuf;
 /// when the shared keywords have no magnitude. Returns the table's rows as
 /// dicts (the CSV's columns); rows in error are marked, not raised.
 #[pyfunction]
-#[pyo3(signature = (path, text, throughput, physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, bias="counts", verify_observations=None, magnitude=None, frame_rate_hz=None))]
+#[pyo3(signature = (path, text, throughput, physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, bias="counts", verify_observations=None, magnitude=None, frame_rate_hz=None, instrument=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan_targets(
     py: Python<'_>,
@@ -37,6 +37,7 @@ pub(super) fn plan_targets(
     verify_observations: Option<u64>,
     magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
+    instrument: Option<(String, Vec<String>)>,
 ) -> PyResult<PyObject> {
     let rows = match (path, text) {
         (Some(path), None) => ok(crate::formats::targets_csv::read_targets(&path))?,
@@ -47,17 +48,25 @@ pub(super) fn plan_targets(
             ))
         }
     };
-    let (physical, request) = request(
+    let (mut physical, mut request) = request(
         physical,
         (samples_per_fringe, photon_rate_per_s, dead_time_s),
         (fringe_hz, stroke_um),
         (target_sigma_v2, time_budget_s, scans, seed),
         (diameter_err_mas, bias, magnitude, frame_rate_hz),
     )?;
+    // As `plan --targets --instrument`: the preset fills what was not
+    // given, and a row's magnitude takes its throughput when none was.
+    let mut preset_throughput = None;
+    if let Some((name, given)) = instrument {
+        let preset = ok(crate::plan::instrument::instrument(&name))?;
+        preset.apply(&mut physical, &mut request, &|key| given.iter().any(|g| g == key));
+        preset_throughput = Some(preset.throughput);
+    }
     let shared = SharedPlan {
         physical,
         request,
-        throughput,
+        throughput: throughput.or(preset_throughput),
         verify_observations,
     };
     let table = interruptible(py, |tick| {
