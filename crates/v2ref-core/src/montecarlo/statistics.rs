@@ -119,10 +119,14 @@ impl RunningStats {
     }
 
     /// Standard error of [`std`](Self::std) by the delta method,
-    /// `se(s²)/(2s)`; zero when `s = 0`.
+    /// `se(s²)/(2s)`; zero when `s = 0`; NaN below four values, as
+    /// [`stderr_variance`](Self::stderr_variance) (undefined, never a
+    /// finite number that would claim a precision).
     pub fn stderr_std(&self) -> f64 {
         let s = self.std();
-        if s > 0.0 {
+        if self.count < 4 {
+            f64::NAN
+        } else if s > 0.0 {
             self.stderr_variance() / (2.0 * s)
         } else {
             0.0
