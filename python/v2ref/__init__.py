@@ -1118,6 +1118,10 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         (``oifits``, ``force``, ``target_name``, ``ra_deg`` ... ``site_height_m``):
         shared by every row, a row's cell overriding it. ``throughput``
         (without a shared ``magnitude``) is the rows' magnitudes'.
+    client : dask.distributed.Client, optional
+        Plans each row as a task on this Dask cluster (``pip install
+        v2ref[dask]``); the table is the one-process table, bit for bit
+        (``docs/dask.md``). A path is read here, not on the workers.
 
     Returns
     -------
@@ -1133,6 +1137,7 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         on its place or the other rows; ``astropy.table.Table(result)``
         makes a table of it.
     """
+    client = keywords.pop("client", None)
     for k in _NOT_FOR_TARGETS:
         if k in keywords:
             raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")
@@ -1148,6 +1153,10 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     for k in ("oifits", "observing", "force"):
         del args[k]
     path, text = _target_list(targets)
+    if client is not None:
+        from . import dask as _dask
+
+        return _dask._plan_targets(path, text, throughput, args, client)
     return _v2ref.plan_targets(path, text, throughput, **args)
 
 
