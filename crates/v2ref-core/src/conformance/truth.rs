@@ -50,7 +50,8 @@ use crate::formalism::estimator::{
 use crate::montecarlo::{derive_seed, variance_stderr, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
-use crate::simulator::{Model, RowLayout, RowTiming};
+use crate::simulator::{Model, RowLayout, RowTiming, ROWS_PER_UNIT};
+use std::ops::Range;
 
 /// The size of a set and of its reference run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -177,15 +178,37 @@ pub fn truth_laid_out(
 /// Per window, per convention: the block moments of V1² and V2².
 type Reference = Vec<Vec<[BlockMoments; 2]>>;
 
+/// One work unit's statistics in the reference run: per window, per
+/// convention, of V1² and V2².
+pub type UnitStats = Vec<Vec<[RunningStats; 2]>>;
+
 /// The reference run: `size.reference_blocks` blocks of `rows_per_block`
-/// rows laid out as `layout` says.
+/// rows laid out as `layout` says, run unit by unit, then reduced.
 fn reference_run(
     model: &Model,
     windows: &[BinWindow],
     size: TruthSize,
-    (rows_per_block, layout): (u64, RowTiming),
+    blocks: (u64, RowTiming),
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Reference> {
+    let per_block = blocks.0.div_ceil(ROWS_PER_UNIT);
+    let all = 0..size.reference_blocks * per_block;
+    let units = reference_units(model, windows, size, blocks, all, progress)?;
+    Ok(reduce_reference(&units, per_block, windows.len()))
+}
+
+/// The statistics of the reference run's work units `range` (block `b`'s
+/// unit `u` is unit `b × units per block + u`), in order: the run split in
+/// ranges (one process or many) and reduced in unit order gives the same
+/// bits as [`reference_run`].
+pub fn reference_units(
+    model: &Model,
+    windows: &[BinWindow],
+    size: TruthSize,
+    (rows_per_block, layout): (u64, RowTiming),
+    range: Range<u64>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<UnitStats>> {
     let estimators = windows
         .iter()
         .map(|&w| {
@@ -195,12 +218,15 @@ fn reference_run(
                 .collect::<Result<Vec<_>>>()
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows.len()];
+    let per_block = rows_per_block.div_ceil(ROWS_PER_UNIT).max(1);
     let n = model.samples();
-    for b in 0..size.reference_blocks {
+    let mut out = Vec::with_capacity((range.end - range.start) as usize);
+    for b in range.start / per_block..range.end.div_ceil(per_block) {
+        let first = range.start.max(b * per_block) - b * per_block;
+        let last = range.end.min((b + 1) * per_block) - b * per_block;
         let seed = reference_seed(size.seed, b);
         let rows = model.rows_in(layout, rows_per_block, seed, size.threads)?;
-        let parts = rows.map_units(0..rows.units(), size.threads, |_, block| {
+        out.extend(rows.map_units(first..last, size.threads, |_, block| {
             let mut s =
                 vec![vec![[RunningStats::default(); 2]; BIAS_CONVENTIONS.len()]; windows.len()];
             let mut steps = Steps::new(progress, n);
@@ -216,12 +242,21 @@ fn reference_run(
             }
             steps.finish()?;
             Ok(s)
-        })?;
+        })?);
+    }
+    Ok(out)
+}
+
+/// The block moments from every unit's statistics, in unit order,
+/// `per_block` units a block.
+fn reduce_reference(units: &[UnitStats], per_block: u64, windows: usize) -> Reference {
+    let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows];
+    for parts in units.chunks(per_block.max(1) as usize) {
         for (wi, aw) in acc.iter_mut().enumerate() {
             for (ci, ac) in aw.iter_mut().enumerate() {
                 for (k, moments) in ac.iter_mut().enumerate() {
                     let mut total = RunningStats::default();
-                    for p in &parts {
+                    for p in parts {
                         total.merge(&p[wi][ci][k]);
                     }
                     moments.means.push(total.mean);
@@ -231,7 +266,7 @@ fn reference_run(
             }
         }
     }
-    Ok(acc)
+    acc
 }
 
 fn window_truth(
@@ -385,4 +420,40 @@ fn block_truth(
         set_stderr_var: Some(blocks.vars.std()),
         stderr_dof: Some(b - 1),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulator::Inputs;
+
+    #[test]
+    fn the_reference_run_in_ranges_of_units_reduces_to_the_same_bits() {
+        let model = Model::new(&Inputs {
+            samples: 32,
+            ..Inputs::default()
+        })
+        .unwrap();
+        let windows = usable_windows(&model);
+        // 3 blocks of 3 units (the last one short): ranges cut inside blocks.
+        let size = TruthSize {
+            rows: 2 * ROWS_PER_UNIT + 5,
+            seed: 11,
+            reference_blocks: 3,
+            threads: 1,
+        };
+        let blocks = (size.rows, RowLayout::Sequences.into());
+        let whole = reference_run(&model, &windows, size, blocks, &|_| {}).unwrap();
+        let mut units = Vec::new();
+        for range in [0..2, 2..3, 3..7, 7..9] {
+            units.extend(reference_units(&model, &windows, size, blocks, range, &|_| {}).unwrap());
+        }
+        assert_eq!(units.len(), 9);
+        let split = reduce_reference(&units, 3, windows.len());
+        assert_eq!(format!("{split:?}"), format!("{whole:?}"));
+        // Power: another seed changes the bits.
+        let other = TruthSize { seed: 12, ..size };
+        let other = reference_run(&model, &windows, other, blocks, &|_| {}).unwrap();
+        assert_ne!(format!("{other:?}"), format!("{whole:?}"));
+    }
 }
