@@ -123,7 +123,7 @@ struct BlockMoments {
 
 /// The windows whose calibrator has a fringe (others are left out of the
 /// truth).
-fn usable_windows(model: &Model) -> Vec<BinWindow> {
+pub fn usable_windows(model: &Model) -> Vec<BinWindow> {
     BIN_WINDOWS
         .iter()
         .copied()
@@ -145,17 +145,55 @@ pub fn truth_laid_out(
     layout: impl Into<RowTiming>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Truth> {
-    // The truth of a set that could not be made is refused before its
-    // reference run (which would run without end on 2^40 rows).
+    let layout = layout.into();
+    let units = truth_unit_count(model, size)?;
+    let stats = truth_units(model, size, layout, 0..units, progress)?;
+    truth_from_units(model, size, &stats)
+}
+
+/// The work units of the truth's reference run (blocks × units a block);
+/// refuses, before any run, the truth of a set that could not be made
+/// (its reference run would run without end on 2^40 rows).
+pub fn truth_unit_count(model: &Model, size: TruthSize) -> Result<u64> {
     crate::bounds::check_set_size(size.rows, model.samples(), size.reference_blocks)?;
+    let piston = model.inputs.piston.is_some();
+    let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
+    Ok(size.reference_blocks * rows_per_block.div_ceil(ROWS_PER_UNIT))
+}
+
+/// The statistics of the truth's reference-run units `range` (within
+/// `0..truth_unit_count`), as [`reference_units`].
+pub fn truth_units(
+    model: &Model,
+    size: TruthSize,
+    layout: RowTiming,
+    range: Range<u64>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<UnitStats>> {
+    let piston = model.inputs.piston.is_some();
+    let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
+    let blocks = (rows_per_block, layout);
+    reference_units(model, &usable_windows(model), size, blocks, range, progress)
+}
+
+/// The truth from the statistics of every unit of its reference run, in
+/// unit order ([`truth_units`], in one range or many).
+pub fn truth_from_units(model: &Model, size: TruthSize, units: &[UnitStats]) -> Result<Truth> {
+    let count = truth_unit_count(model, size)?;
+    let windows = usable_windows(model);
+    if units.len() as u64 != count || units.iter().any(|u| u.len() != windows.len()) {
+        return Err(crate::error::Error::Invalid {
+            param: "partial",
+            reason: format!("not the {count} units of this truth's reference run"),
+        });
+    }
     let obs = &model.observation;
     let wb = wide_band(obs);
     let v2 = model.inputs.visibility * model.inputs.visibility;
-    let windows = usable_windows(model);
     let piston = model.inputs.piston.is_some();
     let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
-    let blocks = (rows_per_block, layout.into());
-    let reference = reference_run(model, &windows, size, blocks, progress)?;
+    let per_block = rows_per_block.div_ceil(ROWS_PER_UNIT);
+    let reference = reduce_reference(units, per_block, windows.len());
     let mut out = Vec::new();
     for (w, blocks) in windows.iter().zip(&reference) {
         out.push(window_truth(model, *w, blocks, size, piston)?);
@@ -182,25 +220,10 @@ type Reference = Vec<Vec<[BlockMoments; 2]>>;
 /// convention, of V1² and V2².
 pub type UnitStats = Vec<Vec<[RunningStats; 2]>>;
 
-/// The reference run: `size.reference_blocks` blocks of `rows_per_block`
-/// rows laid out as `layout` says, run unit by unit, then reduced.
-fn reference_run(
-    model: &Model,
-    windows: &[BinWindow],
-    size: TruthSize,
-    blocks: (u64, RowTiming),
-    progress: &(dyn Fn(u64) + Sync),
-) -> Result<Reference> {
-    let per_block = blocks.0.div_ceil(ROWS_PER_UNIT);
-    let all = 0..size.reference_blocks * per_block;
-    let units = reference_units(model, windows, size, blocks, all, progress)?;
-    Ok(reduce_reference(&units, per_block, windows.len()))
-}
-
 /// The statistics of the reference run's work units `range` (block `b`'s
 /// unit `u` is unit `b × units per block + u`), in order: the run split in
 /// ranges (one process or many) and reduced in unit order gives the same
-/// bits as [`reference_run`].
+/// bits as the run in one range.
 pub fn reference_units(
     model: &Model,
     windows: &[BinWindow],
@@ -434,26 +457,25 @@ mod tests {
             ..Inputs::default()
         })
         .unwrap();
-        let windows = usable_windows(&model);
-        // 3 blocks of 3 units (the last one short): ranges cut inside blocks.
+        // 8 blocks of 3 units (the last one short): ranges cut inside blocks.
         let size = TruthSize {
             rows: 2 * ROWS_PER_UNIT + 5,
             seed: 11,
-            reference_blocks: 3,
+            reference_blocks: 8,
             threads: 1,
         };
-        let blocks = (size.rows, RowLayout::Sequences.into());
-        let whole = reference_run(&model, &windows, size, blocks, &|_| {}).unwrap();
+        let layout: RowTiming = RowLayout::Sequences.into();
+        let whole = truth(&model, size, &|_| {}).unwrap();
+        assert_eq!(truth_unit_count(&model, size).unwrap(), 24);
         let mut units = Vec::new();
-        for range in [0..2, 2..3, 3..7, 7..9] {
-            units.extend(reference_units(&model, &windows, size, blocks, range, &|_| {}).unwrap());
+        for range in [0..2, 2..3, 3..7, 7..24] {
+            units.extend(truth_units(&model, size, layout, range, &|_| {}).unwrap());
         }
-        assert_eq!(units.len(), 9);
-        let split = reduce_reference(&units, 3, windows.len());
+        let split = truth_from_units(&model, size, &units).unwrap();
         assert_eq!(format!("{split:?}"), format!("{whole:?}"));
+        assert!(truth_from_units(&model, size, &units[1..]).is_err());
         // Power: another seed changes the bits.
-        let other = TruthSize { seed: 12, ..size };
-        let other = reference_run(&model, &windows, other, blocks, &|_| {}).unwrap();
+        let other = truth(&model, TruthSize { seed: 12, ..size }, &|_| {}).unwrap();
         assert_ne!(format!("{other:?}"), format!("{whole:?}"));
     }
 }
