@@ -366,6 +366,8 @@ def synthesize(
     dead_time_s: float = 0.0,
     out: Optional[_PathLike] = None,
     force: bool = False,
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments, generated (scripts/regenerate.sh).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -439,6 +441,14 @@ def synthesize(
         device).
     {physical}
 
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (most of a set's cost with piston)
+        as ranges of work units on this Dask cluster; the rows are made
+        here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s.
+
     Returns
     -------
     (ndarray of shape (rows, N), dict)
@@ -457,21 +467,30 @@ def synthesize(
         # The sidecar names the file in text: bytes that are not UTF-8 as
         # U+FFFD, as the CLI writes them (the file itself keeps its bytes).
         npy = _os.fsencode(_os.path.basename(out)).decode("utf-8", "replace") + ".npy"
-    return _v2ref.synthesize(
-        physical,
+    size = (
         _uint("rows", rows),
         _uint("seed", seed),
         _v2ref.check_threads(_uint("threads", threads)),
         None if reference_blocks is None else _uint("reference_blocks", reference_blocks),
+    )
+    timing = (_word("layout", layout), _uint("observations", observations), _float("dead_time_s", dead_time_s))
+    truth_partials = None
+    if client is not None or checkpoint is not None:
+        from . import dask as _dask
+
+        truth_partials = _dask._partials("truth", (physical, *size, *timing), client, checkpoint)[0]
+    return _v2ref.synthesize(
+        physical,
+        *size,
         bool(keep_continuum),
         npy,
-        _word("layout", layout),
+        timing[0],
         # The CLI's writers: the set checked and locked, written whole or
         # not at all, an existing file replaced only with force=True.
         None if out is None else _os.fsdecode(out),
         _flag("force", force),
-        _uint("observations", observations),
-        _float("dead_time_s", dead_time_s),
+        *timing[1:],
+        truth_partials=truth_partials,
     )
 
 

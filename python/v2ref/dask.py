@@ -189,6 +189,18 @@ def _run_units(
     chunk_units: Optional[int] = None,
 ) -> Tuple[Any, int]:
     """``(answer, ranges computed)`` of ``command`` run in ranges of units."""
+    ordered, computed = _partials(command, args, client, checkpoint, chunk_units)
+    return _v2ref._units_reduce(command, args, ordered), computed
+
+
+def _partials(
+    command: str,
+    args: Tuple[Any, ...],
+    client: Any = None,
+    checkpoint: Any = None,
+    chunk_units: Optional[int] = None,
+) -> Tuple[List[bytes], int]:
+    """``(partial results in unit order, ranges computed)`` of ``command``."""
     units, key, size = _v2ref._units_count(command, args)
     chunk = _chunk_units(units, client, chunk_units)
     store = _Checkpoint(checkpoint, command, key, size) if checkpoint is not None else None
@@ -204,8 +216,7 @@ def _run_units(
     finally:
         if store is not None:
             store.close()
-    ordered = [results[r] for r in sorted(results)]
-    return _v2ref._units_reduce(command, args, ordered), len(todo)
+    return [results[r] for r in sorted(results)], len(todo)
 
 
 def _compute(command: str, args: Tuple[Any, ...], key: str, todo: List[Tuple[int, int]], client: Any):

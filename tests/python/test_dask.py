@@ -203,3 +203,17 @@ def test_plan_targets_on_two_workers_gives_the_one_process_table(client, tmp_pat
     # Power: another shared seed changes the planned rows' numbers.
     other = v2ref.plan_targets(TARGET_ROWS, **{**TARGETS_SHARED, "seed": 8}, client=client)
     assert bits(other) != bits(one)
+
+
+def test_synthesize_truth_on_two_workers_gives_the_one_process_set(client, monkeypatch):
+    # 2 blocks' worth of rows: 8 reference blocks of 2 units (the truth's
+    # reference run, run as 4-unit ranges here), rows made in the caller.
+    kw = dict(rows=8192 + 100, samples=32, seed=4, threads=1)
+    data, sidecar = v2ref.synthesize(**kw)
+    real = v2dask._partials
+    monkeypatch.setattr(v2dask, "_partials", lambda *a: real(*a, chunk_units=4))
+    on_cluster = v2ref.synthesize(**kw, client=client)
+    assert on_cluster[0].tobytes() == data.tobytes()
+    assert bits(on_cluster[1]) == bits(sidecar)  # the truth, every field
+    other = v2ref.synthesize(**{**kw, "seed": 5}, client=client)
+    assert bits(other[1]["truth"]) != bits(sidecar["truth"])  # power
