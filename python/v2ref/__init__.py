@@ -368,6 +368,8 @@ def synthesize(
     dead_time_s: float = 0.0,
     out: Optional[_PathLike] = None,
     force: bool = False,
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -440,6 +442,14 @@ def synthesize(
         device).
     {physical}
 
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (most of a set's cost with piston)
+        as ranges of work units on this Dask cluster; the rows are made
+        here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s.
+
     Returns
     -------
     (ndarray of shape (rows, N), dict)
@@ -458,21 +468,30 @@ def synthesize(
         # The sidecar names the file in text: bytes that are not UTF-8 as
         # U+FFFD, as the CLI writes them (the file itself keeps its bytes).
         npy = _os.fsencode(_os.path.basename(out)).decode("utf-8", "replace") + ".npy"
-    return _v2ref.synthesize(
-        physical,
+    size = (
         _uint("rows", rows),
         _uint("seed", seed),
         _v2ref.check_threads(_uint("threads", threads)),
         None if reference_blocks is None else _uint("reference_blocks", reference_blocks),
+    )
+    timing = (_word("layout", layout), _uint("observations", observations), _float("dead_time_s", dead_time_s))
+    truth_partials = None
+    if client is not None or checkpoint is not None:
+        from . import dask as _dask
+
+        truth_partials = _dask._partials("truth", (physical, *size, *timing), client, checkpoint)[0]
+    return _v2ref.synthesize(
+        physical,
+        *size,
         bool(keep_continuum),
         npy,
-        _word("layout", layout),
+        timing[0],
         # The CLI's writers: the set checked and locked, written whole or
         # not at all, an existing file replaced only with force=True.
         None if out is None else _os.fsdecode(out),
         _flag("force", force),
-        _uint("observations", observations),
-        _float("dead_time_s", dead_time_s),
+        *timing[1:],
+        truth_partials=truth_partials,
     )
 
 
@@ -1146,6 +1165,10 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         (``oifits``, ``force``, ``target_name``, ``ra_deg`` ... ``site_height_m``):
         shared by every row, a row's cell overriding it. ``throughput``
         (without a shared ``magnitude``) is the rows' magnitudes'.
+    client : dask.distributed.Client, optional
+        Plans each row as a task on this Dask cluster (``pip install
+        v2ref[dask]``); the table is the one-process table, bit for bit
+        (``docs/dask.md``). A path is read here, not on the workers.
 
     Returns
     -------
@@ -1161,6 +1184,7 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         on its place or the other rows; ``astropy.table.Table(result)``
         makes a table of it.
     """
+    client = keywords.pop("client", None)
     for k in _NOT_FOR_TARGETS:
         if k in keywords:
             raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")
@@ -1178,6 +1202,10 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     if keywords.get("instrument") is not None:
         args["instrument"] = (_word("instrument", keywords["instrument"]), sorted(keywords))
     path, text = _target_list(targets)
+    if client is not None:
+        from . import dask as _dask
+
+        return _dask._plan_targets(path, text, throughput, args, client)
     return _v2ref.plan_targets(path, text, throughput, **args)
 
 

@@ -122,7 +122,7 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
         dimensionless): the columns of ``v2ref estimate``.
     """
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -241,6 +241,14 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         to 64.
     reference : str, default 'mean'
         Where the fringe packet sits in each scan: centre, mean or absolute.
+
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (most of a set's cost with piston)
+        as ranges of work units on this Dask cluster; the rows are made
+        here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s.
 
     Returns
     -------
@@ -790,6 +798,10 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         (``oifits``, ``force``, ``target_name``, ``ra_deg`` ... ``site_height_m``):
         shared by every row, a row's cell overriding it. ``throughput``
         (without a shared ``magnitude``) is the rows' magnitudes'.
+    client : dask.distributed.Client, optional
+        Plans each row as a task on this Dask cluster (``pip install
+        v2ref[dask]``); the table is the one-process table, bit for bit
+        (``docs/dask.md``). A path is read here, not on the workers.
 
     Returns
     -------

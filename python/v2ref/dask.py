@@ -189,6 +189,18 @@ def _run_units(
     chunk_units: Optional[int] = None,
 ) -> Tuple[Any, int]:
     """``(answer, ranges computed)`` of ``command`` run in ranges of units."""
+    ordered, computed = _partials(command, args, client, checkpoint, chunk_units)
+    return _v2ref._units_reduce(command, args, ordered), computed
+
+
+def _partials(
+    command: str,
+    args: Tuple[Any, ...],
+    client: Any = None,
+    checkpoint: Any = None,
+    chunk_units: Optional[int] = None,
+) -> Tuple[List[bytes], int]:
+    """``(partial results in unit order, ranges computed)`` of ``command``."""
     units, key, size = _v2ref._units_count(command, args)
     chunk = _chunk_units(units, client, chunk_units)
     store = _Checkpoint(checkpoint, command, key, size) if checkpoint is not None else None
@@ -204,8 +216,7 @@ def _run_units(
     finally:
         if store is not None:
             store.close()
-    ordered = [results[r] for r in sorted(results)]
-    return _v2ref._units_reduce(command, args, ordered), len(todo)
+    return [results[r] for r in sorted(results)], len(todo)
 
 
 def _compute(command: str, args: Tuple[Any, ...], key: str, todo: List[Tuple[int, int]], client: Any):
@@ -241,3 +252,36 @@ def _compute(command: str, args: Tuple[Any, ...], key: str, todo: List[Tuple[int
         pending = [f for f in futures if not f.done()]
         if pending:
             client.cancel(pending)
+
+
+def _target_rows(text: str, throughput: Any, args: Dict[str, Any], start: int, end: int) -> List[Dict[str, Any]]:
+    """A task: the table rows of the list's rows ``start..end`` (runs on a worker)."""
+    return _v2ref.plan_targets(None, text, throughput, **args, rows=(start, end))
+
+
+def _list_text(path: str) -> str:
+    """The text of a target list file, read here (the workers may not see
+    the path); the extension has checked it is a regular file within the
+    size limit. Read as the extension reads it: UTF-8, line ends kept."""
+    flags = _os.O_RDONLY | getattr(_os, "O_NONBLOCK", 0) | getattr(_os, "O_CLOEXEC", 0)
+    fd = _os.open(path, flags)
+    with _os.fdopen(fd, "r", encoding="utf-8", newline="") as f:
+        if not _stat.S_ISREG(_os.fstat(fd).st_mode):
+            raise ValueError(f"targets: {path!r} is not a regular file")
+        return f.read()
+
+
+def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any) -> List[Dict[str, Any]]:
+    """``plan_targets`` with each row a Dask task: every row is planned
+    alone (its seed keyed by its content), so the rows joined in order are
+    the one-process table, bit for bit."""
+    rows = _v2ref._targets_count(path, text)
+    if path is not None:
+        text = _list_text(path)
+        if _v2ref._targets_count(None, text) != rows:
+            raise ValueError(f"targets: {path!r} changed while it was read")
+    futures = [
+        client.submit(_target_rows, text, throughput, args, i, i + 1, pure=True, retries=RETRIES)
+        for i in range(rows)
+    ]
+    return [row for part in client.gather(futures) for row in part]

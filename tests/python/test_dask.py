@@ -175,3 +175,45 @@ def test_bad_units_arguments_are_value_errors(tmp_path):
     assert not (tmp_path / "ck").exists()
     with pytest.raises(ValueError, match="command"):
         v2ref._v2ref._units_count("bias", ())
+
+
+#: A short plan of bright H-band targets (as tests/python/test_plan_targets.py).
+TARGETS_SHARED = dict(
+    wavelength_um=1.65, bandwidth_nm=300.0, fringe_hz=[500.0], stroke_um=[32.0],
+    scans=50, aperture_m=1.8, target_sigma_v2=1e-2, seed=7, throughput=0.01, threads=1,
+)
+TARGET_ROWS = [
+    {"name": "alpha", "magnitude": 5.0, "band": "H", "diameter_mas": 1.0, "ra_deg": 10.5, "dec_deg": -20.0},
+    {"name": "beta", "magnitude": "5x", "band": "H"},
+    {"name": "gamma", "magnitude": 6.0, "band": "h", "diameter_mas": None},
+]
+
+
+def test_plan_targets_on_two_workers_gives_the_one_process_table(client, tmp_path):
+    one = v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED)
+    assert [r["status"] for r in one] == ["ok", "error", "ok"]
+    on_cluster = v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED, client=client)
+    assert bits(on_cluster) == bits(one)  # every field of every row, in order
+    # A file is read by the caller (its lines kept): the same table.
+    path = tmp_path / "list.csv"
+    path.write_text("# a comment\nname,magnitude,band\nalpha,5,H\r\n\ngamma,6,h\n")
+    from_file = v2ref.plan_targets(path, **TARGETS_SHARED)
+    assert bits(v2ref.plan_targets(path, **TARGETS_SHARED, client=client)) == bits(from_file)
+    assert [r["line"] for r in from_file] == [3, 5]
+    # Power: another shared seed changes the planned rows' numbers.
+    other = v2ref.plan_targets(TARGET_ROWS, **{**TARGETS_SHARED, "seed": 8}, client=client)
+    assert bits(other) != bits(one)
+
+
+def test_synthesize_truth_on_two_workers_gives_the_one_process_set(client, monkeypatch):
+    # 2 blocks' worth of rows: 8 reference blocks of 2 units (the truth's
+    # reference run, run as 4-unit ranges here), rows made in the caller.
+    kw = dict(rows=8192 + 100, samples=32, seed=4, threads=1)
+    data, sidecar = v2ref.synthesize(**kw)
+    real = v2dask._partials
+    monkeypatch.setattr(v2dask, "_partials", lambda *a: real(*a, chunk_units=4))
+    on_cluster = v2ref.synthesize(**kw, client=client)
+    assert on_cluster[0].tobytes() == data.tobytes()
+    assert bits(on_cluster[1]) == bits(sidecar)  # the truth, every field
+    other = v2ref.synthesize(**{**kw, "seed": 5}, client=client)
+    assert bits(other[1]["truth"]) != bits(sidecar["truth"])  # power

@@ -5,7 +5,7 @@
 //! same code ([`crate::answers::simulator::simulate_job`]).
 
 use crate::answers::paper::piston_job;
-use crate::answers::simulator::{simulate_answer, simulate_job};
+use crate::answers::simulator::{simulate_answer, simulate_job, truth_job};
 use crate::values::to_py;
 use crate::{interruptible, ok};
 use pyo3::exceptions::PyValueError;
@@ -13,15 +13,17 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use v2ref_commands::units::piston::PistonJob;
 use v2ref_commands::units::simulate::SimulateJob;
+use v2ref_commands::units::truth::TruthJob;
 use v2ref_commands::units::{Partial, UnitJob, HEADER_BYTES};
 
 /// The commands that run in ranges of units.
-const COMMANDS: &str = "simulate, piston";
+const COMMANDS: &str = "simulate, piston, truth";
 
 /// A command's job.
 enum Job {
     Simulate(SimulateJob),
     Piston(PistonJob),
+    Truth(TruthJob),
 }
 
 /// The job of `command` from its binding's arguments.
@@ -63,6 +65,34 @@ fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<Job> {
             )?;
             Ok(Job::Piston(job))
         }
+        "truth" => {
+            // synthesize's arguments that the truth depends on.
+            let (
+                physical,
+                rows,
+                seed,
+                threads,
+                reference_blocks,
+                layout,
+                observations,
+                dead_time_s,
+            ): (
+                Bound<'_, PyDict>,
+                u64,
+                u64,
+                usize,
+                Option<u64>,
+                String,
+                u64,
+                f64,
+            ) = args.extract()?;
+            let job = truth_job(
+                &physical,
+                (rows, seed, threads, reference_blocks),
+                (&layout, observations, dead_time_s),
+            )?;
+            Ok(Job::Truth(job))
+        }
         _ => Err(PyValueError::new_err(format!(
             "command: {command:?} does not run in units (accepted: {COMMANDS})"
         ))),
@@ -74,6 +104,7 @@ impl Job {
         match self {
             Job::Simulate(j) => j.key(),
             Job::Piston(j) => j.key(),
+            Job::Truth(j) => j.key(),
         }
     }
 
@@ -81,6 +112,7 @@ impl Job {
         match self {
             Job::Simulate(j) => j.shape(),
             Job::Piston(j) => j.shape(),
+            Job::Truth(j) => j.shape(),
         }
     }
 
@@ -92,6 +124,7 @@ impl Job {
         match self {
             Job::Simulate(j) => j.run_range(range, progress),
             Job::Piston(j) => j.run_range(range, progress),
+            Job::Truth(j) => j.run_range(range, progress),
         }
     }
 
@@ -104,6 +137,10 @@ impl Job {
             Job::Piston(j) => {
                 let report = interruptible(py, |_| j.reduce(partials))?;
                 to_py(py, &report)
+            }
+            Job::Truth(j) => {
+                let truth = interruptible(py, |_| j.reduce(partials))?;
+                to_py(py, &truth)
             }
         }
     }

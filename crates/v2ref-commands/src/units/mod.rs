@@ -13,6 +13,7 @@
 
 pub mod piston;
 pub mod simulate;
+pub mod truth;
 
 use crate::error::{Error, Result};
 use std::ops::Range;

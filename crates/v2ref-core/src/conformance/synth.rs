@@ -3,7 +3,7 @@
 //! Python collects them in an array), and the sidecar that states the
 //! truth is built here once.
 
-use crate::conformance::sidecar::{DataFiles, Sidecar, FORMAT};
+use crate::conformance::sidecar::{DataFiles, Sidecar, Truth, FORMAT};
 use crate::conformance::truth::{truth_laid_out, TruthSize};
 use crate::error::Result;
 use crate::simulator::{Model, RowTiming};
@@ -40,7 +40,6 @@ pub fn synthesize(
     sink: &mut dyn FnMut(&[f64]) -> Result<()>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Sidecar> {
-    let inputs = &model.inputs;
     let truth_size = TruthSize {
         rows: size.rows,
         seed: size.seed,
@@ -48,6 +47,20 @@ pub fn synthesize(
         threads: size.threads,
     };
     let truth = truth_laid_out(model, truth_size, size.layout, progress)?;
+    synthesize_with_truth(model, size, truth, (npy, csv), sink, progress)
+}
+
+/// [`synthesize`] with the set's truth already computed (its reference
+/// run split in ranges of units elsewhere: `v2ref_commands::units::truth`).
+pub fn synthesize_with_truth(
+    model: &Model,
+    size: &SetSize,
+    truth: Truth,
+    (npy, csv): (String, Option<String>),
+    sink: &mut dyn FnMut(&[f64]) -> Result<()>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Sidecar> {
+    let inputs = &model.inputs;
     let set = model.rows_in(size.layout, size.rows, size.seed, size.threads)?;
     let continuum = &model.signal.continuum;
     let mut shifted = Vec::new();

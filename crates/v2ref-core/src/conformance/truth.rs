@@ -50,7 +50,8 @@ use crate::formalism::estimator::{
 use crate::montecarlo::{derive_seed, variance_stderr, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
 use crate::noise::Formula;
-use crate::simulator::{Model, RowLayout, RowTiming};
+use crate::simulator::{Model, RowLayout, RowTiming, ROWS_PER_UNIT};
+use std::ops::Range;
 
 /// The size of a set and of its reference run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,7 +123,7 @@ struct BlockMoments {
 
 /// The windows whose calibrator has a fringe (others are left out of the
 /// truth).
-fn usable_windows(model: &Model) -> Vec<BinWindow> {
+pub fn usable_windows(model: &Model) -> Vec<BinWindow> {
     BIN_WINDOWS
         .iter()
         .copied()
@@ -144,17 +145,55 @@ pub fn truth_laid_out(
     layout: impl Into<RowTiming>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Truth> {
-    // The truth of a set that could not be made is refused before its
-    // reference run (which would run without end on 2^40 rows).
+    let layout = layout.into();
+    let units = truth_unit_count(model, size)?;
+    let stats = truth_units(model, size, layout, 0..units, progress)?;
+    truth_from_units(model, size, &stats)
+}
+
+/// The work units of the truth's reference run (blocks × units a block);
+/// refuses, before any run, the truth of a set that could not be made
+/// (its reference run would run without end on 2^40 rows).
+pub fn truth_unit_count(model: &Model, size: TruthSize) -> Result<u64> {
     crate::bounds::check_set_size(size.rows, model.samples(), size.reference_blocks)?;
+    let piston = model.inputs.piston.is_some();
+    let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
+    Ok(size.reference_blocks * rows_per_block.div_ceil(ROWS_PER_UNIT))
+}
+
+/// The statistics of the truth's reference-run units `range` (within
+/// `0..truth_unit_count`), as [`reference_units`].
+pub fn truth_units(
+    model: &Model,
+    size: TruthSize,
+    layout: RowTiming,
+    range: Range<u64>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<UnitStats>> {
+    let piston = model.inputs.piston.is_some();
+    let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
+    let blocks = (rows_per_block, layout);
+    reference_units(model, &usable_windows(model), size, blocks, range, progress)
+}
+
+/// The truth from the statistics of every unit of its reference run, in
+/// unit order ([`truth_units`], in one range or many).
+pub fn truth_from_units(model: &Model, size: TruthSize, units: &[UnitStats]) -> Result<Truth> {
+    let count = truth_unit_count(model, size)?;
+    let windows = usable_windows(model);
+    if units.len() as u64 != count || units.iter().any(|u| u.len() != windows.len()) {
+        return Err(crate::error::Error::Invalid {
+            param: "partial",
+            reason: format!("not the {count} units of this truth's reference run"),
+        });
+    }
     let obs = &model.observation;
     let wb = wide_band(obs);
     let v2 = model.inputs.visibility * model.inputs.visibility;
-    let windows = usable_windows(model);
     let piston = model.inputs.piston.is_some();
     let rows_per_block = reference_rows_per_block(size.rows, size.reference_blocks, piston);
-    let blocks = (rows_per_block, layout.into());
-    let reference = reference_run(model, &windows, size, blocks, progress)?;
+    let per_block = rows_per_block.div_ceil(ROWS_PER_UNIT);
+    let reference = reduce_reference(units, per_block, windows.len());
     let mut out = Vec::new();
     for (w, blocks) in windows.iter().zip(&reference) {
         out.push(window_truth(model, *w, blocks, size, piston)?);
@@ -177,15 +216,22 @@ pub fn truth_laid_out(
 /// Per window, per convention: the block moments of V1² and V2².
 type Reference = Vec<Vec<[BlockMoments; 2]>>;
 
-/// The reference run: `size.reference_blocks` blocks of `rows_per_block`
-/// rows laid out as `layout` says.
-fn reference_run(
+/// One work unit's statistics in the reference run: per window, per
+/// convention, of V1² and V2².
+pub type UnitStats = Vec<Vec<[RunningStats; 2]>>;
+
+/// The statistics of the reference run's work units `range` (block `b`'s
+/// unit `u` is unit `b × units per block + u`), in order: the run split in
+/// ranges (one process or many) and reduced in unit order gives the same
+/// bits as the run in one range.
+pub fn reference_units(
     model: &Model,
     windows: &[BinWindow],
     size: TruthSize,
     (rows_per_block, layout): (u64, RowTiming),
+    range: Range<u64>,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<Reference> {
+) -> Result<Vec<UnitStats>> {
     let estimators = windows
         .iter()
         .map(|&w| {
@@ -195,12 +241,15 @@ fn reference_run(
                 .collect::<Result<Vec<_>>>()
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows.len()];
+    let per_block = rows_per_block.div_ceil(ROWS_PER_UNIT).max(1);
     let n = model.samples();
-    for b in 0..size.reference_blocks {
+    let mut out = Vec::with_capacity((range.end - range.start) as usize);
+    for b in range.start / per_block..range.end.div_ceil(per_block) {
+        let first = range.start.max(b * per_block) - b * per_block;
+        let last = range.end.min((b + 1) * per_block) - b * per_block;
         let seed = reference_seed(size.seed, b);
         let rows = model.rows_in(layout, rows_per_block, seed, size.threads)?;
-        let parts = rows.map_units(0..rows.units(), size.threads, |_, block| {
+        out.extend(rows.map_units(first..last, size.threads, |_, block| {
             let mut s =
                 vec![vec![[RunningStats::default(); 2]; BIAS_CONVENTIONS.len()]; windows.len()];
             let mut steps = Steps::new(progress, n);
@@ -216,12 +265,21 @@ fn reference_run(
             }
             steps.finish()?;
             Ok(s)
-        })?;
+        })?);
+    }
+    Ok(out)
+}
+
+/// The block moments from every unit's statistics, in unit order,
+/// `per_block` units a block.
+fn reduce_reference(units: &[UnitStats], per_block: u64, windows: usize) -> Reference {
+    let mut acc: Reference = vec![vec![Default::default(); BIAS_CONVENTIONS.len()]; windows];
+    for parts in units.chunks(per_block.max(1) as usize) {
         for (wi, aw) in acc.iter_mut().enumerate() {
             for (ci, ac) in aw.iter_mut().enumerate() {
                 for (k, moments) in ac.iter_mut().enumerate() {
                     let mut total = RunningStats::default();
-                    for p in &parts {
+                    for p in parts {
                         total.merge(&p[wi][ci][k]);
                     }
                     moments.means.push(total.mean);
@@ -231,7 +289,7 @@ fn reference_run(
             }
         }
     }
-    Ok(acc)
+    acc
 }
 
 fn window_truth(
@@ -385,4 +443,39 @@ fn block_truth(
         set_stderr_var: Some(blocks.vars.std()),
         stderr_dof: Some(b - 1),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulator::Inputs;
+
+    #[test]
+    fn the_reference_run_in_ranges_of_units_reduces_to_the_same_bits() {
+        let model = Model::new(&Inputs {
+            samples: 32,
+            ..Inputs::default()
+        })
+        .unwrap();
+        // 8 blocks of 3 units (the last one short): ranges cut inside blocks.
+        let size = TruthSize {
+            rows: 2 * ROWS_PER_UNIT + 5,
+            seed: 11,
+            reference_blocks: 8,
+            threads: 1,
+        };
+        let layout: RowTiming = RowLayout::Sequences.into();
+        let whole = truth(&model, size, &|_| {}).unwrap();
+        assert_eq!(truth_unit_count(&model, size).unwrap(), 24);
+        let mut units = Vec::new();
+        for range in [0..2, 2..3, 3..7, 7..24] {
+            units.extend(truth_units(&model, size, layout, range, &|_| {}).unwrap());
+        }
+        let split = truth_from_units(&model, size, &units).unwrap();
+        assert_eq!(format!("{split:?}"), format!("{whole:?}"));
+        assert!(truth_from_units(&model, size, &units[1..]).is_err());
+        // Power: another seed changes the bits.
+        let other = truth(&model, TruthSize { seed: 12, ..size }, &|_| {}).unwrap();
+        assert_ne!(format!("{other:?}"), format!("{whole:?}"));
+    }
 }

@@ -21,6 +21,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
 use v2ref_commands::units::simulate::SimulateJob;
+use v2ref_commands::units::truth::TruthJob;
+use v2ref_commands::units::{Partial, UnitJob};
 
 use crate::commands::ESTIMATE_COLUMNS;
 
@@ -155,8 +157,10 @@ fn estimate_columns<'py>(py: Python<'py>, rows: &[RowEstimate]) -> PyResult<Boun
 /// `v2ref synth` writes them; `npy` is the data file name recorded. With
 /// `out`, also writes the set as `v2ref synth --out OUT` does
 /// ([`super::super::output::write_set`]).
+/// `truth_partials`: the partial results of the truth's reference run
+/// ([`TruthJob`], computed in ranges elsewhere, in unit order).
 #[pyfunction]
-#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force, observations=1, dead_time_s=0.0))]
+#[pyo3(signature = (physical, rows, seed, threads, reference_blocks, keep_continuum, npy, layout, out, force, observations=1, dead_time_s=0.0, truth_partials=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn synthesize<'py>(
     py: Python<'py>,
@@ -172,18 +176,14 @@ pub(super) fn synthesize<'py>(
     force: bool,
     observations: u64,
     dead_time_s: f64,
+    truth_partials: Option<Vec<Vec<u8>>>,
 ) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
-    let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
-    let layout = ok(crate::simulator::RowTiming::new(
-        layout,
-        observations,
-        dead_time_s,
-    ))?;
-    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
-    // None: sized by what the truth needs (`default_reference_blocks`).
-    let reference_blocks = reference_blocks.unwrap_or_else(|| {
-        crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
-    });
+    let job = truth_job(
+        physical,
+        (rows, seed, threads, reference_blocks),
+        (layout, observations, dead_time_s),
+    )?;
+    let (inputs, layout, reference_blocks) = (&job.inputs, job.layout, job.size.reference_blocks);
     ok(crate::bounds::check_set_size(
         rows,
         inputs.samples,
@@ -197,7 +197,7 @@ pub(super) fn synthesize<'py>(
             reference_blocks,
             inputs.piston.is_some(),
         );
-    let predicted = cost::synth(&inputs, (rows, reference_rows), threads, SetOutput::Memory);
+    let predicted = cost::synth(inputs, (rows, reference_rows), threads, SetOutput::Memory);
     warn_cost(py, "synthesize", &ok(predicted)?)?;
     let size = SetSize {
         rows,
@@ -208,13 +208,24 @@ pub(super) fn synthesize<'py>(
         layout,
     };
     let (data, sidecar) = interruptible(py, |tick| {
-        let model = Model::new(&inputs)?;
+        let model = Model::new(inputs)?;
         let mut data: Vec<f64> = Vec::with_capacity(rows as usize * n);
         let mut sink = |block: &[f64]| -> Result<()> {
             data.extend_from_slice(block);
             Ok(())
         };
-        let sidecar = synth_set::synthesize(&model, &size, (npy, None), &mut sink, tick)?;
+        let files = (npy, None);
+        let sidecar = match &truth_partials {
+            None => synth_set::synthesize(&model, &size, files, &mut sink, tick)?,
+            Some(bytes) => {
+                let partials = bytes
+                    .iter()
+                    .map(|b| Partial::from_bytes(b, job.key()))
+                    .collect::<Result<Vec<_>>>()?;
+                let truth = job.reduce(&partials)?;
+                synth_set::synthesize_with_truth(&model, &size, truth, files, &mut sink, tick)?
+            }
+        };
         Ok((data, sidecar))
     })?;
     if let Some(out) = out {
@@ -222,6 +233,36 @@ pub(super) fn synthesize<'py>(
     }
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
     Ok((array.into_any(), to_py(py, &sidecar)?))
+}
+
+/// The truth of `synthesize`'s set as ranges of units (`reference_blocks`
+/// None: sized by what the truth needs, `default_reference_blocks`).
+pub(crate) fn truth_job(
+    physical: &Bound<'_, PyDict>,
+    (rows, seed, threads, reference_blocks): (u64, u64, usize, Option<u64>),
+    (layout, observations, dead_time_s): (&str, u64, f64),
+) -> PyResult<TruthJob> {
+    let layout = ok(crate::simulator::RowLayout::from_name(layout))?;
+    let layout = ok(crate::simulator::RowTiming::new(
+        layout,
+        observations,
+        dead_time_s,
+    ))?;
+    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
+    let reference_blocks = reference_blocks.unwrap_or_else(|| {
+        crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
+    });
+    let size = crate::conformance::truth::TruthSize {
+        rows,
+        seed,
+        reference_blocks,
+        threads,
+    };
+    Ok(TruthJob {
+        inputs,
+        size,
+        layout,
+    })
 }
 
 /// Refuses, before anything is allocated, an answer of `rows` rows of `n`

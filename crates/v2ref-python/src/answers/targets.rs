@@ -4,17 +4,40 @@ use super::plan::{request, Magnitude3};
 use crate::commands::targets::{self, SharedPlan};
 use crate::values::to_py;
 use crate::{interruptible, ok};
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
+
+/// The rows of a list given as a CSV `path` or as CSV `text`.
+fn read_list(
+    path: Option<PathBuf>,
+    text: Option<String>,
+) -> PyResult<Vec<Result<targets::Target, targets::RowFault>>> {
+    match (path, text) {
+        (Some(path), None) => ok(crate::formats::targets_csv::read_targets(&path)),
+        (None, Some(text)) => ok(targets::parse_targets(&text)),
+        _ => Err(PyTypeError::new_err("targets: a path or rows")),
+    }
+}
+
+/// The number of rows of a list given as `plan_targets` takes it.
+#[pyfunction]
+#[pyo3(signature = (path, text))]
+pub(super) fn _targets_count(path: Option<PathBuf>, text: Option<String>) -> PyResult<usize> {
+    Ok(read_list(path, text)?.len())
+}
 
 /// `plan_targets`: `v2ref plan --targets` with `plan`'s keywords shared
 /// (less its files), the list given as a CSV `path` or as CSV `text` (the
 /// wrapper writes a Table or a list of dicts so); `throughput` is the rows'
 /// when the shared keywords have no magnitude. Returns the table's rows as
 /// dicts (the CSV's columns); rows in error are marked, not raised.
+/// `rows=(start, end)` plans only the list's rows `start..end` (a task of
+/// `v2ref.dask`: each row is planned alone, so a table cut in ranges and
+/// joined in order is the whole table's, bit for bit).
 #[pyfunction]
-#[pyo3(signature = (path, text, throughput, physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, bias="counts", verify_observations=None, magnitude=None, frame_rate_hz=None, instrument=None))]
+#[pyo3(signature = (path, text, throughput, physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, bias="counts", verify_observations=None, magnitude=None, frame_rate_hz=None, instrument=None, rows=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan_targets(
     py: Python<'_>,
@@ -38,16 +61,16 @@ pub(super) fn plan_targets(
     magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
     instrument: Option<(String, Vec<String>)>,
+    rows: Option<(usize, usize)>,
 ) -> PyResult<PyObject> {
-    let rows = match (path, text) {
-        (Some(path), None) => ok(crate::formats::targets_csv::read_targets(&path))?,
-        (None, Some(text)) => ok(targets::parse_targets(&text))?,
-        _ => {
-            return Err(pyo3::exceptions::PyTypeError::new_err(
-                "targets: a path or rows",
-            ))
-        }
-    };
+    let list = read_list(path, text)?;
+    let (start, end) = rows.unwrap_or((0, list.len()));
+    if start >= end || end > list.len() {
+        return Err(PyValueError::new_err(format!(
+            "rows: {start}..{end} is not a non-empty range of the {} rows",
+            list.len()
+        )));
+    }
     let (mut physical, mut request) = request(
         physical,
         (samples_per_fringe, photon_rate_per_s, dead_time_s),
@@ -70,7 +93,7 @@ pub(super) fn plan_targets(
         verify_observations,
     };
     let table = interruptible(py, |tick| {
-        targets::plan_targets(&shared, &rows, threads, tick)
+        targets::plan_targets(&shared, &list[start..end], threads, tick)
     })?;
     to_py(py, &table)
 }
