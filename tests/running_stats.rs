@@ -88,13 +88,22 @@ fn small_counts() {
     // Undefined statistics are NaN, never a finite number: below two values
     // every spread, below four the spread's standard errors (a constant
     // pair or triple does not have a zero error of s).
-    for values in [&[][..], &[7.0], &[5.0, 5.0], &[5.0, 5.0, 5.0], &[1.0, 2.0, 4.0]] {
+    for values in [
+        &[][..],
+        &[7.0],
+        &[5.0, 5.0],
+        &[5.0, 5.0, 5.0],
+        &[1.0, 2.0, 4.0],
+    ] {
         let r = RunningStats::from_values(values);
         assert!(r.stderr_std().is_nan(), "{values:?}");
         let s = r.summary();
         assert!(s.stderr_var.is_nan() && s.stderr_std.is_nan(), "{values:?}");
         if values.len() < 2 {
-            assert!(s.var.is_nan() && s.std.is_nan() && s.stderr_mean.is_nan(), "{values:?}");
+            assert!(
+                s.var.is_nan() && s.std.is_nan() && s.stderr_mean.is_nan(),
+                "{values:?}"
+            );
         }
     }
     // Two values: var = (a − b)²/2.
