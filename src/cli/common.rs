@@ -2,21 +2,10 @@
 //! (`bias`, `snr`, `simulate`, `piston`), the output (`--json`, `--quiet`)
 //! and the Monte Carlo runs (`--seed`, `--threads`).
 
-use super::flags::Flags;
+use super::flags::{choice, Flags};
 pub use super::flags::{LightArgs, ObservationArgs, ScanArgs, TurbulenceArgs};
 use v2ref_commands::parameters::Physical;
 use v2ref_core::formalism::estimator::BinWindow;
-use v2ref_core::words::Words;
-
-/// The parser of a choice of the library: its words ([`Words::WORDS`]),
-/// each with its help, offered as clap's possible values.
-pub fn choice<T: Words + Clone + Send + Sync>() -> impl clap::builder::TypedValueParser<Value = T> {
-    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser as _};
-    let values = T::WORDS
-        .iter()
-        .map(|w| PossibleValue::new(w.word).help(w.help));
-    PossibleValuesParser::new(values).try_map(|word| T::from_word("", &word))
-}
 
 /// How the interferogram is sampled, and the bins the estimators sum.
 #[derive(Debug, Clone, clap::Args)]

@@ -37,12 +37,12 @@ pub struct Args {
     #[arg(long)]
     counts: bool,
     /// Fourier bins the estimators sum.
-    #[arg(long, value_parser = super::common::choice::<BinWindow>(), default_value = "positive")]
+    #[arg(long, value_parser = super::flags::choice::<BinWindow>(), default_value = "positive")]
     bins: BinWindow,
     /// Where the photon bias takes the mean counts from.
     /// With piston (--fringe-hz) use counts: model subtracts the bias of
     /// the piston-free counts and is biased on V2² (tests/simulator.rs).
-    #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "model")]
+    #[arg(long, value_parser = super::flags::choice::<BiasConvention>(), default_value = "model")]
     bias: BiasConvention,
     /// `model` (the configuration's point source, noise-free) or a file of
     /// a calibrator's interferograms (same N and continuum convention):

@@ -6,12 +6,12 @@
 //! defaults by [`Physical::overlay`], the same route as Python's keyword
 //! arguments; a spectrum's file is read here, at the edge.
 
-use super::common::choice;
 use super::{count_usize, finite_f64};
 use serde::{Serialize, Serializer};
 use std::path::PathBuf;
 use v2ref_commands::parameters::{Physical, SourceKind};
 use v2ref_core::record::PistonReference;
+use v2ref_core::words::Words;
 use v2ref_core::Result;
 
 /// A group of physical flags: the inputs it was given set in `p`.
@@ -244,3 +244,13 @@ pub struct NoiseArgs {
 }
 
 impl Flags for NoiseArgs {}
+
+/// The parser of a choice of the library: its words ([`Words::WORDS`]),
+/// each with its help, offered as clap's possible values.
+pub fn choice<T: Words + Clone + Send + Sync>() -> impl clap::builder::TypedValueParser<Value = T> {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser as _};
+    let values = T::WORDS
+        .iter()
+        .map(|w| PossibleValue::new(w.word).help(w.help));
+    PossibleValuesParser::new(values).try_map(|word| T::from_word("", &word))
+}

@@ -26,7 +26,7 @@ pub struct Args {
     turbulence: TurbulenceArgs,
     /// The differential-piston spectrum: the two-aperture integral, or the
     /// three-slope model (Conan et al. 1995 asymptotes) of the same variance.
-    #[arg(long, value_parser = super::common::choice::<PistonPsdModel>(), default_value = "two-aperture")]
+    #[arg(long, value_parser = super::flags::choice::<PistonPsdModel>(), default_value = "two-aperture")]
     psd: PistonPsdModel,
     /// Wind direction from the baseline, degrees (two-aperture spectrum only;
     /// 0 = along the baseline).

@@ -96,7 +96,7 @@ pub struct Args {
     /// of the fringe, predicted and added to the bias). The predicted mean
     /// and the noise follow it. plan defaults to counts, estimate to model:
     /// the plan's text says which it used at every use.
-    #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "counts")]
+    #[arg(long, value_parser = super::flags::choice::<BiasConvention>(), default_value = "counts")]
     bias: BiasConvention,
     /// Also simulate the recommended observation (n consecutive scans
     /// through one atmosphere, photon and detector noise, --bias): the
@@ -214,7 +214,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     if args.targets.targets.is_some() {
-        return super::targets::run(&args, request(&args)?);
+        let flags = super::targets::PlanFlags {
+            throughput: (args.throughput).or(args.instrument.preset()?.map(|i| i.throughput)),
+            force: args.force,
+            verify_observations: args.verify.then_some(args.verify_observations),
+            quiet: args.quiet,
+            threads: args.threads,
+            json: args.json,
+        };
+        return super::targets::run(&args.targets, flags, request(&args)?);
     }
     if let Some(p) = &args.oifits {
         v2ref_oifits::check_fits_extension(p, "oifits")?;
@@ -367,17 +375,6 @@ fn setting(p: &PlanPoint, inputs: &PlanInputs) {
     );
 }
 
-/// The bias convention in words, saying which command defaults to which
-/// (`plan` to counts, `estimate` to model).
-pub(super) fn convention_words(b: BiasConvention) -> String {
-    let said = match b {
-        BiasConvention::Counts => "plan's default; estimate defaults to model",
-        BiasConvention::Model => "estimate's default; plan's is counts",
-        _ => "",
-    };
-    format!("--bias {} ({said})", b.name())
-}
-
 /// The terms of a point, one per line, on V².
 fn terms(p: &PlanPoint, confidence: f64) {
     outln!(
@@ -415,7 +412,7 @@ fn observation(p: &PlanPoint, inputs: &PlanInputs) {
     outln!(
         "  predicted mean V^2 {:.5e} with {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",
         o.predicted_mean,
-        convention_words(inputs.bias),
+        super::plan_verify::convention_words(inputs.bias),
         o.bias,
         o.bias_stderr,
         p.bias_piston,

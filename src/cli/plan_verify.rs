@@ -2,6 +2,7 @@
 //! promise.
 
 use v2ref_commands::plan::verify::Verification;
+use v2ref_core::conformance::estimate::BiasConvention;
 
 /// Prints the verification `v` (V² throughout).
 pub fn print(v: &Verification) {
@@ -19,7 +20,7 @@ pub fn print(v: &Verification) {
         v.observations,
         v.scans_per_observation,
         v.sequences,
-        super::plan::convention_words(v.bias),
+        convention_words(v.bias),
         v.seed
     );
     outln!(
@@ -47,4 +48,15 @@ pub fn print(v: &Verification) {
         v.achieved_bias,
         v.predicted_bias
     );
+}
+
+/// The bias convention in words, saying which command defaults to which
+/// (`plan` to counts, `estimate` to model).
+pub(super) fn convention_words(b: BiasConvention) -> String {
+    let said = match b {
+        BiasConvention::Counts => "plan's default; estimate defaults to model",
+        BiasConvention::Model => "estimate's default; plan's is counts",
+        _ => "",
+    };
+    format!("--bias {} ({said})", b.name())
 }

@@ -47,10 +47,10 @@ pub struct Args {
     #[arg(long)]
     accept_checksum_mismatch: bool,
     /// Window of bins the estimates sum.
-    #[arg(long, value_parser = super::common::choice::<BinWindow>(), default_value = "positive")]
+    #[arg(long, value_parser = super::flags::choice::<BinWindow>(), default_value = "positive")]
     bins: BinWindow,
     /// Bias convention the estimates subtract.
-    #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "model")]
+    #[arg(long, value_parser = super::flags::choice::<BiasConvention>(), default_value = "model")]
     bias: BiasConvention,
     /// Family-wise false-alarm rate of the verdict (Bonferroni over the
     /// tests made).

@@ -23,16 +23,16 @@ pub struct Args {
     #[command(flatten)]
     inputs: InputsArgs,
     /// Fourier bins the estimators sum.
-    #[arg(long, value_parser = super::common::choice::<BinWindow>(), default_value = "positive")]
+    #[arg(long, value_parser = super::flags::choice::<BinWindow>(), default_value = "positive")]
     bins: BinWindow,
     /// Where the photon bias takes the mean counts from: the model's
     /// noise-free counts, or each row's own counts.
     /// With piston (--fringe-hz) use counts: model subtracts the bias of
     /// the piston-free counts and is biased on V2² (tests/simulator.rs).
-    #[arg(long, value_parser = super::common::choice::<BiasConvention>(), default_value = "model")]
+    #[arg(long, value_parser = super::flags::choice::<BiasConvention>(), default_value = "model")]
     bias: BiasConvention,
     /// Formula of the subtracted bias: as printed in the paper, or exact.
-    #[arg(long, value_parser = super::common::choice::<Formula>(), default_value = "exact")]
+    #[arg(long, value_parser = super::flags::choice::<Formula>(), default_value = "exact")]
     formula: Formula,
     /// Number of noisy interferograms (rows).
     #[arg(long, value_parser = super::count_u64, default_value = "100000", allow_negative_numbers = true)]

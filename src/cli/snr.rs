@@ -18,7 +18,7 @@ pub struct NoiseArgs {
     #[command(flatten)]
     pub light: LightArgs,
     /// Formula: as printed in the paper, or exact.
-    #[arg(long, value_parser = super::common::choice::<Formula>(), default_value = "exact")]
+    #[arg(long, value_parser = super::flags::choice::<Formula>(), default_value = "exact")]
     pub formula: Formula,
 }
 

@@ -51,7 +51,7 @@ pub struct Args {
     /// start of its own piston sequence, at least 4 times longer and two
     /// correlation times B/v, so its drift is kept. The sidecar's `layout`
     /// records it.
-    #[arg(long, value_parser = super::common::choice::<RowLayout>(), default_value = "sequences")]
+    #[arg(long, value_parser = super::flags::choice::<RowLayout>(), default_value = "sequences")]
     layout: RowLayout,
     /// With --layout observation: independent observations (each its own
     /// atmosphere, keyed by its index), 1 to 1e6, dividing --rows; their

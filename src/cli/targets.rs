@@ -30,15 +30,29 @@ pub struct TargetsArgs {
     pub out: Option<PathBuf>,
 }
 
+/// What of `plan`'s other flags the target list reads.
+pub struct PlanFlags {
+    /// A row's magnitude is collected with this throughput (--throughput,
+    /// else the preset's).
+    pub throughput: Option<f64>,
+    /// --force.
+    pub force: bool,
+    /// Observations of --verify, if asked.
+    pub verify_observations: Option<u64>,
+    /// --quiet.
+    pub quiet: bool,
+    /// --threads.
+    pub threads: usize,
+    /// --json.
+    pub json: bool,
+}
+
 /// Runs `plan --targets` with `plan`'s flags `o` and the shared inputs
 /// `(physical, request)` they give.
-pub fn run(o: &super::plan::Args, shared: (Physical, PlanRequest)) -> Result<ExitCode> {
-    let args = &o.targets;
+pub fn run(args: &TargetsArgs, o: PlanFlags, shared: (Physical, PlanRequest)) -> Result<ExitCode> {
     let Some(list) = &args.targets else {
         return Ok(ExitCode::SUCCESS);
     };
-    // A row's magnitude is collected with --throughput, else the preset's.
-    let preset = o.instrument.preset()?.map(|i| i.throughput);
     let outputs: Vec<(&Path, &'static str)> =
         args.out.iter().map(|p| (p.as_path(), "out")).collect();
     let set = v2ref_files::atomic::set::OutputSet::begin(&outputs, o.force)?;
@@ -47,8 +61,8 @@ pub fn run(o: &super::plan::Args, shared: (Physical, PlanRequest)) -> Result<Exi
     let shared = SharedPlan {
         physical,
         request,
-        throughput: o.throughput.or(preset),
-        verify_observations: o.verify.then_some(o.verify_observations),
+        throughput: o.throughput,
+        verify_observations: o.verify_observations,
     };
     let bar = super::progress_bar(rows.len() as u64, o.quiet, "plan --targets");
     let table = targets::plan_targets(&shared, &rows, o.threads, &|k| bar.inc(k))?;

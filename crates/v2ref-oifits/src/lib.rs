@@ -45,12 +45,13 @@ pub(crate) mod setting;
 pub mod table;
 pub(crate) mod write;
 
+pub use observing::{iota, Site};
 pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
     min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
     truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
-pub use setting::{iota, Setting, Site};
+pub use setting::Setting;
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
 
 use std::path::Path;

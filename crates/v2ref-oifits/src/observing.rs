@@ -7,7 +7,6 @@
 //! before they existed: target `V2REF_MODEL` at RA = Dec = 0, 2000-01-01,
 //! IOTA.
 
-use super::setting::Site;
 use crate::error::in_range;
 use crate::{Error, Result};
 
@@ -36,7 +35,7 @@ pub fn known_site(name: &str) -> Option<Site> {
         height_m,
     };
     match name.to_ascii_lowercase().as_str() {
-        "iota" => Some(super::setting::iota()),
+        "iota" => Some(iota()),
         // Cerro Paranal: the position VLTI's raw data headers give.
         "vlti" => Some(site("VLTI", -70.404_986_88, -24.627_439_41, 2669.0)),
         // Mount Wilson: the position the CHARA Array publishes.
@@ -137,7 +136,7 @@ impl ObservingSpec {
                     reason: "a site's coordinates need its name (site) too".into(),
                 });
             }
-            return Ok(super::setting::iota());
+            return Ok(iota());
         };
         if given == 0 {
             return known_site(name).ok_or_else(|| Error::Invalid {
@@ -188,7 +187,7 @@ impl Default for ObservingContext {
             target_name: DEFAULT_TARGET.into(),
             radec_deg: (0.0, 0.0),
             date: DEFAULT_DATE.into(),
-            site: super::setting::iota(),
+            site: iota(),
         }
     }
 }
@@ -329,6 +328,53 @@ fn digits(s: &str) -> Option<i64> {
         return None;
     }
     s.parse().ok()
+}
+
+/// Where the array stands: a named site, geodetic (WGS84).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Site {
+    /// `ARRNAME` and `TELESCOP`.
+    pub name: String,
+    /// East longitude, degrees.
+    pub lon_deg: f64,
+    /// Geodetic latitude, degrees.
+    pub lat_deg: f64,
+    /// Height above the ellipsoid, m.
+    pub height_m: f64,
+}
+
+/// The site of the paper's instrument: IOTA (FLUOR's 0.45 m siderostats)
+/// on Mount Hopkins, Arizona (Traub et al. 2003, SPIE 4838, 45).
+pub fn iota() -> Site {
+    Site {
+        name: "IOTA".into(),
+        lon_deg: -110.885,
+        lat_deg: 31.6916,
+        height_m: 2564.0,
+    }
+}
+
+impl Site {
+    /// The site's geocentric position (ITRS), m: WGS84 ellipsoid.
+    pub fn geocentric_m(&self) -> [f64; 3] {
+        const A: f64 = 6_378_137.0;
+        const F: f64 = 1.0 / 298.257_223_563;
+        let e2 = F * (2.0 - F);
+        let (lat, lon) = (self.lat_deg.to_radians(), self.lon_deg.to_radians());
+        let n = A / (1.0 - e2 * lat.sin().powi(2)).sqrt();
+        let r = (n + self.height_m) * lat.cos();
+        [
+            r * lon.cos(),
+            r * lon.sin(),
+            (n * (1.0 - e2) + self.height_m) * lat.sin(),
+        ]
+    }
+
+    /// The local east unit vector in the geocentric frame.
+    pub fn east(&self) -> [f64; 3] {
+        let lon = self.lon_deg.to_radians();
+        [-lon.sin(), lon.cos(), 0.0]
+    }
 }
 
 #[cfg(test)]

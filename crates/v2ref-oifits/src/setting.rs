@@ -2,60 +2,13 @@
 //! effective wavelength and width of the band, the baseline, the time of
 //! each scan.
 
-use super::observing::{mjd_of_date, ObservingContext};
+use super::observing::{mjd_of_date, ObservingContext, Site};
 use crate::formalism::spectrum::Spectrum;
 use crate::simulator::Inputs;
 use crate::Result;
 
 /// Row spacing, s, where the configuration has no scan speed (no piston).
 pub const NOMINAL_ROW_S: f64 = 1.0;
-
-/// Where the array stands: a named site, geodetic (WGS84).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Site {
-    /// `ARRNAME` and `TELESCOP`.
-    pub name: String,
-    /// East longitude, degrees.
-    pub lon_deg: f64,
-    /// Geodetic latitude, degrees.
-    pub lat_deg: f64,
-    /// Height above the ellipsoid, m.
-    pub height_m: f64,
-}
-
-/// The site of the paper's instrument: IOTA (FLUOR's 0.45 m siderostats)
-/// on Mount Hopkins, Arizona (Traub et al. 2003, SPIE 4838, 45).
-pub fn iota() -> Site {
-    Site {
-        name: "IOTA".into(),
-        lon_deg: -110.885,
-        lat_deg: 31.6916,
-        height_m: 2564.0,
-    }
-}
-
-impl Site {
-    /// The site's geocentric position (ITRS), m: WGS84 ellipsoid.
-    pub fn geocentric_m(&self) -> [f64; 3] {
-        const A: f64 = 6_378_137.0;
-        const F: f64 = 1.0 / 298.257_223_563;
-        let e2 = F * (2.0 - F);
-        let (lat, lon) = (self.lat_deg.to_radians(), self.lon_deg.to_radians());
-        let n = A / (1.0 - e2 * lat.sin().powi(2)).sqrt();
-        let r = (n + self.height_m) * lat.cos();
-        [
-            r * lon.cos(),
-            r * lon.sin(),
-            (n * (1.0 - e2) + self.height_m) * lat.sin(),
-        ]
-    }
-
-    /// The local east unit vector in the geocentric frame.
-    pub fn east(&self) -> [f64; 3] {
-        let lon = self.lon_deg.to_radians();
-        [-lon.sin(), lon.cos(), 0.0]
-    }
-}
 
 /// What an OIFITS file says of the observation.
 #[derive(Debug, Clone, PartialEq)]

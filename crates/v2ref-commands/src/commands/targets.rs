@@ -20,9 +20,8 @@ use crate::montecarlo::derive_seed;
 use crate::parameters::Physical;
 use crate::plan::photometry::{Band2Mass, Magnitude};
 use crate::words::Words;
-use serde::Serialize;
 
-pub use super::targets_table::{table_csv, Status, TargetRow, COLUMNS};
+pub use super::targets_table::{table_csv, RowFault, Status, Target, TargetRow, COLUMNS};
 
 /// The columns a target list may have; only `name` is required.
 pub const INPUT_COLUMNS: [&str; 6] = [
@@ -36,37 +35,6 @@ pub const INPUT_COLUMNS: [&str; 6] = [
 
 /// Most targets in one list (a season is a few thousand).
 pub const MAX_TARGETS: usize = 100_000;
-
-/// One target of the list, as read (`None`: the cell was empty or the
-/// column absent, so the shared value is used).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Target {
-    /// Line of the file (1-based) the row is on.
-    pub line: u64,
-    /// The target's name.
-    pub name: String,
-    /// Its magnitude in `band` (with `band`; replaces the shared brightness).
-    pub magnitude: Option<f64>,
-    /// The band of `magnitude`.
-    pub band: Option<Band2Mass>,
-    /// Its uniform-disk diameter, mas.
-    pub diameter_mas: Option<f64>,
-    /// Right ascension, degrees (echoed to the table; the plan does not use it).
-    pub ra_deg: Option<f64>,
-    /// Declination, degrees (echoed likewise).
-    pub dec_deg: Option<f64>,
-}
-
-/// A row that could not be read: its line, its name if it had one, and why.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RowFault {
-    /// Line of the file (1-based).
-    pub line: u64,
-    /// The name in the row (empty when it had none).
-    pub name: String,
-    /// Why, in one line.
-    pub reason: String,
-}
 
 /// What is shared by every target: the physical inputs, the plan's
 /// options, the throughput a row's magnitude is collected with (when the

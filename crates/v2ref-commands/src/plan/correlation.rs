@@ -24,7 +24,7 @@
 //! (they share one true mean), so a sequence's own mean is not subtracted
 //! from it and the slow part of its wander is kept.
 
-use super::observation::{ContiguousScans, SEQUENCES};
+use super::scans::{ContiguousScans, SEQUENCES};
 use crate::piston::sequences::correlation_time_s;
 use crate::piston::series::MAX_SERIES;
 use crate::piston::spectrum::PistonSpectrum;
@@ -112,7 +112,7 @@ impl ScanCorrelation {
         (e, with_offset): (usize, bool),
         correlation_scans: f64,
     ) -> ScanCorrelation {
-        let value = |s: &super::observation::ScanValues| {
+        let value = |s: &super::scans::ScanValues| {
             s.v_sq[e] + if with_offset { s.model_offset[e] } else { 0.0 }
         };
         let count: usize = scans.sequences.iter().map(Vec::len).sum();
@@ -217,7 +217,7 @@ fn mean_stderr(values: &[f64]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plan::observation::ScanValues;
+    use crate::plan::scans::ScanValues;
     use rand::SeedableRng;
     use rand_distr::{Distribution, StandardNormal};
 

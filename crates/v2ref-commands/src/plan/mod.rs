@@ -65,18 +65,20 @@ pub(crate) mod observation;
 pub mod photometry;
 mod point;
 mod reach;
+mod scans;
 pub mod verify;
 
 pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
 pub use candidates::CANDIDATES;
 pub use observation::{
     observation_piston, ObservationError, ObservationPiston, BLOCKS_PER_SEQUENCE,
-    MAX_OBSERVATION_SAMPLES, SEQUENCES,
+    MAX_OBSERVATION_SAMPLES,
 };
 use point::grid_point;
 pub use point::{point_scans, POINT_SAMPLES};
 pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
+pub use scans::SEQUENCES;
 
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{self, Error, Result};

@@ -28,6 +28,8 @@
 //! further apart than n′ scan periods are uncorrelated).
 
 use super::correlation::ScanCorrelation;
+use super::scans::SEQUENCES;
+pub(crate) use super::scans::{ContiguousScans, ScanValues};
 use super::{PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::{BiasConvention, RowEstimator};
 use crate::error::Result;
@@ -39,31 +41,6 @@ use crate::piston::series::MAX_SERIES;
 use crate::piston::spectrum::PistonSpectrum;
 use crate::simulator::Model;
 use serde::Serialize;
-
-/// Independent piston sequences of an observation Monte Carlo: its
-/// standard errors have `SEQUENCES − 1` degrees of freedom.
-pub const SEQUENCES: usize = 16;
-
-/// The per-scan values of K contiguous sequences, for the block means of
-/// any observation length up to the scans of one sequence.
-pub(crate) struct ContiguousScans {
-    /// Per sequence, per scan: V1², V2² and the offsets of the `model`
-    /// convention's photon bias ([`ScanValues`]).
-    pub(crate) sequences: Vec<Vec<ScanValues>>,
-    /// One scan and its dead time, s.
-    pub(crate) scan_period_s: f64,
-}
-
-/// One scan's values.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct ScanValues {
-    /// The estimates V1², V2².
-    pub(crate) v_sq: [f64; 2],
-    /// Noise-free scans: what the `model` convention adds to the mean of
-    /// V1², V2² over the `counts` one (the photon bias of the piston-free
-    /// counts minus that of the scan's own); 0 for noisy scans.
-    pub(crate) model_offset: [f64; 2],
-}
 
 /// Samples from one scan's start to the next: the scan and its dead time.
 pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64) -> usize {

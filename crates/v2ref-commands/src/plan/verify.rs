@@ -11,7 +11,8 @@
 //! between the sequences (batch means, valid however correlated
 //! neighbouring blocks are), with `SEQUENCES − 1` degrees of freedom.
 
-use super::observation::{scans_per_sequence, stride_samples, ContiguousScans, SEQUENCES};
+use super::observation::{scans_per_sequence, stride_samples, ContiguousScans};
+use super::scans::SEQUENCES;
 use super::{Estimator, PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};

@@ -5,17 +5,12 @@
 //! rename fails); the old folder removed last. Only a folder is ever
 //! replaced: a file, a link or anything else at the target is refused.
 
-use super::lock::{name_bytes, remove_stale_temporaries, temp_name, OutputLock};
+use super::lock::{name_bytes, remove_stale_temporaries, temp_name, OutputLock, FOLDER_MARKER};
 use super::own;
 use super::target::parent_of;
 use crate::{Error, Result};
 use std::fs::File;
 use std::path::{Path, PathBuf};
-
-/// The file a temporary folder holds from its start, held under its
-/// writer's `flock`: a temporary folder is removed by a later run only
-/// when it holds this file, of this user, with its lock free.
-pub(crate) const FOLDER_MARKER: &str = ".v2ref-temporary";
 
 /// Replaces the folder `dir` as a whole (its parent created if needed):
 /// `fill` writes into a fresh temporary folder beside it, which takes

@@ -7,7 +7,7 @@
 //!   the process that holds it. The kernel releases the lock of a process
 //!   that ends however it ends.
 //! - A temporary (`.v2ref-tmp-PID-K-NAME`, a file, or a folder holding the
-//!   marker [`super::folder::FOLDER_MARKER`]) is held under an `flock` by
+//!   marker [`FOLDER_MARKER`]) is held under an `flock` by
 //!   its writer for as long as it lives: [`remove_stale_temporaries`]
 //!   removes only the temporaries of this user whose lock it can take, so
 //!   it never removes a live writer's, whatever host or container that
@@ -20,6 +20,11 @@ use std::io::{self, Read, Seek, Write};
 use std::path::Path;
 #[cfg(test)]
 use std::path::PathBuf;
+
+/// The file a temporary folder holds from its start, held under its
+/// writer's `flock`: a temporary folder is removed by a later run only
+/// when it holds this file, of this user, with its lock free.
+pub(crate) const FOLDER_MARKER: &str = ".v2ref-temporary";
 
 /// The prefix of every temporary file v2ref makes beside an output.
 pub(crate) const TEMP_PREFIX: &str = ".v2ref-tmp-";
@@ -184,7 +189,7 @@ pub(crate) fn remove_stale_temporaries(dir: &Path) -> usize {
         let gone = if meta.is_file() {
             remove_if_unlocked(&path, &path, |p| std::fs::remove_file(p))
         } else if meta.is_dir() && owned(&meta) {
-            let marker = path.join(super::folder::FOLDER_MARKER);
+            let marker = path.join(FOLDER_MARKER);
             remove_if_unlocked(&marker, &path, |p| std::fs::remove_dir_all(p))
         } else {
             false

@@ -1,7 +1,6 @@
 //! The axes of a panel: ranges and scales from the data, labels with
 //! units, the mesh with its tick labels, and the reference lines.
 
-use super::chart::Chart;
 use super::plot_error;
 use super::presentation::PlotHint;
 use super::series::Series;
@@ -9,6 +8,9 @@ use crate::error::Result;
 use crate::table::Table;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
+
+/// A chart of the SVG backend on coordinates `X × Y` (linear or log).
+pub(super) type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
 
 /// The axes of one panel: ranges, scales, labels and the reference lines
 /// that fall within them.

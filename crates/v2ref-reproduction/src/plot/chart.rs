@@ -1,7 +1,7 @@
 //! A built chart drawn: mesh, reference lines, curves in the palette's
 //! colours with their error bars, and the legend.
 
-use super::axes::{draw_mesh, draw_reference_lines, Frame};
+use super::axes::{draw_mesh, draw_reference_lines, Chart, Frame};
 use super::plot_error;
 use super::presentation::LegendAt;
 use super::series::Series;
@@ -20,9 +20,6 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 0, 0),
     RGBColor(240, 228, 66),
 ];
-
-/// A chart of the SVG backend on coordinates `X × Y` (linear or log).
-pub(super) type Chart<'a, 'b, X, Y> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>;
 
 /// The pixels a chart's plotting area covers (abscissa, ordinate).
 pub(super) type PixelBox = (std::ops::Range<i32>, std::ops::Range<i32>);
