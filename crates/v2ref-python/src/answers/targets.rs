@@ -60,9 +60,7 @@ pub(super) fn plan_targets(
     let mut preset_throughput = None;
     if let Some((name, given)) = instrument {
         let preset = ok(crate::plan::instrument::instrument(&name))?;
-        preset.apply(&mut physical, &mut request, &|key| {
-            given.iter().any(|g| g == key)
-        });
+        preset.apply(&mut physical, &mut request, &|key| given.iter().any(|g| g == key));
         preset_throughput = Some(preset.throughput);
     }
     let shared = SharedPlan {
