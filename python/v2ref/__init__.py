@@ -14,7 +14,9 @@ same fields as the command's ``--json`` output:
 Bad input raises ``ValueError`` (``TypeError`` for a wrong type, dtype or
 shape) whose message starts with the keyword argument's name, in the CLI's
 words. Long calls release the GIL, use ``threads`` worker threads (0: all
-cores; the answer does not depend on it) and stop on Ctrl-C.
+cores; the answer does not depend on it) and stop on Ctrl-C. No call
+predicts its duration beforehand (no warning is issued before a long run);
+the CLI's progress bar shows the time left at the measured rate.
 
 Units: µm for wavelengths, OPDs and spacings (``_um``), nm for the bandwidth,
 mas for diameters, m for baselines and apertures, Hz for fringe frequencies,
@@ -1073,8 +1075,7 @@ def plan(
         Also simulate the recommended observation, n consecutive scans
         through one atmosphere with photon and detector noise, estimated
         with ``bias`` (as ``v2ref plan --verify``): ``verification`` holds
-        the σ(V²) and mean achieved with intervals beside the promise. A
-        run predicted to take over a minute warns first.
+        the σ(V²) and mean achieved with intervals beside the promise.
     verify_observations : int
         Observations simulated by ``verify``: 32 to 1e6.
     {physical}

@@ -705,8 +705,7 @@ def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=Non
         Also simulate the recommended observation, n consecutive scans
         through one atmosphere with photon and detector noise, estimated
         with ``bias`` (as ``v2ref plan --verify``): ``verification`` holds
-        the σ(V²) and mean achieved with intervals beside the promise. A
-        run predicted to take over a minute warns first.
+        the σ(V²) and mean achieved with intervals beside the promise.
     verify_observations : int
         Observations simulated by ``verify``: 32 to 1e6.
     wavelength_um : float, default 2.2

@@ -3,14 +3,12 @@
 use super::common::ObservedArgs;
 use super::{print_json, print_rows};
 use std::process::ExitCode;
-use v2ref_commands::commands::cost::duration_words;
 use v2ref_core::Result;
 
 /// N from which the finite scan takes seconds or more and shows a spinner
 /// on a terminal: its cost grows as N² (synthesis of N samples, each a sum
-/// over a spectral grid as fine as the scan resolves; docs/conventions.md;
-/// the law in `v2ref_commands::commands::cost`).
-const SLOW_SAMPLES: usize = 4096;
+/// over a spectral grid as fine as the scan resolves; docs/conventions.md).
+pub const SLOW_SAMPLES: usize = 4096;
 
 /// Flags of `bias`.
 #[derive(Debug, clap::Args)]
@@ -31,12 +29,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let p = args.observed.physical()?;
     let finite = v2ref_commands::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
-    let cost = v2ref_commands::commands::cost::bias(&p, args.finite_scan)?;
-    super::output::announce("bias", &cost);
-    let what = format!(
-        "finite scan of {n} samples, predicted about {}",
-        duration_words(cost.seconds)
-    );
+    let what = format!("finite scan of {n} samples");
     let bar = super::spinner(n < SLOW_SAMPLES, &what);
     let answer =
         v2ref_commands::commands::bias::answer(&p, args.observed.sampling.bins, args.finite_scan)?;

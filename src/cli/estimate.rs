@@ -141,12 +141,9 @@ fn estimate_and_write(
     Ok(ExitCode::SUCCESS)
 }
 
-/// The estimator of `rows` rows of `cols` samples under the flags, its
-/// cost announced first.
+/// The estimator of `rows` rows of `cols` samples under the flags.
 fn estimator(args: &Args, source: &Source, rows: usize, cols: usize) -> Result<RowEstimator> {
     let inputs = source.config.inputs_for(source.name(), rows, cols)?;
-    let cost = v2ref_commands::commands::cost::estimate(&inputs, rows as u64, args.threads)?;
-    super::output::announce("estimate", &cost);
     let calibrator = match args.calibrator.as_str() {
         "model" => None,
         path => Some((Path::new(path), read_matrix(Path::new(path), "calibrator")?)),

@@ -247,7 +247,7 @@ pub fn print_rows(rows: &[(&str, String)]) {
 /// its cursor (not `TERM=dumb`: the bar is redrawn with escape codes, which
 /// such a terminal prints as they are) and the user did not ask for quiet.
 /// Where none is drawn, a long run is announced in one plain line instead
-/// ([`output::watch_cost`]).
+/// ([`output::watch_rate`]).
 pub fn show_progress(quiet: bool) -> bool {
     let dumb = std::env::var_os("TERM").is_some_and(|t| t == "dumb");
     !quiet && !dumb && std::io::stderr().is_terminal()
@@ -259,7 +259,7 @@ pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar
         let bar = indicatif::ProgressBar::hidden();
         bar.set_length(len);
         if !quiet {
-            output::watch_cost(&bar, what);
+            output::watch_rate(&bar, what);
         }
         return bar;
     }

@@ -13,8 +13,6 @@
 
 use std::io::{self, Write};
 use std::path::Path;
-use std::sync::atomic::Ordering;
-use v2ref_commands::commands::cost::{duration_words, Cost, NOTICE_S};
 use v2ref_core::{Error, Result};
 
 /// Exit status when the output cannot be written (sysexits' `EX_IOERR`).
@@ -107,11 +105,12 @@ pub fn write_out_marker(dir: &Path) -> Result<()> {
     std::fs::write(&path, text).map_err(|e| Error::file(Some("out"), path, e))
 }
 
-/// How long a run is measured before its cost is predicted.
-const COST_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
+/// Runs whose time left at the measured rate exceeds this are noted
+/// ([`watch_rate`]), s.
+pub const NOTICE_S: f64 = 60.0;
 
-/// Whether the run's cost was announced before it started ([`announce`]).
-static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// How long a run's rate is measured, from its first step.
+const RATE_PROBE: std::time::Duration = std::time::Duration::from_secs(2);
 
 /// Longest a run's set-up (no step done yet) is waited for before the
 /// watcher gives up on predicting it.
@@ -135,30 +134,31 @@ pub fn steady_tick(bar: &indicatif::ProgressBar, interval: std::time::Duration) 
     });
 }
 
-/// Where no bar is drawn (stderr not a terminal) and the run was not
-/// announced before it started (its cost law under-predicted it): predicts
-/// the run's duration from its rate (linear in its steps: trials, rows,
-/// grid points) and, when it exceeds [`NOTICE_S`], says so once on stderr,
-/// with how to stop it. The rate is measured over [`COST_PROBE`] from the
+/// Where no bar is drawn (stderr not a terminal; on a terminal the bar's
+/// ETA says the same): predicts the time left of the run from its measured
+/// rate (linear in its steps: trials, rows, scans, grid points) and, when
+/// it exceeds [`NOTICE_S`], says so once on stderr, with how to stop it.
+/// No law predicts a run before it starts: one timed on one machine was off
+/// by more than 2× on another. The rate is measured over [`RATE_PROBE`] from the
 /// first step done, not from the start: a set-up that reports no step (the
 /// piston sequences `plan --verify` synthesizes before its first scan)
 /// says nothing of the rate, and counting it as one step predicted days.
 /// Nothing is said of a run that ends sooner, nor when no step is done
 /// within the probe (no rate).
-pub fn watch_cost(bar: &indicatif::ProgressBar, what: &str) {
+pub fn watch_rate(bar: &indicatif::ProgressBar, what: &str) {
     let (bar, what) = (bar.clone(), what.to_owned());
     let start = std::time::Instant::now();
     // Under a process limit there may be no thread for it: then no note.
     let _ = std::thread::Builder::new().spawn(move || {
-        std::thread::sleep(COST_PROBE);
+        std::thread::sleep(RATE_PROBE);
         while bar.position() == 0 && !bar.is_finished() && start.elapsed() < SETUP_WAIT {
-            std::thread::sleep(COST_PROBE / 4);
+            std::thread::sleep(RATE_PROBE / 4);
         }
         let first = (start.elapsed().as_secs_f64(), bar.position());
-        std::thread::sleep(COST_PROBE);
+        std::thread::sleep(RATE_PROBE);
         let second = (start.elapsed().as_secs_f64(), bar.position());
         let len = bar.length().unwrap_or(0);
-        if bar.is_finished() || ANNOUNCED.load(Ordering::Relaxed) {
+        if bar.is_finished() {
             return;
         }
         match seconds_left(first, second, len) {
@@ -183,14 +183,14 @@ fn seconds_left(first: (f64, u64), second: (f64, u64), len: u64) -> Option<f64> 
         .then(|| len.saturating_sub(second.1) as f64 * seconds / steps as f64)
 }
 
-/// Before any work of the command `what`: when its predicted `cost`
-/// exceeds [`NOTICE_S`], says so once on stderr, with the run and how to
-/// stop it (whether stderr is a terminal or not, `--quiet` or not: a run
-/// of minutes or days is worth a line).
-pub fn announce(what: &str, cost: &Cost) {
-    if let Some(note) = cost.notice() {
-        ANNOUNCED.store(true, Ordering::Relaxed);
-        write_stderr_line(format_args!("note: {what}: {note}"));
+/// A duration in words: seconds, minutes, hours, days or years.
+pub fn duration_words(s: f64) -> String {
+    match s {
+        s if s < 120.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
+        s if s < 3.2e7 * 2.0 => format!("{:.0} days", s / 86400.0),
+        s => format!("{:.0} years", s / 3.156e7),
     }
 }
 
@@ -236,7 +236,16 @@ pub fn is_broken_pipe(e: &Error) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{exit_status, seconds_left, EXIT_WRITE_FAILED};
+    use super::{duration_words, exit_status, seconds_left, EXIT_WRITE_FAILED};
+
+    #[test]
+    fn durations_read_as_words() {
+        assert_eq!(duration_words(90.0), "90 s");
+        assert_eq!(duration_words(600.0), "10 min");
+        assert_eq!(duration_words(10_800.0), "3.0 h");
+        assert_eq!(duration_words(7.0 * 86400.0), "7 days");
+        assert_eq!(duration_words(1e9), "32 years");
+    }
 
     /// The stall watcher's estimate: from the rate between two readings
     /// once steps are done; silent over a set-up that counts no step (a

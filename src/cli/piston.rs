@@ -68,7 +68,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
         },
     };
     let prepared = piston::prepare(&p, &req)?;
-    super::output::announce("piston", &prepared.cost(&req));
     let spectrum = &prepared.spectrum;
     warn_if_outer_scale_infinite(&p, spectrum.baseline_m(), spectrum.rms_um());
     let bar = progress_bar(

@@ -236,7 +236,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let set = v2ref_files::atomic::set::OutputSet::begin(&targets, args.force)?;
     let (physical, req) = request(&args)?;
     let prepared = plan::prepare(&physical, &req)?;
-    super::output::announce("plan", &prepared.cost(args.threads)?);
     let piston = prepared.piston.clone();
     warn_if_outer_scale_infinite(&physical, piston.baseline_m(), piston.rms_um());
     let bar = progress_bar(prepared.points(), args.quiet || args.json, "plan");
@@ -244,14 +243,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
     bar.finish_and_clear();
     if args.verify {
         let size = plan::verification(&answer, args.verify_observations)?;
-        let cost = v2ref_commands::commands::cost::plan_verification(&size, args.threads);
-        if cost.notice().is_some() {
-            super::output::announce("plan --verify", &cost);
-        } else if !args.quiet {
+        if !args.quiet {
             super::output::write_stderr_line(format_args!(
-                "note: plan --verify: simulating {}, about {}",
-                cost.what,
-                v2ref_commands::commands::cost::duration_words(cost.seconds)
+                "note: plan --verify: simulating {} scans of {} samples",
+                size.scans(),
+                size.samples
             ));
         }
         let bar = progress_bar(size.scans(), args.quiet || args.json, "plan --verify");

@@ -47,8 +47,6 @@ pub struct Args {
 pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
     let inputs = args.inputs.inputs()?;
-    let cost = v2ref_commands::commands::cost::simulate(&inputs, args.trials, args.run.threads)?;
-    super::output::announce("simulate", &cost);
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
     let bar = progress_bar(args.trials, args.output.quiet, "simulate");

@@ -38,15 +38,10 @@ pub struct Args {
 pub fn run(args: Args) -> Result<ExitCode> {
     let mut p = args.observed.physical()?;
     args.noise.light.apply_to(&mut p)?;
-    let cost = v2ref_commands::commands::cost::snr(&p)?;
-    super::output::announce("snr", &cost);
-    // Seconds or more (N in the thousands): a spinner on a terminal.
-    let what = format!(
-        "snr: {}, predicted about {}",
-        cost.what,
-        v2ref_commands::commands::cost::duration_words(cost.seconds)
-    );
-    let bar = super::spinner(cost.seconds < 1.0, &what);
+    // Seconds or more (N in the thousands, N² work): a spinner on a terminal.
+    let n = p.sampling()?.samples();
+    let what = format!("snr: closed forms over {n} samples");
+    let bar = super::spinner(n < super::bias::SLOW_SAMPLES, &what);
     let answer =
         v2ref_commands::commands::snr::answer(&p, args.observed.sampling.bins, args.noise.formula)?;
     bar.finish_and_clear();

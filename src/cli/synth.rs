@@ -8,7 +8,6 @@ use super::inputs::InputsArgs;
 use super::progress_bar;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use v2ref_commands::commands::cost::SetOutput;
 use v2ref_core::conformance::sidecar::Sidecar;
 use v2ref_core::conformance::synth::{synthesize, SetSize};
 use v2ref_core::conformance::truth::{default_reference_blocks, reference_rows_per_block};
@@ -104,12 +103,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let piston = inputs.piston.is_some();
     let reference_rows =
         reference_blocks * reference_rows_per_block(args.rows, reference_blocks, piston);
-    let output = SetOutput::Files { csv: args.csv };
-    let rows = (args.rows, reference_rows);
-    super::output::announce(
-        "synth",
-        &v2ref_commands::commands::cost::synth(&inputs, rows, args.run.threads, output)?,
-    );
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
     let spec = SetSpec {

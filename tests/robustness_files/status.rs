@@ -297,7 +297,7 @@ fn ctrl_c_stops_long_runs_within_a_second_and_leaves_nothing() {
 }
 
 /// The first line `v2ref ARGS` writes on stderr (the run is then
-/// killed): a cost note comes before any work, so no sleep is needed.
+/// killed): the read waits for it, so no sleep is needed.
 fn first_stderr_line(args: &[&str]) -> String {
     use std::io::BufRead;
     let dir = workspace();
@@ -318,49 +318,33 @@ fn first_stderr_line(args: &[&str]) -> String {
     line
 }
 
-/// The number before `unit` in `note` ("about 7 days" -> 7).
-fn predicted(note: &str, unit: &str) -> f64 {
-    let before = note.split(&format!(" {unit} (")).next().unwrap();
-    before.rsplit(' ').next().unwrap().parse().unwrap()
-}
-
-/// A long run announces its predicted duration before any work (the cost
-/// laws of `v2ref_commands::commands::cost`), whether or not stderr is a terminal:
-/// 1e12 trials of 128 samples at 9e-9 core-s per sample on the cores
-/// here is days; the prediction is held to a factor of 2 of that law.
+/// A long run whose stderr is no terminal (no bar, so no ETA) says once,
+/// from its rate measured after its first step, how long it has left and
+/// how to stop it: 1e12 trials of 128 samples are days at any rate this
+/// machine reaches (the note's unit, h at the least, is > 2 h). No
+/// prediction comes before the run (the old cost laws' "predicted to take"
+/// note failed this test).
 #[test]
-fn a_long_run_says_how_long_before_it_has_gone_far() {
+fn a_long_run_says_how_long_it_has_left_at_its_measured_rate() {
     let note = first_stderr_line(&["simulate", "--trials", "1e12"]);
+    let (left, rest) = note
+        .strip_prefix("note: simulate: about ")
+        .and_then(|n| n.split_once(" left at the present rate ("))
+        .unwrap_or_else(|| panic!("{note}"));
     assert!(
-        note.starts_with("note: simulate: predicted to take about ")
-            && note.contains("(1e12 trials of 128 samples")
-            && note.contains("Ctrl-C"),
+        [" h", " days", " years"].iter().any(|u| left.ends_with(u)),
         "{note}"
     );
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
-    let law_days = 1e12 * 128.0 * 9e-9 / cores / 86400.0;
-    let days = predicted(&note, "days");
     assert!(
-        (law_days / 2.0..law_days * 2.0).contains(&days),
-        "{days} days against the law's {law_days}: {note}"
+        rest.contains(" of 1000000000000 steps done); Ctrl-C stops it"),
+        "{note}"
     );
 }
 
-/// A run whose cost follows a known law (the finite scan's N²) says how
-/// long it will take before it starts, whether or not stderr is a
-/// terminal; a short one says nothing.
+/// A run that ends within the rate's probe (a short finite scan, which
+/// counts no steps) says nothing on stderr.
 #[test]
-fn a_finite_scan_states_its_predicted_cost_before_it_starts() {
-    let note = first_stderr_line(&["bias", "--finite-scan", "--samples", "262144"]);
-    assert!(
-        note.starts_with("note: bias: predicted to take about ")
-            && note.contains("(a finite scan of 262144 samples")
-            && note.contains("Ctrl-C"),
-        "{note}"
-    );
-    // 262144 = 16 × 16384: 256 × 10.2 s (measured at 16384) ≈ 44 min.
-    let minutes = predicted(&note, "min");
-    assert!((22.0..88.0).contains(&minutes), "{note}");
+fn a_short_run_says_nothing_on_stderr() {
     let dir = workspace();
     let out = Command::new(env!("CARGO_BIN_EXE_v2ref"))
         .args(["bias", "--finite-scan", "--samples", "1024"])

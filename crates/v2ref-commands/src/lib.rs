@@ -5,8 +5,7 @@
 //! ([`parameters::Physical`]) and each command's own options:
 //!
 //! - [`commands`]: the answers of `bias`, `snr`, `simulate`, `piston`,
-//!   `estimate`, `synth` and `plan` (inputs echoed, results, units), and
-//!   their cost laws;
+//!   `estimate`, `synth` and `plan` (inputs echoed, results, units);
 //! - [`report`]: the reports those answers hold;
 //! - [`record`]: the `inputs` object each answer carries;
 //! - [`parameters`]: the physical inputs, declared once (unit, range, help);

@@ -79,20 +79,6 @@ pub fn ok<T>(r: crate::Result<T>) -> PyResult<T> {
     r.map_err(Fail::into_py_err)
 }
 
-/// Before a call predicted to take more than a minute
-/// ([`crate::commands::cost`]): a `UserWarning` naming the call, its
-/// predicted duration and how to stop it, pointing at the caller's line.
-pub fn warn_cost(py: Python<'_>, what: &str, cost: &crate::commands::cost::Cost) -> PyResult<()> {
-    if let Some(note) = cost.notice() {
-        let text = std::ffi::CString::new(format!("{what}: {note}"))
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
-        // 2: the line that called the package's function, not the package.
-        PyErr::warn(py, &category, &text, 2)?;
-    }
-    Ok(())
-}
-
 /// Runs `work` on threads of its own with the GIL released, handing it a
 /// progress callback; checks for signals (Ctrl-C) every 100 ms meanwhile.
 /// On a signal the work is cancelled ([`crate::montecarlo::cancel`]: it stops at its

@@ -5,9 +5,6 @@
 //! convert and print; nothing here reads a flag, writes a file or prints.
 
 pub mod bias;
-// The cost laws were timed on one machine: the edges' (the CLI's notice,
-// Python's warning), not the numerics'.
-pub mod cost;
 pub mod estimate;
 pub mod piston;
 pub mod plan;

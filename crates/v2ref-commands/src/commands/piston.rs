@@ -160,18 +160,6 @@ pub fn prepare(p: &Physical, req: &PistonRequest) -> Result<Prepared> {
     })
 }
 
-impl Prepared {
-    /// The predicted cost of the run of `req` ([`crate::commands::cost`]).
-    pub fn cost(&self, req: &PistonRequest) -> crate::commands::cost::Cost {
-        crate::commands::cost::piston(
-            self.sampling.samples(),
-            self.fringe_hz.len(),
-            req.scans,
-            req.threads,
-        )
-    }
-}
-
 /// The frequencies given ([`DEFAULT_FRINGE_HZ`] when none), each checked.
 fn fringe_frequencies(given: &[f64]) -> Result<Vec<f64>> {
     let freqs = if given.is_empty() {

@@ -104,22 +104,6 @@ impl Prepared {
     pub fn points(&self) -> u64 {
         (self.inputs.fringe_hz.len() * self.inputs.stroke_um.len()) as u64
     }
-
-    /// The predicted cost of the run on `threads` threads
-    /// ([`crate::commands::cost`]); a grid point's samples depend on its
-    /// stroke only.
-    pub fn cost(&self, threads: usize) -> Result<crate::commands::cost::Cost> {
-        let inputs = &self.inputs;
-        let obs = inputs.instrument.observation()?;
-        let mut strokes = Vec::new();
-        if let Some(&f) = inputs.fringe_hz.first() {
-            for &s in &inputs.stroke_um {
-                strokes.push(inputs.point_inputs(f, s, false, false)?.sampling()?);
-            }
-        }
-        let grid = (inputs.fringe_hz.len(), strokes.as_slice());
-        crate::commands::cost::plan(&obs, grid, inputs.scans, threads)
-    }
 }
 
 /// The target of the plan.

@@ -59,8 +59,8 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 pub const BLOCKS_PER_SEQUENCE: u64 = 4;
 
 /// Most samples (scans × N) one observation Monte Carlo of the plan
-/// simulates: 2^24, about 1.5 core-seconds (the cost law
-/// `commands::cost::SCAN_S_PER_SAMPLE`); beyond, fewer blocks
+/// simulates: 2^24, about 1.5 core-seconds (at 9e-8 core-s per scanned
+/// sample, measured 2026-11-25); beyond, fewer blocks
 /// per sequence (wider intervals), but always at least n scans.
 pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
 

@@ -1,12 +1,12 @@
 //! The paper's effects one at a time: `bias`, `snr`, `piston`, `claims`.
 
 use super::{formula, window};
-use crate::commands::{self, cost, piston::PistonRequest};
+use crate::commands::{self, piston::PistonRequest};
 use crate::piston::spectrum::PistonPsdModel;
 use crate::reproduction::cases::Effort;
 use crate::values::to_py;
 use crate::words::Words;
-use crate::{interruptible, ok, warn_cost};
+use crate::{interruptible, ok};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use v2ref_commands::units::piston::PistonJob;
@@ -22,7 +22,6 @@ pub(super) fn bias(
 ) -> PyResult<PyObject> {
     let p = crate::inputs::physical_from_dict(physical)?;
     let window = ok(window(bins))?;
-    warn_cost(py, "bias", &ok(cost::bias(&p, finite_scan))?)?;
     let answer = interruptible(py, |_| commands::bias::answer(&p, window, finite_scan))?;
     to_py(py, &answer)
 }
@@ -39,7 +38,6 @@ pub(super) fn snr(
     let p = crate::inputs::physical_from_dict(physical)?;
     let window = ok(window(bins))?;
     let formula = ok(self::formula(formula))?;
-    warn_cost(py, "snr", &ok(cost::snr(&p))?)?;
     let answer = interruptible(py, |_| commands::snr::answer(&p, window, formula))?;
     to_py(py, &answer)
 }
@@ -72,7 +70,6 @@ pub(super) fn piston(
     )?;
     let (p, req) = (&job.physical, &job.request);
     let prepared = ok(commands::piston::prepare(p, req))?;
-    warn_cost(py, "piston", &prepared.cost(req))?;
     let answer = interruptible(py, |tick| {
         commands::piston::run(&prepared, p, req, Some(tick))
     })?;

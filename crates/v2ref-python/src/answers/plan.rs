@@ -4,7 +4,7 @@ use crate::commands::{self, plan::PlanRequest};
 use crate::conformance::estimate::BiasConvention;
 use crate::values::to_py;
 use crate::words::Words;
-use crate::{interruptible, ok, warn_cost};
+use crate::{interruptible, ok};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -60,16 +60,9 @@ pub(super) fn plan(
     )?;
     preset(instrument, &mut p, &mut req)?;
     let prepared = ok(commands::plan::prepare(&p, &req))?;
-    warn_cost(py, "plan", &ok(prepared.cost(threads))?)?;
     let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
     if let Some(observations) = verify_observations {
-        // `plan --verify`: its cost warned about before it starts.
         let size = ok(commands::plan::verification(&answer, observations))?;
-        warn_cost(
-            py,
-            "plan(verify=True)",
-            &commands::cost::plan_verification(&size, threads),
-        )?;
         interruptible(py, |tick| {
             commands::plan::verify(&mut answer, &size, threads, tick)
         })?;

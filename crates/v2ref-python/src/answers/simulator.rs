@@ -3,7 +3,6 @@
 
 use super::data::{data_error, estimate_column, matrix, parse_sidecar};
 use super::{convention, formula, window};
-use crate::commands::cost::{self, SetOutput};
 use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
 use crate::commands::synth::{self as synth_set, SetSize};
 use crate::conformance::estimate::{BiasConvention, RowEstimate};
@@ -14,7 +13,7 @@ use crate::noise::calibrated::Trials;
 use crate::report::simulator::{check_trials, Estimation, SimulateReport};
 use crate::simulator::{simulate as run_simulation, Model, SimulationRun};
 use crate::values::to_py;
-use crate::{interruptible, ok, warn_cost};
+use crate::{interruptible, ok};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -55,11 +54,6 @@ pub(super) fn estimate<'py>(
     };
     let config = configuration(given)?;
     let inputs = ok(config.inputs_for(INTERFEROGRAMS, rows, cols))?;
-    warn_cost(
-        py,
-        "estimate",
-        &ok(cost::estimate(&inputs, rows as u64, threads))?,
-    )?;
     let cal = match &calibrator {
         None => None,
         Some(c) => {
@@ -191,14 +185,6 @@ pub(super) fn synthesize<'py>(
     ))?;
     let n = inputs.samples;
     check_array_fits(rows, n)?;
-    let reference_rows = reference_blocks
-        * crate::conformance::truth::reference_rows_per_block(
-            rows,
-            reference_blocks,
-            inputs.piston.is_some(),
-        );
-    let predicted = cost::synth(inputs, (rows, reference_rows), threads, SetOutput::Memory);
-    warn_cost(py, "synthesize", &ok(predicted)?)?;
     let size = SetSize {
         rows,
         seed,
@@ -301,11 +287,6 @@ pub(super) fn simulate(
 ) -> PyResult<PyObject> {
     let job = simulate_job(physical, bins, bias, formula, trials, seed, threads)?;
     let (inputs, size) = (&job.inputs, job.size);
-    warn_cost(
-        py,
-        "simulate",
-        &ok(cost::simulate(inputs, trials, threads))?,
-    )?;
     let run = interruptible(py, |tick| {
         let model = Model::new(inputs)?;
         let e = job.estimation;
