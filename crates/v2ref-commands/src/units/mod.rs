@@ -186,6 +186,30 @@ pub fn key_of(bytes: &[u8]) -> u64 {
     h
 }
 
+/// Words per [`RunningStats`](crate::montecarlo::RunningStats) in a
+/// partial: its count, then its mean and central sums as f64 bits.
+pub(crate) const STATS_WORDS: usize = 5;
+
+/// Appends `stats`' words (exact: the bits, not a rounding).
+pub(crate) fn put_stats(stats: &crate::montecarlo::RunningStats, out: &mut Vec<u64>) {
+    out.push(stats.count);
+    out.extend([stats.mean, stats.m2, stats.m3, stats.m4].map(f64::to_bits));
+}
+
+/// The statistics written by [`put_stats`], one per [`STATS_WORDS`] words.
+pub(crate) fn take_stats(words: &[u64]) -> Vec<crate::montecarlo::RunningStats> {
+    words
+        .chunks_exact(STATS_WORDS)
+        .map(|w| crate::montecarlo::RunningStats {
+            count: w[0],
+            mean: f64::from_bits(w[1]),
+            m2: f64::from_bits(w[2]),
+            m3: f64::from_bits(w[3]),
+            m4: f64::from_bits(w[4]),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

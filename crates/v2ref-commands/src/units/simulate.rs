@@ -5,7 +5,6 @@
 
 use super::{check_range, key_of, unit_words, Partial, UnitJob};
 use crate::error::{Error, Result};
-use crate::montecarlo::RunningStats;
 use crate::noise::calibrated::Trials;
 use crate::report::simulator::{check_trials, Estimation};
 use crate::simulator::run::{merge, SimulationUnits, UnitStats};
@@ -23,9 +22,8 @@ pub struct SimulateJob {
     pub size: Trials,
 }
 
-/// Words per [`RunningStats`], per [`UnitStats`].
-const STATS_WORDS: usize = 5;
-const UNIT_STATS_WORDS: usize = 4 * STATS_WORDS;
+/// Words per [`UnitStats`].
+const UNIT_STATS_WORDS: usize = 4 * super::STATS_WORDS;
 
 impl SimulateJob {
     /// The library's units of this request (the model built here).
@@ -92,22 +90,12 @@ impl UnitJob for SimulateJob {
 
 fn put_unit_stats(s: &UnitStats, out: &mut Vec<u64>) {
     for r in [&s.v1_sq, &s.v2_sq, &s.v1, &s.v2] {
-        out.push(r.count);
-        out.extend([r.mean, r.m2, r.m3, r.m4].map(f64::to_bits));
+        super::put_stats(r, out);
     }
 }
 
 fn take_unit_stats(words: &[u64]) -> Result<UnitStats> {
-    let stats: Vec<RunningStats> = words
-        .chunks_exact(STATS_WORDS)
-        .map(|w| RunningStats {
-            count: w[0],
-            mean: f64::from_bits(w[1]),
-            m2: f64::from_bits(w[2]),
-            m3: f64::from_bits(w[3]),
-            m4: f64::from_bits(w[4]),
-        })
-        .collect();
+    let stats = super::take_stats(words);
     match stats[..] {
         [v1_sq, v2_sq, v1, v2] => Ok(UnitStats {
             v1_sq,

@@ -11,7 +11,6 @@ use crate::conformance::truth::{
     truth_from_units, truth_unit_count, truth_units, usable_windows, TruthSize, UnitStats,
 };
 use crate::error::Result;
-use crate::montecarlo::RunningStats;
 use crate::simulator::{Inputs, Model, RowTiming};
 use std::ops::Range;
 
@@ -26,13 +25,10 @@ pub struct TruthJob {
     pub layout: RowTiming,
 }
 
-/// Words per [`RunningStats`].
-const STATS_WORDS: usize = 5;
-
 impl TruthJob {
     /// Words of a unit's result for `windows` usable windows.
     fn unit_words(windows: usize) -> usize {
-        windows * BIAS_CONVENTIONS.len() * 2 * STATS_WORDS
+        windows * BIAS_CONVENTIONS.len() * 2 * super::STATS_WORDS
     }
 }
 
@@ -73,8 +69,7 @@ impl UnitJob for TruthJob {
         let units = truth_units(&model, self.size, self.layout, range.clone(), progress)?;
         let mut words = Vec::new();
         for stats in units.iter().flatten().flatten().flatten() {
-            words.push(stats.count);
-            words.extend([stats.mean, stats.m2, stats.m3, stats.m4].map(f64::to_bits));
+            super::put_stats(stats, &mut words);
         }
         Ok(Partial {
             key: self.key(),
@@ -98,16 +93,7 @@ impl UnitJob for TruthJob {
 
 /// A unit's statistics from its words (of the length checked by the caller).
 fn take_unit(words: &[u64], windows: usize) -> UnitStats {
-    let stats: Vec<RunningStats> = words
-        .chunks_exact(STATS_WORDS)
-        .map(|w| RunningStats {
-            count: w[0],
-            mean: f64::from_bits(w[1]),
-            m2: f64::from_bits(w[2]),
-            m3: f64::from_bits(w[3]),
-            m4: f64::from_bits(w[4]),
-        })
-        .collect();
+    let stats = super::take_stats(words);
     let per_window = BIAS_CONVENTIONS.len() * 2;
     (0..windows)
         .map(|w| {
