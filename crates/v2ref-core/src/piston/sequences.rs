@@ -9,7 +9,7 @@
 
 use crate::montecarlo::derive_seed;
 use crate::piston::scan::{interp, PistonReference, ScanSetup};
-use crate::piston::series::{synthesize_series, MAX_SERIES};
+use crate::piston::series::{ModeScales, MAX_SERIES};
 use crate::piston::turbulence::PistonSpectrum;
 use crate::piston::RunSize;
 use crate::Result;
@@ -192,14 +192,9 @@ impl PistonSequence {
         let long = observation_sequence_samples(spectrum, setup, read);
         let mut segments = Vec::with_capacity(observations);
         let mut period = 0;
+        let scales = ModeScales::new(&psd, setup.sample_time_s(), long, threads)?;
         for j in 0..observations {
-            let series = synthesize_series(
-                &psd,
-                setup.sample_time_s(),
-                long,
-                sequence_seed(seed, j),
-                threads,
-            )?;
+            let series = scales.synthesize(sequence_seed(seed, j), threads)?;
             let m = series.len();
             period = period.max(m);
             // The stretch read, with the two samples before its start (the
@@ -233,16 +228,19 @@ impl PistonSequence {
         let n = setup.samples;
         let mut first_scan = vec![0];
         let mut segments = Vec::with_capacity(k);
+        // The sequences' lengths differ by at most a stride: most share
+        // one FFT length, hence one set of scales.
+        let mut scales: Option<ModeScales> = None;
         for j in 0..k {
             let scans = size.scans / k + usize::from(j < size.scans % k);
             first_scan.push(first_scan[j] + scans);
-            segments.push(synthesize_series(
-                &psd,
-                setup.sample_time_s(),
-                ((scans - 1) * stride + n + 4).max(min_len),
-                sequence_seed(size.seed, j),
-                size.threads,
-            )?);
+            let len = ((scans - 1) * stride + n + 4).max(min_len);
+            let dt_s = setup.sample_time_s();
+            if !scales.as_ref().is_some_and(|s| s.fits(len, dt_s)) {
+                scales = Some(ModeScales::new(&psd, dt_s, len, size.threads)?);
+            }
+            let scales = scales.as_ref().expect("made just above");
+            segments.push(scales.synthesize(sequence_seed(size.seed, j), size.threads)?);
         }
         let period_samples = segments.iter().map(Vec::len).max().unwrap_or(0);
         Ok(PistonSequence {

@@ -63,58 +63,104 @@ pub fn synthesize_series(
     seed: u64,
     threads: usize,
 ) -> Result<Vec<f64>> {
-    error::positive("dt", dt_s)?;
-    crate::montecarlo::check_threads(threads)?;
-    if len == 0 || len > MAX_SERIES {
-        return Err(Error::OutOfRange {
-            param: "scans",
-            value: len as f64,
-            accepted: format!("1 to {MAX_SERIES} piston samples (scans x samples)"),
-        });
+    ModeScales::new(psd, dt_s, len, threads)?.synthesize(seed, threads)
+}
+
+/// The scale `√(P(ν_k)Δν)` of each coefficient `W_k`, 0 < k < M/2, of
+/// the M-sample sequences ([`sequence_length`]) at one step: what every
+/// sequence of that length and step shares, computed once (evaluating the
+/// spectrum is a third of a synthesis; the draws and the transform are
+/// each sequence's own). [`ModeScales::synthesize`] then gives the bits
+/// [`synthesize_series`] gives.
+pub(crate) struct ModeScales {
+    /// M, the FFT length.
+    m: usize,
+    /// Δt, s.
+    dt_s: f64,
+    /// `√(P(ν_k)Δν)` for k = 1 .. M/2 − 1, µm.
+    scale: Vec<f64>,
+}
+
+impl ModeScales {
+    /// The scales for sequences of `len` samples at step `dt_s`; refuses
+    /// a step that is not positive, a length out of 1..=[`MAX_SERIES`]
+    /// and a spectrum that is not a finite number >= 0 at some frequency.
+    pub(crate) fn new(
+        psd: &(dyn Fn(f64) -> f64 + Sync),
+        dt_s: f64,
+        len: usize,
+        threads: usize,
+    ) -> Result<ModeScales> {
+        use rayon::prelude::*;
+        error::positive("dt", dt_s)?;
+        crate::montecarlo::check_threads(threads)?;
+        if len == 0 || len > MAX_SERIES {
+            return Err(Error::OutOfRange {
+                param: "scans",
+                value: len as f64,
+                accepted: format!("1 to {MAX_SERIES} piston samples (scans x samples)"),
+            });
+        }
+        let m = sequence_length(len);
+        let dnu = 1.0 / (m as f64 * dt_s);
+        let scale: Vec<f64> = in_pool(threads, || {
+            Ok((1..m / 2)
+                .into_par_iter()
+                .with_min_len(COEFF_BLOCK)
+                .map(|k| (psd(k as f64 * dnu) * dnu).sqrt())
+                .collect())
+        })?;
+        crate::montecarlo::cancel::check()?;
+        // A spectrum that is not a finite number >= 0 somewhere leaves a
+        // scale that is not finite: refused, naming the frequency.
+        if let Some(k) = scale.iter().position(|s| !s.is_finite()) {
+            let nu_hz = (k + 1) as f64 * dnu;
+            return Err(Error::Invalid {
+                param: "psd",
+                reason: format!(
+                    "the spectrum at {nu_hz:e} Hz is {}; a power spectral density is a finite number >= 0",
+                    psd(nu_hz)
+                ),
+            });
+        }
+        Ok(ModeScales { m, dt_s, scale })
     }
-    let m = sequence_length(len);
-    let half = m / 2;
-    let dnu = 1.0 / (m as f64 * dt_s);
-    let units = (half - 1).div_ceil(COEFF_BLOCK) as u64;
-    // The runner checks for a cancellation between blocks.
-    let blocks = try_run_unit_range(seed, 0..units, threads, |u, rng| {
-        let first = 1 + u as usize * COEFF_BLOCK;
-        let last = (first + COEFF_BLOCK).min(half);
-        let block = (first..last)
-            .map(|k| {
-                let s = (psd(k as f64 * dnu) * dnu).sqrt();
-                let g: f64 = StandardNormal.sample(rng);
-                let h: f64 = StandardNormal.sample(rng);
-                Complex64::new(s * g, s * h)
-            })
-            .collect::<Vec<_>>();
-        Ok(block)
-    })?;
-    // A spectrum that is not a finite number >= 0 somewhere leaves a
-    // coefficient that is not finite: refused, naming the frequency.
-    let coefficients = blocks.iter().flatten();
-    if let Some(k) = coefficients
-        .clone()
-        .position(|c| !(c.re.is_finite() && c.im.is_finite()))
-    {
-        let nu_hz = (k + 1) as f64 * dnu;
-        return Err(Error::Invalid {
-            param: "psd",
-            reason: format!(
-                "the spectrum at {nu_hz:e} Hz is {}; a power spectral density is a finite number >= 0",
-                psd(nu_hz)
-            ),
-        });
+
+    /// Whether these are the scales of sequences of `len` samples at step
+    /// `dt_s` (the same FFT length and step).
+    pub(crate) fn fits(&self, len: usize, dt_s: f64) -> bool {
+        len > 0 && sequence_length(len) == self.m && dt_s == self.dt_s
     }
-    let mut buf = vec![Complex64::new(0.0, 0.0); m];
-    for (dst, src) in buf[1..half].iter_mut().zip(blocks.into_iter().flatten()) {
-        *dst = src;
+
+    /// One sequence from `seed`: the coefficients drawn in fixed blocks,
+    /// one generator each, then the M-point inverse transform.
+    pub(crate) fn synthesize(&self, seed: u64, threads: usize) -> Result<Vec<f64>> {
+        let (m, half) = (self.m, self.m / 2);
+        let units = (half - 1).div_ceil(COEFF_BLOCK) as u64;
+        // The runner checks for a cancellation between blocks.
+        let blocks = try_run_unit_range(seed, 0..units, threads, |u, rng| {
+            let first = 1 + u as usize * COEFF_BLOCK;
+            let last = (first + COEFF_BLOCK).min(half);
+            let block = self.scale[first - 1..last - 1]
+                .iter()
+                .map(|&s| {
+                    let g: f64 = StandardNormal.sample(rng);
+                    let h: f64 = StandardNormal.sample(rng);
+                    Complex64::new(s * g, s * h)
+                })
+                .collect::<Vec<_>>();
+            Ok(block)
+        })?;
+        let mut buf = vec![Complex64::new(0.0, 0.0); m];
+        for (dst, src) in buf[1..half].iter_mut().zip(blocks.into_iter().flatten()) {
+            *dst = src;
+        }
+        // The M-point transform split into rows over the threads
+        // (crate::math::fft): same bits for any thread count.
+        let series = in_pool(threads, || Ok(inverse_dft(&buf)))?;
+        let root2 = std::f64::consts::SQRT_2;
+        Ok(series.iter().map(|z| root2 * z.re).collect())
     }
-    // The M-point transform split into rows over the threads
-    // (crate::math::fft): same bits for any thread count.
-    let series = in_pool(threads, || Ok(inverse_dft(&buf)))?;
-    let root2 = std::f64::consts::SQRT_2;
-    Ok(series.iter().map(|z| root2 * z.re).collect())
 }
 
 /// The expected sample variance of [`synthesize_series`] output,
