@@ -87,7 +87,7 @@ use crate::montecarlo::{derive_seed, replicated_t_quantile};
 use crate::noise::calibrated::{expectation, Trials};
 use crate::noise::Formula;
 use crate::piston::spectrum::PistonSpectrum;
-use crate::piston::FringeTables;
+use crate::piston::{FringeTables, SharedSequences};
 use crate::simulator::{simulate, Inputs, Model, PistonInputs};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -467,22 +467,25 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     // One fringe table per rung of range for the whole grid, not one per
     // setting (their building was 59 % of a visible plan's time).
     let tables = FringeTables::new();
-    let grid: Vec<(f64, f64)> = inputs
-        .fringe_hz
-        .iter()
-        .flat_map(|&f| inputs.stroke_um.iter().map(move |&s| (f, s)))
-        .collect();
-    let points = crate::montecarlo::in_pool(threads, || {
-        grid.par_iter()
-            .map(|&(f, s)| {
-                let r = grid_point(inputs, (&sky, &tables), f, s);
-                progress(1);
-                crate::montecarlo::cancel::check()?;
-                r
-            })
-            .collect::<Result<Vec<_>>>()
-    })?;
-    let mut points: Vec<PlanPoint> = points.into_iter().flatten().collect();
+    // The strokes of one fringe frequency read the same piston sequences
+    // (grid_point), drawn once: one frequency's at a time in memory.
+    let mut points: Vec<PlanPoint> = Vec::new();
+    for &f in &inputs.fringe_hz {
+        let shared = SharedSequences::new();
+        let group = crate::montecarlo::in_pool(threads, || {
+            inputs
+                .stroke_um
+                .par_iter()
+                .map(|&s| {
+                    let r = grid_point(inputs, (&sky, &tables, &shared), f, s);
+                    progress(1);
+                    crate::montecarlo::cancel::check()?;
+                    r
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
+        points.extend(group.into_iter().flatten());
+    }
     if let Target::SigmaV2(target) = inputs.target {
         crate::montecarlo::in_pool(threads, || {
             candidates::resolve_candidates(inputs, (&sky, &tables), &mut points, target)

@@ -1,13 +1,16 @@
 //! One grid point of the plan: both estimators' deterministic terms, the
 //! exact noise per scan and the piston Monte Carlo of the setting, keyed
-//! by the setting itself (so a point's terms do not depend on the grid).
+//! by its fringe frequency (so a point's terms do not depend on the grid,
+//! and the strokes of one frequency scan one atmosphere: their sequences
+//! are drawn once, and their difference is not blurred by independent
+//! draws).
 
 use super::*;
 
 /// The two estimators' points at one grid point.
 pub(super) fn grid_point(
     inputs: &PlanInputs,
-    (sky, tables): (&PistonSpectrum, &FringeTables),
+    (sky, tables, shared): (&PistonSpectrum, &FringeTables, &SharedSequences),
     fringe_hz: f64,
     stroke_um: f64,
 ) -> Result<[PlanPoint; 2]> {
@@ -25,11 +28,12 @@ pub(super) fn grid_point(
             &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
             sky.clone(),
         )?
-        .sharing_fringe_tables(tables);
+        .sharing_fringe_tables(tables)
+        .sharing_piston_sequences(shared);
     let scans = point_scans(inputs.scans, noisy.samples());
     let size = Trials {
         trials: scans,
-        seed: derive_seed(inputs.seed, "plan", &[fringe_hz, stroke_um]),
+        seed: derive_seed(inputs.seed, "plan", &[fringe_hz]),
         // 0: the pool the grid runs on. A pool per point built inside the
         // grid's pool nests each waiting worker's stolen points on its
         // stack (a 10000-point grid overflowed it).

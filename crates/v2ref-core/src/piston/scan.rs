@@ -25,7 +25,7 @@
 use crate::error::{self, Error, Result};
 use crate::formalism::interferogram::Sampling;
 use crate::math::quadrature::gauss_legendre;
-use crate::piston::fringe_table::FringeTable;
+use crate::piston::fringe_table::{FringeTable, BATCH};
 use serde::Serialize;
 
 pub use crate::record::PistonReference;
@@ -176,15 +176,26 @@ pub(crate) fn fill_scan(
 ) {
     let n = setup.samples;
     let half = n / 2;
-    for j in 0..n {
-        let nominal = (j as f64 - half as f64) * setup.dx_um;
-        let mut acc = 0.0;
+    let (mut x, mut fringe) = ([0.0; BATCH], [0.0; BATCH]);
+    // The samples in batches (the table reads a batch at a time); within a
+    // sample, the sub-samples summed in order, as one by one.
+    for first in (0..n).step_by(BATCH) {
+        let batch = BATCH.min(n - first);
+        let mut acc = [0.0; BATCH];
         for (&uk, &wk) in u.iter().zip(w) {
-            let x = nominal + uk * setup.dx_um + piston(j as f64 + uk) - reference_um;
-            acc += wk * table.fringe(x);
+            for (b, x) in x[..batch].iter_mut().enumerate() {
+                let j = first + b;
+                let nominal = (j as f64 - half as f64) * setup.dx_um;
+                *x = nominal + uk * setup.dx_um + piston(j as f64 + uk) - reference_um;
+            }
+            table.fringes(&x[..batch], &mut fringe[..batch]);
+            for (acc, f) in acc[..batch].iter_mut().zip(&fringe[..batch]) {
+                *acc += wk * f;
+            }
         }
-        let i = (j + n - half) % n;
-        out[i] = acc;
+        for (b, acc) in acc[..batch].iter().enumerate() {
+            out[(first + b + n - half) % n] = *acc;
+        }
     }
 }
 

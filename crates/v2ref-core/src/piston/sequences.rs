@@ -9,10 +9,11 @@
 
 use crate::montecarlo::derive_seed;
 use crate::piston::scan::{interp, PistonReference, ScanSetup};
-use crate::piston::series::{ModeScales, MAX_SERIES};
+use crate::piston::series::{sequence_length, ModeScales, MAX_SERIES};
 use crate::piston::turbulence::PistonSpectrum;
 use crate::piston::RunSize;
 use crate::Result;
+use std::sync::{Arc, Mutex};
 
 /// The most scans of `samples` samples one run can hold: all its
 /// sequences together have at most [`MAX_SERIES`] samples (the memory
@@ -96,7 +97,7 @@ pub fn sequence_seed(seed: u64, j: usize) -> u64 {
 pub(crate) struct PistonSequence {
     /// p at each sample time, µm, per sequence (each periodic, at least
     /// its scans × N + 4 long).
-    segments: Vec<Vec<f64>>,
+    segments: Vec<Arc<Vec<f64>>>,
     /// First scan of each sequence, and one past the last scan.
     first_scan: Vec<usize>,
     /// Samples from the start of one scan to the start of the next in a
@@ -141,18 +142,17 @@ pub(crate) fn observation_sequence_samples(
 impl PistonSequence {
     /// Synthesises the sequences of `size.scans` scans of `setup` from the
     /// differential-piston spectrum, from `size.seed` (all its randomness).
+    /// With `shared`, a sequence another run under the same spectrum has
+    /// drawn from the same seed, length and step is read, not drawn again.
     pub(crate) fn synthesize(
         spectrum: &PistonSpectrum,
         setup: &ScanSetup,
         size: &RunSize,
+        shared: Option<&SharedSequences>,
     ) -> Result<Self> {
         let k = sequence_split(size.scans).0;
-        Self::synthesize_layout(
-            spectrum,
-            setup,
-            size,
-            (k, scan_stride(spectrum, setup, size.scans)),
-        )
+        let layout = (k, scan_stride(spectrum, setup, size.scans));
+        Self::synthesize_layout(spectrum, setup, size, layout, shared)
     }
 
     /// [`synthesize`](Self::synthesize) with `k` sequences whose scans start
@@ -162,8 +162,43 @@ impl PistonSequence {
         setup: &ScanSetup,
         size: &RunSize,
         (k, stride): (usize, usize),
+        shared: Option<&SharedSequences>,
     ) -> Result<Self> {
-        Self::synthesize_segments(spectrum, setup, size, (k, stride), 0)
+        let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
+        let n = setup.samples;
+        let dt_s = setup.sample_time_s();
+        let mut first_scan = vec![0];
+        let mut segments = Vec::with_capacity(k);
+        // The sequences' lengths differ by at most a stride: most share
+        // one FFT length, hence one set of scales.
+        let mut scales: Option<ModeScales> = None;
+        for j in 0..k {
+            let scans = size.scans / k + usize::from(j < size.scans % k);
+            first_scan.push(first_scan[j] + scans);
+            let len = (scans - 1) * stride + n + 4;
+            let seed = sequence_seed(size.seed, j);
+            let mut draw = || {
+                if !scales.as_ref().is_some_and(|s| s.fits(len, dt_s)) {
+                    scales = Some(ModeScales::new(&psd, dt_s, len, size.threads)?);
+                }
+                let scales = scales.as_ref().expect("made just above");
+                scales.synthesize(seed, size.threads)
+            };
+            segments.push(match shared {
+                Some(shared) => shared.get(spectrum, (seed, sequence_length(len), dt_s), draw)?,
+                None => Arc::new(draw()?),
+            });
+        }
+        let period_samples = segments.iter().map(|s| s.len()).max().unwrap_or(0);
+        Ok(PistonSequence {
+            segments,
+            first_scan,
+            stride,
+            samples: n,
+            reference: setup.reference,
+            first_sample: 0,
+            period_samples,
+        })
     }
 
     /// `observations` independent observations of `scans` consecutive
@@ -202,7 +237,7 @@ impl PistonSequence {
             let mut kept = Vec::with_capacity(read + OBSERVATION_LEAD);
             kept.extend_from_slice(&series[m - OBSERVATION_LEAD..]);
             kept.extend_from_slice(&series[..read.min(m)]);
-            segments.push(kept);
+            segments.push(Arc::new(kept));
         }
         Ok(PistonSequence {
             segments,
@@ -212,45 +247,6 @@ impl PistonSequence {
             reference: setup.reference,
             first_sample: OBSERVATION_LEAD,
             period_samples: period,
-        })
-    }
-
-    /// [`synthesize_layout`](Self::synthesize_layout) with each sequence at
-    /// least `min_len` samples long.
-    fn synthesize_segments(
-        spectrum: &PistonSpectrum,
-        setup: &ScanSetup,
-        size: &RunSize,
-        (k, stride): (usize, usize),
-        min_len: usize,
-    ) -> Result<Self> {
-        let psd = |nu: f64| spectrum.psd_um2_per_hz(nu);
-        let n = setup.samples;
-        let mut first_scan = vec![0];
-        let mut segments = Vec::with_capacity(k);
-        // The sequences' lengths differ by at most a stride: most share
-        // one FFT length, hence one set of scales.
-        let mut scales: Option<ModeScales> = None;
-        for j in 0..k {
-            let scans = size.scans / k + usize::from(j < size.scans % k);
-            first_scan.push(first_scan[j] + scans);
-            let len = ((scans - 1) * stride + n + 4).max(min_len);
-            let dt_s = setup.sample_time_s();
-            if !scales.as_ref().is_some_and(|s| s.fits(len, dt_s)) {
-                scales = Some(ModeScales::new(&psd, dt_s, len, size.threads)?);
-            }
-            let scales = scales.as_ref().expect("made just above");
-            segments.push(scales.synthesize(sequence_seed(size.seed, j), size.threads)?);
-        }
-        let period_samples = segments.iter().map(Vec::len).max().unwrap_or(0);
-        Ok(PistonSequence {
-            segments,
-            first_scan,
-            stride,
-            samples: n,
-            reference: setup.reference,
-            first_sample: 0,
-            period_samples,
         })
     }
 
@@ -300,8 +296,13 @@ impl PistonSequence {
 
     /// RMS of all the sequences, µm.
     pub(crate) fn rms_um(&self) -> f64 {
-        let m: usize = self.segments.iter().map(Vec::len).sum();
-        let sum2: f64 = self.segments.iter().flatten().map(|p| p * p).sum();
+        let m: usize = self.segments.iter().map(|s| s.len()).sum();
+        let sum2: f64 = self
+            .segments
+            .iter()
+            .flat_map(|s| s.iter())
+            .map(|p| p * p)
+            .sum();
         (sum2 / m as f64).sqrt()
     }
 
@@ -348,5 +349,65 @@ impl PistonSequence {
             excursion = excursion.max(prev.abs());
         }
         (excursion, (resid2 / (scans * n) as f64).sqrt())
+    }
+}
+
+/// The piston sequences of several runs under one sky, shared: a sequence
+/// is drawn once per spectrum, seed, FFT length and step, by whichever run
+/// asks first, and read by every run that asks for the same (a planner's
+/// strokes at one fringe frequency, keyed by that frequency, read one
+/// atmosphere).
+///
+/// The sequence a run reads depends only on what it asks for, not on which
+/// runs asked before or on how many threads, so the answer has the same
+/// bits whatever the order, and the bits a run has alone. Clones share the
+/// sequences; they are freed when the last clone is dropped (a planner
+/// keeps one frequency's at a time: they hold up to
+/// [`MAX_SERIES`] samples per run).
+#[derive(Debug, Clone, Default)]
+pub struct SharedSequences {
+    #[allow(clippy::type_complexity)]
+    drawn: Arc<Mutex<Vec<(SequenceKey, Arc<Mutex<Option<Arc<Vec<f64>>>>>)>>>,
+}
+
+/// What a shared sequence is drawn from: the spectrum, the seed, the FFT
+/// length and the step (s).
+type SequenceKey = (PistonSpectrum, u64, usize, f64);
+
+impl SharedSequences {
+    /// No sequence yet.
+    pub fn new() -> SharedSequences {
+        SharedSequences::default()
+    }
+
+    /// The sequence of `spectrum` from `(seed, FFT length, step)`: the one
+    /// drawn before, or `draw()`'s (which must draw exactly that).
+    fn get(
+        &self,
+        spectrum: &PistonSpectrum,
+        (seed, m, dt_s): (u64, usize, f64),
+        draw: impl FnOnce() -> Result<Vec<f64>>,
+    ) -> Result<Arc<Vec<f64>>> {
+        let slot = {
+            let mut drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
+            let found = drawn
+                .iter()
+                .find(|((sp, s, mm, dt), _)| (*s, *mm, *dt) == (seed, m, dt_s) && sp == spectrum)
+                .map(|(_, slot)| slot.clone());
+            found.unwrap_or_else(|| {
+                let slot = Arc::new(Mutex::new(None));
+                drawn.push(((spectrum.clone(), seed, m, dt_s), slot.clone()));
+                slot
+            })
+        };
+        // Held while the sequence is drawn: a second run asking for it
+        // waits rather than drawing it again.
+        let mut sequence = slot.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(s) = sequence.as_ref() {
+            return Ok(s.clone());
+        }
+        let made = Arc::new(draw()?);
+        *sequence = Some(made.clone());
+        Ok(made)
     }
 }

@@ -303,7 +303,7 @@ pub fn simulate_piston(
     size: &RunSize,
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<Vec<PistonRun>> {
-    let sequence = |size: &RunSize| PistonSequence::synthesize(spectrum, setup, size);
+    let sequence = |size: &RunSize| PistonSequence::synthesize(spectrum, setup, size, None);
     simulate_through(obs, spectrum, setup, detectors, size, progress, &sequence)
 }
 
@@ -322,7 +322,7 @@ pub fn simulate_consecutive(
     size: &RunSize,
 ) -> Result<Vec<PistonRun>> {
     let sequence = |size: &RunSize| {
-        PistonSequence::synthesize_layout(spectrum, setup, size, (1, setup.samples))
+        PistonSequence::synthesize_layout(spectrum, setup, size, (1, setup.samples), None)
     };
     simulate_through(obs, spectrum, setup, detectors, size, None, &sequence)
 }

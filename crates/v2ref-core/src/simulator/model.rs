@@ -9,6 +9,7 @@ use crate::formalism::observation::Observation;
 use crate::noise::calibrated::CalibratedSetup;
 use crate::noise::{scaled_interferogram, NoiseModel};
 use crate::piston::fringe_table::{FringeTable, FringeTables};
+use crate::piston::sequences::SharedSequences;
 use crate::piston::turbulence::PistonSpectrum;
 use crate::simulator::inputs::Inputs;
 use std::sync::Arc;
@@ -35,6 +36,9 @@ pub struct Model {
     /// Fringe tables shared with other models ([`Model::sharing_fringe_tables`]);
     /// none: each set builds the exact table its piston needs.
     fringe_tables: Option<FringeTables>,
+    /// Piston sequences shared with other models
+    /// ([`Model::sharing_piston_sequences`]); none: each set draws its own.
+    piston_sequences: Option<SharedSequences>,
 }
 
 impl Model {
@@ -87,6 +91,20 @@ impl Model {
         self
     }
 
+    /// This model, its sets reading their piston sequences from `shared`
+    /// when another model given it drew the same ones (same spectrum,
+    /// seed, length and step: [`SharedSequences`]): the same bits as drawn
+    /// alone, drawn once.
+    pub fn sharing_piston_sequences(mut self, shared: &SharedSequences) -> Model {
+        self.piston_sequences = Some(shared.clone());
+        self
+    }
+
+    /// The shared piston sequences, if any.
+    pub(crate) fn shared_sequences(&self) -> Option<&SharedSequences> {
+        self.piston_sequences.as_ref()
+    }
+
     /// The fringe table of a set whose piston needs |x| ≤ `max_opd_um`.
     pub(crate) fn fringe_table(&self, max_opd_um: f64) -> Result<Arc<FringeTable>> {
         match &self.fringe_tables {
@@ -124,6 +142,7 @@ impl Model {
         Ok(Model {
             piston_spectrum,
             fringe_tables: None,
+            piston_sequences: None,
             inputs: inputs.clone(),
             noise: inputs.noise()?,
             observation,

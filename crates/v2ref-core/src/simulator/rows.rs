@@ -204,10 +204,16 @@ impl Model {
                 let seeds = (size.seed, size.threads);
                 PistonSequence::synthesize_observations(spectrum, &setup, shape, seeds)?
             }
-            Layout::Named(_) => PistonSequence::synthesize(spectrum, &setup, size)?,
-            Layout::Explicit(sequences, stride) => {
-                PistonSequence::synthesize_layout(spectrum, &setup, size, (sequences, stride))?
+            Layout::Named(_) => {
+                PistonSequence::synthesize(spectrum, &setup, size, self.shared_sequences())?
             }
+            Layout::Explicit(sequences, stride) => PistonSequence::synthesize_layout(
+                spectrum,
+                &setup,
+                size,
+                (sequences, stride),
+                self.shared_sequences(),
+            )?,
         };
         let (excursion, residual_rms_um) = sequence.excursion_and_residual();
         let table = self.fringe_table(table_range_um(&setup, excursion)?)?;
