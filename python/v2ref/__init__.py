@@ -987,6 +987,8 @@ def plan(
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -1078,6 +1080,14 @@ def plan(
         the σ(V²) and mean achieved with intervals beside the promise.
     verify_observations : int
         Observations simulated by ``verify``: 32 to 1e6.
+    client : dask.distributed.Client, optional
+        Runs ``verify``'s simulated observations on this Dask cluster, a
+        task per batch of piston sequences (the grid is planned here, in
+        seconds); the answer is the one process's, bit for bit
+        (``docs/dask.md``). Nothing to run there without ``verify``.
+    checkpoint : path-like, optional
+        A folder keeping each finished batch of ``verify``'s simulation, as
+        :func:`simulate`'s; a rerun computes only the batches it lacks.
     {physical}
 
     Returns
@@ -1093,6 +1103,10 @@ def plan(
     arguments = _plan_arguments(dict(locals()))
     if instrument is not None:
         arguments["instrument"] = (_word("instrument", instrument), sorted(_GIVEN.get()))
+    if verify and (client is not None or checkpoint is not None):
+        from . import dask as _dask
+
+        arguments["verify_units"] = _dask._plan_verify_units(arguments, client, checkpoint)
     return _v2ref.plan(**arguments)
 
 
@@ -1186,6 +1200,8 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         makes a table of it.
     """
     client = keywords.pop("client", None)
+    if "checkpoint" in keywords:
+        raise TypeError("checkpoint: not a keyword of plan_targets (a target list keeps no checkpoint yet)")
     for k in _NOT_FOR_TARGETS:
         if k in keywords:
             raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")

@@ -285,3 +285,28 @@ def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, arg
         for i in range(rows)
     ]
     return [row for part in client.gather(futures) for row in part]
+
+
+#: :func:`v2ref.plan`'s keywords (as the extension takes them) that its
+#: verification's tasks rebuild the plan's inputs from.
+_PLAN_INPUTS = (
+    "physical", "samples_per_fringe", "photon_rate_per_s", "dead_time_s", "fringe_hz",
+    "stroke_um", "target_sigma_v2", "time_budget_s", "scans", "seed", "diameter_err_mas",
+    "bias", "magnitude", "frame_rate_hz", "instrument",
+)
+
+
+def _plan_verify_units(arguments: Dict[str, Any], client: Any, checkpoint: Any):
+    """``plan``'s ``verify_units``: called by the extension, once the plan
+    has recommended a point (f, Δx, n scans), with the number of
+    observations; returns the partial results of the verification's
+    batches of piston sequences in order, a task each (each rebuilds the
+    plan's inputs from its keywords, in milliseconds, not the plan)."""
+    kw = {k: arguments[k] for k in _PLAN_INPUTS if k in arguments}
+    threads = arguments["threads"] or (1 if client is not None else 0)
+
+    def units(fringe_hz: float, stroke_um: float, scans: int, observations: int) -> List[bytes]:
+        args = (kw, fringe_hz, stroke_um, scans, observations, threads)
+        return _partials("verify", args, client, checkpoint, 1)[0]
+
+    return units

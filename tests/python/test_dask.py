@@ -217,3 +217,33 @@ def test_synthesize_truth_on_two_workers_gives_the_one_process_set(client, monke
     assert bits(on_cluster[1]) == bits(sidecar)  # the truth, every field
     other = v2ref.synthesize(**{**kw, "seed": 5}, client=client)
     assert bits(other[1]["truth"]) != bits(sidecar["truth"])  # power
+
+
+#: A plan whose verification (320 observations of 145 scans, sequences
+#: of 2900 scans 378 samples apart: batches of 15 and 1 sequences) runs
+#: as 2 units.
+PLAN_VERIFIED = dict(
+    wavelength_um=2.2, bandwidth_nm=400.0, source="point", baseline_m=50.0,
+    photon_rate_per_s=2e6, read_noise=2.0, fringe_hz=[800.0], stroke_um=[32.0],
+    scans=400, target_sigma_v2=3e-3, dead_time_s=0.1, threads=1,
+    verify=True, verify_observations=320,
+)
+
+
+def test_plan_verify_on_two_workers_gives_the_one_process_bits(client, tmp_path):
+    one = v2ref.plan(**PLAN_VERIFIED)
+    assert one["verification"]["observations"] == 320
+    assert bits(v2ref.plan(**PLAN_VERIFIED, client=client)) == bits(one)
+    # Resumed from a checkpoint lacking one of its 2 batches: the same bits,
+    # the batch kept not rewritten.
+    folder = tmp_path / "ck"
+    assert bits(v2ref.plan(**PLAN_VERIFIED, checkpoint=folder)) == bits(one)
+    files = sorted(folder.iterdir())
+    assert [f.name.split("-")[1] for f in files] == ["verify", "verify"]
+    kept = files[0].stat().st_ino
+    files[1].unlink()
+    assert bits(v2ref.plan(**PLAN_VERIFIED, client=client, checkpoint=folder)) == bits(one)
+    assert sorted(folder.iterdir()) == files and files[0].stat().st_ino == kept
+    # Power: the verification's seed (the plan's) changes its numbers.
+    other = v2ref.plan(**{**PLAN_VERIFIED, "seed": 2, "verify_observations": 64}, client=client)
+    assert bits(other["verification"]["achieved_sigma"]) != bits(one["verification"]["achieved_sigma"])

@@ -11,7 +11,7 @@
 
 mod data;
 pub(crate) mod paper;
-mod plan;
+pub(crate) mod plan;
 pub(crate) mod simulator;
 mod targets;
 
