@@ -44,6 +44,7 @@ __version__: str = _v2ref.__version__
 __all__ = [
     "estimate",
     "synthesize",
+    "powered_set",
     "score",
     "simulate",
     "bias",
@@ -496,6 +497,49 @@ def synthesize(
         truth_partials=truth_partials,
     )
 
+
+
+def powered_set(name: str, *, client: Any = None, checkpoint: Optional[_PathLike] = None) -> Tuple[_np.ndarray, Dict[str, Any]]:
+    """A conformance vector made large enough to catch a 2 % error, as the Rust library's ``oracle::Set::powered``.
+
+    The piston-free golden vector ``name`` (its inputs and seed) with as
+    many rows as a score needs to catch a 2 % error of the mean or the
+    variance of either estimator, under every window and bias convention
+    of its truth, with probability 0.9 (1.4 to 5.3e5 rows; the rows come
+    from a pilot truth of 8192 rows, computed here), and its truth from a
+    reference run of 8 times the rows.
+
+    Parameters
+    ----------
+    name : str
+        A piston-free vector of ``golden/vectors/`` (``noise_gaussian``,
+        ``noise_poisson``, ``noise_both``, ``bandwidth_disk``,
+        ``dispersion``, ``short_scan_odd``, ``integrating``); a vector with
+        piston is refused (its truth would need replicates of the whole
+        set).
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (nearly all of the cost) as ranges
+        of work units on this Dask cluster; the pilot and the rows are
+        made here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s; a rerun computes only the ranges it lacks.
+
+    Returns
+    -------
+    (ndarray of shape (rows, N), dict)
+        The rows (float64, continuum subtracted) and the sidecar, as
+        :func:`synthesize` returns them (the data file named ``NAME.npy``).
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name: {name!r} is not a str")
+    if client is None and checkpoint is None:
+        return _v2ref.powered_set(name)
+    from . import dask as _dask
+
+    rows = _v2ref._powered_rows(name)
+    partials = _dask._partials("powered", (name, rows, 1 if client is not None else 0), client, checkpoint)[0]
+    return _v2ref.powered_set(name, rows, partials)
 
 #: The keys of the mapping :func:`estimate` returns; :func:`score` reads
 #: v1_sq and v2_sq and refuses any other key (a misspelt column would

@@ -259,6 +259,39 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         ``data.npy`` is the data file's name with ``out``, else empty).
     """
 
+def powered_set(name: str, *, client: Any=None, checkpoint: Optional[_PathLike]=None) -> Tuple[_np.ndarray, Dict[str, Any]]:
+    """A conformance vector made large enough to catch a 2 % error, as the Rust library's ``oracle::Set::powered``.
+
+    The piston-free golden vector ``name`` (its inputs and seed) with as
+    many rows as a score needs to catch a 2 % error of the mean or the
+    variance of either estimator, under every window and bias convention
+    of its truth, with probability 0.9 (1.4 to 5.3e5 rows; the rows come
+    from a pilot truth of 8192 rows, computed here), and its truth from a
+    reference run of 8 times the rows.
+
+    Parameters
+    ----------
+    name : str
+        A piston-free vector of ``golden/vectors/`` (``noise_gaussian``,
+        ``noise_poisson``, ``noise_both``, ``bandwidth_disk``,
+        ``dispersion``, ``short_scan_odd``, ``integrating``); a vector with
+        piston is refused (its truth would need replicates of the whole
+        set).
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (nearly all of the cost) as ranges
+        of work units on this Dask cluster; the pilot and the rows are
+        made here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s; a rerun computes only the ranges it lacks.
+
+    Returns
+    -------
+    (ndarray of shape (rows, N), dict)
+        The rows (float64, continuum subtracted) and the sidecar, as
+        :func:`synthesize` returns them (the data file named ``NAME.npy``).
+    """
+
 def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins: str='positive', bias: str='model', alpha: float=0.001, columns: Optional[Sequence[str]]=None) -> Dict[str, Any]:
     """Score a pipeline's per-row estimates against a set's truth, as ``v2ref score --json``.
 

@@ -18,7 +18,7 @@ use v2ref_commands::units::verify::VerifyJob;
 use v2ref_commands::units::{Partial, UnitJob, HEADER_BYTES};
 
 /// The commands that run in ranges of units.
-const COMMANDS: &str = "simulate, piston, truth, verify";
+const COMMANDS: &str = "simulate, piston, truth, powered, verify";
 
 /// A command's job.
 enum Job {
@@ -93,6 +93,13 @@ fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<Job> {
                 (rows, seed, threads, reference_blocks),
                 (&layout, observations, dead_time_s),
             )?;
+            Ok(Job::Truth(job))
+        }
+        "powered" => {
+            // powered_set's vector and rows.
+            let (name, rows, threads): (String, u64, usize) = args.extract()?;
+            let v = crate::answers::powered::powered_vector(&name)?;
+            let job = crate::answers::powered::powered_truth_job(&v, rows, threads);
             Ok(Job::Truth(job))
         }
         "verify" => {
