@@ -37,7 +37,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
-from . import _docstrings, _v2ref
+from . import _docstrings, _progress, _v2ref
 
 __version__: str = _v2ref.__version__
 
@@ -1228,6 +1228,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
         (``docs/dask.md``). A path is read here, not on the workers.
+    progress : bool or callable, optional
+        ``True``: a line on stderr at most once a second, the targets done,
+        the time elapsed and about how long is left (as the CLI's bar and
+        ETA). A callable: called ``progress(done, total)`` in the calling
+        thread after each target (in list order here, as they finish on a
+        cluster). Either way the rows are planned one call at a time (a
+        list given as a path read once, here), the same table bit for bit.
 
     Returns
     -------
@@ -1244,6 +1251,7 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         makes a table of it.
     """
     client = keywords.pop("client", None)
+    report = _progress.reporter(keywords.pop("progress", None))
     if "checkpoint" in keywords:
         raise TypeError("checkpoint: not a keyword of plan_targets (a target list keeps no checkpoint yet)")
     for k in _NOT_FOR_TARGETS:
@@ -1266,8 +1274,17 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     if client is not None:
         from . import dask as _dask
 
-        return _dask._plan_targets(path, text, throughput, args, client)
-    return _v2ref.plan_targets(path, text, throughput, **args)
+        return _dask._plan_targets(path, text, throughput, args, client, report)
+    if report is None:
+        return _v2ref.plan_targets(path, text, throughput, **args)
+    from . import dask as _dask
+
+    text, total = _dask._list_of(path, text)
+    table = []
+    for i in range(total):
+        table += _v2ref.plan_targets(None, text, throughput, **args, rows=(i, i + 1))
+        report(i + 1, total)
+    return table
 
 
 def _target_list(targets: Any) -> Tuple[Optional[str], Optional[str]]:

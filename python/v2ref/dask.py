@@ -271,19 +271,32 @@ def _list_text(path: str) -> str:
         return f.read()
 
 
-def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any) -> List[Dict[str, Any]]:
-    """``plan_targets`` with each row a Dask task: every row is planned
-    alone (its seed keyed by its content), so the rows joined in order are
-    the one-process table, bit for bit."""
+def _list_of(path: Optional[str], text: Optional[str]) -> Tuple[str, int]:
+    """``(text, rows)`` of a target list given as a path or as text: a
+    path is read once, here (and checked as the extension checks it)."""
     rows = _v2ref._targets_count(path, text)
     if path is not None:
         text = _list_text(path)
         if _v2ref._targets_count(None, text) != rows:
             raise ValueError(f"targets: {path!r} changed while it was read")
+    return text, rows
+
+
+def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any, report: Any = None) -> List[Dict[str, Any]]:
+    """``plan_targets`` with each row a Dask task: every row is planned
+    alone (its seed keyed by its content), so the rows joined in order are
+    the one-process table, bit for bit. ``report(done, total)`` after each
+    row finished, if given."""
+    text, rows = _list_of(path, text)
     futures = [
         client.submit(_target_rows, text, throughput, args, i, i + 1, pure=True, retries=RETRIES)
         for i in range(rows)
     ]
+    if report is not None:
+        from distributed import as_completed
+
+        for done, _ in enumerate(as_completed(futures), 1):
+            report(done, rows)
     return [row for part in client.gather(futures) for row in part]
 
 

@@ -283,3 +283,10 @@ def test_powered_set_refuses_a_vector_with_piston_or_no_vector(tmp_path):
     with pytest.raises(TypeError, match="name"):
         v2ref.powered_set(3)
     assert not (tmp_path / "ck").exists()
+
+
+def test_plan_targets_progress_on_two_workers(client):
+    seen = []
+    rows = v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED, client=client, progress=lambda d, t: seen.append((d, t)))
+    assert seen == [(1, 3), (2, 3), (3, 3)]
+    assert bits(rows) == bits(v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED))
