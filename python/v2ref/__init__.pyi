@@ -842,6 +842,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
         (``docs/dask.md``). A path is read here, not on the workers.
+    progress : bool or callable, optional
+        ``True``: a line on stderr at most once a second, the targets done,
+        the time elapsed and about how long is left (as the CLI's bar and
+        ETA). A callable: called ``progress(done, total)`` in the calling
+        thread after each target (in list order here, as they finish on a
+        cluster). Either way the rows are planned one call at a time (a
+        list given as a path read once, here), the same table bit for bit.
 
     Returns
     -------
