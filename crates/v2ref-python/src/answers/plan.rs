@@ -14,7 +14,9 @@ use v2ref_commands::units::{Partial, UnitJob};
 /// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
 /// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3);
 /// `oifits`: `--oifits`; `observing`: its target, date and site (the
-/// wrapper's keywords, as `--target-name` ... `--site-height-m`).
+/// wrapper's keywords, as `--target-name` ... `--site-height-m`);
+/// `verify_units`: a callable that computes the verification's units
+/// elsewhere ([`verify_in_units`]; None: here).
 #[pyfunction]
 #[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None, instrument=None, verify_units=None))]
 #[allow(clippy::too_many_arguments)]
