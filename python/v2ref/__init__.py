@@ -37,13 +37,14 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
-from . import _docstrings, _v2ref
+from . import _docstrings, _progress, _v2ref
 
 __version__: str = _v2ref.__version__
 
 __all__ = [
     "estimate",
     "synthesize",
+    "powered_set",
     "score",
     "simulate",
     "bias",
@@ -496,6 +497,49 @@ def synthesize(
         truth_partials=truth_partials,
     )
 
+
+
+def powered_set(name: str, *, client: Any = None, checkpoint: Optional[_PathLike] = None) -> Tuple[_np.ndarray, Dict[str, Any]]:
+    """A conformance vector made large enough to catch a 2 % error, as the Rust library's ``oracle::Set::powered``.
+
+    The piston-free golden vector ``name`` (its inputs and seed) with as
+    many rows as a score needs to catch a 2 % error of the mean or the
+    variance of either estimator, under every window and bias convention
+    of its truth, with probability 0.9 (1.4 to 5.3e5 rows; the rows come
+    from a pilot truth of 8192 rows, computed here), and its truth from a
+    reference run of 8 times the rows.
+
+    Parameters
+    ----------
+    name : str
+        A piston-free vector of ``golden/vectors/`` (``noise_gaussian``,
+        ``noise_poisson``, ``noise_both``, ``bandwidth_disk``,
+        ``dispersion``, ``short_scan_odd``, ``integrating``); a vector with
+        piston is refused (its truth would need replicates of the whole
+        set).
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (nearly all of the cost) as ranges
+        of work units on this Dask cluster; the pilot and the rows are
+        made here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s; a rerun computes only the ranges it lacks.
+
+    Returns
+    -------
+    (ndarray of shape (rows, N), dict)
+        The rows (float64, continuum subtracted) and the sidecar, as
+        :func:`synthesize` returns them (the data file named ``NAME.npy``).
+    """
+    if not isinstance(name, str):
+        raise TypeError(f"name: {name!r} is not a str")
+    if client is None and checkpoint is None:
+        return _v2ref.powered_set(name)
+    from . import dask as _dask
+
+    rows = _v2ref._powered_rows(name)
+    partials = _dask._partials("powered", (name, rows, 1 if client is not None else 0), client, checkpoint)[0]
+    return _v2ref.powered_set(name, rows, partials)
 
 #: The keys of the mapping :func:`estimate` returns; :func:`score` reads
 #: v1_sq and v2_sq and refuses any other key (a misspelt column would
@@ -987,6 +1031,8 @@ def plan(
     bias: str = "counts",
     verify: bool = False,
     verify_observations: int = 256,
+    client: Any = None,
+    checkpoint: Optional[_PathLike] = None,
     # The physical keyword arguments (fields of the library's Physical).
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
@@ -1078,6 +1124,14 @@ def plan(
         the σ(V²) and mean achieved with intervals beside the promise.
     verify_observations : int
         Observations simulated by ``verify``: 32 to 1e6.
+    client : dask.distributed.Client, optional
+        Runs ``verify``'s simulated observations on this Dask cluster, a
+        task per batch of piston sequences (the grid is planned here, in
+        seconds); the answer is the one process's, bit for bit
+        (``docs/dask.md``). Nothing to run there without ``verify``.
+    checkpoint : path-like, optional
+        A folder keeping each finished batch of ``verify``'s simulation, as
+        :func:`simulate`'s; a rerun computes only the batches it lacks.
     {physical}
 
     Returns
@@ -1093,6 +1147,10 @@ def plan(
     arguments = _plan_arguments(dict(locals()))
     if instrument is not None:
         arguments["instrument"] = (_word("instrument", instrument), sorted(_GIVEN.get()))
+    if verify and (client is not None or checkpoint is not None):
+        from . import dask as _dask
+
+        arguments["verify_units"] = _dask._plan_verify_units(arguments, client, checkpoint)
     return _v2ref.plan(**arguments)
 
 
@@ -1170,6 +1228,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
         (``docs/dask.md``). A path is read here, not on the workers.
+    progress : bool or callable, optional
+        ``True``: a line on stderr at most once a second, the targets done,
+        the time elapsed and about how long is left (as the CLI's bar and
+        ETA). A callable: called ``progress(done, total)`` in the calling
+        thread after each target (in list order here, as they finish on a
+        cluster). Either way the rows are planned one call at a time (a
+        list given as a path read once, here), the same table bit for bit.
 
     Returns
     -------
@@ -1186,6 +1251,9 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         makes a table of it.
     """
     client = keywords.pop("client", None)
+    report = _progress.reporter(keywords.pop("progress", None))
+    if "checkpoint" in keywords:
+        raise TypeError("checkpoint: not a keyword of plan_targets (a target list keeps no checkpoint yet)")
     for k in _NOT_FOR_TARGETS:
         if k in keywords:
             raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")
@@ -1206,8 +1274,17 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     if client is not None:
         from . import dask as _dask
 
-        return _dask._plan_targets(path, text, throughput, args, client)
-    return _v2ref.plan_targets(path, text, throughput, **args)
+        return _dask._plan_targets(path, text, throughput, args, client, report)
+    if report is None:
+        return _v2ref.plan_targets(path, text, throughput, **args)
+    from . import dask as _dask
+
+    text, total = _dask._list_of(path, text)
+    table = []
+    for i in range(total):
+        table += _v2ref.plan_targets(None, text, throughput, **args, rows=(i, i + 1))
+        report(i + 1, total)
+    return table
 
 
 def _target_list(targets: Any) -> Tuple[Optional[str], Optional[str]]:

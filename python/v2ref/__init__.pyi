@@ -259,6 +259,39 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         ``data.npy`` is the data file's name with ``out``, else empty).
     """
 
+def powered_set(name: str, *, client: Any=None, checkpoint: Optional[_PathLike]=None) -> Tuple[_np.ndarray, Dict[str, Any]]:
+    """A conformance vector made large enough to catch a 2 % error, as the Rust library's ``oracle::Set::powered``.
+
+    The piston-free golden vector ``name`` (its inputs and seed) with as
+    many rows as a score needs to catch a 2 % error of the mean or the
+    variance of either estimator, under every window and bias convention
+    of its truth, with probability 0.9 (1.4 to 5.3e5 rows; the rows come
+    from a pilot truth of 8192 rows, computed here), and its truth from a
+    reference run of 8 times the rows.
+
+    Parameters
+    ----------
+    name : str
+        A piston-free vector of ``golden/vectors/`` (``noise_gaussian``,
+        ``noise_poisson``, ``noise_both``, ``bandwidth_disk``,
+        ``dispersion``, ``short_scan_odd``, ``integrating``); a vector with
+        piston is refused (its truth would need replicates of the whole
+        set).
+    client : dask.distributed.Client, optional
+        Runs the truth's reference run (nearly all of the cost) as ranges
+        of work units on this Dask cluster; the pilot and the rows are
+        made here. Same bits as one process (``docs/dask.md``).
+    checkpoint : path-like, optional
+        A folder keeping each finished range of the reference run, as
+        :func:`simulate`'s; a rerun computes only the ranges it lacks.
+
+    Returns
+    -------
+    (ndarray of shape (rows, N), dict)
+        The rows (float64, continuum subtracted) and the sidecar, as
+        :func:`synthesize` returns them (the data file named ``NAME.npy``).
+    """
+
 def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins: str='positive', bias: str='model', alpha: float=0.001, columns: Optional[Sequence[str]]=None) -> Dict[str, Any]:
     """Score a pipeline's per-row estimates against a set's truth, as ``v2ref score --json``.
 
@@ -637,7 +670,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -708,6 +741,14 @@ def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=Non
         the σ(V²) and mean achieved with intervals beside the promise.
     verify_observations : int
         Observations simulated by ``verify``: 32 to 1e6.
+    client : dask.distributed.Client, optional
+        Runs ``verify``'s simulated observations on this Dask cluster, a
+        task per batch of piston sequences (the grid is planned here, in
+        seconds); the answer is the one process's, bit for bit
+        (``docs/dask.md``). Nothing to run there without ``verify``.
+    checkpoint : path-like, optional
+        A folder keeping each finished batch of ``verify``'s simulation, as
+        :func:`simulate`'s; a rerun computes only the batches it lacks.
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per
@@ -801,6 +842,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
         (``docs/dask.md``). A path is read here, not on the workers.
+    progress : bool or callable, optional
+        ``True``: a line on stderr at most once a second, the targets done,
+        the time elapsed and about how long is left (as the CLI's bar and
+        ETA). A callable: called ``progress(done, total)`` in the calling
+        thread after each target (in list order here, as they finish on a
+        cluster). Either way the rows are planned one call at a time (a
+        list given as a path read once, here), the same table bit for bit.
 
     Returns
     -------

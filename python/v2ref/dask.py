@@ -271,17 +271,55 @@ def _list_text(path: str) -> str:
         return f.read()
 
 
-def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any) -> List[Dict[str, Any]]:
-    """``plan_targets`` with each row a Dask task: every row is planned
-    alone (its seed keyed by its content), so the rows joined in order are
-    the one-process table, bit for bit."""
+def _list_of(path: Optional[str], text: Optional[str]) -> Tuple[str, int]:
+    """``(text, rows)`` of a target list given as a path or as text: a
+    path is read once, here (and checked as the extension checks it)."""
     rows = _v2ref._targets_count(path, text)
     if path is not None:
         text = _list_text(path)
         if _v2ref._targets_count(None, text) != rows:
             raise ValueError(f"targets: {path!r} changed while it was read")
+    return text, rows
+
+
+def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any, report: Any = None) -> List[Dict[str, Any]]:
+    """``plan_targets`` with each row a Dask task: every row is planned
+    alone (its seed keyed by its content), so the rows joined in order are
+    the one-process table, bit for bit. ``report(done, total)`` after each
+    row finished, if given."""
+    text, rows = _list_of(path, text)
     futures = [
         client.submit(_target_rows, text, throughput, args, i, i + 1, pure=True, retries=RETRIES)
         for i in range(rows)
     ]
+    if report is not None:
+        from distributed import as_completed
+
+        for done, _ in enumerate(as_completed(futures), 1):
+            report(done, rows)
     return [row for part in client.gather(futures) for row in part]
+
+
+#: :func:`v2ref.plan`'s keywords (as the extension takes them) that its
+#: verification's tasks rebuild the plan's inputs from.
+_PLAN_INPUTS = (
+    "physical", "samples_per_fringe", "photon_rate_per_s", "dead_time_s", "fringe_hz",
+    "stroke_um", "target_sigma_v2", "time_budget_s", "scans", "seed", "diameter_err_mas",
+    "bias", "magnitude", "frame_rate_hz", "instrument",
+)
+
+
+def _plan_verify_units(arguments: Dict[str, Any], client: Any, checkpoint: Any):
+    """``plan``'s ``verify_units``: called by the extension, once the plan
+    has recommended a point (f, Δx, n scans), with the number of
+    observations; returns the partial results of the verification's
+    batches of piston sequences in order, a task each (each rebuilds the
+    plan's inputs from its keywords, in milliseconds, not the plan)."""
+    kw = {k: arguments[k] for k in _PLAN_INPUTS if k in arguments}
+    threads = arguments["threads"] or (1 if client is not None else 0)
+
+    def units(fringe_hz: float, stroke_um: float, scans: int, observations: int) -> List[bytes]:
+        args = (kw, fringe_hz, stroke_um, scans, observations, threads)
+        return _partials("verify", args, client, checkpoint, 1)[0]
+
+    return units

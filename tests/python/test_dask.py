@@ -217,3 +217,76 @@ def test_synthesize_truth_on_two_workers_gives_the_one_process_set(client, monke
     assert bits(on_cluster[1]) == bits(sidecar)  # the truth, every field
     other = v2ref.synthesize(**{**kw, "seed": 5}, client=client)
     assert bits(other[1]["truth"]) != bits(sidecar["truth"])  # power
+
+
+#: A plan whose verification (320 observations of 145 scans, sequences
+#: of 2900 scans 378 samples apart: batches of 15 and 1 sequences) runs
+#: as 2 units.
+PLAN_VERIFIED = dict(
+    wavelength_um=2.2, bandwidth_nm=400.0, source="point", baseline_m=50.0,
+    photon_rate_per_s=2e6, read_noise=2.0, fringe_hz=[800.0], stroke_um=[32.0],
+    scans=400, target_sigma_v2=3e-3, dead_time_s=0.1, threads=1,
+    verify=True, verify_observations=320,
+)
+
+
+def test_plan_verify_on_two_workers_gives_the_one_process_bits(client, tmp_path):
+    one = v2ref.plan(**PLAN_VERIFIED)
+    assert one["verification"]["observations"] == 320
+    assert bits(v2ref.plan(**PLAN_VERIFIED, client=client)) == bits(one)
+    # Resumed from a checkpoint lacking one of its 2 batches: the same bits,
+    # the batch kept not rewritten.
+    folder = tmp_path / "ck"
+    assert bits(v2ref.plan(**PLAN_VERIFIED, checkpoint=folder)) == bits(one)
+    files = sorted(folder.iterdir())
+    assert [f.name.split("-")[1] for f in files] == ["verify", "verify"]
+    kept = files[0].stat().st_ino
+    files[1].unlink()
+    assert bits(v2ref.plan(**PLAN_VERIFIED, client=client, checkpoint=folder)) == bits(one)
+    assert sorted(folder.iterdir()) == files and files[0].stat().st_ino == kept
+    # Power: the verification's seed (the plan's) changes its numbers.
+    other = v2ref.plan(**{**PLAN_VERIFIED, "seed": 2, "verify_observations": 64}, client=client)
+    assert bits(other["verification"]["achieved_sigma"]) != bits(one["verification"]["achieved_sigma"])
+
+
+def test_powered_set_on_two_workers_gives_the_one_process_set(client, tmp_path):
+    # The smallest powered set (0.7 s here): 268 288 rows of 25 samples,
+    # its truth's reference run 264 units (five tasks of up to 64 here).
+    data, sidecar = v2ref.powered_set("short_scan_odd")
+    assert data.shape == (268288, 25) and sidecar["data"]["npy"] == "short_scan_odd.npy"
+    on_cluster = v2ref.powered_set("short_scan_odd", client=client)
+    assert on_cluster[0].tobytes() == data.tobytes()
+    assert bits(on_cluster[1]) == bits(sidecar)  # the truth, every field
+    # Resumed from a checkpoint lacking two of its ranges: the same set.
+    folder = tmp_path / "ck"
+    resumed = v2ref.powered_set("short_scan_odd", checkpoint=folder)
+    assert bits(resumed[1]) == bits(sidecar)
+    # 4 ranges of 66 units (no client), in unit order.
+    files = sorted(folder.iterdir(), key=lambda f: int(f.name.split("-")[3]))
+    assert len(files) == 4 and all(f.name.startswith("v2ref-powered-") for f in files)
+    kept = {f.name: f.stat().st_ino for f in files[::2]}
+    files[1].unlink()
+    files[3].unlink()
+    again = v2ref.powered_set("short_scan_odd", client=client, checkpoint=folder)
+    assert again[0].tobytes() == data.tobytes() and bits(again[1]) == bits(sidecar)
+    # Each gap of 66 recomputed as ranges of 64 and 2 on the 2 workers,
+    # the rest kept as they were.
+    assert {f.name: f.stat().st_ino for f in folder.iterdir() if f.name in kept} == kept
+    assert len(list(folder.iterdir())) == 2 + 4
+
+
+def test_powered_set_refuses_a_vector_with_piston_or_no_vector(tmp_path):
+    with pytest.raises(ValueError, match=r"name: \"piston_low\" has piston.*accepted: noise_gaussian, "):
+        v2ref.powered_set("piston_low", client=None, checkpoint=tmp_path / "ck")
+    with pytest.raises(ValueError, match=r"name: no piston-free vector \"nope\"; accepted: .*integrating"):
+        v2ref.powered_set("nope")
+    with pytest.raises(TypeError, match="name"):
+        v2ref.powered_set(3)
+    assert not (tmp_path / "ck").exists()
+
+
+def test_plan_targets_progress_on_two_workers(client):
+    seen = []
+    rows = v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED, client=client, progress=lambda d, t: seen.append((d, t)))
+    assert seen == [(1, 3), (2, 3), (3, 3)]
+    assert bits(rows) == bits(v2ref.plan_targets(TARGET_ROWS, **TARGETS_SHARED))

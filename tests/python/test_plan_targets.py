@@ -110,3 +110,49 @@ def test_an_instrument_preset_fills_what_was_not_given_as_the_cli(tmp_path):
         assert _number(cli[k]) == rows[0][k], k
     without = v2ref.plan_targets(path, instrument="vlti-pionier", **keywords)
     assert without[0]["sigma_v2"] != rows[0]["sigma_v2"], "the read noise given counts"
+
+
+def bits(x):
+    """``x`` with every float as its exact hex form (so == compares bits)."""
+    if isinstance(x, float):
+        return x.hex()
+    if isinstance(x, dict):
+        return {k: bits(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [bits(v) for v in x]
+    return x
+
+
+def test_progress_reports_each_target_and_keeps_the_table(tmp_path, capsys):
+    whole = v2ref.plan_targets(ROWS, **SHARED)
+    seen = []
+    rows = v2ref.plan_targets(ROWS, **SHARED, progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(1, 3), (2, 3), (3, 3)]
+    assert bits(rows) == bits(whole)  # planned a row at a time: the same table
+    # A path is read once and planned a row at a time: the file's table.
+    path = tmp_path / "list.csv"
+    path.write_text("# a comment\nname,magnitude,band\nalpha,5,H\r\n\ngamma,6,h\n")
+    assert bits(v2ref.plan_targets(path, **SHARED, progress=True)) == bits(v2ref.plan_targets(path, **SHARED))
+    err = capsys.readouterr().err.splitlines()
+    assert err[-1].startswith("plan_targets: 2/2 targets, ") and err[-1].endswith(" elapsed, done")
+    with pytest.raises(TypeError, match="progress"):
+        v2ref.plan_targets(ROWS, **SHARED, progress="yes")
+
+
+def test_the_progress_line_is_at_most_one_a_second_with_the_time_left():
+    import io
+
+    from v2ref._progress import Line
+
+    now = [100.0]
+    out = io.StringIO()
+    line = Line(stream=out, clock=lambda: now[0])
+    for done, t in [(1, 101.0), (2, 101.5), (3, 102.5), (4, 102.6)]:
+        now[0] = t
+        line(done, 4)
+    # The second within a second of the first: not shown; the last always.
+    assert out.getvalue().splitlines() == [
+        "plan_targets: 1/4 targets, 0:01 elapsed, about 0:03 left",
+        "plan_targets: 3/4 targets, 0:02 elapsed, about 0:01 left",
+        "plan_targets: 4/4 targets, 0:03 elapsed, done",
+    ]

@@ -14,16 +14,18 @@ use pyo3::types::{PyBytes, PyDict, PyTuple};
 use v2ref_commands::units::piston::PistonJob;
 use v2ref_commands::units::simulate::SimulateJob;
 use v2ref_commands::units::truth::TruthJob;
+use v2ref_commands::units::verify::VerifyJob;
 use v2ref_commands::units::{Partial, UnitJob, HEADER_BYTES};
 
 /// The commands that run in ranges of units.
-const COMMANDS: &str = "simulate, piston, truth";
+const COMMANDS: &str = "simulate, piston, truth, powered, verify";
 
 /// A command's job.
 enum Job {
     Simulate(SimulateJob),
     Piston(PistonJob),
     Truth(TruthJob),
+    Verify(VerifyJob),
 }
 
 /// The job of `command` from its binding's arguments.
@@ -93,6 +95,32 @@ fn job(command: &str, args: &Bound<'_, PyTuple>) -> PyResult<Job> {
             )?;
             Ok(Job::Truth(job))
         }
+        "powered" => {
+            // powered_set's vector and rows.
+            let (name, rows, threads): (String, u64, usize) = args.extract()?;
+            let v = crate::answers::powered::powered_vector(&name)?;
+            let job = crate::answers::powered::powered_truth_job(&v, rows, threads);
+            Ok(Job::Truth(job))
+        }
+        "verify" => {
+            // plan's keywords, and the point verified.
+            let (kw, fringe_hz, stroke_um, n, observations, threads): (
+                Bound<'_, PyDict>,
+                f64,
+                f64,
+                u64,
+                u64,
+                usize,
+            ) = args.extract()?;
+            let inputs = crate::answers::plan::plan_inputs(&kw)?;
+            let point = (fringe_hz, stroke_um, n);
+            Ok(Job::Verify(ok(VerifyJob::new(
+                inputs,
+                point,
+                observations,
+                threads,
+            ))?))
+        }
         _ => Err(PyValueError::new_err(format!(
             "command: {command:?} does not run in units (accepted: {COMMANDS})"
         ))),
@@ -105,6 +133,7 @@ impl Job {
             Job::Simulate(j) => j.key(),
             Job::Piston(j) => j.key(),
             Job::Truth(j) => j.key(),
+            Job::Verify(j) => j.key(),
         }
     }
 
@@ -113,6 +142,7 @@ impl Job {
             Job::Simulate(j) => j.shape(),
             Job::Piston(j) => j.shape(),
             Job::Truth(j) => j.shape(),
+            Job::Verify(j) => j.shape(),
         }
     }
 
@@ -125,6 +155,7 @@ impl Job {
             Job::Simulate(j) => j.run_range(range, progress),
             Job::Piston(j) => j.run_range(range, progress),
             Job::Truth(j) => j.run_range(range, progress),
+            Job::Verify(j) => j.run_range(range, progress),
         }
     }
 
@@ -141,6 +172,11 @@ impl Job {
             Job::Truth(j) => {
                 let truth = interruptible(py, |_| j.reduce(partials))?;
                 to_py(py, &truth)
+            }
+            // The observations' means (plan reduces them with its answer).
+            Job::Verify(j) => {
+                let means = interruptible(py, |_| j.reduce(partials))?;
+                to_py(py, &means)
             }
         }
     }

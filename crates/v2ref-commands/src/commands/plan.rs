@@ -240,3 +240,21 @@ pub fn verify(
     answer.verification = Some(v);
     Ok(())
 }
+
+/// [`verify`] with the simulated observations' means of V1² and V2² given
+/// (reduced from the units of [`crate::units::verify::VerifyJob`]).
+pub fn record_verification(
+    answer: &mut PlanAnswer,
+    size: &VerificationSize,
+    block_means: [crate::montecarlo::Summary; 2],
+) -> Result<()> {
+    let Some(p) = answer.plan.recommended else {
+        return Err(Error::Invalid {
+            param: "verify",
+            reason: "the plan recommends nothing to verify".into(),
+        });
+    };
+    let v = crate::plan::verify::verification_of(&answer.inputs, &p, size, block_means)?;
+    answer.verification = Some(v);
+    Ok(())
+}

@@ -12,11 +12,11 @@
 //! neighbouring blocks are), with `SEQUENCES − 1` degrees of freedom.
 
 use super::observation::{scans_per_sequence, stride_samples, ContiguousScans};
-use super::scans::SEQUENCES;
+pub(crate) use super::scans::SEQUENCES;
 use super::{Estimator, PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};
-use crate::montecarlo::{derive_seed, replicated_t_quantile};
+use crate::montecarlo::{derive_seed, replicated_t_quantile, Summary};
 use crate::piston::spectrum::PistonSpectrum;
 use crate::simulator::Model;
 use serde::Serialize;
@@ -63,19 +63,30 @@ pub fn verification_size(
     p: &PlanPoint,
     observations: u64,
 ) -> Result<VerificationSize> {
+    let n = p.scans_needed.ok_or_else(|| Error::Invalid {
+        param: "verify",
+        reason: "the plan has no recommended number of scans to verify".into(),
+    })? as u64;
+    size_at(inputs, sky, (p.fringe_hz, p.stroke_um, n), observations)
+}
+
+/// [`verification_size`] at fringe frequency f (Hz) and stroke Δx (µm)
+/// with n scans per observation, `(f, Δx, n)`.
+pub fn size_at(
+    inputs: &PlanInputs,
+    sky: &PistonSpectrum,
+    (fringe_hz, stroke_um, n): (f64, f64, u64),
+    observations: u64,
+) -> Result<VerificationSize> {
     crate::error::in_range(
         "verify_observations",
         observations as f64,
         MIN_OBSERVATIONS as f64,
         MAX_OBSERVATIONS as f64,
     )?;
-    let n = p.scans_needed.ok_or_else(|| Error::Invalid {
-        param: "verify",
-        reason: "the plan has no recommended number of scans to verify".into(),
-    })? as u64;
-    let model = Model::new(&inputs.point_inputs(p.fringe_hz, p.stroke_um, false, false)?)?;
-    let t_s = 1.0 / (inputs.samples_per_fringe * p.fringe_hz);
-    let stride = stride_samples(inputs, &model, p.fringe_hz);
+    let model = Model::new(&inputs.point_inputs(fringe_hz, stroke_um, false, false)?)?;
+    let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
+    let stride = stride_samples(inputs, &model, fringe_hz);
     let blocks = observations.div_ceil(SEQUENCES as u64);
     let shape = (model.samples(), stride, t_s);
     let per_sequence =
@@ -161,6 +172,24 @@ pub struct Verification {
     pub mean_kept: bool,
 }
 
+/// The seed of the verification at fringe frequency f (Hz) and stroke Δx (µm).
+pub fn verify_seed(inputs: &PlanInputs, fringe_hz: f64, stroke_um: f64) -> u64 {
+    derive_seed(inputs.seed, "plan-verify", &[fringe_hz, stroke_um])
+}
+
+/// The noisy model with piston that a verification at f (Hz), Δx (µm) scans.
+pub fn verify_model(
+    inputs: &PlanInputs,
+    sky: &PistonSpectrum,
+    fringe_hz: f64,
+    stroke_um: f64,
+) -> Result<Model> {
+    Model::with_piston_spectrum(
+        &inputs.point_inputs(fringe_hz, stroke_um, true, true)?,
+        sky.clone(),
+    )
+}
+
 /// Simulates the observations of `size` at point `p` (with its
 /// observation-level promise) from `seed`; `progress` counts scans.
 pub fn verify(
@@ -170,23 +199,40 @@ pub fn verify(
     size: &VerificationSize,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Verification> {
-    let o = p.observation.ok_or_else(|| Error::Invalid {
-        param: "verify",
-        reason: "the point has no observation-level promise (a time budget plan?)".into(),
-    })?;
-    let model = Model::with_piston_spectrum(
-        &inputs.point_inputs(p.fringe_hz, p.stroke_um, true, true)?,
-        sky.clone(),
-    )?;
-    let seed = derive_seed(inputs.seed, "plan-verify", &[p.fringe_hz, p.stroke_um]);
+    promise(p)?;
+    let model = verify_model(inputs, sky, p.fringe_hz, p.stroke_um)?;
+    let seed = verify_seed(inputs, p.fringe_hz, p.stroke_um);
     let layout = (size.scans_per_sequence, size.stride, size.sample_time_s);
     let scans = ContiguousScans::simulate(&model, None, inputs.bias, layout, seed, progress)?;
+    let n = size.scans_per_observation as usize;
+    verification_of(inputs, p, size, scans.block_means(n, false))
+}
+
+/// The observation-level promise of `p`, or why it has none.
+fn promise(p: &PlanPoint) -> Result<super::observation::ObservationError> {
+    p.observation.ok_or_else(|| Error::Invalid {
+        param: "verify",
+        reason: "the point has no observation-level promise (a time budget plan?)".into(),
+    })
+}
+
+/// The verification of `p` from the means of the simulated observations
+/// of V1² and V2² (`block_means`: each observation's mean, errors from the
+/// spread between the sequences), computed here or reduced from the units
+/// of [`crate::units::verify::VerifyJob`].
+pub fn verification_of(
+    inputs: &PlanInputs,
+    p: &PlanPoint,
+    size: &VerificationSize,
+    block_means: [Summary; 2],
+) -> Result<Verification> {
+    let o = promise(p)?;
     let n = size.scans_per_observation as usize;
     let e = match p.estimator {
         Estimator::V1 => 0,
         Estimator::V2 => 1,
     };
-    let s = scans.block_means(n, false)[e];
+    let s = block_means[e];
     let t = replicated_t_quantile(CONFIDENCE, SEQUENCES);
     let sigma_interval = [s.std - t * s.stderr_std, s.std + t * s.stderr_std];
     let mean_interval = [s.mean - t * s.stderr_mean, s.mean + t * s.stderr_mean];
@@ -198,7 +244,7 @@ pub fn verify(
         scans_per_observation: size.scans_per_observation,
         observations: s.count,
         sequences: SEQUENCES,
-        seed,
+        seed: verify_seed(inputs, p.fringe_hz, p.stroke_um),
         confidence: CONFIDENCE,
         promised_sigma: o.sigma,
         sigma_if_independent: p.sigma_per_scan / (n as f64).sqrt(),

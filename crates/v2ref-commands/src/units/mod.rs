@@ -14,6 +14,7 @@
 pub mod piston;
 pub mod simulate;
 pub mod truth;
+pub mod verify;
 
 use crate::error::{Error, Result};
 use std::ops::Range;

@@ -11,7 +11,8 @@
 
 mod data;
 pub(crate) mod paper;
-mod plan;
+pub(crate) mod plan;
+pub(crate) mod powered;
 pub(crate) mod simulator;
 mod targets;
 
@@ -54,6 +55,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(targets::_targets_count, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::estimate, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::synthesize, m)?)?;
+    m.add_function(wrap_pyfunction!(powered::powered_set, m)?)?;
+    m.add_function(wrap_pyfunction!(powered::_powered_rows, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(paper::bias, m)?)?;
     m.add_function(wrap_pyfunction!(paper::snr, m)?)?;

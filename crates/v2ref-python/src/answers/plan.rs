@@ -8,13 +8,17 @@ use crate::{interruptible, ok};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
+use v2ref_commands::units::verify::VerifyJob;
+use v2ref_commands::units::{Partial, UnitJob};
 
 /// `plan`: `v2ref plan --json` (`physical` without `fringe_hz`; exactly one
 /// of `target_sigma_v2` and `time_budget_s`, or neither for σ(V²) = 1e-3);
 /// `oifits`: `--oifits`; `observing`: its target, date and site (the
-/// wrapper's keywords, as `--target-name` ... `--site-height-m`).
+/// wrapper's keywords, as `--target-name` ... `--site-height-m`);
+/// `verify_units`: a callable that computes the verification's units
+/// elsewhere ([`verify_in_units`]; None: here).
 #[pyfunction]
-#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None, instrument=None))]
+#[pyo3(signature = (physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, oifits=None, bias="counts", verify_observations=None, observing=None, force=false, magnitude=None, frame_rate_hz=None, instrument=None, verify_units=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn plan(
     py: Python<'_>,
@@ -38,6 +42,7 @@ pub(super) fn plan(
     magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
     instrument: Option<(String, Vec<String>)>,
+    verify_units: Option<PyObject>,
 ) -> PyResult<PyObject> {
     if let Some(path) = &oifits {
         ok(v2ref_oifits::check_fits_extension(path, "oifits"))?;
@@ -63,9 +68,12 @@ pub(super) fn plan(
     let mut answer = interruptible(py, |tick| commands::plan::run(prepared, threads, tick))?;
     if let Some(observations) = verify_observations {
         let size = ok(commands::plan::verification(&answer, observations))?;
-        interruptible(py, |tick| {
-            commands::plan::verify(&mut answer, &size, threads, tick)
-        })?;
+        match &verify_units {
+            None => interruptible(py, |tick| {
+                commands::plan::verify(&mut answer, &size, threads, tick)
+            })?,
+            Some(units) => verify_in_units(py, &mut answer, &size, observations, units)?,
+        }
     }
     if let (Some(path), Some(set)) = (&oifits, set) {
         // Nothing is written when no setting reaches the target: the
@@ -75,6 +83,78 @@ pub(super) fn plan(
         }))?;
     }
     to_py(py, &answer)
+}
+
+/// `plan`'s verification from the partial results of its units
+/// ([`VerifyJob`]), which `units(f, Δx, n, observations)` (`v2ref.dask`)
+/// computes, in unit order, from the plan's own keywords.
+fn verify_in_units(
+    py: Python<'_>,
+    answer: &mut commands::plan::PlanAnswer,
+    size: &v2ref_commands::plan::verify::VerificationSize,
+    observations: u64,
+    units: &PyObject,
+) -> PyResult<()> {
+    let (f, s, n) = (
+        answer.plan.recommended.map_or(0.0, |p| p.fringe_hz),
+        answer.plan.recommended.map_or(0.0, |p| p.stroke_um),
+        size.scans_per_observation,
+    );
+    let job = ok(VerifyJob::new(
+        answer.inputs.clone(),
+        (f, s, n),
+        observations,
+        0,
+    ))?;
+    let bytes: Vec<Vec<u8>> = units.call1(py, (f, s, n, observations))?.extract(py)?;
+    let partials: Vec<Partial> = bytes
+        .iter()
+        .map(|b| ok(Partial::from_bytes(b, job.key())))
+        .collect::<PyResult<_>>()?;
+    let means = interruptible(py, |_| job.reduce(&partials))?;
+    ok(commands::plan::record_verification(answer, size, means))
+}
+
+/// The plan's inputs from `plan`'s keywords (those of [`request`], and
+/// `instrument`), as a worker of `v2ref.dask` rebuilds them.
+pub(crate) fn plan_inputs(kw: &Bound<'_, PyDict>) -> PyResult<v2ref_commands::plan::PlanInputs> {
+    fn get<'py, T: FromPyObject<'py>>(kw: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+        match kw.get_item(key)? {
+            Some(v) => v.extract(),
+            None => Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "{key}: missing"
+            ))),
+        }
+    }
+    let physical: Bound<'_, PyDict> = get(kw, "physical")?;
+    let bias: String = get(kw, "bias")?;
+    let (mut p, mut req) = request(
+        &physical,
+        (
+            get(kw, "samples_per_fringe")?,
+            get(kw, "photon_rate_per_s")?,
+            get(kw, "dead_time_s")?,
+        ),
+        (get(kw, "fringe_hz")?, get(kw, "stroke_um")?),
+        (
+            get(kw, "target_sigma_v2")?,
+            get(kw, "time_budget_s")?,
+            get(kw, "scans")?,
+            get(kw, "seed")?,
+        ),
+        (
+            get(kw, "diameter_err_mas")?,
+            &bias,
+            get(kw, "magnitude")?,
+            get(kw, "frame_rate_hz")?,
+        ),
+    )?;
+    let instrument = match kw.get_item("instrument")? {
+        Some(v) => v.extract()?,
+        None => None,
+    };
+    preset(instrument, &mut p, &mut req)?;
+    Ok(ok(commands::plan::prepare(&p, &req))?.inputs)
 }
 
 /// The keywords of `plan` as the library's inputs (shared by

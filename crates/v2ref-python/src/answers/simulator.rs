@@ -256,7 +256,7 @@ pub(crate) fn truth_job(
 /// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
 /// within the documented bounds, 60 million rows of 32 samples (15 GB)
 /// aborted the interpreter when the allocation failed.
-fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
+pub(super) fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
     let budget = ok(crate::formats::memory_budget())?;
     let need = rows.saturating_mul(n as u64).saturating_mul(8);
     if need <= budget {
