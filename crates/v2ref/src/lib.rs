@@ -297,7 +297,7 @@ pub mod piston {
 
 /// All effects at once: noisy interferograms of any instrument, row by row.
 pub mod simulator {
-    pub use v2ref_core::piston::FringeTables;
+    pub use v2ref_core::piston::{FringeTables, SharedSequences};
     pub use v2ref_core::record::{SourceInput, SpectrumInput};
     pub use v2ref_core::simulator::{
         simulate, Inputs, Model, PistonEffect, PistonFacts, PistonInputs, RowLayout, RowTiming,
