@@ -15,7 +15,7 @@ use crate::noise::calibrated::Trials;
 use crate::noise::Formula;
 use crate::piston::sequences::correlation_time_s;
 use crate::piston::spectrum::PistonSpectrum;
-use crate::piston::FringeTables;
+use crate::piston::{FringeTables, SharedSequences};
 use crate::simulator::{simulate, Model};
 
 /// Settings of each estimator re-solved at the observation level: the
@@ -74,7 +74,7 @@ fn sigma_noise_per_scan(inputs: &PlanInputs, noisy: &Model, p: &PlanPoint) -> Re
 /// on the setting and the atmosphere only, their seed on the setting).
 fn contiguous(
     inputs: &PlanInputs,
-    (sky, tables): (&PistonSpectrum, &FringeTables),
+    (sky, tables, shared): (&PistonSpectrum, &FringeTables, &SharedSequences),
     (fringe_hz, stroke_um): (f64, f64),
 ) -> Result<ContiguousScans> {
     let noisy = Model::new(&inputs.point_inputs(fringe_hz, stroke_um, true, false)?)?;
@@ -83,12 +83,13 @@ fn contiguous(
             &inputs.point_inputs(fringe_hz, stroke_um, false, true)?,
             sky.clone(),
         )?
-        .sharing_fringe_tables(tables);
+        .sharing_fringe_tables(tables)
+        .sharing_piston_sequences(shared);
     let t_s = 1.0 / (inputs.samples_per_fringe * fringe_hz);
     let stride = stride_samples(inputs, &piston, fringe_hz);
     let shape = (piston.samples(), stride, t_s);
     let per_sequence = scans_per_sequence(sky, shape, inputs.scans);
-    let seed = observation_seed(inputs.seed, fringe_hz, stroke_um);
+    let seed = observation_seed(inputs.seed, fringe_hz);
     ContiguousScans::simulate(
         &piston,
         Some(&noisy),
@@ -186,21 +187,35 @@ pub(super) fn resolve_candidates(
                 least_time_s(noise[0], target, period) <= best[index(p[i].estimator)]
             });
         }
-        let solved: Vec<Vec<(usize, PlanPoint)>> = wave
+        // The wave's settings of one fringe frequency scan one atmosphere
+        // (the seed is the frequency's), drawn once: one after the other,
+        // the frequencies side by side; freed with the wave.
+        let shared = SharedSequences::new();
+        let solve = |s: &Setting| -> Result<Vec<(usize, PlanPoint)>> {
+            let scans = contiguous(inputs, (sky, tables, &shared), s.key)?;
+            Ok(s.points
+                .iter()
+                .map(|&(i, noise)| {
+                    let mut p = points[i];
+                    resolve((inputs, sky), &scans, noise, &mut p, target);
+                    (i, p)
+                })
+                .collect())
+        };
+        let live: Vec<&Setting> = wave.iter().filter(|s| !s.points.is_empty()).collect();
+        let mut frequencies: Vec<f64> = live.iter().map(|s| s.key.0).collect();
+        frequencies.sort_by(f64::total_cmp);
+        frequencies.dedup();
+        let solved: Vec<Vec<(usize, PlanPoint)>> = frequencies
             .par_iter()
-            .filter(|s| !s.points.is_empty())
-            .map(|s| {
-                let scans = contiguous(inputs, (sky, tables), s.key)?;
-                Ok(s.points
-                    .iter()
-                    .map(|&(i, noise)| {
-                        let mut p = points[i];
-                        resolve((inputs, sky), &scans, noise, &mut p, target);
-                        (i, p)
-                    })
-                    .collect())
+            .map(|&f| {
+                let same = live.iter().filter(|s| s.key.0 == f);
+                same.map(|s| solve(s)).collect::<Result<Vec<_>>>()
             })
-            .collect::<Result<_>>()?;
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .flatten()
+            .collect();
         for (i, p) in solved.into_iter().flatten() {
             if let Some(t) = p.time_s {
                 best[index(p.estimator)] = best[index(p.estimator)].min(t);

@@ -469,23 +469,36 @@ pub fn plan(inputs: &PlanInputs, threads: usize, progress: &(dyn Fn(u64) + Sync)
     let tables = FringeTables::new();
     // The strokes of one fringe frequency read the same piston sequences
     // (grid_point), drawn once: one frequency's at a time in memory.
-    let mut points: Vec<PlanPoint> = Vec::new();
-    for &f in &inputs.fringe_hz {
+    let frequency = |f: f64| -> Result<Vec<[PlanPoint; 2]>> {
         let shared = SharedSequences::new();
-        let group = crate::montecarlo::in_pool(threads, || {
-            inputs
-                .stroke_um
-                .par_iter()
-                .map(|&s| {
-                    let r = grid_point(inputs, (&sky, &tables, &shared), f, s);
-                    progress(1);
-                    crate::montecarlo::cancel::check()?;
-                    r
-                })
-                .collect::<Result<Vec<_>>>()
-        })?;
-        points.extend(group.into_iter().flatten());
-    }
+        let point = |s: f64| {
+            let r = grid_point(inputs, (&sky, &tables, &shared), f, s);
+            progress(1);
+            crate::montecarlo::cancel::check()?;
+            r
+        };
+        // The first stroke alone draws the sequences (on the threads the
+        // other frequencies leave free); the others then read them side by
+        // side.
+        let mut group = Vec::with_capacity(inputs.stroke_um.len());
+        if let Some((first, rest)) = inputs.stroke_um.split_first() {
+            group.push(point(*first)?);
+            group.extend(
+                rest.par_iter()
+                    .map(|&s| point(s))
+                    .collect::<Result<Vec<_>>>()?,
+            );
+        }
+        Ok(group)
+    };
+    let groups = crate::montecarlo::in_pool(threads, || {
+        inputs
+            .fringe_hz
+            .par_iter()
+            .map(|&f| frequency(f))
+            .collect::<Result<Vec<_>>>()
+    })?;
+    let mut points: Vec<PlanPoint> = groups.into_iter().flatten().flatten().collect();
     if let Target::SigmaV2(target) = inputs.target {
         crate::montecarlo::in_pool(threads, || {
             candidates::resolve_candidates(inputs, (&sky, &tables), &mut points, target)

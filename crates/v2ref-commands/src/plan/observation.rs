@@ -426,9 +426,11 @@ fn fewest(at: &AtPoint, target: f64, upper: bool, mut best: ObservationError) ->
     }
 }
 
-/// The seed of a point's observation Monte Carlo.
-pub(crate) fn observation_seed(seed: u64, fringe_hz: f64, stroke_um: f64) -> u64 {
-    derive_seed(seed, "plan-observation", &[fringe_hz, stroke_um])
+/// The seed of the observation Monte Carlo of the settings at fringe
+/// frequency f (Hz): the strokes of one frequency scan one atmosphere (and
+/// draw it once when solved together).
+pub(crate) fn observation_seed(seed: u64, fringe_hz: f64) -> u64 {
+    derive_seed(seed, "plan-observation", &[fringe_hz])
 }
 
 /// σ of the mean of n consecutive noise-free scans (the piston alone) at

@@ -338,8 +338,12 @@ impl PistonSequence {
             let m = series.len();
             let r = self.reference_um(s);
             let start = self.start_of(local);
+            // The scan's samples and the one after it, wrapping round the
+            // period only when they reach its end (a division a sample
+            // otherwise).
+            let at = |i: usize| if i < m { series[i] } else { series[i % m] };
             for j in 0..=n + 1 {
-                let d = series[(start + j) % m] - r;
+                let d = at(start + j) - r;
                 excursion = excursion.max(d.abs());
                 if j < n {
                     resid2 += d * d;

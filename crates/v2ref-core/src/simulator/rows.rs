@@ -317,6 +317,12 @@ impl Rows<'_> {
             .map_or(0, |p| p.sequence.sequence_of(s as usize))
     }
 
+    /// Whether the rows scan through a piston sequence ([`Rows::piston_facts`]
+    /// without its cost: the facts measure every sequence).
+    pub(crate) fn has_piston(&self) -> bool {
+        self.piston.is_some()
+    }
+
     /// The piston of the set, if any.
     pub fn piston_facts(&self) -> Option<PistonFacts> {
         self.piston.as_ref().map(|p| PistonFacts {

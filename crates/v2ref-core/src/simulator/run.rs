@@ -148,9 +148,9 @@ impl<'m> SimulationUnits<'m> {
             .rows(size.trials, size.seed, size.threads)
             .map_err(|e| e.renamed("rows", "trials"))?;
         let setup = model.calibrated_setup(window);
-        let expected = match rows.piston_facts() {
-            None => Some(expectation(&setup, &model.noise, formula)?),
-            Some(_) => None,
+        let expected = match rows.has_piston() {
+            false => Some(expectation(&setup, &model.noise, formula)?),
+            true => None,
         };
         let fast = expected.is_some() && bias == BiasConvention::Model;
         if !fast && formula != Formula::Exact {
@@ -296,7 +296,7 @@ impl<'m> SimulationUnits<'m> {
         };
         let noiseless = !rows_noisy(&self.rows);
         let effect = match &self.path {
-            UnitPath::Rows { v0, .. } if noiseless && self.rows.piston_facts().is_some() => {
+            UnitPath::Rows { v0, .. } if noiseless && self.rows.has_piston() => {
                 Some(PistonEffect {
                     v1_no_piston: v0.0,
                     v2_no_piston: v0.1,
