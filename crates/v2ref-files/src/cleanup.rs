@@ -39,7 +39,10 @@ pub fn remove_all() -> usize {
     let mut v = IN_FLIGHT.lock().unwrap_or_else(PoisonError::into_inner);
     let n = v.len();
     for p in v.drain(..) {
-        if p.is_dir() {
+        // Looked at, not followed: a temporary someone replaced with a
+        // link is unlinked, and what it points to is left alone.
+        let folder = std::fs::symlink_metadata(&p).is_ok_and(|m| m.is_dir());
+        if folder {
             let _ = std::fs::remove_dir_all(&p);
         } else {
             let _ = std::fs::remove_file(&p);
@@ -63,6 +66,19 @@ mod tests {
         super::unregister(&b);
         assert_eq!(super::remove_all(), 1);
         assert!(!a.exists() && b.exists() && kept.exists());
+        // A temporary folder swapped for a link to someone else's folder:
+        // the link goes, their files stay (one test: the list is global).
+        #[cfg(unix)]
+        {
+            let (theirs, link) = (dir.join("theirs"), dir.join("set.tmp"));
+            std::fs::create_dir_all(&theirs).unwrap();
+            std::fs::write(theirs.join("keep.npy"), "x").unwrap();
+            std::os::unix::fs::symlink(&theirs, &link).unwrap();
+            super::register(&link);
+            assert_eq!(super::remove_all(), 1);
+            assert!(std::fs::symlink_metadata(&link).is_err());
+            assert!(theirs.join("keep.npy").exists());
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
