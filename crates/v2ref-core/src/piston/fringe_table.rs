@@ -279,8 +279,8 @@ const RUNGS_PER_OCTAVE: f64 = 4.0;
 
 /// The fringe tables of the settings of one plan, shared: a table is built
 /// once per observation and rung of range (the range asked rounded up to
-/// the next 2^(k/4) µm), whoever asks first, and read by every setting
-/// whose range falls on that rung.
+/// the next 2^(k/4) µm) and read by every setting whose range falls on
+/// that rung.
 ///
 /// The table a setting reads depends only on its observation and the range
 /// it needs, not on which settings ran before or on how many threads, so
@@ -288,11 +288,15 @@ const RUNGS_PER_OCTAVE: f64 = 4.0;
 /// exact-range table of [`FringeTable::new`] by the interpolation error
 /// only (below [`crate::tolerance::FRINGE_TABLE_REL`] of the fringe's
 /// amplitude), so the conformance vectors, which build their own exact
-/// tables, do not move. Clones share the tables.
+/// tables, do not move. No lock is held while a table is built (it is
+/// built on the thread pool, whose waiting workers take up other work, a
+/// setting asking for the same table among it: waiting on a lock there
+/// could deadlock): two settings asking at once may both build it, and
+/// the first kept is read by both. Clones share the tables.
 #[derive(Debug, Clone, Default)]
 pub struct FringeTables {
     #[allow(clippy::type_complexity)]
-    built: Arc<Mutex<Vec<(Observation, i32, Arc<Mutex<Option<Arc<FringeTable>>>>)>>>,
+    built: Arc<Mutex<Vec<(Observation, i32, Arc<FringeTable>)>>>,
 }
 
 impl FringeTables {
@@ -309,26 +313,21 @@ impl FringeTables {
             .exp2()
             .min(MAX_OPD_UM)
             .max(max_opd_um);
-        let slot = {
-            let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
-            let found = built
+        let find = |built: &[(Observation, i32, Arc<FringeTable>)]| {
+            built
                 .iter()
                 .find(|(o, r, _)| *r == rung as i32 && o == obs)
-                .map(|(_, _, slot)| slot.clone());
-            found.unwrap_or_else(|| {
-                let slot = Arc::new(Mutex::new(None));
-                built.push((obs.clone(), rung as i32, slot.clone()));
-                slot
-            })
+                .map(|(_, _, table)| table.clone())
         };
-        // Held while the table is built: a second setting on this rung
-        // waits for it rather than building it again.
-        let mut table = slot.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(t) = table.as_ref() {
-            return Ok(t.clone());
+        if let Some(table) = find(&self.built.lock().unwrap_or_else(|e| e.into_inner())) {
+            return Ok(table);
         }
         let made = Arc::new(FringeTable::new(obs, range)?);
-        *table = Some(made.clone());
+        let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(first) = find(&built) {
+            return Ok(first);
+        }
+        built.push((obs.clone(), rung as i32, made.clone()));
         Ok(made)
     }
 }

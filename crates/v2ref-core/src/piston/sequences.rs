@@ -12,7 +12,7 @@ use crate::piston::scan::{interp, PistonReference, ScanSetup};
 use crate::piston::series::{sequence_length, ModeScales, MAX_SERIES};
 use crate::piston::turbulence::PistonSpectrum;
 use crate::piston::RunSize;
-use crate::Result;
+use crate::{Error, Result};
 use std::sync::{Arc, Mutex};
 
 /// The most scans of `samples` samples one run can hold: all its
@@ -105,6 +105,9 @@ pub(crate) struct PistonSequence {
     stride: usize,
     /// N.
     samples: usize,
+    /// The piston removed from each scan, µm (measured once: every reader
+    /// of a scan subtracts it).
+    references: Vec<f64>,
     /// How each scan's reference is taken.
     reference: PistonReference,
     /// Where the first scan of a sequence starts in its segment (0, or
@@ -168,27 +171,56 @@ impl PistonSequence {
         let n = setup.samples;
         let dt_s = setup.sample_time_s();
         let mut first_scan = vec![0];
-        let mut segments = Vec::with_capacity(k);
-        // The sequences' lengths differ by at most a stride: most share
-        // one FFT length, hence one set of scales.
-        let mut scales: Option<ModeScales> = None;
         for j in 0..k {
             let scans = size.scans / k + usize::from(j < size.scans % k);
             first_scan.push(first_scan[j] + scans);
-            let len = (scans - 1) * stride + n + 4;
-            let seed = sequence_seed(size.seed, j);
-            let mut draw = || {
-                if !scales.as_ref().is_some_and(|s| s.fits(len, dt_s)) {
-                    scales = Some(ModeScales::new(&psd, dt_s, len, size.threads)?);
-                }
-                let scales = scales.as_ref().expect("made just above");
-                scales.synthesize(seed, size.threads)
-            };
-            segments.push(match shared {
-                Some(shared) => shared.get(spectrum, (seed, sequence_length(len), dt_s), draw)?,
-                None => Arc::new(draw()?),
-            });
         }
+        let len_of = |j: usize| (first_scan[j + 1] - first_scan[j] - 1) * stride + n + 4;
+        // The sequences' lengths differ by at most a stride: most share
+        // one FFT length, hence one set of scales, made here before the
+        // sequences are drawn side by side (none when all are shared
+        // already). No lock is held across parallel work: a worker waiting
+        // for its share may take up another sequence's draw meanwhile.
+        let mut scales: Vec<ModeScales> = Vec::new();
+        for j in 0..k {
+            let key = (
+                sequence_seed(size.seed, j),
+                sequence_length(len_of(j)),
+                dt_s,
+            );
+            let drawn = shared.is_some_and(|s| s.has(spectrum, key));
+            if !drawn && !scales.iter().any(|s| s.fits(len_of(j), dt_s)) {
+                scales.push(ModeScales::new(&psd, dt_s, len_of(j), size.threads)?);
+            }
+        }
+        let scales_for = |len: usize| -> Result<&ModeScales> {
+            scales
+                .iter()
+                .find(|s| s.fits(len, dt_s))
+                .ok_or_else(|| Error::Invalid {
+                    param: "shared",
+                    reason: "a shared piston sequence was dropped while in use".into(),
+                })
+        };
+        // The sequences side by side (each its own seed: the same bits in
+        // any order), on the run's threads.
+        let segments = crate::montecarlo::in_pool(size.threads, || {
+            use rayon::prelude::*;
+            (0..k)
+                .into_par_iter()
+                .map(|j| {
+                    let len = len_of(j);
+                    let seed = sequence_seed(size.seed, j);
+                    let draw = || scales_for(len)?.synthesize(seed, 0);
+                    match shared {
+                        Some(shared) => {
+                            shared.get(spectrum, (seed, sequence_length(len), dt_s), draw)
+                        }
+                        None => Ok(Arc::new(draw()?)),
+                    }
+                })
+                .collect::<Result<Vec<_>>>()
+        })?;
         let period_samples = segments.iter().map(|s| s.len()).max().unwrap_or(0);
         Ok(PistonSequence {
             segments,
@@ -198,7 +230,9 @@ impl PistonSequence {
             reference: setup.reference,
             first_sample: 0,
             period_samples,
-        })
+            references: Vec::new(),
+        }
+        .with_references())
     }
 
     /// `observations` independent observations of `scans` consecutive
@@ -247,7 +281,9 @@ impl PistonSequence {
             reference: setup.reference,
             first_sample: OBSERVATION_LEAD,
             period_samples: period,
-        })
+            references: Vec::new(),
+        }
+        .with_references())
     }
 
     /// Number of independent sequences.
@@ -308,6 +344,18 @@ impl PistonSequence {
 
     /// The piston removed from scan `s`, µm.
     pub(crate) fn reference_um(&self, s: usize) -> f64 {
+        self.references[s]
+    }
+
+    /// This sequence with the piston removed from each scan measured.
+    fn with_references(mut self) -> Self {
+        let scans = self.first_scan[self.sequences()];
+        self.references = (0..scans).map(|s| self.measure_reference(s)).collect();
+        self
+    }
+
+    /// The piston removed from scan `s`, µm, measured on its samples.
+    fn measure_reference(&self, s: usize) -> f64 {
         let (series, local) = self.locate(s);
         let (n, base) = (self.samples, self.start_of(local));
         match self.reference {
@@ -357,26 +405,30 @@ impl PistonSequence {
 }
 
 /// The piston sequences of several runs under one sky, shared: a sequence
-/// is drawn once per spectrum, seed, FFT length and step, by whichever run
-/// asks first, and read by every run that asks for the same (a planner's
-/// strokes at one fringe frequency, keyed by that frequency, read one
-/// atmosphere).
+/// is drawn once per spectrum, seed, FFT length and step, and read by every
+/// run that asks for the same (a planner's strokes at one fringe frequency,
+/// keyed by that frequency, read one atmosphere).
 ///
 /// The sequence a run reads depends only on what it asks for, not on which
 /// runs asked before or on how many threads, so the answer has the same
-/// bits whatever the order, and the bits a run has alone. Clones share the
-/// sequences; they are freed when the last clone is dropped (a planner
-/// keeps one frequency's at a time: they hold up to
-/// [`MAX_SERIES`] samples per run).
+/// bits whatever the order, and the bits a run has alone. No lock is held
+/// while a sequence is drawn (the draw runs on the thread pool, whose
+/// waiting workers take up other work, a run asking for the same sequence
+/// among it): two runs asking for one sequence at once may both draw it,
+/// and the first kept is read by both. Clones share the sequences; they
+/// are freed when the last clone is dropped (a planner keeps one
+/// frequency's at a time: they hold up to [`MAX_SERIES`] samples per run).
 #[derive(Debug, Clone, Default)]
 pub struct SharedSequences {
-    #[allow(clippy::type_complexity)]
-    drawn: Arc<Mutex<Vec<(SequenceKey, Arc<Mutex<Option<Arc<Vec<f64>>>>>)>>>,
+    drawn: Arc<Mutex<Vec<SharedSequence>>>,
 }
 
 /// What a shared sequence is drawn from: the spectrum, the seed, the FFT
 /// length and the step (s).
 type SequenceKey = (PistonSpectrum, u64, usize, f64);
+
+/// One shared sequence and what it was drawn from.
+type SharedSequence = (SequenceKey, Arc<Vec<f64>>);
 
 impl SharedSequences {
     /// No sequence yet.
@@ -384,34 +436,42 @@ impl SharedSequences {
         SharedSequences::default()
     }
 
+    /// The sequence of `spectrum` from `(seed, FFT length, step)`, if drawn.
+    fn find(&self, spectrum: &PistonSpectrum, key: (u64, usize, f64)) -> Option<Arc<Vec<f64>>> {
+        let drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
+        drawn
+            .iter()
+            .find(|((sp, s, m, dt), _)| (*s, *m, *dt) == key && sp == spectrum)
+            .map(|(_, sequence)| sequence.clone())
+    }
+
+    /// Whether the sequence of `spectrum` from `(seed, FFT length, step)`
+    /// is drawn already.
+    fn has(&self, spectrum: &PistonSpectrum, key: (u64, usize, f64)) -> bool {
+        self.find(spectrum, key).is_some()
+    }
+
     /// The sequence of `spectrum` from `(seed, FFT length, step)`: the one
     /// drawn before, or `draw()`'s (which must draw exactly that).
     fn get(
         &self,
         spectrum: &PistonSpectrum,
-        (seed, m, dt_s): (u64, usize, f64),
+        key: (u64, usize, f64),
         draw: impl FnOnce() -> Result<Vec<f64>>,
     ) -> Result<Arc<Vec<f64>>> {
-        let slot = {
-            let mut drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
-            let found = drawn
-                .iter()
-                .find(|((sp, s, mm, dt), _)| (*s, *mm, *dt) == (seed, m, dt_s) && sp == spectrum)
-                .map(|(_, slot)| slot.clone());
-            found.unwrap_or_else(|| {
-                let slot = Arc::new(Mutex::new(None));
-                drawn.push(((spectrum.clone(), seed, m, dt_s), slot.clone()));
-                slot
-            })
-        };
-        // Held while the sequence is drawn: a second run asking for it
-        // waits rather than drawing it again.
-        let mut sequence = slot.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(s) = sequence.as_ref() {
-            return Ok(s.clone());
+        if let Some(sequence) = self.find(spectrum, key) {
+            return Ok(sequence);
         }
         let made = Arc::new(draw()?);
-        *sequence = Some(made.clone());
+        let mut drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
+        let (seed, m, dt_s) = key;
+        if let Some((_, first)) = drawn
+            .iter()
+            .find(|((sp, s, mm, dt), _)| (*s, *mm, *dt) == key && sp == spectrum)
+        {
+            return Ok(first.clone());
+        }
+        drawn.push(((spectrum.clone(), seed, m, dt_s), made.clone()));
         Ok(made)
     }
 }
