@@ -1235,6 +1235,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         thread after each target (in list order here, as they finish on a
         cluster). Either way the rows are planned one call at a time (a
         list given as a path read once, here), the same table bit for bit.
+    checkpoint : str or os.PathLike, optional
+        A folder where each row's table rows are kept as they are planned
+        (one file a row, written whole or not at all); run again with the
+        same list and keywords, only the rows missing there are planned,
+        the same table bit for bit. Entries are read as
+        ``docs/threat-model.md`` says: a link is never followed, an entry
+        of another list, other keywords or another version is not read.
 
     Returns
     -------
@@ -1252,8 +1259,7 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     """
     client = keywords.pop("client", None)
     report = _progress.reporter(keywords.pop("progress", None))
-    if "checkpoint" in keywords:
-        raise TypeError("checkpoint: not a keyword of plan_targets (a target list keeps no checkpoint yet)")
+    checkpoint = keywords.pop("checkpoint", None)
     for k in _NOT_FOR_TARGETS:
         if k in keywords:
             raise TypeError(f"{k}: not a keyword of plan_targets (no OIFITS file is written; a row's coordinates are its ra_deg, dec_deg)")
@@ -1271,20 +1277,11 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     if keywords.get("instrument") is not None:
         args["instrument"] = (_word("instrument", keywords["instrument"]), sorted(keywords))
     path, text = _target_list(targets)
-    if client is not None:
-        from . import dask as _dask
-
-        return _dask._plan_targets(path, text, throughput, args, client, report)
-    if report is None:
+    if client is None and report is None and checkpoint is None:
         return _v2ref.plan_targets(path, text, throughput, **args)
     from . import dask as _dask
 
-    text, total = _dask._list_of(path, text)
-    table = []
-    for i in range(total):
-        table += _v2ref.plan_targets(None, text, throughput, **args, rows=(i, i + 1))
-        report(i + 1, total)
-    return table
+    return _dask._plan_targets(path, text, throughput, args, client, report, checkpoint)
 
 
 def _target_list(targets: Any) -> Tuple[Optional[str], Optional[str]]:

@@ -849,6 +849,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         thread after each target (in list order here, as they finish on a
         cluster). Either way the rows are planned one call at a time (a
         list given as a path read once, here), the same table bit for bit.
+    checkpoint : str or os.PathLike, optional
+        A folder where each row's table rows are kept as they are planned
+        (one file a row, written whole or not at all); run again with the
+        same list and keywords, only the rows missing there are planned,
+        the same table bit for bit. Entries are read as
+        ``docs/threat-model.md`` says: a link is never followed, an entry
+        of another list, other keywords or another version is not read.
 
     Returns
     -------

@@ -19,6 +19,8 @@ checked; nothing written while reading) and computes only the missing
 units.
 """
 
+import hashlib as _hashlib
+import json as _json
 import math as _math
 import os as _os
 import re as _re
@@ -44,6 +46,9 @@ TASKS_PER_THREAD = 4
 RETRIES = 3
 
 _SUFFIX = ".partial"
+
+#: Largest checkpoint entry of one target list row read, bytes.
+_MAX_RECORD_BYTES = 1 << 20
 
 
 def _name(command: str, key: str, start: int, end: int) -> str:
@@ -116,7 +121,28 @@ class _Checkpoint:
             found[rng] = data
         return found
 
-    def _read(self, name: str, size: int) -> bytes:
+    def load_records(self, rows: int) -> Dict[int, List[Dict[str, Any]]]:
+        """The table rows of a target list's rows found in the folder, by
+        row: each entry at most ``_MAX_RECORD_BYTES``, JSON naming this
+        checkpoint's key and its row."""
+        found = {}
+        for name in _os.listdir(self.fd):
+            m = self._pattern.fullmatch(name)
+            if m is None:
+                continue
+            start, end = int(m.group(1)), int(m.group(2))
+            if end != start + 1 or start >= rows:
+                raise ValueError(f"checkpoint: {name} is not one row of a list of {rows}")
+            record = _json.loads(self._read(name, _MAX_RECORD_BYTES, exact=False))
+            if not isinstance(record, dict) or record.get("key") != self.key or record.get("row") != start:
+                raise ValueError(f"checkpoint: {name} is not the row of its name for this list")
+            table = record.get("table")
+            if not isinstance(table, list) or not all(isinstance(r, dict) for r in table):
+                raise ValueError(f"checkpoint: {name} holds no table rows")
+            found[start] = table
+        return found
+
+    def _read(self, name: str, size: int, exact: bool = True) -> bytes:
         flags = _os.O_RDONLY | _os.O_NOFOLLOW | getattr(_os, "O_NONBLOCK", 0) | getattr(_os, "O_CLOEXEC", 0)
         try:
             fd = _os.open(name, flags, dir_fd=self.fd)
@@ -126,8 +152,10 @@ class _Checkpoint:
             st = _os.fstat(fd)
             if not _stat.S_ISREG(st.st_mode):
                 raise ValueError(f"checkpoint: {name} is not a regular file")
-            if st.st_size != size:
+            if exact and st.st_size != size:
                 raise ValueError(f"checkpoint: {name} is {st.st_size} bytes, not the {size} of its units' results")
+            if st.st_size > size:
+                raise ValueError(f"checkpoint: {name} is {st.st_size} bytes, more than the {size} an entry holds")
             chunks, left = [], size
             while left > 0:
                 chunk = _os.read(fd, min(left, 1 << 20))
@@ -282,22 +310,64 @@ def _list_of(path: Optional[str], text: Optional[str]) -> Tuple[str, int]:
     return text, rows
 
 
-def _plan_targets(path: Optional[str], text: Optional[str], throughput: Any, args: Dict[str, Any], client: Any, report: Any = None) -> List[Dict[str, Any]]:
-    """``plan_targets`` with each row a Dask task: every row is planned
-    alone (its seed keyed by its content), so the rows joined in order are
-    the one-process table, bit for bit. ``report(done, total)`` after each
-    row finished, if given."""
+def _plan_targets(
+    path: Optional[str],
+    text: Optional[str],
+    throughput: Any,
+    args: Dict[str, Any],
+    client: Any,
+    report: Any = None,
+    checkpoint: Any = None,
+) -> List[Dict[str, Any]]:
+    """``plan_targets`` row by row: a Dask task each with ``client``, else
+    here one after another. Every row is planned alone (its seed keyed by
+    its content), so the rows joined in order are the one-process table,
+    bit for bit. ``report(done, total)`` after each row finished, if given.
+    With ``checkpoint``, each row's table rows are kept there as they
+    finish, and the rows found there (of this very list and these
+    arguments) are not planned again."""
     text, rows = _list_of(path, text)
-    futures = [
-        client.submit(_target_rows, text, throughput, args, i, i + 1, pure=True, retries=RETRIES)
-        for i in range(rows)
-    ]
-    if report is not None:
-        from distributed import as_completed
+    store = None
+    if checkpoint is not None:
+        store = _Checkpoint(checkpoint, "targets", _targets_key(text, throughput, args), (0, 0))
+    try:
+        done = store.load_records(rows) if store is not None else {}
+        todo = [i for i in range(rows) if i not in done]
+        for i, part in _target_parts(text, throughput, args, todo, client):
+            if store is not None:
+                store.save(i, i + 1, _json.dumps({"key": store.key, "row": i, "table": part}).encode())
+            done[i] = part
+            if report is not None:
+                report(len(done), rows)
+    finally:
+        if store is not None:
+            store.close()
+    return [row for i in range(rows) for row in done[i]]
 
-        for done, _ in enumerate(as_completed(futures), 1):
-            report(done, rows)
-    return [row for part in client.gather(futures) for row in part]
+
+def _target_parts(text: str, throughput: Any, args: Dict[str, Any], todo: List[int], client: Any):
+    """Yields ``(row, its table rows)`` for each row of ``todo`` as it
+    finishes."""
+    if client is None:
+        for i in todo:
+            yield i, _target_rows(text, throughput, args, i, i + 1)
+        return
+    from distributed import as_completed
+
+    futures = {
+        client.submit(_target_rows, text, throughput, args, i, i + 1, pure=True, retries=RETRIES): i
+        for i in todo
+    }
+    for future in as_completed(list(futures)):
+        yield futures[future], future.result()
+
+
+def _targets_key(text: str, throughput: Any, args: Dict[str, Any]) -> str:
+    """The key of a target list's checkpoint entries: the list's text, the
+    shared keywords and the package's version (a change to any plans
+    every row again)."""
+    blob = _json.dumps([_v2ref.__version__, text, throughput, args], sort_keys=True, default=repr)
+    return _hashlib.sha256(blob.encode()).hexdigest()[:32]
 
 
 #: :func:`v2ref.plan`'s keywords (as the extension takes them) that its

@@ -156,3 +156,36 @@ def test_the_progress_line_is_at_most_one_a_second_with_the_time_left():
         "plan_targets: 3/4 targets, 0:02 elapsed, about 0:01 left",
         "plan_targets: 4/4 targets, 0:03 elapsed, done",
     ]
+
+
+def test_a_checkpoint_keeps_each_row_and_a_rerun_plans_only_the_missing(tmp_path):
+    whole = v2ref.plan_targets(ROWS, **SHARED)
+    folder = tmp_path / "ck"
+    planned = []
+    count = lambda done, total: planned.append(done)  # noqa: E731
+    assert bits(v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder, progress=count)) == bits(whole)
+    entries = sorted(p.name for p in folder.iterdir())
+    assert len(entries) == 3 and len(planned) == 3
+    # One row's entry lost: only that row is planned again, the others are
+    # read (their files untouched), and the table has the same bits.
+    (folder / entries[1]).unlink()
+    kept = {n: (folder / n).stat().st_ino for n in (entries[0], entries[2])}
+    planned.clear()
+    assert bits(v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder, progress=count)) == bits(whole)
+    assert planned == [3], "one row planned, counted after the two read"
+    assert {n: (folder / n).stat().st_ino for n in kept} == kept
+    # Other arguments: another key, nothing of this list's entries read.
+    other = dict(SHARED, seed=8)
+    planned.clear()
+    v2ref.plan_targets(ROWS, **other, checkpoint=folder, progress=count)
+    assert len(planned) == 3
+    # An entry that is a link, or that names another row, is refused.
+    victim = folder / entries[0]
+    victim.unlink()
+    victim.symlink_to(folder / entries[2])
+    with pytest.raises(ValueError, match="checkpoint: .* link is never followed"):
+        v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder)
+    victim.unlink()
+    victim.write_bytes((folder / entries[2]).read_bytes())
+    with pytest.raises(ValueError, match="checkpoint: .* not the row of its name"):
+        v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder)
