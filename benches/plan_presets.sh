@@ -15,10 +15,8 @@
 # seeing at 0.5 um, 10 m/s wind and a 25 m outer scale, to sigma(V^2) 1e-3.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release --quiet
-exe="${CARGO_TARGET_DIR:-target}/release/v2ref"
-[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (GNU time: apt-get install time)" >&2; exit 2; }
-threads="${THREADS:-0}"
+LABEL_WIDTH=24
+. benches/plan_run.sh
 
 # name  magnitude band  diameter_mas  verify?
 cases=(
@@ -30,27 +28,6 @@ cases=(
     "mroi            6 h  0.5 -"
 )
 wanted=("$@")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-# run LABEL LIMIT_S ARGS... -> one row of the table
-run() {
-    local label=$1 limit=$2
-    shift 2
-    local log="$work/time.log"
-    local status=0
-    /usr/bin/time -v "$exe" plan "$@" --threads "$threads" --quiet --json \
-        >"$work/out.json" 2>"$log" || status=$?
-    local wall rss_kb
-    wall=$(sed -n 's/.*Elapsed (wall clock) time (h:mm:ss or m:ss): //p' "$log" |
-        awk -F: '{ s = 0; for (i = 1; i <= NF; i++) s = s * 60 + $i; print s }')
-    rss_kb=$(sed -n 's/.*Maximum resident set size (kbytes): //p' "$log")
-    local rss_mb verdict
-    rss_mb=$(awk "BEGIN { printf \"%.0f\", $rss_kb / 1024 }")
-    verdict=$(awk "BEGIN { print ($wall <= $limit && $rss_kb <= 1048576) ? \"yes\" : \"NO\" }")
-    [ "$status" -eq 0 ] || verdict="exit $status"
-    printf '| %-24s | %8.1f | %7s | %6s s, 1 GB | %-9s |\n' "$label" "$wall" "$rss_mb" "$limit" "$verdict"
-}
 
 echo "| plan                     |   wall s | peak MB | limits        | within    |"
 echo "|--------------------------|----------|---------|---------------|-----------|"

@@ -106,14 +106,18 @@ class _Checkpoint:
     def close(self) -> None:
         _os.close(self.fd)
 
+    def _entries(self):
+        """``(name, start, end)`` of each entry of this request in the
+        folder (other names are left alone)."""
+        for name in _os.listdir(self.fd):
+            m = self._pattern.fullmatch(name)
+            if m is not None:
+                yield name, int(m.group(1)), int(m.group(2))
+
     def load(self, args: Tuple[Any, ...]) -> Dict[Tuple[int, int], bytes]:
         """The partial results of this request found in the folder, by range."""
         found = {}
-        for name in _os.listdir(self.fd):
-            m = self._pattern.fullmatch(name)
-            if m is None:
-                continue
-            start, end = int(m.group(1)), int(m.group(2))
+        for name, start, end in self._entries():
             data = self._read(name, self.size[0] + max(end - start, 0) * self.size[1])
             rng = _v2ref._units_check(self.command, args, data)
             if rng != (start, end):
@@ -126,11 +130,7 @@ class _Checkpoint:
         row: each entry at most ``_MAX_RECORD_BYTES``, JSON naming this
         checkpoint's key and its row."""
         found = {}
-        for name in _os.listdir(self.fd):
-            m = self._pattern.fullmatch(name)
-            if m is None:
-                continue
-            start, end = int(m.group(1)), int(m.group(2))
+        for name, start, end in self._entries():
             if end != start + 1 or start >= rows:
                 raise ValueError(f"checkpoint: {name} is not one row of a list of {rows}")
             record = _json.loads(self._read(name, _MAX_RECORD_BYTES, exact=False))

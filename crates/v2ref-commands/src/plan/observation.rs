@@ -89,6 +89,29 @@ pub(crate) fn scans_per_sequence(
     (most >= 1).then(|| wanted.min(most as f64) as usize)
 }
 
+/// Sequences of `per_sequence` scans of `samples` samples, `stride`
+/// apart, simulated at a time: as many as the memory limit
+/// ([`MAX_SERIES`] samples together) allows.
+pub(crate) fn sequences_per_batch(samples: usize, per_sequence: usize, stride: usize) -> usize {
+    let length = (per_sequence - 1) * stride + samples + 4;
+    (MAX_SERIES / length).clamp(1, SEQUENCES)
+}
+
+/// The rows of the batch of `k` sequences from sequence `first` of a run
+/// from `seed` (each batch its own seed, keyed by its first sequence):
+/// what [`ContiguousScans::simulate`] and the verification's Dask units
+/// both draw.
+pub(crate) fn batch_rows(
+    model: &Model,
+    seed: u64,
+    first: usize,
+    (k, per_sequence, stride): (usize, usize, usize),
+) -> Result<crate::simulator::Rows<'_>> {
+    let rows = (k * per_sequence) as u64;
+    let batch_seed = derive_seed(seed, "observation-batch", &[first as f64]);
+    model.rows_with_layout(rows, batch_seed, 0, Some((k, stride)))
+}
+
 impl ContiguousScans {
     /// Simulates `SEQUENCES × per_sequence` scans of `model` (with piston),
     /// `stride` samples apart, from `seed` (in batches of sequences that fit
@@ -114,14 +137,10 @@ impl ContiguousScans {
         };
         let n = model.samples();
         let mut values = Vec::with_capacity(SEQUENCES * per_sequence);
-        // As many sequences at a time as the memory limit allows.
-        let length = (per_sequence - 1) * stride + n + 4;
-        let per_batch = (MAX_SERIES / length).clamp(1, SEQUENCES);
+        let per_batch = sequences_per_batch(n, per_sequence, stride);
         for first in (0..SEQUENCES).step_by(per_batch) {
             let k = per_batch.min(SEQUENCES - first);
-            let rows = (k * per_sequence) as u64;
-            let batch_seed = derive_seed(seed, "observation-batch", &[first as f64]);
-            let set = model.rows_with_layout(rows, batch_seed, 0, Some((k, stride)))?;
+            let set = batch_rows(model, seed, first, (k, per_sequence, stride))?;
             set.fold_units(
                 0,
                 |_, block| {

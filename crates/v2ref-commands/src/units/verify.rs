@@ -14,8 +14,8 @@ use super::{check_range, key_of, put_stats, take_stats, unit_words, Partial, Uni
 use crate::conformance::estimate::RowEstimator;
 use crate::error::Result;
 use crate::formalism::estimator::BinWindow;
-use crate::montecarlo::{derive_seed, in_pool, replicated_summary, RunningStats, Steps, Summary};
-use crate::piston::series::MAX_SERIES;
+use crate::montecarlo::{in_pool, replicated_summary, RunningStats, Steps, Summary};
+use crate::plan::observation::{batch_rows, sequences_per_batch};
 use crate::plan::verify::{size_at, verify_model, verify_seed, VerificationSize, SEQUENCES};
 use crate::plan::PlanInputs;
 use crate::simulator::Model;
@@ -64,8 +64,12 @@ impl VerifyJob {
             .atmosphere
             .spectrum(self.inputs.instrument.baseline_m)?;
         let model = verify_model(&self.inputs, &sky, self.fringe_hz, self.stroke_um)?;
-        let length = (self.size.scans_per_sequence - 1) * self.size.stride + model.samples() + 4;
-        Ok((model, (MAX_SERIES / length).clamp(1, SEQUENCES)))
+        let per_batch = sequences_per_batch(
+            model.samples(),
+            self.size.scans_per_sequence,
+            self.size.stride,
+        );
+        Ok((model, per_batch))
     }
 
     /// Words of a unit: per sequence of a batch, V1² and V2²'s statistics.
@@ -88,9 +92,8 @@ impl VerifyJob {
         let k = per_batch.min(SEQUENCES - first);
         let per_sequence = self.size.scans_per_sequence;
         let seed = verify_seed(&self.inputs, self.fringe_hz, self.stroke_um);
-        let batch_seed = derive_seed(seed, "observation-batch", &[first as f64]);
         let rows = (k * per_sequence) as u64;
-        let set = model.rows_with_layout(rows, batch_seed, 0, Some((k, self.size.stride)))?;
+        let set = batch_rows(model, seed, first, (k, per_sequence, self.size.stride))?;
         let n = model.samples();
         let mut values: Vec<[f64; 2]> = Vec::with_capacity(rows as usize);
         set.fold_units(

@@ -436,13 +436,23 @@ impl SharedSequences {
         SharedSequences::default()
     }
 
-    /// The sequence of `spectrum` from `(seed, FFT length, step)`, if drawn.
-    fn find(&self, spectrum: &PistonSpectrum, key: (u64, usize, f64)) -> Option<Arc<Vec<f64>>> {
-        let drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
+    /// The sequence of `spectrum` from `(seed, FFT length, step)` among
+    /// `drawn`, if there.
+    fn find_in(
+        drawn: &[SharedSequence],
+        spectrum: &PistonSpectrum,
+        key: (u64, usize, f64),
+    ) -> Option<Arc<Vec<f64>>> {
         drawn
             .iter()
             .find(|((sp, s, m, dt), _)| (*s, *m, *dt) == key && sp == spectrum)
             .map(|(_, sequence)| sequence.clone())
+    }
+
+    /// The sequence of `spectrum` from `(seed, FFT length, step)`, if drawn.
+    fn find(&self, spectrum: &PistonSpectrum, key: (u64, usize, f64)) -> Option<Arc<Vec<f64>>> {
+        let drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
+        Self::find_in(&drawn, spectrum, key)
     }
 
     /// Whether the sequence of `spectrum` from `(seed, FFT length, step)`
@@ -464,13 +474,10 @@ impl SharedSequences {
         }
         let made = Arc::new(draw()?);
         let mut drawn = self.drawn.lock().unwrap_or_else(|e| e.into_inner());
-        let (seed, m, dt_s) = key;
-        if let Some((_, first)) = drawn
-            .iter()
-            .find(|((sp, s, mm, dt), _)| (*s, *mm, *dt) == key && sp == spectrum)
-        {
-            return Ok(first.clone());
+        if let Some(first) = Self::find_in(&drawn, spectrum, key) {
+            return Ok(first);
         }
+        let (seed, m, dt_s) = key;
         drawn.push(((spectrum.clone(), seed, m, dt_s), made.clone()));
         Ok(made)
     }
