@@ -17,6 +17,7 @@ use crate::piston::sequences::correlation_time_s;
 use crate::piston::spectrum::PistonSpectrum;
 use crate::piston::{FringeTables, SharedSequences};
 use crate::simulator::{simulate, Model};
+use std::collections::BTreeMap;
 
 /// Settings of each estimator re-solved at the observation level: the
 /// fastest by the per-scan estimate (the table's rows).
@@ -179,6 +180,7 @@ pub(super) fn resolve_candidates(
     let mut settings = candidate_settings(inputs, points, target)?;
     settings.sort_by(|a, b| a.least_time_s.total_cmp(&b.least_time_s));
     let mut best = [f64::INFINITY; 2];
+    let mut drawn: BTreeMap<u64, SharedSequences> = BTreeMap::new();
     for wave in settings.chunks_mut(WAVE) {
         for s in wave.iter_mut() {
             let p = &*points;
@@ -187,12 +189,22 @@ pub(super) fn resolve_candidates(
                 least_time_s(noise[0], target, period) <= best[index(p[i].estimator)]
             });
         }
-        // The wave's settings of one fringe frequency scan one atmosphere
-        // (the seed is the frequency's), drawn once: one after the other,
-        // the frequencies side by side; freed with the wave.
-        let shared = SharedSequences::new();
+        let live: Vec<&Setting> = wave.iter().filter(|s| !s.points.is_empty()).collect();
+        let mut frequencies: Vec<f64> = live.iter().map(|s| s.key.0).collect();
+        frequencies.sort_by(f64::total_cmp);
+        frequencies.dedup();
+        // The settings of one fringe frequency scan one atmosphere (the
+        // seed is the frequency's), drawn once: kept from one wave to the
+        // next while that wave has a setting at the frequency (the
+        // fastest settings are often a few strokes at the fastest
+        // frequencies), so only the wave's frequencies are in memory.
+        drawn.retain(|f, _| frequencies.iter().any(|g| g.to_bits() == *f));
+        for f in &frequencies {
+            drawn.entry(f.to_bits()).or_default();
+        }
         let solve = |s: &Setting| -> Result<Vec<(usize, PlanPoint)>> {
-            let scans = contiguous(inputs, (sky, tables, &shared), s.key)?;
+            let shared = &drawn[&s.key.0.to_bits()];
+            let scans = contiguous(inputs, (sky, tables, shared), s.key)?;
             Ok(s.points
                 .iter()
                 .map(|&(i, noise)| {
@@ -202,10 +214,6 @@ pub(super) fn resolve_candidates(
                 })
                 .collect())
         };
-        let live: Vec<&Setting> = wave.iter().filter(|s| !s.points.is_empty()).collect();
-        let mut frequencies: Vec<f64> = live.iter().map(|s| s.key.0).collect();
-        frequencies.sort_by(f64::total_cmp);
-        frequencies.dedup();
         let solved: Vec<Vec<(usize, PlanPoint)>> = frequencies
             .par_iter()
             .map(|&f| {

@@ -69,7 +69,7 @@ pub(crate) fn scans_per_sequence(
         .max(fill as f64)
         .max((budget / SEQUENCES as u64) as f64);
     let fits = MAX_SERIES.saturating_sub(samples + 4) / stride.max(1);
-    let affordable = super::MAX_OBSERVATION_SAMPLES / (SEQUENCES * samples.max(1));
+    let affordable = super::observation::affordable_scans(samples);
     (wanted as usize).min(fits).min(affordable).max(1)
 }
 

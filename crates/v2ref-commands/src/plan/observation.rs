@@ -64,6 +64,16 @@ pub const BLOCKS_PER_SEQUENCE: u64 = 4;
 /// per sequence (wider intervals), but always at least n scans.
 pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
 
+/// Scans of N samples each of one of the K sequences that
+/// [`MAX_OBSERVATION_SAMPLES`] affords: L N + 4 ≤ a K-th of it (a
+/// sequence of contiguous scans is L N samples and the 4 every sequence
+/// has beyond its last scan), so that without dead time every setting at
+/// one fringe frequency draws sequences of one FFT length (2^20), drawn
+/// once for all of them (`candidates`).
+pub(crate) fn affordable_scans(samples: usize) -> usize {
+    (MAX_OBSERVATION_SAMPLES / SEQUENCES - 4) / samples.max(1)
+}
+
 /// Scans per sequence that hold `scans` scans (the blocks wanted), span
 /// [`SPAN_CORRELATION_TIMES`] correlation times and hold `budget / K` (the
 /// plan's `scans`); at most what one sequence within the memory limit
@@ -83,8 +93,7 @@ pub(crate) fn scans_per_sequence(
     // batches that fit the memory limit together).
     let mut most = MAX_SERIES.saturating_sub(samples + 4) / stride;
     if capped {
-        let affordable = MAX_OBSERVATION_SAMPLES / (SEQUENCES * samples.max(1));
-        most = most.min(affordable.max(least as usize));
+        most = most.min(affordable_scans(samples).max(least as usize));
     }
     (most >= 1).then(|| wanted.min(most as f64) as usize)
 }

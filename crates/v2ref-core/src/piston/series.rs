@@ -15,7 +15,7 @@
 //! one sequence, as in an observation.
 
 use crate::error::{self, Error, Result};
-use crate::math::fft::inverse_dft;
+use crate::math::fft::inverse_dft_with;
 use crate::montecarlo::{in_pool, try_run_unit_range};
 use num_complex::Complex64;
 use rand_distr::{Distribution, StandardNormal};
@@ -151,15 +151,18 @@ impl ModeScales {
                 .collect::<Vec<_>>();
             Ok(block)
         })?;
-        let mut buf = vec![Complex64::new(0.0, 0.0); m];
-        for (dst, src) in buf[1..half].iter_mut().zip(blocks.into_iter().flatten()) {
-            *dst = src;
-        }
+        let modes: Vec<Complex64> = blocks.concat();
+        let zero = Complex64::new(0.0, 0.0);
+        let coefficient = |k: usize| match k {
+            1.. if k < half => modes[k - 1],
+            _ => zero,
+        };
         // The M-point transform split into rows over the threads
         // (crate::math::fft): same bits for any thread count.
-        let series = in_pool(threads, || Ok(inverse_dft(&buf)))?;
         let root2 = std::f64::consts::SQRT_2;
-        Ok(series.iter().map(|z| root2 * z.re).collect())
+        in_pool(threads, || {
+            Ok(inverse_dft_with(m, coefficient, |z| root2 * z.re))
+        })
     }
 }
 
