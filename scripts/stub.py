@@ -1,7 +1,7 @@
 """Writes python/v2ref/__init__.pyi, the package's stub, from its source.
 
-Each public function of ``python/v2ref/__init__.py`` and
-``python/v2ref/oifits.py`` (those in ``__all__``) gets its signature as
+Each public function (named in ``__all__`` of ``python/v2ref/__init__.py``)
+of the package's modules listed in ``MODULES`` gets its signature as
 written in the source and the docstring ``help()`` shows: the physical
 keyword arguments' entries are filled in from the built library's table
 (``v2ref._v2ref.PHYSICAL_PARAMETERS``) as the package does at import
@@ -20,6 +20,10 @@ import sys
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "python" / "v2ref"
 STUB = PACKAGE / "__init__.pyi"
+
+#: The package's modules that define its public functions, in the stub's
+#: order (the order of ``__all__``; OIFITS's last, in its own order).
+MODULES = ("_oracle.py", "_budget.py", "_plan.py", "__init__.py", "oifits.py")
 
 HEADER = '''"""Type stubs of the v2ref package (units in every parameter description).
 
@@ -134,8 +138,12 @@ def stub():
     declaration = docstrings.declaration(importlib.import_module("v2ref._v2ref"))
     public = public_names()
     lines = HEADER.rstrip("\n").split("\n")
-    for name in ("__init__.py", "oifits.py"):
+    for name in MODULES:
         lines += functions(PACKAGE / name, public, declaration, docstrings)
+    defined = {line[4 : line.index("(")] for line in lines if line.startswith("def ")}
+    left = sorted(public - defined - {"ESTIMATE_COLUMNS"})  # (declared in HEADER)
+    if left:
+        sys.exit(f"scripts/stub.py: {', '.join(left)} of __all__ defined in none of MODULES")
     return "\n".join(lines) + "\n"
 
 

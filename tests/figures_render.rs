@@ -2,7 +2,8 @@
 //! at quick effort, through the same writer) and the plan's SVG are parsed
 //! by usvg and drawn by resvg, an SVG renderer independent of plotters,
 //! which writes them. A malformed SVG, a panel drawn blank, a size other
-//! than the one declared, or text that cannot be laid out fails.
+//! than the one declared, or text that cannot be laid out fails; the
+//! plan's texts (its ticks) are each drawn once.
 
 use resvg::{tiny_skia, usvg};
 use std::process::Command;
@@ -158,6 +159,23 @@ fn plan_svg_renders() {
     if let Err(why) = check_svg(&text, &opt, fonts) {
         panic!("plan.svg: {why}");
     }
+    // Each text once: an axis ticked 1 to 9 in a decade had its next
+    // decade's tick drawn twice, over itself (here "1000" on the frequency
+    // axis, 83 to 1200 Hz, whatever the plan's numbers; and "1e-2").
+    let mut texts = svg_texts(&text);
+    assert!(texts.contains(&"1000"), "{texts:?}");
+    texts.sort_unstable();
+    let twice: Vec<_> = texts.windows(2).filter(|w| w[0] == w[1]).collect();
+    assert!(twice.is_empty(), "plan.svg draws a text twice: {twice:?}");
+}
+
+/// The content of each `<text>` element of an SVG written by plotters,
+/// trimmed.
+fn svg_texts(svg: &str) -> Vec<&str> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|s| Some(s[s.find('>')? + 1..s.find("</text>")?].trim()))
+        .collect()
 }
 
 /// The checks can fail: a truncated panel does not parse, a blank one is

@@ -10,7 +10,7 @@ from typing import Any, Dict, List, Optional
 import numpy as _np
 
 from . import _v2ref
-from . import _utf8_path
+from ._arguments import _sidecar_arg, _utf8_path
 
 
 def _path(name: str, value: Any) -> str:
@@ -29,12 +29,6 @@ def _column(name: str, x: Any, rows: Optional[int] = None) -> Optional[_np.ndarr
     if a.ndim != 1:
         raise ValueError(f"{name}: {a.ndim}-D array; one value per row (1-D) is needed")
     return a
-
-
-def _sidecar(sidecar: Any):
-    from . import _sidecar_arg
-
-    return _sidecar_arg(sidecar)
 
 
 #: The keywords that say where and when an OIFITS file's observation was
@@ -130,7 +124,7 @@ def write_oifits(
     never a link, a folder or a special file.
     """
     observing = _observing(locals())
-    text, name = _sidecar(sidecar)
+    text, name = _sidecar_arg(sidecar)
     a1 = _column("v1_sq", v1_sq)
     a2 = _column("v2_sq", v2_sq)
     if not isinstance(bins, str):
@@ -158,7 +152,7 @@ def write_oifits_truth(
     window positive, convention model) as OIFITS v2; an existing file is
     replaced only with ``force=True``."""
     observing = _observing(locals())
-    text, name = _sidecar(sidecar)
+    text, name = _sidecar_arg(sidecar)
     _v2ref.write_oifits_truth(_path("path", path), text, name, observing, _flag("force", force))
 
 
@@ -207,7 +201,7 @@ def score_oifits(
     ``estimator``, ``target`` choose tables and rows as the CLI's flags do;
     ``accept_checksum_mismatch`` reads a file whose CHECKSUM or DATASUM no
     longer match (refused otherwise)."""
-    text, name = _sidecar(sidecar)
+    text, name = _sidecar_arg(sidecar)
     for n, v in (("bins", bins), ("bias", bias), ("insname", insname), ("estimator", estimator), ("target", target)):
         _optional_str(n, v)
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
@@ -249,7 +243,7 @@ def read_oifits_estimates(
     ``bins`` or ``bias`` is refused; so is a file whose checksums no
     longer match, unless ``accept_checksum_mismatch``.
     """
-    text, name = _sidecar(sidecar)
+    text, name = _sidecar_arg(sidecar)
     for n, v in (("insname", insname), ("estimator", estimator), ("target", target), ("bins", bins), ("bias", bias)):
         _optional_str(n, v)
     return _v2ref.read_oifits_estimates(

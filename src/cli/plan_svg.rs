@@ -5,7 +5,9 @@
 //! for consecutive scans as open circles at the other frequencies, with
 //! their own legend line.
 
+use plotters::coord::combinators::WithKeyPoints;
 use plotters::prelude::*;
+use std::ops::Range;
 use std::path::Path;
 use v2ref_commands::plan::figure::{figure_time_s, sigma_curve, Drawn};
 use v2ref_commands::plan::{Estimator, Plan, PlanInputs};
@@ -86,12 +88,15 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            .build_cartesian_2d((f0 / 1.2..f1 * 1.2).log_scale(), (lo..hi).log_scale())
+            .build_cartesian_2d(
+                log_axis(f0 / 1.2..f1 * 1.2, frequency_label),
+                log_axis(lo..hi, tick_label),
+            )
             .map_err(|e| fail(path, e))?;
         chart
             .configure_mesh()
             .x_desc("fringe frequency [Hz]")
-            .x_label_formatter(&|f| format!("{f:.0}"))
+            .x_label_formatter(&|f| frequency_label(*f))
             .y_desc("σ(V²) of the averaged measurement")
             .y_label_formatter(&|v| tick_label(*v))
             .light_line_style(WHITE)
@@ -155,6 +160,25 @@ pub fn write(path: &Path, plan: &Plan, inputs: &PlanInputs) -> Result<()> {
         root.present().map_err(|e| fail(path, e))?;
     }
     v2ref_files::atomic::write_text_atomic(path, &svg)
+}
+
+/// Labels drawn on an axis at most: plotters' default for a mesh.
+const MESH_LABELS: usize = 11;
+
+/// A log axis over `range` with plotters' ticks, each label once: plotters
+/// 0.3.7, when it ticks 1 to 9 in a decade, gives the next decade twice
+/// (as its ninth tick and as the decade), and its label was drawn over
+/// itself ("1e-2" twice). No light lines (the mesh drew them white).
+fn log_axis(range: Range<f64>, label: fn(f64) -> String) -> WithKeyPoints<LogCoord<f64>> {
+    let axis: LogCoord<f64> = range.log_scale().into();
+    let mut ticks = axis.key_points(MESH_LABELS);
+    ticks.dedup_by_key(|v| label(*v));
+    axis.with_key_points(ticks)
+}
+
+/// A fringe frequency's tick, Hz.
+fn frequency_label(f: f64) -> String {
+    format!("{f:.0}")
 }
 
 /// A log-axis tick at the precision it carries: three significant figures

@@ -101,8 +101,8 @@ def test_a_changed_source_changes_the_stub(tmp_path, monkeypatch):
     monkeypatch.setattr(script, "PACKAGE", package)
     assert script.stub() == committed
     plants = [
-        ("__init__.py", "    rows: int = 1000,", "    rows: int = 1001,"),
-        ("__init__.py", "Number of rows (scans)", "Number of rows"),
+        ("_oracle.py", "    rows: int = 1000,", "    rows: int = 1001,"),
+        ("_oracle.py", "Number of rows (scans)", "Number of rows"),
         ("_docstrings.py", 'f"{kind}, default {default!r}"', 'f"{kind}, defaults to {default!r}"'),
     ]
     for name, old, new in plants:
@@ -134,7 +134,7 @@ def test_the_physical_entries_are_written_once():
     """No docstring in the package's source describes a physical input by
     hand: each entry comes from the declaration (a hand-written copy would
     drift, as the stub's ``photons >= 0`` once did)."""
-    source = (ROOT / "python" / "v2ref" / "__init__.py").read_text(encoding="utf-8")
+    source = "".join(f.read_text(encoding="utf-8") for f in (ROOT / "python" / "v2ref").glob("*.py"))
     for p in _v2ref.PHYSICAL_PARAMETERS:
         assert p["what"].split("{")[0] not in source, p["what"]
         assert p["doc"] not in source, p["name"]

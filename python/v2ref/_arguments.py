@@ -1,0 +1,198 @@
+"""The keyword arguments' checks, shared by the package's functions (the
+Rust side checks every value; these check types and convert): integers,
+numbers, flags and words; paths as UTF-8 text; arrays as C-contiguous
+float64 (no copy when they are one); the physical keyword arguments and
+their docstring entries; a sidecar given as a dict or a path.
+"""
+
+import collections.abc as _abc
+import inspect as _inspect
+import os as _os
+from typing import Any, Dict, Mapping, Sequence, Tuple, Union
+
+import numpy as _np
+
+from . import _docstrings, _v2ref
+
+#: The physical inputs as the library states them (``Physical::DEFAULT``,
+#: also the CLI's defaults, and the help text of each).
+_declaration = _docstrings.declaration(_v2ref)
+_DEFAULTS: Dict[str, Any] = _declaration.DEFAULTS
+
+_PathLike = Union[str, _os.PathLike[str]]
+
+
+def _uint(name: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
+        raise TypeError(f"{name}: {value!r} is not an integer")
+    if value < 0 or value >= 2**64:
+        raise ValueError(f"{name}: {value} is out of range; accepted: an integer from 0 to 2^64 - 1")
+    return int(value)
+
+
+def _to_float(name: str, value: Any) -> float:
+    """``float(value)``, an integer too large for a float refused by name."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(
+            f"{name}: {value} is out of range; accepted: a number within ±1.8e308"
+        ) from None
+
+
+def _float(name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, _np.integer, _np.floating)):
+        raise TypeError(f"{name}: {value!r} is not a number")
+    return _to_float(name, value)
+
+
+def _flag(name: str, value: Any) -> bool:
+    if not isinstance(value, (bool, _np.bool_)):
+        raise TypeError(f"{name}: {value!r} is not a bool")
+    return bool(value)
+
+
+def _not_masked(name: str, x: Any) -> None:
+    """Refuses a masked array: its masked values would be used as numbers."""
+    if isinstance(x, _np.ma.MaskedArray):
+        raise TypeError(
+            f"{name}: a masked array; its masked values would be used as numbers. "
+            "Pass the rows to keep (x[~x.mask.any(axis=1)] for a 2-D array, x.compressed() "
+            "for a 1-D one) or filled values (x.filled(v))"
+        )
+
+
+def _word(name: str, value: Any) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: {value!r} is not a string")
+    return value
+
+
+def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[str, Any]:
+    """The physical keyword arguments among ``values`` (but ``exclude``), types checked, paths as strings."""
+    out: Dict[str, Any] = {}
+    for k, v in values.items():
+        if k not in _DEFAULTS or k in exclude or v is None:
+            continue
+        kind = _declaration.KINDS[k]
+        if kind == "path":
+            if not isinstance(v, (str, bytes, _os.PathLike)):
+                raise TypeError(f"{k}: {v!r} is not a path")
+            v = _utf8_path(k, v)
+        elif kind == "word":
+            v = _word(k, v)
+        elif kind == "int":
+            v = _uint(k, v)
+        elif kind == "bool":
+            if not isinstance(v, (bool, _np.bool_)):
+                raise TypeError(f"{k}: {v!r} is not a bool")
+            v = bool(v)
+        else:
+            if isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)):
+                raise TypeError(f"{k}: {v!r} is not a real number")
+            v = _to_float(k, v)
+        out[k] = v
+    return out
+
+
+def _documented(*, exclude: Sequence[str] = ()):
+    """Fills the ``{physical}`` line of a function's docstring with an entry
+    per physical keyword argument of its signature (but ``exclude``), written
+    once in the library's declaration (``_docstrings.fill``)."""
+
+    def fill(f):
+        keywords = [k for k in _inspect.signature(f).parameters if k not in exclude]
+        f.__doc__ = _docstrings.fill(_declaration, f.__doc__, keywords)
+        return f
+
+    return fill
+
+
+#: Largest copy a conversion makes, bytes (half the physical memory where
+#: it can be read, else 4 GiB): an array that would need more (a
+#: broadcast view claiming 10^9 rows, a non-float64 array of hundreds of
+#: GiB) is refused by name before NumPy tries. A C-contiguous float64
+#: array is used in place, without a copy, whatever its size.
+def _copy_limit() -> int:
+    try:
+        return _os.sysconf("SC_PHYS_PAGES") * _os.sysconf("SC_PAGE_SIZE") // 2
+    except (AttributeError, ValueError, OSError):
+        return 4 << 30
+
+
+def _contiguous(name: str, a: _np.ndarray, shape_words: str) -> _np.ndarray:
+    """``a`` as C-contiguous float64, refusing a copy beyond :func:`_copy_limit`."""
+    if a.dtype == _np.float64 and a.flags.c_contiguous:
+        return a
+    need = int(a.size) * 8
+    limit = _copy_limit()
+    if need > limit:
+        raise ValueError(
+            f"{name}: shape {a.shape} (strides {a.strides}, dtype {a.dtype}) would need a "
+            f"{need / 2**30:.3g} GiB float64 copy, over the {limit / 2**30:.3g} GiB allowed; "
+            f"pass {shape_words} as a C-contiguous float64 array (numpy.ascontiguousarray(x, dtype='<f8')), "
+            "which is used without a copy"
+        )
+    return _np.ascontiguousarray(a, dtype=_np.float64)
+
+
+def _matrix(name: str, x: Any) -> _np.ndarray:
+    """A 2-D C-contiguous float64 view of ``x`` (no copy when it is one)."""
+    _not_masked(name, x)
+    a = _np.asarray(x)
+    if a.dtype == _np.bool_ or not (
+        _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
+    ):
+        raise TypeError(
+            f"{name}: dtype {a.dtype} is not a real number type; a 2-D float64 array (rows, samples) is needed"
+        )
+    if a.ndim != 2:
+        raise TypeError(
+            f"{name}: {a.ndim}-D array of shape {a.shape}; a 2-D array (rows, samples) is needed"
+        )
+    return _contiguous(name, a, "a 2-D array (rows, samples)")
+
+
+def _vector(name: str, x: Any) -> _np.ndarray:
+    _not_masked(name, x)
+    a = _np.asarray(x)
+    if a.dtype == _np.bool_ or not (
+        _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
+    ):
+        raise TypeError(f"{name}: dtype {a.dtype} is not a real number type")
+    if a.ndim != 1:
+        raise TypeError(f"{name}: {a.ndim}-D array of shape {a.shape}; a 1-D array (one value per row) is needed")
+    return _contiguous(name, a, "a 1-D array (one value per row)")
+
+
+def _utf8_path(name: str, value: Any) -> str:
+    """The path `value` (str, bytes, os.PathLike) as text for the readers
+    that take one: a path whose bytes are not UTF-8 is refused naming the
+    keyword (the extension takes text paths), not left to a codec error."""
+    path = _os.fsdecode(value)
+    try:
+        path.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(
+            f"{name}: {value!r} is not a UTF-8 path; this keyword takes a path of UTF-8 text (rename the file)"
+        ) from None
+    return path
+
+
+def _sidecar_arg(sidecar: Any) -> Tuple[Any, str]:
+    """(the sidecar as the extension takes it, name for messages) of a
+    sidecar given as a dict (passed as a dict) or a path (the file's text)."""
+    if isinstance(sidecar, _abc.Mapping):
+        return dict(sidecar), "<dict>"
+    if isinstance(sidecar, (str, bytes, _os.PathLike)):
+        path = _os.fsdecode(sidecar)
+        # The name in messages: bytes that are not UTF-8 as U+FFFD.
+        name = path.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+        try:
+            with open(path, encoding="utf-8") as f:
+                return f.read(), name
+        except OSError as e:
+            raise OSError(e.errno, f"sidecar: {name}: {e.strerror}") from None
+    raise TypeError(
+        f"sidecar: {type(sidecar).__name__} is not a sidecar; give the dict returned by synthesize() or the path of a SET.json"
+    )
