@@ -72,7 +72,7 @@ fn sigma_noise_per_scan(inputs: &PlanInputs, noisy: &Model, p: &PlanPoint) -> Re
 
 /// The contiguous scans of one setting: the same sequences whatever the
 /// observation's n and whatever else the grid holds (their length depends
-/// on the setting and the atmosphere only, their seed on the setting).
+/// on the setting and the atmosphere only, their seed on its fringe frequency).
 fn contiguous(
     inputs: &PlanInputs,
     (sky, tables, shared): (&PistonSpectrum, &FringeTables, &SharedSequences),
