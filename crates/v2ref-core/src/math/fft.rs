@@ -162,7 +162,7 @@ pub fn inverse_dft(spectrum: &[Complex64]) -> Vec<Complex64> {
     inverse_dft_with(spectrum.len(), |k| spectrum[k], |z| z)
 }
 
-/// [`inverse_dft`] of the M-point spectrum X[k] = `coefficient(k)`, each
+/// [`inverse_dft`] of the M-point spectrum `X[k] = coefficient(k)`, each
 /// output value mapped by `output`: the same bits as mapping
 /// [`inverse_dft`]'s output, without the M-point input and output
 /// arrays (a piston sequence is the real part of the transform of a
