@@ -214,17 +214,14 @@ pub(super) fn resolve_candidates(
                 })
                 .collect())
         };
-        let solved: Vec<Vec<(usize, PlanPoint)>> = frequencies
+        let solved: Vec<Vec<Vec<(usize, PlanPoint)>>> = frequencies
             .par_iter()
             .map(|&f| {
                 let same = live.iter().filter(|s| s.key.0 == f);
                 same.map(|s| solve(s)).collect::<Result<Vec<_>>>()
             })
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .flatten()
-            .collect();
-        for (i, p) in solved.into_iter().flatten() {
+            .collect::<Result<_>>()?;
+        for (i, p) in solved.into_iter().flatten().flatten() {
             if let Some(t) = p.time_s {
                 best[index(p.estimator)] = best[index(p.estimator)].min(t);
             }
