@@ -15,7 +15,7 @@ use v2ref_commands::units::piston::PistonJob;
 use v2ref_commands::units::simulate::SimulateJob;
 use v2ref_commands::units::truth::TruthJob;
 use v2ref_commands::units::verify::VerifyJob;
-use v2ref_commands::units::{Partial, UnitJob, HEADER_BYTES};
+use v2ref_commands::units::{Partial, UnitJob, FRAME_BYTES};
 
 /// The commands that run in ranges of units.
 const COMMANDS: &str = "simulate, piston, truth, powered, verify";
@@ -193,7 +193,7 @@ fn _units_count(
 ) -> PyResult<(u64, String, (usize, usize))> {
     let job = job(command, args)?;
     let (units, words) = interruptible(py, |_| job.shape())?;
-    let bytes = (HEADER_BYTES, 8 * words);
+    let bytes = (FRAME_BYTES, 8 * words);
     Ok((units, format!("{:016x}", job.key()), bytes))
 }
 

@@ -63,18 +63,23 @@ pub struct Partial {
     pub words: Vec<u64>,
 }
 
-/// The first bytes of an encoded [`Partial`] (format version 1).
-const MAGIC: &[u8; 8] = b"v2rpart1";
+/// The first bytes of an encoded [`Partial`] (format version 2: version 1
+/// had no checksum and is refused).
+const MAGIC: &[u8; 8] = b"v2rpart2";
 
 /// Header: magic, key, range start, range end, word count.
 pub const HEADER_BYTES: usize = 8 + 4 * 8;
 
+/// Bytes of an encoded partial beside its words: the header and the
+/// trailing checksum.
+pub const FRAME_BYTES: usize = HEADER_BYTES + 8;
+
 impl Partial {
-    /// The encoding: the 8 bytes `v2rpart1` (format version 1), then
-    /// key, range start, range end, word count and the words,
-    /// little-endian.
+    /// The encoding: the 8 bytes `v2rpart2` (format version 2), then
+    /// key, range start, range end, word count, the words and a checksum
+    /// of every byte before it ([`checksum`]), little-endian.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(HEADER_BYTES + 8 * self.words.len());
+        let mut out = Vec::with_capacity(FRAME_BYTES + 8 * self.words.len());
         out.extend_from_slice(MAGIC);
         let header = [
             self.key,
@@ -85,28 +90,40 @@ impl Partial {
         for w in header.iter().chain(&self.words) {
             out.extend_from_slice(&w.to_le_bytes());
         }
+        let sum = checksum(&out);
+        out.extend_from_slice(&sum.to_le_bytes());
         out
     }
 
     /// Decodes [`Partial::to_bytes`]; refuses (parameter `partial`) other
-    /// bytes, another format version, or a partial of another request
-    /// than `key`.
+    /// bytes, another format version, bytes whose checksum does not match
+    /// (a bit flipped anywhere: in a result, the range or the key), or a
+    /// partial of another request than `key`.
     pub fn from_bytes(bytes: &[u8], key: u64) -> Result<Partial> {
         let refuse = |reason: String| Error::Invalid {
             param: "partial",
             reason,
         };
-        if bytes.len() < HEADER_BYTES || &bytes[..8] != MAGIC {
+        if bytes.len() < FRAME_BYTES || &bytes[..8] != MAGIC {
             return Err(refuse(
-                "not a v2ref partial result of format version 1".into(),
+                "not a v2ref partial result of format version 2".into(),
             ));
         }
-        let words: Vec<u64> = bytes[8..]
-            .chunks(8)
+        if bytes.len() % 8 != 0 {
+            return Err(refuse("a truncated or malformed partial result".into()));
+        }
+        let (body, sum) = bytes.split_at(bytes.len() - 8);
+        let words: Vec<u64> = body[8..]
+            .chunks_exact(8)
             .map(|c| u64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect();
+        if u64::from_le_bytes(sum.try_into().unwrap_or([0; 8])) != checksum(body) {
+            return Err(refuse(
+                "its checksum does not match its content (a damaged partial result)".into(),
+            ));
+        }
         let (found, start, end, count) = (words[0], words[1], words[2], words[3]);
-        if bytes.len() % 8 != 0 || count != words.len() as u64 - 4 || start >= end {
+        if count != words.len() as u64 - 4 || start >= end {
             return Err(refuse("a truncated or malformed partial result".into()));
         }
         if found != key {
@@ -180,11 +197,38 @@ pub fn unit_words(
 /// [`UnitJob::key`]: partials of another version are refused too).
 pub fn key_of(bytes: &[u8]) -> u64 {
     let version = env!("CARGO_PKG_VERSION").as_bytes();
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in version.iter().chain(b"\0").chain(bytes) {
+    fnv1a(fnv1a(fnv1a(FNV_OFFSET, version), b"\0"), bytes)
+}
+
+/// The checksum of an encoded partial: FNV-1a (64 bits) of its bytes.
+/// Chosen because it is already the keys' hash (no new dependency) and
+/// every step is a bijection of the state for a given byte, so two
+/// encodings of one length that differ in one byte (one bit flipped) never
+/// share a checksum; other damage passes with a chance near 2⁻⁶⁴. It
+/// detects damage and mix-ups, not forgery (docs/threat-model.md).
+pub fn checksum(bytes: &[u8]) -> u64 {
+    fnv1a(FNV_OFFSET, bytes)
+}
+
+/// FNV-1a's offset basis.
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// FNV-1a from the state `h` over `bytes`.
+fn fnv1a(mut h: u64, bytes: &[u8]) -> u64 {
+    for b in bytes {
         h = (h ^ u64::from(*b)).wrapping_mul(0x0000_0100_0000_01b3);
     }
     h
+}
+
+/// The text that keys a spectrum CSV's table (its values, to the bit),
+/// empty without one: a key hashes the table read, not the file's name,
+/// so an edited file is another request.
+pub fn spectrum_key_text(physical: &crate::parameters::Physical) -> String {
+    physical
+        .spectrum_csv
+        .as_ref()
+        .map_or_else(String::new, |f| format!("{:?}", f.spectrum()))
 }
 
 /// Words per [`RunningStats`](crate::montecarlo::RunningStats) in a
@@ -238,12 +282,46 @@ mod tests {
             Some("partial")
         );
         let mut other_version = bytes.clone();
-        other_version[7] = b'2';
+        other_version[7] = b'1';
         assert_eq!(
             param(Partial::from_bytes(&other_version, 7)),
             Some("partial")
         );
         assert_eq!(param(Partial::from_bytes(b"v2r", 7)), Some("partial"));
+    }
+
+    #[test]
+    fn every_bit_flipped_is_refused_by_the_checksum() {
+        let bytes = partial().to_bytes();
+        for bit in 0..8 * bytes.len() {
+            let mut damaged = bytes.clone();
+            damaged[bit / 8] ^= 1 << (bit % 8);
+            let err = Partial::from_bytes(&damaged, 7).unwrap_err();
+            assert_eq!(err.param(), Some("partial"), "bit {bit}");
+        }
+        // A flip in a word (a result, then the range) names the damage.
+        for at in [FRAME_BYTES - 8, HEADER_BYTES + 8, 8 + 8] {
+            let mut damaged = bytes.clone();
+            damaged[at] ^= 1;
+            let err = Partial::from_bytes(&damaged, 7).unwrap_err();
+            assert!(err.to_string().contains("checksum"), "{at}: {err}");
+        }
+    }
+
+    #[test]
+    fn a_key_hashes_the_spectrum_table_not_the_file_name() {
+        use crate::formalism::spectrum::Spectrum;
+        let file = |w: f64| {
+            let table = Spectrum::tabulated(vec![0.4, 0.45, 0.5], vec![1.0, w, 1.0]).unwrap();
+            crate::parameters::SpectrumFile::new(std::path::Path::new("s.csv"), table)
+        };
+        let with = |w: f64| crate::parameters::Physical {
+            spectrum_csv: Some(file(w)),
+            ..crate::parameters::Physical::DEFAULT
+        };
+        assert_eq!(spectrum_key_text(&with(2.0)), spectrum_key_text(&with(2.0)));
+        assert_ne!(spectrum_key_text(&with(2.0)), spectrum_key_text(&with(3.0)));
+        assert!(spectrum_key_text(&crate::parameters::Physical::DEFAULT).is_empty());
     }
 
     #[test]

@@ -36,7 +36,10 @@ impl UnitJob for PistonJob {
             threads: 0,
             ..self.request.clone()
         };
-        key_of(format!("piston {physical} {request:?}").as_bytes())
+        // The physical inputs name a spectrum CSV by its path: its table
+        // keys the request too.
+        let table = super::spectrum_key_text(&self.physical);
+        key_of(format!("piston {physical} {table} {request:?}").as_bytes())
     }
 
     fn unit_count(&self) -> Result<u64> {

@@ -52,7 +52,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(plan::photon_rate, m)?)?;
     m.add_function(wrap_pyfunction!(plan::plan, m)?)?;
     m.add_function(wrap_pyfunction!(targets::plan_targets, m)?)?;
-    m.add_function(wrap_pyfunction!(targets::_targets_count, m)?)?;
+    m.add_function(wrap_pyfunction!(targets::_targets_rows, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::estimate, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::synthesize, m)?)?;
     m.add_function(wrap_pyfunction!(powered::powered_set, m)?)?;

@@ -8,12 +8,11 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
+use crate::plan::photometry::Band2Mass;
+use crate::words::Words;
 
 /// The rows of a list given as a CSV `path` or as CSV `text`.
-fn read_list(
-    path: Option<PathBuf>,
-    text: Option<String>,
-) -> PyResult<Vec<Result<targets::Target, targets::RowFault>>> {
+fn read_list(path: Option<PathBuf>, text: Option<String>) -> PyResult<Vec<ListRow>> {
     match (path, text) {
         (Some(path), None) => ok(crate::formats::targets_csv::read_targets(&path)),
         (None, Some(text)) => ok(targets::parse_targets(&text)),
@@ -21,11 +20,70 @@ fn read_list(
     }
 }
 
-/// The number of rows of a list given as `plan_targets` takes it.
+/// A row of a list as read: a target, or why it could not be read.
+type ListRow = Result<targets::Target, targets::RowFault>;
+
+/// A row read, as Python holds it between the parse and its plan (a
+/// task's whole input from the list): `(line, name, magnitude, band,
+/// diameter_mas, ra_deg, dec_deg, reason)`, `reason` None for a target.
+type RowTuple = (
+    u64,
+    String,
+    Option<f64>,
+    Option<String>,
+    Option<f64>,
+    Option<f64>,
+    Option<f64>,
+    Option<String>,
+);
+
+/// `row` as a [`RowTuple`].
+fn row_tuple(row: &ListRow) -> RowTuple {
+    match row {
+        Ok(t) => {
+            let band = t.band.and_then(|b| {
+                Band2Mass::WORDS
+                    .iter()
+                    .find(|w| w.value == b)
+                    .map(|w| w.word.to_owned())
+            });
+            let (line, name) = (t.line, t.name.clone());
+            (line, name, t.magnitude, band, t.diameter_mas, t.ra_deg, t.dec_deg, None)
+        }
+        Err(f) => (f.line, f.name.clone(), None, None, None, None, None, Some(f.reason.clone())),
+    }
+}
+
+/// The row a [`RowTuple`] holds; ValueError for a band that is none.
+fn tuple_row(t: RowTuple) -> PyResult<ListRow> {
+    let (line, name, magnitude, band, diameter_mas, ra_deg, dec_deg, reason) = t;
+    if let Some(reason) = reason {
+        return Ok(Err(targets::RowFault { line, name, reason }));
+    }
+    let band = match band {
+        None => None,
+        Some(word) => match Band2Mass::WORDS.iter().find(|w| w.word == word) {
+            Some(w) => Some(w.value),
+            None => return Err(PyValueError::new_err(format!("rows: band {word:?} is not one"))),
+        },
+    };
+    Ok(Ok(targets::Target {
+        line,
+        name,
+        magnitude,
+        band,
+        diameter_mas,
+        ra_deg,
+        dec_deg,
+    }))
+}
+
+/// The rows of a list given as `plan_targets` takes it, read once: each
+/// a tuple that `plan_targets(rows=[…])` plans alone.
 #[pyfunction]
 #[pyo3(signature = (path, text))]
-pub(super) fn _targets_count(path: Option<PathBuf>, text: Option<String>) -> PyResult<usize> {
-    Ok(read_list(path, text)?.len())
+pub(super) fn _targets_rows(path: Option<PathBuf>, text: Option<String>) -> PyResult<Vec<RowTuple>> {
+    Ok(read_list(path, text)?.iter().map(row_tuple).collect())
 }
 
 /// `plan_targets`: `v2ref plan --targets` with `plan`'s keywords shared
@@ -33,9 +91,10 @@ pub(super) fn _targets_count(path: Option<PathBuf>, text: Option<String>) -> PyR
 /// wrapper writes a Table or a list of dicts so); `throughput` is the rows'
 /// when the shared keywords have no magnitude. Returns the table's rows as
 /// dicts (the CSV's columns); rows in error are marked, not raised.
-/// `rows=(start, end)` plans only the list's rows `start..end` (a task of
-/// `v2ref.dask`: each row is planned alone, so a table cut in ranges and
-/// joined in order is the whole table's, bit for bit).
+/// `rows=[…]` plans instead rows read by `_targets_rows` (a task of
+/// `v2ref.dask` carries its own row, not the list: each row is planned
+/// alone, so the rows planned apart and joined in order are the whole
+/// table, bit for bit).
 #[pyfunction]
 #[pyo3(signature = (path, text, throughput, physical, samples_per_fringe, photon_rate_per_s, dead_time_s, fringe_hz, stroke_um, target_sigma_v2, time_budget_s, scans, seed, threads, diameter_err_mas=0.0, bias="counts", verify_observations=None, magnitude=None, frame_rate_hz=None, instrument=None, rows=None))]
 #[allow(clippy::too_many_arguments)]
@@ -61,16 +120,15 @@ pub(super) fn plan_targets(
     magnitude: Magnitude3,
     frame_rate_hz: Option<f64>,
     instrument: Option<(String, Vec<String>)>,
-    rows: Option<(usize, usize)>,
+    rows: Option<Vec<RowTuple>>,
 ) -> PyResult<PyObject> {
-    let list = read_list(path, text)?;
-    let (start, end) = rows.unwrap_or((0, list.len()));
-    if start >= end || end > list.len() {
-        return Err(PyValueError::new_err(format!(
-            "rows: {start}..{end} is not a non-empty range of the {} rows",
-            list.len()
-        )));
-    }
+    let list = match rows {
+        Some(rows) if path.is_none() && text.is_none() => {
+            rows.into_iter().map(tuple_row).collect::<PyResult<_>>()?
+        }
+        Some(_) => return Err(PyTypeError::new_err("targets: a path, rows or parsed rows")),
+        None => read_list(path, text)?,
+    };
     let (mut physical, mut request) = request(
         physical,
         (samples_per_fringe, photon_rate_per_s, dead_time_s),
@@ -95,7 +153,7 @@ pub(super) fn plan_targets(
         verify_observations,
     };
     let table = interruptible(py, |tick| {
-        targets::plan_targets(&shared, &list[start..end], threads, tick)
+        targets::plan_targets(&shared, &list, threads, tick)
     })?;
     to_py(py, &table)
 }
