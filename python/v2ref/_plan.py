@@ -281,7 +281,9 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     client : dask.distributed.Client, optional
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
-        (``docs/dask.md``). A path is read here, not on the workers.
+        (``docs/dask.md``). The list is read once, here; a task is sent
+        its row, not the list. Anything without ``submit`` is refused
+        (TypeError).
     progress : bool or callable, optional
         ``True``: a line on stderr at most once a second, the targets done,
         the time elapsed and about how long is left (as the CLI's bar and
@@ -293,9 +295,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         A folder where each row's table rows are kept as they are planned
         (one file a row, written whole or not at all); run again with the
         same list and keywords, only the rows missing there are planned,
-        the same table bit for bit. Entries are read as
-        ``docs/threat-model.md`` says: a link is never followed, an entry
-        of another list, other keywords or another version is not read.
+        the same table bit for bit. The folder is made if missing (its
+        parent must exist). An entry is used only when it is this user's
+        and its digest, key, row, line and name are this list's (an edited
+        list or spectrum CSV, other keywords or another version are
+        another key); a damaged one is refused naming it (ValueError),
+        another user's is planned again with a warning
+        (``docs/dask.md``).
 
     Returns
     -------
@@ -358,7 +364,10 @@ def _target_list(targets: Any) -> Tuple[Optional[str], Optional[str]]:
                 columns.append(k)
     lines = [",".join(_csv_cell("targets", c) for c in columns)]
     for i, row in enumerate(rows):
-        lines.append(",".join(_csv_cell(f"targets[{i}][{c!r}]", row.get(c)) for c in columns))
+        line = ",".join(_csv_cell(f"targets[{i}][{c!r}]", row.get(c)) for c in columns)
+        # A row of empty cells stays a row (a blank line is skipped): its
+        # first cell written as a quoted empty one.
+        lines.append(line if line.strip() else '""' + line)
     return None, "\n".join(lines) + "\n"
 
 
@@ -371,7 +380,9 @@ def _csv_cell(name: str, v: Any) -> str:
     text = repr(v) if isinstance(v, float) else str(v)
     if "\n" in text or "\r" in text:
         raise ValueError(f"{name}: {text!r} holds a line break")
-    if any(c in text for c in ',"') or text != text.strip():
+    # Quoted: a comma, a quote, blanks at an end, or a leading "#" (a line
+    # starting with "#" is a comment of the list).
+    if any(c in text for c in ',"') or text != text.strip() or text.startswith("#"):
         text = '"' + text.replace('"', '""') + '"'
     return text
 

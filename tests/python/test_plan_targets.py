@@ -187,5 +187,5 @@ def test_a_checkpoint_keeps_each_row_and_a_rerun_plans_only_the_missing(tmp_path
         v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder)
     victim.unlink()
     victim.write_bytes((folder / entries[2]).read_bytes())
-    with pytest.raises(ValueError, match="checkpoint: .* not the row of its name"):
+    with pytest.raises(ValueError, match="checkpoint: .* record of another list, keywords or row"):
         v2ref.plan_targets(ROWS, **SHARED, checkpoint=folder)

@@ -238,11 +238,26 @@ fn _units_reduce(
     job.reduce(py, &partials)
 }
 
+/// The key of the spectrum table that `physical` names (16 hex digits of
+/// its values' checksum; empty without a spectrum CSV): what keys a
+/// checkpoint by the file's content, not its name.
+#[pyfunction]
+fn _spectrum_key(physical: &Bound<'_, PyDict>) -> PyResult<String> {
+    let physical = crate::inputs::physical_from_dict(physical)?;
+    let text = v2ref_commands::units::spectrum_key_text(&physical);
+    Ok(if text.is_empty() {
+        text
+    } else {
+        format!("{:016x}", v2ref_commands::units::checksum(text.as_bytes()))
+    })
+}
+
 /// Adds the functions to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_units_count, m)?)?;
     m.add_function(wrap_pyfunction!(_units_run, m)?)?;
     m.add_function(wrap_pyfunction!(_units_check, m)?)?;
     m.add_function(wrap_pyfunction!(_units_reduce, m)?)?;
+    m.add_function(wrap_pyfunction!(_spectrum_key, m)?)?;
     Ok(())
 }

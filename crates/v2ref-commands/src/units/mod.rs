@@ -309,22 +309,6 @@ mod tests {
     }
 
     #[test]
-    fn a_key_hashes_the_spectrum_table_not_the_file_name() {
-        use crate::formalism::spectrum::Spectrum;
-        let file = |w: f64| {
-            let table = Spectrum::tabulated(vec![0.4, 0.45, 0.5], vec![1.0, w, 1.0]).unwrap();
-            crate::parameters::SpectrumFile::new(std::path::Path::new("s.csv"), table)
-        };
-        let with = |w: f64| crate::parameters::Physical {
-            spectrum_csv: Some(file(w)),
-            ..crate::parameters::Physical::DEFAULT
-        };
-        assert_eq!(spectrum_key_text(&with(2.0)), spectrum_key_text(&with(2.0)));
-        assert_ne!(spectrum_key_text(&with(2.0)), spectrum_key_text(&with(3.0)));
-        assert!(spectrum_key_text(&crate::parameters::Physical::DEFAULT).is_empty());
-    }
-
-    #[test]
     fn unit_words_need_an_ordered_tiling() {
         let a = Partial {
             range: 0..2,

@@ -210,4 +210,31 @@ mod tests {
             .reduce(&[job.run_range(0..3, &|_| {}).unwrap()])
             .is_err());
     }
+
+    #[test]
+    fn the_key_hashes_the_spectrum_table_not_the_file_name() {
+        use crate::formalism::spectrum::Spectrum;
+        use crate::parameters::SpectrumFile;
+        let job = |weight: f64| {
+            let table = Spectrum::tabulated(vec![0.4, 0.45, 0.5], vec![1.0, weight, 1.0]).unwrap();
+            let physical = Physical {
+                spectrum_csv: Some(SpectrumFile::new(std::path::Path::new("s.csv"), table)),
+                ..Physical::DEFAULT
+            };
+            let request = PistonRequest {
+                fringe_hz: vec![300.0],
+                bins: crate::formalism::estimator::BinWindow::Positive,
+                scans: 40,
+                seed: 3,
+                threads: 1,
+                psd: PistonPsdModel::TwoAperture,
+                wind_angle_deg: 0.0,
+                observation: None,
+            };
+            PistonJob { physical, request }
+        };
+        // One file name, its table edited: another request.
+        assert_eq!(job(2.0).key(), job(2.0).key());
+        assert_ne!(job(2.0).key(), job(3.0).key());
+    }
 }

@@ -2,14 +2,14 @@
 
 use super::plan::{request, Magnitude3};
 use crate::commands::targets::{self, SharedPlan};
+use crate::plan::photometry::Band2Mass;
 use crate::values::to_py;
+use crate::words::Words;
 use crate::{interruptible, ok};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use crate::plan::photometry::Band2Mass;
-use crate::words::Words;
 
 /// The rows of a list given as a CSV `path` or as CSV `text`.
 fn read_list(path: Option<PathBuf>, text: Option<String>) -> PyResult<Vec<ListRow>> {
@@ -48,9 +48,27 @@ fn row_tuple(row: &ListRow) -> RowTuple {
                     .map(|w| w.word.to_owned())
             });
             let (line, name) = (t.line, t.name.clone());
-            (line, name, t.magnitude, band, t.diameter_mas, t.ra_deg, t.dec_deg, None)
+            (
+                line,
+                name,
+                t.magnitude,
+                band,
+                t.diameter_mas,
+                t.ra_deg,
+                t.dec_deg,
+                None,
+            )
         }
-        Err(f) => (f.line, f.name.clone(), None, None, None, None, None, Some(f.reason.clone())),
+        Err(f) => (
+            f.line,
+            f.name.clone(),
+            None,
+            None,
+            None,
+            None,
+            None,
+            Some(f.reason.clone()),
+        ),
     }
 }
 
@@ -64,7 +82,11 @@ fn tuple_row(t: RowTuple) -> PyResult<ListRow> {
         None => None,
         Some(word) => match Band2Mass::WORDS.iter().find(|w| w.word == word) {
             Some(w) => Some(w.value),
-            None => return Err(PyValueError::new_err(format!("rows: band {word:?} is not one"))),
+            None => {
+                return Err(PyValueError::new_err(format!(
+                    "rows: band {word:?} is not one"
+                )))
+            }
         },
     };
     Ok(Ok(targets::Target {
@@ -82,7 +104,10 @@ fn tuple_row(t: RowTuple) -> PyResult<ListRow> {
 /// a tuple that `plan_targets(rows=[…])` plans alone.
 #[pyfunction]
 #[pyo3(signature = (path, text))]
-pub(super) fn _targets_rows(path: Option<PathBuf>, text: Option<String>) -> PyResult<Vec<RowTuple>> {
+pub(super) fn _targets_rows(
+    path: Option<PathBuf>,
+    text: Option<String>,
+) -> PyResult<Vec<RowTuple>> {
     Ok(read_list(path, text)?.iter().map(row_tuple).collect())
 }
 
