@@ -53,7 +53,7 @@ def checkpoint_path(checkpoint: Any) -> str:
         pass
     except OSError as e:
         raise ValueError(f"checkpoint: the folder {path!r} cannot be made ({e.strerror}); its parent must exist") from None
-    if not _os.path.isdir(path) or _os.path.islink(path):
+    if not _os.path.isdir(path):
         raise ValueError(f"checkpoint: {path!r} is not a folder")
     return path
 
@@ -72,7 +72,7 @@ class Checkpoint:
     """A checkpoint folder, opened once (entries are reached through it)."""
 
     def __init__(self, path: str, command: str, key: str, size: Tuple[int, int]):
-        flags = _os.O_RDONLY | getattr(_os, "O_DIRECTORY", 0) | _os.O_NOFOLLOW | getattr(_os, "O_CLOEXEC", 0)
+        flags = _os.O_RDONLY | getattr(_os, "O_DIRECTORY", 0) | getattr(_os, "O_CLOEXEC", 0)
         try:
             self.fd = _os.open(path, flags)
         except OSError as e:
