@@ -841,7 +841,9 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
     client : dask.distributed.Client, optional
         Plans each row as a task on this Dask cluster (``pip install
         v2ref[dask]``); the table is the one-process table, bit for bit
-        (``docs/dask.md``). A path is read here, not on the workers.
+        (``docs/dask.md``). The list is read once, here; a task is sent
+        its row, not the list. Anything without ``submit`` is refused
+        (TypeError).
     progress : bool or callable, optional
         ``True``: a line on stderr at most once a second, the targets done,
         the time elapsed and about how long is left (as the CLI's bar and
@@ -853,9 +855,13 @@ def plan_targets(targets: Any, **keywords: Any) -> List[Dict[str, Any]]:
         A folder where each row's table rows are kept as they are planned
         (one file a row, written whole or not at all); run again with the
         same list and keywords, only the rows missing there are planned,
-        the same table bit for bit. Entries are read as
-        ``docs/threat-model.md`` says: a link is never followed, an entry
-        of another list, other keywords or another version is not read.
+        the same table bit for bit. The folder is made if missing (its
+        parent must exist). An entry is used only when it is this user's
+        and its digest, key, row, line and name are this list's (an edited
+        list or spectrum CSV, other keywords or another version are
+        another key); a damaged one is refused naming it (ValueError),
+        another user's is planned again with a warning
+        (``docs/dask.md``).
 
     Returns
     -------
