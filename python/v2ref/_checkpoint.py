@@ -41,12 +41,17 @@ def entry_name(command: str, key: str, start: int, end: int) -> str:
     return f"v2ref-{command}-{key}-{start}-{end}{_SUFFIX}"
 
 
+def checked_path(checkpoint: Any) -> str:
+    """``checkpoint=`` as a path, refused by name unless it is one."""
+    if isinstance(checkpoint, bool) or not isinstance(checkpoint, (str, bytes, _os.PathLike)):
+        raise TypeError(f"checkpoint: {checkpoint!r} is not a folder's path (str or os.PathLike)")
+    return _os.fsdecode(_os.fspath(checkpoint))
+
+
 def checkpoint_path(checkpoint: Any) -> str:
     """``checkpoint=`` as a folder's path, the folder made if it is missing
     (its parent must exist): refused by name before anything is computed."""
-    if isinstance(checkpoint, bool) or not isinstance(checkpoint, (str, bytes, _os.PathLike)):
-        raise TypeError(f"checkpoint: {checkpoint!r} is not a folder's path (str or os.PathLike)")
-    path = _os.fsdecode(_os.fspath(checkpoint))
+    path = checked_path(checkpoint)
     try:
         _os.mkdir(path, 0o700)
     except FileExistsError:

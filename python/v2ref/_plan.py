@@ -201,10 +201,15 @@ def plan(
     arguments = _plan_arguments(dict(locals()))
     if instrument is not None:
         arguments["instrument"] = (_word("instrument", instrument), sorted(_GIVEN.get()))
-    if verify and (client is not None or checkpoint is not None):
+    if client is not None or checkpoint is not None:
         from . import dask as _dask
 
-        arguments["verify_units"] = _dask._plan_verify_units(arguments, client, checkpoint)
+        # Refused by name even when there is nothing to run on them.
+        _dask._check_client(client)
+        if checkpoint is not None:
+            _dask._checked_path(checkpoint)
+        if verify:
+            arguments["verify_units"] = _dask._plan_verify_units(arguments, client, checkpoint)
     return _v2ref.plan(**arguments)
 
 

@@ -26,6 +26,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import _v2ref
 from ._checkpoint import Checkpoint as _Checkpoint
+from ._checkpoint import checked_path as _checked_path
 from ._checkpoint import checkpoint_path as _checkpoint_path
 from ._checkpoint import record_bytes as _record_bytes
 

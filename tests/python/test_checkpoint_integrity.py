@@ -231,13 +231,15 @@ def test_every_row_comes_back_whatever_its_name(rows):
     assert table[2]["TARGET"] == "beta"
 
 
-@pytest.mark.parametrize("call", ["plan_targets", "simulate", "piston"])
+@pytest.mark.parametrize("call", ["plan_targets", "simulate", "piston", "plan"])
 @pytest.mark.parametrize("keyword", ["client", "checkpoint"])
 def test_client_and_checkpoint_of_the_wrong_kind_are_refused_by_name(call, keyword):
     run = {
         "plan_targets": lambda **kw: v2ref.plan_targets(ROWS, **SHARED, **kw),
         "simulate": lambda **kw: v2ref.simulate(**SMALL, **kw),
         "piston": lambda **kw: v2ref.piston(fringe_hz=[300.0], scans=20, samples=32, **kw),
+        # Without verify: nothing would run on them, still refused.
+        "plan": lambda **kw: v2ref.plan(fringe_hz=[500.0], stroke_um=[32.0], scans=50, **kw),
     }[call]
     with pytest.raises(TypeError, match=f"^{keyword}: 42 is not"):
         run(**{keyword: 42})
