@@ -25,7 +25,7 @@ _PathLike = Union[str, _os.PathLike[str]]
 
 def _uint(name: str, value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
-        raise TypeError(f"{name}: {value!r} is not an integer")
+        raise TypeError(f"{name}: {value!r} is not an integer; accepted: an integer from 0 to 2^64 - 1")
     if value < 0 or value >= 2**64:
         raise ValueError(f"{name}: {value} is out of range; accepted: an integer from 0 to 2^64 - 1")
     return int(value)
@@ -68,6 +68,18 @@ def _numbers(name: str, value: Any, accepted: str) -> List[float]:
     if isinstance(value, (str, bytes, bytearray)) or not isinstance(value, _abc.Sequence):
         raise TypeError(f"{name}: {value!r} is not a number or a sequence of numbers; accepted: {accepted}")
     return [_float(f"{name}[{i}]", v) for i, v in enumerate(value)]
+
+
+def _grid(name: str, value: Any, unit: str) -> List[float]:
+    """A grid keyword (``plan``'s ``fringe_hz``, ``stroke_um``; ``piston``'s
+    ``fringe_hz``): None is the default, an empty list."""
+    if value is None:
+        return []
+    accepted = (
+        f"a number ({unit}) or a list, tuple, range or 1-D array of them; for the CLI's "
+        "A:B:N give numpy.linspace(A, B, N), for A:B:N:log numpy.geomspace(A, B, N)"
+    )
+    return _numbers(name, value, accepted)
 
 
 def _count(name: str, value: Any, least: int) -> int:
