@@ -39,8 +39,14 @@ fn cr_lf_and_crlf_line_ends_are_each_read_as_line_ends() {
         let out = plan_list(dir.path(), text.as_bytes());
         let err = stderr_of(&out);
         assert_eq!(out.status.code(), Some(2), "{end:?}: {err}");
-        assert!(err.contains("line 2: band: 'Q' is not one of"), "{end:?}: {err}");
-        assert!(err.contains("line 3: magnitude and band: give both"), "{end:?}: {err}");
+        assert!(
+            err.contains("line 2: band: 'Q' is not one of"),
+            "{end:?}: {err}"
+        );
+        assert!(
+            err.contains("line 3: magnitude and band: give both"),
+            "{end:?}: {err}"
+        );
         assert_eq!(err.lines().count(), 2, "{end:?}: {err}");
         seen.push((err, out.stdout));
     }
@@ -77,7 +83,10 @@ fn a_refused_diameter_is_told_its_bounds_readably() {
         ("-1", "-1 is outside 0 or more"),
         ("x", "'x' is not a number"),
     ] {
-        let out = plan_list(dir.path(), format!("name,diameter_mas\nA,{cell}\n").as_bytes());
+        let out = plan_list(
+            dir.path(),
+            format!("name,diameter_mas\nA,{cell}\n").as_bytes(),
+        );
         let err = stderr_of(&out);
         assert_eq!(out.status.code(), Some(2), "{err}");
         assert!(err.contains(&format!("diameter_mas: {said}")), "{err}");
@@ -109,7 +118,11 @@ fn control_characters_from_the_list_never_reach_the_terminal() {
     let out = plan_list(dir.path(), b"name,b\x1b[2Jand\nA,H\n");
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(control(&out.stderr), None, "{:?}", stderr_of(&out));
-    assert!(stderr_of(&out).contains("b\\u{1b}[2Jand"), "{}", stderr_of(&out));
+    assert!(
+        stderr_of(&out).contains("b\\u{1b}[2Jand"),
+        "{}",
+        stderr_of(&out)
+    );
 }
 
 #[test]

@@ -146,7 +146,9 @@ fn number(column: &str, cell: &str, lo: f64, hi: f64) -> std::result::Result<Opt
             "{column}: {v} is not a finite number; accepted: {accepted}"
         )),
         Ok(v) => Err(format!("{column}: {v} is outside {accepted}")),
-        Err(_) => Err(format!("{column}: '{cell}' is not a number; accepted: {accepted}")),
+        Err(_) => Err(format!(
+            "{column}: '{cell}' is not a number; accepted: {accepted}"
+        )),
     }
 }
 

@@ -45,9 +45,10 @@ pub fn read_targets(path: &Path) -> Result<Vec<std::result::Result<Target, RowFa
         let at = e.utf8_error().valid_up_to();
         let before = &e.as_bytes()[..at];
         // Line ends as the parser counts them: LF, CRLF, or CR alone.
-        let ends = before.iter().enumerate().filter(|&(i, &b)| {
-            b == b'\n' || (b == b'\r' && before.get(i + 1) != Some(&b'\n'))
-        });
+        let ends = before
+            .iter()
+            .enumerate()
+            .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && before.get(i + 1) != Some(&b'\n')));
         let line = 1 + ends.count();
         Error::data(
             "targets",
