@@ -79,6 +79,7 @@ mod spectrum_csv;
 mod surface_properties;
 mod surface_properties_sets;
 mod synth_layout;
+mod targets_errors;
 mod tolerance_literals;
 mod turbulence;
 

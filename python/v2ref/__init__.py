@@ -65,7 +65,9 @@ def claims(*, quick: bool = False) -> list:
         One entry per claim: ``id``, ``paper``, ``computed``, ``status``,
         ``note``, …
     """
-    return _v2ref.claims(bool(quick))
+    from ._arguments import _flag
+
+    return _v2ref.claims(_flag("quick", quick))
 
 
 # OIFITS (python/v2ref/oifits.py).

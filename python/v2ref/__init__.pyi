@@ -354,8 +354,10 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
         A folder keeping each finished range of units; a rerun with the
         same arguments computes only the ranges it lacks.
     chunk_units : int, optional
-        Work units (8192 rows each) per task (default: about four tasks
-        per worker thread, at least ``v2ref.dask.MIN_UNITS_PER_TASK``).
+        Work units (8192 rows each) per task, 1 or more (default: about
+        four tasks per worker thread, at least
+        ``v2ref.dask.MIN_UNITS_PER_TASK``); checked, and used with
+        ``client`` or ``checkpoint``.
     wavelength_um : float, default 2.2
         Centre wavelength λ0, µm: 0.001 to 100000. With ``spectrum_csv`` it
         still sets λ0 of the fringe frequency f = v/λ0, of the samples per
@@ -576,7 +578,11 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
     Parameters
     ----------
     fringe_hz : float or sequence of float, optional
-        Fringe frequencies f = v/λ0, Hz (default: 300 and 1000).
+        Fringe frequencies f = v/λ0, Hz (default: 300 and 1000): a number,
+        or a list, tuple, range or 1-D array of numbers (an empty one: the
+        default). A string is refused: the CLI's ``A:B:N`` is
+        ``numpy.linspace(A, B, N)`` here, ``A:B:N:log``
+        ``numpy.geomspace(A, B, N)``.
     scans : int
         Consecutive scans per fringe frequency, >= 2.
     seed : int
@@ -670,7 +676,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Optional[Sequence[float]]=None, stroke_um: Optional[Sequence[float]]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Union[float, Sequence[float], None]=None, stroke_um: Union[float, Sequence[float], None]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -703,9 +709,12 @@ def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=Non
         grid's fringe frequencies stop at ``frame_rate_hz /
         samples_per_fringe`` (the default grid runs up to it), and a
         recommendation there is the detector's edge (``at_detector_edge``).
-    fringe_hz, stroke_um : sequence of float, optional
+    fringe_hz, stroke_um : float or sequence of float, optional
         The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
-        and strokes (µm; default 16, 32, 64, 128).
+        and strokes (µm; default 16, 32, 64, 128); a number, or a list,
+        tuple, range or 1-D array of numbers (an empty one: the default).
+        A string is refused: the CLI's ``A:B:N`` is ``numpy.linspace(A, B,
+        N)`` here, ``A:B:N:log`` ``numpy.geomspace(A, B, N)``.
     scans : int
         Scans of each piston Monte Carlo (32 and more; cut into up to 16
         independent piston sequences, whose spread gives the errors).

@@ -1,6 +1,7 @@
 """The keyword arguments' checks, shared by the package's functions (the
 Rust side checks every value; these check types and convert): integers,
-numbers, flags and words; paths as UTF-8 text; arrays as C-contiguous
+numbers (one, or a sequence where a keyword takes several), flags and
+words; paths as UTF-8 text; arrays as C-contiguous
 float64 (no copy when they are one); the physical keyword arguments and
 their docstring entries; a sidecar given as a dict or a path.
 """
@@ -8,7 +9,7 @@ their docstring entries; a sidecar given as a dict or a path.
 import collections.abc as _abc
 import inspect as _inspect
 import os as _os
-from typing import Any, Dict, Mapping, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -24,7 +25,7 @@ _PathLike = Union[str, _os.PathLike[str]]
 
 def _uint(name: str, value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
-        raise TypeError(f"{name}: {value!r} is not an integer")
+        raise TypeError(f"{name}: {value!r} is not an integer; accepted: an integer from 0 to 2^64 - 1")
     if value < 0 or value >= 2**64:
         raise ValueError(f"{name}: {value} is out of range; accepted: an integer from 0 to 2^64 - 1")
     return int(value)
@@ -40,10 +41,53 @@ def _to_float(name: str, value: Any) -> float:
         ) from None
 
 
+def _is_number(value: Any) -> bool:
+    """An int or float (Python's or NumPy's) but not a bool: a flag is not a number."""
+    return not isinstance(value, (bool, _np.bool_)) and isinstance(
+        value, (int, float, _np.integer, _np.floating)
+    )
+
+
 def _float(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, _np.integer, _np.floating)):
-        raise TypeError(f"{name}: {value!r} is not a number")
+    """A number keyword as a float; anything else (a str, a bool, None, an
+    array) refused naming the keyword: the one check of every number."""
+    if not _is_number(value):
+        raise TypeError(f"{name}: {value!r} is not a real number; accepted: an int or a float")
     return _to_float(name, value)
+
+
+def _numbers(name: str, value: Any, accepted: str) -> List[float]:
+    """A keyword taking a number or a sequence of numbers (a list, tuple,
+    range or 1-D array) as a list of floats, each element checked by
+    :func:`_float`. A string is refused, never read one character a
+    number; so is anything else, naming the keyword and ``accepted``."""
+    if _is_number(value):
+        return [_float(name, value)]
+    if isinstance(value, _np.ndarray) and value.ndim == 1:
+        value = list(value)
+    if isinstance(value, (str, bytes, bytearray)) or not isinstance(value, _abc.Sequence):
+        raise TypeError(f"{name}: {value!r} is not a number or a sequence of numbers; accepted: {accepted}")
+    return [_float(f"{name}[{i}]", v) for i, v in enumerate(value)]
+
+
+def _grid(name: str, value: Any, unit: str) -> List[float]:
+    """A grid keyword (``plan``'s ``fringe_hz``, ``stroke_um``; ``piston``'s
+    ``fringe_hz``): None is the default, an empty list."""
+    if value is None:
+        return []
+    accepted = (
+        f"a number ({unit}) or a list, tuple, range or 1-D array of them; for the CLI's "
+        "A:B:N give numpy.linspace(A, B, N), for A:B:N:log numpy.geomspace(A, B, N)"
+    )
+    return _numbers(name, value, accepted)
+
+
+def _count(name: str, value: Any, least: int) -> int:
+    """An integer keyword of ``least`` or more (a bool is not a count)."""
+    n = _uint(name, value)
+    if n < least:
+        raise ValueError(f"{name}: {n} is out of range; accepted: an integer of {least} or more")
+    return n
 
 
 def _flag(name: str, value: Any) -> bool:
@@ -84,13 +128,9 @@ def _physical(values: Mapping[str, Any], exclude: Sequence[str] = ()) -> Dict[st
         elif kind == "int":
             v = _uint(k, v)
         elif kind == "bool":
-            if not isinstance(v, (bool, _np.bool_)):
-                raise TypeError(f"{k}: {v!r} is not a bool")
-            v = bool(v)
+            v = _flag(k, v)
         else:
-            if isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)):
-                raise TypeError(f"{k}: {v!r} is not a real number")
-            v = _to_float(k, v)
+            v = _float(k, v)
         out[k] = v
     return out
 

@@ -6,10 +6,8 @@ wide-band biases (:func:`bias`), the closed-form variances and SNRs
 
 from typing import Any, Dict, Optional, Sequence, Union
 
-import numpy as _np
-
 from . import _v2ref
-from ._arguments import _PathLike, _documented, _float, _physical, _to_float, _uint, _word
+from ._arguments import _PathLike, _count, _documented, _flag, _float, _grid, _physical, _uint, _word
 
 
 @_documented()
@@ -74,8 +72,10 @@ def simulate(
         A folder keeping each finished range of units; a rerun with the
         same arguments computes only the ranges it lacks.
     chunk_units : int, optional
-        Work units (8192 rows each) per task (default: about four tasks
-        per worker thread, at least ``v2ref.dask.MIN_UNITS_PER_TASK``).
+        Work units (8192 rows each) per task, 1 or more (default: about
+        four tasks per worker thread, at least
+        ``v2ref.dask.MIN_UNITS_PER_TASK``); checked, and used with
+        ``client`` or ``checkpoint``.
     {physical}
 
     Returns
@@ -87,6 +87,8 @@ def simulate(
     """
     values = dict(locals())
     threads = _uint("threads", threads)
+    if chunk_units is not None:
+        chunk_units = _count("chunk_units", chunk_units, 1)
     if client is not None and threads == 0:
         threads = 1
     args = (
@@ -143,9 +145,7 @@ def bias(
         and, with a finite scan, ``finite_scan``.
     """
     values = dict(locals())
-    if not isinstance(finite_scan, (bool, _np.bool_)):
-        raise TypeError(f"finite_scan: {finite_scan!r} is not a bool")
-    return _v2ref.bias(_physical(values), _word("bins", bins), bool(finite_scan))
+    return _v2ref.bias(_physical(values), _word("bins", bins), _flag("finite_scan", finite_scan))
 
 
 @_documented()
@@ -234,7 +234,11 @@ def piston(
     Parameters
     ----------
     fringe_hz : float or sequence of float, optional
-        Fringe frequencies f = v/λ0, Hz (default: 300 and 1000).
+        Fringe frequencies f = v/λ0, Hz (default: 300 and 1000): a number,
+        or a list, tuple, range or 1-D array of numbers (an empty one: the
+        default). A string is refused: the CLI's ``A:B:N`` is
+        ``numpy.linspace(A, B, N)`` here, ``A:B:N:log``
+        ``numpy.geomspace(A, B, N)``.
     scans : int
         Consecutive scans per fringe frequency, >= 2.
     seed : int
@@ -269,12 +273,7 @@ def piston(
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
     values = dict(locals())
-    if fringe_hz is None:
-        freqs = []
-    elif isinstance(fringe_hz, (int, float, _np.integer, _np.floating)) and not isinstance(fringe_hz, bool):
-        freqs = [_to_float("fringe_hz", fringe_hz)]
-    else:
-        freqs = [_to_float("fringe_hz", f) for f in fringe_hz]
+    freqs = _grid("fringe_hz", fringe_hz, "Hz")
     threads = _uint("threads", threads)
     if client is not None and threads == 0:
         threads = 1

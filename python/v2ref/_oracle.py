@@ -22,7 +22,6 @@ from ._arguments import (
     _not_masked,
     _physical,
     _sidecar_arg,
-    _to_float,
     _uint,
     _vector,
     _word,
@@ -457,8 +456,7 @@ def score(
     text, name = _sidecar_arg(sidecar)
     _check_rows(estimates, text)
     v1, v2 = _estimate_columns(estimates, columns)
-    if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
-        raise TypeError(f"alpha: {alpha!r} is not a real number")
+    alpha = _float("alpha", alpha)
     return _v2ref.score(
         v1,
         v2,
@@ -467,5 +465,5 @@ def score(
         "<array>",
         _word("bins", bins),
         _word("bias", bias),
-        _to_float("alpha", alpha),
+        alpha,
     )

@@ -9,7 +9,7 @@ import contextvars as _contextvars
 import functools as _functools
 import inspect as _inspect
 import os as _os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -19,8 +19,8 @@ from ._arguments import (
     _documented,
     _flag,
     _float,
+    _grid,
     _physical,
-    _to_float,
     _uint,
     _utf8_path,
     _word,
@@ -66,8 +66,8 @@ def plan(
     samples_per_fringe: float = 4.0,
     dead_time_s: float = 0.0,
     frame_rate_hz: Optional[float] = None,
-    fringe_hz: Optional[Sequence[float]] = None,
-    stroke_um: Optional[Sequence[float]] = None,
+    fringe_hz: Union[float, Sequence[float], None] = None,
+    stroke_um: Union[float, Sequence[float], None] = None,
     scans: int = 16000,
     seed: int = 1,
     threads: int = 0,
@@ -140,9 +140,12 @@ def plan(
         grid's fringe frequencies stop at ``frame_rate_hz /
         samples_per_fringe`` (the default grid runs up to it), and a
         recommendation there is the detector's edge (``at_detector_edge``).
-    fringe_hz, stroke_um : sequence of float, optional
+    fringe_hz, stroke_um : float or sequence of float, optional
         The grid: fringe frequencies (Hz; default 20 from 20 to 2000, log)
-        and strokes (µm; default 16, 32, 64, 128).
+        and strokes (µm; default 16, 32, 64, 128); a number, or a list,
+        tuple, range or 1-D array of numbers (an empty one: the default).
+        A string is refused: the CLI's ``A:B:N`` is ``numpy.linspace(A, B,
+        N)`` here, ``A:B:N:log`` ``numpy.geomspace(A, B, N)``.
     scans : int
         Scans of each piston Monte Carlo (32 and more; cut into up to 16
         independent piston sequences, whose spread gives the errors).
@@ -233,8 +236,8 @@ def _plan_arguments(values: Mapping[str, Any]) -> Dict[str, Any]:
         samples_per_fringe=_float("samples_per_fringe", values["samples_per_fringe"]),
         photon_rate_per_s=_float("photon_rate_per_s", 1e6 if rate is None else rate),
         dead_time_s=_float("dead_time_s", values["dead_time_s"]),
-        fringe_hz=[_to_float("fringe_hz", f) for f in (values["fringe_hz"] or [])],
-        stroke_um=[_to_float("stroke_um", s) for s in (values["stroke_um"] or [])],
+        fringe_hz=_grid("fringe_hz", values["fringe_hz"], "Hz"),
+        stroke_um=_grid("stroke_um", values["stroke_um"], "µm"),
         target_sigma_v2=opt("target_sigma_v2", values["target_sigma_v2"]),
         time_budget_s=opt("time_budget_s", values["time_budget_s"]),
         scans=_uint("scans", values["scans"]),
@@ -400,6 +403,10 @@ def _plan_magnitude(photon_rate_per_s, magnitude, magnitude_band, throughput, sp
         "magnitude_band": magnitude_band,
         "throughput": throughput,
     }
+    # Each number's type first: a string is refused as such, not as half given.
+    for name in ("magnitude", "throughput"):
+        if given[name] is not None:
+            _float(name, given[name])
     if magnitude is None:
         for name, v in given.items():
             if v is not None:

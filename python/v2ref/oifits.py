@@ -10,7 +10,7 @@ from typing import Any, Dict, List, Optional
 import numpy as _np
 
 from . import _v2ref
-from ._arguments import _sidecar_arg, _utf8_path
+from ._arguments import _float, _sidecar_arg, _utf8_path
 
 
 def _path(name: str, value: Any) -> str:
@@ -58,13 +58,8 @@ def _observing(values: Dict[str, Any]) -> Optional[tuple]:
             if not isinstance(v, str):
                 raise TypeError(f"{name}: {v!r} is not a string")
             out.append(v)
-        elif isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)):
-            raise TypeError(f"{name}: {v!r} is not a number")
         else:
-            try:
-                out.append(float(v))
-            except OverflowError:
-                raise ValueError(f"{name}: {v} is out of range") from None
+            out.append(_float(name, v))
     return None if all(v is None for v in out) else tuple(out)
 
 
@@ -204,15 +199,13 @@ def score_oifits(
     text, name = _sidecar_arg(sidecar)
     for n, v in (("bins", bins), ("bias", bias), ("insname", insname), ("estimator", estimator), ("target", target)):
         _optional_str(n, v)
-    if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
-        raise TypeError(f"alpha: {alpha!r} is not a real number")
     return _v2ref.score_oifits(
         _path("path", path),
         text,
         name,
         bins,
         bias,
-        float(alpha),
+        _float("alpha", alpha),
         insname,
         estimator,
         target,

@@ -64,10 +64,15 @@ impl clap::Args for InstrumentArgs {
 }
 
 impl InstrumentArgs {
-    /// With `--instrument list`: prints the presets and says so.
-    pub fn print_list(&self) -> bool {
+    /// With `--instrument list`: prints the presets (as a JSON array of
+    /// their fields with `json`, else a table) and says so.
+    pub fn print_list(&self, json: bool) -> bool {
         if self.name.as_deref().map(str::trim) != Some("list") {
             return false;
+        }
+        if json {
+            super::print_json(&INSTRUMENTS);
+            return true;
         }
         outln!(
             "{:<16} {:>7} {:>6} {:>5} {:>13} {:>6} {:>7} {:>6} {:>7}  description",

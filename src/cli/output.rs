@@ -51,9 +51,13 @@ fn stdout_failed(e: &io::Error) -> ! {
 }
 
 /// Writes `text` and a newline to standard error, ignoring failure (there
-/// is nowhere left to report it).
+/// is nowhere left to report it). A message may quote a file's name or
+/// contents: its control characters are written escaped
+/// (`v2ref_commands::text::printable`), never sent to the terminal.
 pub fn write_stderr_line(text: std::fmt::Arguments<'_>) {
-    let _ = writeln!(io::stderr().lock(), "{text}");
+    let line = text.to_string();
+    let line = v2ref_commands::text::printable(&line);
+    let _ = writeln!(io::stderr().lock(), "{line}");
 }
 
 /// Checks that `out` may be replaced by a folder of results before any work

@@ -210,7 +210,7 @@ fn request(args: &Args) -> Result<(Physical, PlanRequest)> {
 
 /// Runs `plan`.
 pub fn run(args: Args) -> Result<ExitCode> {
-    if args.instrument.print_list() {
+    if args.instrument.print_list(args.json) {
         return Ok(ExitCode::SUCCESS);
     }
     if args.targets.targets.is_some() {

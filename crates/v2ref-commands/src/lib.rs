@@ -38,4 +38,5 @@ pub mod parameters;
 pub mod plan;
 pub mod record;
 pub mod report;
+pub mod text;
 pub mod units;

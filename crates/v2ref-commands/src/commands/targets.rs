@@ -19,6 +19,7 @@ use crate::error::{Error, Result};
 use crate::montecarlo::derive_seed;
 use crate::parameters::Physical;
 use crate::plan::photometry::{Band2Mass, Magnitude};
+use crate::text::printable;
 use crate::words::Words;
 
 pub use super::targets_table::{table_csv, RowFault, Status, Target, TargetRow, COLUMNS};
@@ -105,12 +106,16 @@ fn header(line: &str) -> Result<Vec<usize>> {
     for n in &names {
         let Some(k) = INPUT_COLUMNS.iter().position(|c| c.eq_ignore_ascii_case(n)) else {
             return Err(bad(format!(
-                "the header names the column '{n}'; the columns are {} (name required)",
+                "the header names the column '{}'; the columns are {} (name required)",
+                printable(n),
                 INPUT_COLUMNS.join(", ")
             )));
         };
         if columns.contains(&k) {
-            return Err(bad(format!("the header names the column '{n}' twice")));
+            return Err(bad(format!(
+                "the header names the column '{}' twice",
+                printable(n)
+            )));
         }
         columns.push(k);
     }
@@ -123,15 +128,27 @@ fn header(line: &str) -> Result<Vec<usize>> {
     Ok(columns)
 }
 
-/// A number cell: empty is None; else finite and within `lo..=hi`.
+/// A number cell: empty is None; else finite and within `lo..=hi` (`hi`
+/// infinite: no upper bound).
 fn number(column: &str, cell: &str, lo: f64, hi: f64) -> std::result::Result<Option<f64>, String> {
     if cell.is_empty() {
         return Ok(None);
     }
+    // The bounds written as read (no 309-digit f64::MAX).
+    let accepted = if hi.is_finite() {
+        format!("{lo} to {hi}")
+    } else {
+        format!("{lo} or more")
+    };
     match cell.parse::<f64>() {
         Ok(v) if v.is_finite() && (lo..=hi).contains(&v) => Ok(Some(v)),
-        Ok(v) => Err(format!("{column}: {v} is outside {lo} to {hi}")),
-        Err(_) => Err(format!("{column}: '{cell}' is not a number")),
+        Ok(v) if !v.is_finite() => Err(format!(
+            "{column}: {v} is not a finite number; accepted: {accepted}"
+        )),
+        Ok(v) => Err(format!("{column}: {v} is outside {accepted}")),
+        Err(_) => Err(format!(
+            "{column}: '{cell}' is not a number; accepted: {accepted}"
+        )),
     }
 }
 
@@ -159,12 +176,23 @@ fn target(line: u64, columns: &[usize], text: &str) -> std::result::Result<Targe
         .ok()
         .and_then(|v| v.get(name_at).cloned())
         .unwrap_or_default();
+    // A fault's name is echoed in the table and the messages: a control
+    // character (a terminal's escape sequence) is shown escaped there.
     let fault = |reason: String| RowFault {
         line,
-        name: name.clone(),
+        name: printable(&name).into_owned(),
         reason,
     };
     let values = values.map_err(fault)?;
+    for (i, v) in values.iter().enumerate() {
+        if let Some(c) = v.chars().find(|c| c.is_control()) {
+            let column = columns.get(i).map_or("a cell", |&k| INPUT_COLUMNS[k]);
+            return Err(fault(format!(
+                "{column}: holds the control character {}; a cell is printable text",
+                c.escape_unicode()
+            )));
+        }
+    }
     if values.len() != columns.len() {
         return Err(fault(format!(
             "{} cells where the header has {} columns",
@@ -184,7 +212,7 @@ fn target(line: u64, columns: &[usize], text: &str) -> std::result::Result<Targe
         name: name.clone(),
         magnitude: number("magnitude", cell(1), lo, hi).map_err(fault)?,
         band: band(cell(2)).map_err(fault)?,
-        diameter_mas: number("diameter_mas", cell(3), 0.0, f64::MAX).map_err(fault)?,
+        diameter_mas: number("diameter_mas", cell(3), 0.0, f64::INFINITY).map_err(fault)?,
         ra_deg: number("ra_deg", cell(4), 0.0, 360.0).map_err(fault)?,
         dec_deg: number("dec_deg", cell(5), -90.0, 90.0).map_err(fault)?,
     };
@@ -199,14 +227,22 @@ fn target(line: u64, columns: &[usize], text: &str) -> std::result::Result<Targe
     Ok(t)
 }
 
+/// The lines of `text`, each ended by a line feed, a carriage return and
+/// line feed, or a carriage return alone (as classic Mac OS and some
+/// spreadsheets save CSV), in order.
+fn lines(text: &str) -> impl Iterator<Item = &str> {
+    text.split('\n')
+        .flat_map(|l| l.strip_suffix('\r').unwrap_or(l).split('\r'))
+}
+
 /// The rows of a target list (see the module doc): a header, then one
-/// target a line; blank lines and lines starting with `#` are skipped.
+/// target a line (ended by LF, CRLF or CR); blank lines and lines starting
+/// with `#` are skipped.
 /// A row that cannot be read is a [`RowFault`] in its place; the list as a
 /// whole is refused only when its header is (or it has no row, or more
 /// than [`MAX_TARGETS`]).
 pub fn parse_targets(text: &str) -> Result<Vec<std::result::Result<Target, RowFault>>> {
-    let mut lines = text
-        .lines()
+    let mut lines = lines(text)
         .enumerate()
         .map(|(i, l)| (i as u64 + 1, l.trim_start_matches('\u{feff}')))
         .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));

@@ -29,10 +29,10 @@ pub fn read_targets(path: &Path) -> Result<Vec<std::result::Result<Target, RowFa
         ));
     }
     let most = MAX_TARGETS_CSV_BYTES.min(super::memory_budget()?);
-    let mut text = String::new();
+    let mut bytes = Vec::new();
     // One byte more than the limit tells a file at the limit from a longer one.
-    file.take(most + 1).read_to_string(&mut text).map_err(io)?;
-    if text.len() as u64 > most {
+    file.take(most + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > most {
         return Err(Error::data(
             "targets",
             path,
@@ -40,5 +40,22 @@ pub fn read_targets(path: &Path) -> Result<Vec<std::result::Result<Target, RowFa
             format!("larger than {most} bytes; accepted: a CSV target list within that"),
         ));
     }
+    // Text that is not UTF-8 is bad input (status 2), not a failed read.
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let before = &e.as_bytes()[..at];
+        // Line ends as the parser counts them: LF, CRLF, or CR alone.
+        let ends = before
+            .iter()
+            .enumerate()
+            .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && before.get(i + 1) != Some(&b'\n')));
+        let line = 1 + ends.count();
+        Error::data(
+            "targets",
+            path,
+            "",
+            format!("line {line} (byte {at}) is not UTF-8 text; save the list as UTF-8"),
+        )
+    })?;
     parse_targets(&text).map_err(|e| Error::data("targets", path, "", e.detail()))
 }
