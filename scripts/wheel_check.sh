@@ -54,12 +54,14 @@ env PATH="$venv/bin:$no_rust_path" V2REF_BIN="$target/release/v2ref" \
   python -m pytest -q -p no:cacheprovider tests/python
 echo "timing: the Python tests against the installed wheel $((SECONDS - t)) s"
 
-# The sdist alone: unpacked away from the checkout, built with its own files.
+# The sdist alone: unpacked away from the checkout, built with its own files
+# (not --locked: maturin's sdist drops the command line from the workspace,
+# and cargo prunes its dependencies from the lock; no version changes).
 t=$SECONDS
 quiet "$maturin" sdist --out "$scratch/sdist"
 mkdir "$scratch/unpacked"
 tar -xzf "$scratch"/sdist/v2ref-*.tar.gz -C "$scratch/unpacked"
 (cd "$scratch"/unpacked/v2ref-* &&
-  quiet env CARGO_TARGET_DIR="$target" "$maturin" build --release --locked --out "$scratch/from_sdist")
+  quiet env CARGO_TARGET_DIR="$target" "$maturin" build --release --out "$scratch/from_sdist")
 ls "$scratch"/from_sdist/v2ref-*-abi3-*.whl > /dev/null
 echo "timing: sdist made, unpacked and built into a wheel $((SECONDS - t)) s"
