@@ -36,8 +36,8 @@ no_rust_path=$(python3 -c 'import os
 print(":".join(d for d in os.environ["PATH"].split(os.pathsep)
                if d and not any(os.access(os.path.join(d, x), os.X_OK) for x in ("cargo", "rustc"))))')
 venv="$scratch/venv"
-t=$SECONDS
 python3 -m venv "$venv"
+t=$SECONDS
 env PATH="$venv/bin:$no_rust_path" bash -c '
   if command -v cargo || command -v rustc; then
     echo "wheel check: a Rust toolchain is still on the PATH (above)"; exit 1
