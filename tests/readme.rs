@@ -128,7 +128,10 @@ fn run_readme_commands(plan_extra: &[&str]) {
     for sub in [
         "bias", "snr", "simulate", "piston", "plan", "synth", "score", "estimate",
     ] {
-        assert!(ran.iter().any(|s| s == sub), "no command for {sub} in {PAGES:?}");
+        assert!(
+            ran.iter().any(|s| s == sub),
+            "no command for {sub} in {PAGES:?}"
+        );
     }
     assert!(dir.path().join("plan.svg").exists());
 }
