@@ -1,12 +1,13 @@
-//! The README's commands run as written: every `cargo run --release -- …`
-//! line of its shell blocks (continuation lines joined, comments dropped)
-//! is run with the built binary, in a scratch folder, in README order, and
-//! must exit 0. A flag renamed or a sample file moved without the README
-//! following fails here. Skipped, with the test that covers each: the full
+//! The commands of the README and of the guide it links (docs/guide.md)
+//! run as written: every `cargo run --release -- …` line of their shell
+//! blocks (continuation lines joined, comments dropped) is run with the
+//! built binary, in a scratch folder, in the pages' order, and must exit 0.
+//! A flag renamed or a sample file moved without the pages following fails
+//! here. Skipped, with the test that covers each: the full
 //! `reproduce` (tests/reproduce.rs, CI's reproduction diff), `claims`
 //! (tests/claims.rs), `golden` (tests/golden.rs).
 //!
-//! The README's `plan` examples search the default grid (80 points, 17 s of
+//! The guide's `plan` examples search the default grid (80 points, 17 s of
 //! piston Monte Carlo each): the quick tier runs them on 2 points
 //! ([`SMALL_GRID`], same flags otherwise, so the same power against a
 //! renamed flag or a moved file); the slow tier runs them as written.
@@ -17,7 +18,7 @@ use std::process::Command;
 /// Subcommands not run here, each covered by its own test.
 const SKIPPED: &[&str] = &["reproduce", "claims", "golden"];
 
-/// The `cargo run --release -- ` command lines of the README's `sh` blocks,
+/// The `cargo run --release -- ` command lines of a page's `sh` blocks,
 /// as argument lists after the `--`.
 fn readme_commands(readme: &str) -> Vec<Vec<String>> {
     let mut in_sh = false;
@@ -61,7 +62,7 @@ fn run(args: &[String], dir: &Path) {
     );
 }
 
-/// Appended to the README's `plan` commands in the quick tier: 2 fringe
+/// Appended to the guide's `plan` commands in the quick tier: 2 fringe
 /// frequencies by 1 stroke instead of the default 20 by 4 (one of them
 /// reaches the target: the plan's SVG has a point to draw).
 const SMALL_GRID: &[&str] = &["--fringe-hz", "300:1000:2:log", "--stroke-um", "32"];
@@ -72,16 +73,21 @@ fn readme_commands_run_with_a_small_plan_grid() {
 }
 
 #[test]
-#[ignore = "slow tier: the README's four plans on the full default grid (55 s)"]
+#[ignore = "slow tier: the guide's four plans on the full default grid (55 s)"]
 fn readme_commands_run_as_written() {
     run_readme_commands(&[]);
 }
 
-/// Runs the README's commands in order, `plan_extra` appended to each `plan`.
+/// The pages whose commands run, in order: the README, then the guide.
+const PAGES: &[&str] = &["README.md", "docs/guide.md"];
+
+/// Runs the pages' commands in order, `plan_extra` appended to each `plan`.
 fn run_readme_commands(plan_extra: &[&str]) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let commands = readme_commands(&readme);
+    let commands: Vec<Vec<String>> = PAGES
+        .iter()
+        .flat_map(|page| readme_commands(&std::fs::read_to_string(root.join(page)).unwrap()))
+        .collect();
     assert!(
         commands.len() >= 10,
         "found only {} commands",
@@ -122,7 +128,10 @@ fn run_readme_commands(plan_extra: &[&str]) {
     for sub in [
         "bias", "snr", "simulate", "piston", "plan", "synth", "score", "estimate",
     ] {
-        assert!(ran.iter().any(|s| s == sub), "no README command for {sub}");
+        assert!(
+            ran.iter().any(|s| s == sub),
+            "no command for {sub} in {PAGES:?}"
+        );
     }
     assert!(dir.path().join("plan.svg").exists());
 }

@@ -181,7 +181,7 @@ pub fn keyword_of(param: &str) -> String {
 pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 
 /// A tabulated spectrum and the name of the CSV file it was read from.
-/// The edges read the file (`read_spectrum_file` of the crate `v2ref-files`, feature `files`) and
+/// The edges read the file (`read_spectrum_file` of the crate `v2ref-files`) and
 /// hand the table over: the numerics read no file. The name is kept for
 /// what names the input (it is serialized as the name, and so is not read
 /// back); the records hold the table.

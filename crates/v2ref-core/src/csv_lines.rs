@@ -13,7 +13,7 @@ use std::io::{self, BufRead, Read};
 
 /// Why a line could not be read.
 #[derive(Debug)]
-// Told apart by the file readers of `formats` (feature `files`) only.
+// Told apart by the file readers of the crate `v2ref-files` only.
 pub enum LineFault {
     /// Not UTF-8 text.
     NotUtf8,

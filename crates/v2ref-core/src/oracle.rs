@@ -1,6 +1,6 @@
 //! The oracle route: what a pipeline's own `cargo test` needs to hold its
 //! V1²/V2² estimator to v2ref, all in memory — no file, no path into this
-//! repository, no C compiler (it builds with `default-features = false`).
+//! repository, no C compiler.
 //!
 //! 1. **A set in memory**: [`Set::synthesize`] makes noisy interferograms
 //!    of any [`Inputs`] (rows as one row-major `Vec<f64>`, [`Set::rows`]

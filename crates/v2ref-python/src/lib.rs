@@ -1,4 +1,4 @@
-//! Python bindings (feature `python`): the extension module `v2ref._v2ref`
+//! Python bindings: the extension module `v2ref._v2ref`
 //! that the Python package `v2ref` (`python/v2ref/`) wraps. A thin layer:
 //! convert, call the library, convert back. Answers that the CLI prints as
 //! JSON come back as Python objects made from the same fields (dicts and

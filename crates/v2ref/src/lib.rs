@@ -33,8 +33,8 @@
 //! ## A pipeline's `cargo test`: the oracle route
 //!
 //! A pipeline with its own V1²/V2² estimator holds it to v2ref from its
-//! own tests through [`oracle`], in memory (a dev-dependency with
-//! `default-features = false`: no file format, no C compiler): a set of
+//! own tests through [`oracle`], in memory (a dev-dependency with no file
+//! format and no C compiler): a set of
 //! noisy rows and its truth, the closed forms, the score of the pipeline's
 //! per-row estimates with the test's power, and the golden vectors
 //! regenerated bit for bit.

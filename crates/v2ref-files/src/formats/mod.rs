@@ -12,7 +12,7 @@
 //! little-endian (`<f8`), C order (Fortran order is read and transposed).
 //! CSV: comma-separated, lines starting with `#` and blank lines skipped.
 //!
-//! This module is the edge's (feature `files`, on with `cli`): the
+//! This module is the edge's (the command line's and Python's): the
 //! numerical core reads and writes no file.
 
 // The atomic writers' one public path is `crate::atomic`; these names are

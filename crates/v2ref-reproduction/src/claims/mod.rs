@@ -1,6 +1,7 @@
 //! The claims ledger: every quantitative statement of the paper
-//! (`paper/claims.toml`, a copy of the shared ledger with the same ids and
-//! printed values), computed by this crate and given a status.
+//! (`claims.toml` at this crate's root, inside its package, a copy of the
+//! shared ledger with the same ids and printed values), computed by this
+//! crate and given a status.
 //!
 //! Each area of the paper has its own provider module returning the claims
 //! it computes; [`evaluate`] merges them with the ledger, and any claim no
@@ -19,7 +20,7 @@ pub use piston::sensitivity;
 pub use verdict::{decide, Check, Finding};
 
 /// The ledger as shipped in the crate.
-pub const LEDGER_TOML: &str = include_str!("../../../../paper/claims.toml");
+pub const LEDGER_TOML: &str = include_str!("../../claims.toml");
 
 /// One entry of the ledger.
 #[derive(Debug, Clone, Deserialize, Serialize, PartialEq)]
@@ -50,11 +51,11 @@ pub fn ledger() -> Vec<ClaimSpec> {
     // The ledger is a compile-time constant checked by a test; a parse
     // failure is a build defect, not user input.
     toml::from_str::<Ledger>(LEDGER_TOML)
-        .expect("paper/claims.toml is valid")
+        .expect("the claims ledger (claims.toml) is valid")
         .claim
 }
 
-/// A claim's verdict (listed in the header of `paper/claims.toml`).
+/// A claim's verdict (listed in the header of this crate's `claims.toml`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 #[non_exhaustive]
