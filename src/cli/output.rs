@@ -150,26 +150,67 @@ pub fn watch_rate(bar: &indicatif::ProgressBar, what: &str) {
     let start = std::time::Instant::now();
     // Under a process limit there may be no thread for it: then no note.
     let _ = std::thread::Builder::new().spawn(move || {
-        std::thread::sleep(RATE_PROBE);
-        while bar.position() == 0 && !bar.is_finished() && start.elapsed() < SETUP_WAIT {
-            std::thread::sleep(RATE_PROBE / 4);
-        }
-        let first = (start.elapsed().as_secs_f64(), bar.position());
-        std::thread::sleep(RATE_PROBE);
-        let second = (start.elapsed().as_secs_f64(), bar.position());
+        let read = || Reading {
+            seconds: start.elapsed().as_secs_f64(),
+            done: bar.position(),
+            finished: bar.is_finished(),
+        };
         let len = bar.length().unwrap_or(0);
-        if bar.is_finished() {
-            return;
-        }
-        match seconds_left(first, second, len) {
-            Some(left) if left > NOTICE_S => write_stderr_line(format_args!(
-                "note: {what}: about {} left at the present rate ({} of {len} steps done); Ctrl-C stops it and leaves no partial output",
-                duration_words(left),
-                second.1
-            )),
-            _ => {}
+        if let Some((left, done)) = time_left(len, read, std::thread::sleep) {
+            if left > NOTICE_S {
+                write_stderr_line(format_args!(
+                    "note: {what}: about {} left at the present rate ({done} of {len} steps done); Ctrl-C stops it and leaves no partial output",
+                    duration_words(left),
+                ));
+            }
         }
     });
+}
+
+/// A look at a running run: seconds since its start, steps done, whether
+/// it has finished.
+#[derive(Clone, Copy, Debug)]
+struct Reading {
+    seconds: f64,
+    done: u64,
+    finished: bool,
+}
+
+/// The seconds left of a run of `len` steps and the steps done when that
+/// was measured: the rate is taken from the first reading with a step done
+/// (after [`RATE_PROBE`]) to the first reading at least [`RATE_PROBE`]
+/// later with more steps done, so that a run whose steps come in blocks
+/// longer than the probe (a synth of many rows) is still measured. None
+/// when the run finishes first, or nothing moves for [`SETUP_WAIT`].
+fn time_left(
+    len: u64,
+    mut read: impl FnMut() -> Reading,
+    mut sleep: impl FnMut(std::time::Duration),
+) -> Option<(f64, u64)> {
+    let wait = SETUP_WAIT.as_secs_f64();
+    sleep(RATE_PROBE);
+    let first = loop {
+        let r = read();
+        if r.finished || r.seconds > wait {
+            return None;
+        }
+        if r.done > 0 {
+            break r;
+        }
+        sleep(RATE_PROBE / 4);
+    };
+    sleep(RATE_PROBE);
+    loop {
+        let r = read();
+        if r.finished || r.seconds - first.seconds > wait {
+            return None;
+        }
+        let left = seconds_left((first.seconds, first.done), (r.seconds, r.done), len);
+        if let Some(left) = left {
+            return Some((left, r.done));
+        }
+        sleep(RATE_PROBE / 4);
+    }
 }
 
 /// Seconds left of a run of `len` steps at the rate between two readings
