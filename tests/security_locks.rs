@@ -42,29 +42,50 @@ const PLAN: [&str; 17] = [
 /// it locks.
 fn writers() -> Vec<(Vec<&'static str>, Vec<&'static str>)> {
     let synth = vec![
-        "synth", "--rows", "40", "--photons", "1000", "--samples", "16", "--quiet", "--csv",
-        "--out", "new",
+        "synth",
+        "--rows",
+        "40",
+        "--photons",
+        "1000",
+        "--samples",
+        "16",
+        "--quiet",
+        "--csv",
+        "--out",
+        "new",
     ];
     let plan = |extra: &[&'static str]| {
         let mut args = PLAN.to_vec();
-        args.extend_from_slice(&["--magnitude", "5", "--magnitude-band", "H"]);
         args.extend_from_slice(extra);
         args
     };
     let mut targets = PLAN.to_vec();
-    targets.extend_from_slice(&["--targets", "list.csv", "--out", "table.csv"]);
+    targets.extend_from_slice(&[
+        "--throughput",
+        "0.01",
+        "--targets",
+        "list.csv",
+        "--out",
+        "table.csv",
+    ]);
     vec![
-        (synth, vec!["new.npy", "new.csv", "new.json", "new.truth.fits"]),
+        (
+            synth,
+            vec!["new.npy", "new.csv", "new.json", "new.truth.fits"],
+        ),
         (
             vec!["estimate", "--sidecar", "set.json", "--out", "est.csv"],
             vec!["est.csv"],
         ),
-        (plan(&["--svg", "p.svg"]), vec!["p.svg"]),
+        (
+            plan(&["--fringe-hz", "1000", "--svg", "p.svg"]),
+            vec!["p.svg"],
+        ),
         (plan(&["--oifits", "p.fits"]), vec!["p.fits"]),
         (targets, vec!["table.csv"]),
         (
             vec!["golden", "--update", "--only", "vectors", "--dir", "gd"],
-            vec!["gd"],
+            vec!["gd/vectors"],
         ),
         (vec!["reproduce", "--quick", "--out", "rep"], vec!["rep"]),
     ]
@@ -78,16 +99,35 @@ fn shared_folder() -> (tempfile::TempDir, std::path::PathBuf) {
     std::fs::create_dir(&shared).unwrap();
     std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o1777)).unwrap();
     let synth = [
-        "synth", "--rows", "40", "--photons", "1000", "--samples", "16", "--quiet", "--csv",
-        "--out", "set",
+        "synth",
+        "--rows",
+        "40",
+        "--photons",
+        "1000",
+        "--samples",
+        "16",
+        "--quiet",
+        "--csv",
+        "--out",
+        "set",
     ];
     assert_eq!(run_as(&shared, &synth, None).0, Some(0));
     std::fs::write(shared.join("list.csv"), TARGETS).unwrap();
+    // The golden folder, world-writable as the shared one: its vectors'
+    // lock is planted in it.
+    std::fs::create_dir(shared.join("gd")).unwrap();
+    std::fs::set_permissions(shared.join("gd"), std::fs::Permissions::from_mode(0o1777)).unwrap();
     (root, shared)
 }
 
+/// The lock of the output `name` (a path in `dir`).
 fn lock_of(dir: &Path, name: &str) -> std::path::PathBuf {
-    dir.join(format!(".v2ref-lock-{}", name_hash(name)))
+    let target = dir.join(name);
+    let file = target.file_name().unwrap().to_str().unwrap();
+    target
+        .parent()
+        .unwrap()
+        .join(format!(".v2ref-lock-{}", name_hash(file)))
 }
 
 /// Runs every writer with `plant(lock path)` done under each of its lock
@@ -180,9 +220,11 @@ fn another_users_hard_link_to_roots_file_is_never_a_lock() {
     std::fs::write(&log, bytes).unwrap();
     std::fs::set_permissions(&log, std::fs::Permissions::from_mode(0o666)).unwrap();
     every_writer_refuses(&shared, &|lock| {
-        let name = lock.file_name().unwrap().to_str().unwrap();
-        as_nobody(&["ln", "root.log", name], &shared);
-        assert_eq!(std::fs::symlink_metadata(lock).unwrap().nlink(), 2);
+        as_nobody(
+            &["ln", log.to_str().unwrap(), lock.to_str().unwrap()],
+            &shared,
+        );
+        assert!(std::fs::symlink_metadata(lock).unwrap().nlink() >= 2);
     });
     assert_eq!(std::fs::read(&log).unwrap(), bytes);
 }
@@ -197,7 +239,48 @@ fn another_users_link_at_a_lock_name_is_reported_against_the_lock() {
     }
     let (_root, shared) = shared_folder();
     every_writer_refuses(&shared, &|lock| {
-        let name = lock.file_name().unwrap().to_str().unwrap();
-        as_nobody(&["ln", "-s", "/nonexistent/elsewhere", name], &shared);
+        as_nobody(
+            &["ln", "-s", "/nonexistent/elsewhere", lock.to_str().unwrap()],
+            &shared,
+        );
     });
+}
+
+/// Under a umask that leaves the user no access to what is made (0777),
+/// `reproduce --out` and `golden --update` fail and leave nothing: no
+/// temporary folder of mode 000, no folder made for the output. Run as uid
+/// 65534 (root ignores modes); skipped unless the tests run as root. (On
+/// 25b05bd `reproduce` left `.v2ref-tmp-…-rep` and `golden` left `gd`.)
+#[test]
+fn a_umask_that_leaves_no_access_leaves_nothing_behind() {
+    if !root() {
+        return;
+    }
+    let root_dir = tempfile::tempdir().unwrap();
+    std::fs::set_permissions(root_dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
+    let dir = root_dir.path().join("mine");
+    std::fs::create_dir(&dir).unwrap();
+    std::os::unix::fs::chown(&dir, Some(65534), Some(65534)).unwrap();
+    let runs: [&[&str]; 2] = [
+        &["reproduce", "--quick", "--out", "rep"],
+        &["golden", "--update", "--only", "vectors", "--dir", "gd"],
+    ];
+    for args in runs {
+        let status = Command::new("sh")
+            .arg("-c")
+            .arg("umask 0777; exec \"$0\" \"$@\" 2>/dev/null")
+            .arg(env!("CARGO_BIN_EXE_v2ref"))
+            .args(args)
+            .current_dir(&dir)
+            .uid(65534)
+            .gid(65534)
+            .status()
+            .unwrap();
+        assert!(!status.success(), "{args:?} succeeded under umask 0777");
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert!(left.is_empty(), "{args:?} left {left:?}");
+    }
 }

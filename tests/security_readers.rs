@@ -50,8 +50,17 @@ fn folder() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
     let synth = [
-        "synth", "--rows", "40", "--photons", "1000", "--samples", "16", "--quiet", "--csv",
-        "--out", "set",
+        "synth",
+        "--rows",
+        "40",
+        "--photons",
+        "1000",
+        "--samples",
+        "16",
+        "--quiet",
+        "--csv",
+        "--out",
+        "set",
     ];
     assert_eq!(run_briefly(dir.path(), &synth).0, Some(0));
     let est = ["estimate", "--sidecar", "set.json", "--out", "est.csv"];
@@ -79,12 +88,12 @@ fn a_fifo_given_to_any_reader_is_refused_at_once() {
     let dir = folder();
     let plan = [
         "plan",
-        "--magnitude",
-        "5",
-        "--magnitude-band",
-        "H",
+        "--target-sigma-v2",
+        "1e-2",
         "--fringe-hz",
         "500",
+        "--stroke-um",
+        "32",
         "--scans",
         "50",
         "--quiet",
@@ -98,7 +107,13 @@ fn a_fifo_given_to_any_reader_is_refused_at_once() {
         (vec!["estimate", "--input", "fifo.csv"], "fifo.csv"),
         (vec!["estimate", "--sidecar", "fifo.json"], "fifo.json"),
         (
-            vec!["estimate", "--sidecar", "set.json", "--calibrator", "fifo.npy"],
+            vec![
+                "estimate",
+                "--sidecar",
+                "set.json",
+                "--calibrator",
+                "fifo.npy",
+            ],
             "fifo.npy",
         ),
         (
@@ -143,11 +158,11 @@ fn an_unknown_extension_is_refused_naming_every_accepted_one() {
         let args = ["score", "--sidecar", "set.json", "--estimates", name];
         let (status, err) = run_briefly(dir.path(), &args);
         assert_eq!(status, Some(2), "{err}");
-        for ext in [".npy", ".csv"]
-            .into_iter()
-            .map(str::to_owned)
-            .chain(v2ref_oifits::FITS_EXTENSIONS.iter().map(|e| format!(".{e}")))
-        {
+        for ext in [".npy", ".csv"].into_iter().map(str::to_owned).chain(
+            v2ref_oifits::FITS_EXTENSIONS
+                .iter()
+                .map(|e| format!(".{e}")),
+        ) {
             assert!(err.contains(&ext), "{name}: {ext} not named: {err}");
         }
     }

@@ -301,6 +301,37 @@ mod tests {
         assert_eq!(seconds_left((2.0, 7), (4.0, 7), 100_000), None);
     }
 
+    /// A run whose steps come in blocks longer than the rate probe (a big
+    /// synth: 32 768 rows every 3 s of 1 000 000): two readings one probe
+    /// apart see no step between them (as 25b05bd read them: no note,
+    /// however long the run), and the watcher reads on until a block comes.
+    /// A fake clock: `sleep` moves it, no time passes.
+    #[test]
+    fn a_run_in_blocks_longer_than_the_probe_is_still_measured() {
+        use std::cell::Cell;
+        let clock = Cell::new(0.0_f64);
+        let done = |t: f64| (t / 3.0).floor() as u64 * 32_768;
+        let read = || super::Reading {
+            seconds: clock.get(),
+            done: done(clock.get()),
+            finished: false,
+        };
+        let sleep = |d: std::time::Duration| clock.set(clock.get() + d.as_secs_f64());
+        let (left, at) = super::time_left(1_000_000, read, sleep).expect("a rate");
+        assert!(seconds_left((3.0, done(3.0)), (5.0, done(5.0)), 1_000_000).is_none());
+        assert_eq!(at, 65_536);
+        // 32 768 steps in 3 s (3 s to 6 s), 934 464 left.
+        assert!((left - 934_464.0 * 3.0 / 32_768.0).abs() < 1e-6, "{left}");
+        assert!(left > super::NOTICE_S);
+        // A run that finishes first is not predicted.
+        let finished = || super::Reading {
+            seconds: 1.0,
+            done: 5,
+            finished: true,
+        };
+        assert!(super::time_left(10, finished, |_| {}).is_none());
+    }
+
     use v2ref_core::Error;
 
     fn io(param: Option<&'static str>, errno: i32) -> Error {

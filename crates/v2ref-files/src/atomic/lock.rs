@@ -85,7 +85,7 @@ pub(crate) fn not_own(param: &'static str, path: &Path, e: &io::Error) -> Error 
     Error::Invalid {
         param,
         reason: format!(
-            "{}: not a file v2ref made ({e}); v2ref neither uses nor removes it: remove it or write elsewhere",
+            "{}: not a file v2ref made: {e}; v2ref neither uses nor removes it: remove it or write elsewhere",
             path.display()
         ),
     }
@@ -120,7 +120,7 @@ impl OutputLock {
                 continue;
             }
             if !made && !holds_a_lock(&mut file) {
-                let e = io::Error::other("holds something other than a process id: left as it is");
+                let e = io::Error::other("it holds something other than a process id");
                 return Err(not_own(param, &path, &e));
             }
             crate::cleanup::register(&path);

@@ -50,7 +50,7 @@ pub(crate) fn open_lock(path: &Path) -> io::Result<(File, bool)> {
     let links = link_count(&file)?;
     if links != 1 {
         return Err(io::Error::other(format!(
-            "a file with {links} names (a hard link to a file elsewhere): left as it is"
+            "it has {links} names, a hard link to a file elsewhere"
         )));
     }
     Ok((file, false))
@@ -101,7 +101,7 @@ pub(crate) fn is_not_own(e: &io::Error) -> bool {
 }
 
 fn not_own() -> io::Error {
-    io::Error::other("not a regular file of this user: left as it is")
+    io::Error::other("not a regular file of yours")
 }
 
 /// Refuses an open file that is not a regular file of this effective user.

@@ -42,14 +42,12 @@ fn open_input(path: &Path, param: &'static str, found: bool) -> Result<File> {
     let file = match options.open(path) {
         Ok(file) => file,
         #[cfg(unix)]
-        Err(e) if found && e.raw_os_error() == Some(libc::ELOOP) => {
-            return Err(Error::data(
-                param,
-                path,
-                "",
-                "a symbolic link, not followed (its name was found, not given); give the file itself",
-            ))
-        }
+        Err(e) if found && e.raw_os_error() == Some(libc::ELOOP) => return Err(Error::data(
+            param,
+            path,
+            "",
+            "a symbolic link, not followed (its name was found, not given); give the file itself",
+        )),
         Err(e) => return Err(Error::file(Some(param), path, e)),
     };
     let kind = file
@@ -87,7 +85,12 @@ fn is_fifo(_: &std::fs::FileType) -> bool {
 /// The UTF-8 text of the input file `path` ([`open`]), refused when
 /// longer than `max_bytes`, naming the bound and `accepted` (what the
 /// file must be).
-pub fn read_text(path: &Path, param: &'static str, max_bytes: u64, accepted: &str) -> Result<String> {
+pub fn read_text(
+    path: &Path,
+    param: &'static str,
+    max_bytes: u64,
+    accepted: &str,
+) -> Result<String> {
     let file = open(path, param)?;
     let mut text = String::new();
     // One byte more than the bound tells a file at the bound from a longer
