@@ -52,7 +52,7 @@ def run_child(code: str, cwd: Path) -> subprocess.CompletedProcess:
 @pytest.mark.parametrize(
     "call",
     [
-        "v2ref.estimate(sidecar='fifo.json')",
+        "v2ref.estimate(np.zeros((8, 16)), sidecar='fifo.json')",
         "v2ref.score(np.zeros(8), sidecar='fifo.json')",
         "v2ref.read_oifits_estimates('set.truth.fits', sidecar='fifo.json')",
         "v2ref.plan(fringe_hz=[300], stroke_um=[32], scans=64, spectrum_csv='fifo.csv')",
@@ -79,7 +79,7 @@ def test_a_sidecar_beyond_the_clis_bound_is_refused_naming_it(folder):
     with open(big, "wb") as f:
         f.truncate(17 << 20)
     with pytest.raises(ValueError, match=r"^sidecar: .*big\.json.*larger than 16777216 bytes"):
-        v2ref.estimate(sidecar=big)
+        v2ref.estimate(np.zeros((8, 16)), sidecar=big)
 
 
 def test_a_path_where_score_takes_an_array_is_refused_naming_the_keyword(folder):
