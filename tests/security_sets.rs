@@ -21,7 +21,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// The name hash of a target's lock and of the old commit record.
-fn name_hash(name: &str) -> String {
+pub(crate) fn name_hash(name: &str) -> String {
     let h = name.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
     });
@@ -30,7 +30,7 @@ fn name_hash(name: &str) -> String {
 
 /// Runs v2ref in `dir` (as `uid` when given), killed after 60 s: its exit
 /// status (None: ended by a signal) and stderr.
-fn run_as(dir: &Path, args: &[&str], uid: Option<u32>) -> (Option<i32>, String) {
+pub(crate) fn run_as(dir: &Path, args: &[&str], uid: Option<u32>) -> (Option<i32>, String) {
     let mut c = Command::new(env!("CARGO_BIN_EXE_v2ref"));
     c.current_dir(dir)
         .args(args)

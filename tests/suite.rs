@@ -70,6 +70,8 @@ mod robustness_readers;
 mod robustness_sets;
 mod run;
 mod running_stats;
+mod security_locks;
+mod security_readers;
 mod security_sets;
 mod security_small;
 mod simulator;

@@ -228,11 +228,9 @@ def _sidecar_arg(sidecar: Any) -> Tuple[Any, str]:
         path = _os.fsdecode(sidecar)
         # The name in messages: bytes that are not UTF-8 as U+FFFD.
         name = path.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
-        try:
-            with open(path, encoding="utf-8") as f:
-                return f.read(), name
-        except OSError as e:
-            raise OSError(e.errno, f"sidecar: {name}: {e.strerror}") from None
+        # Read by the extension as the CLI reads it: a FIFO refused without
+        # waiting, a regular file only, at most 16 MiB.
+        return _v2ref._read_sidecar(path), name
     raise TypeError(
         f"sidecar: {type(sidecar).__name__} is not a sidecar; give the dict returned by synthesize() or the path of a SET.json"
     )

@@ -448,11 +448,18 @@ def score(
         stderr_var_combined (the denominator of z_var), z_var,
         minimum detectable biases, pass), ``pass``.
     """
-    from .oifits import is_fits_path, score_oifits
+    from .oifits import FITS_SUFFIXES, is_fits_path, score_oifits
 
     if is_fits_path(estimates) and columns is None:
         # An OIFITS path: read as `v2ref score --estimates FILE.fits`.
         return score_oifits(estimates, sidecar=sidecar, bins=bins, bias=bias, alpha=alpha)
+    if isinstance(estimates, (str, bytes, _os.PathLike)):
+        # Not an array of one value (a 0-D array of the path's text).
+        raise TypeError(
+            f"estimates: {_os.fsdecode(estimates)!r} is a path, and score reads only OIFITS files "
+            f"({', '.join(FITS_SUFFIXES)}, without columns=); accepted: the estimates as an array "
+            "or a mapping of v1_sq/v2_sq arrays (load a .npy or .csv with numpy first), or an OIFITS path"
+        )
     text, name = _sidecar_arg(sidecar)
     _check_rows(estimates, text)
     v1, v2 = _estimate_columns(estimates, columns)

@@ -10,6 +10,33 @@ use v2ref_core::Result;
 /// over a spectral grid as fine as the scan resolves; docs/conventions.md).
 pub const SLOW_SAMPLES: usize = 4096;
 
+/// Seconds a finite scan of [`TIMED_SAMPLES`] samples takes at the least:
+/// half of what it took on two cores (about 10 s, as `--samples`' help
+/// says), since a time taken on one machine was off by 2× on another.
+const TIMED_SECONDS_AT_LEAST: f64 = 5.0;
+
+/// The samples of the timed finite scan ([`TIMED_SECONDS_AT_LEAST`]).
+const TIMED_SAMPLES: f64 = 16384.0;
+
+/// The least time a finite scan of `samples` samples takes, seconds: it
+/// grows as N².
+fn finite_scan_seconds_at_least(samples: usize) -> f64 {
+    TIMED_SECONDS_AT_LEAST * (samples as f64 / TIMED_SAMPLES).powi(2)
+}
+
+/// Says, on stderr whatever it is and before any work, that a finite scan
+/// of `samples` will take longer than [`super::output::NOTICE_S`]: a
+/// warning, not progress, so neither a pipe nor a log silences it.
+fn warn_if_long(samples: usize) {
+    let least = finite_scan_seconds_at_least(samples);
+    if least > super::output::NOTICE_S {
+        errln!(
+            "note: finite scan of {samples} samples: at least {} (its cost grows as the square of the samples); Ctrl-C stops it; fewer samples (--samples, --stroke-um, --dx-um) shorten it",
+            super::output::duration_words(least)
+        );
+    }
+}
+
 /// Flags of `bias`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -29,6 +56,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let p = args.observed.physical()?;
     let finite = v2ref_commands::commands::bias::wants_finite_scan(&p, args.finite_scan);
     let n = if finite { p.sampling()?.samples() } else { 0 };
+    warn_if_long(n);
     let what = format!("finite scan of {n} samples");
     let bar = super::spinner(n < SLOW_SAMPLES, &what);
     let answer =
@@ -62,4 +90,19 @@ pub fn run(args: Args) -> Result<ExitCode> {
         print_rows(&rows);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{finite_scan_seconds_at_least, SLOW_SAMPLES};
+    use crate::cli::output::NOTICE_S;
+
+    /// A scan of 2^24 samples is said to take months, one of the default
+    /// 128 or of the spinner's threshold is not warned of.
+    #[test]
+    fn a_finite_scan_of_years_is_warned_of_and_a_short_one_is_not() {
+        assert!(finite_scan_seconds_at_least(1 << 24) > 30.0 * 86400.0);
+        assert!(finite_scan_seconds_at_least(SLOW_SAMPLES) < NOTICE_S);
+        assert!(finite_scan_seconds_at_least(128) < NOTICE_S);
+    }
 }

@@ -189,6 +189,11 @@ fn source(args: &Args) -> Result<Source> {
         Some(path) => {
             let sidecar = super::score::read_sidecar(path)?;
             let default_input = set_rows_path(path, &sidecar.data.npy)?;
+            if args.input.is_none() {
+                // A name found in a file, not given: never read through a
+                // link (nor waited on).
+                v2ref_files::formats::open_found(&default_input, "sidecar").map(drop)?;
+            }
             // A set a stopped run left half placed is refused here.
             let members = sidecar.members.clone().unwrap_or_default();
             let read = args.input.as_ref().unwrap_or(&default_input);

@@ -258,9 +258,9 @@ pub fn progress_bar(len: u64, quiet: bool, what: &str) -> indicatif::ProgressBar
     if !show_progress(quiet) {
         let bar = indicatif::ProgressBar::hidden();
         bar.set_length(len);
-        if !quiet {
-            output::watch_rate(&bar, what);
-        }
+        // A warning that the run will take long, not progress: said under
+        // --quiet too.
+        output::watch_rate(&bar, what);
         return bar;
     }
     let bar = indicatif::ProgressBar::new(len);

@@ -154,26 +154,67 @@ pub fn watch_rate(bar: &indicatif::ProgressBar, what: &str) {
     let start = std::time::Instant::now();
     // Under a process limit there may be no thread for it: then no note.
     let _ = std::thread::Builder::new().spawn(move || {
-        std::thread::sleep(RATE_PROBE);
-        while bar.position() == 0 && !bar.is_finished() && start.elapsed() < SETUP_WAIT {
-            std::thread::sleep(RATE_PROBE / 4);
-        }
-        let first = (start.elapsed().as_secs_f64(), bar.position());
-        std::thread::sleep(RATE_PROBE);
-        let second = (start.elapsed().as_secs_f64(), bar.position());
+        let read = || Reading {
+            seconds: start.elapsed().as_secs_f64(),
+            done: bar.position(),
+            finished: bar.is_finished(),
+        };
         let len = bar.length().unwrap_or(0);
-        if bar.is_finished() {
-            return;
-        }
-        match seconds_left(first, second, len) {
-            Some(left) if left > NOTICE_S => write_stderr_line(format_args!(
-                "note: {what}: about {} left at the present rate ({} of {len} steps done); Ctrl-C stops it and leaves no partial output",
-                duration_words(left),
-                second.1
-            )),
-            _ => {}
+        if let Some((left, done)) = time_left(len, read, std::thread::sleep) {
+            if left > NOTICE_S {
+                write_stderr_line(format_args!(
+                    "note: {what}: about {} left at the present rate ({done} of {len} steps done); Ctrl-C stops it and leaves no partial output",
+                    duration_words(left),
+                ));
+            }
         }
     });
+}
+
+/// A look at a running run: seconds since its start, steps done, whether
+/// it has finished.
+#[derive(Clone, Copy, Debug)]
+struct Reading {
+    seconds: f64,
+    done: u64,
+    finished: bool,
+}
+
+/// The seconds left of a run of `len` steps and the steps done when that
+/// was measured: the rate is taken from the first reading with a step done
+/// (after [`RATE_PROBE`]) to the first reading at least [`RATE_PROBE`]
+/// later with more steps done, so that a run whose steps come in blocks
+/// longer than the probe (a synth of many rows) is still measured. None
+/// when the run finishes first, or nothing moves for [`SETUP_WAIT`].
+fn time_left(
+    len: u64,
+    mut read: impl FnMut() -> Reading,
+    mut sleep: impl FnMut(std::time::Duration),
+) -> Option<(f64, u64)> {
+    let wait = SETUP_WAIT.as_secs_f64();
+    sleep(RATE_PROBE);
+    let first = loop {
+        let r = read();
+        if r.finished || r.seconds > wait {
+            return None;
+        }
+        if r.done > 0 {
+            break r;
+        }
+        sleep(RATE_PROBE / 4);
+    };
+    sleep(RATE_PROBE);
+    loop {
+        let r = read();
+        if r.finished || r.seconds - first.seconds > wait {
+            return None;
+        }
+        let left = seconds_left((first.seconds, first.done), (r.seconds, r.done), len);
+        if let Some(left) = left {
+            return Some((left, r.done));
+        }
+        sleep(RATE_PROBE / 4);
+    }
 }
 
 /// Seconds left of a run of `len` steps at the rate between two readings
@@ -262,6 +303,37 @@ mod tests {
         // Nothing done at the first reading, or between the readings.
         assert_eq!(seconds_left((2.0, 0), (4.0, 5), 100_000), None);
         assert_eq!(seconds_left((2.0, 7), (4.0, 7), 100_000), None);
+    }
+
+    /// A run whose steps come in blocks longer than the rate probe (a big
+    /// synth: 32 768 rows every 3 s of 1 000 000): two readings one probe
+    /// apart see no step between them (as 25b05bd read them: no note,
+    /// however long the run), and the watcher reads on until a block comes.
+    /// A fake clock: `sleep` moves it, no time passes.
+    #[test]
+    fn a_run_in_blocks_longer_than_the_probe_is_still_measured() {
+        use std::cell::Cell;
+        let clock = Cell::new(0.0_f64);
+        let done = |t: f64| (t / 3.0).floor() as u64 * 32_768;
+        let read = || super::Reading {
+            seconds: clock.get(),
+            done: done(clock.get()),
+            finished: false,
+        };
+        let sleep = |d: std::time::Duration| clock.set(clock.get() + d.as_secs_f64());
+        let (left, at) = super::time_left(1_000_000, read, sleep).expect("a rate");
+        assert!(seconds_left((3.0, done(3.0)), (5.0, done(5.0)), 1_000_000).is_none());
+        assert_eq!(at, 65_536);
+        // 32 768 steps in 3 s (3 s to 6 s), 934 464 left.
+        assert!((left - 934_464.0 * 3.0 / 32_768.0).abs() < 1e-6, "{left}");
+        assert!(left > super::NOTICE_S);
+        // A run that finishes first is not predicted.
+        let finished = || super::Reading {
+            seconds: 1.0,
+            done: 5,
+            finished: true,
+        };
+        assert!(super::time_left(10, finished, |_| {}).is_none());
     }
 
     use v2ref_core::Error;

@@ -77,31 +77,9 @@ struct Answer<'a> {
     report: &'a ScoreReport,
 }
 
-/// Largest sidecar read, bytes (v2ref writes a few kB).
-const MAX_SIDECAR_BYTES: u64 = 16 << 20;
-
-/// The text of `path` (named by `param`), refused beyond `max_bytes`.
-fn read_limited(path: &Path, param: &'static str, max_bytes: u64) -> Result<String> {
-    use std::io::Read;
-    let file = std::fs::File::open(path).map_err(|e| Error::file(Some(param), path, e))?;
-    let mut text = String::new();
-    file.take(max_bytes + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| Error::file(Some(param), path, e))?;
-    if text.len() as u64 > max_bytes {
-        return Err(Error::data(
-            param,
-            path,
-            "",
-            format!("larger than {max_bytes} bytes; the sidecar written by v2ref synth is needed"),
-        ));
-    }
-    Ok(text)
-}
-
 /// Reads and checks a sidecar ([`Sidecar::from_json`]).
 pub fn read_sidecar(path: &Path) -> Result<Sidecar> {
-    Sidecar::from_json(&read_limited(path, "sidecar", MAX_SIDECAR_BYTES)?, path)
+    Sidecar::from_json(&v2ref_files::formats::read_sidecar_text(path)?, path)
 }
 
 /// Runs `score`.

@@ -51,6 +51,14 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
     Ok(p)
 }
 
+/// The text of the sidecar file `path`, read as the command line reads it
+/// ([`v2ref_files::formats::read_sidecar_text`]: without waiting on a FIFO,
+/// a regular file only, at most 16 MiB), for the package's `sidecar=`.
+#[pyfunction]
+pub fn _read_sidecar(path: PathBuf) -> PyResult<String> {
+    v2ref_files::formats::read_sidecar_text(&path).map_err(|e| e.into_py_err())
+}
+
 /// Adds the one declaration of the physical inputs to the module:
 /// `PHYSICAL_KEYWORDS` (their names, in order), `PHYSICAL_DEFAULTS` (a dict)
 /// and `PHYSICAL_PARAMETERS` (a list of dicts: [`PARAMETERS`], each with its
@@ -59,6 +67,7 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
 /// at import (`_docstrings.declaration`) for its docstrings.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
+    m.add_function(wrap_pyfunction!(_read_sidecar, m)?)?;
     let names: Vec<&str> = PARAMETERS.iter().map(|p| p.name).collect();
     m.add("PHYSICAL_KEYWORDS", names)?;
     m.add("PHYSICAL_DEFAULTS", to_py(py, &Physical::default())?)?;

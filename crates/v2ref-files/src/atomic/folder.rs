@@ -26,26 +26,106 @@ pub fn replace_folder<T>(
     fill: impl FnOnce(&Path) -> Result<T>,
 ) -> Result<T> {
     let parent = parent_of(dir);
-    std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    let made = MadeFolders::create(&parent).map_err(|e| Error::file(param, &parent, e))?;
     check_folder_target(dir, param)?;
     let _lock = OutputLock::acquire(dir, param.unwrap_or("out"))?;
     remove_stale_temporaries(&parent);
     let temp = TempFolder::create(dir, param)?;
     let value = fill(&temp.path)?;
     temp.place()?;
+    made.keep();
     Ok(value)
 }
 
+/// The folders a run made for its output's parent, removed again (when
+/// still empty) unless the run succeeds: a failed run leaves no folder of
+/// its own behind.
+struct MadeFolders(Vec<PathBuf>);
+
+impl MadeFolders {
+    /// Creates `dir` and whatever of its parents is missing.
+    fn create(dir: &Path) -> std::io::Result<MadeFolders> {
+        let mut missing = Vec::new();
+        let mut at = Some(dir);
+        while let Some(p) = at.filter(|p| !p.as_os_str().is_empty()) {
+            if std::fs::symlink_metadata(p).is_ok() {
+                break;
+            }
+            missing.push(p.to_path_buf());
+            at = p.parent();
+        }
+        let mut made = MadeFolders(Vec::new());
+        for p in missing.into_iter().rev() {
+            match std::fs::create_dir(&p) {
+                Ok(()) => made.0.push(p),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(made)
+    }
+
+    /// The run succeeded: its folders stay.
+    fn keep(mut self) {
+        self.0.clear();
+    }
+}
+
+impl Drop for MadeFolders {
+    fn drop(&mut self) {
+        // Deepest first; `remove_dir` removes only an empty folder.
+        for p in self.0.iter().rev() {
+            let _ = std::fs::remove_dir(p);
+        }
+    }
+}
+
+/// Removes the temporary folder `path` and what it holds. A folder made
+/// under a umask that leaves its owner no access (0777: mode 000) cannot
+/// be listed, so its owner's access is given back (to folders only, never
+/// through a link) before a second try.
+fn remove_temporary_folder(path: &Path) {
+    if std::fs::remove_dir_all(path).is_ok() {
+        return;
+    }
+    give_owner_access(path);
+    let _ = std::fs::remove_dir_all(path);
+}
+
+#[cfg(unix)]
+fn give_owner_access(path: &Path) {
+    use std::os::unix::fs::PermissionsExt as _;
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return;
+    };
+    if !meta.is_dir() {
+        return;
+    }
+    let mode = meta.permissions().mode() | 0o700;
+    let _ = std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode));
+    for entry in std::fs::read_dir(path).into_iter().flatten().flatten() {
+        give_owner_access(&entry.path());
+    }
+}
+
+#[cfg(not(unix))]
+fn give_owner_access(_: &Path) {}
+
 /// Checks, before any work, that [`replace_folder`] can write next to
-/// `dir`: creates its parent and a probe file there, then removes it.
+/// `dir`: creates its parent and a probe file there, then removes both
+/// (the parent only when this call made it).
 pub fn check_folder_parent(dir: &Path, param: Option<&'static str>) -> Result<()> {
     let parent = parent_of(dir);
-    std::fs::create_dir_all(&parent).map_err(|e| Error::file(param, &parent, e))?;
+    let made = MadeFolders::create(&parent).map_err(|e| Error::file(param, &parent, e))?;
     check_folder_target(dir, param)?;
     let name = dir.file_name().map(name_bytes).unwrap_or_default();
     let probe = parent.join(temp_name(&name, 3000));
     own::open_own(&probe, true).map_err(|e| Error::file(param, &parent, e))?;
-    std::fs::remove_file(&probe).map_err(|e| Error::file(param, &probe, e))
+    let removed = std::fs::remove_file(&probe).map_err(|e| Error::file(param, &probe, e));
+    // The parents it made are removed again ([`replace_folder`] makes them
+    // when it writes): a run refused later leaves none behind.
+    drop(made);
+    removed
 }
 
 /// Refuses a target that is there and is not a folder (a file, a link).
@@ -87,7 +167,7 @@ impl TempFolder {
         let marker = match marker {
             Ok(f) => f,
             Err(e) => {
-                let _ = std::fs::remove_dir_all(&path);
+                remove_temporary_folder(&path);
                 crate::cleanup::unregister(&path);
                 return Err(Error::file(param, &path, e));
             }
@@ -146,7 +226,7 @@ impl TempFolder {
 impl Drop for TempFolder {
     fn drop(&mut self) {
         if !self.placed {
-            let _ = std::fs::remove_dir_all(&self.path);
+            remove_temporary_folder(&self.path);
             crate::cleanup::unregister(&self.path);
         }
     }

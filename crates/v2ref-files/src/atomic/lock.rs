@@ -85,7 +85,7 @@ pub(crate) fn not_own(param: &'static str, path: &Path, e: &io::Error) -> Error 
     Error::Invalid {
         param,
         reason: format!(
-            "{}: is not a regular file of yours ({e}); v2ref neither opens nor removes it: remove it or write elsewhere",
+            "{}: not a file v2ref made: {e}; v2ref neither uses nor removes it: remove it or write elsewhere",
             path.display()
         ),
     }
@@ -102,14 +102,16 @@ impl OutputLock {
             std::ffi::OsString::from(format!("{LOCK_PREFIX}{:016x}", fnv1a(&name, FNV_START)));
         let path = dir.join(&name);
         loop {
-            let mut file = match own::open_own(&path, false) {
-                Ok(f) => f,
+            let (mut file, made) = match own::open_lock(&path) {
+                Ok(opened) => opened,
+                // Gone between the exclusive create and the open: again.
+                Err(e) if e.kind() == io::ErrorKind::NotFound => continue,
                 Err(e) if own::is_not_own(&e) => return Err(not_own(param, &path, &e)),
-                Err(e) => return Err(Error::file(Some(param), target, e)),
+                Err(e) => return Err(Error::file(Some(param), &path, e)),
             };
-            if !own::try_lock(&file).map_err(|e| Error::file(Some(param), target, e))? {
+            if !own::try_lock(&file).map_err(|e| Error::file(Some(param), &path, e))? {
                 let mut text = String::new();
-                let _ = (&file).take(32).read_to_string(&mut text);
+                let _ = (&file).take(LOCK_BYTES).read_to_string(&mut text);
                 return Err(held(param, target, text.trim()));
             }
             // The holder before us may have removed the file between our
@@ -117,17 +119,43 @@ impl OutputLock {
             if !own::is_at(&file, &path) {
                 continue;
             }
+            if !made && !holds_a_lock(&mut file) {
+                let e = io::Error::other("it holds something other than a process id");
+                return Err(not_own(param, &path, &e));
+            }
             crate::cleanup::register(&path);
             file.set_len(0)
                 .and_then(|()| file.rewind())
                 .and_then(|()| writeln!(file, "{}", std::process::id()))
-                .map_err(|e| Error::file(Some(param), target, e))?;
+                .map_err(|e| Error::file(Some(param), &path, e))?;
             return Ok(OutputLock {
                 folder,
                 name,
                 _file: file,
             });
         }
+    }
+}
+
+/// The most a lock file holds, bytes: a process id (at most 10 decimal
+/// digits, a `u32`) and a newline.
+pub(crate) const LOCK_BYTES: u64 = 11;
+
+/// Whether `file` holds what a lock of v2ref holds: nothing (its maker has
+/// not written yet) or a process id in decimal and one newline. A file a
+/// user keeps under the name is not a lock and is never emptied.
+fn holds_a_lock(file: &mut File) -> bool {
+    let mut bytes = Vec::new();
+    if file.rewind().is_err() || file.take(LOCK_BYTES + 1).read_to_end(&mut bytes).is_err() {
+        return false;
+    }
+    match bytes.split_last() {
+        None => true,
+        Some((b'\n', digits)) => {
+            (1..=10).contains(&digits.len())
+                && std::str::from_utf8(digits).is_ok_and(|t| t.parse::<u32>().is_ok())
+        }
+        Some(_) => false,
     }
 }
 

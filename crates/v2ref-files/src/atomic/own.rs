@@ -30,6 +30,43 @@ pub(crate) fn open_own(path: &Path, create_new: bool) -> io::Result<File> {
     Ok(file)
 }
 
+/// Opens the lock file `path` for reading and writing: a new file
+/// (`O_CREAT | O_EXCL`, so a link, FIFO or file already there is never
+/// opened through) and true, or else the file already there, never through
+/// a link, and false, refused (checked on the open file, before anything is
+/// read or written) unless a regular file of this user with no other link:
+/// a hard link (another name of someone's file) is never a lock.
+pub(crate) fn open_lock(path: &Path) -> io::Result<(File, bool)> {
+    match open_own(path, true) {
+        Ok(file) => return Ok((file, true)),
+        Err(e) if e.kind() != io::ErrorKind::AlreadyExists => return Err(e),
+        Err(_) => {}
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true).write(true);
+    no_follow(&mut options);
+    let file = options.open(path)?;
+    check_own(&file)?;
+    let links = link_count(&file)?;
+    if links != 1 {
+        return Err(io::Error::other(format!(
+            "it has {links} names, a hard link to a file elsewhere"
+        )));
+    }
+    Ok((file, false))
+}
+
+#[cfg(unix)]
+fn link_count(file: &File) -> io::Result<u64> {
+    use std::os::unix::fs::MetadataExt as _;
+    Ok(file.metadata()?.nlink())
+}
+
+#[cfg(not(unix))]
+fn link_count(_: &File) -> io::Result<u64> {
+    Ok(1)
+}
+
 /// Opens an existing `path` read-only, as [`open_own`] (for the sweep).
 pub(crate) fn open_existing_own(path: &Path) -> io::Result<File> {
     let mut options = std::fs::OpenOptions::new();
@@ -64,7 +101,7 @@ pub(crate) fn is_not_own(e: &io::Error) -> bool {
 }
 
 fn not_own() -> io::Error {
-    io::Error::other("not a regular file of this user: left as it is")
+    io::Error::other("not a regular file of yours")
 }
 
 /// Refuses an open file that is not a regular file of this effective user.

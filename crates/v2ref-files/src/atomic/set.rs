@@ -245,7 +245,7 @@ pub fn verify_member(
     if folder(file) != folder(sidecar) {
         return Ok(());
     }
-    let f = std::fs::File::open(file).map_err(|e| Error::file(Some(param), file, e))?;
+    let f = crate::formats::open(file, param)?;
     let same = f.metadata().map(|md| md.len() == m.bytes).unwrap_or(false)
         && checksum(&f)
             .map(|(n, s)| n == m.bytes && format!("{s:016x}") == m.fnv1a64)

@@ -21,46 +21,11 @@ fn lines_of(path: &Path, param: &'static str) -> Result<CsvLines<BufReader<File>
 }
 
 /// Refuses an input that is not a regular file (a FIFO, a device, a
-/// socket, a folder), looked at without waiting: opening a FIFO waits for
-/// a writer, and a file is read more than once (a CSV's shape, then its
-/// values), which a pipe cannot give twice. Opened non-blocking, so a
-/// FIFO is seen, not waited on.
+/// socket, a folder), looked at without waiting ([`super::open`]): a file
+/// is read more than once (a CSV's shape, then its values), which a pipe
+/// cannot give twice.
 pub fn check_regular(path: &Path, param: &'static str) -> Result<()> {
-    let mut options = std::fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
-    let kind = options
-        .open(path)
-        .and_then(|f| f.metadata())
-        .map_err(|e| Error::file(Some(param), path, e))?
-        .file_type();
-    if kind.is_file() {
-        return Ok(());
-    }
-    let what = if kind.is_dir() {
-        "a folder"
-    } else if is_fifo(&kind) {
-        "a FIFO (named pipe)"
-    } else {
-        "a device or socket"
-    };
-    Err(Error::data(
-        param,
-        path,
-        "",
-        format!("{what}, not a regular file; give a file (it is read more than once)"),
-    ))
-}
-
-#[cfg(unix)]
-fn is_fifo(kind: &std::fs::FileType) -> bool {
-    std::os::unix::fs::FileTypeExt::is_fifo(kind)
-}
-
-#[cfg(not(unix))]
-fn is_fifo(_: &std::fs::FileType) -> bool {
-    false
+    open(path, param).map(drop)
 }
 
 /// The refusal of a line of `path` that could not be read.

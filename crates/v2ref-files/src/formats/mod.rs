@@ -20,18 +20,19 @@
 pub use crate::atomic;
 pub mod budget;
 pub mod csv;
+mod input;
 pub(crate) mod npy;
 pub mod spectrum_csv;
 pub mod targets_csv;
 
 pub use budget::{budget_bytes_of_gib, check_budget, memory_budget, set_memory_budget_gib};
 pub use csv::{CsvRowWriter, CsvRows, MAX_CSV_LINE_BYTES};
+pub use input::{open, open_found, read_sidecar_text, read_text, MAX_SIDECAR_BYTES};
 pub use npy::{NpyRowWriter, NpyRows};
 // The Python bindings' shorthand for the atomic writers.
 pub use atomic::{set::OutputSet, write_text_atomic};
 
 use crate::{Error, Result};
-use std::fs::File;
 use std::path::Path;
 
 /// A matrix of float64, row-major.
@@ -64,7 +65,14 @@ pub struct Estimates {
 /// The columns of an estimates `.npy` file when `--columns` is not given.
 pub const DEFAULT_COLUMNS: [&str; 2] = ["v1_sq", "v2_sq"];
 
+/// The extensions of a matrix (interferograms, a calibrator).
 const ACCEPTED_EXT: &str = "accepted: .npy (float64) or .csv";
+
+/// The extensions of an estimates file: a matrix's, and the OIFITS ones
+/// (`v2ref_oifits::FITS_EXTENSIONS`, each also gzipped), which the
+/// callers read before they come here.
+pub const ACCEPTED_ESTIMATES_EXT: &str =
+    "accepted: .npy (float64), .csv, or OIFITS (.fits, .oifits, .fit, each also as .gz)";
 
 pub(crate) enum Kind {
     Npy,
@@ -72,6 +80,11 @@ pub(crate) enum Kind {
 }
 
 pub(crate) fn kind_of(path: &Path, param: &'static str) -> Result<Kind> {
+    kind_accepting(path, param, ACCEPTED_EXT)
+}
+
+/// The kind of `path` by its extension, refused naming `accepted`.
+fn kind_accepting(path: &Path, param: &'static str, accepted: &str) -> Result<Kind> {
     match path
         .extension()
         .and_then(|e| e.to_str())
@@ -84,21 +97,15 @@ pub(crate) fn kind_of(path: &Path, param: &'static str) -> Result<Kind> {
             param,
             path,
             "",
-            format!("unknown extension .{other}; {ACCEPTED_EXT}"),
+            format!("unknown extension .{other}; {accepted}"),
         )),
         None => Err(Error::data(
             param,
             path,
             "",
-            format!("no extension; {ACCEPTED_EXT}"),
+            format!("no extension; {accepted}"),
         )),
     }
-}
-
-/// Opens an input file, read-only: a reader never writes, renames or
-/// removes anything.
-pub fn open(path: &Path, param: &'static str) -> Result<File> {
-    File::open(path).map_err(|e| Error::file(Some(param), path, e))
 }
 
 pub(crate) fn at(row: usize, col: usize) -> String {
@@ -219,7 +226,7 @@ pub fn read_matrix(path: &Path, param: &'static str) -> Result<Matrix> {
 /// A non-finite estimate is refused with its row.
 pub fn read_estimates(path: &Path, columns: Option<&[String]>) -> Result<Estimates> {
     const P: &str = "estimates";
-    let est = match kind_of(path, P)? {
+    let est = match kind_accepting(path, P, ACCEPTED_ESTIMATES_EXT)? {
         Kind::Csv => csv::read_estimates_csv(path)?,
         Kind::Npy => npy::read_estimates_npy(path, columns)?,
     };

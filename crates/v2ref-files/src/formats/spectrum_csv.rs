@@ -11,23 +11,16 @@ use std::path::Path;
 /// [`Spectrum::from_csv_str`]. At most [`MAX_SPECTRUM_CSV_BYTES`] bytes
 /// and [`MAX_SPECTRUM_ROWS`] rows; a refusal names the file.
 pub fn spectrum_from_csv_path(path: &Path) -> Result<Spectrum> {
-    use std::io::Read;
-    let io = |e| Error::file(Some("spectrum"), path, e);
-    let file = std::fs::File::open(path).map_err(io)?;
-    let mut text = String::new();
-    // One byte more than the limit tells a file at the limit from a
-    // longer one (or an endless one such as /dev/zero).
-    file.take(MAX_SPECTRUM_CSV_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(io)?;
     let in_file = |reason: String| Error::SpectrumTable {
         reason: format!("{}: {reason}", path.display()),
     };
-    if text.len() as u64 > MAX_SPECTRUM_CSV_BYTES {
-        return Err(in_file(format!(
-                "larger than {MAX_SPECTRUM_CSV_BYTES} bytes; accepted: a CSV of at most {MAX_SPECTRUM_ROWS} rows"
-            )));
-    }
+    let accepted = format!("a CSV of at most {MAX_SPECTRUM_ROWS} rows");
+    let text = super::read_text(path, "spectrum", MAX_SPECTRUM_CSV_BYTES, &accepted).map_err(
+        |e| match e {
+            Error::Data { reason, .. } => in_file(reason),
+            other => other,
+        },
+    )?;
     Spectrum::from_csv_str(&text).map_err(|e| match e {
         Error::SpectrumTable { reason } => in_file(reason),
         other => other,

@@ -1,0 +1,169 @@
+//! No reader waits (issue 53): a FIFO wherever v2ref reads a file (a set's
+//! member named by its sidecar, `--input` as `.npy` or `.csv`, `--sidecar`
+//! of `estimate` and `score`, `--calibrator`, `--estimates`,
+//! `--spectrum-csv`, `--targets`) is refused at once in one line naming it,
+//! exit status 2; a run that waits is killed after 20 s and the test fails.
+//! An estimates file of an extension no reader takes is refused naming
+//! every extension the readers take, the OIFITS ones included.
+
+use std::os::unix::fs::PermissionsExt as _;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Runs v2ref in `dir`, killed after 20 s (then the test fails): its exit
+/// status and stderr.
+fn run_briefly(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
+        .current_dir(dir)
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(20) {
+            child.kill().unwrap();
+            let _ = child.wait();
+            panic!("v2ref {args:?} waited on a FIFO (killed after 20 s)");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn mkfifo(path: &Path) {
+    let c = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).unwrap();
+    // SAFETY: a NUL-terminated path that lives through the call.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o666) }, 0);
+}
+
+/// A folder with a set (`set.*`, CSV too), its estimates and FIFOs named
+/// `fifo.npy`, `fifo.csv`, `fifo.json`.
+fn folder() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
+    let synth = [
+        "synth",
+        "--rows",
+        "40",
+        "--photons",
+        "1000",
+        "--samples",
+        "16",
+        "--quiet",
+        "--csv",
+        "--out",
+        "set",
+    ];
+    assert_eq!(run_briefly(dir.path(), &synth).0, Some(0));
+    let est = ["estimate", "--sidecar", "set.json", "--out", "est.csv"];
+    assert_eq!(run_briefly(dir.path(), &est).0, Some(0));
+    for name in ["fifo.npy", "fifo.csv", "fifo.json"] {
+        mkfifo(&dir.path().join(name));
+    }
+    dir
+}
+
+fn refused_naming(args: &[&str], (status, err): (Option<i32>, String), name: &str) {
+    assert_eq!(status, Some(2), "{args:?}: {err}");
+    assert!(
+        err.contains(name) && err.trim_end().lines().count() == 1,
+        "{args:?}: {err}"
+    );
+}
+
+/// Every route that reads a file given on the command line refuses a FIFO
+/// at once. (On 25b05bd `--input fifo.npy`, `--sidecar` of estimate and
+/// score, `--calibrator`, `--estimates fifo.npy` and `--spectrum-csv`
+/// waited for a writer for ever.)
+#[test]
+fn a_fifo_given_to_any_reader_is_refused_at_once() {
+    let dir = folder();
+    let plan = [
+        "plan",
+        "--target-sigma-v2",
+        "1e-2",
+        "--fringe-hz",
+        "500",
+        "--stroke-um",
+        "32",
+        "--scans",
+        "50",
+        "--quiet",
+    ];
+    let mut spectrum = plan.to_vec();
+    spectrum.extend_from_slice(&["--spectrum-csv", "fifo.csv"]);
+    let mut targets = plan[..1].to_vec();
+    targets.extend_from_slice(&["--targets", "fifo.csv", "--quiet"]);
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["estimate", "--input", "fifo.npy"], "fifo.npy"),
+        (vec!["estimate", "--input", "fifo.csv"], "fifo.csv"),
+        (vec!["estimate", "--sidecar", "fifo.json"], "fifo.json"),
+        (
+            vec![
+                "estimate",
+                "--sidecar",
+                "set.json",
+                "--calibrator",
+                "fifo.npy",
+            ],
+            "fifo.npy",
+        ),
+        (
+            vec!["score", "--sidecar", "fifo.json", "--estimates", "est.csv"],
+            "fifo.json",
+        ),
+        (
+            vec!["score", "--sidecar", "set.json", "--estimates", "fifo.npy"],
+            "fifo.npy",
+        ),
+        (spectrum, "fifo.csv"),
+        (targets, "fifo.csv"),
+    ];
+    for (args, name) in cases {
+        let outcome = run_briefly(dir.path(), &args);
+        refused_naming(&args, outcome, name);
+    }
+}
+
+/// A set whose data file (named by its sidecar, not by the user) was
+/// replaced by a FIFO is refused at once, naming it. (On 25b05bd
+/// `estimate --sidecar` waited for ever.)
+#[test]
+fn a_fifo_in_place_of_a_sets_member_is_refused_at_once() {
+    let dir = folder();
+    std::fs::remove_file(dir.path().join("set.npy")).unwrap();
+    mkfifo(&dir.path().join("set.npy"));
+    let args = ["estimate", "--sidecar", "set.json"];
+    let outcome = run_briefly(dir.path(), &args);
+    refused_naming(&args, outcome, "set.npy");
+}
+
+/// An estimates file of an extension no reader takes (`.oidata`, none at
+/// all) is refused naming every extension `score --estimates` reads: the
+/// matrix ones and each of `v2ref_oifits::FITS_EXTENSIONS`. (On 25b05bd:
+/// "accepted: .npy (float64) or .csv".)
+#[test]
+fn an_unknown_extension_is_refused_naming_every_accepted_one() {
+    let dir = folder();
+    for name in ["est.oidata", "est"] {
+        std::fs::copy(dir.path().join("est.csv"), dir.path().join(name)).unwrap();
+        let args = ["score", "--sidecar", "set.json", "--estimates", name];
+        let (status, err) = run_briefly(dir.path(), &args);
+        assert_eq!(status, Some(2), "{err}");
+        for ext in [".npy", ".csv"].into_iter().map(str::to_owned).chain(
+            v2ref_oifits::FITS_EXTENSIONS
+                .iter()
+                .map(|e| format!(".{e}")),
+        ) {
+            assert!(err.contains(&ext), "{name}: {ext} not named: {err}");
+        }
+    }
+}
