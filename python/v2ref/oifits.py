@@ -235,9 +235,9 @@ def score_oifits(
         _optional_str(n, v)
     if isinstance(alpha, bool) or not isinstance(alpha, (int, float, _np.integer, _np.floating)):
         raise TypeError(f"alpha: {alpha!r} is not a real number")
-    name = _path("path", path)
+    file = _path("path", path)
     answer = _v2ref.score_oifits(
-        name,
+        file,
         text,
         name,
         bins,
@@ -248,7 +248,7 @@ def score_oifits(
         target,
         _flag("accept_checksum_mismatch", accept_checksum_mismatch),
     )
-    return _notes(name, answer)
+    return _notes(file, answer)
 
 
 def read_oifits_estimates(
@@ -277,9 +277,9 @@ def read_oifits_estimates(
     text, name = _sidecar_arg(sidecar)
     for n, v in (("insname", insname), ("estimator", estimator), ("target", target), ("bins", bins), ("bias", bias)):
         _optional_str(n, v)
-    name = _path("path", path)
+    file = _path("path", path)
     answer = _v2ref.read_oifits_estimates(
-        name,
+        file,
         text,
         name,
         insname,
@@ -289,4 +289,4 @@ def read_oifits_estimates(
         bias,
         _flag("accept_checksum_mismatch", accept_checksum_mismatch),
     )
-    return _notes(name, answer)
+    return _notes(file, answer)
