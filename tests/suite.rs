@@ -81,6 +81,8 @@ mod surface_properties_sets;
 mod synth_layout;
 mod tolerance_literals;
 mod turbulence;
+// Issue 53/54, OIFITS read as pipelines write and edit it.
+mod oifits_as_written;
 
 /// Cargo builds only this binary (`autotests = false` in Cargo.toml): a
 /// file of `tests/` not declared above would be silently skipped.

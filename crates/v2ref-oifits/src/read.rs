@@ -41,7 +41,8 @@ pub struct Vis2Table {
     /// `EFF_WAVE` of the `OI_WAVELENGTH` of the same `INSNAME`, m, one
     /// per channel.
     pub eff_wave_m: Vec<f64>,
-    /// `EFF_BAND` of that `OI_WAVELENGTH`, m, one per channel.
+    /// `EFF_BAND` of that `OI_WAVELENGTH`, m, one per channel (NaN where
+    /// it has no such column).
     pub eff_band_m: Vec<f64>,
     /// `TARGET_ID` of each row (1 where the table has no such column).
     pub target_id: Vec<i64>,
@@ -258,10 +259,17 @@ struct Wavelengths {
 fn wavelength_table(hdu: &Hdu) -> std::result::Result<Wavelengths, Refusal> {
     let insname = insname(hdu)?;
     let t = Table::new(hdu)?;
+    let eff_wave_m = t.reals(t.column("EFF_WAVE")?)?;
+    // EFF_BAND is mandatory, but a pipeline's own file may lack it, and
+    // scoring does not need it: NaN then, never a made-up width.
+    let eff_band_m = match t.column("EFF_BAND") {
+        Ok(c) => t.reals(c)?,
+        Err(_) => vec![f64::NAN; eff_wave_m.len()],
+    };
     Ok(Wavelengths {
         insname,
-        eff_wave_m: t.reals(t.column("EFF_WAVE")?)?,
-        eff_band_m: t.reals(t.column("EFF_BAND")?)?,
+        eff_wave_m,
+        eff_band_m,
     })
 }
 
