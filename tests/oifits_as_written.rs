@@ -41,7 +41,13 @@ fn set(dir: &Path) -> (String, Vec<u8>, Vec<f64>) {
     let sidecar = format!("{stem}.json");
     let (fits, csv) = (dir.join("est.fits"), dir.join("est.csv"));
     for out in [&fits, &csv] {
-        ok(&["estimate", "--sidecar", &sidecar, "--out", out.to_str().unwrap()]);
+        ok(&[
+            "estimate",
+            "--sidecar",
+            &sidecar,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
     }
     let text = std::fs::read_to_string(csv).unwrap();
     let mut lines = text.lines();
@@ -74,7 +80,9 @@ fn score(dir: &Path, sidecar: &str, name: &str, bytes: &[u8], extra: &[&str]) ->
 fn hdu_starts(bytes: &[u8]) -> Vec<usize> {
     (0..bytes.len() / BLOCK)
         .map(|b| b * BLOCK)
-        .filter(|&at| bytes[at..].starts_with(b"SIMPLE  =") || bytes[at..].starts_with(b"XTENSION="))
+        .filter(|&at| {
+            bytes[at..].starts_with(b"SIMPLE  =") || bytes[at..].starts_with(b"XTENSION=")
+        })
         .collect()
 }
 
@@ -93,7 +101,10 @@ fn data_start(bytes: &[u8], at: usize) -> usize {
 fn unsigned_table(dir: &Path) -> Vec<u8> {
     let path = dir.join("extra.fits");
     let columns = vec![Column::F64("X", vec![1.0])];
-    fits_plain::write(&path, &[("LATER", vec![("OI_REVN", Card::Int(2))], columns)]);
+    fits_plain::write(
+        &path,
+        &[("LATER", vec![("OI_REVN", Card::Int(2))], columns)],
+    );
     std::fs::read(path).unwrap()[BLOCK..].to_vec()
 }
 
@@ -118,7 +129,11 @@ fn a_target_written_with_a_leading_blank_is_scored_by_its_name() {
                     Column::Text("TARGET", 16, vec![" bet Ari".into(), "HD 2".into()]),
                 ],
             ),
-            ("OI_WAVELENGTH", pipe(), vec![Column::F32("EFF_WAVE", vec![2.2e-6])]),
+            (
+                "OI_WAVELENGTH",
+                pipe(),
+                vec![Column::F32("EFF_WAVE", vec![2.2e-6])],
+            ),
             (
                 "OI_VIS2",
                 pipe(),
@@ -170,8 +185,14 @@ fn an_hdu_appended_without_checksums_is_read_and_named_in_a_note() {
     assert!(code == 0 || code == 1, "{err}");
     let notes: Vec<&str> = err.lines().filter(|l| l.starts_with("note: ")).collect();
     assert_eq!(notes.len(), 2, "{err}");
-    assert!(notes[0].contains("written with 7 HDUs and holds 8: HDUs were added"), "{err}");
-    assert!(notes[1].contains("HDU 8 (EXTNAME LATER) carries no CHECKSUM or DATASUM"), "{err}");
+    assert!(
+        notes[0].contains("written with 7 HDUs and holds 8: HDUs were added"),
+        "{err}"
+    );
+    assert!(
+        notes[1].contains("HDU 8 (EXTNAME LATER) carries no CHECKSUM or DATASUM"),
+        "{err}"
+    );
 }
 
 #[test]

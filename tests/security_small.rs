@@ -292,7 +292,11 @@ fn more_hdus_than_announced_is_not_called_truncated() {
     // read, with a note saying so (refused before).
     let dir = tempfile::tempdir().unwrap();
     for (written, change) in [("3", "added"), ("5", "removed")] {
-        let file = oifits(&[(1, "STAR")], &[(1, 0.5); ROWS], &[key("V2R_NHDU", written)]);
+        let file = oifits(
+            &[(1, "STAR")],
+            &[(1, 0.5); ROWS],
+            &[key("V2R_NHDU", written)],
+        );
         let (code, err) = score_oifits(dir.path(), "edited.fits", &file, &[]);
         assert!(code == 0 || code == 1, "{err}");
         let note = format!("written with {written} HDUs and holds 4: HDUs were {change}");
