@@ -162,7 +162,8 @@ fn a_checksum_refusal_names_the_tables_extname_and_insname_in_one_line() {
     let (sidecar, mut bytes, _) = set(dir.path());
     let last = *hdu_starts(&bytes).last().unwrap();
     // A byte of the first row of the last table (V2SQ's OI_VIS2).
-    bytes[data_start(&bytes, last) + 20] ^= 0x01;
+    let at = data_start(&bytes, last) + 20;
+    bytes[at] ^= 0x01;
     let (code, err) = score(dir.path(), &sidecar, "flipped.fits", &bytes, &[]);
     assert_eq!(code, 2, "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
