@@ -14,25 +14,47 @@ use super::write::KEY_NHDU;
 /// after it was written: a checksum that does not match (unless
 /// `options` accept it), or a file that ends early.
 pub(crate) fn check(hdus: &[Hdu], options: ReadOptions) -> Result<Vec<String>, Refusal> {
-    let mut notes: Vec<String> = hdu_count(hdus)?.into_iter().collect();
     if !options.accept_checksum_mismatch {
-        for hdu in hdus {
-            let bad = checksum_mismatches(hdu);
-            if !bad.is_empty() {
-                let verb = if bad.len() == 1 { "does" } else { "do" };
-                return Err(refuse(
-                    hdu.at(),
-                    format!(
-                        "{} {verb} not match the bytes: the file changed after it was written; \
-                         --accept-checksum-mismatch (Python: accept_checksum_mismatch=True) reads it anyway",
-                        bad.join(" and ")
-                    ),
-                ));
-            }
-        }
+        hdus.iter().try_for_each(verify)?;
     }
+    let mut notes: Vec<String> = hdu_count(hdus)?.into_iter().collect();
     notes.extend(unsigned_note(hdus));
     Ok(notes)
+}
+
+/// Refuses an HDU whose `CHECKSUM` or `DATASUM` does not match its
+/// bytes, or that has one without the other: writers write the pair, so
+/// a lone one tells of a card damaged out of its name (which would take
+/// the check of that header with it).
+fn verify(hdu: &Hdu) -> Result<(), Refusal> {
+    let anyway =
+        "--accept-checksum-mismatch (Python: accept_checksum_mismatch=True) reads it anyway";
+    let has = |k: &str| hdu.header.get(k).is_some();
+    if has("CHECKSUM") != has("DATASUM") {
+        let (present, absent) = if has("CHECKSUM") {
+            ("CHECKSUM", "DATASUM")
+        } else {
+            ("DATASUM", "CHECKSUM")
+        };
+        return Err(refuse(
+            hdu.at(),
+            format!(
+                "{present} without {absent}: they are written together, so the header was damaged; {anyway}"
+            ),
+        ));
+    }
+    let bad = checksum_mismatches(hdu);
+    if bad.is_empty() {
+        return Ok(());
+    }
+    let verb = if bad.len() == 1 { "does" } else { "do" };
+    Err(refuse(
+        hdu.at(),
+        format!(
+            "{} {verb} not match the bytes: the file changed after it was written; {anyway}",
+            bad.join(" and ")
+        ),
+    ))
 }
 
 /// The note naming the HDUs that carry neither `CHECKSUM` nor `DATASUM`
