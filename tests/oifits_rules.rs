@@ -286,7 +286,7 @@ fn a_row_written_as_nan_is_flagged() {
         target_radec_deg: (10.0, -20.0),
         date_obs: "2024-03-01".into(),
         site: iota(),
-        diameter_m: 0.45,
+        diameter_m: Some(0.45),
         baseline_m: 20.0,
         eff_wave_m: 2.2e-6,
         eff_band_m: 0.4e-6,

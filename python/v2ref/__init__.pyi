@@ -936,15 +936,24 @@ def claims(*, quick: bool=False) -> list:
         ``note``, …
     """
 
-def read_oifits(path: Any, *, accept_checksum_mismatch: bool=False) -> List[Dict[str, Any]]:
-    """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
+def read_oifits(path: Any, *, insname: Optional[str]=None, target: Optional[str]=None, accept_checksum_mismatch: bool=False) -> List[Dict[str, Any]]:
+    """The ``OI_VIS2`` tables of an OIFITS file (v1 or v2), in file order.
 
-    Each is a dict: ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from
-    v2ref's ``V2R_EST`` keyword, else None), ``revn``, ``hdu``,
-    ``eff_wave_m`` (metres, one per channel) and ``vis2data``, ``vis2err``,
-    ``flag`` of shape (rows, channels). A malformed file raises ValueError;
-    so does one whose CHECKSUM or DATASUM no longer match its bytes, unless
-    ``accept_checksum_mismatch``. ``.fits.gz`` is read as well.
+    ``insname`` keeps the tables of that INSNAME, ``target`` (a TARGET name
+    or a TARGET_ID) the rows of that target, as ``score`` chooses them
+    (leading and trailing blanks of a name are not significant; a table with
+    no row of the target is left out); None keeps all. Each table is a dict:
+    ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from v2ref's
+    ``V2R_EST`` keyword, else None), ``revn``, ``hdu``, ``eff_wave_m`` and
+    ``eff_band_m`` (metres, one per channel, from the ``OI_WAVELENGTH`` of
+    its INSNAME), per row ``target_id``, ``mjd`` (days), ``ucoord_m`` and
+    ``vcoord_m`` (metres; NaN where the table has no such column), and
+    ``vis2data``, ``vis2err``, ``flag`` of shape (rows, channels). A
+    malformed file raises ValueError; so does one whose CHECKSUM or DATASUM
+    no longer match its bytes, unless ``accept_checksum_mismatch``. What
+    was accepted but should be known (an HDU without checksums in a signed
+    file, a v2ref file whose HDUs were added or removed) is a UserWarning.
+    ``.fits.gz`` is read as well.
     """
 
 def write_oifits(path: Any, *, sidecar: Any, v1_sq: Any=None, v2_sq: Any=None, bins: str='positive', bias: str='model', target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, force: bool=False) -> None:

@@ -5,6 +5,7 @@ in and out. The files are those of ``v2ref estimate --out FILE.fits``,
 """
 
 import os as _os
+import warnings as _warnings
 from typing import Any, Dict, List, Optional
 
 import numpy as _np
@@ -77,17 +78,45 @@ _OBSERVING_DOC = """
 """
 
 
-def read_oifits(path: Any, *, accept_checksum_mismatch: bool = False) -> List[Dict[str, Any]]:
-    """Every ``OI_VIS2`` table of an OIFITS file (v1 or v2), in file order.
+def _notes(path: str, answer: Dict[str, Any]) -> Dict[str, Any]:
+    """``answer`` without its ``notes``, each issued as a UserWarning: what
+    the reader accepted that a caller should know (HDUs without checksums in
+    a signed file, a v2ref file edited after it was written)."""
+    for note in answer.pop("notes", ()):
+        _warnings.warn(f"{path}: {note}", UserWarning, stacklevel=3)
+    return answer
 
-    Each is a dict: ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from
-    v2ref's ``V2R_EST`` keyword, else None), ``revn``, ``hdu``,
-    ``eff_wave_m`` (metres, one per channel) and ``vis2data``, ``vis2err``,
-    ``flag`` of shape (rows, channels). A malformed file raises ValueError;
-    so does one whose CHECKSUM or DATASUM no longer match its bytes, unless
-    ``accept_checksum_mismatch``. ``.fits.gz`` is read as well.
+
+def read_oifits(
+    path: Any,
+    *,
+    insname: Optional[str] = None,
+    target: Optional[str] = None,
+    accept_checksum_mismatch: bool = False,
+) -> List[Dict[str, Any]]:
+    """The ``OI_VIS2`` tables of an OIFITS file (v1 or v2), in file order.
+
+    ``insname`` keeps the tables of that INSNAME, ``target`` (a TARGET name
+    or a TARGET_ID) the rows of that target, as ``score`` chooses them
+    (leading and trailing blanks of a name are not significant; a table with
+    no row of the target is left out); None keeps all. Each table is a dict:
+    ``insname``, ``estimator`` (``"v1_sq"``, ``"v2_sq"`` from v2ref's
+    ``V2R_EST`` keyword, else None), ``revn``, ``hdu``, ``eff_wave_m`` and
+    ``eff_band_m`` (metres, one per channel, from the ``OI_WAVELENGTH`` of
+    its INSNAME), per row ``target_id``, ``mjd`` (days), ``ucoord_m`` and
+    ``vcoord_m`` (metres; NaN where the table has no such column), and
+    ``vis2data``, ``vis2err``, ``flag`` of shape (rows, channels). A
+    malformed file raises ValueError; so does one whose CHECKSUM or DATASUM
+    no longer match its bytes, unless ``accept_checksum_mismatch``. What
+    was accepted but should be known (an HDU without checksums in a signed
+    file, a v2ref file whose HDUs were added or removed) is a UserWarning.
+    ``.fits.gz`` is read as well.
     """
-    return _v2ref.read_oifits(_path("path", path), _flag("accept_checksum_mismatch", accept_checksum_mismatch))
+    name = _path("path", path)
+    _optional_str("insname", insname)
+    _optional_str("target", target)
+    answer = _v2ref.read_oifits(name, insname, target, _flag("accept_checksum_mismatch", accept_checksum_mismatch))
+    return _notes(name, answer)["tables"]
 
 
 def write_oifits(
@@ -199,8 +228,9 @@ def score_oifits(
     text, name = _sidecar_arg(sidecar)
     for n, v in (("bins", bins), ("bias", bias), ("insname", insname), ("estimator", estimator), ("target", target)):
         _optional_str(n, v)
-    return _v2ref.score_oifits(
-        _path("path", path),
+    file = _path("path", path)
+    answer = _v2ref.score_oifits(
+        file,
         text,
         name,
         bins,
@@ -211,6 +241,7 @@ def score_oifits(
         target,
         _flag("accept_checksum_mismatch", accept_checksum_mismatch),
     )
+    return _notes(file, answer)
 
 
 def read_oifits_estimates(
@@ -239,8 +270,9 @@ def read_oifits_estimates(
     text, name = _sidecar_arg(sidecar)
     for n, v in (("insname", insname), ("estimator", estimator), ("target", target), ("bins", bins), ("bias", bias)):
         _optional_str(n, v)
-    return _v2ref.read_oifits_estimates(
-        _path("path", path),
+    file = _path("path", path)
+    answer = _v2ref.read_oifits_estimates(
+        file,
         text,
         name,
         insname,
@@ -250,3 +282,4 @@ def read_oifits_estimates(
         bias,
         _flag("accept_checksum_mismatch", accept_checksum_mismatch),
     )
+    return _notes(file, answer)

@@ -226,6 +226,9 @@ pub fn read_for_score(
         },
     };
     let read = oifits::read_oifits_estimates(path, &choice, &expected)?;
+    for note in &read.notes {
+        eprintln!("note: --estimates {}: {note}", path.display());
+    }
     let kept = (read.rows - read.flagged) as u64;
     Ok(ScoreInput {
         estimates: read.estimates,

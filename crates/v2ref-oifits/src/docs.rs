@@ -164,7 +164,7 @@ pub fn plan_doc(
     setting.scan_s = point.time_s.or(Some(point.scan_time_s * scans));
     // The instrument's piston is set per grid point: the telescopes are
     // the atmosphere's apertures.
-    setting.diameter_m = inputs.atmosphere.aperture_m;
+    setting.diameter_m = Some(inputs.atmosphere.aperture_m);
     let keywords = vec![
         Key::f64(
             "V2R_VMON",

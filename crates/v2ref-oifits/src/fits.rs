@@ -127,9 +127,14 @@ pub struct Hdu<'a> {
 }
 
 impl Hdu<'_> {
-    /// `HDU n`, the start of every location in it.
+    /// `HDU n (EXTNAME X, INSNAME Y)`, the start of every location in
+    /// it: a user finds a table by its names, not by counting HDUs.
     pub fn at(&self) -> String {
-        format!("HDU {}", self.number)
+        place(
+            self.number,
+            self.header.str("EXTNAME"),
+            self.header.str("INSNAME"),
+        )
     }
 
     /// A required integer keyword, refused (named) when absent or not one.
@@ -140,6 +145,26 @@ impl Hdu<'_> {
                 "missing or not an integer; the FITS standard requires it",
             )
         })
+    }
+}
+
+/// `HDU n`, followed by `(EXTNAME X, INSNAME Y)` as far as the HDU has
+/// them (the primary: `(primary)`).
+pub fn place(number: usize, extname: Option<&str>, insname: Option<&str>) -> String {
+    let mut names = Vec::new();
+    if number == 1 {
+        names.push("primary".to_owned());
+    }
+    if let Some(e) = extname.filter(|e| !e.is_empty()) {
+        names.push(format!("EXTNAME {e}"));
+    }
+    if let Some(i) = insname.filter(|i| !i.is_empty()) {
+        names.push(format!("INSNAME {i}"));
+    }
+    if names.is_empty() {
+        format!("HDU {number}")
+    } else {
+        format!("HDU {number} ({})", names.join(", "))
     }
 }
 
@@ -172,8 +197,9 @@ pub fn parse(bytes: &[u8]) -> Result<Vec<Hdu<'_>>, Refusal> {
 
 /// The HDU whose header starts at byte `start`.
 fn parse_hdu(bytes: &[u8], start: usize, number: usize) -> Result<Hdu<'_>, Refusal> {
-    let at = format!("HDU {number}");
-    let (header, header_len) = parse_header(&bytes[start..], &at, number == 1)?;
+    let (header, header_len) =
+        parse_header(&bytes[start..], &format!("HDU {number}"), number == 1)?;
+    let at = place(number, header.str("EXTNAME"), header.str("INSNAME"));
     let data_start = start + header_len;
     let data_len = data_size(&header, &at)?;
     let padded = data_len

@@ -35,6 +35,7 @@ pub(crate) use v2ref_files::{atomic, formats};
 pub mod docs;
 pub mod fits;
 mod fits_write;
+mod integrity;
 pub(crate) mod observing;
 mod order;
 pub(crate) mod read;
@@ -48,8 +49,9 @@ pub(crate) mod write;
 pub use observing::{iota, Site};
 pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
-    min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file, read_vis2_tables,
-    truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
+    choose_tables, min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file,
+    read_vis2_tables, truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile,
+    ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};

@@ -49,7 +49,10 @@ pub fn target_of(
     let by_name = file
         .targets
         .iter()
-        .find(|(_, n)| n.eq_ignore_ascii_case(name.trim()))
+        // As OIFITS compares names, leading and trailing blanks are not
+        // significant (the MIRC-X pipeline writes `' bet Ari'`); nor,
+        // here, is case.
+        .find(|(_, n)| n.trim().eq_ignore_ascii_case(name.trim()))
         .map(|(i, _)| *i);
     let by_id = name.trim().parse::<i64>().ok();
     if let (Some(named), Some(numbered)) = (by_name, by_id) {
@@ -78,6 +81,57 @@ pub fn target_of(
     }
 }
 
+/// The `OI_VIS2` tables of `file` (read from `path`) of `insname`
+/// (every table when None), each with only the rows of `target` (a
+/// `TARGET` name or `TARGET_ID`, chosen as `score` chooses; every row when
+/// None); a table with no row of the target is left out. Refused
+/// (parameters `insname`, `target`): no table of the `INSNAME`, no row of
+/// the target, a number that names one target and is another's
+/// `TARGET_ID`.
+pub fn choose_tables(
+    file: &OifitsFile,
+    insname: Option<&str>,
+    target: Option<&str>,
+    path: &Path,
+) -> Result<Vec<Vis2Table>> {
+    let chosen = super::select::tables_of_insname(&file.tables, insname)?;
+    let id = match target {
+        Some(_) => target_of(file, std::slice::from_ref(&chosen), target, path)?,
+        None => None,
+    };
+    let Some(id) = id else {
+        return Ok(chosen.into_iter().cloned().collect());
+    };
+    Ok(chosen
+        .into_iter()
+        .filter(|t| t.target_id.contains(&id))
+        .map(|t| rows_of_target(t, id))
+        .collect())
+}
+
+/// Table `t` with only the rows of `TARGET_ID` `id`.
+fn rows_of_target(t: &Vis2Table, id: i64) -> Vis2Table {
+    let keep: Vec<usize> = (0..t.rows).filter(|&r| t.target_id[r] == id).collect();
+    Vis2Table {
+        rows: keep.len(),
+        target_id: pick(&t.target_id, &keep, 1),
+        mjd: pick(&t.mjd, &keep, 1),
+        ucoord_m: pick(&t.ucoord_m, &keep, 1),
+        vcoord_m: pick(&t.vcoord_m, &keep, 1),
+        vis2data: pick(&t.vis2data, &keep, t.nwave),
+        vis2err: pick(&t.vis2err, &keep, t.nwave),
+        flag: pick(&t.flag, &keep, t.nwave),
+        ..t.clone()
+    }
+}
+
+/// The rows `keep` of `values`, `width` values a row.
+fn pick<T: Clone>(values: &[T], keep: &[usize], width: usize) -> Vec<T> {
+    keep.iter()
+        .flat_map(|&r| values[r * width..(r + 1) * width].iter().cloned())
+        .collect()
+}
+
 /// Refuses rows of table `t` (those of `target`, or all) whose `MJD` is
 /// not a number or is earlier than the row before: the rows would not
 /// be the set's, in order.
@@ -88,14 +142,7 @@ pub fn check_time_order(t: &Vis2Table, target: Option<i64>, path: &Path) -> Resu
             continue;
         }
         let mjd = t.mjd[r];
-        let at = || {
-            format!(
-                "HDU {} (OI_VIS2 INSNAME {}), row {}",
-                t.hdu,
-                t.insname,
-                r + 1
-            )
-        };
+        let at = || format!("{}, row {}", t.at(), r + 1);
         if !mjd.is_finite() {
             return Err(Error::data(
                 "estimates",

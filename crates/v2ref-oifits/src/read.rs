@@ -5,10 +5,11 @@
 //! `.fits.gz`) and parsed in safe Rust ([`super::fits`], [`super::table`]):
 //! every size a header announces is checked against the bytes of the file
 //! before a value is read, so a damaged header is refused, never followed.
-//! `CHECKSUM`/`DATASUM` are verified where present. Every refusal is an
-//! [`Error::Data`] naming the parameter, the HDU and what is accepted.
+//! `CHECKSUM`/`DATASUM` are verified where present ([`super::integrity`]).
+//! Every refusal is an [`Error::Data`] naming the parameter, the HDU (its
+//! number, `EXTNAME` and `INSNAME`) and what is accepted.
 
-use super::fits::{self, checksum_mismatches, Hdu, Refusal};
+use super::fits::{self, Hdu, Refusal};
 use super::table::Table;
 use crate::formats::Estimates;
 use crate::{Error, Result};
@@ -37,12 +38,20 @@ pub struct Vis2Table {
     pub rows: usize,
     /// Channels per row (`NWAVE`).
     pub nwave: usize,
-    /// `EFF_WAVE` of the `OI_WAVELENGTH` of the same `INSNAME`, m.
+    /// `EFF_WAVE` of the `OI_WAVELENGTH` of the same `INSNAME`, m, one
+    /// per channel.
     pub eff_wave_m: Vec<f64>,
+    /// `EFF_BAND` of that `OI_WAVELENGTH`, m, one per channel (NaN where
+    /// it has no such column).
+    pub eff_band_m: Vec<f64>,
     /// `TARGET_ID` of each row (1 where the table has no such column).
     pub target_id: Vec<i64>,
     /// `MJD` of each row, days (0 where the table has no such column).
     pub mjd: Vec<f64>,
+    /// `UCOORD` of each row, m (NaN where the table has no such column).
+    pub ucoord_m: Vec<f64>,
+    /// `VCOORD` of each row, m (NaN where the table has no such column).
+    pub vcoord_m: Vec<f64>,
     /// `VIS2DATA`, `rows × nwave`, row after row.
     pub vis2data: Vec<f64>,
     /// `VIS2ERR`, same shape.
@@ -60,6 +69,10 @@ pub struct OifitsFile {
     /// `OI_TARGET`'s (`TARGET_ID`, `TARGET`) pairs, in order (empty when
     /// the file has no `OI_TARGET`).
     pub targets: Vec<(i64, String)>,
+    /// What was accepted that a reader should know, one line each: HDUs
+    /// without checksums in a signed file, a v2ref file edited after it
+    /// was written.
+    pub notes: Vec<String>,
 }
 
 /// How damage is treated.
@@ -93,42 +106,8 @@ pub fn parse_oifits(
     options: ReadOptions,
 ) -> std::result::Result<OifitsFile, Refusal> {
     let hdus = fits::parse(bytes)?;
-    if let Some(n) = hdus[0].header.int(super::write::KEY_NHDU) {
-        let held = hdus.len() as i64;
-        if n != held {
-            let what = if held < n {
-                "it is truncated"
-            } else {
-                "it holds more HDUs than announced: HDUs were added after it was written"
-            };
-            return Err(fits::refuse(
-                format!("HDU 1, keyword {}", super::write::KEY_NHDU),
-                format!("the file was written with {n} HDUs and holds {held}: {what}"),
-            ));
-        }
-    }
-    if !options.accept_checksum_mismatch {
-        // Checksums are written in every HDU or in none: one HDU without
-        // them in a file that has them lost its CHECKSUM card to damage.
-        let signed = hdus.iter().any(|h| h.header.get("CHECKSUM").is_some());
-        for hdu in &hdus {
-            let mut bad = checksum_mismatches(hdu);
-            if signed && hdu.header.get("CHECKSUM").is_none() {
-                bad.push("CHECKSUM (absent here, present in other HDUs)");
-            }
-            if !bad.is_empty() {
-                return Err(fits::refuse(
-                    hdu.at(),
-                    format!(
-                        "{} does not match the bytes: the file changed after it was written; \
-                         --accept-checksum-mismatch (Python: accept_checksum_mismatch=True) reads it anyway",
-                        bad.join(" and ")
-                    ),
-                ));
-            }
-        }
-    }
-    let mut waves: Vec<(String, Vec<f64>)> = Vec::new();
+    let notes = super::integrity::check(&hdus, options)?;
+    let mut waves: Vec<Wavelengths> = Vec::new();
     let mut tables = Vec::new();
     let mut targets = Vec::new();
     for hdu in hdus.iter().skip(1) {
@@ -140,25 +119,34 @@ pub fn parse_oifits(
         }
     }
     for t in &mut tables {
-        let at = format!("HDU {} (OI_VIS2 INSNAME {})", t.hdu, t.insname);
-        let Some((_, w)) = waves.iter().find(|(n, _)| *n == t.insname) else {
+        let at = t.at();
+        let Some(w) = waves.iter().find(|w| w.insname == t.insname) else {
             return Err(fits::refuse(
                 at,
                 "no OI_WAVELENGTH table of this INSNAME; the standard requires one",
             ));
         };
-        if w.len() != t.nwave {
+        if w.eff_wave_m.len() != t.nwave {
             return Err(fits::refuse(
                 at,
-                format!("{} channels, its OI_WAVELENGTH has {}", t.nwave, w.len()),
+                format!(
+                    "{} channels, its OI_WAVELENGTH has {}",
+                    t.nwave,
+                    w.eff_wave_m.len()
+                ),
             ));
         }
-        t.eff_wave_m = w.clone();
+        t.eff_wave_m.clone_from(&w.eff_wave_m);
+        t.eff_band_m.clone_from(&w.eff_band_m);
     }
     if !targets.is_empty() {
         check_targets_listed(&tables, &targets)?;
     }
-    Ok(OifitsFile { tables, targets })
+    Ok(OifitsFile {
+        tables,
+        targets,
+        notes,
+    })
 }
 
 /// Refuses a row whose `TARGET_ID` is not in `OI_TARGET`: the row is of
@@ -175,12 +163,7 @@ fn check_targets_listed(
         if let Some(r) = unlisted {
             let ids: Vec<String> = targets.iter().map(|(i, _)| i.to_string()).collect();
             return Err(fits::refuse(
-                format!(
-                    "HDU {} (OI_VIS2 INSNAME {}), row {}",
-                    t.hdu,
-                    t.insname,
-                    r + 1
-                ),
+                format!("{}, row {}", t.at(), r + 1),
                 format!(
                     "TARGET_ID {} is not in OI_TARGET (its TARGET_IDs: {}): a row of no listed target",
                     t.target_id[r],
@@ -258,23 +241,36 @@ fn too_large(path: &Path, param: &'static str, need: u64, budget: u64, more: &st
     )
 }
 
-fn insname(hdu: &Hdu, what: &str) -> std::result::Result<String, Refusal> {
+fn insname(hdu: &Hdu) -> std::result::Result<String, Refusal> {
     hdu.header
         .str("INSNAME")
         .filter(|s| !s.is_empty())
         .map(str::to_owned)
-        .ok_or_else(|| {
-            fits::refuse(
-                format!("{} ({what})", hdu.at()),
-                "no INSNAME keyword; the standard requires one",
-            )
-        })
+        .ok_or_else(|| fits::refuse(hdu.at(), "no INSNAME keyword; the standard requires one"))
 }
 
-fn wavelength_table(hdu: &Hdu) -> std::result::Result<(String, Vec<f64>), Refusal> {
-    let name = insname(hdu, "OI_WAVELENGTH")?;
+/// One `OI_WAVELENGTH` table: its `INSNAME` and channels.
+struct Wavelengths {
+    insname: String,
+    eff_wave_m: Vec<f64>,
+    eff_band_m: Vec<f64>,
+}
+
+fn wavelength_table(hdu: &Hdu) -> std::result::Result<Wavelengths, Refusal> {
+    let insname = insname(hdu)?;
     let t = Table::new(hdu)?;
-    Ok((name, t.reals(t.column("EFF_WAVE")?)?))
+    let eff_wave_m = t.reals(t.column("EFF_WAVE")?)?;
+    // EFF_BAND is mandatory, but a pipeline's own file may lack it, and
+    // scoring does not need it: NaN then, never a made-up width.
+    let eff_band_m = match t.column("EFF_BAND") {
+        Ok(c) => t.reals(c)?,
+        Err(_) => vec![f64::NAN; eff_wave_m.len()],
+    };
+    Ok(Wavelengths {
+        insname,
+        eff_wave_m,
+        eff_band_m,
+    })
 }
 
 fn target_table(hdu: &Hdu) -> std::result::Result<Vec<(i64, String)>, Refusal> {
@@ -285,8 +281,8 @@ fn target_table(hdu: &Hdu) -> std::result::Result<Vec<(i64, String)>, Refusal> {
 }
 
 fn vis2_table(hdu: &Hdu) -> std::result::Result<Vis2Table, Refusal> {
-    let at = format!("{} (OI_VIS2)", hdu.at());
-    let insname = insname(hdu, "OI_VIS2")?;
+    let at = hdu.at();
+    let insname = insname(hdu)?;
     let revn = hdu.header.int("OI_REVN").unwrap_or(0);
     if !(1..=2).contains(&revn) {
         return Err(fits::refuse(
@@ -310,8 +306,9 @@ fn vis2_table(hdu: &Hdu) -> std::result::Result<Vis2Table, Refusal> {
             ),
         ));
     }
-    // TARGET_ID and MJD are mandatory, but a pipeline's own file may lack
-    // them: then its rows are of one target, in the order written.
+    // TARGET_ID, MJD, UCOORD and VCOORD are mandatory, but a pipeline's
+    // own file may lack them: then its rows are of one target, in the
+    // order written, on a baseline not said (NaN, never a made-up 0).
     let one_per_row = |name: &str, absent: f64| -> std::result::Result<Vec<f64>, Refusal> {
         let Ok(c) = t.column(name) else {
             return Ok(vec![absent; t.rows]);
@@ -335,15 +332,25 @@ fn vis2_table(hdu: &Hdu) -> std::result::Result<Vis2Table, Refusal> {
         rows: t.rows,
         nwave,
         eff_wave_m: Vec::new(),
+        eff_band_m: Vec::new(),
         target_id: one_per_row("TARGET_ID", 1.0)?
             .into_iter()
             .map(|i| i as i64)
             .collect(),
         mjd: one_per_row("MJD", 0.0)?,
+        ucoord_m: one_per_row("UCOORD", f64::NAN)?,
+        vcoord_m: one_per_row("VCOORD", f64::NAN)?,
         vis2data: t.reals(data)?,
         vis2err: t.reals(err)?,
         flag: t.logicals(flag)?,
     })
+}
+
+impl Vis2Table {
+    /// `HDU n (EXTNAME OI_VIS2, INSNAME X)`: where the table is.
+    pub fn at(&self) -> String {
+        fits::place(self.hdu, Some("OI_VIS2"), Some(&self.insname))
+    }
 }
 
 /// A pipeline's estimates read from OIFITS, flagged rows left out.
@@ -357,6 +364,8 @@ pub struct OifitsEstimates {
     pub flagged: usize,
     /// `INSNAME` of the tables read.
     pub insnames: Vec<String>,
+    /// The file's notes ([`OifitsFile::notes`]).
+    pub notes: Vec<String>,
 }
 
 /// What the file must match: the set's rows and band, and the window and
@@ -373,4 +382,5 @@ pub struct Expected {
     pub bias: crate::conformance::estimate::BiasConvention,
 }
 
+pub use super::order::choose_tables;
 pub use super::select::{min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice};

@@ -131,3 +131,55 @@ fn flipped_bytes_are_read_or_refused_never_past_the_buffer() {
         let _ = parse_oifits(&bytes, ANYWAY);
     }
 }
+
+/// The intact file's HDUs, each as its bytes.
+fn hdu_bytes() -> Vec<Vec<u8>> {
+    super::fits::parse(intact())
+        .unwrap()
+        .iter()
+        .map(|h| [h.header_bytes, h.data].concat())
+        .collect()
+}
+
+#[test]
+fn an_hdu_removed_from_the_middle_is_read_with_a_note() {
+    // OI_ARRAY (HDU 3) removed, as an editor does: the rest is whole.
+    let mut hdus = hdu_bytes();
+    hdus.remove(2);
+    let file = parse_oifits(&hdus.concat(), ReadOptions::default()).unwrap();
+    assert_eq!(file.tables.len(), 2);
+    assert_eq!(file.notes.len(), 1, "{:?}", file.notes);
+    assert!(file.notes[0].contains("written with 7 HDUs and holds 6: HDUs were removed"));
+}
+
+#[test]
+fn a_cut_after_a_whole_hdu_is_refused_even_past_the_checksums() {
+    let hdus = hdu_bytes();
+    for held in 1..hdus.len() {
+        let r = parse_oifits(&hdus[..held].concat(), ANYWAY).unwrap_err();
+        assert!(r.reason.contains("truncated after a whole HDU"), "{r:?}");
+    }
+}
+
+#[test]
+fn an_unsigned_hdu_in_a_signed_file_is_read_and_named() {
+    // An IMAGE extension of no data, with no CHECKSUM or DATASUM.
+    let mut cards: Vec<u8> = [
+        "XTENSION= 'IMAGE   '",
+        "BITPIX  =                    8",
+        "NAXIS   =                    0",
+        "PCOUNT  =                    0",
+        "GCOUNT  =                    1",
+        "EXTNAME = 'LATER   '",
+        "END",
+    ]
+    .iter()
+    .flat_map(|c| format!("{c:<80}").into_bytes())
+    .collect();
+    cards.resize(BLOCK, b' ');
+    let bytes = [intact(), &cards].concat();
+    let file = parse_oifits(&bytes, ReadOptions::default()).unwrap();
+    assert_eq!(file.tables.len(), 2);
+    assert_eq!(file.notes.len(), 2, "{:?}", file.notes);
+    assert!(file.notes[1].starts_with("HDU 8 (EXTNAME LATER) carries no CHECKSUM"));
+}

@@ -64,25 +64,8 @@ pub fn read_oifits_estimates(
     if all.is_empty() {
         return Err(err(String::new(), "no OI_VIS2 table".into()));
     }
-    let names = || {
-        let mut v: Vec<&str> = all.iter().map(|t| t.insname.as_str()).collect();
-        v.dedup();
-        v.join(", ")
-    };
-    let chosen: Vec<&Vis2Table> = match choice.insname {
-        Some(n) => all.iter().filter(|t| t.insname == n.trim_end()).collect(),
-        None => all.iter().collect(),
-    };
-    if chosen.is_empty() {
-        return Err(Error::Invalid {
-            param: "insname",
-            reason: format!(
-                "{}: no OI_VIS2 table of this INSNAME; the file has {}",
-                choice.insname.unwrap_or(""),
-                names()
-            ),
-        });
-    }
+    let names = || insnames_of(all);
+    let chosen = tables_of_insname(all, choice.insname)?;
     let mut by_est: [Vec<&Vis2Table>; 2] = [Vec::new(), Vec::new()];
     for t in chosen {
         if let Some(e) = assign(t, choice.estimator, path)? {
@@ -121,11 +104,48 @@ pub fn read_oifits_estimates(
                 .transpose()
         })
         .collect::<Result<Vec<_>>>()?;
-    unflagged(
+    let mut read = unflagged(
         columns,
         path,
         all.iter().map(|t| t.insname.clone()).collect(),
-    )
+    )?;
+    read.notes = file.notes;
+    Ok(read)
+}
+
+/// The `INSNAME`s of `tables`, in file order, each once in a run.
+fn insnames_of(tables: &[Vis2Table]) -> String {
+    let mut v: Vec<&str> = tables.iter().map(|t| t.insname.as_str()).collect();
+    v.dedup();
+    v.join(", ")
+}
+
+/// The tables of `insname` (every table when None), refused (parameter
+/// `insname`) when there is none.
+pub(crate) fn tables_of_insname<'a>(
+    all: &'a [Vis2Table],
+    insname: Option<&str>,
+) -> Result<Vec<&'a Vis2Table>> {
+    let chosen: Vec<&Vis2Table> = match insname {
+        Some(n) => all.iter().filter(|t| same_name(&t.insname, n)).collect(),
+        None => all.iter().collect(),
+    };
+    match insname {
+        Some(n) if chosen.is_empty() => Err(Error::Invalid {
+            param: "insname",
+            reason: format!(
+                "{n}: no OI_VIS2 table of this INSNAME; the file has {}",
+                insnames_of(all)
+            ),
+        }),
+        _ => Ok(chosen),
+    }
+}
+
+/// True when an `INSNAME` written is the one asked for, as OIFITS
+/// compares names: leading and trailing blanks are not significant.
+fn same_name(written: &str, asked: &str) -> bool {
+    written.trim() == asked.trim()
 }
 
 /// Refuses a table whose `V2R_BINS` or `V2R_BIAS` names another window or
@@ -141,10 +161,9 @@ fn check_convention(t: &Vis2Table, expected: &Expected) -> Result<()> {
             return Err(Error::Invalid {
                 param,
                 reason: format!(
-                    "{asked} is scored, but OI_VIS2 INSNAME {} (HDU {}) says {key} = '{w}': \
+                    "{asked} is scored, but {} says {key} = '{w}': \
                      its estimates are of another {}; score with {param} {w}",
-                    t.insname,
-                    t.hdu,
+                    t.at(),
                     if param == "bins" {
                         "window of bins"
                     } else {
@@ -168,7 +187,7 @@ fn assign(t: &Vis2Table, estimator: Option<Estimator>, path: &Path) -> Result<Op
             return Err(Error::data(
                 "estimates",
                 path,
-                format!("HDU {} (OI_VIS2), keyword {KEY_ESTIMATOR}", t.hdu),
+                format!("{}, keyword {KEY_ESTIMATOR}", t.at()),
                 format!("{k:?}; V1SQ or V2SQ is accepted"),
             ))
         }
@@ -200,7 +219,7 @@ fn concat(
     let mut values = Vec::new();
     let mut flags = Vec::new();
     for t in tables {
-        let at = format!("HDU {} (OI_VIS2 INSNAME {})", t.hdu, t.insname);
+        let at = t.at();
         if t.nwave != 1 {
             return Err(Error::data("estimates", path, at, format!(
                 "{} channels per row; one broadband estimate per interferogram is needed (NWAVE = 1)",
@@ -281,6 +300,7 @@ fn unflagged(
         rows,
         flagged: bad.iter().filter(|&&b| b).count(),
         insnames,
+        notes: Vec::new(),
     })
 }
 

@@ -22,9 +22,10 @@ pub struct Setting {
     pub date_obs: String,
     /// The array's site; its two stations stand on the baseline, east–west.
     pub site: Site,
-    /// Telescope diameter, m (`DIAMETER`; 0 where the configuration has
-    /// no aperture).
-    pub diameter_m: f64,
+    /// Telescope diameter, m (`DIAMETER`): the piston's aperture; None
+    /// where the configuration has none (no piston: the aperture plays no
+    /// part in the set), written as NaN, FITS's undefined value.
+    pub diameter_m: Option<f64>,
     /// Projected baseline, m: `UCOORD` (east), `VCOORD = 0`, and the
     /// second station's position.
     pub baseline_m: f64,
@@ -54,7 +55,7 @@ impl Setting {
             target_radec_deg: observing.radec_deg,
             date_obs: observing.date.clone(),
             site: observing.site.clone(),
-            diameter_m: inputs.piston.as_ref().map_or(0.0, |p| p.aperture_m),
+            diameter_m: inputs.piston.as_ref().map(|p| p.aperture_m),
             baseline_m: inputs.baseline_m,
             eff_wave_m,
             eff_band_m,

@@ -314,19 +314,18 @@ fn array(s: &Setting) -> std::result::Result<HduWriter, String> {
     let east = s.site.east();
     let station = |sign: f64| east.map(|e| sign * 0.5 * s.baseline_m * e);
     let staxyz: Vec<f64> = [station(-1.0), station(1.0)].concat();
-    // Field of view: the telescopes' diffraction FWHM, λ/D.
-    let fov_arcsec = if s.diameter_m > 0.0 {
-        (s.eff_wave_m / s.diameter_m).to_degrees() * 3600.0
-    } else {
-        0.0
-    };
+    // OIFITS 2 requires DIAMETER and FOV; where the set has no aperture
+    // both are NaN (FITS's undefined float), never a made-up 0. Field of
+    // view: the telescopes' diffraction FWHM, λ/D.
+    let diameter_m = s.diameter_m.filter(|d| *d > 0.0).unwrap_or(f64::NAN);
+    let fov_arcsec = (s.eff_wave_m / diameter_m).to_degrees() * 3600.0;
     create(
         "OI_ARRAY",
         &[
             col("TEL_NAME", 16, Str(&["T1", "T2"]), ""),
             col("STA_NAME", 16, Str(&["S1", "S2"]), ""),
             col("STA_INDEX", 1, I16(&[1, 2]), ""),
-            col("DIAMETER", 1, F32(&[s.diameter_m as f32; 2]), "m"),
+            col("DIAMETER", 1, F32(&[diameter_m as f32; 2]), "m"),
             col("STAXYZ", 3, F64(&staxyz), "m"),
             col("FOV", 1, F64(&[fov_arcsec; 2]), "arcsec"),
             col("FOVTYPE", 6, Str(&["FWHM", "FWHM"]), ""),

@@ -95,43 +95,67 @@ fn estimator_name(e: Estimator) -> &'static str {
     e.name()
 }
 
-/// Every `OI_VIS2` table of an OIFITS file: a list of dicts (`insname`,
-/// `estimator`, `revn`, `hdu`, `eff_wave_m`, and `vis2data`, `vis2err`,
-/// `flag` of shape (rows, nwave)).
+/// The `OI_VIS2` tables of an OIFITS file of `insname` (every one when
+/// None), with the rows of `target` (every row when None), as `score`
+/// chooses them: `{"tables": [dict], "notes": [str]}`, each table a dict
+/// (`insname`, `estimator`, `revn`, `hdu`, `eff_wave_m`, `eff_band_m`,
+/// per row `target_id`, `mjd`, `ucoord_m`, `vcoord_m`, and `vis2data`,
+/// `vis2err`, `flag` of shape (rows, nwave)).
 #[pyfunction]
-#[pyo3(signature = (path, accept_checksum_mismatch=false))]
+#[pyo3(signature = (path, insname=None, target=None, accept_checksum_mismatch=false))]
 fn read_oifits<'py>(
     py: Python<'py>,
     path: &str,
+    insname: Option<&str>,
+    target: Option<&str>,
     accept_checksum_mismatch: bool,
-) -> PyResult<Bound<'py, PyList>> {
+) -> PyResult<Bound<'py, PyDict>> {
     let options = oifits::ReadOptions {
         accept_checksum_mismatch,
     };
-    let tables = ok(oifits::read_oifits_file(Path::new(path), "path", options))?.tables;
+    let file = ok(oifits::read_oifits_file(Path::new(path), "path", options))?;
+    let tables = ok(oifits::choose_tables(
+        &file,
+        insname,
+        target,
+        Path::new(path),
+    ))?;
     let out = PyList::empty(py);
     for t in tables {
-        let d = PyDict::new(py);
-        let shape = [t.rows, t.nwave];
-        d.set_item("insname", &t.insname)?;
-        let est = match t.estimator.as_deref() {
-            Some("V1SQ") => Some("v1_sq"),
-            Some("V2SQ") => Some("v2_sq"),
-            _ => None,
-        };
-        d.set_item("estimator", est)?;
-        d.set_item("revn", t.revn)?;
-        d.set_item("hdu", t.hdu)?;
-        d.set_item("eff_wave_m", PyArray1::from_vec(py, t.eff_wave_m))?;
-        d.set_item(
-            "vis2data",
-            PyArray1::from_vec(py, t.vis2data).reshape(shape)?,
-        )?;
-        d.set_item("vis2err", PyArray1::from_vec(py, t.vis2err).reshape(shape)?)?;
-        d.set_item("flag", PyArray1::from_vec(py, t.flag).reshape(shape)?)?;
-        out.append(d)?;
+        out.append(table_dict(py, t)?)?;
     }
-    Ok(out)
+    let d = PyDict::new(py);
+    d.set_item("tables", out)?;
+    d.set_item("notes", file.notes)?;
+    Ok(d)
+}
+
+/// One `OI_VIS2` table as `read_oifits` returns it.
+fn table_dict(py: Python<'_>, t: oifits::Vis2Table) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    let shape = [t.rows, t.nwave];
+    d.set_item("insname", &t.insname)?;
+    let est = match t.estimator.as_deref() {
+        Some("V1SQ") => Some("v1_sq"),
+        Some("V2SQ") => Some("v2_sq"),
+        _ => None,
+    };
+    d.set_item("estimator", est)?;
+    d.set_item("revn", t.revn)?;
+    d.set_item("hdu", t.hdu)?;
+    d.set_item("eff_wave_m", PyArray1::from_vec(py, t.eff_wave_m))?;
+    d.set_item("eff_band_m", PyArray1::from_vec(py, t.eff_band_m))?;
+    d.set_item("target_id", PyArray1::from_vec(py, t.target_id))?;
+    d.set_item("mjd", PyArray1::from_vec(py, t.mjd))?;
+    d.set_item("ucoord_m", PyArray1::from_vec(py, t.ucoord_m))?;
+    d.set_item("vcoord_m", PyArray1::from_vec(py, t.vcoord_m))?;
+    d.set_item(
+        "vis2data",
+        PyArray1::from_vec(py, t.vis2data).reshape(shape)?,
+    )?;
+    d.set_item("vis2err", PyArray1::from_vec(py, t.vis2err).reshape(shape)?)?;
+    d.set_item("flag", PyArray1::from_vec(py, t.flag).reshape(shape)?)?;
+    Ok(d)
 }
 
 /// Per-row estimates of a synth set written as OIFITS v2 (one table per
@@ -291,6 +315,7 @@ fn read_oifits_estimates<'py>(
     )?;
     d.set_item("rows", read.rows)?;
     d.set_item("flagged", read.flagged)?;
+    d.set_item("notes", read.notes)?;
     Ok(d)
 }
 
@@ -338,6 +363,7 @@ fn score_oifits(
         "bias": convention,
         "rows": kept,
         "flagged": flagged,
+        "notes": read.notes,
     });
     let floor = oifits::min_unflagged_rows(set_rows);
     let mut answer = head.as_object().cloned().unwrap_or_default();
