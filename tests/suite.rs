@@ -18,6 +18,7 @@ mod bias_line;
 mod bias_normalization;
 mod bias_snapshots;
 mod cancel;
+mod channels;
 mod claims;
 mod claims_notes;
 mod cli;
