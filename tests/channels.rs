@@ -14,7 +14,9 @@ use v2ref_core::formalism::source::Source;
 use v2ref_core::formalism::spectrum::{Band, Spectrum};
 use v2ref_core::simulator::channels::channel_models;
 use v2ref_core::simulator::{Inputs, Model};
-use v2ref_core::tolerance::{EPS, QUADRATURE_CHECK_REL};
+use v2ref_core::tolerance::{
+    CHANNEL_FRINGE_SUM_REL, CHANNEL_SECOND_ORDER_REL, EPS, QUADRATURE_CHECK_REL,
+};
 use v2ref_core::{assert_abs_eq, assert_rel_eq};
 
 fn k_flat() -> Spectrum {
@@ -174,7 +176,7 @@ fn channels_share_the_photons_and_add_up_to_the_wide_band() {
     for i in 0..64 {
         let sum: f64 = models.iter().map(|m| m.signal.modulated[i]).sum();
         // tol: each fringe integrated on its own nodes; agreement to the nodes' accuracy, absolute in photons.
-        assert_abs_eq!(sum, band.signal.modulated[i], 1e-9 * band.signal.continuum[0]);
+        assert_abs_eq!(sum, band.signal.modulated[i], CHANNEL_FRINGE_SUM_REL * band.signal.continuum[0]);
     }
 }
 
@@ -195,12 +197,12 @@ fn bandwidth_bias_per_channel_falls_as_the_square_of_its_width() {
         let (d1, d2) = (b.wide_band.v1_sq - mono2, b.wide_band.v2_sq - mono2);
         let (p1, p2) = second_order_bandwidth_bias(v, lo, hi);
         // tol: the neglected fourth-order term is (Δσ/λ-scale)² of the second: below 3 % at Δσ = 0.064 µm⁻¹.
-        assert_rel_eq!(d1, p1, 0.03);
-        assert_rel_eq!(d2, p2, 0.03);
+        assert_rel_eq!(d1, p1, CHANNEL_SECOND_ORDER_REL);
+        assert_rel_eq!(d2, p2, CHANNEL_SECOND_ORDER_REL);
         if let Some((q1, q2)) = previous {
             // Halving the width divides the bias by 4 (to the same fourth-order term).
-            assert_rel_eq!(q1 / d1, 4.0, 0.03);
-            assert_rel_eq!(q2 / d2, 4.0, 0.03);
+            assert_rel_eq!(q1 / d1, 4.0, CHANNEL_SECOND_ORDER_REL);
+            assert_rel_eq!(q2 / d2, 4.0, CHANNEL_SECOND_ORDER_REL);
         }
         previous = Some((d1, d2));
     }

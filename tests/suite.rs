@@ -19,6 +19,7 @@ mod bias_normalization;
 mod bias_snapshots;
 mod cancel;
 mod channels;
+mod channels_mc;
 mod claims;
 mod claims_notes;
 mod cli;
