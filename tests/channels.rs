@@ -52,15 +52,25 @@ fn bad_channels_are_refused_naming_what_to_fix() {
     assert!(message.contains("must be > 0"), "{message}");
     assert_eq!(refusal(Channels::equal(&k, 0)).0, "channels");
     assert_eq!(refusal(Channels::from_resolution(&k, -3.0)).0, "resolution");
-    assert_eq!(refusal(Channels::from_resolution(&k, f64::NAN)).0, "resolution");
+    assert_eq!(
+        refusal(Channels::from_resolution(&k, f64::NAN)).0,
+        "resolution"
+    );
     // A power law cannot be cut exactly into tables.
     let slope = Spectrum::power_law(Band::k(), 2.0).unwrap();
     let (_, message) = refusal(Channels::equal(&slope, 3));
     assert!(message.contains("flat or tabulated"), "{message}");
     // A spectrum with no light in a channel.
     let table = Spectrum::tabulated(vec![0.4, 0.45, 0.5], vec![1.0, 0.0, 0.0]).unwrap();
-    let (_, message) = refusal(Channels::new(&table, vec![(0.4, 0.45), (0.45, 0.5)], vec![1.0; 2]));
-    assert!(message.contains("channel 2") && message.contains("empty"), "{message}");
+    let (_, message) = refusal(Channels::new(
+        &table,
+        vec![(0.4, 0.45), (0.45, 0.5)],
+        vec![1.0; 2],
+    ));
+    assert!(
+        message.contains("channel 2") && message.contains("empty"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -68,8 +78,14 @@ fn channels_a_scan_cannot_resolve_are_refused() {
     let k = k_flat();
     // N δx = 32 µm: bins 1/32 µm⁻¹ apart, 2.67 of them across K.
     let sampling = Sampling::new(64, 0.5, false).unwrap();
-    Channels::equal(&k, 2).unwrap().check_sampling(&sampling).unwrap();
-    let e = Channels::equal(&k, 8).unwrap().check_sampling(&sampling).unwrap_err();
+    Channels::equal(&k, 2)
+        .unwrap()
+        .check_sampling(&sampling)
+        .unwrap();
+    let e = Channels::equal(&k, 8)
+        .unwrap()
+        .check_sampling(&sampling)
+        .unwrap_err();
     assert_eq!(e.param(), Some("channels"));
     assert!(e.to_string().contains("holds no DFT bin"), "{e}");
 }
@@ -77,20 +93,34 @@ fn channels_a_scan_cannot_resolve_are_refused() {
 #[test]
 fn channel_csv_reads_wavenumbers_and_wavelengths_and_refuses_bad_tables() {
     let k = k_flat();
-    let by_wavelength = "# two channels\nwavelength_lo_um,wavelength_hi_um,response\n2.0,2.2,1\n2.2,2.4,0.5\n";
+    let by_wavelength =
+        "# two channels\nwavelength_lo_um,wavelength_hi_um,response\n2.0,2.2,1\n2.2,2.4,0.5\n";
     let c = Channels::from_csv_str(&k, by_wavelength).unwrap();
     assert_eq!(c.count(), 2);
     // Increasing wavenumber: the 2.2–2.4 µm channel first, its response with it.
     assert_eq!(c.responses(), &[0.5, 1.0]);
     assert_rel_eq!(c.edges_per_um()[0].1, 1.0 / 2.2, EPS);
-    let by_wavenumber = "wavenumber_lo_per_um,wavenumber_hi_per_um,response\n0.42,0.45,1\n0.45,0.5,1\n";
-    assert_eq!(Channels::from_csv_str(&k, by_wavenumber).unwrap().count(), 2);
+    let by_wavenumber =
+        "wavenumber_lo_per_um,wavenumber_hi_per_um,response\n0.42,0.45,1\n0.45,0.5,1\n";
+    assert_eq!(
+        Channels::from_csv_str(&k, by_wavenumber).unwrap().count(),
+        2
+    );
     for (text, words) in [
-        ("wavelength_um,weight\n2.0,1\n", "line 1: 2 columns; expected 3"),
+        (
+            "wavelength_um,weight\n2.0,1\n",
+            "line 1: 2 columns; expected 3",
+        ),
         ("lo,hi,response\n", "header 'lo,hi,response'"),
-        ("wavelength_lo_um,wavelength_hi_um,response\n2.0,x,1\n", "line 2"),
+        (
+            "wavelength_lo_um,wavelength_hi_um,response\n2.0,x,1\n",
+            "line 2",
+        ),
         ("", "no header"),
-        ("wavelength_lo_um,wavelength_hi_um,response\n2.0,2.3,1\n2.2,2.4,1\n", "overlap"),
+        (
+            "wavelength_lo_um,wavelength_hi_um,response\n2.0,2.3,1\n2.2,2.4,1\n",
+            "overlap",
+        ),
     ] {
         let e = Channels::from_csv_str(&k, text).unwrap_err();
         assert_eq!(e.param(), Some("channels"));
@@ -176,7 +206,11 @@ fn channels_share_the_photons_and_add_up_to_the_wide_band() {
     for i in 0..64 {
         let sum: f64 = models.iter().map(|m| m.signal.modulated[i]).sum();
         // tol: each fringe integrated on its own nodes; agreement to the nodes' accuracy, absolute in photons.
-        assert_abs_eq!(sum, band.signal.modulated[i], CHANNEL_FRINGE_SUM_REL * band.signal.continuum[0]);
+        assert_abs_eq!(
+            sum,
+            band.signal.modulated[i],
+            CHANNEL_FRINGE_SUM_REL * band.signal.continuum[0]
+        );
     }
 }
 

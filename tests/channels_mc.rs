@@ -72,7 +72,10 @@ fn each_channel_matches_its_closed_form_and_noise_leaves_channels_independent() 
     for (i, row) in rho.iter().enumerate() {
         for (j, &x) in row.iter().enumerate() {
             if i != j {
-                assert!(x.abs() < MC_SIGMAS / (trials as f64).sqrt(), "rho[{i}][{j}] = {x}");
+                assert!(
+                    x.abs() < MC_SIGMAS / (trials as f64).sqrt(),
+                    "rho[{i}][{j}] = {x}"
+                );
             }
         }
     }
@@ -80,7 +83,9 @@ fn each_channel_matches_its_closed_form_and_noise_leaves_channels_independent() 
     let w = [1.0 / 3.0; 3];
     let (honest, se) = r.v1_sq_moments.combined_variance(&w);
     let independent: f64 = variances.iter().map(|v| v / 9.0).sum();
-    eprintln!("noise-only weighted mean: var {honest} ± {se}, independent closed form {independent}");
+    eprintln!(
+        "noise-only weighted mean: var {honest} ± {se}, independent closed form {independent}"
+    );
     assert_within_sigmas!(honest, independent, se);
 }
 
@@ -113,8 +118,15 @@ fn one_channel_run_is_simulate_bit_for_bit() {
         // row-by-row path, which the channels' run shares.
         let alone = match piston {
             Some(_) => alone.unwrap(),
-            None => simulate(&model, BinWindow::Band, BiasConvention::Counts, Formula::Exact, size, &|_| {})
-                .unwrap(),
+            None => simulate(
+                &model,
+                BinWindow::Band,
+                BiasConvention::Counts,
+                Formula::Exact,
+                size,
+                &|_| {},
+            )
+            .unwrap(),
         };
         let one = match piston {
             Some(_) => one,
@@ -137,11 +149,18 @@ fn the_shared_piston_correlates_channels_and_sets_the_weighted_mean_sigma() {
     let inputs = inputs(1000.0, false, Some(PistonInputs::paper(300.0)));
     let trials = 4000;
     let a = run(&inputs, 3, trials, 31, 1);
-    assert_eq!(a, run(&inputs, 3, trials, 31, 2), "same seed, other thread count");
+    assert_eq!(
+        a,
+        run(&inputs, 3, trials, 31, 2),
+        "same seed, other thread count"
+    );
     let b = run(&inputs, 3, trials, 32, 0);
     let rho = a.v1_sq_moments.correlation();
     eprintln!("piston correlation of V1²: {rho:?}");
-    eprintln!("piston correlation of V2²: {:?}", a.v2_sq_moments.correlation());
+    eprintln!(
+        "piston correlation of V2²: {:?}",
+        a.v2_sq_moments.correlation()
+    );
     let w = [1.0 / 3.0; 3];
     for (ma, mb, name) in [
         (&a.v1_sq_moments, &b.v1_sq_moments, "V1²"),
@@ -156,6 +175,9 @@ fn the_shared_piston_correlates_channels_and_sets_the_weighted_mean_sigma() {
         );
         assert_within_sigmas!(honest, spread, se);
         // Power: the σ/√C form lies far outside the spread's tolerance.
-        assert!((spread - independent).abs() > 2.0 * MC_SIGMAS * se, "{name}");
+        assert!(
+            (spread - independent).abs() > 2.0 * MC_SIGMAS * se,
+            "{name}"
+        );
     }
 }

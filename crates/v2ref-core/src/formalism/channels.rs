@@ -220,12 +220,19 @@ impl Channels {
             responses.push(v[2]);
         }
         let Some(is_wavelength) = wavelength else {
-            return Err(refuse(format!("no header: expected '{}' or '{}'", CSV_HEADERS[0], CSV_HEADERS[1])));
+            return Err(refuse(format!(
+                "no header: expected '{}' or '{}'",
+                CSV_HEADERS[0], CSV_HEADERS[1]
+            )));
         };
         if is_wavelength {
             // Increasing wavelength is decreasing wavenumber; a channel
             // whose edges do not increase keeps them crossed, and is refused.
-            edges = edges.iter().rev().map(|&(a, b)| (1.0 / b, 1.0 / a)).collect();
+            edges = edges
+                .iter()
+                .rev()
+                .map(|&(a, b)| (1.0 / b, 1.0 / a))
+                .collect();
             responses.reverse();
         }
         Channels::new(spectrum, edges, responses)
@@ -277,7 +284,10 @@ impl Channels {
             .position(|&(lo, hi)| band_bins(n, dx, lo, hi).is_empty());
         let Some(j) = empty else { return Ok(()) };
         let (lo, hi) = self.edges_per_um[j];
-        let (band_lo, band_hi) = (self.edges_per_um[0].0, self.edges_per_um[self.count() - 1].1);
+        let (band_lo, band_hi) = (
+            self.edges_per_um[0].0,
+            self.edges_per_um[self.count() - 1].1,
+        );
         let most = ((band_hi - band_lo) / bin_per_um).floor().max(1.0);
         Err(Error::OutOfRange {
             param: "channels",
@@ -336,7 +346,9 @@ fn check_layout(spectrum: &Spectrum, edges: &[(f64, f64)], responses: &[f64]) ->
     for (j, (&(lo, hi), &r)) in edges.iter().zip(responses).enumerate() {
         let c = j + 1;
         if !(lo.is_finite() && hi.is_finite() && r.is_finite()) {
-            return Err(refuse(format!("channel {c}: edges and response must be finite numbers")));
+            return Err(refuse(format!(
+                "channel {c}: edges and response must be finite numbers"
+            )));
         }
         if lo >= hi {
             return Err(refuse(format!(
@@ -381,7 +393,12 @@ fn cut(spectrum: &Spectrum, j: usize, lo: f64, hi: f64) -> Result<Spectrum> {
     let (band_lo, band_hi) = spectrum.support();
     let (lo, hi) = (lo.max(band_lo), hi.min(band_hi));
     let mut sigma = vec![lo];
-    sigma.extend(spectrum.pieces(&[]).into_iter().filter(|&s| s > lo && s < hi));
+    sigma.extend(
+        spectrum
+            .pieces(&[])
+            .into_iter()
+            .filter(|&s| s > lo && s < hi),
+    );
     sigma.push(hi);
     let weight = sigma.iter().map(|&s| spectrum.raw_weight(s)).collect();
     Spectrum::tabulated(sigma, weight).map_err(|e| {

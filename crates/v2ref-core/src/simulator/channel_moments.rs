@@ -39,8 +39,14 @@ impl GroupSums {
 
     fn add(&mut self, other: &GroupSums) {
         self.count += other.count;
-        self.first.iter_mut().zip(&other.first).for_each(|(a, b)| *a += b);
-        self.second.iter_mut().zip(&other.second).for_each(|(a, b)| *a += b);
+        self.first
+            .iter_mut()
+            .zip(&other.first)
+            .for_each(|(a, b)| *a += b);
+        self.second
+            .iter_mut()
+            .zip(&other.second)
+            .for_each(|(a, b)| *a += b);
     }
 }
 
@@ -159,7 +165,9 @@ impl ChannelMoments {
     pub fn independent_variance(&self, weights: &[f64]) -> f64 {
         let c = self.channels();
         let cov = self.covariance_without(None);
-        (0..c).map(|i| weights[i] * weights[i] * cov[i * c + i]).sum()
+        (0..c)
+            .map(|i| weights[i] * weights[i] * cov[i * c + i])
+            .sum()
     }
 }
 

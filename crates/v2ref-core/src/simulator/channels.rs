@@ -131,7 +131,11 @@ pub fn simulate_channels(
         .map(|(e, r)| e.estimate(&r.piston_free_row()))
         .collect();
     let piston = rows[0].has_piston();
-    let groups = if piston { rows[0].sequences() } else { NOISE_GROUPS };
+    let groups = if piston {
+        rows[0].sequences()
+    } else {
+        NOISE_GROUPS
+    };
     let empty = || UnitPart {
         v1_sq: vec![vec![RunningStats::default(); rows[0].sequences()]; rows.len()],
         v2_sq: vec![vec![RunningStats::default(); rows[0].sequences()]; rows.len()],
@@ -153,7 +157,11 @@ pub fn simulate_channels(
         let first = u * ROWS_PER_UNIT;
         for i in 0..rows[0].unit_rows(u) as usize {
             let sequence = rows[0].sequence_of(first + i as u64);
-            let group = if piston { sequence } else { (u as usize) % NOISE_GROUPS };
+            let group = if piston {
+                sequence
+            } else {
+                (u as usize) % NOISE_GROUPS
+            };
             let e: Vec<_> = estimators
                 .iter()
                 .zip(&blocks)
