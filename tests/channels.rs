@@ -71,6 +71,22 @@ fn bad_channels_are_refused_naming_what_to_fix() {
         message.contains("channel 2") && message.contains("empty"),
         "{message}"
     );
+    // Channels of one spectrum cannot split another configuration's.
+    let h = Channels::equal(&Spectrum::flat(Band::new(1.65, 0.3).unwrap()), 2).unwrap();
+    let e = channel_models(&Inputs::default(), &h).unwrap_err();
+    assert_eq!(e.param(), Some("channels"));
+    assert!(e.to_string().contains("another spectrum"), "{e}");
+    let no_models = v2ref_core::simulator::channels::simulate_channels(
+        &[],
+        v2ref_core::formalism::estimator::BinWindow::Band,
+        v2ref_core::conformance::estimate::BiasConvention::Model,
+        v2ref_core::noise::calibrated::Trials {
+            trials: 10,
+            seed: 1,
+            threads: 1,
+        },
+    );
+    assert_eq!(no_models.unwrap_err().param(), Some("models"));
 }
 
 #[test]

@@ -48,8 +48,10 @@ pub struct ChannelBiases {
     pub integrating: Bias,
 }
 
-/// The observation of each channel of `obs` (see the module docs).
+/// The observation of each channel of `obs` (see the module docs); the
+/// channels must split `obs`'s spectrum ([`Channels::check_parent`]).
 pub fn channel_observations(obs: &Observation, channels: &Channels) -> Result<Vec<Observation>> {
+    channels.check_parent(&obs.spectrum)?;
     channels
         .spectra()
         .iter()
@@ -65,13 +67,14 @@ pub fn channel_observations(obs: &Observation, channels: &Channels) -> Result<Ve
 }
 
 /// Every channel's biases for `obs` through `channels`, scanned by
-/// `sampling` (which must resolve every channel,
-/// [`Channels::check_sampling`]).
+/// `sampling` (the channels must split `obs`'s spectrum and the scan
+/// resolve every channel, [`Channels::check_sampling`]).
 pub fn channel_biases(
     obs: &Observation,
     channels: &Channels,
     sampling: &Sampling,
 ) -> Result<Vec<ChannelBiases>> {
+    channels.check_parent(&obs.spectrum)?;
     channels.check_sampling(sampling)?;
     sampling.check_aliasing(obs)?;
     channel_observations(obs, channels)?

@@ -55,6 +55,7 @@ pub const MAX_CHANNELS: usize = 4096;
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Channels {
+    parent: Spectrum,
     edges_per_um: Vec<(f64, f64)>,
     responses: Vec<f64>,
     spectra: Vec<Spectrum>,
@@ -107,6 +108,7 @@ impl Channels {
             .collect();
         let total: f64 = light.iter().sum();
         Ok(Channels {
+            parent: spectrum.clone(),
             shares: light.iter().map(|l| l / total).collect(),
             edges_per_um,
             responses,
@@ -118,6 +120,7 @@ impl Channels {
     pub fn whole(spectrum: &Spectrum) -> Channels {
         let edges = vec![spectrum.support()];
         Channels {
+            parent: spectrum.clone(),
             edges_per_um: edges,
             responses: vec![1.0],
             spectra: vec![spectrum.clone()],
@@ -236,6 +239,22 @@ impl Channels {
             responses.reverse();
         }
         Channels::new(spectrum, edges, responses)
+    }
+
+    /// The spectrum the channels were cut from.
+    pub fn parent(&self) -> &Spectrum {
+        &self.parent
+    }
+
+    /// Refuses `spectrum` unless the channels were cut from it: a
+    /// configuration's channels must split that configuration's spectrum.
+    pub fn check_parent(&self, spectrum: &Spectrum) -> Result<()> {
+        if &self.parent == spectrum {
+            return Ok(());
+        }
+        Err(refuse(
+            "the channels were cut from another spectrum than the configuration's; build them from its spectrum".into(),
+        ))
     }
 
     /// Number of channels C.

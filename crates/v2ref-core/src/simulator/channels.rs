@@ -22,7 +22,7 @@
 //! thread count.
 
 use crate::bias::channels::channel_observations;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::formalism::channels::Channels;
 use crate::formalism::estimator::BinWindow;
 use crate::montecarlo::{fold_units, replicated_summary, Rng, RunningStats, Summary};
@@ -30,7 +30,7 @@ use crate::noise::calibrated::Trials;
 use crate::noise::scaled_interferogram;
 use crate::piston::sequences::SharedSequences;
 use crate::simulator::channel_moments::{ChannelMoments, NOISE_GROUPS};
-use crate::simulator::estimate::{BiasConvention, RowEstimator};
+use crate::simulator::estimate::{BiasConvention, RowEstimate, RowEstimator};
 use crate::simulator::inputs::{Inputs, SpectrumInput};
 use crate::simulator::rows::{Rows, ROWS_PER_UNIT};
 use crate::simulator::Model;
@@ -42,9 +42,10 @@ use serde::Serialize;
 /// `Model::new(inputs)` itself.
 pub fn channel_models(inputs: &Inputs, channels: &Channels) -> Result<Vec<Model>> {
     inputs.validate()?;
+    channels.check_parent(&inputs.spectrum.spectrum()?)?;
     channels.check_sampling(&inputs.sampling()?)?;
     let shared = SharedSequences::new();
-    if channels.count() == 1 && channels.spectrum(0) == &inputs.spectrum.spectrum()? {
+    if channels.count() == 1 && channels.spectrum(0) == channels.parent() {
         return Ok(vec![Model::new(inputs)?.sharing_piston_sequences(&shared)]);
     }
     let observations = channel_observations(&inputs.observation()?, channels)?;
@@ -100,6 +101,7 @@ pub struct ChannelRun {
 /// One unit's accumulators: per channel, per piston sequence (as
 /// [`simulate`](crate::simulator::simulate) keeps them), and the sums
 /// across channels.
+#[derive(Clone)]
 struct UnitPart {
     v1_sq: Vec<Vec<RunningStats>>,
     v2_sq: Vec<Vec<RunningStats>>,
@@ -116,6 +118,7 @@ pub fn simulate_channels(
     bias: BiasConvention,
     size: Trials,
 ) -> Result<ChannelRun> {
+    check_models(models)?;
     let rows: Vec<Rows> = models
         .iter()
         .map(|m| m.rows(size.trials, size.seed, size.threads))
@@ -136,62 +139,23 @@ pub fn simulate_channels(
     } else {
         NOISE_GROUPS
     };
-    let empty = || UnitPart {
+    let shifts = |pick: fn(&RowEstimate) -> f64| noise_free.iter().map(pick).collect();
+    let empty = UnitPart {
         v1_sq: vec![vec![RunningStats::default(); rows[0].sequences()]; rows.len()],
         v2_sq: vec![vec![RunningStats::default(); rows[0].sequences()]; rows.len()],
-        v1_moments: ChannelMoments::new(noise_free.iter().map(|e| e.v1_sq).collect(), groups),
-        v2_moments: ChannelMoments::new(noise_free.iter().map(|e| e.v2_sq).collect(), groups),
+        v1_moments: ChannelMoments::new(shifts(|e| e.v1_sq), groups),
+        v2_moments: ChannelMoments::new(shifts(|e| e.v2_sq), groups),
     };
-    let mut total = empty();
+    let mut total = empty.clone();
     let work = |u: u64, rng: &mut Rng| {
-        let mut part = empty();
-        let blocks: Vec<Vec<f64>> = rows
-            .iter()
-            .map(|r| {
-                let mut block = Vec::new();
-                r.fill_unit(u, rng, &mut block);
-                block
-            })
-            .collect();
-        let n = rows[0].samples();
-        let first = u * ROWS_PER_UNIT;
-        for i in 0..rows[0].unit_rows(u) as usize {
-            let sequence = rows[0].sequence_of(first + i as u64);
-            let group = if piston {
-                sequence
-            } else {
-                (u as usize) % NOISE_GROUPS
-            };
-            let e: Vec<_> = estimators
-                .iter()
-                .zip(&blocks)
-                .map(|(est, b)| est.estimate(&b[i * n..(i + 1) * n]))
-                .collect();
-            for (c, ec) in e.iter().enumerate() {
-                part.v1_sq[c][sequence].push(ec.v1_sq);
-                part.v2_sq[c][sequence].push(ec.v2_sq);
-            }
-            let v1: Vec<f64> = e.iter().map(|x| x.v1_sq).collect();
-            let v2: Vec<f64> = e.iter().map(|x| x.v2_sq).collect();
-            part.v1_moments.push(group, &v1);
-            part.v2_moments.push(group, &v2);
-        }
+        let mut part = empty.clone();
+        estimate_unit(&rows, &estimators, u, rng, &mut part);
         crate::montecarlo::cancel::check()?;
         Ok(part)
     };
-    let merge = |p: UnitPart| {
-        for c in 0..rows.len() {
-            for (t, q) in total.v1_sq[c].iter_mut().zip(&p.v1_sq[c]) {
-                t.merge(q);
-            }
-            for (t, q) in total.v2_sq[c].iter_mut().zip(&p.v2_sq[c]) {
-                t.merge(q);
-            }
-        }
-        total.v1_moments.merge(&p.v1_moments);
-        total.v2_moments.merge(&p.v2_moments);
-    };
-    fold_units(size.seed, 0..rows[0].units(), size.threads, work, merge)?;
+    fold_units(size.seed, 0..rows[0].units(), size.threads, work, |p| {
+        total.merge(&p)
+    })?;
     let summary = |g: &Vec<RunningStats>| match g.len() {
         1 => g[0].summary(),
         _ => replicated_summary(g),
@@ -204,4 +168,87 @@ pub fn simulate_channels(
         v1_sq_moments: total.v1_moments,
         v2_sq_moments: total.v2_moments,
     })
+}
+
+/// Unit `u` of every channel: the channels draw their rows in channel
+/// order from the unit's generator `rng`, then each row is estimated in
+/// every channel and accumulated into `part`.
+fn estimate_unit(
+    rows: &[Rows],
+    estimators: &[RowEstimator],
+    u: u64,
+    rng: &mut Rng,
+    part: &mut UnitPart,
+) {
+    let blocks: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| {
+            let mut block = Vec::new();
+            r.fill_unit(u, rng, &mut block);
+            block
+        })
+        .collect();
+    let n = rows[0].samples();
+    let first = u * ROWS_PER_UNIT;
+    for i in 0..rows[0].unit_rows(u) as usize {
+        let sequence = rows[0].sequence_of(first + i as u64);
+        // Without piston the rows are independent: grouped by unit for the jackknife.
+        let group = match rows[0].has_piston() {
+            true => sequence,
+            false => (u as usize) % NOISE_GROUPS,
+        };
+        let e: Vec<RowEstimate> = estimators
+            .iter()
+            .zip(&blocks)
+            .map(|(est, b)| est.estimate(&b[i * n..(i + 1) * n]))
+            .collect();
+        part.push(sequence, group, &e);
+    }
+}
+
+impl UnitPart {
+    /// One row's estimates, one per channel.
+    fn push(&mut self, sequence: usize, group: usize, e: &[RowEstimate]) {
+        for (c, ec) in e.iter().enumerate() {
+            self.v1_sq[c][sequence].push(ec.v1_sq);
+            self.v2_sq[c][sequence].push(ec.v2_sq);
+        }
+        let v1: Vec<f64> = e.iter().map(|x| x.v1_sq).collect();
+        let v2: Vec<f64> = e.iter().map(|x| x.v2_sq).collect();
+        self.v1_moments.push(group, &v1);
+        self.v2_moments.push(group, &v2);
+    }
+
+    /// Adds a later unit's accumulators (in unit order: the same bits
+    /// whatever the thread count).
+    fn merge(&mut self, p: &UnitPart) {
+        let pairs = self.v1_sq.iter_mut().zip(&p.v1_sq);
+        for (t, q) in pairs.chain(self.v2_sq.iter_mut().zip(&p.v2_sq)) {
+            t.iter_mut().zip(q).for_each(|(a, b)| a.merge(b));
+        }
+        self.v1_moments.merge(&p.v1_moments);
+        self.v2_moments.merge(&p.v2_moments);
+    }
+}
+
+/// Refuses models that are not the channels of one configuration: none,
+/// or differing in their scan or piston (their rows would not line up).
+fn check_models(models: &[Model]) -> Result<()> {
+    let Some(first) = models.first() else {
+        return Err(Error::Invalid {
+            param: "models",
+            reason: "no channel: give the models of channel_models".into(),
+        });
+    };
+    let same = |m: &Model| m.sampling == first.sampling && m.inputs.piston == first.inputs.piston;
+    match models.iter().position(|m| !same(m)) {
+        None => Ok(()),
+        Some(j) => Err(Error::Invalid {
+            param: "models",
+            reason: format!(
+                "channel {} has another scan or piston than channel 1: give the models of channel_models",
+                j + 1
+            ),
+        }),
+    }
 }

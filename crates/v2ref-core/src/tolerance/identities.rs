@@ -215,9 +215,9 @@ pub const STREAMING_LARGE_MEAN_REL: f64 = 1e-5;
 /// A flat channel's bandwidth bias against its second-order law
 /// (`g'' Δσ²/24`, `V V'' Δσ²/12`, `bias::channels`): the neglected term is
 /// of relative order (Δσ/ℓ)², ℓ the wavenumber scale over which V bends; for
-/// a 43 mas disk at 40 cycles/arcsec and Δσ ≤ 0.064 µm⁻¹ it stays below 2 %
-/// (3 %), while a law off by a factor 2 (a Δσ²/12 for a Δσ²/24) is off by
-/// 100 %.
+/// a 43 mas disk at 40 cycles/arcsec and Δσ ≤ 0.064 µm⁻¹ (a sixth of the
+/// K band or less) 3 % holds, while a law off by a factor 2 (a Δσ²/12 for a
+/// Δσ²/24) is off by 100 %.
 pub const CHANNEL_SECOND_ORDER_REL: f64 = 0.03;
 
 /// The channels' fringes summed against the band's, in units of the band's
