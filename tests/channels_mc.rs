@@ -7,9 +7,11 @@ use v2ref_core::assert_within_sigmas;
 use v2ref_core::conformance::estimate::BiasConvention;
 use v2ref_core::formalism::channels::Channels;
 use v2ref_core::formalism::estimator::BinWindow;
-use v2ref_core::noise::calibrated::{expectation, Trials};
+use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::Formula;
-use v2ref_core::simulator::channels::{channel_models, simulate_channels, ChannelRun};
+use v2ref_core::simulator::channels::{
+    channel_expectations, channel_models, simulate_channels, ChannelRun,
+};
 use v2ref_core::simulator::{simulate, Inputs, Model, PistonInputs};
 use v2ref_core::tolerance::MC_SIGMAS;
 
@@ -48,9 +50,8 @@ fn each_channel_matches_its_closed_form_and_noise_leaves_channels_independent() 
     let trials = 400_000;
     let r = run(&inputs, 3, trials, 21, 0);
     let mut variances = Vec::new();
-    for (c, model) in models.iter().enumerate() {
-        let setup = model.calibrated_setup(BinWindow::Band);
-        let e = expectation(&setup, &model.noise, Formula::Exact).unwrap();
+    let closed = channel_expectations(&models, BinWindow::Band, Formula::Exact).unwrap();
+    for (c, e) in closed.iter().enumerate() {
         let (var1, var2) = (e.var_v1_sq.unwrap(), e.var_v2_sq.unwrap());
         eprintln!(
             "channel {c}: V1² {} ± {} (closed {}), var {} ± {} (closed {var1}); V2² var {} ± {} (closed {var2})",

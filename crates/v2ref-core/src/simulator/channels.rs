@@ -26,8 +26,9 @@ use crate::error::{Error, Result};
 use crate::formalism::channels::Channels;
 use crate::formalism::estimator::BinWindow;
 use crate::montecarlo::{fold_units, replicated_summary, Rng, RunningStats, Summary};
-use crate::noise::calibrated::Trials;
+use crate::noise::calibrated::{expectation, CalibratedExpectation, Trials};
 use crate::noise::scaled_interferogram;
+use crate::noise::Formula;
 use crate::piston::sequences::SharedSequences;
 use crate::simulator::channel_moments::{ChannelMoments, NOISE_GROUPS};
 use crate::simulator::estimate::{BiasConvention, RowEstimate, RowEstimator};
@@ -77,6 +78,21 @@ pub fn channel_models(inputs: &Inputs, channels: &Channels) -> Result<Vec<Model>
             }
             Ok(model.sharing_piston_sequences(&shared))
         })
+        .collect()
+}
+
+/// Each channel's closed forms — mean and variance of its calibrated V1²
+/// and V2² under its own photons and noise, without piston (their ratio is
+/// the channel's SNR) — over `window`, with `formula`'s bias subtracted:
+/// [`expectation`] on each model of [`channel_models`].
+pub fn channel_expectations(
+    models: &[Model],
+    window: BinWindow,
+    formula: Formula,
+) -> Result<Vec<CalibratedExpectation>> {
+    models
+        .iter()
+        .map(|m| expectation(&m.calibrated_setup(window), &m.noise, formula))
         .collect()
 }
 
