@@ -72,13 +72,13 @@ impl ChannelMoments {
     /// Adds one row's values `x` (one per channel) to group `g`.
     pub fn push(&mut self, g: usize, x: &[f64]) {
         let c = self.shift.len();
+        let d: Vec<f64> = x.iter().zip(&self.shift).map(|(x, a)| x - a).collect();
         let sums = &mut self.groups[g];
         sums.count += 1;
-        for i in 0..c {
-            let di = x[i] - self.shift[i];
+        for (i, di) in d.iter().enumerate() {
             sums.first[i] += di;
-            for j in 0..c {
-                sums.second[i * c + j] += di * (x[j] - self.shift[j]);
+            for (j, dj) in d.iter().enumerate() {
+                sums.second[i * c + j] += di * dj;
             }
         }
     }
