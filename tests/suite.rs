@@ -18,6 +18,8 @@ mod bias_line;
 mod bias_normalization;
 mod bias_snapshots;
 mod cancel;
+mod channels;
+mod channels_mc;
 mod claims;
 mod claims_notes;
 mod cli;

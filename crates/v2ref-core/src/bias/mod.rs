@@ -5,6 +5,7 @@
 //! answer of `v2ref bias` and Python's `v2ref.bias`.
 
 pub mod bandwidth;
+pub mod channels;
 pub mod dispersion;
 pub mod finite_scan;
 pub mod integration;

@@ -3,6 +3,7 @@
 //! the two estimators computed from it; with the introduction's dynamic
 //! range and the slow oracles beside the fast paths.
 
+pub mod channels;
 pub mod dynamic_range;
 pub mod estimator;
 pub mod interferogram;

@@ -328,6 +328,13 @@ impl Spectrum {
         }
     }
 
+    /// Whether S F is linear between its kinks (flat or tabulated): then its
+    /// restriction to a sub-interval is exactly a table (the channels of
+    /// `formalism::channels`).
+    pub fn is_piecewise_linear(&self) -> bool {
+        matches!(self.shape, Shape::Flat { .. } | Shape::Table { .. })
+    }
+
     /// Whether this is a Dirac line.
     pub fn is_monochromatic(&self) -> bool {
         matches!(self.shape, Shape::Line { .. })

@@ -13,6 +13,8 @@
 //! reduces them to the running statistics of the normalized estimators,
 //! beside their closed forms.
 
+pub mod channel_moments;
+pub mod channels;
 pub mod estimate;
 pub(crate) mod inputs;
 pub(crate) mod layout;

@@ -211,3 +211,18 @@ pub const VISIBILITY_SCALING_ABS: f64 = 1e-6;
 /// while an n instead of an n − 1 in the variance moves it by 1/n = 1e-3 and
 /// a wrong merge coefficient by O(1).
 pub const STREAMING_LARGE_MEAN_REL: f64 = 1e-5;
+
+/// A flat channel's bandwidth bias against its second-order law
+/// (`g'' Δσ²/24`, `V V'' Δσ²/12`, `bias::channels`): the neglected term is
+/// of relative order (Δσ/ℓ)², ℓ the wavenumber scale over which V bends; for
+/// a 43 mas disk at 40 cycles/arcsec and Δσ ≤ 0.064 µm⁻¹ (a sixth of the
+/// K band or less) 3 % holds, while a law off by a factor 2 (a Δσ²/12 for a
+/// Δσ²/24) is off by 100 %.
+pub const CHANNEL_SECOND_ORDER_REL: f64 = 0.03;
+
+/// The channels' fringes summed against the band's, in units of the band's
+/// photons per sample: each is integrated on its own Gauss–Legendre nodes
+/// (`SpectralNodes`, converged far below 1e-12 of the continuum), so they
+/// agree to rounding; 1e-9 leaves room for the sum of a few channels while
+/// a channel's share off by one part in 10⁶ moves the sum 10³ times more.
+pub const CHANNEL_FRINGE_SUM_REL: f64 = 1e-9;
