@@ -69,7 +69,10 @@ fn throughput(c: &mut Criterion) {
         ("positive", BinWindow::Positive),
         ("band", BinWindow::Band),
     ] {
-        let est = WindowedEstimators::new(128, &window.bins(128, 0.5, &Spectrum::flat(Band::k())).unwrap());
+        let est = WindowedEstimators::new(
+            128,
+            &window.bins(128, 0.5, &Spectrum::flat(Band::k())).unwrap(),
+        );
         let mut scratch = Vec::new();
         e.bench_function(wname, |b| {
             b.iter(|| black_box(est.raw(black_box(&ifg.modulated), &mut scratch)))

@@ -571,7 +571,11 @@ fn noise_bias_matches_its_definition() {
             v * k.norm_sqr()
         })
         .sum();
-    assert_rel_eq!(noise_bias(&var, &window).unwrap().v2_sq, direct, DIRECT_SUM_REL);
+    assert_rel_eq!(
+        noise_bias(&var, &window).unwrap().v2_sq,
+        direct,
+        DIRECT_SUM_REL
+    );
 }
 
 #[test]
@@ -816,12 +820,18 @@ fn bin_windows_hold_the_bins_of_their_definition() {
     // Only positive bins: 32/32 (Nyquist) and above are never kept.
     assert_eq!(band_bins(64, 0.5, 0.98, 2.0).unwrap(), Vec::<usize>::new());
     let k_band = Spectrum::flat(Band::k());
-    assert_eq!(BinWindow::Band.bins(64, 0.5, &k_band).unwrap(), vec![14, 15, 16]);
+    assert_eq!(
+        BinWindow::Band.bins(64, 0.5, &k_band).unwrap(),
+        vec![14, 15, 16]
+    );
     assert_eq!(
         BinWindow::Positive.bins(64, 0.5, &k_band).unwrap(),
         (1..32).collect::<Vec<_>>()
     );
-    assert_eq!(BinWindow::All.bins(5, 0.5, &k_band).unwrap(), vec![0, 1, 2, 3, 4]);
+    assert_eq!(
+        BinWindow::All.bins(5, 0.5, &k_band).unwrap(),
+        vec![0, 1, 2, 3, 4]
+    );
 }
 
 /// The band window's tie rule (`band_bins`): a bin exactly on an edge is
@@ -847,16 +857,19 @@ fn band_windows_keep_bins_exactly_on_an_edge() {
                 let dx_um = step as f64 / 20.0;
                 for n in 2..=96usize {
                     let scan = n as u64 * 2 * step;
-                    let exact: Vec<usize> = positive_bins(n).unwrap()
+                    let exact: Vec<usize> = positive_bins(n)
+                        .unwrap()
                         .into_iter()
                         .filter(|&k| k as u64 * lambda_min <= scan && scan <= k as u64 * lambda_max)
                         .collect();
-                    ties += positive_bins(n).unwrap()
+                    ties += positive_bins(n)
+                        .unwrap()
                         .into_iter()
                         .filter(|&k| k as u64 * lambda_min == scan || scan == k as u64 * lambda_max)
                         .count();
                     let float_window = |wavenumber: &dyn Fn(usize) -> f64| {
-                        positive_bins(n).unwrap()
+                        positive_bins(n)
+                            .unwrap()
                             .into_iter()
                             .filter(|&k| (lo..=hi).contains(&wavenumber(k)))
                             .collect::<Vec<_>>()

@@ -367,7 +367,10 @@ fn paired_difference(inputs: &PlanInputs, site: &Site, p: &PlanPoint, rows: u64)
                 .chunks_exact(n)
                 .enumerate()
                 .map(|(k, row)| {
-                    let (m, c) = (by_model.estimate(row).unwrap(), by_counts.estimate(row).unwrap());
+                    let (m, c) = (
+                        by_model.estimate(row).unwrap(),
+                        by_counts.estimate(row).unwrap(),
+                    );
                     (first + k as u64, [m.v1_sq - c.v1_sq, m.v2_sq - c.v2_sq])
                 })
                 .collect::<Vec<_>>())

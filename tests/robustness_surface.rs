@@ -73,12 +73,19 @@ fn piston_model() -> &'static Model {
 
 #[test]
 fn a_row_of_another_length_to_the_row_estimator_is_refused() {
-    let est =
-        RowEstimator::new(model(), BinWindow::Positive, BiasConvention::Model, true).unwrap();
+    let est = RowEstimator::new(model(), BinWindow::Positive, BiasConvention::Model, true).unwrap();
     let row = model().signal.modulated.clone();
     let longer = [&row[..], &[1.0]].concat();
-    names(&refused("estimate(17)", || est.estimate(&longer)), "row", &["17 values", "16 samples"]);
-    names(&refused("estimate(15)", || est.estimate(&row[..15])), "row", &["15 values", "16 samples"]);
+    names(
+        &refused("estimate(17)", || est.estimate(&longer)),
+        "row",
+        &["17 values", "16 samples"],
+    );
+    names(
+        &refused("estimate(15)", || est.estimate(&row[..15])),
+        "row",
+        &["15 values", "16 samples"],
+    );
     // The row of the right length is estimated, as before.
     assert!(est.estimate(&row).unwrap().v1_sq_raw > 0.0);
 }
@@ -92,7 +99,11 @@ fn a_noise_free_row_of_another_length_or_index_is_refused() {
         names(&e, "out", &["15", "16 values"]);
         let mut out = vec![f64::NAN; 16];
         for s in [3, 1_000_000_000, u64::MAX] {
-            names(&refused(what, || rows.noise_free_row(s, &mut out)), "row", &["0 to 2"]);
+            names(
+                &refused(what, || rows.noise_free_row(s, &mut out)),
+                "row",
+                &["0 to 2"],
+            );
         }
         assert!(out.iter().all(|v| v.is_nan()), "{what}: nothing written");
         rows.noise_free_row(2, &mut out).unwrap();
@@ -106,7 +117,11 @@ fn units_and_rows_beyond_the_set_are_refused() {
     let rows = model().rows(3, 7, 1).unwrap();
     assert_eq!((rows.units(), rows.unit_rows(0).unwrap()), (1, 3));
     for u in [1, u64::MAX] {
-        names(&refused("unit_rows", || rows.unit_rows(u)), "unit", &["0 to 0"]);
+        names(
+            &refused("unit_rows", || rows.unit_rows(u)),
+            "unit",
+            &["0 to 0"],
+        );
     }
     let filled = run_units(7, 1, 1, |_, rng| {
         let mut out = Vec::new();
@@ -122,7 +137,11 @@ fn units_and_rows_beyond_the_set_are_refused() {
     // With piston, row 3 of 3 read the last sequence; now refused.
     let piston = piston_model().rows(3, 7, 1).unwrap();
     for s in [3, u64::MAX] {
-        names(&refused("sequence_of", || piston.sequence_of(s)), "row", &["0 to 2"]);
+        names(
+            &refused("sequence_of", || piston.sequence_of(s)),
+            "row",
+            &["0 to 2"],
+        );
     }
     assert!(piston.sequence_of(2).unwrap() < piston.sequences());
 }
@@ -132,23 +151,50 @@ fn bin_lists_past_a_scans_most_samples_are_refused() {
     let k = Spectrum::flat(Band::k());
     let n = MOST_SAMPLES + 1;
     let accepted = ["16777217", "0 to 16777216"];
-    names(&refused("positive_bins", || positive_bins(n)), "samples", &accepted);
+    names(
+        &refused("positive_bins", || positive_bins(n)),
+        "samples",
+        &accepted,
+    );
     names(&refused("all_bins", || all_bins(n)), "samples", &accepted);
-    names(&refused("band_bins", || band_bins(n, 0.5, 0.4, 0.5)), "samples", &accepted);
+    names(
+        &refused("band_bins", || band_bins(n, 0.5, 0.4, 0.5)),
+        "samples",
+        &accepted,
+    );
     for w in [BinWindow::Positive, BinWindow::Band, BinWindow::All] {
-        names(&refused("bins", || w.bins(n, 0.5, &k)), "samples", &accepted);
+        names(
+            &refused("bins", || w.bins(n, 0.5, &k)),
+            "samples",
+            &accepted,
+        );
     }
-    names(&refused("all_bins", || all_bins(usize::MAX)), "samples", &["0 to 16777216"]);
-    assert_eq!(positive_bins(MOST_SAMPLES).unwrap().len(), MOST_SAMPLES / 2 - 1);
+    names(
+        &refused("all_bins", || all_bins(usize::MAX)),
+        "samples",
+        &["0 to 16777216"],
+    );
+    assert_eq!(
+        positive_bins(MOST_SAMPLES).unwrap().len(),
+        MOST_SAMPLES / 2 - 1
+    );
 }
 
 #[test]
 fn a_bin_past_the_spectrum_is_refused() {
     let spectrum = dft(&[1.0, 2.0, 0.5, -1.0, 3.0, 0.0, 1.0, -2.0]);
     for k in [8, 1 << 62, usize::MAX] {
-        names(&refused("raw_estimates", || raw_estimates(&spectrum, &[1, k])), "bins", &["0 to 7"]);
+        names(
+            &refused("raw_estimates", || raw_estimates(&spectrum, &[1, k])),
+            "bins",
+            &["0 to 7"],
+        );
     }
-    names(&refused("raw_estimates", || raw_estimates(&[], &[0])), "bins", &["no bin"]);
+    names(
+        &refused("raw_estimates", || raw_estimates(&[], &[0])),
+        "bins",
+        &["no bin"],
+    );
     assert!(raw_estimates(&spectrum, &[1, 7]).unwrap().v1_sq > 0.0);
 }
 
@@ -157,13 +203,25 @@ fn a_noise_bias_of_bins_past_the_samples_or_of_bad_variances_is_refused() {
     let variance = [1.0; 8];
     // Before: bin 2^62 (i k wrapped) and bin 9 (read as bin 1) gave a bias.
     for k in [8, 9, 1 << 62] {
-        names(&refused("noise_bias", || noise_bias(&variance, &[k])), "bins", &["0 to 7"]);
+        names(
+            &refused("noise_bias", || noise_bias(&variance, &[k])),
+            "bins",
+            &["0 to 7"],
+        );
     }
     // Before: a negative variance gave a negative bias, 1e308 an infinite one.
     let e = refused("noise_bias", || noise_bias(&[-1.0; 8], &[1]));
     names(&e, "variance", &["finite and >= 0"]);
-    names(&refused("noise_bias", || noise_bias(&[f64::NAN; 8], &[1])), "variance", &[">= 0"]);
-    names(&refused("noise_bias", || noise_bias(&[1e308; 8], &[1, 2])), "variance", &["overflows"]);
+    names(
+        &refused("noise_bias", || noise_bias(&[f64::NAN; 8], &[1])),
+        "variance",
+        &[">= 0"],
+    );
+    names(
+        &refused("noise_bias", || noise_bias(&[1e308; 8], &[1, 2])),
+        "variance",
+        &["overflows"],
+    );
     let bias = noise_bias(&variance, &[1, 2]).unwrap();
     assert_eq!(bias.v1_sq, 16.0);
 }
@@ -189,7 +247,11 @@ fn in_limited_child(case: &str) {
         .output()
         .unwrap();
     let said = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{case} under ulimit -v {CHILD_LIMIT_KIB}: {:?}\n{said}", out.status);
+    assert!(
+        out.status.success(),
+        "{case} under ulimit -v {CHILD_LIMIT_KIB}: {:?}\n{said}",
+        out.status
+    );
     assert!(said.contains("1 passed"), "{said}");
 }
 
@@ -207,8 +269,14 @@ fn child_set_of_4_gib() {
     // 2^22 rows of 128 samples: 2^29 values, 4 GiB. Before: the process
     // aborted ("memory allocation of 2147483648 bytes failed") after 1.5
     // CPU minutes of rows.
-    let big = Inputs { samples: 128, ..inputs() };
-    refused_memory(&refused("Set::synthesize", || Set::synthesize(&big, 1 << 22, 1)), "rows");
+    let big = Inputs {
+        samples: 128,
+        ..inputs()
+    };
+    refused_memory(
+        &refused("Set::synthesize", || Set::synthesize(&big, 1 << 22, 1)),
+        "rows",
+    );
 }
 
 #[test]
@@ -218,10 +286,17 @@ fn child_estimates_of_1_gib_of_rows() {
         return;
     }
     // 2^25 rows of 4 samples (1 GiB): their estimates take 1.5 GiB more.
-    let model = Model::new(&Inputs { samples: 4, ..inputs() }).unwrap();
+    let model = Model::new(&Inputs {
+        samples: 4,
+        ..inputs()
+    })
+    .unwrap();
     let est = RowEstimator::new(&model, BinWindow::All, BiasConvention::Model, true).unwrap();
     let rows = vec![1.0; 4 << 25];
-    refused_memory(&refused("estimate_rows", || est.estimate_rows(&rows, 1)), "interferograms");
+    refused_memory(
+        &refused("estimate_rows", || est.estimate_rows(&rows, 1)),
+        "interferograms",
+    );
 }
 
 #[test]

@@ -190,7 +190,12 @@ impl BinWindow {
 
     /// [`BinWindow::bins`] for `n` already within [`MAX_BINS`] (a
     /// [`Sampling`]'s samples, or a checked scan's).
-    pub(crate) fn bins_within_bound(&self, n: usize, dx_um: f64, spectrum: &Spectrum) -> Vec<usize> {
+    pub(crate) fn bins_within_bound(
+        &self,
+        n: usize,
+        dx_um: f64,
+        spectrum: &Spectrum,
+    ) -> Vec<usize> {
         match self {
             BinWindow::Positive => (1..n.div_ceil(2)).collect(),
             BinWindow::All => (0..n).collect(),

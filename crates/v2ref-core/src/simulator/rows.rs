@@ -552,7 +552,8 @@ impl Rows<'_> {
             let last = (first + batch).min(self.units());
             // Each unit's rows handed over as generated (not copied).
             let blocks = run_unit_range(self.seed, first..last, threads, |u, rng| {
-                let mut rows = Vec::with_capacity(self.rows_of_own_unit(u) as usize * self.samples());
+                let mut rows =
+                    Vec::with_capacity(self.rows_of_own_unit(u) as usize * self.samples());
                 self.fill_own_unit(u, rng, &mut rows);
                 rows
             })?;
@@ -598,7 +599,10 @@ fn check_index(param: &'static str, index: u64, count: u64, what: &str) -> Resul
     Err(Error::OutOfRange {
         param,
         value: index as f64,
-        accepted: format!("0 to {} (the set's {count} {what})", count.saturating_sub(1)),
+        accepted: format!(
+            "0 to {} (the set's {count} {what})",
+            count.saturating_sub(1)
+        ),
     })
 }
 
