@@ -257,3 +257,24 @@ pub fn reserve<T>(
         }
     })
 }
+
+/// Refuses (naming `param`) an `index` not below `count`, the number of
+/// `what` of the set.
+pub(crate) fn check_index(
+    param: &'static str,
+    index: u64,
+    count: u64,
+    what: &str,
+) -> crate::Result<()> {
+    if index < count {
+        return Ok(());
+    }
+    Err(crate::Error::OutOfRange {
+        param,
+        value: index as f64,
+        accepted: format!(
+            "0 to {} (the set's {count} {what})",
+            count.saturating_sub(1)
+        ),
+    })
+}

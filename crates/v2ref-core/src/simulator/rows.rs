@@ -21,6 +21,7 @@
 //! ([`crate::noise::simulation::simulate_noisy`]); with piston and no noise
 //! the rows are those of `v2ref piston` at the same seed.
 
+use crate::bounds::check_index;
 use crate::error::{Error, Result};
 use crate::montecarlo::{fold_units, run_unit_range, try_run_unit_range, Rng};
 use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
@@ -299,20 +300,11 @@ impl Rows<'_> {
         self.rows.div_ceil(ROWS_PER_UNIT)
     }
 
-    /// Rows in unit `u`.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] (parameter `unit`) when `u` is not one of the
-    /// set's [`Rows::units`].
+    /// Rows in unit `u`; refuses ([`Error::OutOfRange`], parameter
+    /// `unit`) a unit not among the set's [`Rows::units`].
     pub fn unit_rows(&self, u: u64) -> Result<u64> {
-        self.check_unit(u)?;
+        check_index("unit", u, self.units(), "units")?;
         Ok(self.rows_of_own_unit(u))
-    }
-
-    /// Refuses (parameter `unit`) a unit beyond the set's.
-    fn check_unit(&self, u: u64) -> Result<()> {
-        check_index("unit", u, self.units(), "units")
     }
 
     /// Refuses (parameter `unit`) a range of units that ends beyond the
@@ -335,12 +327,8 @@ impl Rows<'_> {
         self.piston.as_ref().map_or(1, |p| p.sequence.sequences())
     }
 
-    /// The piston sequence row `s` reads (0 without piston).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] (parameter `row`) when `s` is not one of the
-    /// set's [`Rows::rows`].
+    /// The piston sequence row `s` reads (0 without piston); refuses
+    /// ([`Error::OutOfRange`], parameter `row`) a row not among the set's.
     pub fn sequence_of(&self, s: u64) -> Result<usize> {
         check_index("row", s, self.rows, "rows")?;
         Ok(self.sequence_of_own_row(s))
@@ -457,14 +445,11 @@ impl Rows<'_> {
     }
 
     /// Appends the rows of unit `u` (row-major) to `out`, drawing from
-    /// `rng`, which must be the unit's generator (`unit_rng(seed, u)`).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] (parameter `unit`) when `u` is not one of the
-    /// set's [`Rows::units`]; nothing is appended then.
+    /// `rng`, which must be the unit's generator (`unit_rng(seed, u)`);
+    /// refuses ([`Error::OutOfRange`], parameter `unit`) a unit not among
+    /// the set's [`Rows::units`], appending nothing.
     pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) -> Result<()> {
-        self.check_unit(u)?;
+        check_index("unit", u, self.units(), "units")?;
         self.fill_own_unit(u, rng, out);
         Ok(())
     }
@@ -588,22 +573,6 @@ impl Rows<'_> {
             }
         }
     }
-}
-
-/// Refuses (naming `param`) an `index` not below `count`, the number of
-/// `what` of the set.
-fn check_index(param: &'static str, index: u64, count: u64, what: &str) -> Result<()> {
-    if index < count {
-        return Ok(());
-    }
-    Err(Error::OutOfRange {
-        param,
-        value: index as f64,
-        accepted: format!(
-            "0 to {} (the set's {count} {what})",
-            count.saturating_sub(1)
-        ),
-    })
 }
 
 impl PistonScans {
