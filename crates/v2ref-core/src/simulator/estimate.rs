@@ -6,7 +6,7 @@
 //! - raw: `V1²_raw = Σ_{k∈K} |B_k|²`, `V2²_raw = |Σ_{k∈K} B_k|²`;
 //! - bias: with `v_i` the noise variance of sample i,
 //!   `b1 = |K| Σ_i v_i` and `b2 = Σ_i |u_i|² v_i`, `u_i = Σ_{k∈K} e^{−2πi ik/N}`
-//!   (the exact additive-noise bias of each, [`noise_bias`]);
+//!   (the exact additive-noise bias of each, [`noise_bias`](crate::formalism::estimator::noise_bias));
 //! - normalized: `(raw − bias) / C`, C the calibrator's noise-free raw
 //!   estimate over the same window, so that an unbiased estimator of a
 //!   source of visibility V has mean V².
@@ -425,7 +425,7 @@ impl RowEstimator {
 /// The slow, obviously correct estimates of one modulated row `m`: the
 /// naive DFT, the window's sums, the bias of `variance` (the per-sample
 /// noise variance the convention gives) by its definition
-/// ([`noise_bias`]), divided by `calibration`.
+/// ([`noise_bias`](crate::formalism::estimator::noise_bias)), divided by `calibration`.
 ///
 /// Refuses (naming the parameter) inputs that do not describe one row: an
 /// empty or non-finite `m`, a `variance` not of `m`'s length or not finite
