@@ -22,7 +22,7 @@ const TRIALS: u64 = 1 << 16;
 fn spec(noise: NoiseModel, window: BinWindow) -> NoisySpec {
     let ifg = example_interferogram(&appendix_setup()).expect("the Appendix case");
     NoisySpec {
-        bins: window.bins(128, 0.5, &Spectrum::flat(Band::k())),
+        bins: window.bins(128, 0.5, &Spectrum::flat(Band::k())).unwrap(),
         modulated: ifg.modulated,
         continuum: ifg.continuum,
         noise,
@@ -69,7 +69,10 @@ fn throughput(c: &mut Criterion) {
         ("positive", BinWindow::Positive),
         ("band", BinWindow::Band),
     ] {
-        let est = WindowedEstimators::new(128, &window.bins(128, 0.5, &Spectrum::flat(Band::k())));
+        let est = WindowedEstimators::new(
+            128,
+            &window.bins(128, 0.5, &Spectrum::flat(Band::k())).unwrap(),
+        );
         let mut scratch = Vec::new();
         e.bench_function(wname, |b| {
             b.iter(|| black_box(est.raw(black_box(&ifg.modulated), &mut scratch)))

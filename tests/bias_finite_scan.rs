@@ -226,11 +226,15 @@ fn long_scans_reproduce_the_spectral_estimators() {
 fn the_window_is_the_positive_half() {
     assert_eq!(finite_scan::WINDOW, BinWindow::Positive);
     assert_eq!(
-        finite_scan::WINDOW.bins(4, 0.5, &Spectrum::flat(Band::k())),
+        finite_scan::WINDOW
+            .bins(4, 0.5, &Spectrum::flat(Band::k()))
+            .unwrap(),
         vec![1]
     );
     assert_eq!(
-        finite_scan::WINDOW.bins(7, 0.5, &Spectrum::flat(Band::k())),
+        finite_scan::WINDOW
+            .bins(7, 0.5, &Spectrum::flat(Band::k()))
+            .unwrap(),
         vec![1, 2, 3]
     );
     // sinc is the kernel's long-scan shape: Dirichlet/N → sinc(Nu) for small u.

@@ -112,7 +112,10 @@ fn one_pass_estimate_refuses_what_check_rows_refuses_and_keeps_the_bits() {
     let mut data = rows(&model, &scales);
     let options = (BinWindow::Positive, BiasConvention::Model);
     let est = estimator(&inputs, options, true, None, 1).unwrap();
-    let one_by_one: Vec<_> = data.chunks(n).map(|row| est.estimate(row)).collect();
+    let one_by_one: Vec<_> = data
+        .chunks(n)
+        .map(|row| est.estimate(row).unwrap())
+        .collect();
     for threads in [1, 2, 3] {
         let all = estimate_rows(&est, ARRAY, (&data, 0), threads).unwrap();
         assert_eq!(all, one_by_one, "{threads} threads");

@@ -84,7 +84,7 @@ fn synth_estimate_score_round_trip() {
     let lib = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true).unwrap();
     let data = read_npy_f64(&dir.path().join("set.npy"), 32);
     for (row, cli) in data.chunks_exact(32).zip(&rows) {
-        let e = lib.estimate(row);
+        let e = lib.estimate(row).unwrap();
         assert_eq!([e.v1_sq, e.v2_sq], [cli[4], cli[5]]);
     }
     // Scaling the estimates by 1.2 fails the score (exit 1).

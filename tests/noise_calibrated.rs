@@ -50,7 +50,7 @@ fn the_exact_formula_gives_v_squared_and_the_window_variance_over_calib_squared(
             e.mean_v2_sq
         );
         assert_eq!(e.true_bias, e.subtracted_bias);
-        let calib = raw_estimates(&dft(&s.calibrator.modulated), &s.bins);
+        let calib = raw_estimates(&dft(&s.calibrator.modulated), &s.bins).unwrap();
         assert_eq!(e.calibration, calib);
         let w = window_stats(
             &s.signal.modulated,

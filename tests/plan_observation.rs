@@ -367,14 +367,17 @@ fn paired_difference(inputs: &PlanInputs, site: &Site, p: &PlanPoint, rows: u64)
                 .chunks_exact(n)
                 .enumerate()
                 .map(|(k, row)| {
-                    let (m, c) = (by_model.estimate(row), by_counts.estimate(row));
+                    let (m, c) = (
+                        by_model.estimate(row).unwrap(),
+                        by_counts.estimate(row).unwrap(),
+                    );
                     (first + k as u64, [m.v1_sq - c.v1_sq, m.v2_sq - c.v2_sq])
                 })
                 .collect::<Vec<_>>())
         },
         |done| {
             for (s, d) in done {
-                let g = &mut groups[set.sequence_of(s)];
+                let g = &mut groups[set.sequence_of(s).unwrap()];
                 g[0].push(d[0]);
                 g[1].push(d[1]);
             }

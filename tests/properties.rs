@@ -99,7 +99,7 @@ proptest! {
         let sum: Complex64 = b.iter().sum();
         let scale: f64 = n * m.iter().map(|x| x.abs()).sum::<f64>();
         prop_assert!((sum - Complex64::new(n * m[0], 0.0)).norm() <= tol * scale);
-        let raw = raw_estimates(&b, &all_bins(m.len()));
+        let raw = raw_estimates(&b, &all_bins(m.len()).unwrap()).unwrap();
         prop_assert!((raw.v1_sq - n * energy).abs() <= tol * n * energy + 1e-300);
     }
 }

@@ -357,10 +357,10 @@ fn v1_sq_of_a_band_whose_w_doubles_across_k_is_the_w2_weighted_mean() {
     // The sampled path, built by hand: a 1024 µm scan, the positive bins,
     // normalized by the calibrator's.
     let sampling = Sampling::new(2048, 0.5, false).unwrap();
-    let bins = positive_bins(sampling.samples());
+    let bins = positive_bins(sampling.samples()).unwrap();
     let raw = |o: &Observation| {
         let ifg = Interferogram::synthesize(o, &sampling, 1.0, None).unwrap();
-        raw_estimates(&dft(&ifg.modulated), &bins)
+        raw_estimates(&dft(&ifg.modulated), &bins).unwrap()
     };
     let (src, cal) = (raw(&obs), raw(&obs.calibrator()));
     let (s1, s2) = (src.v1_sq / cal.v1_sq, src.v2_sq / cal.v2_sq);

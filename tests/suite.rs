@@ -107,3 +107,4 @@ fn every_file_of_tests_is_a_module_of_the_suite() {
         }
     }
 }
+mod robustness_surface;

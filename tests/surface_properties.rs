@@ -270,7 +270,7 @@ proptest! {
     ) {
         let small = n <= MAX_BINS;
         let lists = std::panic::catch_unwind(|| {
-            [est::positive_bins(n), est::all_bins(n), est::band_bins(n, dx, lo, hi), window.bins(n, dx, &Spectrum::flat(Band::k()))]
+            [est::positive_bins(n).unwrap(), est::all_bins(n).unwrap(), est::band_bins(n, dx, lo, hi).unwrap(), window.bins(n, dx, &Spectrum::flat(Band::k())).unwrap()]
         });
         match lists {
             Ok(l) => prop_assert!(small && l.iter().all(|b| b.iter().all(|&k| k < n))),
@@ -291,8 +291,8 @@ proptest! {
         let naive = v2ref::formalism::oracle::naive_dft(&m);
         prop_assert_eq!(b.len(), m.len());
         prop_assert!(finite(b.iter().chain(&naive).flat_map(|c| [c.re, c.im])));
-        let raw = std::panic::catch_unwind(|| est::raw_estimates(&b, &bins));
-        let bias = std::panic::catch_unwind(|| est::noise_bias(&variance, &bins));
+        let raw = std::panic::catch_unwind(|| est::raw_estimates(&b, &bins).unwrap());
+        let bias = std::panic::catch_unwind(|| est::noise_bias(&variance, &bins).unwrap());
         match raw {
             Ok(p) => prop_assert!(finite([p.v1_sq, p.v2_sq]) && bins.iter().all(|&k| k < m.len())),
             Err(_) => prop_assert!(bins.iter().any(|&k| k >= m.len())),

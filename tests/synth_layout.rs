@@ -90,7 +90,7 @@ fn row_starts_follow_from_the_layout() {
         assert_eq!(set.sequences, rows.sequences());
         for r in 0..100 {
             let (j, start_s) = set.row_start(r).unwrap();
-            assert_eq!(j, rows.sequence_of(r), "row {r}");
+            assert_eq!(j, rows.sequence_of(r).unwrap(), "row {r}");
             let first: u64 = set.rows_per_sequence[..j].iter().sum();
             let expected = (r - first) as f64 * set.stride_s;
             // tol: a row's start, a product of integers and the stride: a few roundings.
@@ -131,7 +131,11 @@ fn v1_sq_of_rows(model: &Model, layout: RowLayout, rows: u64, seed: u64) -> Vec<
     let n = model.samples();
     let mut out = Vec::with_capacity(rows as usize);
     set.stream(0, 8, |block: &[f64]| {
-        out.extend(block.chunks_exact(n).map(|r| estimator.estimate(r).v1_sq));
+        out.extend(
+            block
+                .chunks_exact(n)
+                .map(|r| estimator.estimate(r).unwrap().v1_sq),
+        );
         Ok(())
     })
     .unwrap();
@@ -191,7 +195,11 @@ fn v1_sq_of(model: &Model, set: &v2ref_core::simulator::Rows<'_>) -> Vec<f64> {
     let n = model.samples();
     let mut out = Vec::new();
     set.stream(0, 8, |block: &[f64]| {
-        out.extend(block.chunks_exact(n).map(|r| estimator.estimate(r).v1_sq));
+        out.extend(
+            block
+                .chunks_exact(n)
+                .map(|r| estimator.estimate(r).unwrap().v1_sq),
+        );
         Ok(())
     })
     .unwrap();
@@ -267,7 +275,8 @@ fn observations_are_keyed_by_their_index_and_take_the_dead_time() {
             .rows_in(RowTiming::observation(k, dead).unwrap(), 10 * k, 9, 1)
             .unwrap();
         let mut out = Vec::new();
-        set.fill_unit(0, &mut v2ref_core::montecarlo::unit_rng(9, 0), &mut out);
+        set.fill_unit(0, &mut v2ref_core::montecarlo::unit_rng(9, 0), &mut out)
+            .unwrap();
         (out, set.layout().unwrap())
     };
     let (two, _) = rows(2, 0.01);

@@ -97,7 +97,7 @@ fn simulate(noise: NoiseModel, label: &str) -> Case {
     let ifg = example_interferogram(&appendix_setup()).expect("the Appendix case");
     let n = ifg.modulated.len();
     let spec = NoisySpec {
-        bins: positive_bins(n),
+        bins: positive_bins(n).unwrap(),
         modulated: ifg.modulated,
         continuum: ifg.continuum,
         noise,
@@ -314,7 +314,7 @@ fn piston_run(scans: usize) -> Case {
         let psd = |nu: f64| sp.psd_um2_per_hz(nu);
         let bins: Vec<Vec<usize>> = BIN_WINDOWS
             .iter()
-            .map(|w| w.bins(n, setup.dx_um, &o.spectrum))
+            .map(|w| w.bins(n, setup.dx_um, &o.spectrum).unwrap())
             .collect();
         let plan = RealFftPlanner::<f64>::new().plan_fft_forward(n);
         let per_sequence = |j: usize| scans / k + usize::from(j < scans % k);

@@ -234,3 +234,47 @@ pub fn check_set_size(rows: u64, samples: usize, blocks: u64) -> crate::Result<(
     }
     Ok(())
 }
+
+/// Reserves room for exactly `count` more values in `values`, refusing
+/// (naming `param`) what the system cannot give — a request past the
+/// address-space limit of the process, or beyond its memory — instead of
+/// letting the allocation abort the process. `what` says what the values
+/// are, for the message (`"values of 2000 rows of 32 samples"`).
+pub fn reserve<T>(
+    values: &mut Vec<T>,
+    count: usize,
+    param: &'static str,
+    what: &dyn Fn() -> String,
+) -> crate::Result<()> {
+    values.try_reserve_exact(count).map_err(|_| {
+        let gib = count as f64 * std::mem::size_of::<T>() as f64 / (1u64 << 30) as f64;
+        crate::Error::Invalid {
+            param,
+            reason: format!(
+                "the {} take {gib:.2} GiB, which this process cannot allocate; make the set smaller",
+                what()
+            ),
+        }
+    })
+}
+
+/// Refuses (naming `param`) an `index` not below `count`, the number of
+/// `what` of the set.
+pub(crate) fn check_index(
+    param: &'static str,
+    index: u64,
+    count: u64,
+    what: &str,
+) -> crate::Result<()> {
+    if index < count {
+        return Ok(());
+    }
+    Err(crate::Error::OutOfRange {
+        param,
+        value: index as f64,
+        accepted: format!(
+            "0 to {} (the set's {count} {what})",
+            count.saturating_sub(1)
+        ),
+    })
+}

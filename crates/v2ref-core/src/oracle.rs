@@ -141,6 +141,9 @@ impl Set {
             layout: RowLayout::default().into(),
         };
         let mut values = Vec::new();
+        let count = (rows * inputs.samples as u64) as usize; // at most SET_MAX_VALUES
+        let what = || format!("values of {rows} rows of {} samples", inputs.samples);
+        crate::bounds::reserve(&mut values, count, "rows", &what)?;
         let mut sink = |block: &[f64]| {
             values.extend_from_slice(block);
             Ok(())

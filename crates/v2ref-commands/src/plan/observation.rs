@@ -158,7 +158,7 @@ impl ContiguousScans {
                         .chunks_exact(n)
                         .map(|row| {
                             steps.step()?;
-                            Ok(scan_values(&est, pair.as_ref(), row))
+                            scan_values(&est, pair.as_ref(), row)
                         })
                         .collect::<Result<Vec<ScanValues>>>()?;
                     steps.finish()?;
@@ -225,16 +225,19 @@ fn scan_values(
     est: &RowEstimator,
     pair: Option<&(RowEstimator, RowEstimator)>,
     row: &[f64],
-) -> ScanValues {
-    let e = est.estimate(row);
-    let model_offset = pair.map_or([0.0; 2], |(model, counts)| {
-        let (m, c) = (model.estimate(row), counts.estimate(row));
-        [m.v1_sq - c.v1_sq, m.v2_sq - c.v2_sq]
-    });
-    ScanValues {
+) -> Result<ScanValues> {
+    let e = est.estimate(row)?;
+    let model_offset = match pair {
+        None => [0.0; 2],
+        Some((model, counts)) => {
+            let (m, c) = (model.estimate(row)?, counts.estimate(row)?);
+            [m.v1_sq - c.v1_sq, m.v2_sq - c.v2_sq]
+        }
+    };
+    Ok(ScanValues {
         v_sq: [e.v1_sq, e.v2_sq],
         model_offset,
-    }
+    })
 }
 
 /// The error of an observation of `scans` consecutive scans at one

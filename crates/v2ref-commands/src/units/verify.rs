@@ -104,7 +104,7 @@ impl VerifyJob {
                     .chunks_exact(n)
                     .map(|row| {
                         steps.step()?;
-                        let e = est.estimate(row);
+                        let e = est.estimate(row)?;
                         Ok([e.v1_sq, e.v2_sq])
                     })
                     .collect::<Result<Vec<_>>>()?;

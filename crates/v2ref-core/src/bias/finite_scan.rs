@@ -35,7 +35,7 @@
 //!    what the replication adds.
 
 use crate::error::{self, Result};
-use crate::formalism::estimator::{dft, raw_estimates, wide_band, BinWindow, Pair};
+use crate::formalism::estimator::{dft, raw_sums, wide_band, BinWindow, Pair};
 use crate::formalism::interferogram::{sinc, Interferogram, Sampling, SpectralNodes};
 use crate::formalism::observation::Frequency;
 use crate::formalism::observation::Observation;
@@ -106,8 +106,8 @@ impl Kernel {
 /// synthesized interferogram of `obs` (path 1).
 pub fn dft_estimates(obs: &Observation, sampling: &Sampling) -> Result<Pair> {
     let ifg = Interferogram::synthesize(obs, sampling, 1.0, None)?;
-    let bins = WINDOW.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum);
-    Ok(raw_estimates(&dft(&ifg.modulated), &bins))
+    let bins = WINDOW.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum)?;
+    Ok(raw_sums(&dft(&ifg.modulated), &bins))
 }
 
 /// `B_k` for every `k` of `bins`, per unit continuum, by the convolution of
@@ -145,10 +145,10 @@ pub fn convolution_estimates(
     sampling: &Sampling,
     kernel: Kernel,
 ) -> Result<Pair> {
-    let bins = WINDOW.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum);
+    let bins = WINDOW.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum)?;
     let b = convolution_bins(obs, sampling, &bins, kernel)?;
     let all: Vec<usize> = (0..b.len()).collect();
-    Ok(raw_estimates(&b, &all))
+    Ok(raw_sums(&b, &all))
 }
 
 /// How the raw estimates are computed.

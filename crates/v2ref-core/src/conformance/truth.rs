@@ -45,7 +45,7 @@ use crate::conformance::sidecar::{
 };
 use crate::error::Result;
 use crate::formalism::estimator::{
-    dft, noise_bias, raw_estimates, wide_band, BinWindow, Pair, BIN_WINDOWS,
+    dft, noise_bias_sums, raw_sums, wide_band, BinWindow, Pair, BIN_WINDOWS,
 };
 use crate::montecarlo::{derive_seed, variance_stderr, RunningStats, Steps};
 use crate::noise::calibrated::{expectation, CalibratedExpectation};
@@ -256,7 +256,7 @@ pub fn reference_units(
             for row in block.chunks_exact(n) {
                 for (sw, ew) in s.iter_mut().zip(&estimators) {
                     for (sc, e) in sw.iter_mut().zip(ew) {
-                        let r = e.estimate(row);
+                        let r = e.estimate_checked_row(row);
                         sc[0].push(r.v1_sq);
                         sc[1].push(r.v2_sq);
                     }
@@ -301,7 +301,7 @@ fn window_truth(
 ) -> Result<WindowTruth> {
     let setup = model.calibrated_setup(window);
     let calibration = setup.calibration()?;
-    let signal = raw_estimates(&dft(&setup.signal.modulated), &setup.bins);
+    let signal = raw_sums(&dft(&setup.signal.modulated), &setup.bins);
     let closed = if piston {
         None
     } else {
@@ -338,7 +338,7 @@ fn window_truth(
             v1_sq: signal.v1_sq / calibration.v1_sq,
             v2_sq: signal.v2_sq / calibration.v2_sq,
         },
-        model_bias: noise_bias(&model.sample_variance(), &setup.bins),
+        model_bias: noise_bias_sums(&model.sample_variance(), &setup.bins),
         conventions,
     })
 }

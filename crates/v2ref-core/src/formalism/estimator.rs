@@ -131,11 +131,12 @@ pub fn wide_band(obs: &Observation) -> WideBand {
 /// use v2ref_core::formalism::estimator::BinWindow;
 /// use v2ref_core::formalism::spectrum::{Band, Spectrum};
 /// let k = Spectrum::flat(Band::k());
-/// assert_eq!(BinWindow::Positive.bins(8, 0.5, &k), vec![1, 2, 3]);
-/// assert_eq!(BinWindow::Positive.bins(7, 0.5, &k), vec![1, 2, 3]);
+/// assert_eq!(BinWindow::Positive.bins(8, 0.5, &k)?, vec![1, 2, 3]);
+/// assert_eq!(BinWindow::Positive.bins(7, 0.5, &k)?, vec![1, 2, 3]);
 /// // 2.0–2.4 µm is 0.417–0.5 µm⁻¹; with δσ = 1/(64 · 0.5 µm) = 1/32 µm⁻¹ the bins are 14, 15, 16.
-/// assert_eq!(BinWindow::Band.bins(64, 0.5, &k), vec![14, 15, 16]);
-/// assert_eq!(BinWindow::All.bins(4, 0.5, &k), vec![0, 1, 2, 3]);
+/// assert_eq!(BinWindow::Band.bins(64, 0.5, &k)?, vec![14, 15, 16]);
+/// assert_eq!(BinWindow::All.bins(4, 0.5, &k)?, vec![0, 1, 2, 3]);
+/// # Ok::<(), v2ref_core::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -177,13 +178,30 @@ pub const BIN_WINDOWS: [BinWindow; 3] = [BinWindow::Positive, BinWindow::Band, B
 impl BinWindow {
     /// The bins of this window for `n` samples at spacing `dx_um` (µm), the
     /// band being the support of `spectrum`.
-    pub fn bins(&self, n: usize, dx_um: f64, spectrum: &Spectrum) -> Vec<usize> {
+    ///
+    /// # Errors
+    ///
+    /// [`Error::OutOfRange`] (parameter `samples`) when `n` exceeds
+    /// [`MAX_BINS`].
+    pub fn bins(&self, n: usize, dx_um: f64, spectrum: &Spectrum) -> Result<Vec<usize>> {
+        check_bins(n)?;
+        Ok(self.bins_within_bound(n, dx_um, spectrum))
+    }
+
+    /// [`BinWindow::bins`] for `n` already within [`MAX_BINS`] (a
+    /// [`Sampling`]'s samples, or a checked scan's).
+    pub(crate) fn bins_within_bound(
+        &self,
+        n: usize,
+        dx_um: f64,
+        spectrum: &Spectrum,
+    ) -> Vec<usize> {
         match self {
-            BinWindow::Positive => positive_bins(n),
-            BinWindow::All => all_bins(n),
+            BinWindow::Positive => (1..n.div_ceil(2)).collect(),
+            BinWindow::All => (0..n).collect(),
             BinWindow::Band => {
                 let (lo, hi) = spectrum.support();
-                band_bins(n, dx_um, lo, hi)
+                band_bins_within_bound(n, dx_um, lo, hi)
             }
         }
     }
@@ -200,30 +218,37 @@ pub const MAX_BINS: usize = crate::formalism::interferogram::MAX_SAMPLES;
 
 /// k = 1 … ⌈N/2⌉ − 1: for even N, 1 … N/2 − 1; for odd N, 1 … (N − 1)/2.
 ///
-/// # Panics
+/// # Errors
 ///
-/// When `n` exceeds [`MAX_BINS`] (no scan has that many samples; the list
-/// would take memory without bound), as indexing past a slice does.
-pub fn positive_bins(n: usize) -> Vec<usize> {
-    check_bins(n);
-    (1..n.div_ceil(2)).collect()
+/// [`Error::OutOfRange`] (parameter `samples`) when `n` exceeds
+/// [`MAX_BINS`]: no scan has that many samples, and the list would take
+/// memory without bound.
+pub fn positive_bins(n: usize) -> Result<Vec<usize>> {
+    check_bins(n)?;
+    Ok((1..n.div_ceil(2)).collect())
 }
 
 /// k = 0 … N − 1.
 ///
-/// # Panics
+/// # Errors
 ///
-/// When `n` exceeds [`MAX_BINS`], as [`positive_bins`].
-pub fn all_bins(n: usize) -> Vec<usize> {
-    check_bins(n);
-    (0..n).collect()
+/// [`Error::OutOfRange`] (parameter `samples`) when `n` exceeds
+/// [`MAX_BINS`], as [`positive_bins`].
+pub fn all_bins(n: usize) -> Result<Vec<usize>> {
+    check_bins(n)?;
+    Ok((0..n).collect())
 }
 
-fn check_bins(n: usize) {
-    assert!(
-        n <= MAX_BINS,
-        "{n} samples: bins are listed for at most {MAX_BINS} samples (a scan's most)"
-    );
+/// Refuses more samples than [`MAX_BINS`] before any list is made.
+fn check_bins(n: usize) -> Result<()> {
+    if n <= MAX_BINS {
+        return Ok(());
+    }
+    Err(Error::OutOfRange {
+        param: "samples",
+        value: n as f64,
+        accepted: format!("0 to {MAX_BINS} (a scan's most samples)"),
+    })
 }
 
 /// The positive bins ([`positive_bins`]) whose wavenumber k/(N δx) lies in
@@ -243,17 +268,33 @@ fn check_bins(n: usize) {
 /// use v2ref_core::formalism::spectrum::Band;
 /// // N δx = 8 × 0.3 µm = 2.4 µm: bin 1 sits exactly on the K band's long edge (2.4 µm).
 /// let k = Band::k();
-/// assert_eq!(band_bins(8, 0.3, k.sigma_min_per_um(), k.sigma_max_per_um()), vec![1]);
+/// assert_eq!(band_bins(8, 0.3, k.sigma_min_per_um(), k.sigma_max_per_um())?, vec![1]);
+/// # Ok::<(), v2ref_core::Error>(())
 /// ```
-pub fn band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64) -> Vec<usize> {
+///
+/// # Errors
+///
+/// [`Error::OutOfRange`] (parameter `samples`) when `n` exceeds
+/// [`MAX_BINS`], as [`positive_bins`].
+pub fn band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64) -> Result<Vec<usize>> {
+    check_bins(n)?;
+    Ok(band_bins_within_bound(n, dx_um, lo_per_um, hi_per_um))
+}
+
+/// [`band_bins`] for `n` already within [`MAX_BINS`].
+pub(crate) fn band_bins_within_bound(
+    n: usize,
+    dx_um: f64,
+    lo_per_um: f64,
+    hi_per_um: f64,
+) -> Vec<usize> {
     let scan_um = n as f64 * dx_um;
     let (lo_bin, hi_bin) = (lo_per_um * scan_um, hi_per_um * scan_um);
     let (lo_kept, hi_kept) = (
         lo_bin - BAND_EDGE_REL * lo_bin.abs(),
         hi_bin + BAND_EDGE_REL * hi_bin.abs(),
     );
-    positive_bins(n)
-        .into_iter()
+    (1..n.div_ceil(2))
         .filter(|&k| (lo_kept..=hi_kept).contains(&(k as f64)))
         .collect()
 }
@@ -309,13 +350,25 @@ pub fn dft(samples: &[f64]) -> Vec<Complex64> {
 /// use v2ref_core::formalism::estimator::{all_bins, positive_bins};
 /// // With all N bins, Parseval gives V1² = N Σ M² and V2² = N² M_0².
 /// let m = [3.0, -1.0, 0.5, 2.0, -0.25];
-/// let raw = raw_estimates(&dft(&m), &all_bins(m.len()));
+/// let raw = raw_estimates(&dft(&m), &all_bins(m.len())?)?;
 /// let n = m.len() as f64;
 /// assert!((raw.v1_sq - n * m.iter().map(|x| x * x).sum::<f64>()).abs() < 1e-12);
 /// assert!((raw.v2_sq - n * n * m[0] * m[0]).abs() < 1e-12);
 /// # Ok::<(), v2ref_core::Error>(())
 /// ```
-pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
+///
+/// # Errors
+///
+/// [`Error::Invalid`] (parameter `bins`) when a bin is not below the
+/// spectrum's length (checked once, before any sum).
+pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Result<Pair> {
+    check_bins_below(bins, spectrum.len(), "values in the spectrum")?;
+    Ok(raw_sums(spectrum, bins))
+}
+
+/// [`raw_estimates`] of bins already known to lie below the spectrum's
+/// length (the library's own windows of its own scans).
+pub(crate) fn raw_sums(spectrum: &[Complex64], bins: &[usize]) -> Pair {
     let (mut power, mut sum) = (0.0, Complex64::new(0.0, 0.0));
     for &k in bins {
         power += spectrum[k].norm_sqr();
@@ -324,6 +377,20 @@ pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
     Pair {
         v1_sq: power,
         v2_sq: sum.norm_sqr(),
+    }
+}
+
+/// Refuses (parameter `bins`) a bin not below `n`, the count of `what`.
+fn check_bins_below(bins: &[usize], n: usize, what: &str) -> Result<()> {
+    match bins.iter().find(|&&k| k >= n) {
+        None => Ok(()),
+        Some(k) => Err(Error::Invalid {
+            param: "bins",
+            reason: match n {
+                0 => format!("bin {k}; there are no {what}, so no bin is accepted"),
+                _ => format!("bin {k}; accepted: 0 to {} ({n} {what})", n - 1),
+            },
+        }),
     }
 }
 
@@ -344,12 +411,43 @@ pub fn raw_estimates(spectrum: &[Complex64], bins: &[usize]) -> Pair {
 /// // White noise of variance 4 on 16 samples, positive half (7 bins):
 /// // V1² gains 7 · 16 · 4; V2² gains Σ_i 4 |Σ_k e^{−2πi ik/N}|².
 /// let var = vec![4.0; 16];
-/// let b = noise_bias(&var, &positive_bins(16));
+/// let b = noise_bias(&var, &positive_bins(16)?)?;
 /// assert!((b.v1_sq - 7.0 * 16.0 * 4.0).abs() < 1e-9);
 /// assert!((b.v2_sq - 4.0 * 7.0 * 16.0).abs() < 1e-9); // Parseval on the kernel
 /// # Ok::<(), v2ref_core::Error>(())
 /// ```
-pub fn noise_bias(variance: &[f64], bins: &[usize]) -> Pair {
+///
+/// # Errors
+///
+/// [`Error::Invalid`] naming `bins` when a bin is not below the number of
+/// samples (`variance.len()`), and `variance` when a variance is not finite
+/// and >= 0 or the bias overflows a float64 (checked once, before the
+/// sums over samples and bins).
+pub fn noise_bias(variance: &[f64], bins: &[usize]) -> Result<Pair> {
+    check_bins_below(bins, variance.len(), "samples")?;
+    if let Some(v) = variance.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+        return Err(Error::Invalid {
+            param: "variance",
+            reason: format!("{v}; accepted: every variance finite and >= 0"),
+        });
+    }
+    let bias = noise_bias_sums(variance, bins);
+    if !(bias.v1_sq.is_finite() && bias.v2_sq.is_finite()) {
+        return Err(Error::Invalid {
+            param: "variance",
+            reason: format!(
+                "the bias ({}, {}) overflows a float64; accepted: variances whose sum times the bins stays below {:e}",
+                bias.v1_sq,
+                bias.v2_sq,
+                f64::MAX
+            ),
+        });
+    }
+    Ok(bias)
+}
+
+/// [`noise_bias`] of bins already known to lie below `variance.len()`.
+pub(crate) fn noise_bias_sums(variance: &[f64], bins: &[usize]) -> Pair {
     let n = variance.len();
     let total: f64 = variance.iter().sum();
     let v2 = variance
@@ -390,10 +488,10 @@ pub fn sampled_wide_band(
     sampling: &Sampling,
     window: BinWindow,
 ) -> Result<Pair> {
-    let bins = window.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum);
+    let bins = window.bins_within_bound(sampling.samples(), sampling.dx_um(), &obs.spectrum);
     let raw = |o: &Observation| -> Result<Pair> {
         let ifg = Interferogram::synthesize(o, sampling, 1.0, None)?;
-        Ok(raw_estimates(&dft(&ifg.modulated), &bins))
+        Ok(raw_sums(&dft(&ifg.modulated), &bins))
     };
     let (src, cal) = (raw(obs)?, raw(&obs.calibrator())?);
     if !(cal.v1_sq > 0.0 && cal.v2_sq > 0.0) {

@@ -369,5 +369,5 @@ pub fn window_bias(
         .zip(continuum)
         .map(|(&m, &c)| sample_bias(formula, noise, m, m + c))
         .collect();
-    crate::formalism::estimator::noise_bias(&per_sample, bins)
+    crate::formalism::estimator::noise_bias_sums(&per_sample, bins)
 }

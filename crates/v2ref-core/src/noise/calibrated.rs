@@ -17,7 +17,7 @@
 //! moments exactly (an affine map of each trial).
 
 use crate::error::{Error, Result};
-use crate::formalism::estimator::{dft, raw_estimates, BinWindow, Pair};
+use crate::formalism::estimator::{dft, raw_sums, BinWindow, Pair};
 use crate::formalism::interferogram::{Interferogram, Sampling};
 use crate::formalism::observation::Observation;
 use crate::montecarlo::{RunningStats, Summary};
@@ -56,7 +56,7 @@ impl CalibratedSetup {
         crate::bounds::non_negative_at_most("photons", photons, crate::bounds::PHOTONS_MAX)?;
         let signal = scaled_interferogram(obs, sampling, photons, visibility)?;
         let calibrator = scaled_interferogram(&obs.calibrator(), sampling, photons, 1.0)?;
-        let bins = window.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum);
+        let bins = window.bins(sampling.samples(), sampling.dx_um(), &obs.spectrum)?;
         Ok(CalibratedSetup {
             signal,
             calibrator,
@@ -67,7 +67,7 @@ impl CalibratedSetup {
     /// The calibrator's noise-free estimates over the window; refused when
     /// either is not > 0 (nothing to normalize by).
     pub fn calibration(&self) -> Result<Pair> {
-        let calib = raw_estimates(&dft(&self.calibrator.modulated), &self.bins);
+        let calib = raw_sums(&dft(&self.calibrator.modulated), &self.bins);
         if calib.v1_sq > 0.0 && calib.v2_sq > 0.0 {
             Ok(calib)
         } else {
@@ -113,7 +113,7 @@ pub fn expectation(
     let bias_of = |f| window_bias(f, noise, &ifg.modulated, &ifg.continuum, &setup.bins);
     let subtracted_bias = bias_of(formula);
     let true_bias = bias_of(Formula::Exact);
-    let signal = raw_estimates(&dft(&ifg.modulated), &setup.bins);
+    let signal = raw_sums(&dft(&ifg.modulated), &setup.bins);
     let exact = if ifg.modulated.len() <= MAX_WINDOW_SAMPLES {
         Some(window_stats(
             &ifg.modulated,

@@ -30,7 +30,7 @@
 //! four-index sum over samples).
 
 use crate::error::{Error, Result};
-use crate::formalism::estimator::{band_bins, dft_phase};
+use crate::formalism::estimator::{band_bins_within_bound, dft_phase};
 use crate::noise::{Cumulants, NoiseModel};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -170,7 +170,7 @@ pub fn window_stats(
 /// images N − k: the window that keeps the whole fringe peak of a real
 /// interferogram.
 pub fn two_sided_band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64) -> Vec<usize> {
-    let pos = band_bins(n, dx_um, lo_per_um, hi_per_um);
+    let pos = band_bins_within_bound(n, dx_um, lo_per_um, hi_per_um);
     let mut all: Vec<usize> = pos.iter().flat_map(|&k| [k, n - k]).collect();
     all.sort_unstable();
     all.dedup();

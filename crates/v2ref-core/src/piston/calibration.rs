@@ -5,7 +5,7 @@
 //! calibrator's raw estimates that normalize them.
 
 use crate::error::Result;
-use crate::formalism::estimator::{raw_estimates, Pair, BIN_WINDOWS};
+use crate::formalism::estimator::{raw_sums, Pair, BIN_WINDOWS};
 use crate::formalism::observation::Observation;
 use crate::formalism::source::Source;
 use crate::piston::fringe_table::FringeTable;
@@ -39,7 +39,7 @@ impl<'a> ScanContext<'a> {
             bins: BIN_WINDOWS
                 .iter()
                 .map(|w| w.bins(setup.samples, setup.dx_um, &obs.spectrum))
-                .collect(),
+                .collect::<Result<_>>()?,
             fft: FftPlanner::new().plan_fft_forward(setup.samples),
         })
     }
@@ -71,7 +71,7 @@ impl Workspace {
         self.scratch.resize(ctx.fft.get_inplace_scratch_len(), zero);
         ctx.fft
             .process_with_scratch(&mut self.buf, &mut self.scratch);
-        std::array::from_fn(|w| raw_estimates(&self.buf, &ctx.bins[w]))
+        std::array::from_fn(|w| raw_sums(&self.buf, &ctx.bins[w]))
     }
 }
 

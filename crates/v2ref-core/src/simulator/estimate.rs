@@ -6,7 +6,7 @@
 //! - raw: `V1²_raw = Σ_{k∈K} |B_k|²`, `V2²_raw = |Σ_{k∈K} B_k|²`;
 //! - bias: with `v_i` the noise variance of sample i,
 //!   `b1 = |K| Σ_i v_i` and `b2 = Σ_i |u_i|² v_i`, `u_i = Σ_{k∈K} e^{−2πi ik/N}`
-//!   (the exact additive-noise bias of each, [`noise_bias`]);
+//!   (the exact additive-noise bias of each, [`noise_bias`](crate::formalism::estimator::noise_bias));
 //! - normalized: `(raw − bias) / C`, C the calibrator's noise-free raw
 //!   estimate over the same window, so that an unbiased estimator of a
 //!   source of visibility V has mean V².
@@ -22,7 +22,7 @@
 //! hold it to.
 
 use crate::error::{Error, Result};
-use crate::formalism::estimator::{dft_phase, noise_bias, raw_estimates, BinWindow, Pair};
+use crate::formalism::estimator::{dft_phase, noise_bias_sums, raw_sums, BinWindow, Pair};
 use crate::formalism::oracle::naive_dft;
 use crate::noise::simulation::WindowedEstimators;
 use crate::simulator::Model;
@@ -170,7 +170,7 @@ impl RowEstimator {
     /// let model = Model::new(&Inputs::default())?;
     /// let est = RowEstimator::new(&model, BinWindow::Positive, BiasConvention::Model, true)?;
     /// // The noise-free row of the source reads its noise-free V² once the bias is added back.
-    /// let e = est.estimate(&model.signal.modulated);
+    /// let e = est.estimate(&model.signal.modulated)?;
     /// assert!(e.v1_sq_raw > 0.0 && e.v1_sq < 1.0);
     /// # Ok::<(), v2ref_core::Error>(())
     /// ```
@@ -192,7 +192,7 @@ impl RowEstimator {
             continuum: model.signal.continuum.clone(),
             continuum_subtracted,
             bias,
-            model_bias: noise_bias(&model.sample_variance(), &bins),
+            model_bias: noise_bias_sums(&model.sample_variance(), &bins),
             calibration,
         })
     }
@@ -248,20 +248,37 @@ impl RowEstimator {
         }
     }
 
-    /// The estimates of one row (length N).
+    /// The estimates of one row (length N), its values taken as they are
+    /// ([`RowEstimator::try_estimate`] also refuses non-finite values, a
+    /// dark row and estimates that overflow).
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When `row` does not hold N samples, as indexing past a slice does;
-    /// [`RowEstimator::try_estimate`] refuses it instead.
-    pub fn estimate(&self, row: &[f64]) -> RowEstimate {
+    /// [`Error::Invalid`] (parameter `row`) when `row` does not hold N
+    /// samples.
+    pub fn estimate(&self, row: &[f64]) -> Result<RowEstimate> {
+        self.check_row_length(row)?;
+        Ok(self.estimate_checked_row(row))
+    }
+
+    /// Refuses (parameter `row`) a row that does not hold N samples.
+    fn check_row_length(&self, row: &[f64]) -> Result<()> {
         let n = self.samples();
-        assert_eq!(
-            row.len(),
-            n,
-            "a row of {} values, not {n} samples",
-            row.len()
-        );
+        if row.len() == n {
+            return Ok(());
+        }
+        Err(Error::Invalid {
+            param: "row",
+            reason: format!(
+                "{} values; accepted: a row of the model's {n} samples",
+                row.len()
+            ),
+        })
+    }
+
+    /// [`RowEstimator::estimate`] of a row the library made (N samples: a
+    /// row of its own set), without the check, in the hot loops.
+    pub(crate) fn estimate_checked_row(&self, row: &[f64]) -> RowEstimate {
         self.estimate_row(row, &mut Vec::new(), &mut Vec::new())
     }
 
@@ -269,13 +286,7 @@ impl RowEstimator {
     /// not hold N samples, a value that is not a finite number, a dark row
     /// ([`RowFault`]) and values so large that the estimates overflow.
     pub fn try_estimate(&self, row: &[f64]) -> Result<RowEstimate> {
-        let n = self.samples();
-        if row.len() != n {
-            return Err(Error::Invalid {
-                param: "row",
-                reason: format!("{} values; a row holds the set's {n} samples", row.len()),
-            });
-        }
+        self.check_row_length(row)?;
         if let Some(fault) = RowFault::of_row(0, row) {
             return Err(Error::Invalid {
                 param: "row",
@@ -324,7 +335,11 @@ impl RowEstimator {
                 reason: format!("{} values is not a whole number of rows of {n}", rows.len()),
             });
         }
-        self.try_estimate_rows(rows, threads)
+        let mut out = Vec::new();
+        let what = || format!("estimates of {} rows", rows.len() / n);
+        crate::bounds::reserve(&mut out, rows.len() / n, "interferograms", &what)?;
+        out.resize(rows.len() / n, RowEstimate::default());
+        self.estimate_rows_into(rows, threads, out)
             .map_err(|fault| Error::Invalid {
                 param: "interferograms",
                 reason: format!("{}: {}", fault.location(0), fault.reason()),
@@ -343,7 +358,6 @@ impl RowEstimator {
         rows: &[f64],
         threads: usize,
     ) -> std::result::Result<Vec<RowEstimate>, RowFault> {
-        const BLOCK_ROWS: usize = 256;
         let n = self.samples();
         if rows.len() % n != 0 {
             return Err(RowFault::Partial {
@@ -351,7 +365,19 @@ impl RowEstimator {
                 values: rows.len() % n,
             });
         }
-        let mut out = vec![RowEstimate::default(); rows.len() / n];
+        self.estimate_rows_into(rows, threads, vec![RowEstimate::default(); rows.len() / n])
+    }
+
+    /// [`RowEstimator::try_estimate_rows`] of whole rows into `out`, one
+    /// estimate per row, allocated by the caller.
+    fn estimate_rows_into(
+        &self,
+        rows: &[f64],
+        threads: usize,
+        mut out: Vec<RowEstimate>,
+    ) -> std::result::Result<Vec<RowEstimate>, RowFault> {
+        const BLOCK_ROWS: usize = 256;
+        let n = self.samples();
         let job = || {
             out.par_chunks_mut(BLOCK_ROWS)
                 .zip(rows.par_chunks(n * BLOCK_ROWS))
@@ -399,7 +425,7 @@ impl RowEstimator {
 /// The slow, obviously correct estimates of one modulated row `m`: the
 /// naive DFT, the window's sums, the bias of `variance` (the per-sample
 /// noise variance the convention gives) by its definition
-/// ([`noise_bias`]), divided by `calibration`.
+/// ([`noise_bias`](crate::formalism::estimator::noise_bias)), divided by `calibration`.
 ///
 /// Refuses (naming the parameter) inputs that do not describe one row: an
 /// empty or non-finite `m`, a `variance` not of `m`'s length or not finite
@@ -437,10 +463,10 @@ pub fn estimate_row_oracle(
         let reason = format!("{calibration:?}; both divisors must be finite and > 0");
         return invalid("calibration", reason);
     }
-    let raw = raw_estimates(&naive_dft(m), bins);
+    let raw = raw_sums(&naive_dft(m), bins);
     Ok(RowEstimate::new(
         raw,
-        noise_bias(variance, bins),
+        noise_bias_sums(variance, bins),
         calibration,
     ))
 }

@@ -159,7 +159,7 @@ impl Model {
 
     /// The bins of `window`.
     pub fn bins(&self, window: BinWindow) -> Vec<usize> {
-        window.bins(
+        window.bins_within_bound(
             self.sampling.samples(),
             self.sampling.dx_um(),
             &self.observation.spectrum,

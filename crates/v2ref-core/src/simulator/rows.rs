@@ -21,6 +21,7 @@
 //! ([`crate::noise::simulation::simulate_noisy`]); with piston and no noise
 //! the rows are those of `v2ref piston` at the same seed.
 
+use crate::bounds::check_index;
 use crate::error::{Error, Result};
 use crate::montecarlo::{fold_units, run_unit_range, try_run_unit_range, Rng};
 use crate::noise::simulation::{NoisySpec, SampleNoise, TRIALS_PER_UNIT};
@@ -93,7 +94,7 @@ impl Model {
     /// let model = Model::new(&Inputs { samples: 16, ..Inputs::default() })?;
     /// let set = model.rows(3, 7, 1)?;
     /// let mut rows = Vec::new();
-    /// set.fill_unit(0, &mut v2ref_core::montecarlo::unit_rng(7, 0), &mut rows);
+    /// set.fill_unit(0, &mut v2ref_core::montecarlo::unit_rng(7, 0), &mut rows)?;
     /// assert_eq!(rows.len(), 3 * 16);
     /// # Ok::<(), v2ref_core::Error>(())
     /// ```
@@ -299,8 +300,24 @@ impl Rows<'_> {
         self.rows.div_ceil(ROWS_PER_UNIT)
     }
 
-    /// Rows in unit `u`.
-    pub fn unit_rows(&self, u: u64) -> u64 {
+    /// Rows in unit `u`; refuses ([`Error::OutOfRange`], parameter
+    /// `unit`) a unit not among the set's [`Rows::units`].
+    pub fn unit_rows(&self, u: u64) -> Result<u64> {
+        check_index("unit", u, self.units(), "units")?;
+        Ok(self.rows_of_own_unit(u))
+    }
+
+    /// Refuses (parameter `unit`) a range of units that ends beyond the
+    /// set's (an empty range is accepted wherever it starts).
+    fn check_unit_range(&self, range: &std::ops::Range<u64>) -> Result<()> {
+        match range.is_empty() {
+            true => Ok(()),
+            false => check_index("unit", range.end - 1, self.units(), "units"),
+        }
+    }
+
+    /// [`Rows::unit_rows`] of a unit known to be the set's.
+    fn rows_of_own_unit(&self, u: u64) -> u64 {
         (self.rows - u * ROWS_PER_UNIT).min(ROWS_PER_UNIT)
     }
 
@@ -310,8 +327,15 @@ impl Rows<'_> {
         self.piston.as_ref().map_or(1, |p| p.sequence.sequences())
     }
 
-    /// The piston sequence row `s` reads (0 without piston).
-    pub fn sequence_of(&self, s: u64) -> usize {
+    /// The piston sequence row `s` reads (0 without piston); refuses
+    /// ([`Error::OutOfRange`], parameter `row`) a row not among the set's.
+    pub fn sequence_of(&self, s: u64) -> Result<usize> {
+        check_index("row", s, self.rows, "rows")?;
+        Ok(self.sequence_of_own_row(s))
+    }
+
+    /// [`Rows::sequence_of`] of a row known to be the set's.
+    pub(crate) fn sequence_of_own_row(&self, s: u64) -> usize {
         self.piston
             .as_ref()
             .map_or(0, |p| p.sequence.sequence_of(s as usize))
@@ -367,12 +391,30 @@ impl Rows<'_> {
         })
     }
 
-    /// The noise-free modulated samples of row `s` (with its piston).
+    /// The noise-free modulated samples of row `s` (with its piston),
+    /// written to `out`.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// When `out` does not hold N samples, as `copy_from_slice` does.
-    pub fn noise_free_row(&self, s: u64, out: &mut [f64]) {
+    /// [`Error::OutOfRange`] naming `row` when `s` is not one of the set's
+    /// [`Rows::rows`], and `out` when it does not hold N samples; nothing
+    /// is written then.
+    pub fn noise_free_row(&self, s: u64, out: &mut [f64]) -> Result<()> {
+        check_index("row", s, self.rows, "rows")?;
+        let n = self.samples();
+        if out.len() != n {
+            return Err(Error::OutOfRange {
+                param: "out",
+                value: out.len() as f64,
+                accepted: format!("{n} values (the model's samples)"),
+            });
+        }
+        self.fill_own_row(s, out);
+        Ok(())
+    }
+
+    /// [`Rows::noise_free_row`] of a row known to be the set's into N values.
+    fn fill_own_row(&self, s: u64, out: &mut [f64]) {
         match &self.piston {
             None => out.copy_from_slice(&self.model.signal.modulated),
             Some(p) => p.scan(s as usize, out),
@@ -403,18 +445,27 @@ impl Rows<'_> {
     }
 
     /// Appends the rows of unit `u` (row-major) to `out`, drawing from
-    /// `rng`, which must be the unit's generator (`unit_rng(seed, u)`).
-    pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) {
+    /// `rng`, which must be the unit's generator (`unit_rng(seed, u)`);
+    /// refuses ([`Error::OutOfRange`], parameter `unit`) a unit not among
+    /// the set's [`Rows::units`], appending nothing.
+    pub fn fill_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) -> Result<()> {
+        check_index("unit", u, self.units(), "units")?;
+        self.fill_own_unit(u, rng, out);
+        Ok(())
+    }
+
+    /// [`Rows::fill_unit`] of a unit known to be the set's.
+    fn fill_own_unit(&self, u: u64, rng: &mut Rng, out: &mut Vec<f64>) {
         let n = self.samples();
         let first = u * ROWS_PER_UNIT;
-        for s in first..first + self.unit_rows(u) {
+        for s in first..first + self.rows_of_own_unit(u) {
             let start = out.len();
             out.resize(start + n, 0.0);
             let row = &mut out[start..];
             match &self.fixed {
                 Some(noise) => noise.draw(rng, row),
                 None => {
-                    self.noise_free_row(s, row);
+                    self.fill_own_row(s, row);
                     self.add_noise(rng, row);
                 }
             }
@@ -423,16 +474,18 @@ impl Rows<'_> {
 
     /// `work(u, rows of unit u)` for each unit of `range`, in parallel on
     /// `threads` threads, results in unit order; the first error of `work`
-    /// (a cancelled run) stops the others and is returned.
+    /// (a cancelled run) stops the others and is returned. Refuses
+    /// (parameter `unit`) a range that reaches beyond the set's units.
     pub fn map_units<T: Send>(
         &self,
         range: std::ops::Range<u64>,
         threads: usize,
         work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
     ) -> Result<Vec<T>> {
+        self.check_unit_range(&range)?;
         try_run_unit_range(self.seed, range, threads, |u, rng| {
-            let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
-            self.fill_unit(u, rng, &mut rows);
+            let mut rows = Vec::with_capacity(self.rows_of_own_unit(u) as usize * self.samples());
+            self.fill_own_unit(u, rng, &mut rows);
             work(u, &rows)
         })
     }
@@ -459,9 +512,10 @@ impl Rows<'_> {
         work: impl Fn(u64, &[f64]) -> Result<T> + Sync + Send,
         merge: impl FnMut(T) + Send,
     ) -> Result<()> {
+        self.check_unit_range(&range)?;
         let unit = |u, rng: &mut Rng| {
-            let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
-            self.fill_unit(u, rng, &mut rows);
+            let mut rows = Vec::with_capacity(self.rows_of_own_unit(u) as usize * self.samples());
+            self.fill_own_unit(u, rng, &mut rows);
             work(u * ROWS_PER_UNIT, &rows)
         };
         fold_units(self.seed, range, threads, unit, merge)
@@ -483,8 +537,9 @@ impl Rows<'_> {
             let last = (first + batch).min(self.units());
             // Each unit's rows handed over as generated (not copied).
             let blocks = run_unit_range(self.seed, first..last, threads, |u, rng| {
-                let mut rows = Vec::with_capacity(self.unit_rows(u) as usize * self.samples());
-                self.fill_unit(u, rng, &mut rows);
+                let mut rows =
+                    Vec::with_capacity(self.rows_of_own_unit(u) as usize * self.samples());
+                self.fill_own_unit(u, rng, &mut rows);
                 rows
             })?;
             for block in blocks {

@@ -166,7 +166,7 @@ impl<'m> SimulationUnits<'m> {
             )?)
         } else {
             let est = RowEstimator::new(model, window, bias, true)?;
-            let piston_free = est.estimate(&rows.piston_free_row());
+            let piston_free = est.estimate_checked_row(&rows.piston_free_row());
             let v0 = (piston_free.v1_sq.sqrt(), piston_free.v2_sq.sqrt());
             UnitPath::Rows { est, v0 }
         };
@@ -244,8 +244,8 @@ impl<'m> SimulationUnits<'m> {
         let mut s = self.empty();
         let mut steps = Steps::new(progress, n);
         for (i, row) in block.chunks_exact(n).enumerate() {
-            let acc = &mut s[self.rows.sequence_of(first_row + i as u64)];
-            let e = est.estimate(row);
+            let acc = &mut s[self.rows.sequence_of_own_row(first_row + i as u64)];
+            let e = est.estimate_checked_row(row);
             acc.v1_sq.push(e.v1_sq);
             acc.v2_sq.push(e.v2_sq);
             acc.v1.push(e.v1_sq.sqrt() - v0.0);

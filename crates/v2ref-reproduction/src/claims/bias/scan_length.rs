@@ -140,7 +140,9 @@ fn abcd_scan_claim(points: usize) -> Computed {
     // ABCD: 2 um stroke at 4 samples per fringe at 2 um.
     let abcd = Sampling::from_stroke(2.0, ABCD_DX_UM, false).expect("valid scan");
     let m = max_finite_scan_bias(&abcd, points);
-    let bins = finite_scan::WINDOW.bins(abcd.samples(), abcd.dx_um(), &k_band());
+    let bins = finite_scan::WINDOW
+        .bins(abcd.samples(), abcd.dx_um(), &k_band())
+        .expect("4 samples");
     // The predicate: four samples and the one bin of the fringe, the
     // first (the ABCD estimator is the modulus of that bin).
     let holds = abcd.samples() == 4 && bins == [1];

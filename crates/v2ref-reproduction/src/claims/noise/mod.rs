@@ -382,7 +382,7 @@ fn window_claims(_find: &Find<'_>, case: &Case, sz: &Sizes) -> Result<Vec<Comput
     let (lo, hi) = obs.spectrum.support();
     let factor = noise::paper_window_factor(setup.dx_um, hi - lo);
     let window2 = two_sided_band_bins(setup.samples, setup.dx_um, lo, hi);
-    let window1 = crate::formalism::estimator::band_bins(setup.samples, setup.dx_um, lo, hi);
+    let window1 = crate::formalism::estimator::band_bins(setup.samples, setup.dx_um, lo, hi)?;
     let w_all = window_stats(&ifg.modulated, &counts, detector, &all)?;
     let w2 = window_stats(&ifg.modulated, &counts, detector, &window2)?;
     let w1 = window_stats(&ifg.modulated, &counts, detector, &window1)?;
