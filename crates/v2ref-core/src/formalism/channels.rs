@@ -300,7 +300,10 @@ impl Channels {
         let empty = self
             .edges_per_um
             .iter()
-            .position(|&(lo, hi)| band_bins(n, dx, lo, hi).is_empty());
+            .map(|&(lo, hi)| band_bins(n, dx, lo, hi).map(|bins| bins.is_empty()))
+            .collect::<Result<Vec<bool>>>()?
+            .into_iter()
+            .position(|is_empty| is_empty);
         let Some(j) = empty else { return Ok(()) };
         let (lo, hi) = self.edges_per_um[j];
         let (band_lo, band_hi) = (

@@ -148,7 +148,7 @@ pub fn simulate_channels(
         .iter()
         .zip(&rows)
         .map(|(e, r)| e.estimate(&r.piston_free_row()))
-        .collect();
+        .collect::<Result<_>>()?;
     let piston = rows[0].has_piston();
     let groups = if piston {
         rows[0].sequences()
@@ -165,7 +165,7 @@ pub fn simulate_channels(
     let mut total = empty.clone();
     let work = |u: u64, rng: &mut Rng| {
         let mut part = empty.clone();
-        estimate_unit(&rows, &estimators, u, rng, &mut part);
+        estimate_unit(&rows, &estimators, u, rng, &mut part)?;
         crate::montecarlo::cancel::check()?;
         Ok(part)
     };
@@ -195,19 +195,19 @@ fn estimate_unit(
     u: u64,
     rng: &mut Rng,
     part: &mut UnitPart,
-) {
+) -> Result<()> {
     let blocks: Vec<Vec<f64>> = rows
         .iter()
         .map(|r| {
             let mut block = Vec::new();
-            r.fill_unit(u, rng, &mut block);
-            block
+            r.fill_unit(u, rng, &mut block)?;
+            Ok(block)
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let n = rows[0].samples();
     let first = u * ROWS_PER_UNIT;
-    for i in 0..rows[0].unit_rows(u) as usize {
-        let sequence = rows[0].sequence_of(first + i as u64);
+    for i in 0..rows[0].unit_rows(u)? as usize {
+        let sequence = rows[0].sequence_of(first + i as u64)?;
         // Without piston the rows are independent: grouped by unit for the jackknife.
         let group = match rows[0].has_piston() {
             true => sequence,
@@ -217,9 +217,10 @@ fn estimate_unit(
             .iter()
             .zip(&blocks)
             .map(|(est, b)| est.estimate(&b[i * n..(i + 1) * n]))
-            .collect();
+            .collect::<Result<_>>()?;
         part.push(sequence, group, &e);
     }
+    Ok(())
 }
 
 impl UnitPart {
