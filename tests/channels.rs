@@ -203,6 +203,7 @@ fn channels_share_the_photons_and_add_up_to_the_wide_band() {
         // tol: shares integrated by the spectrum's quadrature against the trapezoid, exact for a line.
         assert_rel_eq!(*q, l / total, QUADRATURE_CHECK_REL);
     }
+    // tol: a sum of C shares each rounded once: a few units of EPS.
     assert_abs_eq!(c.photon_shares().iter().sum::<f64>(), 1.0, 4.0 * EPS);
 
     // Equal responses: Σ_j q_j W_j = W, so the channels' fringes add up to the band's.
@@ -218,6 +219,7 @@ fn channels_share_the_photons_and_add_up_to_the_wide_band() {
     let models = channel_models(&inputs, &tiled).unwrap();
     let band = Model::new(&inputs).unwrap();
     let photons: f64 = models.iter().map(|m| m.signal.continuum[0]).sum();
+    // tol: the channels' photons add the band's integral in C pieces: a few roundings.
     assert_rel_eq!(photons, band.signal.continuum[0], 4.0 * EPS);
     for i in 0..64 {
         let sum: f64 = models.iter().map(|m| m.signal.modulated[i]).sum();

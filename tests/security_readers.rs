@@ -167,3 +167,30 @@ fn an_unknown_extension_is_refused_naming_every_accepted_one() {
         }
     }
 }
+
+/// The files `golden --update` looks at in a folder it would replace (a
+/// figure's `fig*.json`, `vectors/README.md`), names found in the folder,
+/// are read without waiting and never through a link: a FIFO under such
+/// a name leaves the folder refused at once as one golden did not write.
+/// (On 25b05bd: both waited on the FIFO until killed.)
+#[test]
+fn a_fifo_in_a_golden_folder_is_never_waited_on() {
+    for name in ["fig1.json", "vectors/README.md"] {
+        let dir = tempfile::tempdir().unwrap();
+        let gd = dir.path().join("gd");
+        std::fs::create_dir_all(gd.join("vectors")).unwrap();
+        std::fs::write(gd.join("keep.csv"), "a user's file\n").unwrap();
+        mkfifo(&gd.join(name));
+        let args = ["golden", "--update", "--dir", "gd"];
+        let (status, err) = run_briefly(dir.path(), &args);
+        assert_eq!(status, Some(2), "{name}: {err}");
+        assert!(
+            err.contains("gd") && err.contains("did not write"),
+            "{name}: {err}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(gd.join("keep.csv")).unwrap(),
+            "a user's file\n"
+        );
+    }
+}

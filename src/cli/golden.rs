@@ -195,11 +195,10 @@ fn check_update_dir(dir: &std::path::Path, force: bool) -> Result<()> {
     let written_by_golden = entries.iter().any(|p| {
         let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
         name.is_some_and(|n| n.starts_with("fig") && n.ends_with(".json"))
-            && std::fs::read_to_string(p)
-                .is_ok_and(|t| t.contains(v2ref_reproduction::golden::GENERATOR))
+            && golden::read_golden(p).is_ok_and(|t| t.contains(golden::GENERATOR))
     });
     let vectors_readme = dir.join(super::vectors::VECTORS_DIR).join("README.md");
-    let vectors_by_golden = std::fs::read_to_string(vectors_readme)
+    let vectors_by_golden = golden::read_golden(&vectors_readme)
         .is_ok_and(|t| t.contains(super::vectors::GENERATED_BY));
     if force || entries.is_empty() || written_by_golden || vectors_by_golden {
         Ok(())

@@ -16,7 +16,8 @@ use v2ref_core::oracle::{powered_rows, POWERED_REL_ERROR};
 use v2ref_core::simulator::Model;
 use v2ref_core::{Error, Result};
 use v2ref_files::atomic::ScratchFolder;
-use v2ref_reproduction::golden::replace_dir_atomically;
+use v2ref_files::formats::read_found_bytes;
+use v2ref_reproduction::golden::{replace_dir_atomically, MAX_GOLDEN_FILE_BYTES};
 
 /// The folder of the vectors inside the golden folder.
 pub const VECTORS_DIR: &str = "vectors";
@@ -159,10 +160,15 @@ pub fn check(golden: &Path) -> Result<(usize, Vec<Mismatch>)> {
         let mut bad = Vec::new();
         for f in &files {
             let fresh = std::fs::read(tmp.join(f)).unwrap_or_default();
-            match std::fs::read(dir.join(f)) {
-                Err(_) => bad.push(Mismatch {
+            let stored = dir.join(f);
+            let accepted = "a file written by golden --update";
+            match read_found_bytes(&stored, "dir", MAX_GOLDEN_FILE_BYTES, accepted) {
+                Err(e) => bad.push(Mismatch {
                     file: format!("{VECTORS_DIR}/{f}"),
-                    detail: "missing (run golden --update)".into(),
+                    detail: match stored.symlink_metadata() {
+                        Err(_) => "missing (run golden --update)".into(),
+                        Ok(_) => format!("{e} (run golden --update)"),
+                    },
                 }),
                 Ok(old) if old != fresh => bad.push(Mismatch {
                     file: format!("{VECTORS_DIR}/{f}"),

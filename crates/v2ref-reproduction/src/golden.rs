@@ -92,6 +92,18 @@ pub struct Report {
 }
 
 /// A failed file operation on `path` (inside the golden folder).
+/// Largest golden file read, bytes (the largest v2ref writes is about
+/// 0.5 MB: a bound, not a size any golden file comes near).
+pub const MAX_GOLDEN_FILE_BYTES: u64 = 64 << 20;
+
+/// The text of the golden file `path`, a name found in the golden folder:
+/// never read through a link, a FIFO or device refused without waiting
+/// on it, at most [`MAX_GOLDEN_FILE_BYTES`].
+pub fn read_golden(path: &Path) -> Result<String> {
+    let accepted = "a file written by golden --update";
+    v2ref_files::formats::read_found_text(path, "dir", MAX_GOLDEN_FILE_BYTES, accepted)
+}
+
 fn io(path: &Path, e: std::io::Error) -> Error {
     Error::file(None, path, e)
 }
@@ -138,11 +150,13 @@ pub fn check_figures(dir: &Path, figures: &[Figure]) -> Report {
     let mut checked = 0;
     for fig in figures {
         let meta_path = dir.join(format!("{}.json", fig.id));
-        match std::fs::read_to_string(&meta_path)
+        match read_golden(&meta_path)
             .map_err(|e| e.to_string())
-            .and_then(|t| serde_json::from_str::<FigureMeta>(&t).map_err(|e| e.to_string()))
-        {
-            Err(e) => push(&mut found, &fig.id, format!("{}: {e}", meta_path.display())),
+            .and_then(|t| {
+                serde_json::from_str::<FigureMeta>(&t)
+                    .map_err(|e| format!("{}: {e}", meta_path.display()))
+            }) {
+            Err(e) => push(&mut found, &fig.id, e),
             Ok(meta) => {
                 if !same_json(&meta.parameters, &fig.parameters) {
                     push(
@@ -170,9 +184,7 @@ pub fn check_figures(dir: &Path, figures: &[Figure]) -> Report {
         for table in &fig.tables {
             checked += 1;
             let path = dir.join(format!("{}.csv", table.name));
-            let golden = std::fs::read_to_string(&path)
-                .map_err(|e| io(&path, e))
-                .and_then(|text| Table::from_csv(&table.name, &text));
+            let golden = read_golden(&path).and_then(|text| Table::from_csv(&table.name, &text));
             match golden {
                 Err(e) => push(&mut found, &table.name, e.to_string()),
                 Ok(g) => found.extend(compare_tables(&g, table, rel, abs)),

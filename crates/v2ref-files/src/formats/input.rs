@@ -91,7 +91,40 @@ pub fn read_text(
     max_bytes: u64,
     accepted: &str,
 ) -> Result<String> {
-    let file = open(path, param)?;
+    let bytes = read_bounded(open(path, param)?, path, param, max_bytes, accepted)?;
+    utf8_text(bytes, path, param)
+}
+
+/// As [`read_text`], for a file whose name v2ref found in a folder
+/// ([`open_found`]: never through a link).
+pub fn read_found_text(
+    path: &Path,
+    param: &'static str,
+    max_bytes: u64,
+    accepted: &str,
+) -> Result<String> {
+    let bytes = read_bounded(open_found(path, param)?, path, param, max_bytes, accepted)?;
+    utf8_text(bytes, path, param)
+}
+
+/// The bytes of a file whose name v2ref found in a folder ([`open_found`]),
+/// refused when longer than `max_bytes`, naming the bound and `accepted`.
+pub fn read_found_bytes(
+    path: &Path,
+    param: &'static str,
+    max_bytes: u64,
+    accepted: &str,
+) -> Result<Vec<u8>> {
+    read_bounded(open_found(path, param)?, path, param, max_bytes, accepted)
+}
+
+fn read_bounded(
+    file: File,
+    path: &Path,
+    param: &'static str,
+    max_bytes: u64,
+    accepted: &str,
+) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     // One byte more than the bound tells a file at the bound from a longer
     // one (or an endless one).
@@ -106,7 +139,11 @@ pub fn read_text(
             format!("larger than {max_bytes} bytes; accepted: {accepted}"),
         ));
     }
-    // Text that is not UTF-8 is bad input (status 2), not a failed read.
+    Ok(bytes)
+}
+
+/// Text that is not UTF-8 is bad input (status 2), not a failed read.
+fn utf8_text(bytes: Vec<u8>, path: &Path, param: &'static str) -> Result<String> {
     String::from_utf8(bytes).map_err(|e| {
         let at = e.utf8_error().valid_up_to();
         let line = line_of_byte(&e.as_bytes()[..at]);

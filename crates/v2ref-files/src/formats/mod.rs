@@ -27,7 +27,10 @@ pub mod targets_csv;
 
 pub use budget::{budget_bytes_of_gib, check_budget, memory_budget, set_memory_budget_gib};
 pub use csv::{CsvRowWriter, CsvRows, MAX_CSV_LINE_BYTES};
-pub use input::{open, open_found, read_sidecar_text, read_text, MAX_SIDECAR_BYTES};
+pub use input::{
+    open, open_found, read_found_bytes, read_found_text, read_sidecar_text, read_text,
+    MAX_SIDECAR_BYTES,
+};
 pub use npy::{NpyRowWriter, NpyRows};
 // The Python bindings' shorthand for the atomic writers.
 pub use atomic::{set::OutputSet, write_text_atomic};

@@ -131,9 +131,9 @@ fn integrating_contrast_loss(samples_per_fringe: f64) -> f64 {
     let v1 = |integrating: bool| {
         let sampling = Sampling::new(128, dx, integrating).expect("valid sampling");
         let ifg = Interferogram::synthesize(&obs, &sampling, 1.0, None).expect("valid");
-        let bins = all_bins(128).expect("128 samples");
+        let bins = all_bins(128).expect("valid sample count");
         raw_estimates(&dft(&ifg.modulated), &bins)
-            .expect("bins of the 128 samples")
+            .expect("bins of the scan")
             .v1_sq
     };
     v1(false) / v1(true)

@@ -142,7 +142,7 @@ fn abcd_scan_claim(points: usize) -> Computed {
     let m = max_finite_scan_bias(&abcd, points);
     let bins = finite_scan::WINDOW
         .bins(abcd.samples(), abcd.dx_um(), &k_band())
-        .expect("4 samples");
+        .expect("the ABCD scan's bins");
     // The predicate: four samples and the one bin of the fringe, the
     // first (the ABCD estimator is the modulus of that bin).
     let holds = abcd.samples() == 4 && bins == [1];
