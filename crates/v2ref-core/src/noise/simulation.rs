@@ -422,7 +422,7 @@ pub const MAX_NOISY_TRIALS: u64 = 1 << 40;
 ///     modulated: vec![5.0, 3.0, -1.0, -4.0],
 ///     continuum: vec![10.0; 4],
 ///     noise: NoiseModel::new(1.0, true)?,
-///     bins: all_bins(4),
+///     bins: all_bins(4)?,
 /// };
 /// let one = simulate_noisy(&spec, 20_000, 7, 1, &|_| {})?;
 /// let two = simulate_noisy(&spec, 20_000, 7, 2, &|_| {})?;
