@@ -16,24 +16,7 @@ use v2ref_core::conformance::estimate::BiasConvention;
 
 /// The shared flags: one grid point, a short Monte Carlo, H band, a
 /// target σ(V²) every row reaches.
-const SHARED: [&str; 16] = [
-    "--target-sigma-v2",
-    "1e-2",
-    "--wavelength-um",
-    "1.65",
-    "--bandwidth-nm",
-    "300",
-    "--fringe-hz",
-    "500",
-    "--stroke-um",
-    "32",
-    "--scans",
-    "50",
-    "--aperture-m",
-    "1.8",
-    "--quiet",
-    "--seed=7",
-];
+const SHARED: [&str; 16] = super::cli_support::ONE_POINT_PLAN;
 
 fn v2ref(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_v2ref"))

@@ -7,6 +7,7 @@
 //! over. The cross-user cases plant as uid 65534 and run the writer as
 //! root; they are skipped unless the tests run as root.
 
+use super::cli_support::{ONE_POINT_PLAN, SMALL_SET};
 use super::security_sets::{name_hash, run_as};
 use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
 use std::os::unix::process::CommandExt as _;
@@ -18,48 +19,23 @@ const TARGETS: &str = "name,magnitude,band,diameter_mas,ra_deg,dec_deg\nalpha,5,
 
 /// One plan of one grid point with a short Monte Carlo, as
 /// `tests/plan_targets.rs` runs it.
-const PLAN: [&str; 17] = [
-    "plan",
-    "--target-sigma-v2",
-    "1e-2",
-    "--wavelength-um",
-    "1.65",
-    "--bandwidth-nm",
-    "300",
-    "--fringe-hz",
-    "500",
-    "--stroke-um",
-    "32",
-    "--scans",
-    "50",
-    "--aperture-m",
-    "1.8",
-    "--quiet",
-    "--seed=7",
-];
+fn plan_args() -> Vec<&'static str> {
+    let mut args = vec!["plan"];
+    args.extend_from_slice(&ONE_POINT_PLAN);
+    args
+}
 
 /// Each writer (its arguments after the shared ones) and the output names
 /// it locks.
 fn writers() -> Vec<(Vec<&'static str>, Vec<&'static str>)> {
-    let synth = vec![
-        "synth",
-        "--rows",
-        "40",
-        "--photons",
-        "1000",
-        "--samples",
-        "16",
-        "--quiet",
-        "--csv",
-        "--out",
-        "new",
-    ];
+    let mut synth = SMALL_SET.to_vec();
+    *synth.last_mut().unwrap() = "new";
     let plan = |extra: &[&'static str]| {
-        let mut args = PLAN.to_vec();
+        let mut args = plan_args();
         args.extend_from_slice(extra);
         args
     };
-    let mut targets = PLAN.to_vec();
+    let mut targets = plan_args();
     targets.extend_from_slice(&[
         "--throughput",
         "0.01",
@@ -101,20 +77,7 @@ fn shared_folder() -> (tempfile::TempDir, std::path::PathBuf) {
     let shared = root.path().join("shared");
     std::fs::create_dir(&shared).unwrap();
     std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o1777)).unwrap();
-    let synth = [
-        "synth",
-        "--rows",
-        "40",
-        "--photons",
-        "1000",
-        "--samples",
-        "16",
-        "--quiet",
-        "--csv",
-        "--out",
-        "set",
-    ];
-    assert_eq!(run_as(&shared, &synth, None).0, Some(0));
+    assert_eq!(run_as(&shared, &SMALL_SET, None).0, Some(0));
     std::fs::write(shared.join("list.csv"), TARGETS).unwrap();
     // The golden folder, world-writable as the shared one: its vectors'
     // lock is planted in it.

@@ -6,42 +6,14 @@
 //! An estimates file of an extension no reader takes is refused naming
 //! every extension the readers take, the OIFITS ones included.
 
+use super::cli_support::{mkfifo, run_within, SMALL_SET};
 use std::os::unix::fs::PermissionsExt as _;
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 /// Runs v2ref in `dir`, killed after 20 s (then the test fails): its exit
 /// status and stderr.
 fn run_briefly(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_v2ref"))
-        .current_dir(dir)
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(20) {
-            child.kill().unwrap();
-            let _ = child.wait();
-            panic!("v2ref {args:?} waited on a FIFO (killed after 20 s)");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn mkfifo(path: &Path) {
-    let c = std::ffi::CString::new(path.as_os_str().as_encoded_bytes()).unwrap();
-    // SAFETY: a NUL-terminated path that lives through the call.
-    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o666) }, 0);
+    run_within(dir, args, None, 20)
 }
 
 /// A folder with a set (`set.*`, CSV too), its estimates and FIFOs named
@@ -49,20 +21,7 @@ fn mkfifo(path: &Path) {
 fn folder() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o755)).unwrap();
-    let synth = [
-        "synth",
-        "--rows",
-        "40",
-        "--photons",
-        "1000",
-        "--samples",
-        "16",
-        "--quiet",
-        "--csv",
-        "--out",
-        "set",
-    ];
-    assert_eq!(run_briefly(dir.path(), &synth).0, Some(0));
+    assert_eq!(run_briefly(dir.path(), &SMALL_SET).0, Some(0));
     let est = ["estimate", "--sidecar", "set.json", "--out", "est.csv"];
     assert_eq!(run_briefly(dir.path(), &est).0, Some(0));
     for name in ["fifo.npy", "fifo.csv", "fifo.json"] {

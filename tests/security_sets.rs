@@ -13,9 +13,9 @@
 //! The cases that need another user run the binary as uid 65534 when the
 //! tests run as root (as in CI's container), and are skipped otherwise.
 
+use super::cli_support::{mkfifo, run_within};
 use std::ffi::OsString;
 use std::os::unix::fs::{MetadataExt as _, PermissionsExt as _};
-use std::os::unix::process::CommandExt as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -31,29 +31,7 @@ pub(crate) fn name_hash(name: &str) -> String {
 /// Runs v2ref in `dir` (as `uid` when given), killed after 60 s: its exit
 /// status (None: ended by a signal) and stderr.
 pub(crate) fn run_as(dir: &Path, args: &[&str], uid: Option<u32>) -> (Option<i32>, String) {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_v2ref"));
-    c.current_dir(dir)
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped());
-    if let Some(uid) = uid {
-        c.uid(uid).gid(uid);
-    }
-    let mut child = c.spawn().unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > Duration::from_secs(60) {
-            child.kill().unwrap();
-            panic!("v2ref {args:?} hung (killed after 60 s)");
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    run_within(dir, args, uid, 60)
 }
 
 fn run(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
@@ -274,9 +252,7 @@ fn a_forged_commit_record_is_never_acted_on() {
 fn a_record_that_is_a_fifo_a_device_a_huge_file_or_huge_is_ignored() {
     let s = Scene::new();
     let path = |m: &str| s.path(&format!(".v2ref-journal-{}", name_hash(m)));
-    let fifo = std::ffi::CString::new(path("set.json").as_os_str().as_encoded_bytes()).unwrap();
-    // SAFETY: a NUL-terminated path that lives through the call.
-    assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o666) }, 0);
+    mkfifo(&path("set.json"));
     std::os::unix::fs::symlink("/dev/zero", path("set.npy")).unwrap();
     std::fs::File::create(path("est.csv"))
         .unwrap()
@@ -316,11 +292,7 @@ fn a_link_or_fifo_at_a_lock_name_is_refused_and_never_followed() {
         let lock = s.path(&format!(".v2ref-lock-{}", name_hash("set.npy")));
         match kind {
             "link" => std::os::unix::fs::symlink(s.outside.join("decoy.txt"), &lock).unwrap(),
-            "fifo" => {
-                let c = std::ffi::CString::new(lock.as_os_str().as_encoded_bytes()).unwrap();
-                // SAFETY: a NUL-terminated path that lives through the call.
-                assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o666) }, 0);
-            }
+            "fifo" => mkfifo(&lock),
             _ => std::fs::create_dir(&lock).unwrap(),
         }
         let outcomes = s.every_reader_and_writer(None);

@@ -25,6 +25,7 @@ mod claims_notes;
 mod cli;
 mod cli_noise;
 mod cli_piston;
+mod cli_support;
 mod commands_estimate;
 mod conformance_cli;
 mod conformance_files;
