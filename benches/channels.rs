@@ -20,7 +20,8 @@
 //! `--count CASE SIDE` runs SIDE of CASE once on one thread and exits:
 //! `setup` builds the models (and, for an estimate case, draws the rows;
 //! the piston spectrum's tables are computed there too), `run` is setup
-//! then v2ref's work, `floor` setup then the floor's, `cold` the models
+//! then v2ref's work, `one` setup then the run of the first channel
+//! alone, `floor` setup then the floor's, `cold` the models
 //! and one run with nothing computed beforehand (the wall time of the
 //! whole call is printed). `--list` prints the cases.
 
@@ -169,15 +170,26 @@ fn count(name: &str, side: &str) -> Result<f64, String> {
         ("simulate", v, "cold") => {
             let t = Instant::now();
             let sum = simulate(&models(c, v == "piston"), 1);
-            println!("{name}: {:.3} s (models and one run)", t.elapsed().as_secs_f64());
+            println!(
+                "{name}: {:.3} s (models and one run)",
+                t.elapsed().as_secs_f64()
+            );
             Ok(sum)
         }
-        ("simulate", v, "setup" | "run") => {
+        ("simulate", v, "setup" | "run" | "one") => {
             let models = tabulated_models(c, v == "piston");
-            Ok(if side == "run" { simulate(&models, 1) } else { 0.0 })
+            Ok(match side {
+                "run" => simulate(&models, 1),
+                "one" => simulate(&models[..1], 1),
+                _ => 0.0,
+            })
         }
         ("estimate", v, "setup" | "run" | "floor") => {
-            let window = if v == "band" { BinWindow::Band } else { BinWindow::Positive };
+            let window = if v == "band" {
+                BinWindow::Band
+            } else {
+                BinWindow::Positive
+            };
             let set = estimate_set(c, window);
             Ok(match side {
                 "run" => estimate_v2ref(&set),
@@ -228,7 +240,12 @@ fn bench_estimate(cr: &mut Criterion) {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+    match args
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .as_slice()
+    {
         ["--list", ..] => println!("{}", case_names().join(" ")),
         ["--count", name, side, ..] => match count(name, side) {
             Ok(sum) => println!("checksum {sum:.6e}"),
