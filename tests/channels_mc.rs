@@ -182,3 +182,37 @@ fn the_shared_piston_correlates_channels_and_sets_the_weighted_mean_sigma() {
         );
     }
 }
+
+/// The channels' models share one piston spectrum (its tables are
+/// computed once per run, not once per channel: the cost of C channels),
+/// and the run is the same bits as with a spectrum of its own per
+/// channel, as the models had before they shared it.
+#[test]
+fn channels_share_one_piston_spectrum_and_keep_their_bits() {
+    let inputs = Inputs {
+        samples: 64,
+        ..inputs(10.0, true, Some(PistonInputs::paper(300.0)))
+    };
+    let spectrum = inputs.spectrum.spectrum().unwrap();
+    let shared = channel_models(&inputs, &Channels::equal(&spectrum, 2).unwrap()).unwrap();
+    let table = |m: &Model| m.piston_spectrum.as_ref().unwrap().table().clone();
+    assert!(
+        std::sync::Arc::ptr_eq(&table(&shared[0]), &table(&shared[1])),
+        "each channel has its own piston spectrum"
+    );
+    let mut own = shared.clone();
+    for m in &mut own {
+        let p = inputs.piston.as_ref().unwrap();
+        m.piston_spectrum = Some(p.spectrum(m.observation.baseline_m).unwrap());
+    }
+    assert!(!std::sync::Arc::ptr_eq(&table(&own[0]), &table(&own[1])));
+    let size = Trials {
+        trials: 2000,
+        seed: 9,
+        threads: 0,
+    };
+    let run = |models: &[Model]| {
+        simulate_channels(models, BinWindow::Band, BiasConvention::Model, size).unwrap()
+    };
+    assert_eq!(run(&shared), run(&own));
+}

@@ -11,8 +11,9 @@
 //! **The shared piston.** The piston is a property of the optical path,
 //! not of the wavelength: every channel's model draws the same piston
 //! sequences (same spectrum, seed and scan speed, drawn once through
-//! [`SharedSequences`]), and each reads its fringe at its own wavenumbers
-//! through them. So the channels' errors correlate.
+//! [`SharedSequences`]; one piston spectrum, tabulated once), and each
+//! reads its fringe at its own wavenumbers through them. So the channels'
+//! errors correlate.
 //!
 //! **The noise** is each pixel's own: in work unit u the channels draw
 //! their photon and read noise one after the other from the unit's one
@@ -49,7 +50,15 @@ pub fn channel_models(inputs: &Inputs, channels: &Channels) -> Result<Vec<Model>
     if channels.count() == 1 && channels.spectrum(0) == channels.parent() {
         return Ok(vec![Model::new(inputs)?.sharing_piston_sequences(&shared)]);
     }
-    let observations = channel_observations(&inputs.observation()?, channels)?;
+    let parent = inputs.observation()?;
+    // One piston spectrum for every channel (it depends on the baseline,
+    // not the wavelength): its tables, seconds of quadratures, are
+    // computed once for the run instead of once per channel.
+    let piston_spectrum = match &inputs.piston {
+        Some(p) => Some(p.spectrum(parent.baseline_m)?),
+        None => None,
+    };
+    let observations = channel_observations(&parent, channels)?;
     observations
         .into_iter()
         .zip(channels.photon_shares())
@@ -66,7 +75,10 @@ pub fn channel_models(inputs: &Inputs, channels: &Channels) -> Result<Vec<Model>
                 dispersion_pp_rad: 0.0,
                 ..inputs.clone()
             };
-            let mut model = Model::new(&channel)?;
+            let mut model = match &piston_spectrum {
+                Some(spectrum) => Model::with_piston_spectrum(&channel, spectrum.clone())?,
+                None => Model::new(&channel)?,
+            };
             if !obs.phase.is_zero() {
                 model.signal = scaled_interferogram(
                     &obs,
