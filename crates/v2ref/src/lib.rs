@@ -88,19 +88,23 @@
 //!   sits inside it): its methods are inherent, so a pipeline on any rand
 //!   release draws from it without rand's traits, and a rand release on
 //!   either side changes nothing in the other's build.
-//! - `num_complex::Complex64` (the DFT's bins, [`formalism::estimator::dft`],
+//! - `num_complex::Complex64` (the DFT's bins: [`formalism::estimator::dft`],
 //!   [`formalism::estimator::raw_estimates`], [`formalism::oracle::naive_dft`],
-//!   a [`formalism::interferogram::SpectralNodes`]' amplitudes, a source's
-//!   visibility, a kernel's value): kept, as the complex number of Rust's
-//!   numerics — rustfft's, ndarray's and nalgebra's, so a pipeline's own
-//!   FFT output is passed as it is — and a plain `#[repr(C)]` pair
-//!   `{ re, im }` on the semver line 0.4 since 2021.
+//!   [`bias::finite_scan::convolution_bins`]; a
+//!   [`formalism::interferogram::SpectralNodes`]' amplitudes, an observation's
+//!   fringe amplitude, a source's visibility, a finite-scan kernel's value):
+//!   kept, as the complex number of Rust's numerics — rustfft's, ndarray's
+//!   and nalgebra's, so a pipeline's own FFT output is passed as it is —
+//!   and a plain `#[repr(C)]` pair `{ re, im }` on the semver line 0.4
+//!   since 2021.
 //! - `serde`'s `Serialize` and `Deserialize`, implemented by the reports and
 //!   inputs (never a type in a signature): kept, so that a pipeline writes
 //!   a report or reads a request in any serde format; serde 1 has been
 //!   stable since 2017.
 //!
-//! No other crate's type or trait is part of the surface: the statistics
+//! No other crate's type or trait is part of the surface (rustdoc also
+//! shows the blanket impls that some dependencies' traits give every type;
+//! no signature names them): the statistics
 //! (statrs), the FFTs (rustfft), the thread pool (rayon) and the random
 //! distributions (rand_distr) are used inside only, and may change release
 //! without a pipeline noticing.
