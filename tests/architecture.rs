@@ -291,10 +291,13 @@ fn non_test(code: &str) -> &str {
     code
 }
 
+/// Paths, each as (how many `super`s up, or `None` from the crate's root;
+/// the segments after).
+type PathsNamed = Vec<(Option<usize>, Vec<String>)>;
+
 /// The paths `code` names from `crate::`, `self::` or `super::` (and
-/// `super::super::`), as (how many `super`s, or `None` from the crate's
-/// root; the segments after), a `{…}` group giving one path per item.
-fn paths_named(code: &str) -> Vec<(Option<usize>, Vec<String>)> {
+/// `super::super::`), a `{…}` group giving one path per item.
+fn paths_named(code: &str) -> PathsNamed {
     fn ident(s: &str) -> &str {
         let end = s
             .find(|c: char| !(c.is_alphanumeric() || c == '_'))
@@ -377,7 +380,7 @@ fn paths_named(code: &str) -> Vec<(Option<usize>, Vec<String>)> {
 /// (`simulator::rows` → `noise::model` is `simulator` → `noise`).
 fn sibling_edges(
     modules: &[Vec<String>],
-    uses: &[(Vec<String>, Vec<(Option<usize>, Vec<String>)>)],
+    uses: &[(Vec<String>, PathsNamed)],
 ) -> std::collections::BTreeSet<(String, String)> {
     let mut edges = std::collections::BTreeSet::new();
     for (from, paths) in uses {
@@ -538,7 +541,7 @@ fn the_circle_finder_sees_what_it_should() {
     .iter()
     .map(|m| module(m))
     .collect();
-    let paths = |p: &[(Option<usize>, &str)]| -> Vec<(Option<usize>, Vec<String>)> {
+    let paths = |p: &[(Option<usize>, &str)]| -> PathsNamed {
         p.iter().map(|(b, s)| (*b, module(s))).collect()
     };
     let uses = vec![

@@ -39,20 +39,17 @@ fn symmetric_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
                 let t = theta.signum() / (theta.abs() + theta.hypot(1.0));
                 let c = 1.0 / t.hypot(1.0);
                 let s = t * c;
-                for k in 0..n {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
+                // Columns p and q of A and V, then rows p and q of A.
+                for row in a.iter_mut().chain(v.iter_mut()) {
+                    let (xp, xq) = (row[p], row[q]);
+                    row[p] = c * xp - s * xq;
+                    row[q] = s * xp + c * xq;
                 }
-                for k in 0..n {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for row in v.iter_mut() {
-                    let (vp, vq) = (row[p], row[q]);
-                    row[p] = c * vp - s * vq;
-                    row[q] = s * vp + c * vq;
+                let (above, from_q) = a.split_at_mut(q);
+                for (xp, xq) in above[p].iter_mut().zip(from_q[0].iter_mut()) {
+                    let (apk, aqk) = (*xp, *xq);
+                    *xp = c * apk - s * aqk;
+                    *xq = s * apk + c * aqk;
                 }
             }
         }
