@@ -238,7 +238,6 @@ fn every_unit_has_its_own_stream() {
     // their streams differently (extreme seeds included, where a weak mix
     // of seed and unit would give every unit the same state); the same
     // (seed, unit) gives the same stream.
-    use rand::RngCore;
     let first = |seed: u64, unit: u64| unit_rng(seed, unit).next_u64();
     for seed in [0, 1, 7, u64::MAX] {
         let mut draws: Vec<u64> = (0..256).map(|u| first(seed, u)).collect();
@@ -254,10 +253,32 @@ fn every_unit_has_its_own_stream() {
 }
 
 #[test]
+fn the_generator_draws_what_rand_draws_from_the_same_state() {
+    // v2ref's Rng against rand 0.8 itself on a Pcg64Mcg of the same seed:
+    // the same 64-bit words, rand's `Standard` f64 ([0, 1), 53 bits) and
+    // rand_distr's StandardNormal, draw for draw (the golden files hold
+    // these streams). A uniform from 52 or 54 bits, or another normal
+    // sampler, differs at the first draws.
+    use rand::{Rng as _, RngCore, SeedableRng};
+    use rand_distr::{Distribution, StandardNormal};
+    for seed in [[0u8; 16], [7; 16], core::array::from_fn(|i| i as u8 * 17)] {
+        let mut ours = v2ref_core::montecarlo::Rng::from_seed(seed);
+        let mut theirs = rand_pcg::Pcg64Mcg::from_seed(seed);
+        for _ in 0..1000 {
+            assert_eq!(ours.next_u64(), theirs.next_u64());
+            assert_eq!(ours.uniform_f64(), theirs.gen::<f64>());
+            let z: f64 = StandardNormal.sample(&mut theirs);
+            assert_eq!(ours.standard_normal(), z);
+        }
+    }
+    let u = v2ref_core::montecarlo::Rng::from_seed([3; 16]).uniform_f64();
+    assert!((0.0..1.0).contains(&u));
+}
+
+#[test]
 fn units_run_in_unit_order_with_their_own_generators() {
     // run_units and run_unit_range return one result per unit, in unit
     // order, each from unit_rng(seed, unit), whatever the thread count.
-    use rand::RngCore;
     use v2ref_core::montecarlo::{run_unit_range, run_units};
     let draw = |u: u64, rng: &mut v2ref_core::montecarlo::Rng| (u, rng.next_u64());
     for threads in [1, 3] {

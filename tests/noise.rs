@@ -1,11 +1,10 @@
 //! Closed forms of `noise` and `window_variance`: identities, the slow
 //! oracle, property tests. (Monte Carlo checks: `tests/noise_mc.rs`.)
 
-use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 use v2ref_core::formalism::estimator::{dft, noise_bias, positive_bins, raw_estimates};
 use v2ref_core::noise::window_variance::{
-    gaussian_cumulant4, quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
+    quadratic_forms, two_sided_band_bins, variance_by_moments, window_stats,
 };
 use v2ref_core::noise::{
     self, appendix_stats, example_interferogram, moments, published, raw_moment,
@@ -531,34 +530,6 @@ fn abcd_variance_is_that_of_two_squared_gaussian_differences() {
         noise::colavita_detector_variance(0.5),
         IDENTITY_REL
     );
-}
-
-#[test]
-fn gaussian_cumulant4_is_a_sum_of_noncentral_chi_squares() {
-    // Q = Mᵀ A M with M ~ N(m, Σ), Σ diagonal: with Σ^{1/2} A Σ^{1/2} =
-    // P Λ Pᵀ and δ = Pᵀ Σ^{-1/2} m, Q = Σ_j λ_j (Z_j + δ_j)², a sum of
-    // independent scaled noncentral χ²₁, each of fourth cumulant
-    // 48 λ_j⁴ (1 + 4 δ_j²). An eigen-decomposition route, independent of the
-    // trace formula; unequal variances and partial windows.
-    let m = [1.0, -2.0, 0.5, 3.0, 0.0, -1.5];
-    let var = [1.7, 0.4, 2.2, 1.0, 0.9, 3.1];
-    let sd: Vec<f64> = var.iter().map(|v: &f64| v.sqrt()).collect();
-    let whitened_mean = DVector::from_iterator(6, m.iter().zip(&sd).map(|(mi, s)| mi / s));
-    for bins in [vec![1, 2], vec![0, 3, 5], (0..6).collect()] {
-        let (a1, a2) = quadratic_forms(6, &bins);
-        for a in [a1, a2] {
-            let b = DMatrix::from_fn(6, 6, |i, j| sd[i] * a[(i, j)] * sd[j]);
-            let eig = b.symmetric_eigen();
-            let delta = eig.eigenvectors.transpose() * &whitened_mean;
-            let want: f64 = eig
-                .eigenvalues
-                .iter()
-                .zip(delta.iter())
-                .map(|(l, d)| 48.0 * l.powi(4) * (1.0 + 4.0 * d * d))
-                .sum();
-            assert_rel_eq!(gaussian_cumulant4(&a, &m, &var), want, IDENTITY_REL);
-        }
-    }
 }
 
 #[test]

@@ -40,6 +40,7 @@ mod golden;
 mod montecarlo_noise;
 mod noise;
 mod noise_calibrated;
+mod noise_cumulants;
 mod noise_mc;
 mod oifits;
 mod oifits_fuzz;

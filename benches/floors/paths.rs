@@ -115,10 +115,9 @@ fn simulate(noise: NoiseModel, label: &str) -> Case {
             Vec::new()
         };
         let draw = |rng: &mut Rng, row: &mut [f64]| {
-            use rand_distr::{Distribution, StandardNormal};
             if poisson.is_empty() {
                 for (x, &m) in row.iter_mut().zip(&s.modulated) {
-                    let z: f64 = StandardNormal.sample(rng);
+                    let z: f64 = rng.standard_normal();
                     *x = m + s.noise.read_noise * z;
                 }
             } else {
@@ -251,7 +250,6 @@ fn piston_series() -> Case {
 /// Fourier mode (one generator per block of 2^15 modes) times √(P Δν),
 /// then one real-output inverse FFT of M points (realfft, one thread).
 fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: u64) -> Vec<f64> {
-    use rand_distr::{Distribution, StandardNormal};
     use realfft::num_complex::Complex;
     const BLOCK: usize = 1 << 15;
     let m = v2ref_core::piston::sequence_length(len);
@@ -267,8 +265,8 @@ fn floor_series(psd: &(dyn Fn(f64) -> f64 + Sync), dt_s: f64, len: usize, seed: 
                 // √2 Re Σ W_k e^{…}: the real-output transform adds each
                 // mode and its conjugate, so each carries W_k / √2.
                 let s = std::f64::consts::FRAC_1_SQRT_2 * (psd(nu) * dnu).sqrt();
-                let g: f64 = StandardNormal.sample(&mut rng);
-                let h: f64 = StandardNormal.sample(&mut rng);
+                let g: f64 = rng.standard_normal();
+                let h: f64 = rng.standard_normal();
                 *w = Complex::new(s * g, s * h);
             }
         });

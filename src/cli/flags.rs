@@ -39,8 +39,8 @@ impl ObservationArgs {
         let mut p = Physical::default();
         self.apply_to(&mut p)?;
         if let Some(path) = &self.spectrum_csv {
-            let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(path)?;
-            p.spectrum_csv = Some(table);
+            let table = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(path)?;
+            p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(path, table));
         }
         Ok(p)
     }

@@ -22,7 +22,7 @@
 //! `use` of `crates/v2ref-core/src/`, and the crate graph does the rest), so that
 //! each can be read, tested and changed with only what is under it in mind:
 //!
-//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files);
+//! 1. foundation: `error` ([`Error`]), [`tolerance`], [`bounds`], [`math`], [`montecarlo`], [`words`] (the words that name each choice), [`manifest`] (the member list of a set of files), [`text`] (text from data made safe to show), [`photometric_band`] (the bands a magnitude is in), [`target_list`] (the target list's CSV, read below the file readers and the planner);
 //! 2. [`formalism`];
 //! 3. [`record`] (the inputs of a computation as plain values);
 //! 4. [`bias`];
@@ -30,7 +30,7 @@
 //! 6. [`simulator`];
 //! 7. [`conformance`];
 //! 8. the oracle's gathering modules: [`prelude`], [`oracle`] (a pipeline's `cargo test`);
-//! 9. the crates above this one: `v2ref` (the stable surface, re-exports only), `v2ref-commands` (the commands' answers and the planner), then `v2ref-files`, `v2ref-reproduction`, `v2ref-oifits`, and the edges, `v2ref-python` and the command line.
+//! 9. the crates above this one, each using only crates below it: `v2ref` (the stable surface, re-exports only), `v2ref-commands` (the commands' answers and the planner) and `v2ref-files` (files in and out), side by side on this crate alone; then `v2ref-reproduction` (on `v2ref-files`) and `v2ref-oifits` (on both); then the edges, `v2ref-python` and the command line.
 //!
 
 #![warn(missing_docs)]
@@ -49,10 +49,13 @@ pub mod math;
 pub mod montecarlo;
 pub mod noise;
 pub mod oracle;
+pub mod photometric_band;
 pub mod piston;
 pub mod prelude;
 pub mod record;
 pub mod simulator;
+pub mod target_list;
+pub mod text;
 pub mod tolerance;
 pub mod words;
 

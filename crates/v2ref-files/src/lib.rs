@@ -16,8 +16,6 @@
 // The oracle's modules under their own names, so that a path reads the same
 // in every crate of the workspace (`crate::formalism::…`).
 #[allow(unused_imports)]
-pub(crate) use v2ref_commands::{parameters, plan};
-#[allow(unused_imports)]
 pub(crate) use v2ref_core::{
     bounds, conformance, csv_lines, error, formalism, manifest, noise, simulator, Error, Result,
 };

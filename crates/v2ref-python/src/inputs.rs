@@ -44,9 +44,9 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
     })?;
     p.check().map_err(|e| e.into_py_err())?;
     if let Some(path) = file {
-        let table = v2ref_files::formats::spectrum_csv::read_spectrum_file(&path)
+        let table = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(&path)
             .map_err(|e| e.into_py_err())?;
-        p.spectrum_csv = Some(table);
+        p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(&path, table));
     }
     Ok(p)
 }

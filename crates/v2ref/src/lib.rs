@@ -79,6 +79,36 @@
 //! line, Python, OIFITS, the reproduction of the paper) and test suite, and
 //! not stable. A pipeline needs only this crate.
 //!
+//! ## Types from other crates
+//!
+//! The stable surface names few types it does not define, each kept for a
+//! reason:
+//!
+//! - [`montecarlo::Rng`] is v2ref's own type (its generator, PCG-64 MCG,
+//!   sits inside it): its methods are inherent, so a pipeline on any rand
+//!   release draws from it without rand's traits, and a rand release on
+//!   either side changes nothing in the other's build.
+//! - `num_complex::Complex64` (the DFT's bins: [`formalism::estimator::dft`],
+//!   [`formalism::estimator::raw_estimates`], [`formalism::oracle::naive_dft`],
+//!   [`bias::finite_scan::convolution_bins`]; a
+//!   [`formalism::interferogram::SpectralNodes`]' amplitudes, an observation's
+//!   fringe amplitude, a source's visibility, a finite-scan kernel's value):
+//!   kept, as the complex number of Rust's numerics — rustfft's, ndarray's
+//!   and nalgebra's, so a pipeline's own FFT output is passed as it is —
+//!   and a plain `#[repr(C)]` pair `{ re, im }` on the semver line 0.4
+//!   since 2021.
+//! - `serde`'s `Serialize` and `Deserialize`, implemented by the reports and
+//!   inputs (never a type in a signature): kept, so that a pipeline writes
+//!   a report or reads a request in any serde format; serde 1 has been
+//!   stable since 2017.
+//!
+//! No other crate's type or trait is part of the surface (rustdoc also
+//! shows the blanket impls that some dependencies' traits give every type;
+//! no signature names them): the statistics
+//! (statrs), the FFTs (rustfft), the thread pool (rayon) and the random
+//! distributions (rand_distr) are used inside only, and may change release
+//! without a pipeline noticing.
+//!
 //! ## The crate, as the paper
 //!
 //! | paper | module |

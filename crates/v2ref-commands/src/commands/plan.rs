@@ -8,7 +8,7 @@ use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};
 use crate::parameters::Physical;
 use crate::piston::spectrum::PistonSpectrum;
-use crate::plan::photometry::{Band2Mass, Magnitude};
+use crate::plan::photometry::Magnitude;
 use crate::plan::verify::{verification_size, Verification, VerificationSize};
 use crate::plan::{default_grid, Plan, PlanInputs, SeeingGiven, Target};
 use crate::simulator::Inputs;
@@ -127,14 +127,7 @@ fn photometry(p: &Physical, m: Magnitude) -> Result<Photometry> {
         isophotal_wavelength_um: m.band.isophotal_wavelength_um(),
         collecting_area_m2: m.collecting_area_m2(),
         photon_rate_per_s: m.photon_rate_per_s(p.wavelength_um, p.bandwidth_nm * 1e-3)?,
-        reference: match m.band {
-            Band2Mass::J | Band2Mass::H | Band2Mass::Ks => {
-                "Cohen, Wheaton & Megeath (2003), AJ 126, 1090, Table 2"
-            }
-            Band2Mass::V | Band2Mass::R | Band2Mass::I => {
-                "Bessell, Castelli & Plez (1998), A&A 333, 231, Table A2"
-            }
-        },
+        reference: m.band.zero_point_reference(),
     })
 }
 

@@ -10,37 +10,7 @@ use super::plan::PlanAnswer;
 use crate::plan::photometry::Band2Mass;
 use crate::plan::Estimator;
 use serde::Serialize;
-
-/// One target of the list, as read (`None`: the cell was empty or the
-/// column absent, so the shared value is used).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Target {
-    /// Line of the file (1-based) the row is on.
-    pub line: u64,
-    /// The target's name.
-    pub name: String,
-    /// Its magnitude in `band` (with `band`; replaces the shared brightness).
-    pub magnitude: Option<f64>,
-    /// The band of `magnitude`.
-    pub band: Option<Band2Mass>,
-    /// Its uniform-disk diameter, mas.
-    pub diameter_mas: Option<f64>,
-    /// Right ascension, degrees (echoed to the table; the plan does not use it).
-    pub ra_deg: Option<f64>,
-    /// Declination, degrees (echoed likewise).
-    pub dec_deg: Option<f64>,
-}
-
-/// A row that could not be read: its line, its name if it had one, and why.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RowFault {
-    /// Line of the file (1-based).
-    pub line: u64,
-    /// The name in the row (empty when it had none).
-    pub name: String,
-    /// Why, in one line.
-    pub reason: String,
-}
+use v2ref_core::target_list::{RowFault, Target};
 
 /// What became of a row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]

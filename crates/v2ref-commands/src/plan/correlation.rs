@@ -24,7 +24,7 @@
 //! (they share one true mean), so a sequence's own mean is not subtracted
 //! from it and the slow part of its wander is kept.
 
-use super::scans::{ContiguousScans, SEQUENCES};
+use super::scans::{affordable_scans, ContiguousScans, SEQUENCES};
 use crate::piston::sequences::correlation_time_s;
 use crate::piston::series::MAX_SERIES;
 use crate::piston::spectrum::PistonSpectrum;
@@ -69,7 +69,7 @@ pub(crate) fn scans_per_sequence(
         .max(fill as f64)
         .max((budget / SEQUENCES as u64) as f64);
     let fits = MAX_SERIES.saturating_sub(samples + 4) / stride.max(1);
-    let affordable = super::observation::affordable_scans(samples);
+    let affordable = affordable_scans(samples);
     (wanted as usize).min(fits).min(affordable).max(1)
 }
 
@@ -218,14 +218,12 @@ fn mean_stderr(values: &[f64]) -> (f64, f64) {
 mod tests {
     use super::*;
     use crate::plan::scans::ScanValues;
-    use rand::SeedableRng;
-    use rand_distr::{Distribution, StandardNormal};
 
     /// K sequences of L values of an AR(1) process of correlation `rho`
     /// and unit variance (γ_k = ρ^k), as the V1² of scans.
     fn ar1(rho: f64, (k, l): (usize, usize), seed: u64) -> ContiguousScans {
-        let mut rng = crate::montecarlo::Rng::seed_from_u64(seed);
-        let mut normal = || -> f64 { StandardNormal.sample(&mut rng) };
+        let mut rng = crate::montecarlo::unit_rng(seed, 0);
+        let mut normal = || -> f64 { rng.standard_normal() };
         let sequences = (0..k)
             .map(|_| {
                 let mut x = normal();

@@ -72,13 +72,12 @@ pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
 pub use candidates::CANDIDATES;
 pub use observation::{
     observation_piston, ObservationError, ObservationPiston, BLOCKS_PER_SEQUENCE,
-    MAX_OBSERVATION_SAMPLES,
 };
 use point::grid_point;
 pub use point::{point_scans, POINT_SAMPLES};
 pub use reach::sigma_reached_in;
 use reach::{best, choose, reach, Bounds};
-pub use scans::SEQUENCES;
+pub use scans::{MAX_OBSERVATION_SAMPLES, SEQUENCES};
 
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{self, Error, Result};

@@ -28,7 +28,7 @@
 //! further apart than n′ scan periods are uncorrelated).
 
 use super::correlation::ScanCorrelation;
-use super::scans::SEQUENCES;
+use super::scans::{affordable_scans, SEQUENCES};
 pub(crate) use super::scans::{ContiguousScans, ScanValues};
 use super::{PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::{BiasConvention, RowEstimator};
@@ -49,7 +49,7 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 }
 
 /// Blocks of n consecutive scans each sequence of the plan's observation
-/// Monte Carlo holds at least (when [`MAX_OBSERVATION_SAMPLES`] allows):
+/// Monte Carlo holds at least (when [`super::MAX_OBSERVATION_SAMPLES`] allows):
 /// the sequence then also holds the piston's wander slower than the
 /// observation (an FFT sequence has nothing below one over its length),
 /// and the K sequences give 4K observations. Measured in the bright case of
@@ -58,26 +58,10 @@ pub(crate) fn stride_samples(inputs: &PlanInputs, model: &Model, fringe_hz: f64)
 /// verification's 16-block sequences achieved 7.4e-5 ± 0.4e-5.
 pub const BLOCKS_PER_SEQUENCE: u64 = 4;
 
-/// Most samples (scans × N) one observation Monte Carlo of the plan
-/// simulates: 2^24, about 1.5 core-seconds (at 9e-8 core-s per scanned
-/// sample, measured 2026-11-25); beyond, fewer blocks
-/// per sequence (wider intervals), but always at least n scans.
-pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
-
-/// Scans of N samples each of one of the K sequences that
-/// [`MAX_OBSERVATION_SAMPLES`] affords: L N + 4 ≤ a K-th of it (a
-/// sequence of contiguous scans is L N samples and the 4 every sequence
-/// has beyond its last scan), so that without dead time every setting at
-/// one fringe frequency draws sequences of one FFT length (2^20), drawn
-/// once for all of them (`candidates`).
-pub(crate) fn affordable_scans(samples: usize) -> usize {
-    (MAX_OBSERVATION_SAMPLES / SEQUENCES - 4) / samples.max(1)
-}
-
 /// Scans per sequence that hold `scans` scans (the blocks wanted), span
 /// [`SPAN_CORRELATION_TIMES`] correlation times and hold `budget / K` (the
 /// plan's `scans`); at most what one sequence within the memory limit
-/// holds and, with `capped`, what [`MAX_OBSERVATION_SAMPLES`] allows (but
+/// holds and, with `capped`, what [`super::MAX_OBSERVATION_SAMPLES`] allows (but
 /// `least`); None when not even one scan fits.
 pub(crate) fn scans_per_sequence(
     sky: &PistonSpectrum,
@@ -252,7 +236,7 @@ pub struct ObservationError {
     pub sequences: usize,
     /// Consecutive scans simulated in each sequence (L: they span
     /// 8 correlation times B/v, the plan's correlation module's span,
-    /// where [`MAX_OBSERVATION_SAMPLES`] allows, whatever n).
+    /// where [`super::MAX_OBSERVATION_SAMPLES`] allows, whatever n).
     pub scans_per_sequence: u64,
     /// Disjoint blocks of n consecutive scans the sequences hold (0 when n
     /// is longer than a sequence: the variance then comes from the scans'

@@ -1,10 +1,26 @@
-//! The per-scan values an observation Monte Carlo keeps: what the
-//! observation's solve (`observation.rs`) fills and the scans'
-//! correlation (`correlation.rs`) reads.
+//! The per-scan values an observation Monte Carlo keeps, and its size:
+//! what the observation's solve (`observation.rs`) fills and the scans'
+//! correlation (`correlation.rs`) reads, both above this module.
 
 /// Independent piston sequences of an observation Monte Carlo: its
 /// standard errors have `SEQUENCES − 1` degrees of freedom.
 pub const SEQUENCES: usize = 16;
+
+/// Most samples (scans × N) one observation Monte Carlo of the plan
+/// simulates: 2^24, about 1.5 core-seconds (at 9e-8 core-s per scanned
+/// sample, measured 2026-11-25); beyond, fewer blocks
+/// per sequence (wider intervals), but always at least n scans.
+pub const MAX_OBSERVATION_SAMPLES: usize = 1 << 24;
+
+/// Scans of N samples each of one of the K sequences that
+/// [`MAX_OBSERVATION_SAMPLES`] affords: L N + 4 ≤ a K-th of it (a
+/// sequence of contiguous scans is L N samples and the 4 every sequence
+/// has beyond its last scan), so that without dead time every setting at
+/// one fringe frequency draws sequences of one FFT length (2^20), drawn
+/// once for all of them (`candidates`).
+pub(crate) fn affordable_scans(samples: usize) -> usize {
+    (MAX_OBSERVATION_SAMPLES / SEQUENCES - 4) / samples.max(1)
+}
 
 /// The per-scan values of K contiguous sequences, for the block means of
 /// any observation length up to the scans of one sequence.

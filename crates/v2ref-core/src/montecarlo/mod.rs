@@ -3,9 +3,10 @@
 //! pattern of rand's `examples/rayon-monte-carlo.rs`). The answer is
 //! bit-identical whatever the number of threads.
 //!
-//! Generators are `rand_pcg::Pcg64Mcg` (crate version pinned exactly in
-//! `lib/Cargo.toml`), seeded from a SplitMix64 hash of (seed, unit) so that
-//! neighbouring units get unrelated streams.
+//! Generators are [`Rng`], a v2ref type around `rand_pcg::Pcg64Mcg`
+//! (the releases required in `crates/v2ref-core/Cargo.toml`), seeded from a
+//! SplitMix64 hash of (seed, unit) so that neighbouring units get unrelated
+//! streams.
 
 pub mod cancel;
 pub mod pool;
@@ -16,12 +17,52 @@ pub use statistics::{
     Summary,
 };
 
-use rand::SeedableRng;
+use rand::{RngCore, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 
-/// The generator every Monte Carlo in the crate uses.
-pub type Rng = Pcg64Mcg;
+/// The generator every Monte Carlo in the crate uses: PCG-64 MCG (O'Neill
+/// 2014; 128-bit multiplicative congruential state, XSL RR 64-bit output),
+/// the bits of `rand_pcg::Pcg64Mcg` 0.3. A v2ref type with its own methods,
+/// so that a pipeline on any rand release draws from it (its own rand
+/// traits are not needed, nor ours): wrap [`Rng::next_u64`] in the
+/// pipeline's `RngCore` to use its own distributions.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rng(Pcg64Mcg);
+
+impl Rng {
+    /// The generator of the 128-bit state `seed` (little-endian), as
+    /// `rand_pcg::Pcg64Mcg::from_seed` (the state's lowest bit is forced to 1).
+    pub fn from_seed(seed: [u8; 16]) -> Rng {
+        Rng(Pcg64Mcg::from_seed(seed))
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0.next_u64()
+    }
+
+    /// A uniform f64 in [0, 1): the top 53 bits of [`Rng::next_u64`] times
+    /// 2⁻⁵³ (one draw; every multiple of 2⁻⁵³ below 1 equally likely), the
+    /// value of rand 0.8's `Standard` for f64.
+    pub fn uniform_f64(&mut self) -> f64 {
+        const TWO_POW_MINUS_53: f64 = 1.0 / (1u64 << 53) as f64;
+        (self.next_u64() >> 11) as f64 * TWO_POW_MINUS_53
+    }
+
+    /// A standard normal draw (mean 0, variance 1): `rand_distr`'s
+    /// `StandardNormal` (ziggurat, Marsaglia & Tsang 2000), the Gaussian
+    /// draw of every Monte Carlo in the crate.
+    pub fn standard_normal(&mut self) -> f64 {
+        use rand_distr::Distribution;
+        rand_distr::StandardNormal.sample(&mut self.0)
+    }
+
+    /// The inner generator, for the crate's `rand_distr` samplers.
+    pub(crate) fn rand_core(&mut self) -> &mut Pcg64Mcg {
+        &mut self.0
+    }
+}
 
 /// SplitMix64 finalizer (Steele, Lea & Flood 2014): a bijective 64-bit mix.
 fn splitmix64(mut z: u64) -> u64 {

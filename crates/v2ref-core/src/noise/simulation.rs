@@ -312,8 +312,10 @@ impl PoissonSampler {
         use rand_distr::Distribution;
         match self {
             PoissonSampler::Zero => 0.0,
-            PoissonSampler::Alias { table, offset } => offset + table.sample(rng) as f64,
-            PoissonSampler::Direct(d) => d.sample(rng),
+            PoissonSampler::Alias { table, offset } => {
+                offset + table.sample(rng.rand_core()) as f64
+            }
+            PoissonSampler::Direct(d) => d.sample(rng.rand_core()),
         }
     }
 }
@@ -378,10 +380,9 @@ impl SampleNoise {
     /// Fills `out` with one noisy interferogram M_i.
     #[inline]
     pub(crate) fn draw(&self, rng: &mut Rng, out: &mut [f64]) {
-        use rand_distr::{Distribution, StandardNormal};
         if self.poisson.is_empty() {
             for (o, &m) in out.iter_mut().zip(&self.modulated) {
-                let z: f64 = StandardNormal.sample(rng);
+                let z: f64 = rng.standard_normal();
                 *o = m + self.sigma * z;
             }
         } else {
@@ -390,7 +391,7 @@ impl SampleNoise {
             }
             if self.sigma > 0.0 {
                 for o in out.iter_mut() {
-                    let z: f64 = StandardNormal.sample(rng);
+                    let z: f64 = rng.standard_normal();
                     *o += self.sigma * z;
                 }
             }

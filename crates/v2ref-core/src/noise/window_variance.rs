@@ -32,16 +32,84 @@
 use crate::error::{Error, Result};
 use crate::formalism::estimator::{band_bins_within_bound, dft_phase};
 use crate::noise::{Cumulants, NoiseModel};
-use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
+/// A dense n × n matrix of f64, row-major: the matrix of a quadratic form
+/// `MᵀAM` (`a[(i, j)]` is A_ij).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SquareMatrix {
+    n: usize,
+    entries: Vec<f64>,
+}
+
+impl SquareMatrix {
+    /// The n × n matrix of entries `f(i, j)`.
+    pub fn from_fn(n: usize, mut f: impl FnMut(usize, usize) -> f64) -> SquareMatrix {
+        let entries = (0..n * n).map(|at| f(at / n, at % n)).collect();
+        SquareMatrix { n, entries }
+    }
+
+    /// The number of rows (and columns), n.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Row `i`: A_i0 … A_i(n−1).
+    pub fn row(&self, i: usize) -> &[f64] {
+        &self.entries[i * self.n..(i + 1) * self.n]
+    }
+
+    /// The product `A x` (each entry summed over j in order).
+    pub fn times(&self, x: &[f64]) -> Vec<f64> {
+        (0..self.n)
+            .map(|i| {
+                self.row(i)
+                    .iter()
+                    .zip(x)
+                    .fold(0.0, |acc, (a, x)| acc + a * x)
+            })
+            .collect()
+    }
+}
+
+impl std::ops::Index<(usize, usize)> for SquareMatrix {
+    type Output = f64;
+
+    fn index(&self, (i, j): (usize, usize)) -> &f64 {
+        &self.entries[i * self.n + j]
+    }
+}
+
+/// `Σ_i x_i y_i` summed as nalgebra 0.33's `dot` sums a dynamic vector (eight
+/// partial sums over blocks of eight, combined (0+4), (1+5), (2+6), (3+7),
+/// then the tail in order): the order the exact statistics were computed
+/// in before this crate wrote its own, kept so that their bits are.
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len().min(y.len());
+    let blocks = n / 8 * 8;
+    let mut acc = [0.0; 8];
+    for i in (0..blocks).step_by(8) {
+        for (l, a) in acc.iter_mut().enumerate() {
+            *a += x[i + l] * y[i + l];
+        }
+    }
+    let mut sum = 0.0;
+    for l in 0..4 {
+        sum += acc[l] + acc[l + 4];
+    }
+    for i in blocks..n {
+        sum += x[i] * y[i];
+    }
+    sum
+}
+
 /// The matrices A₁ (V1²) and A₂ (V2²) of the window `bins` for N = `n`.
-pub fn quadratic_forms(n: usize, bins: &[usize]) -> (DMatrix<f64>, DMatrix<f64>) {
+pub fn quadratic_forms(n: usize, bins: &[usize]) -> (SquareMatrix, SquareMatrix) {
     // cos(2π d k/N) for every lag d, summed over the window.
     let lag: Vec<f64> = (0..n)
         .map(|d| bins.iter().map(|&k| dft_phase(d, k, n).cos()).sum())
         .collect();
-    let a1 = DMatrix::from_fn(n, n, |i, j| lag[(i + n - j) % n]);
+    let a1 = SquareMatrix::from_fn(n, |i, j| lag[(i + n - j) % n]);
     let (ure, uim): (Vec<f64>, Vec<f64>) = (0..n)
         .map(|i| {
             bins.iter().fold((0.0, 0.0), |(re, im), &k| {
@@ -50,16 +118,15 @@ pub fn quadratic_forms(n: usize, bins: &[usize]) -> (DMatrix<f64>, DMatrix<f64>)
             })
         })
         .unzip();
-    let a2 = DMatrix::from_fn(n, n, |i, j| ure[i] * ure[j] + uim[i] * uim[j]);
+    let a2 = SquareMatrix::from_fn(n, |i, j| ure[i] * ure[j] + uim[i] * uim[j]);
     (a1, a2)
 }
 
 /// `(mᵀAm, Σ A_ii v_i, var(MᵀAM))` for a symmetric A.
-pub fn quadratic_form_moments(a: &DMatrix<f64>, m: &[f64], cum: &[Cumulants]) -> (f64, f64, f64) {
+pub fn quadratic_form_moments(a: &SquareMatrix, m: &[f64], cum: &[Cumulants]) -> (f64, f64, f64) {
     let n = m.len();
-    let mv = DVector::from_column_slice(m);
-    let am = a * &mv;
-    let signal = mv.dot(&am);
+    let am = a.times(m);
+    let signal = dot(m, &am);
     let mut bias = 0.0;
     let mut var = 0.0;
     for i in 0..n {
@@ -79,13 +146,25 @@ pub fn quadratic_form_moments(a: &DMatrix<f64>, m: &[f64], cum: &[Cumulants]) ->
 /// cumulants `κ_r = 2^{r−1}(r−1)! [tr((AΣ)^r) + (r/4) bᵀΣ(AΣ)^{r−2}b]`,
 /// b = 2Am; Mathai & Provost 1992, Thm 3.2b.2). Gives the closed-form
 /// standard error of a Monte Carlo sample variance.
-pub fn gaussian_cumulant4(a: &DMatrix<f64>, m: &[f64], var: &[f64]) -> f64 {
-    let sigma = DMatrix::from_diagonal(&DVector::from_column_slice(var));
-    let as_ = a * &sigma;
-    let as2 = &as_ * &as_;
-    let tr4 = (&as2 * &as2).trace();
-    let am = a * DVector::from_column_slice(m);
-    let quad = (am.transpose() * &sigma * &as2 * &am)[(0, 0)];
+pub fn gaussian_cumulant4(a: &SquareMatrix, m: &[f64], var: &[f64]) -> f64 {
+    let n = a.dim();
+    // AΣ: column j of A times var[j]; (AΣ)² by rows.
+    let a_sigma = SquareMatrix::from_fn(n, |i, j| a[(i, j)] * var[j]);
+    let a_sigma_sq = SquareMatrix::from_fn(n, |i, j| {
+        (0..n).map(|k| a_sigma[(i, k)] * a_sigma[(k, j)]).sum()
+    });
+    // tr((AΣ)⁴) = Σ_ij [(AΣ)²]_ij [(AΣ)²]_ji.
+    let tr4: f64 = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .map(|(i, j)| a_sigma_sq[(i, j)] * a_sigma_sq[(j, i)])
+        .sum();
+    let am = a.times(m);
+    let sigma_am: Vec<f64> = am.iter().zip(var).map(|(x, v)| x * v).collect();
+    let quad: f64 = sigma_am
+        .iter()
+        .zip(a_sigma_sq.times(&am))
+        .map(|(x, y)| x * y)
+        .sum();
     48.0 * (tr4 + 4.0 * quad)
 }
 
@@ -181,7 +260,7 @@ pub fn two_sided_band_bins(n: usize, dx_um: f64, lo_per_um: f64, hi_per_um: f64)
 /// ⟨M_j M_l⟩⟨M_p M_q⟩)`, each expectation a product of per-sample raw
 /// moments over the distinct indices (the paper's four-index sum). O(N⁴):
 /// for tests with small N.
-pub fn variance_by_moments(a: &DMatrix<f64>, m: &[f64], counts: &[f64], noise: &NoiseModel) -> f64 {
+pub fn variance_by_moments(a: &SquareMatrix, m: &[f64], counts: &[f64], noise: &NoiseModel) -> f64 {
     let n = m.len();
     let raw: Vec<[f64; 5]> = (0..n)
         .map(|i| crate::noise::model::moments_of(m[i], noise.cumulants_at(counts[i])).raw)

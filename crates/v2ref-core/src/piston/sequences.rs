@@ -10,7 +10,7 @@
 use crate::montecarlo::derive_seed;
 use crate::piston::scan::{interp, PistonReference, ScanSetup};
 use crate::piston::series::{sequence_length, ModeScales, MAX_SERIES};
-use crate::piston::turbulence::PistonSpectrum;
+use crate::piston::spectrum::PistonSpectrum;
 use crate::piston::RunSize;
 use crate::{Error, Result};
 use std::sync::{Arc, Mutex};

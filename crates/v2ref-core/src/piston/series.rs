@@ -5,7 +5,7 @@
 //! # Piston sequences
 //!
 //! A Gaussian piston sequence with the two-sided spectrum P(ν) of
-//! [`crate::piston::turbulence::PistonSpectrum`] is synthesised by FFT: with M
+//! [`crate::piston::spectrum::PistonSpectrum`] is synthesised by FFT: with M
 //! samples at step Δt, ν_k = k/(MΔt), the coefficients
 //! `W_k = √(P(ν_k)Δν) (g + i g')` (g, g' standard normal) for
 //! 0 < k < M/2 and `p_n = √2 Re Σ_k W_k e^{2πikn/M}` give
@@ -18,7 +18,6 @@ use crate::error::{self, Error, Result};
 use crate::math::fft::inverse_dft_with;
 use crate::montecarlo::{in_pool, try_run_unit_range};
 use num_complex::Complex64;
-use rand_distr::{Distribution, StandardNormal};
 
 /// Largest piston sequence accepted (scans × samples), 2^24 samples.
 pub const MAX_SERIES: usize = 1 << 24;
@@ -144,8 +143,8 @@ impl ModeScales {
             let block = self.scale[first - 1..last - 1]
                 .iter()
                 .map(|&s| {
-                    let g: f64 = StandardNormal.sample(rng);
-                    let h: f64 = StandardNormal.sample(rng);
+                    let g: f64 = rng.standard_normal();
+                    let h: f64 = rng.standard_normal();
                     Complex64::new(s * g, s * h)
                 })
                 .collect::<Vec<_>>();

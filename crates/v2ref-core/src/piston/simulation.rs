@@ -28,7 +28,7 @@ use crate::piston::calibration::{Calibration, ScanContext, Workspace};
 use crate::piston::fringe_table::MAX_OPD_UM;
 use crate::piston::scan::{fill_scan, Detector, ScanSetup};
 use crate::piston::sequences::{correlation_time_s, max_scans, PistonSequence};
-use crate::piston::turbulence::PistonSpectrum;
+use crate::piston::spectrum::PistonSpectrum;
 use serde::Serialize;
 
 /// Piston statistics for one window of bins.

@@ -22,10 +22,6 @@
 use crate::error::{self, Error, Result};
 use std::f64::consts::PI;
 
-// The crate's shorthand for the spectrum's items (their one public path is
-// `piston::spectrum`).
-pub(crate) use super::spectrum::PistonSpectrum;
-
 /// Radians per arcsecond.
 pub const RAD_PER_ARCSEC: f64 = PI / 648_000.0;
 

@@ -10,7 +10,8 @@ use crate::formalism::phase::SpectralPhase;
 use crate::formalism::spectrum::{Band, Spectrum};
 use crate::noise::NoiseModel;
 use crate::piston::scan::{Detector, ScanSetup, DEFAULT_SUB_SAMPLES};
-use crate::piston::turbulence::{PistonSpectrum, Turbulence};
+use crate::piston::spectrum::PistonSpectrum;
+use crate::piston::turbulence::Turbulence;
 use crate::record::PistonReference;
 use serde::{Deserialize, Serialize};
 

@@ -10,7 +10,7 @@ use crate::noise::calibrated::CalibratedSetup;
 use crate::noise::{scaled_interferogram, NoiseModel};
 use crate::piston::fringe_table::{FringeTable, FringeTables};
 use crate::piston::sequences::SharedSequences;
-use crate::piston::turbulence::PistonSpectrum;
+use crate::piston::spectrum::PistonSpectrum;
 use crate::simulator::inputs::Inputs;
 use std::sync::Arc;
 

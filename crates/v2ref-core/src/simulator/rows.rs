@@ -181,7 +181,7 @@ impl Model {
 
     fn piston_scans(
         &self,
-        spectrum: &crate::piston::turbulence::PistonSpectrum,
+        spectrum: &crate::piston::spectrum::PistonSpectrum,
         setup: ScanSetup,
         size: &RunSize,
         layout: Layout,
@@ -554,13 +554,13 @@ impl Rows<'_> {
     /// Poisson counts first, then the Gaussian read noise, as
     /// [`SampleNoise`] draws them).
     fn add_noise(&self, rng: &mut Rng, row: &mut [f64]) {
-        use rand_distr::{Distribution, Poisson, StandardNormal};
+        use rand_distr::{Distribution, Poisson};
         let noise = &self.model.noise;
         if noise.photon {
             for (m, &c) in row.iter_mut().zip(&self.model.signal.continuum) {
                 let mean = (c + *m).max(0.0);
                 let count = match Poisson::new(mean) {
-                    Ok(p) => p.sample(rng),
+                    Ok(p) => p.sample(rng.rand_core()),
                     Err(_) => 0.0, // mean 0: no photon
                 };
                 *m = count - c;
@@ -568,7 +568,7 @@ impl Rows<'_> {
         }
         if noise.read_noise > 0.0 {
             for m in row.iter_mut() {
-                let z: f64 = StandardNormal.sample(rng);
+                let z: f64 = rng.standard_normal();
                 *m += noise.read_noise * z;
             }
         }

@@ -1,10 +1,10 @@
 //! The spectrum CSV file of `--spectrum-csv` / `spectrum_csv`, read at the
-//! edges: the numerics take the parsed table ([`SpectrumFile`], carried by
-//! [`crate::parameters::Physical`]) and read no file themselves.
+//! edges: the numerics take the parsed table (`SpectrumFile` of the crate
+//! `v2ref-commands`, carried by its `Physical`, made by the edges from the
+//! file's name and [`spectrum_from_csv_path`]) and read no file themselves.
 
 use crate::error::{Error, Result};
 use crate::formalism::spectrum::{Spectrum, MAX_SPECTRUM_CSV_BYTES, MAX_SPECTRUM_ROWS};
-use crate::parameters::SpectrumFile;
 use std::path::Path;
 
 /// Reads a tabulated spectrum from a CSV file, in the form of
@@ -25,10 +25,4 @@ pub fn spectrum_from_csv_path(path: &Path) -> Result<Spectrum> {
         Error::SpectrumTable { reason } => in_file(reason),
         other => other,
     })
-}
-
-/// The table of the CSV file at `path` ([`spectrum_from_csv_path`]), with
-/// its name.
-pub fn read_spectrum_file(path: &Path) -> Result<SpectrumFile> {
-    Ok(SpectrumFile::new(path, spectrum_from_csv_path(path)?))
 }

@@ -1,9 +1,9 @@
 //! The target list of `plan --targets` / `plan_targets`, read at the edge:
-//! the library parses its text ([`parse_targets`]).
+//! `v2ref-core` parses its text ([`parse_targets`]).
 
 use crate::{Error, Result};
 use std::path::Path;
-use v2ref_commands::commands::targets::{parse_targets, RowFault, Target};
+use v2ref_core::target_list::{parse_targets, RowFault, Target};
 
 /// Largest target list read, bytes (100 000 targets of a few hundred bytes).
 pub const MAX_TARGETS_CSV_BYTES: u64 = 64 << 20;
