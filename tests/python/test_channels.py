@@ -55,7 +55,9 @@ def test_a_channel_table_file(tmp_path):
     path.write_text(TABLE)
     b = v2ref.bias(channels_csv=path)
     shares = [c["photon_share"] for c in b["channels"]]
-    assert len(shares) == 2 and shares[0] > 0.75 and sum(shares) == pytest.approx(1.0, abs=1e-12)  # tol: rounding of a sum
+    # Flat band: each channel's light is its width in wavenumber times its response.
+    light = np.array([3 * (1 / 2.2 - 1 / 2.4), 1 / 2.0 - 1 / 2.2])
+    assert shares == pytest.approx(list(light / light.sum()), rel=1e-14)  # tol: a few roundings
     fifo = tmp_path / "fifo.csv"
     os.mkfifo(fifo)
     with pytest.raises(ValueError, match="channels_csv"):

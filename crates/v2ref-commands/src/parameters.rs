@@ -542,6 +542,7 @@ mod tests {
                 Value::Number(x) => json!(x.as_f64().unwrap() + 0.5),
                 Value::String(w) if w == "ud" => json!("point"),
                 Value::String(_) => json!("centre"),
+                _ if p.name == "channels" => json!(3),
                 _ => json!(1.5),
             };
             let mut q = Physical::default();
