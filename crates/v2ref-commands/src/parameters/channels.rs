@@ -59,9 +59,10 @@ impl Serialize for ChannelsFile {
 /// `e` with the parameter `channels` named `to` (the input the user gave).
 pub fn renamed_channels(e: Error, to: &'static str) -> Error {
     match e {
-        Error::Invalid { param, reason } if param == "channels" => {
-            Error::Invalid { param: to, reason }
-        }
+        Error::Invalid {
+            param: "channels",
+            reason,
+        } => Error::Invalid { param: to, reason },
         e => e.renamed("channels", to),
     }
 }
