@@ -23,6 +23,7 @@ mod channels_mc;
 mod claims;
 mod claims_notes;
 mod cli;
+mod cli_channels;
 mod cli_noise;
 mod cli_piston;
 mod cli_support;

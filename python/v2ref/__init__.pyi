@@ -13,7 +13,7 @@ _PathLike = Union[str, _os.PathLike[str]]
 __version__: str
 ESTIMATE_COLUMNS: Tuple[str, ...]
 
-def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, _np.ndarray]:
+def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike, None]=None, bins: str='positive', bias: str='model', calibrator: Any=None, continuum_subtracted: Optional[bool]=None, threads: int=0, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, dx_um: float=0.5, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, _np.ndarray]:
     """Per-row V1² and V2² (raw, bias, normalized) of a 2-D array, as ``v2ref estimate``.
 
     Parameters
@@ -62,6 +62,24 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -122,7 +140,7 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
         dimensionless): the columns of ``v2ref estimate``.
     """
 
-def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
+def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
     """A set of test interferograms and its sidecar with the truth, as ``v2ref synth``.
 
     The rows are bit-identical to the ``.npy`` that ``v2ref synth`` writes
@@ -184,6 +202,24 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -329,7 +365,7 @@ def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins:
         minimum detectable biases, pass), ``pass``.
     """
 
-def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', client: Any=None, checkpoint: Optional[_PathLike]=None, chunk_units: Optional[int]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', client: Any=None, checkpoint: Optional[_PathLike]=None, chunk_units: Optional[int]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """End-to-end Monte Carlo of the normalized estimators, as ``v2ref simulate --json``.
 
     Parameters
@@ -375,6 +411,24 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -438,10 +492,16 @@ def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='posi
     dict
         ``mean_v1_sq``, ``var_v1_sq``, their standard errors and closed-form
         expectations (None with piston), the same for V2², ``trials``,
-        ``seed``, ``piston``, ``piston_effect`` and every input.
+        ``seed``, ``piston``, ``piston_effect`` and every input. With
+        spectral channels (``channels``, ``resolution`` or ``channels_csv``):
+        ``channels`` (per channel its place, ``v1_sq`` and ``v2_sq``
+        summaries), ``combined_v1_sq`` and ``combined_v2_sq`` (correlation
+        matrix, the photon-weighted mean, its measured ``sigma`` and the
+        ``independent_sigma`` of independent channels), as ``v2ref simulate
+        --json``; ``client`` and ``checkpoint`` do not take channels yet.
     """
 
-def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False) -> Dict[str, Any]:
+def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False) -> Dict[str, Any]:
     """Noise-free wide-band V1 and V2 for one configuration, as ``v2ref bias --json``.
 
     Parameters
@@ -468,6 +528,24 @@ def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -499,10 +577,12 @@ def bias(*, finite_scan: bool=False, bins: str='positive', wavelength_um: float=
     dict
         ``v_mono``, ``v1``, ``v2``, ``v1_sq``, ``v2_sq``,
         ``spatial_freq_cpas``, ``sigma_eff_per_um`` (µm⁻¹), ``baseline_m``
-        and, with a finite scan, ``finite_scan``.
+        and, with a finite scan, ``finite_scan``; with spectral channels,
+        ``channels``: per channel its wavelength range, photon share and
+        biases (bandwidth, dispersion, finite scan, integrating detector).
     """
 
-def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True) -> Dict[str, Any]:
+def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True) -> Dict[str, Any]:
     """Closed-form expectations, variances and SNRs of V1² and V2², as ``v2ref snr --json``.
 
     Parameters
@@ -528,6 +608,24 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -569,10 +667,13 @@ def snr(*, bins: str='positive', formula: str='exact', wavelength_um: float=2.2,
     dict
         ``bias_v1_sq``, ``var_v1_sq``, ``snr1``, … (all bins, photons²),
         ``window_factor``, and ``window_exact`` (None above the largest N
-        the exact window statistics take).
+        the exact window statistics take); with spectral channels,
+        ``channels`` (per channel the closed-form mean, sigma and SNR of V1²
+        and V2²) and ``combined`` (their photon-weighted mean, sigma
+        assuming independent channels).
     """
 
-def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
+def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=1000, seed: int=1, threads: int=0, bins: str='positive', client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean', psd: str='two-aperture', wind_angle_deg: float=0.0) -> Dict[str, Any]:
     """Differential-piston Monte Carlo at one or more fringe frequencies, as ``v2ref piston --json``.
 
     Parameters
@@ -615,6 +716,24 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).
@@ -676,7 +795,7 @@ def piston(*, fringe_hz: Union[float, Sequence[float], None]=None, scans: int=10
         frequency the bias and scatter of V1 and V2 with standard errors.
     """
 
-def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Union[float, Sequence[float], None]=None, stroke_um: Union[float, Sequence[float], None]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
+def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=None, time_budget_s: Optional[float]=None, photon_rate_per_s: Optional[float]=None, magnitude: Optional[float]=None, magnitude_band: Optional[str]=None, throughput: Optional[float]=None, samples_per_fringe: float=4.0, dead_time_s: float=0.0, frame_rate_hz: Optional[float]=None, fringe_hz: Union[float, Sequence[float], None]=None, stroke_um: Union[float, Sequence[float], None]=None, scans: int=16000, seed: int=1, threads: int=0, diameter_err_mas: float=0.0, oifits: Optional[_PathLike]=None, force: bool=False, target_name: Optional[str]=None, ra_deg: Optional[float]=None, dec_deg: Optional[float]=None, date: Optional[str]=None, site: Optional[str]=None, site_lon_deg: Optional[float]=None, site_lat_deg: Optional[float]=None, site_height_m: Optional[float]=None, bias: str='counts', verify: bool=False, verify_observations: int=256, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, integrating: bool=False, visibility: float=1.0, read_noise: float=0.0, photon_noise: bool=True, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:
     """The estimator, fringe frequency, stroke and scans that reach a target σ(V²), as ``v2ref plan --json``.
 
     Parameters
@@ -775,6 +894,24 @@ def plan(*, instrument: Optional[str]=None, target_sigma_v2: Optional[float]=Non
         unit wavelength and is converted by λ²); a leading byte-order mark
         is fine. Default: the flat band of ``wavelength_um`` and
         ``bandwidth_nm``.
+    channels : int, optional
+        Spectral channels C of equal width in wavenumber over the band: 1 to
+        4096. bias, snr and simulate answer per channel (docs/conventions.md
+        §16); one of ``channels``, ``resolution`` or ``channels_csv``. 1:
+        the wide band's numbers. Default: the wide band, no channels.
+    resolution : float, optional
+        Channels of spectral resolution R = λ/Δλ across the band: > 0 (at
+        most 4096 channels over the band). Geometric edges, the whole number
+        of channels nearest R; each channel must hold a DFT bin of the scan.
+        Default: the wide band, no channels.
+    channels_csv : path, optional
+        Channels' edges and responses from a table: a CSV file of at most
+        4096 rows, 1 MiB. Header
+        `wavelength_lo_um,wavelength_hi_um,response` or
+        `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+        channel by increasing axis value, the channels inside the band,
+        neither overlapping nor out of order. Default: the wide band, no
+        channels.
     source : str, default 'ud'
         Source model: point or ud. ud: a uniform disk of diameter
         ``diameter_mas``; point: unresolved (V = 1).

@@ -26,6 +26,9 @@ def simulate(
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
+    channels: Optional[int] = None,
+    resolution: Optional[float] = None,
+    channels_csv: Optional[_PathLike] = None,
     source: str = "ud",
     diameter_mas: float = 43.0,
     spatial_freq_cpas: Optional[float] = None,
@@ -83,7 +86,13 @@ def simulate(
     dict
         ``mean_v1_sq``, ``var_v1_sq``, their standard errors and closed-form
         expectations (None with piston), the same for V2², ``trials``,
-        ``seed``, ``piston``, ``piston_effect`` and every input.
+        ``seed``, ``piston``, ``piston_effect`` and every input. With
+        spectral channels (``channels``, ``resolution`` or ``channels_csv``):
+        ``channels`` (per channel its place, ``v1_sq`` and ``v2_sq``
+        summaries), ``combined_v1_sq`` and ``combined_v2_sq`` (correlation
+        matrix, the photon-weighted mean, its measured ``sigma`` and the
+        ``independent_sigma`` of independent channels), as ``v2ref simulate
+        --json``; ``client`` and ``checkpoint`` do not take channels yet.
     """
     values = dict(locals())
     threads = _uint("threads", threads)
@@ -116,6 +125,9 @@ def bias(
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
+    channels: Optional[int] = None,
+    resolution: Optional[float] = None,
+    channels_csv: Optional[_PathLike] = None,
     source: str = "ud",
     diameter_mas: float = 43.0,
     spatial_freq_cpas: Optional[float] = None,
@@ -142,7 +154,9 @@ def bias(
     dict
         ``v_mono``, ``v1``, ``v2``, ``v1_sq``, ``v2_sq``,
         ``spatial_freq_cpas``, ``sigma_eff_per_um`` (µm⁻¹), ``baseline_m``
-        and, with a finite scan, ``finite_scan``.
+        and, with a finite scan, ``finite_scan``; with spectral channels,
+        ``channels``: per channel its wavelength range, photon share and
+        biases (bandwidth, dispersion, finite scan, integrating detector).
     """
     values = dict(locals())
     return _v2ref.bias(_physical(values), _word("bins", bins), _flag("finite_scan", finite_scan))
@@ -157,6 +171,9 @@ def snr(
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
+    channels: Optional[int] = None,
+    resolution: Optional[float] = None,
+    channels_csv: Optional[_PathLike] = None,
     source: str = "ud",
     diameter_mas: float = 43.0,
     spatial_freq_cpas: Optional[float] = None,
@@ -186,7 +203,10 @@ def snr(
     dict
         ``bias_v1_sq``, ``var_v1_sq``, ``snr1``, … (all bins, photons²),
         ``window_factor``, and ``window_exact`` (None above the largest N
-        the exact window statistics take).
+        the exact window statistics take); with spectral channels,
+        ``channels`` (per channel the closed-form mean, sigma and SNR of V1²
+        and V2²) and ``combined`` (their photon-weighted mean, sigma
+        assuming independent channels).
     """
     values = dict(locals())
     return _v2ref.snr(
@@ -210,6 +230,9 @@ def piston(
     wavelength_um: float = 2.2,
     bandwidth_nm: float = 400.0,
     spectrum_csv: Optional[_PathLike] = None,
+    channels: Optional[int] = None,
+    resolution: Optional[float] = None,
+    channels_csv: Optional[_PathLike] = None,
     source: str = "ud",
     diameter_mas: float = 43.0,
     spatial_freq_cpas: Optional[float] = None,

@@ -15,10 +15,9 @@ def declaration(library):
     word or path, from the default's type), ``DOCS`` and ``UNSET_DOCS``."""
     defaults = dict(library.PHYSICAL_DEFAULTS)
     kind_of_type = {bool: "bool", int: "int", str: "word", float: "float"}
-    kinds = {
-        k: "path" if k == "spectrum_csv" else kind_of_type.get(type(v), "float")
-        for k, v in defaults.items()
-    }
+    # Unset by default, so their kind is not the default's type.
+    declared = {"spectrum_csv": "path", "channels_csv": "path", "channels": "int"}
+    kinds = {k: declared.get(k) or kind_of_type.get(type(v), "float") for k, v in defaults.items()}
     table = library.PHYSICAL_PARAMETERS
     return types.SimpleNamespace(
         DEFAULTS=defaults,

@@ -88,6 +88,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
             rows.push(("V2 (finite scan)", format!("{:.9}", fs.v2)));
         }
         print_rows(&rows);
+        if let Some(lines) = &answer.channels {
+            super::channels::print_bias(lines);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -227,8 +227,10 @@ fn source(args: &Args) -> Result<Source> {
                     "give the interferograms (--input FILE) or a synth sidecar (--sidecar SET.json)"
                         .into(),
             })?;
+            let physical = args.inputs.physical()?;
+            physical.refuse_channels("estimate")?;
             Ok(Source {
-                config: Configuration::from_physical(&args.inputs.physical()?, !args.counts)?,
+                config: Configuration::from_physical(&physical, !args.counts)?,
                 input,
             })
         }

@@ -42,6 +42,10 @@ impl ObservationArgs {
             let table = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(path)?;
             p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(path, table));
         }
+        if let Some(path) = &self.channels_csv {
+            let file = v2ref_files::formats::channels_csv::read_channels_file(path)?;
+            p.channels_csv = Some(file);
+        }
         Ok(p)
     }
 }
@@ -70,6 +74,28 @@ pub struct ObservationArgs {
     #[arg(long, value_name = "FILE", value_parser = clap::value_parser!(PathBuf))]
     #[serde(skip)]
     pub spectrum_csv: Option<PathBuf>,
+    /// Spectral channels C of equal width in wavenumber over the band: 1 to
+    /// 4096. bias, snr and simulate answer per channel (docs/conventions.md
+    /// §16); one of --channels, --resolution or --channels-csv. 1: the wide
+    /// band's numbers [default: the wide band, no channels]
+    #[arg(long, value_parser = count_usize, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channels: Option<usize>,
+    /// Channels of spectral resolution R = λ/Δλ across the band: > 0 (at most
+    /// 4096 channels over the band). Geometric edges, the whole number of
+    /// channels nearest R; each channel must hold a DFT bin of the scan
+    /// [default: the wide band, no channels]
+    #[arg(long, value_parser = finite_f64, allow_negative_numbers = true)]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resolution: Option<f64>,
+    /// Channels' edges and responses from a table: a CSV file of at most 4096
+    /// rows, 1 MiB. Header `wavelength_lo_um,wavelength_hi_um,response` or
+    /// `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per
+    /// channel by increasing axis value, the channels inside the band, neither
+    /// overlapping nor out of order [default: the wide band, no channels]
+    #[arg(long, value_name = "FILE", value_parser = clap::value_parser!(PathBuf))]
+    #[serde(skip)]
+    pub channels_csv: Option<PathBuf>,
     /// Source model: point or ud. ud: a uniform disk of diameter
     /// --diameter-mas; point: unresolved (V = 1) [default: ud]
     #[arg(long, value_parser = choice::<SourceKind>())]

@@ -93,13 +93,17 @@ mod tests {
 
     /// Each flag reaches its own field: a non-default value of every
     /// input's flag moves exactly that field (a flag copied into the wrong
-    /// field, or not at all, fails). The spectrum's file is read.
+    /// field, or not at all, fails). The spectrum's and channels' files are read.
     #[test]
     fn each_flag_sets_its_field() {
         let dir = tempfile::tempdir().unwrap();
         let csv = dir.path().join("band.csv");
         std::fs::write(&csv, "wavelength_um,weight\n2.0,1\n2.4,2\n").unwrap();
         let csv = csv.display().to_string();
+        let table = dir.path().join("channels.csv");
+        let text = "wavelength_lo_um,wavelength_hi_um,response\n2.0,2.2,1\n2.2,2.4,1\n";
+        std::fs::write(&table, text).unwrap();
+        let table = table.display().to_string();
         let d = serde_json::to_value(Physical::default()).unwrap();
         for p in &PARAMETERS {
             let name = p.name.replace('_', "-");
@@ -121,6 +125,12 @@ mod tests {
                 Json::Null if p.name == "spectrum_csv" => {
                     (vec![format!("--{name}"), csv.clone()], json!(csv))
                 }
+                Json::Null if p.name == "channels_csv" => {
+                    (vec![format!("--{name}"), table.clone()], json!(table))
+                }
+                Json::Null if p.name == "channels" => {
+                    (vec![format!("--{name}"), "3".into()], json!(3))
+                }
                 Json::Null => (vec![format!("--{name}"), "1.5".into()], json!(1.5)),
                 v => panic!("{}: {v:?}", p.name),
             };
@@ -132,6 +142,10 @@ mod tests {
                 .unwrap();
             if p.name == "spectrum_csv" {
                 assert!(got.spectrum_csv.is_some(), "the file is read");
+            }
+            if p.name == "channels_csv" {
+                let file = got.channels_csv.as_ref().expect("the file is read");
+                assert_eq!(file.text(), text);
             }
             let got = serde_json::to_value(got).unwrap();
             assert_eq!(got[p.name], want, "{flags:?}");

@@ -20,6 +20,7 @@ macro_rules! errln {
 }
 
 pub mod bias;
+pub mod channels;
 pub mod claims;
 pub mod common;
 pub mod estimate;

@@ -9,8 +9,10 @@ use super::common::{OutputArgs, RunArgs};
 use super::inputs::InputsArgs;
 use super::{print_json, print_rows, progress_bar};
 use std::process::ExitCode;
+use v2ref_commands::parameters::Physical;
 use v2ref_commands::report::simulator::{check_trials, Estimation, SimulateReport};
 use v2ref_core::conformance::estimate::BiasConvention;
+use v2ref_core::formalism::channels::Channels;
 use v2ref_core::formalism::estimator::BinWindow;
 use v2ref_core::noise::calibrated::Trials;
 use v2ref_core::noise::Formula;
@@ -46,6 +48,10 @@ pub struct Args {
 /// Runs `simulate`.
 pub fn run(args: Args) -> Result<ExitCode> {
     check_trials(args.trials)?;
+    let physical = args.inputs.physical()?;
+    if let Some(channels) = v2ref_commands::commands::channels::given(&physical)? {
+        return run_channels(&args, &physical, channels);
+    }
     let inputs = args.inputs.inputs()?;
     let model = Model::new(&inputs)?;
     args.inputs.warn_about(&model);
@@ -69,6 +75,39 @@ pub fn run(args: Args) -> Result<ExitCode> {
         print_json(&answer);
     } else {
         print_table(&answer);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Runs `simulate` per spectral channel (the shared-piston Monte Carlo).
+fn run_channels(
+    args: &Args,
+    physical: &Physical,
+    (channels, input): (Channels, &'static str),
+) -> Result<ExitCode> {
+    let what = format!("simulate: {} channels", channels.count());
+    let bar = super::spinner(args.output.quiet, &what);
+    let size = Trials {
+        trials: args.trials,
+        seed: args.run.seed,
+        threads: args.run.threads,
+    };
+    let estimation = Estimation {
+        window: args.bins,
+        bias: args.bias,
+        formula: args.formula,
+    };
+    let answer = v2ref_commands::commands::channels_simulate::simulate(
+        physical,
+        (&channels, input),
+        estimation,
+        size,
+    )?;
+    bar.finish_and_clear();
+    if args.output.json {
+        print_json(&answer);
+    } else {
+        super::channels::print_simulate(&answer);
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -87,4 +87,7 @@ fn print_table(a: &SnrReport) {
         rows.push(("SNR2 (window, exact)", snr_text(w.stats.snr2, 4)));
     }
     print_rows(&rows);
+    if let Some(c) = &a.channels {
+        super::channels::print_snr(c);
+    }
 }

@@ -80,6 +80,7 @@ pub struct Args {
 
 /// Runs `synth`.
 pub fn run(args: Args) -> Result<ExitCode> {
+    args.inputs.physical()?.refuse_channels("synth")?;
     let inputs = args.inputs.inputs()?;
     let timing = RowTiming::new(args.layout, args.observations, args.dead_time_s)?;
     let observing = args.observing.resolve(args.oifits, "--oifits")?;

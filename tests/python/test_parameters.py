@@ -43,7 +43,7 @@ def test_each_physical_keyword_defaults_to_the_librarys(name):
     for k in _physical_keywords(name):
         assert sig.parameters[k].default == _v2ref.PHYSICAL_DEFAULTS[k], (name, k)
     assert list(_v2ref.PHYSICAL_DEFAULTS) == list(_v2ref.PHYSICAL_KEYWORDS)
-    assert len(_v2ref.PHYSICAL_DEFAULTS) == 24
+    assert len(_v2ref.PHYSICAL_DEFAULTS) == 27
 
 
 COMMANDS = {"synthesize": "synth"}

@@ -32,8 +32,10 @@ use crate::simulator::{Inputs, PistonInputs, SourceInput, SpectrumInput};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+mod channels;
 mod table;
 
+pub use channels::{renamed_channels, ChannelsFile, CHANNEL_INPUTS, MAX_CHANNELS_CSV_BYTES};
 pub use table::{refer_to, Parameter, PARAMETERS};
 
 /// Every physical input of one configuration (see the module doc). Field
@@ -51,6 +53,16 @@ pub struct Physical {
     /// read by the edges ([`SpectrumFile`]).
     #[serde(skip_deserializing)]
     pub spectrum_csv: Option<SpectrumFile>,
+    /// C spectral channels of equal width in wavenumber over the band
+    /// (`crate::formalism::channels::Channels::equal`).
+    pub channels: Option<usize>,
+    /// Channels of resolving power R = λ/Δλ across the band
+    /// (`crate::formalism::channels::Channels::from_resolution`).
+    pub resolution: Option<f64>,
+    /// Channels' edges and responses from a CSV file's text, read by the
+    /// edges ([`ChannelsFile`]).
+    #[serde(skip_deserializing)]
+    pub channels_csv: Option<ChannelsFile>,
     /// Source model.
     pub source: SourceKind,
     /// Uniform-disk diameter θ, mas.
@@ -105,6 +117,9 @@ impl Physical {
         wavelength_um: 2.2,
         bandwidth_nm: 400.0,
         spectrum_csv: None,
+        channels: None,
+        resolution: None,
+        channels_csv: None,
         source: SourceKind::Ud,
         diameter_mas: 43.0,
         spatial_freq_cpas: None,
@@ -266,13 +281,14 @@ impl Physical {
             _ => unreachable!("a struct serializes as a JSON object"),
         };
         all.remove("spectrum_csv");
+        all.remove("channels_csv");
         for (name, value) in given.into_iter().filter(|(_, v)| !v.is_null()) {
             let entry = match Parameter::named(&name) {
-                Some(p) if p.name != "spectrum_csv" => p,
+                Some(p) if !p.name.ends_with("_csv") => p,
                 Some(p) => {
                     return Err(Error::Invalid {
                         param: p.name,
-                        reason: "a spectrum's table is read by the edges from its file".into(),
+                        reason: "a table is read by the edges from its file".into(),
                     })
                 }
                 None => {
@@ -304,6 +320,7 @@ impl Physical {
         let mut next: Physical =
             serde_json::from_value(Value::Object(all)).expect("each value was read alone");
         next.spectrum_csv = self.spectrum_csv.take();
+        next.channels_csv = self.channels_csv.take();
         *self = next;
         Ok(())
     }
@@ -314,6 +331,7 @@ impl Physical {
         let numbers = [
             ("wavelength_um", Some(self.wavelength_um)),
             ("bandwidth_nm", Some(self.bandwidth_nm)),
+            ("resolution", self.resolution),
             ("diameter_mas", Some(self.diameter_mas)),
             ("spatial_freq_cpas", self.spatial_freq_cpas),
             ("baseline_m", self.baseline_m),
@@ -517,13 +535,14 @@ mod tests {
     #[test]
     fn each_field_overlays_itself() {
         let d = serde_json::to_value(Physical::default()).unwrap();
-        for p in PARAMETERS.iter().filter(|p| p.name != "spectrum_csv") {
+        for p in PARAMETERS.iter().filter(|p| !p.name.ends_with("_csv")) {
             let want = match &d[p.name] {
                 Value::Bool(b) => json!(!b),
                 Value::Number(n) if n.is_u64() => json!(n.as_u64().unwrap() + 1),
                 Value::Number(x) => json!(x.as_f64().unwrap() + 0.5),
                 Value::String(w) if w == "ud" => json!("point"),
                 Value::String(_) => json!("centre"),
+                _ if p.name == "channels" => json!(3),
                 _ => json!(1.5),
             };
             let mut q = Physical::default();
@@ -565,6 +584,8 @@ mod tests {
         );
         let e = p.overlay(json!({"spectrum_csv": "a.csv"})).unwrap_err();
         assert_eq!(e.param(), Some("spectrum_csv"));
+        let e = p.overlay(json!({"channels_csv": "c.csv"})).unwrap_err();
+        assert_eq!(e.param(), Some("channels_csv"));
         assert_eq!(p, Physical::default());
     }
 }

@@ -15,17 +15,19 @@ pub use crate::parameters::Physical;
 /// The physical inputs in `d` (missing or None: [`Physical::default`]),
 /// checked ([`Physical::check`]): an unknown name a TypeError offering the
 /// nearest one, a value of the wrong type a TypeError and one out of range
-/// a ValueError, each naming its keyword. A spectrum's file is read here,
-/// at the edge, after the checks.
+/// a ValueError, each naming its keyword. A spectrum's or channel table's
+/// file is read here, at the edge, after the checks.
 pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
     let mut given = serde_json::Map::new();
     let mut file = None;
+    let mut channels = None;
     for (k, v) in d.iter() {
         let k: String = k.extract()?;
         match Parameter::named(&k) {
             None => return Err(PyTypeError::new_err(unknown_input(&k))),
             Some(_) if v.is_none() => {}
             Some(p) if p.name == "spectrum_csv" => file = Some(v.extract::<PathBuf>()?),
+            Some(p) if p.name == "channels_csv" => channels = Some(v.extract::<PathBuf>()?),
             Some(_) => match v.extract::<f64>() {
                 Ok(x) if !x.is_finite() => {
                     let e = format!("{k}: {x} is not a finite number");
@@ -47,6 +49,11 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
         let table = v2ref_files::formats::spectrum_csv::spectrum_from_csv_path(&path)
             .map_err(|e| e.into_py_err())?;
         p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(&path, table));
+    }
+    if let Some(path) = channels {
+        let text = v2ref_files::formats::channels_csv::read_channels_file(&path)
+            .map_err(|e| e.into_py_err())?;
+        p.channels_csv = Some(text);
     }
     Ok(p)
 }

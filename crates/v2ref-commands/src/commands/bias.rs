@@ -14,7 +14,8 @@ pub fn wants_finite_scan(p: &Physical, finite_scan: bool) -> bool {
 }
 
 /// The answer of `bias` for `p`, the finite scan summed over `bins` when
-/// [`wants_finite_scan`].
+/// [`wants_finite_scan`], with a line per spectral channel when channels
+/// are given.
 pub fn answer(p: &Physical, bins: BinWindow, finite_scan: bool) -> Result<BiasReport> {
     let obs = p.observation()?;
     let sampling = if wants_finite_scan(p, finite_scan) {
@@ -22,5 +23,7 @@ pub fn answer(p: &Physical, bins: BinWindow, finite_scan: bool) -> Result<BiasRe
     } else {
         None
     };
-    BiasReport::new(&obs, p.record(&obs), sampling.as_ref().map(|s| (s, bins)))
+    let mut report = BiasReport::new(&obs, p.record(&obs), sampling.as_ref().map(|s| (s, bins)))?;
+    report.channels = crate::commands::channels::bias_lines(p)?;
+    Ok(report)
 }

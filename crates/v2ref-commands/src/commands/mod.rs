@@ -5,6 +5,8 @@
 //! convert and print; nothing here reads a flag, writes a file or prints.
 
 pub mod bias;
+pub mod channels;
+pub mod channels_simulate;
 pub mod estimate;
 pub mod piston;
 pub mod plan;

@@ -129,6 +129,8 @@ pub struct Prepared {
 /// Checks the inputs of `piston` and builds its spectrum (the cost of the
 /// run is `fringe_hz.len() × scans` scans).
 pub fn prepare(p: &Physical, req: &PistonRequest) -> Result<Prepared> {
+    // No channels yet: refused, never the wide band's answer in their place.
+    p.refuse_channels("piston")?;
     let obs = p.observation()?;
     let sampling = p.sampling()?;
     sampling.check_aliasing(&obs)?;

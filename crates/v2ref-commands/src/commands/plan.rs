@@ -133,6 +133,8 @@ fn photometry(p: &Physical, m: Magnitude) -> Result<Photometry> {
 
 /// Checks the inputs of `plan` and builds its piston spectrum.
 pub fn prepare(p: &Physical, req: &PlanRequest) -> Result<Prepared> {
+    // No channels yet: refused, never the wide band's answer in their place.
+    p.refuse_channels("plan")?;
     let photometry = req.magnitude.map(|m| photometry(p, m)).transpose()?;
     let (default_f, default_s) = default_grid();
     let or_default = |given: &[f64], default: Vec<f64>| {

@@ -8,7 +8,7 @@ use crate::parameters::Physical;
 use crate::report::noise::{Light, SnrReport};
 
 /// The answer of `snr` for `p`, the exact statistics over `bins`, the
-/// Appendix's by `formula`.
+/// Appendix's by `formula`, per spectral channel when channels are given.
 pub fn answer(p: &Physical, bins: BinWindow, formula: Formula) -> Result<SnrReport> {
     let noise = p.noise()?;
     let obs = p.observation()?;
@@ -18,7 +18,7 @@ pub fn answer(p: &Physical, bins: BinWindow, formula: Formula) -> Result<SnrRepo
         visibility: p.visibility,
         noise,
     };
-    let answer = SnrReport::new(&obs, p.record(&obs), &sampling, bins, light, formula)?;
+    let mut answer = SnrReport::new(&obs, p.record(&obs), &sampling, bins, light, formula)?;
     if let Some(w) = answer.window_exact.as_ref().filter(|w| w.stats.bins == 0) {
         return Err(Error::OutOfRange {
             param: "samples",
@@ -30,5 +30,6 @@ pub fn answer(p: &Physical, bins: BinWindow, formula: Formula) -> Result<SnrRepo
             ),
         });
     }
+    answer.channels = crate::commands::channels::snr_lines(p, bins, formula)?;
     Ok(answer)
 }

@@ -83,7 +83,7 @@ pub fn refer_to(text: &str, refer: &dyn Fn(&str) -> String) -> String {
 }
 
 /// Every field of [`super::Physical`], in declaration order, with its help text.
-pub const PARAMETERS: [Parameter; 24] = [
+pub const PARAMETERS: [Parameter; 27] = [
     Parameter {
         name: "wavelength_um",
         unit: "µm",
@@ -117,6 +117,40 @@ pub const PARAMETERS: [Parameter; 24] = [
         unset: "the flat band of {wavelength_um} and {bandwidth_nm}",
         why: "far more than the bias integrals need; a longer file (or `/dev/zero`) is \
                   refused at once",
+    },
+    Parameter {
+        name: "channels",
+        unit: "",
+        accepted: "1 to 4096",
+        what: "Spectral channels C of equal width in wavenumber over the band",
+        note: "bias, snr and simulate answer per channel (docs/conventions.md §16); one of \
+                   {channels}, {resolution} or {channels_csv}. 1: the wide band's numbers.",
+        unset: "the wide band, no channels",
+        why: "far more than any spectrograph of the field records; each channel needs a DFT \
+                  bin of the scan",
+    },
+    Parameter {
+        name: "resolution",
+        unit: "",
+        accepted: "> 0 (at most 4096 channels over the band)",
+        what: "Channels of spectral resolution R = λ/Δλ across the band",
+        note: "Geometric edges, the whole number of channels nearest R; each channel must \
+                   hold a DFT bin of the scan.",
+        unset: "the wide band, no channels",
+        why: "R below the band's own gives the band as one channel",
+    },
+    Parameter {
+        name: "channels_csv",
+        unit: "",
+        accepted: "a CSV file of at most 4096 rows, 1 MiB",
+        what: "Channels' edges and responses from a table",
+        note: "Header `wavelength_lo_um,wavelength_hi_um,response` or \
+                   `wavenumber_lo_per_um,wavenumber_hi_per_um,response`, one row per channel by \
+                   increasing axis value, the channels inside the band, neither overlapping \
+                   nor out of order.",
+        unset: "the wide band, no channels",
+        why: "far more channels than the spectrographs of the field; a longer file is refused \
+                  at once",
     },
     Parameter {
         name: "source",
@@ -408,7 +442,7 @@ mod tests {
             integrating: true,
             ..Physical::DEFAULT
         };
-        let given = match name.contains("samples") {
+        let given = match is_count(name) {
             true => serde_json::json!(value as usize),
             false => serde_json::json!(value),
         };
@@ -421,7 +455,11 @@ mod tests {
             // Four samples per shortest wavelength of the band.
             p.dx_um = (p.wavelength_um - p.bandwidth_nm / 2e3) / 4.0;
         }
-        match p.check().and_then(|()| p.inputs()) {
+        match p
+            .check()
+            .and_then(|()| p.inputs())
+            .and_then(|_| p.channels())
+        {
             Ok(_) => Ok(()),
             Err(e) if e.param().map(crate::parameters::keyword_of).as_deref() == Some(name) => {
                 Err(e.to_string())
@@ -430,12 +468,17 @@ mod tests {
         }
     }
 
+    /// A whole count (its edges are ±1, its value an integer).
+    fn is_count(name: &str) -> bool {
+        name.contains("samples") || name == "channels"
+    }
+
     /// The values at the edges of `p`'s accepted range in words, each
     /// with whether it is accepted: each bound (nudged inward by its
     /// rounding) when included, and just beyond it; None as [`bounds`].
     fn edges(p: &Parameter) -> Option<Vec<(f64, bool)>> {
         let (lo, lo_in, hi, hi_in) = bounds(p)?;
-        let count = p.name.contains("samples");
+        let count = is_count(p.name);
         let beyond = |x: f64, dir: f64| match count {
             true => x + dir,
             false => x + dir * (x.abs() * 1e-6).max(1e-9),
@@ -477,7 +520,13 @@ mod tests {
             .map(|p| p.name)
             .filter(|n| !tested.contains(n))
             .collect();
-        let words = ["spectrum_csv", "source", "stroke_um", "integrating"];
+        let words = [
+            "spectrum_csv",
+            "channels_csv",
+            "source",
+            "stroke_um",
+            "integrating",
+        ];
         assert_eq!(
             untested,
             [&words[..], &["photon_noise", "reference"]].concat()

@@ -44,6 +44,10 @@ pub struct BiasReport {
     /// The finite-scan estimators, when a scan was given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub finite_scan: Option<FiniteScanReport>,
+    /// One line per spectral channel, when channels are given
+    /// ([`crate::commands::channels::bias_lines`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub channels: Option<Vec<crate::commands::channels::ChannelBiasLine>>,
 }
 
 impl BiasReport {
@@ -80,6 +84,7 @@ impl BiasReport {
             },
             infinite_scan: wide_band(obs),
             finite_scan,
+            channels: None,
         })
     }
 }

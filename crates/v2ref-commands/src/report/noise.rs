@@ -83,6 +83,11 @@ pub struct SnrReport {
     /// Exact statistics of the chosen window (None above
     /// [`MAX_WINDOW_SAMPLES`] samples).
     pub window_exact: Option<WindowReport>,
+    /// Per spectral channel and combined, when channels are given
+    /// ([`crate::commands::channels::snr_lines`]): `channels` and
+    /// `combined`.
+    #[serde(flatten)]
+    pub channels: Option<crate::commands::channels::SnrChannels>,
 }
 
 impl SnrReport {
@@ -133,6 +138,7 @@ impl SnrReport {
             snr1_with_window_factor: factor * st.snr1,
             snr2_with_window_factor: factor * st.snr2,
             window_exact,
+            channels: None,
         })
     }
 }

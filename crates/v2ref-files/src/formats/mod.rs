@@ -19,6 +19,7 @@
 // this module's shorthand for them, crate-private.
 pub use crate::atomic;
 pub mod budget;
+pub mod channels_csv;
 pub mod csv;
 mod input;
 pub(crate) mod npy;

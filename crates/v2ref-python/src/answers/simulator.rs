@@ -110,6 +110,7 @@ struct Given<'a, 'py> {
 fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
     let Some((sidecar, sidecar_name)) = given.sidecar else {
         let p = crate::inputs::physical_from_dict(given.physical)?;
+        ok(p.refuse_channels("estimate"))?;
         let cs = given.continuum_subtracted.unwrap_or(true);
         return ok(Configuration::from_physical(&p, cs));
     };
@@ -234,7 +235,9 @@ pub(crate) fn truth_job(
         observations,
         dead_time_s,
     ))?;
-    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
+    let p = crate::inputs::physical_from_dict(physical)?;
+    ok(p.refuse_channels("synthesize"))?;
+    let inputs = ok(p.inputs())?;
     let reference_blocks = reference_blocks.unwrap_or_else(|| {
         crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
     });
@@ -285,6 +288,28 @@ pub(super) fn simulate(
     seed: u64,
     threads: usize,
 ) -> PyResult<PyObject> {
+    let p = crate::inputs::physical_from_dict(physical)?;
+    if let Some(channels) = ok(crate::commands::channels::given(&p))? {
+        let estimation = Estimation {
+            window: ok(window(bins))?,
+            bias: ok(convention(bias))?,
+            formula: ok(self::formula(formula))?,
+        };
+        let size = Trials {
+            trials,
+            seed,
+            threads,
+        };
+        let answer = interruptible(py, |_| {
+            crate::commands::channels_simulate::simulate(
+                &p,
+                (&channels.0, channels.1),
+                estimation,
+                size,
+            )
+        })?;
+        return to_py(py, &answer);
+    }
     let job = simulate_job(physical, bins, bias, formula, trials, seed, threads)?;
     let (inputs, size) = (&job.inputs, job.size);
     let run = interruptible(py, |tick| {
@@ -313,7 +338,9 @@ pub(crate) fn simulate_job(
         formula: ok(self::formula(formula))?,
     };
     ok(check_trials(trials))?;
-    let inputs = ok(crate::inputs::physical_from_dict(physical)?.inputs())?;
+    let p = crate::inputs::physical_from_dict(physical)?;
+    ok(p.refuse_channels("simulate with client or checkpoint"))?;
+    let inputs = ok(p.inputs())?;
     let size = Trials {
         trials,
         seed,
