@@ -43,8 +43,8 @@ impl ObservationArgs {
             p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(path, table));
         }
         if let Some(path) = &self.channels_csv {
-            let file = v2ref_files::formats::channels_csv::read_channels_file(path)?;
-            p.channels_csv = Some(file);
+            let text = v2ref_files::formats::channels_csv::read_channels_text(path)?;
+            p.channels_csv = Some(v2ref_commands::parameters::ChannelsFile::new(path, text));
         }
         Ok(p)
     }

@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 mod channels;
 mod table;
 
-pub use channels::{renamed_channels, ChannelsFile, CHANNEL_INPUTS, MAX_CHANNELS_CSV_BYTES};
+pub use channels::{renamed_channels, ChannelsFile, CHANNEL_INPUTS};
 pub use table::{refer_to, Parameter, PARAMETERS};
 
 /// Every physical input of one configuration (see the module doc). Field
@@ -196,7 +196,7 @@ pub fn keyword_of(param: &str) -> String {
 pub const DEFAULT_SPATIAL_FREQ_CPAS: f64 = 40.0;
 
 /// A tabulated spectrum and the name of the CSV file it was read from.
-/// The edges read the file (`read_spectrum_file` of the crate `v2ref-files`) and
+/// The edges read the file (`spectrum_from_csv_path` of the crate `v2ref-files`) and
 /// hand the table over: the numerics read no file. The name is kept for
 /// what names the input (it is serialized as the name, and so is not read
 /// back); the records hold the table.

@@ -51,9 +51,9 @@ pub fn physical_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Physical> {
         p.spectrum_csv = Some(v2ref_commands::parameters::SpectrumFile::new(&path, table));
     }
     if let Some(path) = channels {
-        let text = v2ref_files::formats::channels_csv::read_channels_file(&path)
+        let text = v2ref_files::formats::channels_csv::read_channels_text(&path)
             .map_err(|e| e.into_py_err())?;
-        p.channels_csv = Some(text);
+        p.channels_csv = Some(v2ref_commands::parameters::ChannelsFile::new(&path, text));
     }
     Ok(p)
 }

@@ -14,13 +14,9 @@ use std::path::{Path, PathBuf};
 /// [`super::PARAMETERS`].
 pub const CHANNEL_INPUTS: [&str; 3] = ["channels", "resolution", "channels_csv"];
 
-/// Largest channel CSV file read, bytes: 4096 rows of three numbers take
-/// well under 1 MiB; a longer file (or `/dev/zero`) is refused at once.
-pub const MAX_CHANNELS_CSV_BYTES: u64 = 1 << 20;
-
 /// A channel table's CSV text and the name of the file it was read from.
 /// The edges read the file (without waiting, a regular file only,
-/// `v2ref_files::formats::read_text`); the table is parsed against the
+/// `v2ref_files::formats::channels_csv::read_channels_text`); the table is parsed against the
 /// configuration's spectrum by [`Physical::channels`], since its edges are
 /// checked against the band. Serialized as the file's name.
 #[derive(Debug, Clone, PartialEq)]
