@@ -42,6 +42,7 @@ pub(crate) mod read;
 #[cfg(test)]
 mod reader_tests;
 mod select;
+mod select_channels;
 pub(crate) mod setting;
 pub mod table;
 pub(crate) mod write;
@@ -50,8 +51,8 @@ pub use observing::{iota, Site};
 pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
     choose_tables, min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file,
-    read_vis2_tables, truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile,
-    ReadOptions, Vis2Table,
+    read_vis2_tables, truth_for_kept_rows, wavelength_ranges_m, ChannelEstimates, Choice,
+    Expected, OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
