@@ -230,7 +230,10 @@ fn six_channels_are_written_with_each_channels_wavelength_width_and_error() {
     };
     let per_channel: Vec<f64> = models.iter().map(sd).collect();
     let whole = sd(&Model::new(&inputs()).unwrap());
-    assert!(per_channel.iter().all(|&s| s > whole), "{per_channel:?} vs {whole}");
+    assert!(
+        per_channel.iter().all(|&s| s > whole),
+        "{per_channel:?} vs {whole}"
+    );
     let err = vis2.f64_values("VIS2ERR");
     for (i, e) in err.iter().enumerate() {
         assert_eq!(e.to_bits(), per_channel[i % 6].to_bits(), "VIS2ERR {i}");
@@ -251,7 +254,10 @@ fn written_channels_are_read_back_bit_for_bit_in_either_wavelength_order() {
     // The plain writer: the set's order (decreasing wavelength), then
     // reversed (increasing), EFF_WAVE as float32 either way.
     let mut files = vec![ours];
-    for (name, order) in [("down.fits", [0, 1, 2, 3, 4, 5]), ("up.fits", [5, 4, 3, 2, 1, 0])] {
+    for (name, order) in [
+        ("down.fits", [0, 1, 2, 3, 4, 5]),
+        ("up.fits", [5, 4, 3, 2, 1, 0]),
+    ] {
         let path = dir.path().join(name);
         let eff: Vec<f32> = order.iter().map(|&j| waves[j] as f32).collect();
         let tables: Vec<PlainTable> = ["P_V1", "P_V2"]
@@ -263,11 +269,22 @@ fn written_channels_are_read_back_bit_for_bit_in_either_wavelength_order() {
         files.push(path.clone());
         // The V2² table alone, read as V2².
         let v2 = dir.path().join(format!("v2_{name}"));
-        plain(&v2, Ok(order.iter().map(|&j| waves[j] as f32).collect()), &tables[1..]);
+        plain(
+            &v2,
+            Ok(order.iter().map(|&j| waves[j] as f32).collect()),
+            &tables[1..],
+        );
         let got = read(&v2, Some(Estimator::V2Sq), Some(&six));
         for (j, ch) in got.channels.iter().enumerate() {
             let want: Vec<u64> = (0..ROWS).map(|r| value(1, r, j).to_bits()).collect();
-            let bits: Vec<u64> = ch.estimates.v2_sq.as_ref().unwrap().iter().map(|x| x.to_bits()).collect();
+            let bits: Vec<u64> = ch
+                .estimates
+                .v2_sq
+                .as_ref()
+                .unwrap()
+                .iter()
+                .map(|x| x.to_bits())
+                .collect();
             assert_eq!(bits, want, "{name}, channel {j}");
         }
     }
@@ -279,7 +296,14 @@ fn written_channels_are_read_back_bit_for_bit_in_either_wavelength_order() {
             assert_eq!(ch.channel, j);
             assert_eq!(ch.range_m, wavelength_ranges_m(&six)[j]);
             assert_eq!(ch.eff_wave_m as f32, waves[j] as f32);
-            let bits: Vec<u64> = ch.estimates.v1_sq.as_ref().unwrap().iter().map(|x| x.to_bits()).collect();
+            let bits: Vec<u64> = ch
+                .estimates
+                .v1_sq
+                .as_ref()
+                .unwrap()
+                .iter()
+                .map(|x| x.to_bits())
+                .collect();
             let want: Vec<u64> = (0..ROWS).map(|r| value(0, r, j).to_bits()).collect();
             assert_eq!(bits, want, "{}, channel {j}", path.display());
         }
@@ -323,7 +347,9 @@ fn a_flagged_row_leaves_only_its_channel_for_every_estimator() {
             .map(|r| value(e, r, j).to_bits())
             .collect()
     };
-    let bits = |x: &Option<Vec<f64>>| -> Vec<u64> { x.as_ref().unwrap().iter().map(|v| v.to_bits()).collect() };
+    let bits = |x: &Option<Vec<f64>>| -> Vec<u64> {
+        x.as_ref().unwrap().iter().map(|v| v.to_bits()).collect()
+    };
     for (j, ch) in r1.channels.iter().enumerate() {
         let out = (j == 1).then_some(3);
         assert_eq!(bits(&ch.estimates.v1_sq), kept(j, out, 0), "channel {j}");
@@ -352,8 +378,16 @@ fn a_flagged_row_leaves_only_its_channel_for_every_estimator() {
             4 => Some(7),
             _ => None,
         };
-        assert_eq!(bits(&ch.estimates.v1_sq), kept(j, out, 0), "V1², channel {j}");
-        assert_eq!(bits(&ch.estimates.v2_sq), kept(j, out, 1), "V2², channel {j}");
+        assert_eq!(
+            bits(&ch.estimates.v1_sq),
+            kept(j, out, 0),
+            "V1², channel {j}"
+        );
+        assert_eq!(
+            bits(&ch.estimates.v2_sq),
+            kept(j, out, 1),
+            "V2², channel {j}"
+        );
         assert_eq!(ch.flagged, usize::from(out.is_some()));
     }
 }
@@ -396,7 +430,10 @@ fn each_channels_truth_is_for_its_own_kept_rows() {
     let grown = (40.0f64 / 30.0).sqrt();
     assert_eq!(kept.v1_sq.set_stderr_mean, 0.03 * grown);
     assert_eq!(kept.v2_sq.set_stderr_var, Some(0.002 * grown));
-    assert_eq!(got.channels[0].truth_for_kept_rows(&truth, ROWS as u64), truth);
+    assert_eq!(
+        got.channels[0].truth_for_kept_rows(&truth, ROWS as u64),
+        truth
+    );
 }
 
 #[test]
@@ -421,31 +458,62 @@ fn a_file_that_is_not_the_sets_channels_is_refused_saying_what_to_fix() {
     // NWAVE 6 against a set of 4 channels.
     let p = file("six.fits", Ok(f32s(&waves)), vec![false; ROWS * 6]);
     let m = refusal(&p, v1, Some(&channels(4)));
-    assert!(m.contains(at) && m.contains("NWAVE = 6, but the set has 4"), "{m}");
+    assert!(
+        m.contains(at) && m.contains("NWAVE = 6, but the set has 4"),
+        "{m}"
+    );
     // NWAVE 6 without the set's channels: how to score them.
     let m = refusal(&p, v1, None);
-    assert!(m.contains("NWAVE = 1") && m.contains("same 6 spectral channels"), "{m}");
+    assert!(
+        m.contains("NWAVE = 1") && m.contains("same 6 spectral channels"),
+        "{m}"
+    );
     // An EFF_WAVE in no channel: it and the channels' ranges in µm.
     let mut off = f32s(&waves);
     off[2] = 2.6e-6;
-    let m = refusal(&file("off.fits", Ok(off), vec![false; ROWS * 6]), v1, Some(&six));
-    assert!(m.contains(at) && m.contains("EFF_WAVE 3 of 6 (2.600000 µm) lies in none"), "{m}");
+    let m = refusal(
+        &file("off.fits", Ok(off), vec![false; ROWS * 6]),
+        v1,
+        Some(&six),
+    );
+    assert!(
+        m.contains(at) && m.contains("EFF_WAVE 3 of 6 (2.600000 µm) lies in none"),
+        "{m}"
+    );
     let listed = format!("[{:.6}, {:.6}] µm", ranges[0].0 * 1e6, ranges[0].1 * 1e6);
     assert!(m.contains(&listed), "{m}");
     // Two EFF_WAVE in one channel (and so none in another).
     let mut twice = f32s(&waves);
     twice[3] = waves[2] as f32;
-    let m = refusal(&file("twice.fits", Ok(twice), vec![false; ROWS * 6]), v1, Some(&six));
-    assert!(m.contains("EFF_WAVE 3 and 4") && m.contains("both lie in the set's channel 3 of 6"), "{m}");
+    let m = refusal(
+        &file("twice.fits", Ok(twice), vec![false; ROWS * 6]),
+        v1,
+        Some(&six),
+    );
+    assert!(
+        m.contains("EFF_WAVE 3 and 4") && m.contains("both lie in the set's channel 3 of 6"),
+        "{m}"
+    );
     // On the edge two channels share: which one is not known.
     let mut edge = waves.clone();
     edge[0] = ranges[0].0;
     assert_eq!(ranges[0].0, ranges[1].1);
-    let m = refusal(&file("edge.fits", Err(edge), vec![false; ROWS * 6]), v1, Some(&six));
-    assert!(m.contains("on the edge of the set's channels 1 and 2"), "{m}");
+    let m = refusal(
+        &file("edge.fits", Err(edge), vec![false; ROWS * 6]),
+        v1,
+        Some(&six),
+    );
+    assert!(
+        m.contains("on the edge of the set's channels 1 and 2"),
+        "{m}"
+    );
     // A channel with every row flagged, or fewer than half unflagged.
     let floor = min_unflagged_rows(ROWS as u64) as usize;
-    for (flagged, ok) in [(ROWS, false), (ROWS - floor + 1, false), (ROWS - floor, true)] {
+    for (flagged, ok) in [
+        (ROWS, false),
+        (ROWS - floor + 1, false),
+        (ROWS - floor, true),
+    ] {
         let mut flags = vec![false; ROWS * 6];
         for r in 0..flagged {
             flags[r * 6 + 4] = true;
@@ -457,14 +525,21 @@ fn a_file_that_is_not_the_sets_channels_is_refused_saying_what_to_fix() {
         }
         let m = refusal(&p, v1, Some(&six));
         let said = format!("{} of {ROWS} rows unflagged", ROWS - flagged);
-        assert!(m.contains(at) && m.contains("channel 5 of 6") && m.contains(&said), "{m}");
+        assert!(
+            m.contains(at) && m.contains("channel 5 of 6") && m.contains(&said),
+            "{m}"
+        );
         assert!(m.contains(&format!("at least {floor}")), "{m}");
     }
     // An unflagged value that is not a number, in its channel.
     let path = dir.path().join("nan.fits");
     let mut vals: Vec<f64> = (0..ROWS * 6).map(|i| value(0, i / 6, i % 6)).collect();
     vals[5 * 6 + 2] = f64::NAN;
-    plain(&path, Ok(f32s(&waves)), &[("PIPE", vals, vec![false; ROWS * 6])]);
+    plain(
+        &path,
+        Ok(f32s(&waves)),
+        &[("PIPE", vals, vec![false; ROWS * 6])],
+    );
     let m = refusal(&path, v1, Some(&six));
     assert!(m.contains("V1SQ, channel 3, unflagged value 6"), "{m}");
 }
@@ -492,10 +567,18 @@ fn an_eff_wave_rounded_to_float32_or_just_past_an_outer_edge_is_matched() {
     // Past the longest edge by half the slack (1e-4 of the width): read;
     // by twice the slack: in no channel.
     waves[0] = ranges[0].1 + 0.5e-4 * width(0);
-    assert_eq!(read(&file("in.fits", Err(waves.clone())), v1, Some(&six)).channels.len(), 6);
+    assert_eq!(
+        read(&file("in.fits", Err(waves.clone())), v1, Some(&six))
+            .channels
+            .len(),
+        6
+    );
     waves[0] = ranges[0].1 + 2e-4 * width(0);
     let m = refusal(&file("out.fits", Err(waves.clone())), v1, Some(&six));
-    assert!(m.contains("EFF_WAVE 1 of 6") && m.contains("lies in none"), "{m}");
+    assert!(
+        m.contains("EFF_WAVE 1 of 6") && m.contains("lies in none"),
+        "{m}"
+    );
 }
 
 /// The file `tests/python/test_oifits_channels.py` reads with astropy: six
@@ -511,9 +594,13 @@ fn fixture_doc() -> v2ref_oifits::OifitsDoc {
         .iter()
         .map(|&(est, e)| (est, (0..8 * 6).map(|i| v(e, i / 6, i % 6)).collect()))
         .collect();
-    let mut doc =
-        estimates_doc_channels((&inputs(), &six), &cols, WINDOW, &ObservingContext::default())
-            .unwrap();
+    let mut doc = estimates_doc_channels(
+        (&inputs(), &six),
+        &cols,
+        WINDOW,
+        &ObservingContext::default(),
+    )
+    .unwrap();
     doc.tables[1].flag[2 * 6 + 4] = true;
     doc
 }
