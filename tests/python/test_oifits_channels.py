@@ -4,7 +4,7 @@ A file astropy writes as a pipeline would (EFF_WAVE in decreasing order as
 float32, FLAG per channel, TDIM) is read through v2ref's Rust reader
 (``v2ref.read_oifits``): wavelengths, values and flags per (row, channel)
 as written, bit for bit. The file v2ref's writer makes for six channels
-(``tests/data/oifits_channels6.fits``; ``tests/oifits_channels.rs`` checks
+(``tests/data/oifits_channels6.fits``; ``tests/oifits_channels_files.rs`` checks
 it is what the writer writes today) is read by astropy: NWAVE = 6 in every
 column, one OI_WAVELENGTH row per channel in decreasing wavelength, the
 values of the formula it was written from, VIS2ERR one per channel.
