@@ -5,7 +5,8 @@
 //! wrote is read back by an independent reader. The Python suite reads the
 //! same files with astropy, and `tests/oifits_rules.rs` runs HEASARC's
 //! fitsverify on them. Only what the tests need: header keywords, and
-//! columns of one value per row of the types I, J, E, D, L and nA.
+//! columns of one value per row of the types I, J, E, D, L and nA, and of
+//! n values per row of D and L (an OIFITS table of n channels).
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -23,6 +24,10 @@ pub enum Column<'a> {
     F64(&'a str, Vec<f64>),
     Logical(&'a str, Vec<bool>),
     Text(&'a str, usize, Vec<String>),
+    /// `n` values a row, row after row.
+    F64s(&'a str, usize, Vec<f64>),
+    /// `n` logicals a row, row after row.
+    Logicals(&'a str, usize, Vec<bool>),
 }
 
 impl Column<'_> {
@@ -30,6 +35,7 @@ impl Column<'_> {
         match self {
             Column::I16(n, _) | Column::F32(n, _) | Column::F64(n, _) => n,
             Column::Logical(n, _) | Column::Text(n, _, _) => n,
+            Column::F64s(n, _, _) | Column::Logicals(n, _, _) => n,
         }
     }
     fn tform(&self) -> String {
@@ -39,6 +45,8 @@ impl Column<'_> {
             Column::F64(..) => "1D".into(),
             Column::Logical(..) => "1L".into(),
             Column::Text(_, width, _) => format!("{width}A"),
+            Column::F64s(_, n, _) => format!("{n}D"),
+            Column::Logicals(_, n, _) => format!("{n}L"),
         }
     }
     fn rows(&self) -> usize {
@@ -48,6 +56,8 @@ impl Column<'_> {
             Column::F64(_, v) => v.len(),
             Column::Logical(_, v) => v.len(),
             Column::Text(_, _, v) => v.len(),
+            Column::F64s(_, n, v) => v.len() / n,
+            Column::Logicals(_, n, v) => v.len() / n,
         }
     }
     fn field(&self, row: usize) -> Vec<u8> {
@@ -61,6 +71,14 @@ impl Column<'_> {
                 b.resize(*width, b' ');
                 b
             }
+            Column::F64s(_, n, v) => v[row * n..(row + 1) * n]
+                .iter()
+                .flat_map(|x| x.to_be_bytes())
+                .collect(),
+            Column::Logicals(_, n, v) => v[row * n..(row + 1) * n]
+                .iter()
+                .map(|&b| if b { b'T' } else { b'F' })
+                .collect(),
         }
     }
 }
@@ -197,6 +215,21 @@ impl Hdu {
         self.fields(name)
             .iter()
             .map(|b| f32::from_be_bytes((*b).try_into().unwrap()))
+            .collect()
+    }
+    /// Every value of a column of `D` values, row after row.
+    pub fn f64_values(&self, name: &str) -> Vec<f64> {
+        self.fields(name)
+            .iter()
+            .flat_map(|b| b.chunks(8))
+            .map(|c| f64::from_be_bytes(c.try_into().unwrap()))
+            .collect()
+    }
+    /// Every value of a column of `L` values, row after row.
+    pub fn logical_values(&self, name: &str) -> Vec<bool> {
+        self.fields(name)
+            .iter()
+            .flat_map(|b| b.iter().map(|&c| c == b'T'))
             .collect()
     }
     pub fn text_col(&self, name: &str) -> Vec<String> {

@@ -290,6 +290,7 @@ fn a_row_written_as_nan_is_flagged() {
         baseline_m: 20.0,
         eff_wave_m: 2.2e-6,
         eff_band_m: 0.4e-6,
+        channels_m: Vec::new(),
         scan_s: None,
     };
     let table = Vis2Out {

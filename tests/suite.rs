@@ -91,6 +91,8 @@ mod tolerance_literals;
 mod turbulence;
 // Issue 53/54, OIFITS read as pipelines write and edit it.
 mod oifits_as_written;
+mod oifits_channels;
+mod oifits_channels_files;
 
 /// Cargo builds only this binary (`autotests = false` in Cargo.toml): a
 /// file of `tests/` not declared above would be silently skipped.

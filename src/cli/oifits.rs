@@ -214,6 +214,7 @@ pub fn read_for_score(
     let expected = Expected {
         rows,
         band_m: (1e-6 / hi, 1e-6 / lo),
+        channels_m: None,
         bins,
         bias,
     };

@@ -6,7 +6,7 @@
 use super::observing::ObservingContext;
 use super::setting::Setting;
 use super::write::{Key, KeyValue, OifitsDoc, Vis2Out};
-use super::{default_insname, KEY_BIAS, KEY_BINS};
+use super::{default_insname, estimator_key, KEY_BIAS, KEY_BINS};
 use crate::conformance::estimate::{BiasConvention, RowEstimate};
 
 /// The columns of `which` estimators from per-row estimates.
@@ -21,11 +21,13 @@ pub fn columns_of(rows: &[RowEstimate], which: &[Estimator]) -> Vec<(Estimator, 
 }
 use crate::conformance::score::Estimator;
 use crate::conformance::sidecar::Sidecar;
+use crate::formalism::channels::Channels;
 use crate::formalism::estimator::BinWindow;
 use crate::noise::calibrated::expectation;
 use crate::noise::Formula;
 use crate::plan::{PlanInputs, PlanPoint};
-use crate::simulator::Model;
+use crate::simulator::channels::channel_models;
+use crate::simulator::{Inputs, Model};
 use crate::{Error, Result};
 
 /// Both estimators, in order.
@@ -51,14 +53,88 @@ pub fn estimates_doc(
     (bins, bias): (BinWindow, BiasConvention),
     observing: &ObservingContext,
 ) -> Result<OifitsDoc> {
+    let sd = closed_form_sd(model, bins)?;
+    Ok(OifitsDoc {
+        setting: Setting::from_inputs(&model.inputs, observing)?,
+        tables: estimate_tables(columns, &[sd], (bins, bias)),
+        keywords: vec![estimates_kind()],
+    })
+}
+
+/// Per-row estimates in spectral channels as OIFITS (`NWAVE` = C): the
+/// configuration `inputs` split by `channels`, one table per entry of
+/// `columns`, each an estimator and its rows × C values, row after row
+/// (row r, channel j at `r·C + j`; channel j is `channels`' j-th, in
+/// increasing wavenumber, so `EFF_WAVE` is written in decreasing order).
+/// `OI_WAVELENGTH` holds each channel's `1/σ_eff,j` and width
+/// ([`Setting::with_channels`]); `VIS2ERR` of channel j is the closed-form
+/// standard deviation of channel j's calibrated estimator (its model from
+/// [`channel_models`]: its spectrum, its share of the photons), the same
+/// for every row. One channel over the whole band writes what
+/// [`estimates_doc`] writes, byte for byte. Refused (parameter `columns`):
+/// a column that is not whole rows of C values. Built for the `estimate`
+/// command's channels (wired in the CLI in a later round).
+pub fn estimates_doc_channels(
+    (inputs, channels): (&Inputs, &Channels),
+    columns: &[(Estimator, Vec<f64>)],
+    (bins, bias): (BinWindow, BiasConvention),
+    observing: &ObservingContext,
+) -> Result<OifitsDoc> {
+    let count = channels.count();
+    if let Some((e, v)) = columns
+        .iter()
+        .find(|(_, v)| v.is_empty() || v.len() % count != 0)
+    {
+        return Err(Error::Invalid {
+            param: "columns",
+            reason: format!(
+                "{}: {} values; one per row and channel, rows × {count}, row after row",
+                estimator_key(*e),
+                v.len()
+            ),
+        });
+    }
+    let sds = channel_models(inputs, channels)?
+        .iter()
+        .map(|m| closed_form_sd(m, bins))
+        .collect::<Result<Vec<_>>>()?;
+    Ok(OifitsDoc {
+        setting: Setting::from_inputs(inputs, observing)?.with_channels(channels),
+        tables: estimate_tables(columns, &sds, (bins, bias)),
+        keywords: vec![estimates_kind()],
+    })
+}
+
+/// The closed-form standard deviations (V1², V2²) of one row of
+/// `model`'s calibrated estimators over `bins` (NaN without a closed form).
+fn closed_form_sd(model: &Model, bins: BinWindow) -> Result<[f64; 2]> {
     let closed = expectation(&model.calibrated_setup(bins), &model.noise, Formula::Exact)?;
     let sd = |v: Option<f64>| v.map_or(f64::NAN, f64::sqrt);
-    let tables = columns
+    Ok([sd(closed.var_v1_sq), sd(closed.var_v2_sq)])
+}
+
+/// The primary header's `V2R_KIND` of per-row estimates.
+fn estimates_kind() -> Key {
+    Key::str(
+        "V2R_KIND",
+        "ESTIMATES",
+        "per-row estimates of interferograms",
+    )
+}
+
+/// One table per column, `VIS2ERR` of channel j `sds[j]` (V1², V2²) on
+/// every row; nothing flagged.
+fn estimate_tables(
+    columns: &[(Estimator, Vec<f64>)],
+    sds: &[[f64; 2]],
+    (bins, bias): (BinWindow, BiasConvention),
+) -> Vec<Vis2Out> {
+    columns
         .iter()
         .map(|(e, vals)| {
             let e = *e;
-            let vals = vals.clone();
-            let err = sd(e.pick(closed.var_v1_sq, closed.var_v2_sq));
+            let per_channel: Vec<f64> = sds.iter().map(|sd| e.pick(sd[0], sd[1])).collect();
+            let rows = vals.len() / per_channel.len();
             let mut keywords = window_keys(bins, bias);
             keywords.push(Key::str(
                 "V2R_ERR",
@@ -68,23 +144,14 @@ pub fn estimates_doc(
             Vis2Out {
                 insname: default_insname(e).into(),
                 estimator: Some(e),
-                vis2err: vec![err; vals.len()],
+                vis2err: per_channel.repeat(rows),
                 flag: vec![false; vals.len()],
-                vis2data: vals,
+                vis2data: vals.clone(),
                 keywords,
                 vis2data_note: Some("normalized, bias-subtracted V^2 of one scan".into()),
             }
         })
-        .collect();
-    Ok(OifitsDoc {
-        setting: Setting::from_inputs(&model.inputs, observing)?,
-        tables,
-        keywords: vec![Key::str(
-            "V2R_KIND",
-            "ESTIMATES",
-            "per-row estimates of interferograms",
-        )],
-    })
+        .collect()
 }
 
 /// A synth set's truth as OIFITS: per row, the expected V1² and V2² of

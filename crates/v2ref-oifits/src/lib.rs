@@ -20,6 +20,31 @@
 //! `OI_WAVELENGTH`/`OI_VIS2` pair per `INSNAME` (one per estimator). The
 //! estimator, window of bins and bias convention are the keywords
 //! `V2R_EST`, `V2R_BINS`, `V2R_BIAS` of each `OI_VIS2` table.
+//!
+//! **Spectral channels** (`NWAVE` = C, [`docs::estimates_doc_channels`],
+//! [`Setting::with_channels`]): `OI_WAVELENGTH` holds one row per channel
+//! of the set, in its order (increasing wavenumber, so `EFF_WAVE`
+//! decreases): `EFF_WAVE = 1/σ_eff,j` and `EFF_BAND` the width in
+//! wavelength of channel j's support, of its own spectrum; `VIS2DATA`,
+//! `VIS2ERR` and `FLAG` hold C values per row (`TDIMn = '(C)'`,
+//! `INSMODE = 'DISPERSED'`), `VIS2ERR` of channel j the closed form of
+//! channel j's model. One channel over the whole band writes the broadband
+//! file byte for byte.
+//!
+//! **Reading channels** ([`read_oifits_estimates`] given
+//! [`Expected::channels_m`], the set's channels' wavelength ranges from
+//! [`wavelength_ranges_m`]): every table must hold `NWAVE` = C; each
+//! `EFF_WAVE` is matched to the one channel whose range holds it (slack:
+//! 1e-4 of the channel's width at its ends, and at least the float32
+//! rounding of `EFF_WAVE`), one per channel, in whatever order the file
+//! lists them (a pipeline's decreasing wavelength included); each table
+//! is matched on its own. `FLAG` is per channel: a flagged (row, channel)
+//! leaves the row out of that channel only, for every estimator read
+//! ([`ChannelEstimates::flagged`], and its truth
+//! [`ChannelEstimates::truth_for_kept_rows`]); a channel with fewer than
+//! [`min_unflagged_rows`] unflagged rows is refused. Without the set's
+//! channels a table must hold `NWAVE` = 1, as before. The command line's
+//! `estimate` and `score` are wired to these in a later round.
 
 // The modules of the crates below under their own names, so that a path
 // reads the same in every crate of the workspace (`crate::formats::…`).
@@ -42,6 +67,7 @@ pub(crate) mod read;
 #[cfg(test)]
 mod reader_tests;
 mod select;
+mod select_channels;
 pub(crate) mod setting;
 pub mod table;
 pub(crate) mod write;
@@ -50,8 +76,8 @@ pub use observing::{iota, Site};
 pub use observing::{ObservingContext, ObservingSpec};
 pub use read::{
     choose_tables, min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file,
-    read_vis2_tables, truth_for_kept_rows, Choice, Expected, OifitsEstimates, OifitsFile,
-    ReadOptions, Vis2Table,
+    read_vis2_tables, truth_for_kept_rows, wavelength_ranges_m, ChannelEstimates, Choice, Expected,
+    OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
 };
 pub use setting::Setting;
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};

@@ -21,8 +21,9 @@ pub fn min_unflagged_rows(rows: u64) -> u64 {
     (rows as f64 * MIN_UNFLAGGED_FRACTION).ceil() as u64
 }
 
-/// Relative slack on the band's ends (`EFF_WAVE` is stored as float32).
-const BAND_SLACK: f64 = 1e-4;
+/// Relative slack on the band's ends (`EFF_WAVE` is stored as float32);
+/// on a channel's ends, the slack relative to the channel's width.
+pub(crate) const BAND_SLACK: f64 = 1e-4;
 
 /// Which tables and rows of a file are read, and how damage is treated.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -52,6 +53,19 @@ pub struct Choice<'a> {
 /// none is chosen, rows out of time order (`MJD`), a row count other than
 /// the set's, a non-finite unflagged value. A row flagged in any table
 /// read is left out of every estimator.
+///
+/// **Channels.** Given the set's channels ([`Expected::channels_m`]),
+/// every table holds `NWAVE` = C values per row, and the answer is per
+/// channel ([`OifitsEstimates::channels`], in the set's order). Each
+/// `EFF_WAVE` must lie in exactly one channel's wavelength range (with a
+/// slack of 1e-4 of the channel's width, and no less than `EFF_WAVE`'s
+/// float32 rounding), one `EFF_WAVE` per channel, in either order
+/// (increasing or decreasing wavelength; each table matched on its own).
+/// `FLAG` is per channel: a flagged (row, channel) leaves that row out of
+/// that channel only, for every estimator read. Refused besides: `NWAVE`
+/// ≠ C, an `EFF_WAVE` in no channel or on the edge of two, two `EFF_WAVE`
+/// in one channel, a channel with fewer unflagged rows than
+/// [`min_unflagged_rows`].
 pub fn read_oifits_estimates(
     path: &Path,
     choice: &Choice,
@@ -96,6 +110,14 @@ pub fn read_oifits_estimates(
         }
     }
     let target = super::order::target_of(&file, &by_est, choice.target, path)?;
+    let insnames = all.iter().map(|t| t.insname.clone()).collect();
+    if let Some(ranges_m) = expected.channels_m.as_deref() {
+        let set = (ranges_m, expected.rows);
+        let mut read = super::select_channels::read_channels(&by_est, target, set, path)?;
+        (read.insnames, read.notes) = (insnames, file.notes);
+        read.insnames.dedup();
+        return Ok(read);
+    }
     let columns = by_est
         .iter()
         .map(|g| {
@@ -104,11 +126,7 @@ pub fn read_oifits_estimates(
                 .transpose()
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut read = unflagged(
-        columns,
-        path,
-        all.iter().map(|t| t.insname.clone()).collect(),
-    )?;
+    let mut read = unflagged(columns, path, insnames)?;
     read.notes = file.notes;
     Ok(read)
 }
@@ -222,8 +240,9 @@ fn concat(
         let at = t.at();
         if t.nwave != 1 {
             return Err(Error::data("estimates", path, at, format!(
-                "{} channels per row; one broadband estimate per interferogram is needed (NWAVE = 1)",
-                t.nwave
+                "{} channels per row; one broadband estimate per interferogram is needed (NWAVE = 1), \
+                 or, to score each channel, a set with the same {} spectral channels",
+                t.nwave, t.nwave
             )));
         }
         let w = t.eff_wave_m[0];
@@ -301,6 +320,7 @@ fn unflagged(
         flagged: bad.iter().filter(|&&b| b).count(),
         insnames,
         notes: Vec::new(),
+        channels: Vec::new(),
     })
 }
 

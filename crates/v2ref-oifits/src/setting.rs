@@ -3,6 +3,7 @@
 //! each scan.
 
 use super::observing::{mjd_of_date, ObservingContext, Site};
+use crate::formalism::channels::Channels;
 use crate::formalism::spectrum::Spectrum;
 use crate::simulator::Inputs;
 use crate::Result;
@@ -34,6 +35,11 @@ pub struct Setting {
     pub eff_wave_m: f64,
     /// `EFF_BAND`, m: the width in wavelength of the band's support.
     pub eff_band_m: f64,
+    /// `EFF_WAVE` and `EFF_BAND`, m, of each spectral channel, in the
+    /// set's channel order (increasing wavenumber, so decreasing
+    /// wavelength: column j of `VIS2DATA` is channel j). Empty: one
+    /// broadband channel, (`eff_wave_m`, `eff_band_m`).
+    pub channels_m: Vec<(f64, f64)>,
     /// Duration of one scan, s (`INT_TIME`); None where the configuration
     /// has no scan speed (then `INT_TIME = 0` and rows `NOMINAL_ROW_S`
     /// apart).
@@ -59,8 +65,31 @@ impl Setting {
             baseline_m: inputs.baseline_m,
             eff_wave_m,
             eff_band_m,
+            channels_m: Vec::new(),
             scan_s: scan_s.filter(|s| s.is_finite() && *s > 0.0),
         })
+    }
+
+    /// This setting read in the spectral channels `channels` (of the
+    /// configuration the setting is of): channel j's `EFF_WAVE` is
+    /// `1/σ_eff,j` and its `EFF_BAND` the width in wavelength of its
+    /// support, `1/σ_j⁻ − 1/σ_j⁺`, both of its own spectrum
+    /// ([`Channels::spectrum`]). The whole band's `eff_wave_m` and
+    /// `eff_band_m` stay (the field of view is the band's). One channel
+    /// over the whole band writes the broadband file, byte for byte.
+    pub fn with_channels(mut self, channels: &Channels) -> Setting {
+        self.channels_m = channels.spectra().iter().map(wavelengths).collect();
+        self
+    }
+
+    /// (`EFF_WAVE`, `EFF_BAND`), m, of each channel written: the
+    /// channels', else the one broadband channel.
+    pub fn wavelengths_m(&self) -> Vec<(f64, f64)> {
+        if self.channels_m.is_empty() {
+            vec![(self.eff_wave_m, self.eff_band_m)]
+        } else {
+            self.channels_m.clone()
+        }
     }
 
     /// Seconds between rows, and the integration time of each.

@@ -60,19 +60,21 @@ impl Key {
     }
 }
 
-/// One `OI_VIS2` table (with its `OI_WAVELENGTH`): one broadband channel,
-/// one row per interferogram.
+/// One `OI_VIS2` table (with its `OI_WAVELENGTH`): one row per
+/// interferogram, one value per row and channel. The channels are the
+/// document's ([`Setting::wavelengths_m`]: C of them, one when broadband);
+/// the values are row after row, channel j of row r at `r·C + j`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Vis2Out {
     /// `INSNAME` (distinct per table).
     pub insname: String,
     /// The estimator (keyword `V2R_EST`); None for a model's V².
     pub estimator: Option<Estimator>,
-    /// `VIS2DATA`, one per row.
+    /// `VIS2DATA`, rows × C.
     pub vis2data: Vec<f64>,
-    /// `VIS2ERR`, one per row (its meaning stated in `keywords`).
+    /// `VIS2ERR`, rows × C (its meaning stated in `keywords`).
     pub vis2err: Vec<f64>,
-    /// `FLAG`, one per row (true: bad).
+    /// `FLAG`, rows × C (true: bad).
     pub flag: Vec<bool>,
     /// More keywords of the `OI_VIS2` header.
     pub keywords: Vec<Key>,
@@ -124,24 +126,26 @@ fn check_doc(doc: &OifitsDoc, param: &'static str) -> Result<()> {
             ),
         });
     }
+    check_shapes(doc).map_err(|reason| Error::Invalid { param, reason })
+}
+
+/// Tables present, each with one `VIS2DATA`, `VIS2ERR` and `FLAG` per
+/// row and channel.
+fn check_shapes(doc: &OifitsDoc) -> std::result::Result<(), String> {
     if doc.tables.is_empty() {
-        return Err(Error::Invalid {
-            param,
-            reason: "no OI_VIS2 table to write".into(),
-        });
+        return Err("no OI_VIS2 table to write".into());
     }
+    let channels = doc.setting.wavelengths_m().len();
     for t in &doc.tables {
         let n = t.vis2data.len();
-        if n == 0 || t.vis2err.len() != n || t.flag.len() != n {
-            return Err(Error::Invalid {
-                param,
-                reason: format!(
-                    "{}: {n} VIS2DATA, {} VIS2ERR, {} FLAG; one of each per row (at least one row)",
-                    t.insname,
-                    t.vis2err.len(),
-                    t.flag.len()
-                ),
-            });
+        if n == 0 || n % channels != 0 || t.vis2err.len() != n || t.flag.len() != n {
+            return Err(format!(
+                "{}: {n} VIS2DATA, {} VIS2ERR, {} FLAG; one of each per row and channel \
+                 ({channels} channels, at least one row)",
+                t.insname,
+                t.vis2err.len(),
+                t.flag.len()
+            ));
         }
     }
     Ok(())
@@ -153,9 +157,11 @@ fn gzip(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
     z.finish()
 }
 
-/// The file's bytes: every HDU with its `CHECKSUM` and `DATASUM`; a row
-/// whose `VIS2DATA` or `VIS2ERR` is not a number is flagged.
+/// The file's bytes: every HDU with its `CHECKSUM` and `DATASUM`; a
+/// (row, channel) whose `VIS2DATA` or `VIS2ERR` is not a number is
+/// flagged.
 pub fn to_bytes(doc: &OifitsDoc) -> std::result::Result<Vec<u8>, String> {
+    check_shapes(doc)?;
     let now = time::OffsetDateTime::now_utc();
     let stamp = format!(
         "{}T{:02}:{:02}:{:02}",
@@ -212,11 +218,7 @@ fn primary(doc: &OifitsDoc, today: &str) -> std::result::Result<HduWriter, Strin
         Key::str("INSTRUME", &doc.tables[0].insname, "first INSNAME"),
         Key::str("OBSERVER", "v2ref", "no observer: computed"),
         Key::str("OBJECT", &s.target, "target"),
-        Key::str(
-            "INSMODE",
-            "BROADBAND",
-            "one channel: the estimators sum the band",
-        ),
+        insmode(s.wavelengths_m().len()),
         Key::str(
             "OBSTECH",
             "SCAN",
@@ -239,6 +241,22 @@ fn primary(doc: &OifitsDoc, today: &str) -> std::result::Result<HduWriter, Strin
     let mut h = HduWriter::primary();
     put_keys(&mut h, &keys)?;
     Ok(h)
+}
+
+/// `INSMODE`: one broadband channel, or C spectral channels.
+fn insmode(channels: usize) -> Key {
+    match channels {
+        1 => Key::str(
+            "INSMODE",
+            "BROADBAND",
+            "one channel: the estimators sum the band",
+        ),
+        c => Key::str(
+            "INSMODE",
+            "DISPERSED",
+            &format!("{c} spectral channels, one estimate each"),
+        ),
+    }
 }
 
 /// A binary-table column: name, data (`repeat` per row), unit.
@@ -339,11 +357,17 @@ fn wavelength(s: &Setting, insname: &str, extver: i64) -> std::result::Result<Hd
         Key::str("INSNAME", insname, "instrument (estimator)"),
         extver_key(extver),
     ];
+    // One row per channel, in the channels' order (the columns of VIS2DATA).
+    let (waves, bands): (Vec<f32>, Vec<f32>) = s
+        .wavelengths_m()
+        .iter()
+        .map(|&(w, b)| (w as f32, b as f32))
+        .unzip();
     create(
         "OI_WAVELENGTH",
         &[
-            col("EFF_WAVE", 1, ColumnData::F32(&[s.eff_wave_m as f32]), "m"),
-            col("EFF_BAND", 1, ColumnData::F32(&[s.eff_band_m as f32]), "m"),
+            col("EFF_WAVE", 1, ColumnData::F32(&waves), "m"),
+            col("EFF_BAND", 1, ColumnData::F32(&bands), "m"),
         ],
         &keys,
     )
@@ -360,16 +384,18 @@ fn extver_key(extver: i64) -> Key {
 
 fn vis2(s: &Setting, t: &Vis2Out, extver: i64) -> std::result::Result<HduWriter, String> {
     use ColumnData::{Logical, F64, I16};
+    let nwave = s.wavelengths_m().len();
+    let dim = format!("({nwave})");
     let mut keys = vec![
         extver_key(extver),
         Key::str("DATE-OBS", &s.date_obs, "UTC date of the first row"),
         Key::str("ARRNAME", &s.site.name, ""),
         Key::str("INSNAME", &t.insname, ""),
-        // One channel: the arrays are declared of one element, as
-        // OIFITS readers that shape columns by TDIM expect.
-        Key::str("TDIM5", "(1)", ""),
-        Key::str("TDIM6", "(1)", ""),
-        Key::str("TDIM10", "(1)", ""),
+        // The arrays are declared of NWAVE elements (one when broadband),
+        // as OIFITS readers that shape columns by TDIM expect.
+        Key::str("TDIM5", &dim, ""),
+        Key::str("TDIM6", &dim, ""),
+        Key::str("TDIM10", &dim, ""),
     ];
     if let Some(est) = t.estimator {
         keys.push(Key::str(
@@ -379,7 +405,7 @@ fn vis2(s: &Setting, t: &Vis2Out, extver: i64) -> std::result::Result<HduWriter,
         ));
     }
     keys.extend(t.keywords.iter().cloned());
-    let n = t.vis2data.len();
+    let n = t.vis2data.len() / nwave;
     // OIFITS v2 keeps TIME at zero: the time is MJD.
     let mjd: Vec<f64> = (0..n).map(|r| s.mjd(r)).collect();
     let (target_id, zeros) = (vec![1i16; n], vec![0.0; n]);
@@ -390,12 +416,12 @@ fn vis2(s: &Setting, t: &Vis2Out, extver: i64) -> std::result::Result<HduWriter,
         col("TIME", 1, F64(&zeros), "s"),
         col("MJD", 1, F64(&mjd), "day"),
         col("INT_TIME", 1, F64(&int_time), "s"),
-        col("VIS2DATA", 1, F64(&t.vis2data), ""),
-        col("VIS2ERR", 1, F64(&t.vis2err), ""),
+        col("VIS2DATA", nwave, F64(&t.vis2data), ""),
+        col("VIS2ERR", nwave, F64(&t.vis2err), ""),
         col("UCOORD", 1, F64(&ucoord), "m"),
         col("VCOORD", 1, F64(&zeros), "m"),
         col("STA_INDEX", 2, I16(&stations), ""),
-        col("FLAG", 1, Logical(&t.flag), ""),
+        col("FLAG", nwave, Logical(&t.flag), ""),
     ];
     let mut h = create("OI_VIS2", &cols, &keys)?;
     if let Some(note) = &t.vis2data_note {

@@ -259,6 +259,7 @@ fn read_estimates(
     let expected = Expected {
         rows: sc.data.rows,
         band_m: (1e-6 / hi, 1e-6 / lo),
+        channels_m: None,
         bins: window.0,
         bias: window.1,
     };
