@@ -26,6 +26,7 @@ mod cli;
 mod cli_noise;
 mod cli_piston;
 mod commands_estimate;
+mod conformance_channels;
 mod conformance_cli;
 mod conformance_files;
 mod conformance_score;
