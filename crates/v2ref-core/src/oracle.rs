@@ -22,6 +22,12 @@
 //!    suite checks both), and **sets with power** ([`Set::powered`]): the
 //!    piston-free vectors made large enough to catch a 2 % error of either
 //!    estimator's mean or variance.
+//! 5. **A dispersed set** ([`Set::synthesize_channels`]): the scan in C
+//!    spectral channels ([`Channels`]), rows of C × N values, a truth per
+//!    channel ([`Set::expected_channel`]), v2ref's estimates per channel
+//!    ([`Set::reference_channel_estimates`]) and one verdict over every
+//!    channel at a family-wise rate ([`Set::score_channels`],
+//!    [`ChannelScoreReport`]).
 //!
 //! ```
 //! use v2ref_core::oracle::{BiasConvention, BinWindow, Estimates, Inputs, Set, SourceInput};

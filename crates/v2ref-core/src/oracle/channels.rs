@@ -39,10 +39,10 @@ impl Set {
     /// ```
     /// use v2ref_core::oracle::{BiasConvention, BinWindow, Channels, Estimates, Inputs, Set};
     ///
-    /// let inputs = Inputs { samples: 64, photons: 200.0, ..Inputs::default() };
+    /// let inputs = Inputs { samples: 128, photons: 200.0, ..Inputs::default() };
     /// let three = Channels::equal(&inputs.spectrum.spectrum()?, 3)?;
     /// let set = Set::synthesize_channels(&inputs, &three, 500, 7)?;
-    /// assert_eq!((set.channels(), set.rows().next().unwrap().len()), (3, 3 * 64));
+    /// assert_eq!((set.channels(), set.rows().next().unwrap().len()), (3, 3 * 128));
     ///
     /// // v2ref's own estimates, channel by channel, pass the set's test.
     /// let (window, bias) = (BinWindow::Band, BiasConvention::Model);
