@@ -109,7 +109,8 @@ impl Sidecar {
                     j + 1
                 )));
             }
-            if !((c.photon_share - q).abs() <= crate::tolerance::IDENTITY_REL * q) {
+            let off = (c.photon_share - q).abs();
+            if off.is_nan() || off > crate::tolerance::IDENTITY_REL * q {
                 return Err(refuse(format!(
                     "channel {}: photon_share {} is not the {q} its edges and response give",
                     j + 1,
