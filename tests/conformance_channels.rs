@@ -359,7 +359,7 @@ fn z_scores_over_seeds_are_standard_normal_in_every_channel() {
         ..Inputs::default()
     };
     let channels = equal(&inputs, 4);
-    let mut z = vec![RunningStats::default(); 4];
+    let mut z = [RunningStats::default(); 4];
     for seed in 0..24 {
         let (values, sidecar) = synth(&inputs, &channels, &set_size(400, seed, 0, 0, false));
         let est = channel_estimators(&inputs, &channels, (WINDOW, MODEL), true, None, 0).unwrap();
