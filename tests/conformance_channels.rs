@@ -298,6 +298,7 @@ fn a_two_percent_error_in_one_channel_and_a_swap_fail_the_set() {
     assert!(good.pass, "{good}");
     for c in &good.channels {
         let power = c.estimators[1].score.min_detectable_rel_bias_mean;
+        // tol: the 2 % error planted below must be within the stated reach.
         assert!(power < 0.02, "stated power {power}: the set is too small");
     }
     let mut off = v2.clone();
