@@ -53,6 +53,7 @@ fn sidecar() -> Sidecar {
             csv: None,
             rows: 4,
             samples: 8,
+            channels: None,
         },
         seed: 1,
         layout: None,
@@ -86,6 +87,7 @@ fn sidecar() -> Sidecar {
             },
         },
         members: None,
+        channels: None,
     }
 }
 

@@ -28,6 +28,7 @@ mod cli_noise;
 mod cli_piston;
 mod cli_support;
 mod commands_estimate;
+mod conformance_channels;
 mod conformance_cli;
 mod conformance_files;
 mod conformance_score;

@@ -22,6 +22,12 @@
 //!    suite checks both), and **sets with power** ([`Set::powered`]): the
 //!    piston-free vectors made large enough to catch a 2 % error of either
 //!    estimator's mean or variance.
+//! 5. **A dispersed set** ([`Set::synthesize_channels`]): the scan in C
+//!    spectral channels ([`Channels`]), rows of C × N values, a truth per
+//!    channel ([`Set::expected_channel`]), v2ref's estimates per channel
+//!    ([`Set::reference_channel_estimates`]) and one verdict over every
+//!    channel at a family-wise rate ([`Set::score_channels`],
+//!    [`ChannelScoreReport`]).
 //!
 //! ```
 //! use v2ref_core::oracle::{BiasConvention, BinWindow, Estimates, Inputs, Set, SourceInput};
@@ -58,16 +64,21 @@ use crate::error::{Error, Result};
 use crate::noise::calibrated::expectation;
 use crate::simulator::RowLayout;
 
+mod channels;
+
+pub use crate::conformance::channel_score::{ChannelScore, ChannelScoreReport};
 pub use crate::conformance::estimate::{
     BiasConvention, RowEstimate, RowEstimator, BIAS_CONVENTIONS,
 };
 pub use crate::conformance::score::{
-    score_report, EstimatorScore, NamedScore, ScoreReport, DEFAULT_ALPHA, POWER,
+    score_report, Estimates, EstimatorScore, NamedScore, ScoreReport, DEFAULT_ALPHA, POWER,
 };
+pub use crate::conformance::sidecar::ChannelSidecar;
 pub use crate::conformance::sidecar::{
     ConventionTruth, EstimatorTruth, Sidecar, Truth, WindowTruth,
 };
 pub use crate::conformance::vectors::{catalogue, Vector};
+pub use crate::formalism::channels::Channels;
 pub use crate::formalism::estimator::{
     all_bins, band_bins, noise_bias, positive_bins, BinWindow, Pair, BIN_WINDOWS,
 };
@@ -107,6 +118,8 @@ pub struct Set {
     model: Model,
     values: Vec<f64>,
     sidecar: Sidecar,
+    /// A dispersed set's channels and their models (None: wide band).
+    dispersed: Option<channels::Dispersed>,
 }
 
 impl Set {
@@ -154,6 +167,7 @@ impl Set {
             model,
             values,
             sidecar,
+            dispersed: None,
         })
     }
 
@@ -213,14 +227,19 @@ impl Set {
         &self.sidecar.truth
     }
 
-    /// N, samples per row.
+    /// N, samples per row (per channel in a dispersed set).
     pub fn samples(&self) -> usize {
         self.model.samples()
     }
 
+    /// Values per row: C × N ([`Set::channels`] × [`Set::samples`]).
+    fn row_len(&self) -> usize {
+        self.channels() * self.samples()
+    }
+
     /// Rows (scans).
     pub fn len(&self) -> usize {
-        self.values.len() / self.samples()
+        self.values.len() / self.row_len()
     }
 
     /// Whether the set has no row.
@@ -228,14 +247,16 @@ impl Set {
         self.values.is_empty()
     }
 
-    /// Every value, row-major (`samples()` per row).
+    /// Every value, row-major (`channels() × samples()` per row, channel
+    /// after channel).
     pub fn values(&self) -> &[f64] {
         &self.values
     }
 
-    /// The rows, one slice of `samples()` values each.
+    /// The rows, one slice of `channels() × samples()` values each
+    /// (channel j's samples at `j·N … (j+1)·N`).
     pub fn rows(&self) -> std::slice::ChunksExact<'_, f64> {
-        self.values.chunks_exact(self.samples())
+        self.values.chunks_exact(self.row_len())
     }
 
     /// The calibrator's noise-free row `m_i`, photons: what a point source
@@ -254,8 +275,10 @@ impl Set {
     }
 
     /// The truth of `window` under `bias`; refuses one the truth lacks (a
-    /// window whose calibrator has no fringe).
+    /// window whose calibrator has no fringe), and a dispersed set of more
+    /// than one channel ([`Set::expected_channel`]).
     pub fn expected(&self, window: BinWindow, bias: BiasConvention) -> Result<&ConventionTruth> {
+        self.check_wide_band()?;
         self.sidecar.truth(window, bias).ok_or_else(|| Error::Invalid {
             param: "window",
             reason: format!(
@@ -274,19 +297,23 @@ impl Set {
         expectation(&setup, &self.model.noise, Formula::Exact)
     }
 
-    /// v2ref's own per-row estimates of the set under `window` and `bias`.
+    /// v2ref's own per-row estimates of the set under `window` and `bias`;
+    /// refuses a dispersed set of more than one channel
+    /// ([`Set::reference_channel_estimates`]).
     pub fn reference_estimates(
         &self,
         window: BinWindow,
         bias: BiasConvention,
     ) -> Result<Vec<RowEstimate>> {
+        self.check_wide_band()?;
         RowEstimator::new(&self.model, window, bias, true)?.estimate_rows(&self.values, 0)
     }
 
     /// Scores a pipeline's per-row V1² and V2² (each named in
     /// `estimates`, either or both; one value per row, in row order)
     /// against the truth of `window` under `bias`, at [`DEFAULT_ALPHA`]
-    /// shared by the tests made. Refuses estimates with neither.
+    /// shared by the tests made. Refuses estimates with neither, and a
+    /// dispersed set of more than one channel ([`Set::score_channels`]).
     pub fn score(
         &self,
         window: BinWindow,
@@ -296,33 +323,6 @@ impl Set {
         let truth = self.expected(window, bias)?;
         let rows = self.len() as u64;
         score_report(estimates.v1_sq, estimates.v2_sq, truth, rows, DEFAULT_ALPHA)
-    }
-}
-
-/// A pipeline's per-row estimates for [`Set::score`], each given by name
-/// (`Estimates::default().v1_sq(&a).v2_sq(&b)`), so that V1² and V2²
-/// cannot be swapped by their position.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Estimates<'a> {
-    v1_sq: Option<&'a [f64]>,
-    v2_sq: Option<&'a [f64]>,
-}
-
-impl<'a> Estimates<'a> {
-    /// With the normalized V1² of every row.
-    pub fn v1_sq(self, v1_sq: &'a [f64]) -> Self {
-        Estimates {
-            v1_sq: Some(v1_sq),
-            ..self
-        }
-    }
-
-    /// With the normalized V2² of every row.
-    pub fn v2_sq(self, v2_sq: &'a [f64]) -> Self {
-        Estimates {
-            v2_sq: Some(v2_sq),
-            ..self
-        }
     }
 }
 

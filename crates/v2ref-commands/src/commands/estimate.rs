@@ -14,10 +14,21 @@
 //!
 //! Errors name the rows as the edge does ([`RowsName`]): the CLI's flag
 //! and its file, or Python's argument.
+//!
+//! **A dispersed set** (C spectral channels, `docs/conventions.md` §16):
+//! each row holds C × N values, channel after channel. The configuration
+//! knows its channels ([`Configuration::read_sidecar`], or
+//! [`Configuration::with_channels`] for physical inputs); each channel has
+//! its own estimator, from its own model ([`channel_estimators`]: the
+//! channel's spectrum and share of the photons), normalized by the model's
+//! point source or by the calibrator's rows of the same C × N layout; and
+//! [`estimate_channel_rows`] gives the estimates of each channel, row by
+//! row.
 
 use crate::conformance::estimate::{BiasConvention, RowEstimate, RowEstimator, RowFault};
 use crate::conformance::sidecar::Sidecar;
 use crate::error::{Error, Result};
+use crate::formalism::channels::Channels;
 use crate::formalism::estimator::{BinWindow, Pair};
 use crate::parameters::Physical;
 use crate::simulator::{Inputs, Model};
@@ -64,17 +75,52 @@ pub struct Configuration {
     /// Whether N may be taken from the rows (physical inputs without
     /// piston); a sidecar's N is its set's.
     pub samples_from_rows: bool,
+    /// The spectral channels each row is recorded in (C × N values a row,
+    /// channel after channel), cut from the inputs' spectrum; `None`: the
+    /// wide band, one channel.
+    pub channels: Option<Channels>,
 }
 
 impl Configuration {
-    /// A synth set's configuration: its inputs, convention and rows.
+    /// A wide-band synth set's configuration: its inputs, convention and
+    /// rows. A dispersed set's channels are not read here (its rows of
+    /// C × N values are then refused as rows of another N): read any set
+    /// with [`Configuration::read_sidecar`].
     pub fn from_sidecar(sidecar: Sidecar) -> Configuration {
         Configuration {
             set_rows: Some(sidecar.data.rows),
             inputs: sidecar.inputs,
             continuum_subtracted: sidecar.continuum_subtracted,
             samples_from_rows: false,
+            channels: None,
         }
+    }
+
+    /// A synth set's configuration with its channels, if it has any
+    /// (rebuilt and checked by [`Sidecar::channels`]: a refusal names the
+    /// parameter `channels`).
+    pub fn read_sidecar(sidecar: Sidecar) -> Result<Configuration> {
+        let channels = sidecar.channels()?;
+        Ok(Configuration {
+            channels,
+            ..Configuration::from_sidecar(sidecar)
+        })
+    }
+
+    /// The configuration with its rows recorded in `channels`, which must
+    /// be cut from the inputs' spectrum (refused, parameter `channels`,
+    /// otherwise).
+    pub fn with_channels(self, channels: Channels) -> Result<Configuration> {
+        channels.check_parent(&self.inputs.spectrum.spectrum()?)?;
+        Ok(Configuration {
+            channels: Some(channels),
+            ..self
+        })
+    }
+
+    /// C, the channels of each row (1 for the wide band).
+    pub fn channel_count(&self) -> usize {
+        self.channels.as_ref().map_or(1, Channels::count)
     }
 
     /// The physical inputs `p` (checked once N is known, by
@@ -85,6 +131,7 @@ impl Configuration {
             continuum_subtracted,
             set_rows: None,
             samples_from_rows: true,
+            channels: None,
         })
     }
 
@@ -92,22 +139,42 @@ impl Configuration {
     /// sidecar's N must be `cols` (and its set's rows `rows`, where
     /// [`Configuration::set_rows`] says so); otherwise N is taken from the
     /// rows, unless a piston is modelled (its sequence is drawn at the
-    /// configuration's N). Every input is then checked.
+    /// configuration's N). With C channels a row holds C × N values: `cols`
+    /// must be a multiple of C, and N is `cols / C`. Every input is then
+    /// checked.
     pub fn inputs_for(&self, name: RowsName<'_>, rows: usize, cols: usize) -> Result<Inputs> {
         if let Some(expected) = self.set_rows {
             if rows as u64 != expected {
                 return Err(name.error("", format!("{rows} rows; its sidecar says {expected}")));
             }
         }
+        let c = self.channel_count();
+        if c > 1 && cols % c != 0 {
+            return Err(name.error(
+                "",
+                format!(
+                    "{cols} values per row is not C x N for the C = {c} channels; give each row as C = {c} channels of N samples, channel after channel"
+                ),
+            ));
+        }
+        let cols = cols / c;
         let mut inputs = self.inputs.clone();
         if inputs.samples != cols {
             if !self.samples_from_rows || inputs.piston.is_some() {
                 return Err(name.error(
                     "",
-                    format!(
-                        "{cols} columns; the configuration has {} samples per row",
-                        inputs.samples
-                    ),
+                    match c {
+                        1 => format!(
+                            "{cols} columns; the configuration has {} samples per row",
+                            inputs.samples
+                        ),
+                        _ => format!(
+                            "{} columns, {cols} per channel; the configuration has C = {c} channels of N = {} samples, {} values a row",
+                            cols * c,
+                            inputs.samples,
+                            c * inputs.samples
+                        ),
+                    },
                 ));
             }
             inputs.samples = cols;
@@ -202,4 +269,118 @@ pub fn estimate_rows(
     }
     est.try_estimate_rows(rows, threads)
         .map_err(|f| name.error(f.location(first), f.reason()))
+}
+
+/// The estimator of each channel of `inputs` split by `channels`
+/// ([`channel_models`](crate::simulator::channels::channel_models): the
+/// channel's spectrum and share of the photons), summing `window` with
+/// the `bias` convention, normalized by the channel's noise-free point
+/// source, or, when `calibrator` is given, by the mean bias-subtracted
+/// estimates of the calibrator's rows in that channel (its rows C × N
+/// values each, as the interferograms'). One channel over the whole band
+/// is [`estimator`] of `inputs`.
+pub fn channel_estimators(
+    inputs: &Inputs,
+    channels: &Channels,
+    (window, bias): (BinWindow, BiasConvention),
+    continuum_subtracted: bool,
+    calibrator: Option<CalibratorRows<'_>>,
+    threads: usize,
+) -> Result<Vec<RowEstimator>> {
+    let models = crate::simulator::channels::channel_models(inputs, channels)?;
+    let n = inputs.samples;
+    let width = models.len() * n;
+    if let Some(cal) = &calibrator {
+        if cal.cols != width {
+            return Err(cal.name.error(
+                "",
+                format!(
+                    "{} columns; the interferograms have C = {} channels of N = {n} samples, {width} values a row",
+                    cal.cols,
+                    models.len()
+                ),
+            ));
+        }
+        check_rows(cal.name, cal.rows, cal.cols, 0)?;
+    }
+    let mut out = Vec::with_capacity(models.len());
+    for (j, model) in models.iter().enumerate() {
+        let est = RowEstimator::new(model, window, bias, continuum_subtracted)?;
+        let Some(cal) = &calibrator else {
+            out.push(est);
+            continue;
+        };
+        let cal_model = model.calibrator_model()?;
+        let cal_est = RowEstimator::new(&cal_model, window, bias, continuum_subtracted)?;
+        let rows = channel_of(cal.rows, width, j, n);
+        let calibration = cal_est
+            .calibration_from_rows(&rows, threads)
+            .map_err(|e| in_channel(j, e))?;
+        out.push(est.with_calibration(calibration)?);
+    }
+    Ok(out)
+}
+
+/// Channel `j`'s N samples of each row of `rows` (`width` = C × N values
+/// a row), as rows of their own.
+fn channel_of(rows: &[f64], width: usize, j: usize, n: usize) -> Vec<f64> {
+    rows.chunks_exact(width)
+        .flat_map(|row| &row[j * n..(j + 1) * n])
+        .copied()
+        .collect()
+}
+
+/// `e` naming channel `j` (from 0) in its reason.
+fn in_channel(j: usize, e: Error) -> Error {
+    match e {
+        Error::Invalid { param, reason } => Error::Invalid {
+            param,
+            reason: format!("channel {}: {reason}", j + 1),
+        },
+        e => e,
+    }
+}
+
+/// The estimates of each channel of `rows` (each row C × N values, channel
+/// after channel; C the length of `estimators`, from
+/// [`channel_estimators`]), the first `first` rows of the file before
+/// them: one list per channel, in channel order, one estimate per row.
+/// Refuses rows whose length is not a whole number of rows of C × N
+/// values (naming C and N), and a non-finite value or a dark channel of a
+/// row, naming the 1-based row and the channel.
+pub fn estimate_channel_rows(
+    estimators: &[RowEstimator],
+    name: RowsName<'_>,
+    (rows, first): (&[f64], usize),
+    threads: usize,
+) -> Result<Vec<Vec<RowEstimate>>> {
+    let Some(n) = estimators.first().map(RowEstimator::samples) else {
+        return Err(Error::Invalid {
+            param: "channels",
+            reason: "no channel: give the estimators of channel_estimators".into(),
+        });
+    };
+    let c = estimators.len();
+    let width = c * n;
+    if rows.len() % width != 0 {
+        return Err(name.error(
+            "",
+            format!(
+                "{} values is not a whole number of rows of C x N = {c} x {n} values (C channels of N samples)",
+                rows.len()
+            ),
+        ));
+    }
+    let mut out = Vec::with_capacity(c);
+    for (j, est) in estimators.iter().enumerate() {
+        let channel = channel_of(rows, width, j, n);
+        let estimates = est.try_estimate_rows(&channel, threads).map_err(|f| {
+            name.error(
+                f.location(first),
+                format!("channel {}: {}", j + 1, f.reason()),
+            )
+        })?;
+        out.push(estimates);
+    }
+    Ok(out)
 }

@@ -10,9 +10,15 @@
 //!   and variance as z-scores, a verdict at a stated threshold, and the
 //!   power of the test.
 //!
+//! - [`channels`] and [`channel_score`]: the same for a dispersed set, C
+//!   spectral channels per scan — the rows, the truth and the verdict per
+//!   channel, under one family-wise threshold over every channel.
+//!
 //! What a pipeline must match (sample positions, bins for even and odd N,
 //! normalization, bias) is written out in `docs/conventions.md`.
 
+pub mod channel_score;
+pub mod channels;
 pub mod estimate;
 pub mod score;
 pub mod sidecar;

@@ -424,13 +424,7 @@ pub fn score_report(
     expected_rows: u64,
     alpha: f64,
 ) -> Result<ScoreReport> {
-    let given: Vec<(Estimator, &[f64], &EstimatorTruth)> = [
-        (Estimator::V1Sq, v1_sq, &truth.v1_sq),
-        (Estimator::V2Sq, v2_sq, &truth.v2_sq),
-    ]
-    .into_iter()
-    .filter_map(|(e, x, t)| x.map(|x| (e, x, t)))
-    .collect();
+    let given = Estimates { v1_sq, v2_sq }.given(truth);
     let tests = TESTS_PER_ESTIMATOR * given.len();
     let z_crit = critical_z(alpha, tests)?;
     let estimators = given
@@ -450,6 +444,47 @@ pub fn score_report(
         estimators,
         pass,
     })
+}
+
+/// A pipeline's per-row estimates of one set (or one channel of a
+/// dispersed set), each given by name (`Estimates::default().v1_sq(&a)
+/// .v2_sq(&b)`), so that V1² and V2² cannot be swapped by their position.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Estimates<'a> {
+    pub(crate) v1_sq: Option<&'a [f64]>,
+    pub(crate) v2_sq: Option<&'a [f64]>,
+}
+
+impl<'a> Estimates<'a> {
+    /// With the normalized V1² of every row.
+    pub fn v1_sq(self, v1_sq: &'a [f64]) -> Self {
+        Estimates {
+            v1_sq: Some(v1_sq),
+            ..self
+        }
+    }
+
+    /// With the normalized V2² of every row.
+    pub fn v2_sq(self, v2_sq: &'a [f64]) -> Self {
+        Estimates {
+            v2_sq: Some(v2_sq),
+            ..self
+        }
+    }
+
+    /// The estimators given, V1² first, each with its truth in `truth`.
+    pub(crate) fn given<'t>(
+        &self,
+        truth: &'t ConventionTruth,
+    ) -> Vec<(Estimator, &'a [f64], &'t EstimatorTruth)> {
+        [
+            (Estimator::V1Sq, self.v1_sq, &truth.v1_sq),
+            (Estimator::V2Sq, self.v2_sq, &truth.v2_sq),
+        ]
+        .into_iter()
+        .filter_map(|(e, x, t)| x.map(|x| (e, x, t)))
+        .collect()
+    }
 }
 
 /// One screen: the verdict, then a line per estimator with its mean and

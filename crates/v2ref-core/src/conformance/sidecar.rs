@@ -51,19 +51,32 @@ pub struct Sidecar {
     /// vectors.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub members: Option<Vec<Member>>,
+    /// The spectral channels of a dispersed set, in increasing wavenumber:
+    /// each row then holds C × N values, channel after channel (the `.npy`
+    /// shape is (rows, C, N)), and each channel has its own continuum,
+    /// mean counts and truth ([`ChannelSidecar`]). Absent for a wide-band
+    /// set (one channel: the rows, continuum and truth above), which
+    /// serializes as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channels: Option<Vec<ChannelSidecar>>,
 }
 
 /// The files a set is stored in, relative to the sidecar's folder.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DataFiles {
-    /// The `.npy` file: float64, C order, shape (rows, samples).
+    /// The `.npy` file: float64, C order, shape (rows, samples), or
+    /// (rows, channels, samples) for a dispersed set.
     pub npy: String,
     /// The same rows as CSV (one row per line, no header), if written.
     pub csv: Option<String>,
     /// Number of rows (scans).
     pub rows: u64,
-    /// N, samples per row.
+    /// N, samples per row (per channel in a dispersed set).
     pub samples: usize,
+    /// C, the spectral channels of a dispersed set (each row holds C × N
+    /// values, channel-major); absent for a wide-band set.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub channels: Option<usize>,
 }
 
 /// The truth of a set.
@@ -233,4 +246,5 @@ impl Sidecar {
     }
 }
 
+pub use crate::conformance::channels::ChannelSidecar;
 pub use crate::manifest::Member;

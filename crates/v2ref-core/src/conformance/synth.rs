@@ -27,7 +27,7 @@ pub struct SetSize {
 }
 
 /// Units generated at once while streaming the rows.
-const STREAM_BATCH_UNITS: u64 = 8;
+pub(crate) const STREAM_BATCH_UNITS: u64 = 8;
 
 /// Computes the truth of the set, then streams its rows (row-major,
 /// `model.samples()` per row) to `sink`; returns the sidecar, whose data
@@ -89,6 +89,7 @@ pub fn synthesize_with_truth(
             csv,
             rows: size.rows,
             samples: inputs.samples,
+            channels: None,
         },
         seed: size.seed,
         layout: set.layout(),
@@ -99,5 +100,6 @@ pub fn synthesize_with_truth(
         inputs: inputs.clone(),
         truth,
         members: None,
+        channels: None,
     })
 }
