@@ -169,6 +169,27 @@ fn the_frame_rate_bounds_the_grid_and_names_the_detectors_edge() {
     );
 }
 
+/// The stroke's grid edge is judged in whole samples (issue 55: none of
+/// 211 season rows said so): 16 µm at λ0/4 = 0.4125 µm is 39 samples, a
+/// true stroke of 16.0875 µm, above the grid's 16; the note still says
+/// the recommendation sits at the bottom of the stroke grid, naming both.
+#[test]
+fn a_stroke_rounded_up_to_whole_samples_is_still_the_bottom_of_its_grid() {
+    let j = plan_json(&["--fringe-hz", "1500", "--stroke-um", "32"]);
+    let strokes: Vec<f64> = serde_json::from_value(j["inputs"]["stroke_um"].clone()).unwrap();
+    assert_eq!(strokes, vec![16.0, 32.0]);
+    let r = &j["recommended"];
+    assert_eq!(r["samples"].as_u64(), Some(39), "{r}");
+    assert!(r["stroke_um"].as_f64().unwrap() > 16.0, "{r}");
+    let note = j["grid_edge"].as_str().expect("a grid-edge note");
+    assert!(
+        note.contains("stroke 16.08")
+            && note.contains("(39 whole samples")
+            && note.contains("bottom of the grid (16 to 32 um)"),
+        "{note}"
+    );
+}
+
 /// Bad rates exit 2 with one line naming the flag and its range; the
 /// library refuses a grid faster than its detector, naming `fringe_hz`.
 #[test]
