@@ -187,8 +187,8 @@ fn a_given_frame_rate_sets_the_edge_of_a_presets_grid() {
         let prepared = prepare(&p, &req).unwrap();
         let grid = &prepared.inputs.fringe_hz;
         let top = grid.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        // tol: the log grid's last point is exp(ln(edge)): a few roundings.
         assert!(
+            // tol: the log grid's last point is exp(ln(edge)): a few roundings.
             (top - edge_hz).abs() <= 1e-12 * edge_hz,
             "{given:?}: {grid:?}"
         );

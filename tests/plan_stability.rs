@@ -229,6 +229,7 @@ fn an_inflation_below_one_is_explained_in_the_text() {
         .nth(1)
         .expect("an inflation printed");
     let inflation: f64 = shown.split(' ').next().unwrap().parse().unwrap();
+    // tol: not a tolerance: the regime, an inflation below 1.
     assert!(inflation < 1.0, "{out}");
     for words in [
         "inflation: the piston variance of the mean of n consecutive scans over that of n independent scans",
