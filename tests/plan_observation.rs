@@ -26,7 +26,8 @@
 //!   standard errors, and more than 5 from zero: 37 measured), each
 //!   convention's mean against its own prediction.
 
-use v2ref_commands::plan::verify::{verification_size, verify, Verification};
+use v2ref_commands::plan::verify::{size_at, verification_size, verify, Verification};
+use v2ref_commands::plan::SEQUENCES;
 use v2ref_commands::plan::{plan, Estimator, PlanInputs, PlanPoint, Target};
 use v2ref_core::assert_within_sigmas;
 use v2ref_core::conformance::estimate::{BiasConvention, RowEstimator};
@@ -503,4 +504,34 @@ fn piston_reports_the_observations_sigma_and_its_inflation() {
     let by_time = piston_observation(&["--observation-s", &format!("{}", seconds * 0.9999)]);
     assert_eq!(by_time["scans"].as_u64(), Some(1500));
     assert_eq!(by_time["sigma_v1_sq"], long["sigma_v1_sq"]);
+}
+
+/// `--verify-observations` delivers what it was asked or says why fewer
+/// (issue 55: 64 asked, 32 delivered, no word): an observation of 10⁵
+/// scans of 39 samples leaves room for 4 per simulated piston sequence
+/// (2^24 samples, the memory bound), so 256 asked give 64 and the size
+/// says so, naming the bound and the numbers; 32 asked are delivered with
+/// no such word.
+#[test]
+fn fewer_verified_observations_than_asked_say_why() {
+    let i = inputs(&BRIGHT, BiasConvention::Counts);
+    let sky = i.atmosphere.spectrum(BRIGHT.baseline_m).unwrap();
+    let n = 100_000_u64;
+    let size = size_at(&i, &sky, (BRIGHT.fringe_hz, BRIGHT.stroke_um, n), 256).unwrap();
+    let per_sequence = (1_usize << 24).saturating_sub(size.samples + 4) / size.stride;
+    let delivered = SEQUENCES as u64 * (per_sequence as u64 / n);
+    assert_eq!((size.samples, delivered), (39, 64));
+    assert_eq!(size.observations(), delivered);
+    assert_eq!(size.observations_requested, 256);
+    let why = size.fewer_why().expect("fewer than asked: a reason");
+    for words in [
+        "64 of the 256",
+        "memory",
+        "16777216 samples",
+        "4 observations",
+    ] {
+        assert!(why.contains(words), "{words:?} not in {why}");
+    }
+    let size = size_at(&i, &sky, (BRIGHT.fringe_hz, BRIGHT.stroke_um, n), 32).unwrap();
+    assert!(size.observations() >= 32 && size.fewer_why().is_none());
 }

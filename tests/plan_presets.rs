@@ -5,7 +5,9 @@
 use crate::run::v2ref;
 use v2ref_commands::commands::plan::{prepare, PlanRequest};
 use v2ref_commands::parameters::Physical;
-use v2ref_commands::plan::instrument::{instrument, Instrument, INSTRUMENTS, PRESET_KEYS};
+use v2ref_commands::plan::instrument::{
+    fringe_grid_hz, instrument, Instrument, INSTRUMENTS, PRESET_KEYS,
+};
 use v2ref_commands::plan::photometry::{Band2Mass, Magnitude};
 use v2ref_core::conformance::estimate::BiasConvention;
 
@@ -125,7 +127,17 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
             ("read_noise", p.read_noise, 7.0, kept_p.read_noise),
             ("dead_time_s", req.dead_time_s, 0.0, kept_req.dead_time_s),
             ("throughput", m.throughput, 0.3, i.throughput),
-            ("fringe_hz", req.fringe_hz[0], 123.0, kept_req.fringe_hz[0]),
+            // The frame rate given moves the grid's edge (issue 55).
+            (
+                "fringe_hz",
+                req.fringe_hz[0],
+                123.0,
+                if key == "frame_rate_hz" {
+                    fringe_grid_hz(500.0 / 4.0)[0]
+                } else {
+                    kept_req.fringe_hz[0]
+                },
+            ),
             (
                 "frame_rate_hz",
                 req.frame_rate_hz.unwrap(),
@@ -149,6 +161,43 @@ fn a_given_parameter_overrides_each_kind_of_preset_value() {
         k == "spatial_freq_cpas"
     });
     assert_eq!((p.spatial_freq_cpas, p.baseline_m), (Some(40.0), None));
+}
+
+/// A frame rate given with a preset sets the edge of the preset's grid
+/// (issue 55: a 2000 Hz detector given to the 1000 Hz MIRC-X preset never
+/// searched above 250 Hz): the prepared grid ends at the given rate over
+/// the samples per fringe, for a faster and a slower detector, and at the
+/// preset's own rate when none is given.
+#[test]
+fn a_given_frame_rate_sets_the_edge_of_a_presets_grid() {
+    let i = instrument("chara-mirc-x").unwrap();
+    for (given, spf, edge_hz) in [
+        (Some(2000.0), 4.0, 500.0),
+        (Some(2000.0), 5.0, 400.0),
+        (Some(400.0), 4.0, 100.0),
+        (None, 4.0, i.frame_rate_hz / 4.0),
+    ] {
+        let mut p = Physical::default();
+        let mut req = request(Band2Mass::H);
+        req.frame_rate_hz = given;
+        req.samples_per_fringe = spf;
+        i.apply(&mut p, &mut req, &|k| {
+            given.is_some() && k == "frame_rate_hz"
+        });
+        let prepared = prepare(&p, &req).unwrap();
+        let grid = &prepared.inputs.fringe_hz;
+        let top = grid.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            // tol: the log grid's last point is exp(ln(edge)): a few roundings.
+            (top - edge_hz).abs() <= 1e-12 * edge_hz,
+            "{given:?}: {grid:?}"
+        );
+        assert_eq!(grid.len(), 20, "{given:?}: {grid:?}");
+        assert_eq!(
+            prepared.inputs.frame_rate_hz,
+            given.or(Some(i.frame_rate_hz))
+        );
+    }
 }
 
 /// The command line: a flag given overrides the preset even at its

@@ -7,6 +7,9 @@
 //! - **the intervals hold the noise Monte Carlo's scatter**: under the
 //!   `counts` convention the time's interval is not zero wide even when the
 //!   piston is negligible;
+//! - **the grid's edges and the text's words** (issue 55): a stroke
+//!   rounded to whole samples is still the bottom of its grid; an
+//!   inflation below 1 is explained where it is printed;
 //! - **the detector's edge**: `--frame-rate-hz` bounds the grid at frame
 //!   rate / samples per fringe, and a recommendation there is said to be
 //!   the detector's edge; a bad rate exits 2 naming the flag, and a
@@ -167,6 +170,74 @@ fn the_frame_rate_bounds_the_grid_and_names_the_detectors_edge() {
         note.contains("top of the grid") && note.contains("--frame-rate-hz"),
         "{note}"
     );
+}
+
+/// The stroke's grid edge is judged in whole samples (issue 55: none of
+/// 211 season rows said so): 16 µm at λ0/4 = 0.4125 µm is 39 samples, a
+/// true stroke of 16.0875 µm, above the grid's 16; the note still says
+/// the recommendation sits at the bottom of the stroke grid, naming both.
+#[test]
+fn a_stroke_rounded_up_to_whole_samples_is_still_the_bottom_of_its_grid() {
+    let j = plan_json(&["--fringe-hz", "1500", "--stroke-um", "32"]);
+    let strokes: Vec<f64> = serde_json::from_value(j["inputs"]["stroke_um"].clone()).unwrap();
+    assert_eq!(strokes, vec![16.0, 32.0]);
+    let r = &j["recommended"];
+    assert_eq!(r["samples"].as_u64(), Some(39), "{r}");
+    assert!(r["stroke_um"].as_f64().unwrap() > 16.0, "{r}");
+    let note = j["grid_edge"].as_str().expect("a grid-edge note");
+    assert!(
+        note.contains("stroke 16.08")
+            && note.contains("(39 whole samples")
+            && note.contains("bottom of the grid (16 to 32 um)"),
+        "{note}"
+    );
+}
+
+/// An inflation below 1 is explained where it is printed (issue 55:
+/// "inflation 0.07" stood unexplained): a faint H-band star at 1000 Hz,
+/// whose observation of about 15 000 scans spans many piston correlation
+/// times, prints an inflation below 1 with what it is and why.
+#[test]
+fn an_inflation_below_one_is_explained_in_the_text() {
+    let (code, out, err) = v2ref(&[
+        "plan",
+        "--wavelength-um",
+        "1.65",
+        "--bandwidth-nm",
+        "300",
+        "--diameter-mas",
+        "1",
+        "--baseline-m",
+        "100",
+        "--outer-scale-m",
+        "25",
+        "--photon-rate-per-s",
+        "2e4",
+        "--read-noise",
+        "1",
+        "--fringe-hz",
+        "1000",
+        "--stroke-um",
+        "16",
+        "--target-sigma-v2",
+        "3e-3",
+        "--quiet",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let shown = out
+        .split("inflation ")
+        .nth(1)
+        .expect("an inflation printed");
+    let inflation: f64 = shown.split(' ').next().unwrap().parse().unwrap();
+    // tol: not a tolerance: the regime, an inflation below 1.
+    assert!(inflation < 1.0, "{out}");
+    for words in [
+        "inflation: the piston variance of the mean of n consecutive scans over that of n independent scans",
+        "below 1 here",
+        "net drift",
+    ] {
+        assert!(out.contains(words), "{words:?} not in {out}");
+    }
 }
 
 /// Bad rates exit 2 with one line naming the flag and its range; the

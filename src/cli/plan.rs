@@ -245,9 +245,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
         let size = plan::verification(&answer, args.verify_observations)?;
         if !args.quiet {
             super::output::write_stderr_line(format_args!(
-                "note: plan --verify: simulating {} scans of {} samples",
+                "note: plan --verify: simulating {} scans of {} samples ({} observations of {} scans){}",
                 size.scans(),
-                size.samples
+                size.samples,
+                size.observations(),
+                size.scans_per_observation,
+                size.fewer_why().map_or(String::new(), |why| format!("; {why}"))
             ));
         }
         let bar = progress_bar(size.scans(), args.quiet || args.json, "plan --verify");
@@ -404,6 +407,10 @@ fn observation(p: &PlanPoint, inputs: &PlanInputs) {
         o.extrapolated_from_scans.map_or(String::new(), |m| format!(
             "; measured at {m} scans and carried to n as 1/n"
         )),
+    );
+    outln!(
+        "  {}",
+        v2ref_commands::plan::inflation_words(o.variance_inflation)
     );
     outln!(
         "  predicted mean V^2 {:.5e} with {}: uncorrectable bias {:+.2e} +/- {:.1e} (piston {:+.2e}, convention {:+.2e})",

@@ -23,6 +23,9 @@ pub fn print(v: &Verification) {
         convention_words(v.bias),
         v.seed
     );
+    if let Some(why) = &v.fewer_observations_why {
+        outln!("  fewer observations than asked: {why}");
+    }
     outln!(
         "  sigma(V^2) achieved/promised {:.3} ({pct:.0}% interval {:.3} to {:.3}): achieved {:.3e}, promised {:.3e}{} (independent scans would promise {:.3e})",
         v.sigma_ratio,

@@ -193,7 +193,8 @@ impl Instrument {
     /// baseline and read noise; the dead time and the detector's frame rate; the throughput of a
     /// magnitude's photon rate (and its apertures, those of `p`); and,
     /// without a fringe-frequency grid, one whose top is the fastest
-    /// fringe the detector samples ([`Instrument::fringe_hz_max`]).
+    /// fringe the detector in use samples: the frame rate given, else the
+    /// preset's ([`Instrument::fringe_hz_max`]).
     pub fn apply(
         &self,
         p: &mut crate::parameters::Physical,
@@ -230,8 +231,11 @@ impl Instrument {
                 m.throughput = self.throughput;
             }
         }
+        // The grid's edge is the frame rate in use: the one given, which
+        // overrides the preset's (a faster detector searches faster fringes).
         if set("fringe_hz") && req.fringe_hz.is_empty() {
-            req.fringe_hz = fringe_grid_hz(self.fringe_hz_max(req.samples_per_fringe));
+            let frame_rate_hz = req.frame_rate_hz.unwrap_or(self.frame_rate_hz);
+            req.fringe_hz = fringe_grid_hz(frame_rate_hz / req.samples_per_fringe);
         }
     }
 }

@@ -68,7 +68,7 @@ mod reach;
 mod scans;
 pub mod verify;
 
-pub use answer::{human_duration, no_recommendation_reason, SeeingGiven};
+pub use answer::{human_duration, inflation_words, no_recommendation_reason, SeeingGiven};
 pub use candidates::CANDIDATES;
 pub use observation::{
     observation_piston, ObservationError, ObservationPiston, BLOCKS_PER_SEQUENCE,

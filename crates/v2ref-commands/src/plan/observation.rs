@@ -261,7 +261,10 @@ pub struct ObservationError {
     /// What independent scans would give: σ_piston per scan / √n.
     pub sigma_piston_if_independent: f64,
     /// σ_piston(n)² · n / σ²_piston per scan: 1 for independent scans,
-    /// above 1 when consecutive scans share the piston's errors.
+    /// above 1 when consecutive scans share the piston's errors, below 1
+    /// when they cancel over the observation (each scan's error follows
+    /// the piston's drift within it, and the drifts of n scans add up to
+    /// the observation's bounded net drift: [`super::inflation_words`]).
     pub variance_inflation: f64,
     /// σ of one scan from detector and photon noise under the convention
     /// (the upper end of its interval for `counts`, from a Monte Carlo).

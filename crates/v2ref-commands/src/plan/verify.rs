@@ -17,6 +17,7 @@ use super::{Estimator, PlanInputs, PlanPoint, CONFIDENCE};
 use crate::conformance::estimate::BiasConvention;
 use crate::error::{Error, Result};
 use crate::montecarlo::{derive_seed, replicated_t_quantile, Summary};
+use crate::piston::series::MAX_SERIES;
 use crate::piston::spectrum::PistonSpectrum;
 use crate::simulator::Model;
 use serde::Serialize;
@@ -45,12 +46,43 @@ pub struct VerificationSize {
     pub sample_time_s: f64,
     /// n, scans per observation.
     pub scans_per_observation: u64,
+    /// The observations asked for (`observations` of [`size_at`]).
+    pub observations_requested: u64,
 }
 
 impl VerificationSize {
     /// Scans simulated in all.
     pub fn scans(&self) -> u64 {
         (SEQUENCES * self.scans_per_sequence) as u64
+    }
+
+    /// The observations the simulation delivers: [`SEQUENCES`] × the
+    /// blocks of n consecutive scans one sequence holds. More than asked
+    /// when the asked number is not a multiple of [`SEQUENCES`] or a
+    /// sequence spans its correlation times; fewer when one sequence
+    /// cannot hold the blocks asked ([`VerificationSize::fewer_why`]).
+    pub fn observations(&self) -> u64 {
+        let n = self.scans_per_observation.max(1);
+        SEQUENCES as u64 * (self.scans_per_sequence as u64 / n)
+    }
+
+    /// Why the simulation delivers fewer observations than asked, in one
+    /// line (None when it delivers at least as many): one simulated piston
+    /// sequence holds at most [`MAX_SERIES`] samples (the piston's memory
+    /// bound), so at most that many scans, hence blocks of n, per sequence.
+    pub fn fewer_why(&self) -> Option<String> {
+        let delivered = self.observations();
+        (delivered < self.observations_requested).then(|| {
+            format!(
+                "{delivered} of the {} observations asked: one simulated piston sequence holds at most {MAX_SERIES} samples (the piston's memory bound), here {} scans of {} samples ({} with the dead time), so {} observations of {} scans per sequence x {SEQUENCES} sequences; more observations need fewer scans per observation (a larger target sigma(V^2)) or shorter scans",
+                self.observations_requested,
+                self.scans_per_sequence,
+                self.samples,
+                self.stride,
+                delivered / SEQUENCES as u64,
+                self.scans_per_observation,
+            )
+        })
     }
 }
 
@@ -106,11 +138,12 @@ pub fn size_at(
         stride,
         sample_time_s: t_s,
         scans_per_observation: n,
+        observations_requested: observations,
     })
 }
 
 /// What the simulated observations achieved beside the promise.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Verification {
     /// The estimator verified.
     pub estimator: Estimator,
@@ -122,8 +155,13 @@ pub struct Verification {
     pub bias: BiasConvention,
     /// n, consecutive scans per observation.
     pub scans_per_observation: u64,
-    /// Observations simulated.
+    /// Observations simulated (delivered).
     pub observations: u64,
+    /// Observations asked for.
+    pub observations_requested: u64,
+    /// Why fewer were delivered than asked (None: at least as many):
+    /// [`VerificationSize::fewer_why`].
+    pub fewer_observations_why: Option<String>,
     /// Independent piston sequences they were cut from.
     pub sequences: usize,
     /// Seed of the simulation.
@@ -243,6 +281,8 @@ pub fn verification_of(
         bias: inputs.bias,
         scans_per_observation: size.scans_per_observation,
         observations: s.count,
+        observations_requested: size.observations_requested,
+        fewer_observations_why: size.fewer_why(),
         sequences: SEQUENCES,
         seed: verify_seed(inputs, p.fringe_hz, p.stroke_um),
         confidence: CONFIDENCE,
