@@ -462,9 +462,6 @@ const KNOWN_CIRCLES: &[(&str, &[&str])] = &[
     // `formats` re-exports `atomic` (`pub use crate::atomic`, the path
     // v2ref-oifits' write.rs takes); `atomic::set` opens with `formats::open`.
     ("v2ref-files", &["atomic", "formats"]),
-    // `read` re-exports `order`'s and `select`'s items and calls
-    // `integrity`, which all take `read`'s types.
-    ("v2ref-oifits", &["integrity", "order", "read", "select"]),
 ];
 
 #[test]

@@ -1,8 +1,8 @@
 //! The per-channel tables of `bias`, `snr` and `simulate` (the answers are
 //! built in `v2ref_commands::commands::channels`; printed here).
 
-use v2ref_commands::commands::channels::{ChannelBiasLine, ChannelPlace, MeanSigma, SnrChannels};
 use v2ref_commands::commands::channels_simulate::{ChannelSimulateReport, Combined};
+use v2ref_commands::report::channels::{ChannelBiasLine, ChannelPlace, MeanSigma, SnrChannels};
 use v2ref_core::noise::snr_value::snr_text;
 
 /// A channel's first columns: number, wavelength range, photon share.

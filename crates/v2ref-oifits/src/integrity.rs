@@ -7,8 +7,15 @@
 //! caller to show: a file read is never silently other than it was written.
 
 use super::fits::{checksum_mismatches, refuse, Hdu, Refusal};
-use super::read::ReadOptions;
 use super::write::KEY_NHDU;
+
+/// How damage is treated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadOptions {
+    /// Read an HDU whose `CHECKSUM` or `DATASUM` does not match its bytes
+    /// (refused by default: the file changed after it was written).
+    pub accept_checksum_mismatch: bool,
+}
 
 /// The notes on `hdus` (a whole file), or the refusal of a file changed
 /// after it was written: a checksum that does not match (unless

@@ -66,19 +66,23 @@ mod order;
 pub(crate) mod read;
 #[cfg(test)]
 mod reader_tests;
+mod scored;
 mod select;
 mod select_channels;
 pub(crate) mod setting;
 pub mod table;
 pub(crate) mod write;
 
+pub use integrity::ReadOptions;
 pub use observing::{iota, Site};
 pub use observing::{ObservingContext, ObservingSpec};
-pub use read::{
-    choose_tables, min_unflagged_rows, parse_oifits, read_oifits_estimates, read_oifits_file,
-    read_vis2_tables, truth_for_kept_rows, wavelength_ranges_m, ChannelEstimates, Choice, Expected,
-    OifitsEstimates, OifitsFile, ReadOptions, Vis2Table,
+pub use order::choose_tables;
+pub use read::{parse_oifits, read_oifits_file, read_vis2_tables, OifitsFile, Vis2Table};
+pub use scored::{
+    min_unflagged_rows, truth_for_kept_rows, wavelength_ranges_m, ChannelEstimates, Expected,
+    OifitsEstimates,
 };
+pub use select::{read_oifits_estimates, Choice};
 pub use setting::Setting;
 pub use write::{to_bytes, write_oifits, Key, KeyValue, OifitsDoc, Vis2Out};
 

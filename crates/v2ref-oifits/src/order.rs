@@ -94,7 +94,7 @@ pub fn choose_tables(
     target: Option<&str>,
     path: &Path,
 ) -> Result<Vec<Vis2Table>> {
-    let chosen = super::select::tables_of_insname(&file.tables, insname)?;
+    let chosen = tables_of_insname(&file.tables, insname)?;
     let id = match target {
         Some(_) => target_of(file, std::slice::from_ref(&chosen), target, path)?,
         None => None,
@@ -166,4 +166,39 @@ pub fn check_time_order(t: &Vis2Table, target: Option<i64>, path: &Path) -> Resu
         last = Some((r, mjd));
     }
     Ok(())
+}
+
+/// The `INSNAME`s of `tables`, in file order, each once in a run.
+pub(crate) fn insnames_of(tables: &[Vis2Table]) -> String {
+    let mut v: Vec<&str> = tables.iter().map(|t| t.insname.as_str()).collect();
+    v.dedup();
+    v.join(", ")
+}
+
+/// The tables of `insname` (every table when None), refused (parameter
+/// `insname`) when there is none.
+pub(crate) fn tables_of_insname<'a>(
+    all: &'a [Vis2Table],
+    insname: Option<&str>,
+) -> Result<Vec<&'a Vis2Table>> {
+    let chosen: Vec<&Vis2Table> = match insname {
+        Some(n) => all.iter().filter(|t| same_name(&t.insname, n)).collect(),
+        None => all.iter().collect(),
+    };
+    match insname {
+        Some(n) if chosen.is_empty() => Err(Error::Invalid {
+            param: "insname",
+            reason: format!(
+                "{n}: no OI_VIS2 table of this INSNAME; the file has {}",
+                insnames_of(all)
+            ),
+        }),
+        _ => Ok(chosen),
+    }
+}
+
+/// True when an `INSNAME` written is the one asked for, as OIFITS
+/// compares names: leading and trailing blanks are not significant.
+fn same_name(written: &str, asked: &str) -> bool {
+    written.trim() == asked.trim()
 }

@@ -10,8 +10,8 @@
 //! number, `EXTNAME` and `INSNAME`) and what is accepted.
 
 use super::fits::{self, Hdu, Refusal};
+use super::integrity::ReadOptions;
 use super::table::Table;
-use crate::formats::Estimates;
 use crate::{Error, Result};
 use std::path::Path;
 
@@ -73,14 +73,6 @@ pub struct OifitsFile {
     /// without checksums in a signed file, a v2ref file edited after it
     /// was written.
     pub notes: Vec<String>,
-}
-
-/// How damage is treated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct ReadOptions {
-    /// Read an HDU whose `CHECKSUM` or `DATASUM` does not match its bytes
-    /// (refused by default: the file changed after it was written).
-    pub accept_checksum_mismatch: bool,
 }
 
 /// Reads every `OI_VIS2` table of `path` (named by `param`), in file
@@ -352,48 +344,3 @@ impl Vis2Table {
         fits::place(self.hdu, Some("OI_VIS2"), Some(&self.insname))
     }
 }
-
-/// A pipeline's estimates read from OIFITS, flagged rows left out.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OifitsEstimates {
-    /// The unflagged rows' estimates, in order (one broadband channel);
-    /// empty (both None) when the set's channels were given: the
-    /// estimates are then in `channels`.
-    pub estimates: Estimates,
-    /// Rows in the file (per estimator).
-    pub rows: usize,
-    /// Rows left out: flagged in any table read (with channels: in any
-    /// channel; each channel's own count is its [`ChannelEstimates`]'s).
-    pub flagged: usize,
-    /// Per channel of the set, in its order, when [`Expected::channels_m`]
-    /// was given; empty otherwise.
-    pub channels: Vec<ChannelEstimates>,
-    /// `INSNAME` of the tables read.
-    pub insnames: Vec<String>,
-    /// The file's notes ([`OifitsFile::notes`]).
-    pub notes: Vec<String>,
-}
-
-/// What the file must match: the set's rows, band and channels, and the
-/// window and convention scored.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Expected {
-    /// Rows of the set.
-    pub rows: u64,
-    /// The band's wavelengths (shortest, longest), m.
-    pub band_m: (f64, f64),
-    /// The set's spectral channels, each its wavelengths (shortest,
-    /// longest), m, in the set's order ([`wavelength_ranges_m`] of its
-    /// [`Channels`](crate::formalism::channels::Channels)): each table then
-    /// holds `NWAVE` = C values per row, matched to the channels by
-    /// `EFF_WAVE`. None: one broadband channel per row (`NWAVE` = 1).
-    pub channels_m: Option<Vec<(f64, f64)>>,
-    /// The window of bins scored (a table's `V2R_BINS` must agree).
-    pub bins: crate::formalism::estimator::BinWindow,
-    /// The bias convention scored (a table's `V2R_BIAS` must agree).
-    pub bias: crate::conformance::estimate::BiasConvention,
-}
-
-pub use super::order::choose_tables;
-pub use super::select::{min_unflagged_rows, read_oifits_estimates, truth_for_kept_rows, Choice};
-pub use super::select_channels::{wavelength_ranges_m, ChannelEstimates};

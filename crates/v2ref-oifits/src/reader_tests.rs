@@ -6,7 +6,8 @@
 //! written by `v2ref estimate --out FILE.fits.gz`) and the damaged files
 //! that crashed or fooled the reader before it was rewritten.
 
-use super::read::{parse_oifits, ReadOptions};
+use super::integrity::ReadOptions;
+use super::read::parse_oifits;
 use std::io::Read;
 
 const INTACT_GZ: &[u8] = include_bytes!("../../../tests/data/oifits_intact.fits.gz");

@@ -2,28 +2,16 @@
 //! a set's: one broadband channel per row, in order, the counts and the
 //! wavelength checked, flagged rows left out and counted.
 
-use super::read::{read_oifits_file, Expected, OifitsEstimates, ReadOptions, Vis2Table};
+use super::integrity::ReadOptions;
+use super::order::{insnames_of, tables_of_insname};
+use super::read::{read_oifits_file, Vis2Table};
+use super::scored::BAND_SLACK;
+use super::scored::{Expected, OifitsEstimates};
 use super::{estimator_key, KEY_BIAS, KEY_BINS, KEY_ESTIMATOR};
 use crate::conformance::score::Estimator;
 use crate::formats::Estimates;
 use crate::{Error, Result};
 use std::path::Path;
-
-/// Fewest unflagged rows scored, as a fraction of the set's rows. FLAG is
-/// a selection: the truth scored against assumes the rows kept are a
-/// random half or more of the set; with more flagged, the verdict would
-/// say more about the flags than about the estimator (398 rows flagged of
-/// 400 left a test of no power that still said PASS).
-pub const MIN_UNFLAGGED_FRACTION: f64 = 0.5;
-
-/// The fewest unflagged rows of a set of `rows` rows that are scored.
-pub fn min_unflagged_rows(rows: u64) -> u64 {
-    (rows as f64 * MIN_UNFLAGGED_FRACTION).ceil() as u64
-}
-
-/// Relative slack on the band's ends (`EFF_WAVE` is stored as float32);
-/// on a channel's ends, the slack relative to the channel's width.
-pub(crate) const BAND_SLACK: f64 = 1e-4;
 
 /// Which tables and rows of a file are read, and how damage is treated.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -65,7 +53,7 @@ pub struct Choice<'a> {
 /// that channel only, for every estimator read. Refused besides: `NWAVE`
 /// ≠ C, an `EFF_WAVE` in no channel or on the edge of two, two `EFF_WAVE`
 /// in one channel, a channel with fewer unflagged rows than
-/// [`min_unflagged_rows`].
+/// [`min_unflagged_rows`](crate::min_unflagged_rows).
 pub fn read_oifits_estimates(
     path: &Path,
     choice: &Choice,
@@ -129,41 +117,6 @@ pub fn read_oifits_estimates(
     let mut read = unflagged(columns, path, insnames)?;
     read.notes = file.notes;
     Ok(read)
-}
-
-/// The `INSNAME`s of `tables`, in file order, each once in a run.
-fn insnames_of(tables: &[Vis2Table]) -> String {
-    let mut v: Vec<&str> = tables.iter().map(|t| t.insname.as_str()).collect();
-    v.dedup();
-    v.join(", ")
-}
-
-/// The tables of `insname` (every table when None), refused (parameter
-/// `insname`) when there is none.
-pub(crate) fn tables_of_insname<'a>(
-    all: &'a [Vis2Table],
-    insname: Option<&str>,
-) -> Result<Vec<&'a Vis2Table>> {
-    let chosen: Vec<&Vis2Table> = match insname {
-        Some(n) => all.iter().filter(|t| same_name(&t.insname, n)).collect(),
-        None => all.iter().collect(),
-    };
-    match insname {
-        Some(n) if chosen.is_empty() => Err(Error::Invalid {
-            param: "insname",
-            reason: format!(
-                "{n}: no OI_VIS2 table of this INSNAME; the file has {}",
-                insnames_of(all)
-            ),
-        }),
-        _ => Ok(chosen),
-    }
-}
-
-/// True when an `INSNAME` written is the one asked for, as OIFITS
-/// compares names: leading and trailing blanks are not significant.
-fn same_name(written: &str, asked: &str) -> bool {
-    written.trim() == asked.trim()
 }
 
 /// Refuses a table whose `V2R_BINS` or `V2R_BIAS` names another window or
@@ -322,24 +275,4 @@ fn unflagged(
         notes: Vec::new(),
         channels: Vec::new(),
     })
-}
-
-/// The truth of a set of `rows` rows for the `kept` rows left after
-/// flagged ones are left out: the set's scatter (`set_stderr_mean`,
-/// `set_stderr_var`) grows as `sqrt(rows / kept)` (independent rows; the
-/// truth's own uncertainty does not change).
-pub fn truth_for_kept_rows(
-    truth: &crate::conformance::sidecar::ConventionTruth,
-    rows: u64,
-    kept: u64,
-) -> crate::conformance::sidecar::ConventionTruth {
-    let mut t = truth.clone();
-    if kept > 0 && kept < rows {
-        let s = (rows as f64 / kept as f64).sqrt();
-        for e in [&mut t.v1_sq, &mut t.v2_sq] {
-            e.set_stderr_mean *= s;
-            e.set_stderr_var = e.set_stderr_var.map(|v| v * s);
-        }
-    }
-    t
 }

@@ -7,51 +7,11 @@
 //! column is matched to the channel its `EFF_WAVE` lies in, never by
 //! position.
 
-use super::read::{OifitsEstimates, Vis2Table};
-use super::select::{min_unflagged_rows, truth_for_kept_rows, BAND_SLACK};
-use crate::conformance::sidecar::ConventionTruth;
-use crate::formalism::channels::Channels;
+use super::read::Vis2Table;
+use super::scored::{min_unflagged_rows, ChannelEstimates, OifitsEstimates, BAND_SLACK};
 use crate::formats::Estimates;
 use crate::{Error, Result};
 use std::path::Path;
-
-/// One channel of the set as read from an OIFITS file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ChannelEstimates {
-    /// The set's channel, 0-based, in the set's order (increasing
-    /// wavenumber).
-    pub channel: usize,
-    /// Its wavelengths (shortest, longest), m, as the set gives them.
-    pub range_m: (f64, f64),
-    /// The `EFF_WAVE` matched to it, m (of the first table read).
-    pub eff_wave_m: f64,
-    /// The estimates of the rows unflagged in this channel, in order.
-    pub estimates: Estimates,
-    /// Rows left out of this channel: flagged in it in any table read.
-    pub flagged: usize,
-}
-
-impl ChannelEstimates {
-    /// The truth this channel is scored against: `truth`, the channel's
-    /// own truth for a set of `rows` rows, for the rows kept in this
-    /// channel ([`truth_for_kept_rows`]: the set's scatter grows as
-    /// `sqrt(rows / kept)`).
-    pub fn truth_for_kept_rows(&self, truth: &ConventionTruth, rows: u64) -> ConventionTruth {
-        let kept = rows.saturating_sub(self.flagged as u64);
-        truth_for_kept_rows(truth, rows, kept)
-    }
-}
-
-/// Each channel's wavelengths (shortest, longest), m, in the channels'
-/// order: `(1/σ⁺, 1/σ⁻)` of [`Channels::edges_per_um`]. What
-/// [`Expected::channels_m`](super::Expected::channels_m) takes.
-pub fn wavelength_ranges_m(channels: &Channels) -> Vec<(f64, f64)> {
-    channels
-        .edges_per_um()
-        .iter()
-        .map(|&(lo, hi)| (1e-6 / hi, 1e-6 / lo))
-        .collect()
-}
 
 /// One estimator's tables read per channel of the set.
 struct PerChannel {

@@ -4,13 +4,14 @@
 //! of their combination against the σ that independent channels would
 //! give (docs/conventions.md §16).
 
-use super::channels::{places, renamed, ChannelPlace, COMBINATION_WEIGHTS};
+use super::channels::renamed;
 use crate::error::{Error, Result};
 use crate::formalism::channels::Channels;
 use crate::montecarlo::Summary;
 use crate::noise::calibrated::Trials;
 use crate::noise::Formula;
 use crate::parameters::Physical;
+use crate::report::channels::{places, ChannelPlace, COMBINATION_WEIGHTS};
 use crate::report::simulator::{check_trials, Estimation};
 use crate::simulator::channel_moments::ChannelMoments;
 use crate::simulator::channels::{channel_models, simulate_channels};

@@ -47,7 +47,7 @@ pub struct BiasReport {
     /// One line per spectral channel, when channels are given
     /// ([`crate::commands::channels::bias_lines`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub channels: Option<Vec<crate::commands::channels::ChannelBiasLine>>,
+    pub channels: Option<Vec<crate::report::channels::ChannelBiasLine>>,
 }
 
 impl BiasReport {

@@ -2,6 +2,7 @@
 //! `simulate` and `piston` found, with the inputs it was asked.
 
 pub mod bias;
+pub mod channels;
 pub mod model_comparison;
 pub mod noise;
 pub mod piston;

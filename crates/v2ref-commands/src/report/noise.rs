@@ -87,7 +87,7 @@ pub struct SnrReport {
     /// ([`crate::commands::channels::snr_lines`]): `channels` and
     /// `combined`.
     #[serde(flatten)]
-    pub channels: Option<crate::commands::channels::SnrChannels>,
+    pub channels: Option<crate::report::channels::SnrChannels>,
 }
 
 impl SnrReport {

@@ -4,6 +4,8 @@
 //! against.
 
 use crate::conformance::estimate::BiasConvention;
+use crate::error::{Error, Result};
+use crate::formalism::channels::Channels;
 use crate::formalism::estimator::{BinWindow, Pair};
 use crate::simulator::{Inputs, SetLayout};
 use serde::{Deserialize, Serialize};
@@ -246,5 +248,98 @@ impl Sidecar {
     }
 }
 
-pub use crate::conformance::channels::ChannelSidecar;
+// A dispersed set's channels (crate::conformance::channels writes them):
+// here beside the sidecar that holds them, so that the sidecar's module
+// needs no module that uses it.
+
+/// One spectral channel of a dispersed set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChannelSidecar {
+    /// `[σ⁻, σ⁺]`, the channel's wavenumber edges, µm⁻¹.
+    pub wavenumber_edges_per_um: [f64; 2],
+    /// r, the channel's response (relative throughput, any positive scale).
+    pub response: f64,
+    /// `1/σ_eff`, the wavelength of the channel's effective wavenumber, µm
+    /// (informative: OIFITS's `EFF_WAVE`).
+    pub wavelength_eff_um: f64,
+    /// `1/σ⁻ − 1/σ⁺`, the channel's width in wavelength, µm (informative:
+    /// OIFITS's `EFF_BAND`).
+    pub bandwidth_um: f64,
+    /// q, the channel's share of the source's photons (Σ q = 1).
+    pub photon_share: f64,
+    /// c_i of the channel, photons (`q` times the whole band's).
+    pub continuum_photons: Vec<f64>,
+    /// n_i = c_i + m_i of the channel without piston, photons (what the
+    /// `model` bias convention uses on this channel's samples).
+    pub mean_counts_photons: Vec<f64>,
+    /// What the estimators of this channel's samples should give.
+    pub truth: Truth,
+}
+
+/// A refusal of a sidecar's channels, saying what to fix.
+fn refuse(reason: String) -> Error {
+    Error::Invalid {
+        param: "channels",
+        reason: format!("in the sidecar: {reason}"),
+    }
+}
+
+impl Sidecar {
+    /// C, the channels of the set's rows: 1 for a wide-band set.
+    pub fn channel_count(&self) -> usize {
+        self.channels.as_ref().map_or(1, Vec::len)
+    }
+
+    /// The [`Channels`] of a dispersed set, rebuilt from the inputs'
+    /// spectrum and each channel's edges and response, and checked
+    /// (parameter `channels`): every check of [`Channels::new`] (channels
+    /// in order, not overlapping, in the band), `data.channels` equal to
+    /// the channels listed, each channel's continuum and mean counts of N
+    /// values, and the stated photon shares those of the rebuilt channels
+    /// (to 10⁻¹⁰). None for a wide-band set (no `channels`).
+    pub fn channels(&self) -> Result<Option<Channels>> {
+        let Some(list) = &self.channels else {
+            return match self.data.channels {
+                None | Some(1) => Ok(None),
+                Some(c) => Err(refuse(format!(
+                    "data.channels is {c} but no channel is listed; list each channel under channels"
+                ))),
+            };
+        };
+        if self.data.channels != Some(list.len()) {
+            return Err(refuse(format!(
+                "{} channels listed but data.channels is {:?}; they must agree",
+                list.len(),
+                self.data.channels
+            )));
+        }
+        let spectrum = self.inputs.spectrum.spectrum()?;
+        let edges = list
+            .iter()
+            .map(|c| (c.wavenumber_edges_per_um[0], c.wavenumber_edges_per_um[1]))
+            .collect();
+        let responses = list.iter().map(|c| c.response).collect();
+        let channels =
+            Channels::new(&spectrum, edges, responses).map_err(|e| refuse(e.detail()))?;
+        let n = self.data.samples;
+        for (j, (c, &q)) in list.iter().zip(channels.photon_shares()).enumerate() {
+            if c.continuum_photons.len() != n || c.mean_counts_photons.len() != n {
+                return Err(refuse(format!(
+                    "channel {}: its continuum_photons and mean_counts_photons need {n} values (data.samples)",
+                    j + 1
+                )));
+            }
+            let off = (c.photon_share - q).abs();
+            if off.is_nan() || off > crate::tolerance::IDENTITY_REL * q {
+                return Err(refuse(format!(
+                    "channel {}: photon_share {} is not the {q} its edges and response give",
+                    j + 1,
+                    c.photon_share
+                )));
+            }
+        }
+        Ok(Some(channels))
+    }
+}
+
 pub use crate::manifest::Member;
