@@ -21,7 +21,8 @@
 //! `setup` builds the models (and, for an estimate case, draws the rows;
 //! the piston spectrum's tables are computed there too), `run` is setup
 //! then v2ref's work, `one` setup then the run of the first channel
-//! alone, `floor` setup then the floor's, `cold` the models
+//! alone, `each` setup then the run of each channel alone in turn (the
+//! C lone runs a split costs at least), `floor` setup then the floor's, `cold` the models
 //! and one run with nothing computed beforehand (the wall time of the
 //! whole call is printed). `--list` prints the cases.
 
@@ -176,11 +177,12 @@ fn count(name: &str, side: &str) -> Result<f64, String> {
             );
             Ok(sum)
         }
-        ("simulate", v, "setup" | "run" | "one") => {
+        ("simulate", v, "setup" | "run" | "one" | "each") => {
             let models = tabulated_models(c, v == "piston");
             Ok(match side {
                 "run" => simulate(&models, 1),
                 "one" => simulate(&models[..1], 1),
+                "each" => (0..c).map(|j| simulate(&models[j..=j], 1)).sum(),
                 _ => 0.0,
             })
         }

@@ -71,15 +71,30 @@ impl ChannelMoments {
 
     /// Adds one row's values `x` (one per channel) to group `g`.
     pub fn push(&mut self, g: usize, x: &[f64]) {
+        let mut d = Vec::with_capacity(x.len());
+        self.deviations_into(x.iter().copied(), &mut d);
+        self.push_deviations(g, &d);
+    }
+
+    /// `d_c = x_c − a_c` of one row's values `x` into `d` (cleared first):
+    /// what [`ChannelMoments::push_deviations`] takes. The hot loop keeps
+    /// `d` from row to row instead of allocating it per row.
+    pub(crate) fn deviations_into(&self, x: impl Iterator<Item = f64>, d: &mut Vec<f64>) {
+        d.clear();
+        d.extend(x.zip(&self.shift).map(|(x, a)| x - a));
+    }
+
+    /// Adds one row's deviations `d` (from [`ChannelMoments::deviations_into`])
+    /// to group `g`: the same sums, in the same order, as
+    /// [`ChannelMoments::push`] of the row's values.
+    pub(crate) fn push_deviations(&mut self, g: usize, d: &[f64]) {
         let c = self.shift.len();
-        let d: Vec<f64> = x.iter().zip(&self.shift).map(|(x, a)| x - a).collect();
         let sums = &mut self.groups[g];
         sums.count += 1;
         for (i, di) in d.iter().enumerate() {
             sums.first[i] += di;
-            for (j, dj) in d.iter().enumerate() {
-                sums.second[i * c + j] += di * dj;
-            }
+            let row = &mut sums.second[i * c..(i + 1) * c];
+            row.iter_mut().zip(d).for_each(|(s, dj)| *s += di * dj);
         }
     }
 

@@ -198,6 +198,18 @@ pub fn simulate_channels(
     })
 }
 
+/// One row's values across the channels, kept from row to row of a unit
+/// (the hot loop allocates nothing per row).
+#[derive(Default)]
+struct RowScratch {
+    /// Each channel's estimates of the row.
+    estimates: Vec<RowEstimate>,
+    /// V1² − its shift, per channel.
+    v1_deviations: Vec<f64>,
+    /// V2² − its shift, per channel.
+    v2_deviations: Vec<f64>,
+}
+
 /// Unit `u` of every channel: the channels draw their rows in channel
 /// order from the unit's generator `rng`, then each row is estimated in
 /// every channel and accumulated into `part`.
@@ -208,44 +220,54 @@ fn estimate_unit(
     rng: &mut Rng,
     part: &mut UnitPart,
 ) -> Result<()> {
+    let n = rows[0].samples();
+    let unit_rows = rows[0].unit_rows(u)? as usize;
     let blocks: Vec<Vec<f64>> = rows
         .iter()
         .map(|r| {
-            let mut block = Vec::new();
+            let mut block = Vec::with_capacity(unit_rows * n);
             r.fill_unit(u, rng, &mut block)?;
             Ok(block)
         })
         .collect::<Result<_>>()?;
-    let n = rows[0].samples();
     let first = u * ROWS_PER_UNIT;
-    for i in 0..rows[0].unit_rows(u)? as usize {
+    let mut scratch = RowScratch::default();
+    for i in 0..unit_rows {
         let sequence = rows[0].sequence_of(first + i as u64)?;
         // Without piston the rows are independent: grouped by unit for the jackknife.
         let group = match rows[0].has_piston() {
             true => sequence,
             false => (u as usize) % NOISE_GROUPS,
         };
-        let e: Vec<RowEstimate> = estimators
-            .iter()
-            .zip(&blocks)
-            .map(|(est, b)| est.estimate(&b[i * n..(i + 1) * n]))
-            .collect::<Result<_>>()?;
-        part.push(sequence, group, &e);
+        scratch.estimates.clear();
+        // The blocks hold whole rows of N samples, the estimators' length.
+        let estimates = estimators.iter().zip(&blocks);
+        scratch
+            .estimates
+            .extend(estimates.map(|(est, b)| est.estimate_checked_row(&b[i * n..(i + 1) * n])));
+        part.push(sequence, group, &mut scratch);
     }
     Ok(())
 }
 
 impl UnitPart {
-    /// One row's estimates, one per channel.
-    fn push(&mut self, sequence: usize, group: usize, e: &[RowEstimate]) {
+    /// One row's estimates, one per channel (`scratch.estimates`).
+    fn push(&mut self, sequence: usize, group: usize, scratch: &mut RowScratch) {
+        let e = &scratch.estimates;
         for (c, ec) in e.iter().enumerate() {
             self.v1_sq[c][sequence].push(ec.v1_sq);
             self.v2_sq[c][sequence].push(ec.v2_sq);
         }
-        let v1: Vec<f64> = e.iter().map(|x| x.v1_sq).collect();
-        let v2: Vec<f64> = e.iter().map(|x| x.v2_sq).collect();
-        self.v1_moments.push(group, &v1);
-        self.v2_moments.push(group, &v2);
+        let v1 = e.iter().map(|x| x.v1_sq);
+        let v2 = e.iter().map(|x| x.v2_sq);
+        self.v1_moments
+            .deviations_into(v1, &mut scratch.v1_deviations);
+        self.v2_moments
+            .deviations_into(v2, &mut scratch.v2_deviations);
+        self.v1_moments
+            .push_deviations(group, &scratch.v1_deviations);
+        self.v2_moments
+            .push_deviations(group, &scratch.v2_deviations);
     }
 
     /// Adds a later unit's accumulators (in unit order: the same bits
