@@ -18,6 +18,7 @@ from ._arguments import (
     _documented,
     _flag,
     _float,
+    _channel_rows,
     _matrix,
     _not_masked,
     _physical,
@@ -109,11 +110,18 @@ def estimate(
         dimensionless): the columns of ``v2ref estimate``.
     """
     values = dict(locals())
-    data = _matrix("interferograms", interferograms)
+    data, channel_axis = _channel_rows("interferograms", interferograms)
     bins = _word("bins", bins)
     bias = _word("bias", bias)
     threads = _v2ref.check_threads(_uint("threads", threads))
-    cal = None if calibrator is None else _matrix("calibrator", calibrator)
+    cal = None
+    if calibrator is not None:
+        cal, cal_axis = _channel_rows("calibrator", calibrator)
+        if cal_axis != channel_axis:
+            raise ValueError(
+                f"calibrator: shape {_np.shape(calibrator)}; the interferograms have shape "
+                f"{_np.shape(interferograms)}: the same channels of the same N are needed"
+            )
     if continuum_subtracted is not None and not isinstance(continuum_subtracted, (bool, _np.bool_)):
         raise TypeError(f"continuum_subtracted: {continuum_subtracted!r} is not a bool")
     if sidecar is not None:
@@ -127,7 +135,7 @@ def estimate(
     else:
         text, name = None, ""
         physical = _physical(values)
-        physical["samples"] = data.shape[1]
+        physical["samples"] = data.shape[1] // (channel_axis or 1)
     return _v2ref.estimate(
         data,
         physical,
@@ -138,6 +146,7 @@ def estimate(
         bias,
         cal,
         threads,
+        channel_axis,
     )
 
 
@@ -410,6 +419,40 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     )
 
 
+def _channel_estimate_columns(estimates: Any) -> Optional[Tuple[Optional[_np.ndarray], Optional[_np.ndarray]]]:
+    """(v1_sq, v2_sq) of a dispersed set's estimates, each (rows, C) or
+    None when absent; None when ``estimates`` is not a mapping of 2-D
+    arrays (the wide-band estimates)."""
+    if not isinstance(estimates, _abc.Mapping):
+        return None
+    if not any(_np.ndim(v) == 2 for v in estimates.values()):
+        return None
+    unknown = [k for k in estimates if k not in _ESTIMATE_KEYS]
+    if unknown:
+        raise ValueError(
+            f"estimates: unknown key(s) {', '.join(map(repr, unknown))}; accepted keys: "
+            f"{', '.join(_ESTIMATE_KEYS)} (v1_sq and v2_sq are scored; keys are case-sensitive)"
+        )
+    out = []
+    for k in ("v1_sq", "v2_sq"):
+        if k not in estimates:
+            out.append(None)
+            continue
+        _not_masked(f"estimates[{k!r}]", estimates[k])
+        a = _np.asarray(estimates[k])
+        if a.ndim != 2 or not (_np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)):
+            raise ValueError(
+                f"estimates[{k!r}]: array of shape {a.shape} and dtype {a.dtype}; a dispersed set's "
+                "estimates are real arrays of shape (rows, C), one column per channel"
+            )
+        out.append(_np.ascontiguousarray(a, dtype=_np.float64))
+    if out == [None, None]:
+        raise ValueError(
+            f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
+        )
+    return out[0], out[1]
+
+
 def score(
     estimates: Any,
     sidecar: Union[Mapping[str, Any], _PathLike],
@@ -468,8 +511,15 @@ def score(
         )
     text, name = _sidecar_arg(sidecar)
     _check_rows(estimates, text)
-    v1, v2 = _estimate_columns(estimates, columns)
     alpha = _float("alpha", alpha)
+    dispersed = _channel_estimate_columns(estimates)
+    if dispersed is not None:
+        # A dispersed set: each channel against its own truth, one
+        # threshold for every test of every channel.
+        return _v2ref.score_channels_answer(
+            *dispersed, text, name, "<array>", _word("bins", bins), _word("bias", bias), alpha
+        )
+    v1, v2 = _estimate_columns(estimates, columns)
     return _v2ref.score(
         v1,
         v2,
