@@ -446,7 +446,7 @@ def _channel_estimate_columns(estimates: Any) -> Optional[Tuple[Optional[_np.nda
                 "estimates are real arrays of shape (rows, C), one column per channel"
             )
         out.append(_np.ascontiguousarray(a, dtype=_np.float64))
-    if out == [None, None]:
+    if out[0] is None and out[1] is None:
         raise ValueError(
             f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
         )
