@@ -73,11 +73,16 @@ def estimate(
 
     Parameters
     ----------
-    interferograms : array_like, shape (rows, N)
+    interferograms : array_like, shape (rows, N) or (rows, C, N)
         One scan per row, columns in the order of the sidecar's
         ``sample_opd_um`` (column 0 at the white-light fringe); photons per
-        sample. N is the array's width. A C-contiguous float64 array is used
-        without a copy; other real dtypes are converted.
+        sample. N is the array's width. A dispersed set (a sidecar with
+        ``channels``, or the ``channels``, ``resolution`` or
+        ``channels_csv`` keyword) takes its C channels of N samples as
+        shape (rows, C, N), each channel estimated with its own model;
+        another shape is a ValueError naming the shape needed. A
+        C-contiguous float64 array is used without a copy; other real
+        dtypes are converted.
     sidecar : dict or path, optional
         A synth sidecar (the dict from :func:`synthesize` or a SET.json
         path): the configuration comes from it, and the physical keyword
@@ -90,7 +95,7 @@ def estimate(
     bias : {"model", "counts"}
         Where the photon bias takes the mean counts from: the model's
         noise-free counts, or each row's own counts.
-    calibrator : array_like, shape (rows', N), optional
+    calibrator : array_like, shape (rows', N) or (rows', C, N), optional
         A calibrator's interferograms (same N and continuum convention): the
         normalization is the mean of their bias-subtracted estimates.
         Default: the configuration's point source, noise-free (``model``).
@@ -104,10 +109,12 @@ def estimate(
 
     Returns
     -------
-    dict of str to ndarray, shape (rows,)
+    dict of str to ndarray, shape (rows,) or (rows, C)
         ``v1_sq_raw``, ``v2_sq_raw`` (photons²), ``v1_sq_bias``,
         ``v2_sq_bias`` (photons²), ``v1_sq``, ``v2_sq`` (normalized,
-        dimensionless): the columns of ``v2ref estimate``.
+        dimensionless): the columns of ``v2ref estimate``; (rows, C), one
+        column per channel in increasing wavenumber, when the rows were
+        given as (rows, C, N).
     """
     values = dict(locals())
     data, channel_axis = _channel_rows("interferograms", interferograms)
@@ -250,8 +257,13 @@ def synthesize(
 
     Returns
     -------
-    (ndarray of shape (rows, N), dict)
-        The interferograms (float64, photons per sample) and the sidecar:
+    (ndarray of shape (rows, N) or (rows, C, N), dict)
+        The interferograms (float64, photons per sample; with the
+        ``channels``, ``resolution`` or ``channels_csv`` keyword and C > 1
+        channels, shape (rows, C, N), channel after channel in increasing
+        wavenumber, and the sidecar's ``channels`` lists each channel with
+        its own truth; ``out`` writes the ``.npy`` of that shape) and the
+        sidecar:
         the same JSON document as ``v2ref synth``'s OUT.json, parsed
         (``truth`` holds what each window and bias convention must give;
         ``data.npy`` is the data file's name with ``out``, else empty).
@@ -469,7 +481,9 @@ def score(
     estimates : dict, structured array, array_like or OIFITS path
         The normalized per-row estimates (dimensionless), one per row of
         the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
-        :func:`estimate`), a structured array with those fields, or a 2-D
+        :func:`estimate`; for a dispersed set arrays of shape (rows, C),
+        one column per channel in increasing wavenumber, each channel
+        scored against its own truth under one threshold), a structured array with those fields, or a 2-D
         array whose columns are named by ``columns`` (default
         ``v1_sq,v2_sq``; a 1-D array needs one name); or the path of an
         OIFITS file (``.fits``, ``.oifits``, ``.fit``, each possibly
@@ -495,7 +509,11 @@ def score(
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
         (the denominator of z_mean), z_mean, var, expected_var,
         stderr_var_combined (the denominator of z_var), z_var,
-        minimum detectable biases, pass), ``pass``.
+        minimum detectable biases, pass), ``pass``. For a dispersed set
+        the library's ``ChannelScoreReport``: ``alpha``, ``tests`` (2 per
+        estimator per channel), ``z_crit``, ``channels`` (per channel its
+        ``estimators`` and ``pass``), ``pass``, with ``sidecar``,
+        ``estimates``, ``bins``, ``bias``, ``rows``.
     """
     from .oifits import FITS_SUFFIXES, is_fits_path, score_oifits
 
