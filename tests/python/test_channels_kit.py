@@ -128,3 +128,16 @@ def test_the_docs_dispersed_route_runs_as_written(tmp_path, monkeypatch):
     assert v2ref.score({"v2_sq": scope["back"]}, scope["sidecar"])["pass"]
     with pytest.raises(ValueError, match=r"^sidecar: a dispersed set of C = 6"):
         v2ref.score("dispersed.fits", scope["sidecar"])
+
+
+def test_a_calibrator_normalizes_each_channel_by_its_own_rows(small):
+    """With the counts bias (the row's own counts, so the same bias for
+    the rows and the calibrator) and the rows as their own calibrator,
+    each channel's mean V1² and V2² is 1: channel j is divided by channel
+    j's mean, not the whole band's or another channel's."""
+    rows, sc = small
+    est = v2ref.estimate(rows, sidecar=sc, bias="counts", calibrator=rows)
+    assert est["v1_sq"].shape == (64, C)
+    # tol: a mean of 64 ratios against the same sum, rounding only
+    np.testing.assert_allclose(est["v1_sq"].mean(axis=0), 1.0, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(est["v2_sq"].mean(axis=0), 1.0, rtol=0, atol=1e-12)  # tol: as above
