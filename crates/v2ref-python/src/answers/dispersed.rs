@@ -38,7 +38,7 @@ pub(super) fn synthesize<'py>(
 ) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
     let inputs = ok(p.inputs())?;
     let (rows, c, n) = (size.rows, channels.count(), inputs.samples);
-    super::simulator::check_array_fits(rows, c * n)?;
+    super::data::check_array_fits(rows, c * n)?;
     let (data, sidecar) = interruptible(py, |tick| {
         let mut data: Vec<f64> = Vec::with_capacity(rows as usize * c * n);
         let mut sink = |block: &[f64]| -> Result<()> {
@@ -96,7 +96,7 @@ pub(super) fn estimate_channels(
     threads: usize,
 ) -> PyResult<Vec<Vec<RowEstimate>>> {
     let channels = config.channels.as_ref().expect("a dispersed configuration");
-    let inputs = ok(config.inputs_for(super::simulator::INTERFEROGRAMS, rows, cols))?;
+    let inputs = ok(config.inputs_for(super::data::INTERFEROGRAMS, rows, cols))?;
     interruptible(py, |_| {
         let cs = config.continuum_subtracted;
         let ests =
@@ -106,7 +106,7 @@ pub(super) fn estimate_channels(
         let block_len = (rows_estimate::STREAM_ROWS * cols).max(1);
         for (k, block) in data.chunks(block_len).enumerate() {
             let at = (block, k * rows_estimate::STREAM_ROWS);
-            let name = super::simulator::INTERFEROGRAMS;
+            let name = super::data::INTERFEROGRAMS;
             let part = rows_estimate::estimate_channel_rows(&ests, name, at, threads)?;
             for (o, p) in out.iter_mut().zip(part) {
                 o.extend(p);

@@ -1,7 +1,9 @@
 //! The end-to-end simulator and the conformance kit: `simulate`,
 //! `synthesize`, `estimate`, `score`.
 
-use super::data::{data_error, estimate_column, matrix, parse_sidecar};
+use super::data::{
+    check_array_fits, data_error, estimate_column, matrix, parse_sidecar, INTERFEROGRAMS,
+};
 use super::{convention, dispersed, formula, window};
 use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
 use crate::commands::synth::{self as synth_set, SetSize};
@@ -100,12 +102,6 @@ pub(super) fn estimate<'py>(
     })?;
     estimate_columns(py, &rows)
 }
-
-/// How a refusal names the rows of `estimate`.
-pub(super) const INTERFEROGRAMS: RowsName<'static> = RowsName {
-    param: "interferograms",
-    path: None,
-};
 
 /// Where `estimate` takes its configuration from: the keyword arguments
 /// given, or a sidecar's JSON text and where it came from (then no
@@ -295,26 +291,6 @@ pub(crate) fn truth_job(
         size,
         layout,
     })
-}
-
-/// Refuses, before anything is allocated, an answer of `rows` rows of `n`
-/// samples (float64, held whole as the returned array) larger than the
-/// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
-/// within the documented bounds, 60 million rows of 32 samples (15 GB)
-/// aborted the interpreter when the allocation failed.
-pub(super) fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
-    let budget = ok(crate::formats::memory_budget())?;
-    let need = rows.saturating_mul(n as u64).saturating_mul(8);
-    if need <= budget {
-        return Ok(());
-    }
-    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
-    Err(pyo3::exceptions::PyMemoryError::new_err(format!(
-        "rows: {rows} rows of {n} samples take {:.2} GiB, more than the memory budget of {:.2} GiB \
-         (V2REF_MAX_MEMORY_GIB, else half the physical memory); write fewer rows, or raise the budget",
-        gib(need),
-        gib(budget)
-    )))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.
