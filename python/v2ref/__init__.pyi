@@ -18,11 +18,16 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
 
     Parameters
     ----------
-    interferograms : array_like, shape (rows, N)
+    interferograms : array_like, shape (rows, N) or (rows, C, N)
         One scan per row, columns in the order of the sidecar's
         ``sample_opd_um`` (column 0 at the white-light fringe); photons per
-        sample. N is the array's width. A C-contiguous float64 array is used
-        without a copy; other real dtypes are converted.
+        sample. N is the array's width. A dispersed set (a sidecar with
+        ``channels``, or the ``channels``, ``resolution`` or
+        ``channels_csv`` keyword) takes its C channels of N samples as
+        shape (rows, C, N), each channel estimated with its own model;
+        another shape is a ValueError naming the shape needed. A
+        C-contiguous float64 array is used without a copy; other real
+        dtypes are converted.
     sidecar : dict or path, optional
         A synth sidecar (the dict from :func:`synthesize` or a SET.json
         path): the configuration comes from it, and the physical keyword
@@ -35,7 +40,7 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
     bias : {"model", "counts"}
         Where the photon bias takes the mean counts from: the model's
         noise-free counts, or each row's own counts.
-    calibrator : array_like, shape (rows', N), optional
+    calibrator : array_like, shape (rows', N) or (rows', C, N), optional
         A calibrator's interferograms (same N and continuum convention): the
         normalization is the mean of their bias-subtracted estimates.
         Default: the configuration's point source, noise-free (``model``).
@@ -134,10 +139,12 @@ def estimate(interferograms: Any, *, sidecar: Union[Mapping[str, Any], _PathLike
 
     Returns
     -------
-    dict of str to ndarray, shape (rows,)
+    dict of str to ndarray, shape (rows,) or (rows, C)
         ``v1_sq_raw``, ``v2_sq_raw`` (photons²), ``v1_sq_bias``,
         ``v2_sq_bias`` (photons²), ``v1_sq``, ``v2_sq`` (normalized,
-        dimensionless): the columns of ``v2ref estimate``.
+        dimensionless): the columns of ``v2ref estimate``; (rows, C), one
+        column per channel in increasing wavenumber, when the rows were
+        given as (rows, C, N).
     """
 
 def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks: Optional[int]=None, keep_continuum: bool=False, layout: str='sequences', observations: int=1, dead_time_s: float=0.0, out: Optional[_PathLike]=None, force: bool=False, client: Any=None, checkpoint: Optional[_PathLike]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Tuple[_np.ndarray, Dict[str, Any]]:
@@ -288,8 +295,13 @@ def synthesize(*, rows: int=1000, seed: int=1, threads: int=0, reference_blocks:
 
     Returns
     -------
-    (ndarray of shape (rows, N), dict)
-        The interferograms (float64, photons per sample) and the sidecar:
+    (ndarray of shape (rows, N) or (rows, C, N), dict)
+        The interferograms (float64, photons per sample; with the
+        ``channels``, ``resolution`` or ``channels_csv`` keyword and C > 1
+        channels, shape (rows, C, N), channel after channel in increasing
+        wavenumber, and the sidecar's ``channels`` lists each channel with
+        its own truth; ``out`` writes the ``.npy`` of that shape) and the
+        sidecar:
         the same JSON document as ``v2ref synth``'s OUT.json, parsed
         (``truth`` holds what each window and bias convention must give;
         ``data.npy`` is the data file's name with ``out``, else empty).
@@ -336,7 +348,9 @@ def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins:
     estimates : dict, structured array, array_like or OIFITS path
         The normalized per-row estimates (dimensionless), one per row of
         the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
-        :func:`estimate`), a structured array with those fields, or a 2-D
+        :func:`estimate`; for a dispersed set arrays of shape (rows, C),
+        one column per channel in increasing wavenumber, each channel
+        scored against its own truth under one threshold), a structured array with those fields, or a 2-D
         array whose columns are named by ``columns`` (default
         ``v1_sq,v2_sq``; a 1-D array needs one name); or the path of an
         OIFITS file (``.fits``, ``.oifits``, ``.fit``, each possibly
@@ -362,7 +376,11 @@ def score(estimates: Any, sidecar: Union[Mapping[str, Any], _PathLike], *, bins:
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
         (the denominator of z_mean), z_mean, var, expected_var,
         stderr_var_combined (the denominator of z_var), z_var,
-        minimum detectable biases, pass), ``pass``.
+        minimum detectable biases, pass), ``pass``. For a dispersed set
+        the library's ``ChannelScoreReport``: ``alpha``, ``tests`` (2 per
+        estimator per channel), ``z_crit``, ``channels`` (per channel its
+        ``estimators`` and ``pass``), ``pass``, with ``sidecar``,
+        ``estimates``, ``bins``, ``bias``, ``rows``.
     """
 
 def simulate(*, trials: int=100000, seed: int=1, threads: int=0, bins: str='positive', bias: str='model', formula: str='exact', client: Any=None, checkpoint: Optional[_PathLike]=None, chunk_units: Optional[int]=None, wavelength_um: float=2.2, bandwidth_nm: float=400.0, spectrum_csv: Optional[_PathLike]=None, channels: Optional[int]=None, resolution: Optional[float]=None, channels_csv: Optional[_PathLike]=None, source: str='ud', diameter_mas: float=43.0, spatial_freq_cpas: Optional[float]=None, baseline_m: Optional[float]=None, dispersion_pp_rad: float=0.0, stroke_um: Optional[float]=None, dx_um: float=0.5, samples: int=128, integrating: bool=False, visibility: float=1.0, photons: float=10.0, read_noise: float=0.0, photon_noise: bool=True, fringe_hz: Optional[float]=None, wind_mps: float=10.0, seeing_arcsec: float=1.0, seeing_wavelength_um: Optional[float]=None, aperture_m: float=0.45, outer_scale_m: Optional[float]=None, sub_samples: int=6, reference: str='mean') -> Dict[str, Any]:

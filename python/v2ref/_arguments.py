@@ -9,7 +9,7 @@ their docstring entries; a sidecar given as a dict or a path.
 import collections.abc as _abc
 import inspect as _inspect
 import os as _os
-from typing import Any, Dict, List, Mapping, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -191,6 +191,33 @@ def _matrix(name: str, x: Any) -> _np.ndarray:
             f"{name}: {a.ndim}-D array of shape {a.shape}; a 2-D array (rows, samples) is needed"
         )
     return _contiguous(name, a, "a 2-D array (rows, samples)")
+
+
+def _channel_rows(name: str, x: Any) -> Tuple[_np.ndarray, Optional[int]]:
+    """Rows of a wide-band set, (rows, N), or of a dispersed one, (rows, C,
+    N), as a 2-D C-contiguous float64 view (rows, C·N) and C (None for a
+    2-D array); no copy when ``x`` is C-contiguous float64."""
+    _not_masked(name, x)
+    a = _np.asarray(x)
+    if a.ndim not in (2, 3):
+        raise TypeError(
+            f"{name}: {a.ndim}-D array of shape {a.shape}; a 2-D array (rows, N), "
+            "or a 3-D array (rows, C, N) for a dispersed set, is needed"
+        )
+    if a.ndim == 2:
+        return _matrix(name, a), None
+    if a.dtype == _np.bool_ or not (
+        _np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)
+    ):
+        raise TypeError(
+            f"{name}: dtype {a.dtype} is not a real number type; a float64 array (rows, C, N) is needed"
+        )
+    if 0 in a.shape:
+        raise ValueError(
+            f"{name}: empty array of shape {a.shape}; an array (rows, C, N) with at least one row, channel and sample is needed"
+        )
+    a = _contiguous(name, a, "an array (rows, C, N)")
+    return a.reshape(a.shape[0], a.shape[1] * a.shape[2]), int(a.shape[1])
 
 
 def _vector(name: str, x: Any) -> _np.ndarray:

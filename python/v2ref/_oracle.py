@@ -18,6 +18,7 @@ from ._arguments import (
     _documented,
     _flag,
     _float,
+    _channel_rows,
     _matrix,
     _not_masked,
     _physical,
@@ -72,11 +73,16 @@ def estimate(
 
     Parameters
     ----------
-    interferograms : array_like, shape (rows, N)
+    interferograms : array_like, shape (rows, N) or (rows, C, N)
         One scan per row, columns in the order of the sidecar's
         ``sample_opd_um`` (column 0 at the white-light fringe); photons per
-        sample. N is the array's width. A C-contiguous float64 array is used
-        without a copy; other real dtypes are converted.
+        sample. N is the array's width. A dispersed set (a sidecar with
+        ``channels``, or the ``channels``, ``resolution`` or
+        ``channels_csv`` keyword) takes its C channels of N samples as
+        shape (rows, C, N), each channel estimated with its own model;
+        another shape is a ValueError naming the shape needed. A
+        C-contiguous float64 array is used without a copy; other real
+        dtypes are converted.
     sidecar : dict or path, optional
         A synth sidecar (the dict from :func:`synthesize` or a SET.json
         path): the configuration comes from it, and the physical keyword
@@ -89,7 +95,7 @@ def estimate(
     bias : {"model", "counts"}
         Where the photon bias takes the mean counts from: the model's
         noise-free counts, or each row's own counts.
-    calibrator : array_like, shape (rows', N), optional
+    calibrator : array_like, shape (rows', N) or (rows', C, N), optional
         A calibrator's interferograms (same N and continuum convention): the
         normalization is the mean of their bias-subtracted estimates.
         Default: the configuration's point source, noise-free (``model``).
@@ -103,17 +109,26 @@ def estimate(
 
     Returns
     -------
-    dict of str to ndarray, shape (rows,)
+    dict of str to ndarray, shape (rows,) or (rows, C)
         ``v1_sq_raw``, ``v2_sq_raw`` (photons²), ``v1_sq_bias``,
         ``v2_sq_bias`` (photons²), ``v1_sq``, ``v2_sq`` (normalized,
-        dimensionless): the columns of ``v2ref estimate``.
+        dimensionless): the columns of ``v2ref estimate``; (rows, C), one
+        column per channel in increasing wavenumber, when the rows were
+        given as (rows, C, N).
     """
     values = dict(locals())
-    data = _matrix("interferograms", interferograms)
+    data, channel_axis = _channel_rows("interferograms", interferograms)
     bins = _word("bins", bins)
     bias = _word("bias", bias)
     threads = _v2ref.check_threads(_uint("threads", threads))
-    cal = None if calibrator is None else _matrix("calibrator", calibrator)
+    cal = None
+    if calibrator is not None:
+        cal, cal_axis = _channel_rows("calibrator", calibrator)
+        if cal_axis != channel_axis:
+            raise ValueError(
+                f"calibrator: shape {_np.shape(calibrator)}; the interferograms have shape "
+                f"{_np.shape(interferograms)}: the same channels of the same N are needed"
+            )
     if continuum_subtracted is not None and not isinstance(continuum_subtracted, (bool, _np.bool_)):
         raise TypeError(f"continuum_subtracted: {continuum_subtracted!r} is not a bool")
     if sidecar is not None:
@@ -127,7 +142,7 @@ def estimate(
     else:
         text, name = None, ""
         physical = _physical(values)
-        physical["samples"] = data.shape[1]
+        physical["samples"] = data.shape[1] // (channel_axis or 1)
     return _v2ref.estimate(
         data,
         physical,
@@ -138,6 +153,7 @@ def estimate(
         bias,
         cal,
         threads,
+        channel_axis,
     )
 
 
@@ -241,8 +257,13 @@ def synthesize(
 
     Returns
     -------
-    (ndarray of shape (rows, N), dict)
-        The interferograms (float64, photons per sample) and the sidecar:
+    (ndarray of shape (rows, N) or (rows, C, N), dict)
+        The interferograms (float64, photons per sample; with the
+        ``channels``, ``resolution`` or ``channels_csv`` keyword and C > 1
+        channels, shape (rows, C, N), channel after channel in increasing
+        wavenumber, and the sidecar's ``channels`` lists each channel with
+        its own truth; ``out`` writes the ``.npy`` of that shape) and the
+        sidecar:
         the same JSON document as ``v2ref synth``'s OUT.json, parsed
         (``truth`` holds what each window and bias convention must give;
         ``data.npy`` is the data file's name with ``out``, else empty).
@@ -410,6 +431,40 @@ def _estimate_columns(estimates: Any, columns: Optional[Sequence[str]]):
     )
 
 
+def _channel_estimate_columns(estimates: Any) -> Optional[Tuple[Optional[_np.ndarray], Optional[_np.ndarray]]]:
+    """(v1_sq, v2_sq) of a dispersed set's estimates, each (rows, C) or
+    None when absent; None when ``estimates`` is not a mapping of 2-D
+    arrays (the wide-band estimates)."""
+    if not isinstance(estimates, _abc.Mapping):
+        return None
+    if not any(_np.ndim(v) == 2 for v in estimates.values()):
+        return None
+    unknown = [k for k in estimates if k not in _ESTIMATE_KEYS]
+    if unknown:
+        raise ValueError(
+            f"estimates: unknown key(s) {', '.join(map(repr, unknown))}; accepted keys: "
+            f"{', '.join(_ESTIMATE_KEYS)} (v1_sq and v2_sq are scored; keys are case-sensitive)"
+        )
+    out = []
+    for k in ("v1_sq", "v2_sq"):
+        if k not in estimates:
+            out.append(None)
+            continue
+        _not_masked(f"estimates[{k!r}]", estimates[k])
+        a = _np.asarray(estimates[k])
+        if a.ndim != 2 or not (_np.issubdtype(a.dtype, _np.floating) or _np.issubdtype(a.dtype, _np.integer)):
+            raise ValueError(
+                f"estimates[{k!r}]: array of shape {a.shape} and dtype {a.dtype}; a dispersed set's "
+                "estimates are real arrays of shape (rows, C), one column per channel"
+            )
+        out.append(_np.ascontiguousarray(a, dtype=_np.float64))
+    if out[0] is None and out[1] is None:
+        raise ValueError(
+            f"estimates: no column named v1_sq or v2_sq (found: {','.join(map(str, estimates))}); one of them is needed"
+        )
+    return out[0], out[1]
+
+
 def score(
     estimates: Any,
     sidecar: Union[Mapping[str, Any], _PathLike],
@@ -426,7 +481,9 @@ def score(
     estimates : dict, structured array, array_like or OIFITS path
         The normalized per-row estimates (dimensionless), one per row of
         the set: a mapping with ``v1_sq`` and/or ``v2_sq`` (as returned by
-        :func:`estimate`), a structured array with those fields, or a 2-D
+        :func:`estimate`; for a dispersed set arrays of shape (rows, C),
+        one column per channel in increasing wavenumber, each channel
+        scored against its own truth under one threshold), a structured array with those fields, or a 2-D
         array whose columns are named by ``columns`` (default
         ``v1_sq,v2_sq``; a 1-D array needs one name); or the path of an
         OIFITS file (``.fits``, ``.oifits``, ``.fit``, each possibly
@@ -452,7 +509,11 @@ def score(
         ``estimators`` (per estimator: mean, expected_mean, stderr_mean_combined
         (the denominator of z_mean), z_mean, var, expected_var,
         stderr_var_combined (the denominator of z_var), z_var,
-        minimum detectable biases, pass), ``pass``.
+        minimum detectable biases, pass), ``pass``. For a dispersed set
+        the library's ``ChannelScoreReport``: ``alpha``, ``tests`` (2 per
+        estimator per channel), ``z_crit``, ``channels`` (per channel its
+        ``estimators`` and ``pass``), ``pass``, with ``sidecar``,
+        ``estimates``, ``bins``, ``bias``, ``rows``.
     """
     from .oifits import FITS_SUFFIXES, is_fits_path, score_oifits
 
@@ -468,8 +529,15 @@ def score(
         )
     text, name = _sidecar_arg(sidecar)
     _check_rows(estimates, text)
-    v1, v2 = _estimate_columns(estimates, columns)
     alpha = _float("alpha", alpha)
+    dispersed = _channel_estimate_columns(estimates)
+    if dispersed is not None:
+        # A dispersed set: each channel against its own truth, one
+        # threshold for every test of every channel.
+        return _v2ref.score_channels_answer(
+            *dispersed, text, name, "<array>", _word("bins", bins), _word("bias", bias), alpha
+        )
+    v1, v2 = _estimate_columns(estimates, columns)
     return _v2ref.score(
         v1,
         v2,

@@ -29,14 +29,21 @@ def small_set():
         np.zeros((4, N), dtype=object),
         np.zeros((4, N), dtype=bool),
         np.array([["a"] * N] * 4),
-        np.zeros((4, N, 2)),
+        np.zeros((4, N, 2, 1)),
         np.zeros(N),
     ],
-    ids=["complex", "object", "bool", "str", "3-D", "1-D"],
+    ids=["complex", "object", "bool", "str", "4-D", "1-D"],
 )
 def test_wrong_arrays_are_refused_by_name(bad):
     with pytest.raises(TypeError, match="interferograms"):
         v2ref.estimate(bad)
+
+
+def test_a_3d_array_without_channels_is_refused_by_name():
+    # (rows, C, N) is a dispersed set's shape: here N channels of 2
+    # samples, which a wide-band configuration refuses by value.
+    with pytest.raises(ValueError, match="^interferograms: 16 channels .*C = 1"):
+        v2ref.estimate(np.zeros((4, N, 2)))
 
 
 def test_non_contiguous_and_read_only_arrays_give_the_same_answer(small_set):

@@ -255,6 +255,15 @@ fn read_estimates(
     pick: &Pick<'_>,
 ) -> PyResult<oifits::OifitsEstimates> {
     let estimator = estimator_of(pick.estimator)?;
+    let c = sc.channel_count();
+    if c > 1 {
+        // Not yet per channel from Python: the whole band's reading would
+        // score every channel against one truth.
+        return Err(PyValueError::new_err(format!(
+            "sidecar: a dispersed set of C = {c} channels; its OIFITS estimates are not read per channel here yet: \
+             read the file with read_oifits (vis2data of shape (rows, {c})) and score the (rows, {c}) arrays"
+        )));
+    }
     let (lo, hi) = ok(sc.inputs.spectrum.spectrum())?.support();
     let expected = Expected {
         rows: sc.data.rows,

@@ -15,23 +15,24 @@ fn with_ext(out: &Path, ext: &str) -> PathBuf {
     out.with_file_name(name)
 }
 
-/// Writes a set from `synthesize(out=...)`: OUT.npy (the rows, `values`
-/// of `cols` columns) and OUT.json (the sidecar, pretty), as `v2ref synth
+/// Writes a set from `synthesize(out=...)`: OUT.npy (the rows, `values`,
+/// each of shape `row_shape`: (N) for a wide-band set, (C, N) for a
+/// dispersed one) and OUT.json (the sidecar, pretty), as `v2ref synth
 /// --out OUT` does.
 pub fn write_set(
     py: Python<'_>,
     out: &Path,
-    (values, cols): (&[f64], usize),
+    (values, row_shape): (&[f64], &[usize]),
     sidecar: &Sidecar,
     force: bool,
 ) -> PyResult<()> {
     ok(crate::atomic::target::check_file_name(out, "out"))?;
     let (npy, json) = (with_ext(out, ".npy"), with_ext(out, ".json"));
     let set = ok(OutputSet::begin(&[(&npy, "out"), (&json, "out")], force))?;
-    let rows = values.len() / cols.max(1);
+    let rows = values.len() / row_shape.iter().product::<usize>().max(1);
     ok(py.allow_threads(|| {
         set.write(|| {
-            let mut w = NpyRowWriter::create(&npy, rows as u64, cols, "out")?;
+            let mut w = NpyRowWriter::create_shaped(&npy, rows as u64, row_shape, "out")?;
             w.write_rows(values)?;
             w.finish()?;
             // The sidecar last, listing the .npy (as `v2ref synth` does).

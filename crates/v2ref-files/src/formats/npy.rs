@@ -513,10 +513,26 @@ impl NpyRowWriter {
     /// Starts `path` as a (`rows`, `cols`) float64 array; `param` names the
     /// file in errors.
     pub fn create(path: &Path, rows: u64, cols: usize, param: &'static str) -> Result<Self> {
+        Self::create_shaped(path, rows, &[cols], param)
+    }
+
+    /// Starts `path` as a (`rows`, `row_shape`…) float64 array, each row
+    /// the product of `row_shape` values (a dispersed set: (rows, C, N));
+    /// `param` names the file in errors.
+    pub fn create_shaped(
+        path: &Path,
+        rows: u64,
+        row_shape: &[usize],
+        param: &'static str,
+    ) -> Result<Self> {
+        let cols = row_shape.iter().product();
+        let shape: Vec<u64> = std::iter::once(rows)
+            .chain(row_shape.iter().map(|&d| d as u64))
+            .collect();
         let (temp, file) = TempTarget::create(path, Some(param))?;
         let out = npyz::WriteOptions::new_header_only()
             .dtype(npyz::DType::Plain("<f8".parse().expect("a valid dtype")))
-            .shape(&[rows, cols as u64])
+            .shape(&shape)
             .writer(BufWriter::with_capacity(WRITE_BUFFER, file))
             .write_header_only()
             .map_err(|e| temp.io(e))?;

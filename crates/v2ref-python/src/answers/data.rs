@@ -1,6 +1,7 @@
 //! The checks of array and sidecar arguments: a message naming the
 //! argument and where in it the value is unusable.
 
+use crate::commands::estimate::RowsName;
 use crate::conformance::sidecar::Sidecar;
 use crate::values::SidecarArg;
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -99,4 +100,30 @@ pub(super) fn estimate_column<'a>(
         ));
     }
     Ok(x)
+}
+
+/// How a refusal names the rows of `estimate`.
+pub(super) const INTERFEROGRAMS: RowsName<'static> = RowsName {
+    param: "interferograms",
+    path: None,
+};
+
+/// Refuses, before anything is allocated, an answer of `rows` rows of `n`
+/// samples (float64, held whole as the returned array) larger than the
+/// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
+/// within the documented bounds, 60 million rows of 32 samples (15 GB)
+/// aborted the interpreter when the allocation failed.
+pub(super) fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
+    let budget = crate::ok(crate::formats::memory_budget())?;
+    let need = rows.saturating_mul(n as u64).saturating_mul(8);
+    if need <= budget {
+        return Ok(());
+    }
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    Err(pyo3::exceptions::PyMemoryError::new_err(format!(
+        "rows: {rows} rows of {n} samples take {:.2} GiB, more than the memory budget of {:.2} GiB \
+         (V2REF_MAX_MEMORY_GIB, else half the physical memory); write fewer rows, or raise the budget",
+        gib(need),
+        gib(budget)
+    )))
 }

@@ -5,11 +5,12 @@
 //! By concern: `paper.rs` answers the paper's effects one at a time
 //! (`bias`, `snr`, `piston`, `claims`); `simulator.rs` the end-to-end
 //! simulator and the conformance kit (`simulate`, `synthesize`, `estimate`,
-//! `score`); `plan.rs` the planner (`plan`, `photon_rate`); `data.rs`
+//! `score`), `dispersed.rs` its dispersed sets (rows, C, N); `plan.rs` the planner (`plan`, `photon_rate`); `data.rs`
 //! checks the arrays and sidecars they are given. The enum arguments and
 //! the answers are parsed and built here.
 
 mod data;
+mod dispersed;
 pub(crate) mod paper;
 pub(crate) mod plan;
 pub(crate) mod powered;
@@ -63,5 +64,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(paper::piston, m)?)?;
     m.add_function(wrap_pyfunction!(paper::claims, m)?)?;
     m.add_function(wrap_pyfunction!(simulator::score, m)?)?;
+    m.add_function(wrap_pyfunction!(dispersed::score_channels_answer, m)?)?;
     Ok(())
 }

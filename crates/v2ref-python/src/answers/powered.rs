@@ -77,7 +77,7 @@ pub(super) fn powered_set<'py>(
     let n = v.inputs.samples;
     let (data, sidecar) = match (rows, truth_partials) {
         (Some(rows), Some(bytes)) => {
-            super::simulator::check_array_fits(rows, n)?;
+            super::data::check_array_fits(rows, n)?;
             interruptible(py, |tick| from_partials(&v, rows, &bytes, tick))?
         }
         _ => {

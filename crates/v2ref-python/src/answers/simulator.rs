@@ -1,8 +1,10 @@
 //! The end-to-end simulator and the conformance kit: `simulate`,
 //! `synthesize`, `estimate`, `score`.
 
-use super::data::{data_error, estimate_column, matrix, parse_sidecar};
-use super::{convention, formula, window};
+use super::data::{
+    check_array_fits, data_error, estimate_column, matrix, parse_sidecar, INTERFEROGRAMS,
+};
+use super::{convention, dispersed, formula, window};
 use crate::commands::estimate::{self as rows_estimate, CalibratorRows, Configuration, RowsName};
 use crate::commands::synth::{self as synth_set, SetSize};
 use crate::conformance::estimate::{BiasConvention, RowEstimate};
@@ -30,7 +32,7 @@ use crate::commands::ESTIMATE_COLUMNS;
 /// `sidecar` is a sidecar (a file's text or a dict), `sidecar_name` where
 /// it came from.
 #[pyfunction]
-#[pyo3(signature = (interferograms, physical, sidecar, sidecar_name, continuum_subtracted, bins, bias, calibrator, threads))]
+#[pyo3(signature = (interferograms, physical, sidecar, sidecar_name, continuum_subtracted, bins, bias, calibrator, threads, channel_axis=None))]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn estimate<'py>(
     py: Python<'py>,
@@ -43,6 +45,7 @@ pub(super) fn estimate<'py>(
     bias: &str,
     calibrator: Option<PyReadonlyArray2<'py, f64>>,
     threads: usize,
+    channel_axis: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let window = ok(window(bins))?;
     let bias = ok(convention(bias))?;
@@ -53,7 +56,7 @@ pub(super) fn estimate<'py>(
         continuum_subtracted,
     };
     let config = configuration(given)?;
-    let inputs = ok(config.inputs_for(INTERFEROGRAMS, rows, cols))?;
+    dispersed::check_channel_axis("interferograms", channel_axis, config.channel_count())?;
     let cal = match &calibrator {
         None => None,
         Some(c) => {
@@ -68,6 +71,16 @@ pub(super) fn estimate<'py>(
             })
         }
     };
+    if config.channels.is_some() {
+        let options = (window, bias);
+        let at = (rows, cols, data);
+        let per_channel = dispersed::estimate_channels(py, &config, at, options, cal, threads)?;
+        return match channel_axis {
+            None => estimate_columns(py, &per_channel[0]),
+            Some(_) => dispersed::channel_columns(py, &per_channel),
+        };
+    }
+    let inputs = ok(config.inputs_for(INTERFEROGRAMS, rows, cols))?;
     let rows = interruptible(py, |_| -> Result<Vec<RowEstimate>> {
         let options = (window, bias);
         let cs = config.continuum_subtracted;
@@ -90,12 +103,6 @@ pub(super) fn estimate<'py>(
     estimate_columns(py, &rows)
 }
 
-/// How a refusal names the rows of `estimate`.
-const INTERFEROGRAMS: RowsName<'static> = RowsName {
-    param: "interferograms",
-    path: None,
-};
-
 /// Where `estimate` takes its configuration from: the keyword arguments
 /// given, or a sidecar's JSON text and where it came from (then no
 /// keyword may be given).
@@ -105,14 +112,20 @@ struct Given<'a, 'py> {
     continuum_subtracted: Option<bool>,
 }
 
-/// The configuration of `estimate`: a sidecar's (its set's rows), or the
-/// keyword arguments' (N from the rows).
+/// The configuration of `estimate`: a sidecar's (its set's rows, its
+/// channels), or the keyword arguments' (N from the rows; C from the
+/// channel keywords).
 fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
     let Some((sidecar, sidecar_name)) = given.sidecar else {
         let p = crate::inputs::physical_from_dict(given.physical)?;
-        ok(p.refuse_channels("estimate"))?;
         let cs = given.continuum_subtracted.unwrap_or(true);
-        return ok(Configuration::from_physical(&p, cs));
+        let config = ok(Configuration::from_physical(&p, cs))?;
+        return match ok(crate::commands::channels::given(&p))? {
+            None => Ok(config),
+            Some((channels, input)) => ok(config
+                .with_channels(channels)
+                .map_err(|e| crate::commands::channels::renamed(e, input))),
+        };
     };
     if let Some((k, _)) = given.physical.iter().next() {
         return Err(PyValueError::new_err(format!(
@@ -129,7 +142,10 @@ fn configuration(given: Given<'_, '_>) -> PyResult<Configuration> {
     // observation of an observation-layout set).
     Ok(Configuration {
         set_rows: None,
-        ..Configuration::from_sidecar(parse_sidecar(sidecar, sidecar_name)?)
+        ..ok(Configuration::read_sidecar(parse_sidecar(
+            sidecar,
+            sidecar_name,
+        )?))?
     })
 }
 
@@ -173,6 +189,29 @@ pub(super) fn synthesize<'py>(
     dead_time_s: f64,
     truth_partials: Option<Vec<Vec<u8>>>,
 ) -> PyResult<(Bound<'py, PyAny>, PyObject)> {
+    let p = crate::inputs::physical_from_dict(physical)?;
+    if truth_partials.is_none() {
+        if let Some((channels, input)) = ok(crate::commands::channels::given(&p))? {
+            let timing = crate::simulator::RowTiming::new(
+                ok(crate::simulator::RowLayout::from_name(layout))?,
+                observations,
+                dead_time_s,
+            );
+            let piston = ok(p.inputs())?.piston.is_some();
+            let reference_blocks = reference_blocks
+                .unwrap_or_else(|| crate::conformance::truth::default_reference_blocks(piston));
+            let size = SetSize {
+                rows,
+                seed,
+                reference_blocks,
+                threads,
+                keep_continuum,
+                layout: ok(timing)?,
+            };
+            let set = (&p, channels, input);
+            return dispersed::synthesize(py, set, size, npy, (out, force));
+        }
+    }
     let job = truth_job(
         physical,
         (rows, seed, threads, reference_blocks),
@@ -216,7 +255,7 @@ pub(super) fn synthesize<'py>(
         Ok((data, sidecar))
     })?;
     if let Some(out) = out {
-        crate::output::write_set(py, &out, (&data, n), &sidecar, force)?;
+        crate::output::write_set(py, &out, (&data, &[n]), &sidecar, force)?;
     }
     let array = PyArray1::from_vec(py, data).reshape([rows as usize, n])?;
     Ok((array.into_any(), to_py(py, &sidecar)?))
@@ -236,7 +275,7 @@ pub(crate) fn truth_job(
         dead_time_s,
     ))?;
     let p = crate::inputs::physical_from_dict(physical)?;
-    ok(p.refuse_channels("synthesize"))?;
+    ok(p.refuse_channels("synthesize with client or checkpoint"))?;
     let inputs = ok(p.inputs())?;
     let reference_blocks = reference_blocks.unwrap_or_else(|| {
         crate::conformance::truth::default_reference_blocks(inputs.piston.is_some())
@@ -252,26 +291,6 @@ pub(crate) fn truth_job(
         size,
         layout,
     })
-}
-
-/// Refuses, before anything is allocated, an answer of `rows` rows of `n`
-/// samples (float64, held whole as the returned array) larger than the
-/// memory budget (`V2REF_MAX_MEMORY_GIB`, else half the physical memory):
-/// within the documented bounds, 60 million rows of 32 samples (15 GB)
-/// aborted the interpreter when the allocation failed.
-pub(super) fn check_array_fits(rows: u64, n: usize) -> PyResult<()> {
-    let budget = ok(crate::formats::memory_budget())?;
-    let need = rows.saturating_mul(n as u64).saturating_mul(8);
-    if need <= budget {
-        return Ok(());
-    }
-    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
-    Err(pyo3::exceptions::PyMemoryError::new_err(format!(
-        "rows: {rows} rows of {n} samples take {:.2} GiB, more than the memory budget of {:.2} GiB \
-         (V2REF_MAX_MEMORY_GIB, else half the physical memory); write fewer rows, or raise the budget",
-        gib(need),
-        gib(budget)
-    )))
 }
 
 /// `simulate`: the running statistics of `v2ref simulate --json`.
@@ -393,6 +412,14 @@ pub(super) fn score(
     let window = ok(window(bins))?;
     let bias = ok(convention(bias))?;
     let sc = parse_sidecar(sidecar, sidecar_name)?;
+    let c = sc.channel_count();
+    if c > 1 {
+        // Its top-level truth is the whole band's closed forms, not what
+        // any channel's rows give: a dispersed set is scored per channel.
+        return Err(PyValueError::new_err(format!(
+            "estimates: 1-D arrays; the set has C = {c} channels: give v1_sq and/or v2_sq as arrays of shape (rows, {c}), one column per channel"
+        )));
+    }
     let truth = sc.truth(window, bias).ok_or_else(|| {
         data_error(
             "sidecar",
