@@ -211,6 +211,25 @@ proptest! {
     }
 }
 
+/// A finite truth so far from the estimates that its z-score overflows (a
+/// variance of 4e307, which proptest found): refused naming the truth, not
+/// scored with an infinite z.
+#[test]
+fn a_truth_whose_z_score_overflows_is_refused() {
+    let mut truth = set()
+        .expected(BinWindow::Positive, BiasConvention::Model)
+        .unwrap()
+        .clone();
+    (truth.v2_sq.mean, truth.v2_sq.var, truth.v2_sq.stderr_mean) =
+        (0.0, 4.0679042917662335e307, 0.0);
+    let est = set()
+        .reference_estimates(BinWindow::Positive, BiasConvention::Model)
+        .unwrap();
+    let v2: Vec<f64> = est.iter().map(|r| r.v2_sq).collect();
+    let refused = score_report(None, Some(&v2), &truth, set().len() as u64, 1e-3).unwrap_err();
+    assert_eq!(refused.param(), Some("truth"), "{refused}");
+}
+
 /// A set whose values would take more than half the machine's memory is
 /// refused before anything is allocated (checked where the largest set
 /// the bounds accept, 2^31 values = 16 GiB, exceeds it).

@@ -235,8 +235,9 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
 /// Refuses (parameter `estimates`) a length other than `expected_rows`,
 /// fewer than 2 rows (4 when the variance's standard error must come from
 /// the sample), and a non-finite estimate (naming its 1-based row);
-/// (parameter `truth`) a non-finite or negative truth, or a zero
-/// denominator.
+/// (parameter `truth`) a non-finite or negative truth, a zero
+/// denominator, or a z-score that overflows (a truth out of the
+/// estimates' scale).
 pub fn score_with_threshold(
     estimates: &[f64],
     truth: &EstimatorTruth,
@@ -296,6 +297,18 @@ pub fn score_with_threshold(
     let var_dof = dof.filter(|_| stderr_var_source == VarStderrSource::Truth);
     let z_mean = normal_equivalent((mean - truth.mean) / se_mean, dof);
     let z_var = normal_equivalent((var - truth.var) / se_var, var_dof);
+    for (what, z) in [("mean", z_mean), ("variance", z_var)] {
+        if !z.is_finite() {
+            // A finite truth so far from the estimates that the ratio
+            // overflows (a variance near 1e308 over a small error): no z.
+            return Err(Error::Invalid {
+                param: "truth",
+                reason: format!(
+                    "the z-score of the {what} overflows ({z}); the truth's {what} is out of any scale the estimates have"
+                ),
+            });
+        }
+    }
     let pass_mean = z_mean.abs() <= z_crit;
     let pass_var = z_var.abs() <= z_crit;
     Ok(EstimatorScore {
