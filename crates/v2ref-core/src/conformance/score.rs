@@ -185,6 +185,11 @@ pub struct EstimatorScore {
     pub pass: bool,
 }
 
+/// Largest |mean| and variance of a truth scored: beyond it the z-scores
+/// of ordinary estimates overflow (the estimators' own rows are refused
+/// above the same scale, where their squares overflow).
+pub const MAX_TRUTH_SCALE: f64 = 1e150;
+
 fn check_truth(truth: &EstimatorTruth) -> Result<()> {
     let bad = |what: &str, v: f64| Error::Invalid {
         param: "truth",
@@ -193,6 +198,18 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
     for (what, v) in [("mean", truth.mean), ("var", truth.var)] {
         if !v.is_finite() {
             return Err(bad(what, v));
+        }
+    }
+    // A truth beyond any scale a set's estimates have (a variance of 1e307
+    // scored a z of -inf against ordinary estimates): refused as the rows
+    // are above 1e150, whose squares overflow.
+    for (what, v) in [("mean", truth.mean), ("var", truth.var)] {
+        if v.abs() > MAX_TRUTH_SCALE {
+            return Err(Error::OutOfRange {
+                param: "truth",
+                value: v,
+                accepted: format!("|{what}| <= {MAX_TRUTH_SCALE:e}"),
+            });
         }
     }
     // A variance below 0 is no variance: scored, its z would compare the
@@ -235,9 +252,8 @@ fn check_truth(truth: &EstimatorTruth) -> Result<()> {
 /// Refuses (parameter `estimates`) a length other than `expected_rows`,
 /// fewer than 2 rows (4 when the variance's standard error must come from
 /// the sample), and a non-finite estimate (naming its 1-based row);
-/// (parameter `truth`) a non-finite or negative truth, a zero
-/// denominator, or a z-score that overflows (a truth out of the
-/// estimates' scale).
+/// (parameter `truth`) a non-finite or negative truth, a mean or
+/// variance beyond [`MAX_TRUTH_SCALE`], or a zero denominator.
 pub fn score_with_threshold(
     estimates: &[f64],
     truth: &EstimatorTruth,
@@ -297,18 +313,6 @@ pub fn score_with_threshold(
     let var_dof = dof.filter(|_| stderr_var_source == VarStderrSource::Truth);
     let z_mean = normal_equivalent((mean - truth.mean) / se_mean, dof);
     let z_var = normal_equivalent((var - truth.var) / se_var, var_dof);
-    for (what, z) in [("mean", z_mean), ("variance", z_var)] {
-        if !z.is_finite() {
-            // A finite truth so far from the estimates that the ratio
-            // overflows (a variance near 1e308 over a small error): no z.
-            return Err(Error::Invalid {
-                param: "truth",
-                reason: format!(
-                    "the z-score of the {what} overflows ({z}); the truth's {what} is out of any scale the estimates have"
-                ),
-            });
-        }
-    }
     let pass_mean = z_mean.abs() <= z_crit;
     let pass_var = z_var.abs() <= z_crit;
     Ok(EstimatorScore {
